@@ -1,0 +1,336 @@
+"""Meshing support surfaces with gmsh and reading meshes into scikit-fem.
+
+Every call opens and closes its own gmsh session (gmsh keeps global state),
+so meshing works repeatedly in one process and nothing leaks between calls.
+Boundaries come out named: ``outer`` (the outline), ``inlet`` (all pocket
+contours) and ``inlet_0``, ``inlet_1``, ... per pocket; on the default
+rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
+(phi = alpha2) and ``side`` (z = +-a).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+import skfem
+
+from .geometry import Surface
+
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly"]
+
+_GMSH_LOCK = threading.Lock()
+
+#: gmsh element type codes: triangle (3 and 6 nodes), line (2 and 3 nodes).
+_TRI = {1: 2, 2: 9}
+_LINE = {1: 1, 2: 8}
+
+
+@dataclass(frozen=True, eq=False)
+class SupportMesh:
+    """A triangular mesh of a support surface with named boundaries.
+
+    Attributes
+    ----------
+    mesh : skfem.MeshTri1 or skfem.MeshTri2
+        The scikit-fem mesh in ``(phi, z)``; ``MeshTri2`` carries curved
+        (second-order) element edges.
+    surface : Surface or None
+        The geometry it was meshed from (None for a mesh read from a file).
+    size : float
+        Nominal element size [-] (longest requested edge).
+    source : str
+        Where the mesh came from (``"gmsh"`` or the file path).
+    """
+
+    mesh: skfem.Mesh
+    surface: Surface | None = None
+    size: float = math.nan
+    source: str = "gmsh"
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def boundaries(self) -> dict[str, np.ndarray]:
+        """Boundary facet indices by name."""
+        return dict(self.mesh.boundaries or {})
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.mesh.nvertices)
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.mesh.nelements)
+
+    @property
+    def geometry_order(self) -> int:
+        """1 for straight-sided triangles, 2 for curved (MeshTri2)."""
+        return 2 if isinstance(self.mesh, skfem.MeshTri2) else 1
+
+    @property
+    def has_inlet(self) -> bool:
+        return "inlet" in self.boundaries and len(self.boundaries["inlet"]) > 0
+
+    @property
+    def max_edge(self) -> float:
+        """Longest element edge [-]."""
+        p, f = self.mesh.p, self.mesh.facets
+        return float(np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0).max())
+
+
+@contextlib.contextmanager
+def gmsh_session(verbose: bool = False) -> Iterator[object]:
+    """A private gmsh session: initialize, yield the module, always finalize."""
+    import gmsh
+
+    with _GMSH_LOCK:
+        if gmsh.isInitialized():
+            gmsh.finalize()
+        gmsh.initialize(interruptible=False)
+        try:
+            gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
+            gmsh.option.setNumber("General.Verbosity", 5 if verbose else 0)
+            yield gmsh
+        finally:
+            gmsh.finalize()
+
+
+def mesh_surface(
+    surface: Surface,
+    size: float,
+    *,
+    inlet_size: float | None = None,
+    corner_size: float | None = None,
+    grading_distance: float | None = None,
+    size_function: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    order: int = 1,
+    refine: int = 0,
+    algorithm: int = 6,
+    verbose: bool = False,
+) -> SupportMesh:
+    """Mesh a support surface with gmsh.
+
+    Parameters
+    ----------
+    surface : Surface
+        Outline and pockets in ``(phi, z)``.
+    size : float
+        Element size away from refinement zones [-], > 0.
+    inlet_size : float, optional
+        Element size on the pocket contours; grows linearly to ``size`` over
+        ``grading_distance``. Default: ``size`` (no grading), but never
+        larger than half the narrowest gap between a pocket and the outline.
+    corner_size : float, optional
+        Element size at the sharp corners of pockets (rectangles, polygons),
+        where the pressure gradient is singular. Default: ``inlet_size``.
+    grading_distance : float, optional
+        Distance over which refined sizes grow back to ``size`` [-].
+        Default: ``4 * size``.
+    size_function : callable, optional
+        ``f(phi, z) -> size`` for any other refinement (e.g. where the film
+        is thinnest: see :func:`bearingfe.film_graded_size`); the smallest of
+        all requested sizes wins.
+    order : {1, 2}
+        Geometry order: 2 gives curved edges on curved pockets (``MeshTri2``),
+        which P2 elements need to keep their convergence rate.
+    refine : int
+        Number of uniform refinements (each splits every triangle in four),
+        done by gmsh after meshing so new nodes stay on curved boundaries.
+    algorithm : int
+        gmsh 2D algorithm (6: Frontal-Delaunay).
+    verbose : bool
+        Let gmsh print its log.
+
+    Returns
+    -------
+    SupportMesh
+    """
+    if not isinstance(surface, Surface):
+        raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
+    size = _checked_size(size, "size")
+    gap = surface.min_gap() if surface.inlets else math.inf
+    inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2)
+    corner_size = _checked_size(corner_size, "corner_size") if corner_size is not None else inlet_size
+    grading = _checked_size(grading_distance, "grading_distance") if grading_distance is not None else 4 * size
+    if order not in (1, 2):
+        raise ValueError(f"order must be 1 or 2, got {order!r}")
+    if not (isinstance(refine, int) and 0 <= refine <= 6):
+        raise ValueError(f"refine must be an integer in 0..6, got {refine!r}")
+
+    with gmsh_session(verbose) as gmsh:
+        gmsh.model.add("support")
+        groups = _build_geometry(gmsh, surface)
+        _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface)
+        gmsh.option.setNumber("Mesh.Algorithm", algorithm)
+        gmsh.model.mesh.generate(2)
+        for _ in range(refine):
+            gmsh.model.mesh.refine()
+        if order == 2:
+            gmsh.model.mesh.setOrder(2)
+        mesh = _read_gmsh_model(gmsh, order)
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
+
+
+def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1) -> SupportMesh:
+    """Read a support-surface mesh from a gmsh ``.geo`` or ``.msh`` file.
+
+    The file must define physical curve groups named ``outer`` and
+    (optionally) ``inlet`` and a physical surface; ``arc_start``,
+    ``arc_end`` and ``side`` are used for flow splits when present.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.geo`` (meshed here) or ``.msh`` (read as is).
+    size : float, optional
+        For ``.geo``: maximum element size [-] (overrides the file's sizes).
+    order : {1, 2}
+        For ``.geo``: geometry order of the generated mesh.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"mesh file not found: {path}")
+    if path.suffix not in (".geo", ".msh"):
+        raise ValueError(f"mesh file must be .geo or .msh, got {path.name}")
+    with gmsh_session() as gmsh:
+        gmsh.open(str(path))
+        if path.suffix == ".geo":
+            if size is not None:
+                gmsh.option.setNumber("Mesh.MeshSizeMax", _checked_size(size, "size"))
+            gmsh.model.mesh.generate(2)
+            if order == 2:
+                gmsh.model.mesh.setOrder(2)
+        types = gmsh.model.mesh.getElementTypes(2)
+        read_order = 2 if _TRI[2] in types else 1
+        mesh = _read_gmsh_model(gmsh, read_order)
+    if "outer" not in (mesh.boundaries or {}):
+        raise ValueError(f"{path.name}: no physical curve group named 'outer'")
+    return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path))
+
+
+def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
+    """Split every triangle in four ``times`` times (straight edges only)."""
+    m = mesh.mesh
+    if isinstance(m, skfem.MeshTri2):
+        raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
+    return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def _checked_size(value: float, name: str) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a finite element size > 0, got {value!r}")
+    return value
+
+
+def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
+    occ = gmsh.model.occ
+    outline = surface.outline
+    outer_curves = outline.add_to_gmsh(occ)
+    inlet_curves = [shape.add_to_gmsh(occ) for shape in surface.inlets]
+    loops = [occ.addCurveLoop(outer_curves)] + [occ.addCurveLoop(c) for c in inlet_curves]
+    face = occ.addPlaneSurface(loops)
+    occ.synchronize()
+    groups = {"outer": outer_curves, "inlet": [c for cs in inlet_curves for c in cs]}
+    for k, cs in enumerate(inlet_curves):
+        groups[f"inlet_{k}"] = cs
+    if surface.is_rectangular:
+        # Rectangle vertices are stored counter-clockwise starting at (alpha1, -a):
+        # edges bottom (side), right (arc_end), top (side), left (arc_start).
+        bottom, right, top, left = outer_curves
+        groups.update(arc_start=[left], arc_end=[right], side=[bottom, top])
+    for name, curves in groups.items():
+        if curves:
+            gmsh.model.addPhysicalGroup(1, curves, name=name)
+    gmsh.model.addPhysicalGroup(2, [face], name="film")
+    return groups
+
+
+def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface) -> None:
+    opt = gmsh.option
+    opt.setNumber("Mesh.MeshSizeMax", size)
+    opt.setNumber("Mesh.MeshSizeMin", min(size, inlet_size, corner_size) / 4)
+    opt.setNumber("Mesh.MeshSizeFromPoints", 0)
+    opt.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    opt.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    fields = []
+    mf = gmsh.model.mesh.field
+    if groups["inlet"] and inlet_size < size:
+        fields.append(_threshold(mf, "CurvesList", groups["inlet"], inlet_size, size, grading))
+    corners = np.hstack([s.corners() for s in surface.inlets]) if surface.inlets else np.zeros((2, 0))
+    if corners.shape[1] and corner_size < size:
+        pts = _points_at(gmsh, corners)
+        fields.append(_threshold(mf, "PointsList", pts, corner_size, size, grading))
+    if fields:
+        fmin = mf.add("Min")
+        mf.setNumbers(fmin, "FieldsList", fields)
+        mf.setAsBackgroundMesh(fmin)
+    if size_function is not None:
+        def callback(dim, tag, x, y, z, lc):
+            return float(min(lc, size_function(np.array(x), np.array(y))))
+        gmsh.model.mesh.setSizeCallback(callback)
+
+
+def _points_at(gmsh, xy: np.ndarray) -> list[int]:
+    """Tags of the geometry points (already on pocket contours) at the given corners."""
+    tags = [tag for _, tag in gmsh.model.getEntities(0)]
+    where = np.array([gmsh.model.getValue(0, tag, [])[:2] for tag in tags]).T
+    near = np.hypot(where[0][:, None] - xy[0], where[1][:, None] - xy[1]) < 1e-9 * (1 + np.abs(xy).max())
+    return [tags[i] for i in np.nonzero(near.any(axis=1))[0]]
+
+
+def _threshold(mf, kind: str, entities: list[int], small: float, large: float, distance: float) -> int:
+    dist = mf.add("Distance")
+    mf.setNumbers(dist, kind, entities)
+    mf.setNumber(dist, "Sampling", 200)
+    thr = mf.add("Threshold")
+    mf.setNumber(thr, "InField", dist)
+    mf.setNumber(thr, "SizeMin", small)
+    mf.setNumber(thr, "SizeMax", large)
+    mf.setNumber(thr, "DistMin", 0.0)
+    mf.setNumber(thr, "DistMax", distance)
+    return thr
+
+
+def _read_gmsh_model(gmsh, order: int) -> skfem.Mesh:
+    """Convert gmsh's current 2D mesh to scikit-fem with named boundaries."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xy = coords.reshape(-1, 3)[:, :2].T
+    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(tags.size)
+    _, node_tags = gmsh.model.mesh.getElementsByType(_TRI[order])
+    if node_tags.size == 0:
+        raise ValueError("gmsh produced no triangles (is there a physical surface?)")
+    t = index[node_tags.astype(np.int64)].reshape(-1, 3 * order).T
+    vertices = np.unique(t[:3])
+    if order == 1:
+        renumber = np.full(tags.size, -1, dtype=np.int64)
+        renumber[vertices] = np.arange(vertices.size)
+        mesh = skfem.MeshTri1(np.ascontiguousarray(xy[:, vertices]), np.ascontiguousarray(renumber[t]))
+    else:
+        mesh = skfem.MeshTri2(np.ascontiguousarray(xy), np.ascontiguousarray(t))
+        renumber = np.full(tags.size, -1, dtype=np.int64)
+        renumber[vertices] = np.arange(vertices.size)  # skfem's own renumbering
+    boundaries = _physical_boundaries(gmsh, mesh, index, renumber)
+    return mesh.with_boundaries(boundaries) if boundaries else mesh
+
+
+def _physical_boundaries(gmsh, mesh, index, renumber) -> dict[str, np.ndarray]:
+    facet_of = {(a, b): k for k, (a, b) in enumerate(np.sort(mesh.facets, axis=0).T.tolist())}
+    out = {}
+    for dim, tag in gmsh.model.getPhysicalGroups(1):
+        name = gmsh.model.getPhysicalName(dim, tag)
+        facets = []
+        for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
+            for etype, _, enodes in zip(*gmsh.model.mesh.getElements(1, entity)):
+                nper = gmsh.model.mesh.getElementProperties(etype)[3]
+                ends = renumber[index[enodes.astype(np.int64)].reshape(-1, nper)[:, :2]]
+                facets.extend(facet_of[tuple(sorted(e))] for e in ends.tolist())
+        if name:
+            out[name] = np.array(sorted(set(facets)), dtype=np.int64)
+    return out
