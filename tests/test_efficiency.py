@@ -98,7 +98,7 @@ def test_efficiency_rises_as_transmission_angle_nears_90_deg(mill):
 
 def test_working_mask(mill):
     th = np.radians([0, 14, 16, 90, 164, 180, 194, 196, 346])
-    assert list(E.working_mask(th, mill.idle_zone)) == [False, False, True, True, True, False, False, True, True]
+    assert list(E.working_mask(th, mill.idle_zone)) == [False, False, True, True, True, False, False, True, False]
 
 
 def test_bad_linkage_raises():
