@@ -1,3 +1,41 @@
-"""bearingfe: finite-element Reynolds solver for bearing supports with inlet pockets."""
+"""bearingfe: finite-element Reynolds solver for bearing supports with inlet pockets.
+
+=========================  =====================================================
+module                     what it does
+=========================  =====================================================
+``geometry``               support-surface outlines and inlet pockets (any shape)
+``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``film``                   film-thickness models (``CosineFilm``)
+``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``fd``                     finite-difference reference (the source paper's scheme)
+``scales``                 non-dimensional <-> SI conversion
+``linalg``                 pluggable sparse solvers
+``machines``               shared parameter objects of machines (SI)
+``crank``                  crank-slider kinematics and inertia forces
+``efficiency``             crank-slider efficiency against the pressure angle
+``rotor``                  unbalanced rotor on an elastic frame
+``mechanism_files``        TOML parameter files in ``mechanisms/``
+=========================  =====================================================
+"""
+
+from . import crank, efficiency, rotor
+from .film import CosineFilm, Film
+from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
+from .linalg import LINEAR_SOLVERS
+from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
+                       RotorFrame, Section)
+from .mechanism_files import LOADERS, load_mechanism
+from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
+from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
+                       superpose)
+from .sections import ibeam, ibeams
 
 __version__ = "0.1.0"
+
+__all__ = [
+    "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
+    "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
+    "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Section", "Shape", "Slot", "Superposition",
+    "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
+    "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "superpose",
+]

@@ -1,0 +1,1 @@
+"""Pictures: pyvista fields and matplotlib curves, imported lazily (never on ``import bearingfe``)."""
