@@ -26,6 +26,7 @@ from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Mater
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
+from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
 from .sections import ibeam, ibeams
@@ -35,7 +36,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
-    "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Section", "Shape", "Slot", "Superposition",
+    "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "superpose",
 ]

@@ -121,6 +121,7 @@ class Operators:
     inlet: np.ndarray
     interior: np.ndarray
     flow_groups: Mapping[str, tuple[np.ndarray, np.ndarray]]
+    facet_bases: Mapping[str, skfem.FacetBasis]  # outflow groups that share corner dofs
     pocket_moments: np.ndarray  # (area, int cos phi, int sin phi) over the pockets
     phi_range: tuple[float, float]
     eigen_bound: float  # lower bound of the first Dirichlet eigenvalue
@@ -171,6 +172,8 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     interior = np.setdiff1d(np.arange(basis.N), fixed)
     names = [n for n in ("side", "arc_start", "arc_end") if n in bnd] or ["outer"]
     groups = _flow_groups(basis, bnd, names)
+    facet_bases = {n: skfem.FacetBasis(m, basis.elem, facets=bnd[n], intorder=2 * order + 2)
+                   for n in names} if len(names) > 1 else {}
     if inlet.size:
         groups["inlet"] = (inlet, np.ones(inlet.size))
     xy = m.p
@@ -181,6 +184,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         mesh=mesh, element=element, basis=basis,
         laplace=_laplace.assemble(basis).tocsr(), mass=_mass.assemble(basis).tocsr(),
         outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
+        facet_bases=MappingProxyType(facet_bases),
         pocket_moments=_pocket_moments(m, bnd.get("inlet"), element),
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
@@ -322,7 +326,7 @@ class Superposition:
         ops = self.operators
         p, dp = _pressure_at_quadrature(ops, self._at, u, self.formulation)
         sliding = wedge if sliding is None else float(sliding)
-        flows, balance = _flows(ops, self._at, p, dp, wedge, wts[1:3])
+        flows, balance = _flows(ops, self.film, self._at, u, self.formulation, p, dp, wedge, wts[1:3])
         friction = float(np.sum((sliding / self._at.h + 0.5 * self._at.h * dp[0]) * ops.basis.dx))
         cost = dict(self.cost, postprocess=time.perf_counter() - start)
         return ReynoldsResult(
@@ -489,30 +493,62 @@ def _pressure_dofs(ops: Operators, film: Film, u: np.ndarray, formulation: str) 
     return u * np.asarray(film.thickness(loc[0], loc[1])) ** -1.5
 
 
-def _flows(ops: Operators, at: _FilmAt, p, dp, wedge: float, rates) -> tuple[dict[str, float], float]:
+def _flows(ops: Operators, film: Film, at: _FilmAt, u: np.ndarray, formulation: str, p, dp,
+           wedge: float, rates) -> tuple[dict[str, float], float]:
     """Consistent boundary fluxes from the weak-form residual (units omega R0^2 c).
 
     The flux ``q = -h^3/12 grad p + wedge h/2 e_phi`` tested with each
     boundary basis function gives the flow through that part of the
     boundary; summed over all dofs it equals ``-int dh/dt`` exactly, so the
     interior residual measures the discretization's mass-balance error.
+    A corner dof shared by two edges (e.g. ``side`` and ``arc_start``)
+    carries the flux of both: it is split by the direct facet integrals of
+    ``q . n`` on each edge, and only the (small) difference between the
+    residual and those integrals is shared equally.
     """
     h = at.h
     hdot = rates[0] * at.shapes[0] + rates[1] * at.shapes[1]
     q0 = -h**3 / 12.0 * dp[0] + 0.5 * wedge * h
     q1 = -h**3 / 12.0 * dp[1]
     r = _flux_residual.assemble(ops.basis, q0=q0, q1=q1, hdot=hdot)
+    direct = {name: _facet_flux(fb, film, u, formulation, wedge) for name, fb in ops.facet_bases.items()}
+    shared = np.zeros(ops.n_dofs)
+    for name, (dofs, weights) in ops.flow_groups.items():
+        if name in direct:
+            shared[dofs[weights < 1]] += direct[name][dofs[weights < 1]]
     flows = {}
     for name, (dofs, weights) in ops.flow_groups.items():
-        flows[name] = float(np.sum(r[dofs] * weights))
-    if "inlet" in flows:
-        flows["inlet"] = -flows["inlet"]  # positive out of the pockets into the film
-    else:
-        flows["inlet"] = 0.0
+        corner = weights < 1
+        value = np.sum(r[dofs[~corner]])
+        if corner.any():
+            c = dofs[corner]
+            value += np.sum(direct[name][c] + (r[c] - shared[c]) * weights[corner])
+        flows[name] = float(value)
+    flows["inlet"] = -flows["inlet"] if "inlet" in flows else 0.0  # out of the pockets into the film
     flows["squeeze"] = float(np.sum(hdot * ops.basis.dx))
     outflow = sum(v for k, v in flows.items() if k not in ("inlet", "squeeze"))
     balance = flows["inlet"] - outflow - flows["squeeze"]
     return flows, float(balance)
+
+
+@LinearForm
+def _normal_flux(v, w):
+    return w.qn * v
+
+
+def _facet_flux(fb: skfem.FacetBasis, film: Film, u: np.ndarray, formulation: str, wedge: float) -> np.ndarray:
+    """``int q . n v ds`` on the facets of ``fb`` from the solution gradient."""
+    x = fb.global_coordinates().value
+    at = _film_at(film, x)
+    field_ = fb.interpolate(u)
+    p, dp = field_.value, field_.grad
+    if formulation == "pi":
+        s = at.h**-1.5
+        p = s * p
+        dp = np.array([s * dp[k] - 1.5 * p / at.h * at.dh[k] for k in range(2)])
+    n = fb.normals.value
+    qn = (-at.h**3 / 12.0 * dp[0] + 0.5 * wedge * at.h) * n[0] - at.h**3 / 12.0 * dp[1] * n[1]
+    return _normal_flux.assemble(fb, qn=qn)
 
 
 # -- the result -----------------------------------------------------------------

@@ -1,0 +1,109 @@
+"""Conversion between the non-dimensional Reynolds problem and SI units.
+
+With eccentric radius ``R0``, radial clearance ``c``, viscosity ``mu`` and
+shaft speed ``omega`` the solver's variables scale as
+
+==================  ==========================  ===========
+quantity            scale                        SI unit
+==================  ==========================  ===========
+pressure            ``mu omega R0^2 / c^2``      Pa
+force               ``mu omega R0^4 / c^2``      N
+flow                ``omega R0^2 c``             m^3/s
+friction moment     ``mu omega R0^4 / c``        N m
+friction power      ``mu omega^2 R0^4 / c``      W
+film thickness      ``c``                        m
+length (phi, z)     ``R0``                       m
+time                ``1 / omega`` per radian     s
+==================  ==========================  ===========
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["Scale"]
+
+
+@dataclass(frozen=True)
+class Scale:
+    """Scales of a bearing support.
+
+    Parameters
+    ----------
+    radius : float
+        Journal (eccentric) radius ``R0`` [m], > 0.
+    clearance : float
+        Radial clearance ``c`` [m], 0 < c < radius.
+    viscosity : float
+        Dynamic viscosity ``mu`` [Pa s], > 0.
+    speed : float
+        Shaft angular speed ``omega`` [rad/s], > 0.
+    """
+
+    radius: float
+    clearance: float
+    viscosity: float
+    speed: float
+
+    def __post_init__(self) -> None:
+        for name in ("radius", "clearance", "viscosity", "speed"):
+            value = float(getattr(self, name))
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"Scale.{name} must be a finite number > 0, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, value)
+        if self.clearance >= self.radius:
+            raise ValueError(f"Scale.clearance must be smaller than radius ({self.radius} m), got {self.clearance}")
+
+    @property
+    def pressure(self) -> float:
+        """Pressure scale ``mu omega R0^2 / c^2`` [Pa]."""
+        return self.viscosity * self.speed * self.radius**2 / self.clearance**2
+
+    @property
+    def force(self) -> float:
+        """Force scale ``mu omega R0^4 / c^2`` [N]."""
+        return self.pressure * self.radius**2
+
+    @property
+    def flow(self) -> float:
+        """Flow scale ``omega R0^2 c`` [m^3/s]."""
+        return self.speed * self.radius**2 * self.clearance
+
+    @property
+    def moment(self) -> float:
+        """Friction-moment scale ``mu omega R0^4 / c`` [N m]."""
+        return self.viscosity * self.speed * self.radius**4 / self.clearance
+
+    @property
+    def power(self) -> float:
+        """Friction-power scale ``mu omega^2 R0^4 / c`` [W]."""
+        return self.moment * self.speed
+
+    def to_pressure(self, p: float) -> float:
+        """Non-dimensional pressure -> Pa."""
+        return p * self.pressure
+
+    def from_pressure(self, pressure_pa: float) -> float:
+        """Pa -> non-dimensional pressure."""
+        return pressure_pa / self.pressure
+
+    def to_force(self, f: float) -> float:
+        """Non-dimensional force -> N."""
+        return f * self.force
+
+    def from_force(self, force_n: float) -> float:
+        """N -> non-dimensional force."""
+        return force_n / self.force
+
+    def to_flow(self, q: float) -> float:
+        """Non-dimensional flow -> m^3/s."""
+        return q * self.flow
+
+    def to_moment(self, m: float) -> float:
+        """Non-dimensional friction moment -> N m."""
+        return m * self.moment
+
+    def to_thickness(self, h: float) -> float:
+        """Non-dimensional film thickness -> m."""
+        return h * self.clearance
