@@ -311,13 +311,18 @@ class Slot:
         n = np.array([-math.sin(self.angle), math.cos(self.angle)])
         a0, a1 = p0 - r * n, p1 - r * n  # bottom edge
         b1, b0 = p1 + r * n, p0 + r * n  # top edge
-        pt = {k: occ.addPoint(*v, 0.0) for k, v in dict(a0=a0, a1=a1, b1=b1, b0=b0).items()}
+        axis = np.array([math.cos(self.angle), math.sin(self.angle)])
+        tip1, tip0 = p1 + r * axis, p0 - r * axis
+        pt = {k: occ.addPoint(*v, 0.0) for k, v in dict(a0=a0, a1=a1, t1=tip1, b1=b1, b0=b0, t0=tip0).items()}
         c0, c1 = occ.addPoint(*p0, 0.0), occ.addPoint(*p1, 0.0)
+        # each end as two quarter arcs: a half circle from three points is ambiguous for gmsh
         return [
             occ.addLine(pt["a0"], pt["a1"]),
-            occ.addCircleArc(pt["a1"], c1, pt["b1"]),
+            occ.addCircleArc(pt["a1"], c1, pt["t1"]),
+            occ.addCircleArc(pt["t1"], c1, pt["b1"]),
             occ.addLine(pt["b1"], pt["b0"]),
-            occ.addCircleArc(pt["b0"], c0, pt["a0"]),
+            occ.addCircleArc(pt["b0"], c0, pt["t0"]),
+            occ.addCircleArc(pt["t0"], c0, pt["a0"]),
         ]
 
 
