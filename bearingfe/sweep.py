@@ -550,3 +550,148 @@ def best_design(table, output: str = "h_min", sense: str = "max"):
     if ok.empty:
         raise ValueError("no case of the sweep succeeded")
     return ok.loc[ok[output].idxmax() if sense == "max" else ok[output].idxmin()]
+
+
+# -- study files -------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Study:
+    """A design study read from a TOML file (see ``docs/sweeps.md``).
+
+    Attributes
+    ----------
+    name : str
+    base : object
+        The base parameter object: ``BASES[kind]()`` with ``[base.set]`` applied.
+    changes : dict or list of dict
+        The ``[grid]`` table or the ``[[cases]]`` list.
+    run : str
+        Key of :data:`RUNS`.
+    outputs : tuple of str
+        Keys of :data:`OUTPUTS`.
+    objective : str
+        Output that ranks the designs; ``sense`` is ``"max"`` or ``"min"``.
+    """
+
+    name: str
+    base: Any
+    changes: Any
+    run: str
+    outputs: tuple[str, ...]
+    objective: str
+    sense: str
+
+
+def _table(data: Mapping, key: str, where: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, Mapping):
+        raise ValueError(f"{where}: [{key}] must be a table, got {value!r}")
+    return dict(value)
+
+
+def _choice(table: Mapping, key: str, allowed, default, where: str):
+    value = table.get(key, default)
+    if value not in allowed:
+        raise ValueError(f"{where}: {key} must be one of {sorted(allowed)}, got {value!r}")
+    return value
+
+
+def read_study(path: str | Path) -> Study:
+    """Read and check a study file; every error names the file, table and field."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise ValueError(f"cannot read study file {path}: {exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML: {exc}") from None
+    unknown = set(data) - {"study", "base", "grid", "cases"}
+    if unknown:
+        raise ValueError(f"{path}: unknown tables {sorted(unknown)}; allowed: study, base, grid, cases")
+    study, base_table = _table(data, "study", str(path)), _table(data, "base", str(path))
+    run = _choice(study, "run", RUNS, "pump" if "pump" in RUNS else "shoe", f"{path} [study]")
+    outputs = study.get("outputs", list(STANDARD_OUTPUTS))
+    if not (isinstance(outputs, list) and outputs and all(o in OUTPUTS for o in outputs)):
+        raise ValueError(f"{path} [study]: outputs must be a non-empty list of {sorted(OUTPUTS)}, got {outputs!r}")
+    objective = _choice(study, "objective", outputs, outputs[0], f"{path} [study]")
+    sense = _choice(study, "sense", ("max", "min"), "max", f"{path} [study]")
+    kind = _choice(base_table, "kind", BASES, run if run in BASES else "shoe", f"{path} [base]")
+    settings = _table(base_table, "set", f"{path} [base]")
+    base = BASES[kind]()
+    for name, value in settings.items():
+        try:
+            check_change_name(base, name)
+            base = apply_changes(base, {name: value})
+        except ValueError as exc:
+            raise ValueError(f"{path} [base.set] {name}: {exc}") from None
+    if ("grid" in data) == ("cases" in data):
+        raise ValueError(f"{path}: give exactly one of [grid] (a table of value lists) or [[cases]]")
+    changes = data.get("grid", data.get("cases"))
+    where = f"{path} [grid]" if "grid" in data else f"{path} [[cases]]"
+    try:
+        cases = expand_cases(changes)
+        for name in dict.fromkeys(n for case in cases for n in case):
+            check_change_name(base, name)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    if not cases:
+        raise ValueError(f"{where}: the study has no cases")
+    return Study(name=str(study.get("name", path.stem)), base=base, changes=changes, run=run,
+                 outputs=tuple(outputs), objective=objective, sense=sense)
+
+
+def _client_for(scheduler: str):
+    """A Dask client: ``"local"`` / ``"local:N"`` starts a LocalCluster of N workers,
+    anything else is a scheduler address (``tcp://host:8786``)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler == "local" or scheduler.startswith("local:"):
+        n = int(scheduler.partition(":")[2] or (os.cpu_count() or 1))
+        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True))
+    return Client(scheduler)
+
+
+def sweep_command(study_path: str | Path, out_dir: str | Path, scheduler: str | None = None,
+                  progress: bool = True) -> int:
+    """The ``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]`` command.
+
+    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
+    design) and ``DIR/cache/`` (per-case records: rerunning resumes).
+
+    Returns
+    -------
+    int
+        0 if every case succeeded, 1 if some failed (they are in the table),
+        2 if the study file is invalid or no case succeeded.
+    """
+    try:
+        study = read_study(study_path)
+    except ValueError as exc:
+        print(f"bearingfe sweep: {exc}", file=sys.stderr)
+        return 2
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    client = _client_for(scheduler) if scheduler else None
+    try:
+        table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
+                      cache=out / "cache", progress=progress)
+    finally:
+        if client is not None:
+            cluster = client.cluster if scheduler.startswith("local") else None
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    table.to_csv(out / "results.csv", index=False)
+    failed = int(table["error"].notna().sum())
+    print(f"{study.name}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} from cache; "
+          f"table in {out / 'results.csv'}")
+    try:
+        best = best_design(table, study.objective, study.sense)
+    except ValueError as exc:
+        print(f"bearingfe sweep: {exc}", file=sys.stderr)
+        return 2
+    best_dict = {k: _jsonable(v.item() if hasattr(v, "item") else v) for k, v in best.items()}
+    (out / "best.json").write_text(json.dumps(best_dict, indent=1))
+    print(f"best ({study.sense} {study.objective}): " +
+          ", ".join(f"{k}={best[k]}" for k in table.columns[:table.columns.get_loc('seconds')]))
+    return 1 if failed else 0
