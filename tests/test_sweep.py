@@ -189,3 +189,19 @@ def test_sweep_command_writes_table_and_best(tmp_path, capsys):
     (tmp_path / "bad.toml").write_text("[study\n")
     assert sweep_command(tmp_path / "bad.toml", tmp_path / "out", progress=False) == 2
     assert "not valid TOML" in capsys.readouterr().err
+
+
+def test_pocket_study_example_quick(tmp_path, monkeypatch):
+    import importlib.util
+
+    import matplotlib.image
+
+    monkeypatch.setenv("BEARINGFE_QUICK", "1")
+    path = Path(__file__).parents[1] / "examples" / "03_pocket_study.py"
+    spec = importlib.util.spec_from_file_location("pocket_study_example", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(str(tmp_path))  # asserts its own sanity bounds (see its docstring)
+    image = matplotlib.image.imread(tmp_path / "pocket_study.png")
+    assert image.std() > 0.05  # a drawn contour plot, not a blank canvas
+    assert (tmp_path / "pocket_study.csv").read_text().count("\n") == 5  # header + 2 x 2 grid
