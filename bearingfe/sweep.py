@@ -47,7 +47,6 @@ __all__ = [
     "sweep_command",
 ]
 
-_VERSION = "0.1.0"  # bearingfe.__version__; part of every cache key
 
 
 # -- a cheap static case (built on the core) ----------------------------------
@@ -343,9 +342,15 @@ def _name_of(function) -> str:
     return function if isinstance(function, str) else f"{function.__module__}:{function.__qualname__}"
 
 
+def _version() -> str:
+    from . import __version__
+
+    return __version__
+
+
 def case_key(design, run, outputs: Sequence) -> str:
     """Stable hash of a case: the changed object's repr, run and output names, package version."""
-    text = "|".join([_VERSION, _name_of(run), ",".join(_name_of(o) for o in outputs), repr(design)])
+    text = "|".join([_version(), _name_of(run), ",".join(_name_of(o) for o in outputs), repr(design)])
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
@@ -432,7 +437,7 @@ def _read_cached(cache: Path | None, key: str) -> dict | None:
 def _write_cached(cache: Path | None, key: str, case: Mapping, design, record: dict) -> None:
     if cache is None:
         return
-    data = {"key": key, "version": _VERSION, "changes": {k: _jsonable(v) for k, v in case.items()},
+    data = {"key": key, "version": _version(), "changes": {k: _jsonable(v) for k, v in case.items()},
             "design": repr(design), "outputs": {k: None if math.isnan(v) else v
                                                 for k, v in record["outputs"].items()},
             "seconds": None if math.isnan(record["seconds"]) else record["seconds"],
@@ -452,7 +457,7 @@ def _jsonable(value):
 
 # -- the sweep ----------------------------------------------------------------------
 
-def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="pump", client=None,
+def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", client=None,
           cache: str | Path | None = None, retry_failed: bool = False, max_workers: int | None = None,
           progress: bool = False):
     """Run a design study: every case in its own process, results in one table.
@@ -469,7 +474,8 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="pump", cl
         Names from :data:`OUTPUTS` (or top-level functions ``result -> float``).
     run : str or callable
         Name from :data:`RUNS` or a top-level (picklable) function
-        ``parameter object -> result``.
+        ``parameter object -> result``. (The default becomes the pump
+        transient once it is merged into the package.)
     client : distributed.Client, optional
         Run on this Dask cluster instead of local processes.
     cache : path, optional
@@ -498,6 +504,8 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="pump", cl
     for o in outputs:
         _resolve(o, OUTPUTS, "outputs[i]")
     _resolve(run, RUNS, "run")
+    if max_workers is not None and not (isinstance(max_workers, int) and max_workers >= 1):
+        raise ValueError(f"max_workers must be an integer >= 1, got {max_workers!r}")
     names = list(dict.fromkeys(name for case in cases for name in case))
     for name in names:
         check_change_name(base, name)
@@ -609,7 +617,7 @@ def read_study(path: str | Path) -> Study:
     if unknown:
         raise ValueError(f"{path}: unknown tables {sorted(unknown)}; allowed: study, base, grid, cases")
     study, base_table = _table(data, "study", str(path)), _table(data, "base", str(path))
-    run = _choice(study, "run", RUNS, "pump" if "pump" in RUNS else "shoe", f"{path} [study]")
+    run = _choice(study, "run", RUNS, "shoe", f"{path} [study]")
     outputs = study.get("outputs", list(STANDARD_OUTPUTS))
     if not (isinstance(outputs, list) and outputs and all(o in OUTPUTS for o in outputs)):
         raise ValueError(f"{path} [study]: outputs must be a non-empty list of {sorted(OUTPUTS)}, got {outputs!r}")
