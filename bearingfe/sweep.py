@@ -1,0 +1,705 @@
+"""Design studies: parameter sweeps on one machine or on a Dask cluster.
+
+A *case* is a base parameter object plus a mapping of changes. A change is
+named either by a dotted field path (``"surface.half_width"``,
+``"scale.speed"``: applied with :func:`dataclasses.replace` down the path) or
+by a *change builder* from :data:`CHANGES` (``"pocket_fraction"``,
+``"pocket_position"``, ``"pocket_shape"``): a function
+``(base, value) -> new base`` for parameters that are not one field.
+
+Each case runs in its own process (gmsh and the sparse factorizations are
+not thread-safe): local ``spawn`` processes by default, or the workers of a
+``dask.distributed`` client (a ``LocalCluster`` or any scheduler address).
+The worker function :func:`run_case` is pure: parameter object in, plain
+record out; the parent process alone reads and writes the on-disk cache, so
+workers on other machines need no shared file system.
+
+The table is a :class:`pandas.DataFrame` (one row per case, in the order of
+the cases): its columns mix floats (outputs), strings (errors, categorical
+inputs such as a pocket shape) and booleans, it must hold ragged lists of
+cases and failed rows as well as full grids, and it writes straight to CSV;
+a pivot turns a grid back into a 2-D array for contour plots. (An
+``xarray.Dataset`` fits only full grids of numeric inputs.)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import itertools
+import json
+import math
+import os
+import sys
+import time
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from .geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
+
+__all__ = [
+    "CHANGES", "OUTPUTS", "RUNS", "BASES", "ShoeCase", "Study", "apply_changes", "best_design",
+    "case_key", "expand_cases", "read_study", "run_case", "run_shoe", "set_field", "sweep",
+    "sweep_command",
+]
+
+
+
+# -- a cheap static case (built on the core) ----------------------------------
+
+@dataclass(frozen=True)
+class ShoeCase:
+    """A shoe with pockets under a fixed film: one static Reynolds solve.
+
+    Parameters
+    ----------
+    surface : Surface
+        Outline and pockets in ``(phi, z)``.
+    gamma : float
+        Relative eccentricity of the cosine film [-], >= 0.
+    phi0 : float
+        Angle of the thickest film [rad]; the film is thinnest at ``phi0 + pi``.
+    inlet_pressure : float
+        Non-dimensional pocket pressure ``p_s`` [-] (ignored without pockets).
+    mesh_size : float
+        gmsh element size [-], > 0.
+    element : {"P1", "P2"}
+    """
+
+    surface: Surface = Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=(Circle((0.0, 0.0), 0.12),))
+    gamma: float = 0.6
+    phi0: float = math.pi
+    inlet_pressure: float = 1.0
+    mesh_size: float = 0.08
+    element: str = "P1"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.surface, Surface):
+            raise ValueError(f"ShoeCase.surface must be a bearingfe.Surface, got {type(self.surface).__name__}")
+        for name, low in (("gamma", 0.0), ("phi0", -math.inf), ("inlet_pressure", -math.inf)):
+            value = float(getattr(self, name))
+            if not (math.isfinite(value) and value >= low):
+                raise ValueError(f"ShoeCase.{name} must be a finite number >= {low}, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, value)
+        size = float(self.mesh_size)
+        if not (math.isfinite(size) and size > 0):
+            raise ValueError(f"ShoeCase.mesh_size must be a finite number > 0, got {self.mesh_size!r}")
+        object.__setattr__(self, "mesh_size", size)
+        if self.element not in ("P1", "P2"):
+            raise ValueError(f"ShoeCase.element must be 'P1' or 'P2', got {self.element!r}")
+
+
+def run_shoe(case: ShoeCase):
+    """Mesh the shoe and solve the static Reynolds problem -> :class:`ReynoldsResult`.
+
+    Raises ``ValueError`` if the film closes on the surface (``h_min <= 0``).
+    """
+    from .film import CosineFilm
+    from .meshing import mesh_surface
+    from .reynolds import solve_reynolds
+
+    mesh = mesh_surface(case.surface, case.mesh_size)
+    pressure = case.inlet_pressure if case.surface.inlets else 0.0
+    return solve_reynolds(mesh, CosineFilm(case.gamma, case.phi0), inlet_pressure=pressure,
+                          element=case.element)
+
+
+#: Run functions by name: ``parameter object -> result``.
+RUNS: dict[str, Callable[[Any], Any]] = {"shoe": run_shoe}
+
+#: Base parameter objects by name (study files): ``() -> default object``.
+BASES: dict[str, Callable[[], Any]] = {"shoe": ShoeCase}
+
+
+# -- outputs --------------------------------------------------------------------
+# Each output reduces a run's result to one float. Results of a static solve
+# (ReynoldsResult, non-dimensional) and of a transient (arrays over the cycle,
+# SI) are both accepted: scalars pass through, arrays reduce over the cycle.
+
+def _h_min(result) -> float:
+    """Smallest film thickness (over the cycle for a transient)."""
+    return float(np.min(result.h_min))
+
+
+def _peak_pressure(result) -> float:
+    """Largest pressure (over the cycle for a transient)."""
+    for name in ("peak_pressure", "max_pressure", "pressure_max"):
+        if hasattr(result, name):
+            return float(np.max(getattr(result, name)))
+    raise AttributeError(f"{type(result).__name__} has no peak pressure")
+
+
+def _flow_inlet(result) -> float:
+    """Oil drawn from the pockets (mean over the cycle for a transient)."""
+    if hasattr(result, "flow_inlet"):
+        return float(np.mean(result.flow_inlet))
+    return float(result.flows["inlet"])
+
+
+def _friction_loss(result) -> float:
+    """Friction power: moment times journal speed (mean over the cycle).
+
+    Non-dimensional static result: ``friction * wedge`` [mu omega^2 R0^4 / c].
+    """
+    if hasattr(result, "friction_power"):
+        return float(np.mean(result.friction_power))
+    return float(result.friction * result.wedge)
+
+
+def _load(result) -> float:
+    """Magnitude of the film force (static results)."""
+    return float(np.hypot(*result.force))
+
+
+#: Named outputs: ``result -> float``.
+OUTPUTS: dict[str, Callable[[Any], float]] = {
+    "h_min": _h_min,
+    "peak_pressure": _peak_pressure,
+    "flow_inlet": _flow_inlet,
+    "friction_loss": _friction_loss,
+    "load": _load,
+}
+
+#: The outputs of the issue: smallest film, peak pressure, inlet flow, friction loss.
+STANDARD_OUTPUTS = ("h_min", "peak_pressure", "flow_inlet", "friction_loss")
+
+
+# -- changes ----------------------------------------------------------------------
+
+def get_field(obj, path: str):
+    """Value at a dotted field path (``""`` is the object itself)."""
+    for part in filter(None, path.split(".")):
+        if not hasattr(obj, part):
+            raise ValueError(f"{type(obj).__name__} has no field {part!r} (in path {path!r})")
+        obj = getattr(obj, part)
+    return obj
+
+
+def set_field(obj, path: str, value):
+    """A copy of ``obj`` with the field at a dotted path replaced (``dataclasses.replace``)."""
+    if not path:
+        return value
+    head, _, rest = path.partition(".")
+    if not dataclasses.is_dataclass(obj) or head not in {f.name for f in dataclasses.fields(obj) if f.init}:
+        raise ValueError(f"{type(obj).__name__} has no settable field {head!r} (in path {path!r})")
+    return dataclasses.replace(obj, **{head: set_field(getattr(obj, head), rest, value)})
+
+
+def _surface_path(base) -> str:
+    if isinstance(base, Surface):
+        return ""
+    if isinstance(getattr(base, "surface", None), Surface):
+        return "surface"
+    raise ValueError(f"{type(base).__name__} carries no support surface (field 'surface')")
+
+
+def _centroid(shape) -> tuple[float, float]:
+    if isinstance(shape, Polygon):
+        x, y = np.array(shape.points).T
+        cross = x * np.roll(y, -1) - np.roll(x, -1) * y
+        area = cross.sum() / 2
+        return (float(((x + np.roll(x, -1)) * cross).sum() / (6 * area)),
+                float(((y + np.roll(y, -1)) * cross).sum() / (6 * area)))
+    return shape.center
+
+
+def _transformed(shape, scale: float, shift: float):
+    """The shape scaled by ``scale`` about its centroid and moved ``shift`` along phi."""
+    cx, cy = _centroid(shape)
+    centre = (cx + shift, cy)
+    if isinstance(shape, Circle):
+        return Circle(centre, shape.radius * scale)
+    if isinstance(shape, Ellipse):
+        return Ellipse(centre, (shape.semi_axes[0] * scale, shape.semi_axes[1] * scale), shape.angle)
+    if isinstance(shape, Slot):
+        return Slot(centre, shape.length * scale, shape.width * scale, shape.angle)
+    if isinstance(shape, Polygon):
+        return Polygon(tuple((cx + shift + scale * (x - cx), cy + scale * (y - cy)) for x, y in shape.points))
+    raise ValueError(f"cannot scale or move a pocket of type {type(shape).__name__}")
+
+
+def _pocket_centre(surface: Surface) -> float:
+    areas = np.array([s.area for s in surface.inlets])
+    return float(np.array([_centroid(s)[0] for s in surface.inlets]) @ areas / areas.sum())
+
+
+def pocket_fraction(base, value):
+    """Scale every pocket about its centroid so the pockets cover ``value`` of the surface.
+
+    ``value`` in ``[0, 1)``; 0 removes the pockets. A base without pockets
+    gets one circle at the middle of the surface.
+    """
+    value = float(value)
+    if not (math.isfinite(value) and 0.0 <= value < 1.0):
+        raise ValueError(f"pocket_fraction must be in [0, 1), got {value!r}")
+    path = _surface_path(base)
+    surface = get_field(base, path)
+    if value == 0.0:
+        return set_field(base, path, dataclasses.replace(surface, inlets=()))
+    inlets = surface.inlets
+    if not inlets:
+        p1, p2, z1, z2 = surface.bounds
+        inlets = (Circle(((p1 + p2) / 2, (z1 + z2) / 2), 0.1 * min(p2 - p1, z2 - z1)),)
+    scale = math.sqrt(value * surface.area / sum(s.area for s in inlets))
+    new = dataclasses.replace(surface, inlets=tuple(_transformed(s, scale, 0.0) for s in inlets))
+    return set_field(base, path, new)
+
+
+def pocket_position(base, value):
+    """Move the pockets along the arc: their area centroid to ``alpha1 + value (alpha2 - alpha1)``.
+
+    ``value`` in ``[0, 1]`` (0.5: middle of the arc); no-op without pockets.
+    Pockets that would touch the outline raise ``ValueError`` (recorded as a
+    failed case by :func:`sweep`).
+    """
+    value = float(value)
+    if not (math.isfinite(value) and 0.0 <= value <= 1.0):
+        raise ValueError(f"pocket_position must be in [0, 1], got {value!r}")
+    path = _surface_path(base)
+    surface = get_field(base, path)
+    if not surface.inlets:
+        return base
+    p1, p2, _, _ = surface.bounds
+    shift = p1 + value * (p2 - p1) - _pocket_centre(surface)
+    new = dataclasses.replace(surface, inlets=tuple(_transformed(s, 1.0, shift) for s in surface.inlets))
+    return set_field(base, path, new)
+
+
+#: Pocket shapes of equal area ``A`` by name: ``(centre, A) -> shape``.
+POCKET_SHAPES: dict[str, Callable[[tuple[float, float], float], Any]] = {
+    "circle": lambda c, a: Circle(c, math.sqrt(a / math.pi)),
+    "square": lambda c, a: Rectangle(c, (math.sqrt(a), math.sqrt(a))),
+    "ellipse": lambda c, a: Ellipse(c, (math.sqrt(2 * a / math.pi), math.sqrt(a / (2 * math.pi)))),
+    # length = 2 width: area = width^2 (2 + pi/4)
+    "slot": lambda c, a: Slot(c, 2 * math.sqrt(a / (2 + math.pi / 4)), math.sqrt(a / (2 + math.pi / 4))),
+}
+
+
+def pocket_shape(base, value):
+    """Replace every pocket by a shape of the same area and centroid (:data:`POCKET_SHAPES`)."""
+    if value not in POCKET_SHAPES:
+        raise ValueError(f"pocket_shape must be one of {sorted(POCKET_SHAPES)}, got {value!r}")
+    path = _surface_path(base)
+    surface = get_field(base, path)
+    inlets = tuple(POCKET_SHAPES[value](_centroid(s), s.area) for s in surface.inlets)
+    return set_field(base, path, dataclasses.replace(surface, inlets=inlets))
+
+
+#: Change builders by name: ``(base, value) -> new base``. Any other change
+#: name is a dotted field path.
+CHANGES: dict[str, Callable[[Any, Any], Any]] = {
+    "pocket_fraction": pocket_fraction,
+    "pocket_position": pocket_position,
+    "pocket_shape": pocket_shape,
+}
+
+
+def check_change_name(base, name: str) -> None:
+    """Raise ``ValueError`` unless ``name`` is a change builder or a settable field path of ``base``."""
+    if name in CHANGES:
+        return
+    obj = base
+    for part in name.split("."):
+        if not dataclasses.is_dataclass(obj) or part not in {f.name for f in dataclasses.fields(obj) if f.init}:
+            raise ValueError(f"change {name!r} is neither a change builder ({', '.join(CHANGES)}) "
+                             f"nor a field path of {type(base).__name__} (no field {part!r})")
+        obj = getattr(obj, part)
+
+
+def apply_changes(base, changes: Mapping[str, Any]):
+    """Apply named changes in order: builders from :data:`CHANGES`, else dotted field paths."""
+    for name, value in changes.items():
+        base = CHANGES[name](base, value) if name in CHANGES else set_field(base, name, value)
+    return base
+
+
+def expand_cases(changes) -> list[dict[str, Any]]:
+    """Cases from a grid ``{name: [values]}`` (Cartesian product, first name outermost)
+    or from a list of ``{name: value}`` mappings."""
+    if isinstance(changes, Mapping):
+        for name, values in changes.items():
+            if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
+                raise ValueError(f"grid values of {name!r} must be a list, got {values!r}")
+        axes = {name: list(values) for name, values in changes.items()}
+        for name, values in axes.items():
+            if not values:
+                raise ValueError(f"grid values of {name!r} must not be empty")
+        return [dict(zip(axes, combo)) for combo in itertools.product(*axes.values())]
+    cases = list(changes)
+    for i, case in enumerate(cases):
+        if not isinstance(case, Mapping):
+            raise ValueError(f"changes[{i}] must be a mapping name -> value, got {case!r}")
+    return [dict(case) for case in cases]
+
+
+# -- one case -----------------------------------------------------------------------
+
+def _name_of(function) -> str:
+    return function if isinstance(function, str) else f"{function.__module__}:{function.__qualname__}"
+
+
+def _version() -> str:
+    from . import __version__
+
+    return __version__
+
+
+def case_key(design, run, outputs: Sequence) -> str:
+    """Stable hash of a case: the changed object's repr, run and output names, package version."""
+    text = "|".join([_version(), _name_of(run), ",".join(_name_of(o) for o in outputs), repr(design)])
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def _resolve(name_or_function, table: Mapping, what: str):
+    if callable(name_or_function):
+        return name_or_function
+    if name_or_function not in table:
+        raise ValueError(f"{what} must be one of {sorted(table)} or a function, got {name_or_function!r}")
+    return table[name_or_function]
+
+
+def run_case(design, run, outputs: Sequence) -> dict:
+    """Run one case and reduce it to outputs; never raises.
+
+    Returns ``{"outputs": {name: float}, "seconds": float, "error": str | None}``
+    (outputs NaN on error). Top-level and pure, so it pickles to any worker.
+    """
+    start = time.perf_counter()
+    try:
+        result = _resolve(run, RUNS, "run")(design)
+        values = {_output_name(o): float(_resolve(o, OUTPUTS, "output")(result)) for o in outputs}
+        error = None
+    except Exception as exc:  # recorded in the table, never dropped
+        values = {_output_name(o): math.nan for o in outputs}
+        error = f"{type(exc).__name__}: {exc}"
+    return {"outputs": values, "seconds": time.perf_counter() - start, "error": error}
+
+
+def _output_name(output) -> str:
+    return output if isinstance(output, str) else output.__name__
+
+
+# -- executors --------------------------------------------------------------------
+
+def _run_local(tasks: dict, run, outputs, max_workers, progress: bool) -> Iterable[tuple[str, dict]]:
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    from tqdm.auto import tqdm
+
+    workers = max(1, min(max_workers or os.cpu_count() or 1, len(tasks)))
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(run_case, design, run, outputs): key for key, design in tasks.items()}
+        for future in tqdm(as_completed(futures), total=len(futures), disable=not progress, desc="cases"):
+            yield futures[future], _record(future, outputs)
+
+
+def _run_dask(client, tasks: dict, run, outputs, progress: bool) -> Iterable[tuple[str, dict]]:
+    from distributed import as_completed
+    from tqdm.auto import tqdm
+
+    futures = {client.submit(run_case, design, run, outputs, key=f"bearingfe-case-{key}"): key
+               for key, design in tasks.items()}
+    for future in tqdm(as_completed(list(futures)), total=len(futures), disable=not progress, desc="cases"):
+        yield futures[future], _record(future, outputs)
+        future.release()
+
+
+def _record(future, outputs) -> dict:
+    """The case record of a finished future; a dead worker or lost task becomes an error."""
+    try:
+        return future.result()
+    except Exception as exc:
+        return {"outputs": {_output_name(o): math.nan for o in outputs}, "seconds": math.nan,
+                "error": f"{type(exc).__name__}: {exc}"}
+
+
+# -- cache -------------------------------------------------------------------------
+
+def _read_cached(cache: Path | None, key: str) -> dict | None:
+    if cache is None:
+        return None
+    path = cache / f"{key}.json"
+    if not path.exists():
+        return None
+    try:
+        record = json.loads(path.read_text())
+    except (OSError, json.JSONDecodeError):
+        return None  # a torn write: run the case again
+    record["outputs"] = {k: math.nan if v is None else v for k, v in record["outputs"].items()}
+    return record
+
+
+def _write_cached(cache: Path | None, key: str, case: Mapping, design, record: dict) -> None:
+    if cache is None:
+        return
+    data = {"key": key, "version": _version(), "changes": {k: _jsonable(v) for k, v in case.items()},
+            "design": repr(design), "outputs": {k: None if math.isnan(v) else v
+                                                for k, v in record["outputs"].items()},
+            "seconds": None if math.isnan(record["seconds"]) else record["seconds"],
+            "error": record["error"]}
+    tmp = cache / f".{key}.json.tmp"
+    tmp.write_text(json.dumps(data, indent=1))
+    os.replace(tmp, cache / f"{key}.json")  # atomic: a killed sweep leaves no torn file
+
+
+def _jsonable(value):
+    try:
+        json.dumps(value)
+        return value
+    except TypeError:
+        return repr(value)
+
+
+# -- the sweep ----------------------------------------------------------------------
+
+def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", client=None,
+          cache: str | Path | None = None, retry_failed: bool = False, max_workers: int | None = None,
+          progress: bool = False):
+    """Run a design study: every case in its own process, results in one table.
+
+    Parameters
+    ----------
+    base : dataclass instance
+        The base parameter object (e.g. a pump or a :class:`ShoeCase`).
+    changes : mapping or sequence of mappings
+        A grid ``{name: [values, ...]}`` (Cartesian product) or a list of
+        cases ``[{name: value, ...}, ...]``. Names are change builders
+        (:data:`CHANGES`) or dotted field paths of ``base``.
+    outputs : sequence
+        Names from :data:`OUTPUTS` (or top-level functions ``result -> float``).
+    run : str or callable
+        Name from :data:`RUNS` or a top-level (picklable) function
+        ``parameter object -> result``. (The default becomes the pump
+        transient once it is merged into the package.)
+    client : distributed.Client, optional
+        Run on this Dask cluster instead of local processes.
+    cache : path, optional
+        Directory of per-case JSON records keyed by :func:`case_key`;
+        finished cases found there are not rerun.
+    retry_failed : bool
+        Rerun cached cases that failed.
+    max_workers : int, optional
+        Local processes (default: CPU count).
+    progress : bool
+        Show a tqdm progress bar.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per case in input order: the change names, the outputs,
+        ``seconds`` (run time of the case), ``error`` (None or the message),
+        ``cached`` (True if read from the cache) and ``key``.
+    """
+    import pandas as pd
+
+    cases = expand_cases(changes)
+    outputs = list(outputs)
+    if not outputs:
+        raise ValueError("outputs must name at least one output")
+    for o in outputs:
+        _resolve(o, OUTPUTS, "outputs[i]")
+    _resolve(run, RUNS, "run")
+    if max_workers is not None and not (isinstance(max_workers, int) and max_workers >= 1):
+        raise ValueError(f"max_workers must be an integer >= 1, got {max_workers!r}")
+    names = list(dict.fromkeys(name for case in cases for name in case))
+    for name in names:
+        check_change_name(base, name)
+    cache = Path(cache) if cache is not None else None
+    if cache is not None:
+        cache.mkdir(parents=True, exist_ok=True)
+
+    keys, designs, records, cached = [], {}, {}, {}
+    for case in cases:
+        try:
+            design = apply_changes(base, case)
+            key = case_key(design, run, outputs)
+            designs.setdefault(key, (case, design))
+        except Exception as exc:  # an impossible design fails at once, in this process, uncached
+            key = case_key((base, sorted(case.items(), key=str)), run, outputs)
+            records[key] = {"outputs": {_output_name(o): math.nan for o in outputs}, "seconds": 0.0,
+                            "error": f"{type(exc).__name__}: {exc}"}
+            cached[key] = False
+        keys.append(key)
+        hit = _read_cached(cache, key) if key not in records else None
+        if hit is not None and (hit["error"] is None or not retry_failed):
+            records[key], cached[key] = hit, True
+
+    tasks = {key: design for key, (case, design) in designs.items() if key not in records}
+    if tasks:
+        stream = (_run_dask(client, tasks, run, outputs, progress) if client is not None
+                  else _run_local(tasks, run, outputs, max_workers, progress))
+        for key, record in stream:
+            records[key], cached[key] = record, False
+            _write_cached(cache, key, *designs[key], record)
+
+    rows = []
+    for case, key in zip(cases, keys):
+        record = records[key]
+        rows.append({**{n: case.get(n) for n in names}, **record["outputs"], "seconds": record["seconds"],
+                     "error": record["error"], "cached": cached[key], "key": key})
+    columns = names + [_output_name(o) for o in outputs] + ["seconds", "error", "cached", "key"]
+    table = pd.DataFrame(rows, columns=columns)
+    table["error"] = table["error"].astype(object).where(table["error"].notna(), None)
+    return table
+
+
+def best_design(table, output: str = "h_min", sense: str = "max"):
+    """The row of the best successful case (``sense`` "max" or "min" of ``output``)."""
+    if sense not in ("max", "min"):
+        raise ValueError(f"sense must be 'max' or 'min', got {sense!r}")
+    if output not in table.columns:
+        raise ValueError(f"output {output!r} is not a column of the table")
+    ok = table[table["error"].isna()]
+    if ok.empty:
+        raise ValueError("no case of the sweep succeeded")
+    return ok.loc[ok[output].idxmax() if sense == "max" else ok[output].idxmin()]
+
+
+# -- study files -------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Study:
+    """A design study read from a TOML file (see ``docs/sweeps.md``).
+
+    Attributes
+    ----------
+    name : str
+    base : object
+        The base parameter object: ``BASES[kind]()`` with ``[base.set]`` applied.
+    changes : dict or list of dict
+        The ``[grid]`` table or the ``[[cases]]`` list.
+    run : str
+        Key of :data:`RUNS`.
+    outputs : tuple of str
+        Keys of :data:`OUTPUTS`.
+    objective : str
+        Output that ranks the designs; ``sense`` is ``"max"`` or ``"min"``.
+    """
+
+    name: str
+    base: Any
+    changes: Any
+    run: str
+    outputs: tuple[str, ...]
+    objective: str
+    sense: str
+
+
+def _table(data: Mapping, key: str, where: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, Mapping):
+        raise ValueError(f"{where}: [{key}] must be a table, got {value!r}")
+    return dict(value)
+
+
+def _choice(table: Mapping, key: str, allowed, default, where: str):
+    value = table.get(key, default)
+    if value not in allowed:
+        raise ValueError(f"{where}: {key} must be one of {sorted(allowed)}, got {value!r}")
+    return value
+
+
+def read_study(path: str | Path) -> Study:
+    """Read and check a study file; every error names the file, table and field."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text())
+    except OSError as exc:
+        raise ValueError(f"cannot read study file {path}: {exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ValueError(f"{path}: not valid TOML: {exc}") from None
+    unknown = set(data) - {"study", "base", "grid", "cases"}
+    if unknown:
+        raise ValueError(f"{path}: unknown tables {sorted(unknown)}; allowed: study, base, grid, cases")
+    study, base_table = _table(data, "study", str(path)), _table(data, "base", str(path))
+    run = _choice(study, "run", RUNS, "shoe", f"{path} [study]")
+    outputs = study.get("outputs", list(STANDARD_OUTPUTS))
+    if not (isinstance(outputs, list) and outputs and all(o in OUTPUTS for o in outputs)):
+        raise ValueError(f"{path} [study]: outputs must be a non-empty list of {sorted(OUTPUTS)}, got {outputs!r}")
+    objective = _choice(study, "objective", outputs, outputs[0], f"{path} [study]")
+    sense = _choice(study, "sense", ("max", "min"), "max", f"{path} [study]")
+    kind = _choice(base_table, "kind", BASES, run if run in BASES else "shoe", f"{path} [base]")
+    settings = _table(base_table, "set", f"{path} [base]")
+    base = BASES[kind]()
+    for name, value in settings.items():
+        try:
+            check_change_name(base, name)
+            base = apply_changes(base, {name: value})
+        except ValueError as exc:
+            raise ValueError(f"{path} [base.set] {name}: {exc}") from None
+    if ("grid" in data) == ("cases" in data):
+        raise ValueError(f"{path}: give exactly one of [grid] (a table of value lists) or [[cases]]")
+    changes = data.get("grid", data.get("cases"))
+    where = f"{path} [grid]" if "grid" in data else f"{path} [[cases]]"
+    try:
+        cases = expand_cases(changes)
+        for name in dict.fromkeys(n for case in cases for n in case):
+            check_change_name(base, name)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    if not cases:
+        raise ValueError(f"{where}: the study has no cases")
+    return Study(name=str(study.get("name", path.stem)), base=base, changes=changes, run=run,
+                 outputs=tuple(outputs), objective=objective, sense=sense)
+
+
+def _client_for(scheduler: str):
+    """A Dask client: ``"local"`` / ``"local:N"`` starts a LocalCluster of N workers,
+    anything else is a scheduler address (``tcp://host:8786``)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler == "local" or scheduler.startswith("local:"):
+        n = int(scheduler.partition(":")[2] or (os.cpu_count() or 1))
+        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True))
+    return Client(scheduler)
+
+
+def sweep_command(study_path: str | Path, out_dir: str | Path, scheduler: str | None = None,
+                  progress: bool = True) -> int:
+    """The ``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]`` command.
+
+    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
+    design) and ``DIR/cache/`` (per-case records: rerunning resumes).
+
+    Returns
+    -------
+    int
+        0 if every case succeeded, 1 if some failed (they are in the table),
+        2 if the study file is invalid or no case succeeded.
+    """
+    try:
+        study = read_study(study_path)
+    except ValueError as exc:
+        print(f"bearingfe sweep: {exc}", file=sys.stderr)
+        return 2
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    client = _client_for(scheduler) if scheduler else None
+    try:
+        table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
+                      cache=out / "cache", progress=progress)
+    finally:
+        if client is not None:
+            cluster = client.cluster if scheduler.startswith("local") else None
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    table.to_csv(out / "results.csv", index=False)
+    failed = int(table["error"].notna().sum())
+    print(f"{study.name}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} from cache; "
+          f"table in {out / 'results.csv'}")
+    try:
+        best = best_design(table, study.objective, study.sense)
+    except ValueError as exc:
+        print(f"bearingfe sweep: {exc}", file=sys.stderr)
+        return 2
+    best_dict = {k: _jsonable(v.item() if hasattr(v, "item") else v) for k, v in best.items()}
+    (out / "best.json").write_text(json.dumps(best_dict, indent=1))
+    print(f"best ({study.sense} {study.objective}): " +
+          ", ".join(f"{k}={best[k]}" for k in table.columns[:table.columns.get_loc('seconds')]))
+    return 1 if failed else 0
