@@ -266,15 +266,15 @@ def run_reynolds_scene(data: dict, label: str, out_dir: Path, progress: Callable
     res = solve_reynolds(mesh, film, wedge=op["wedge"], squeeze=op["squeeze"],
                          inlet_pressure=op["inlet_pressure"], formulation=solver["formulation"],
                          element=solver["element"], solver=solver["linear_solver"])
-    tick(2, steps, "pictures")
     files = []
     draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / "pressure.png", surface=s["surface"]),
             "wrapped": lambda: fields.pressure_picture(res, out_dir / "pressure_wrapped.png", view="wrapped",
                                                        warp=out["warp"], surface=s["surface"]),
             "film": lambda: fields.film_picture(res, out_dir / "film.png", surface=s["surface"])}
     for k, name in enumerate(pictures):
+        tick(2 + k, steps, f"picture: {name}")
         files.append(draw[name]().name)
-        tick(3 + k, steps, name)
+    tick(steps - 1, steps, "files")
     files.append(write_vtu(res, out_dir / "field.vtu").name)
     summary = _reynolds_summary(s, mesh, res, time.perf_counter() - start)
     summary["files"] = files + ["summary.json"]
