@@ -187,16 +187,46 @@ def pocket_patches(result, *, surface=None, view: str = "unwrapped", value: floa
     return pv.merge(patches) if patches else None
 
 
-def _zero_contour(grid, name: str, values: np.ndarray, cavitated: bool):
-    """The ``p = 0`` contour (for a cavitated result: the edge of the ``p > 0`` region)."""
-    top = float(np.abs(values).max())
-    if top == 0:
+def _zero_contour(result, grid, name: str, values: np.ndarray):
+    """The cavitation boundary: edge of ``result.cavitated`` if present, else the ``p = 0``
+    line through the film (the outline, where ``p = 0`` by the boundary condition, left out)."""
+    pv = _pyvista()
+    mask = getattr(result, "cavitated", None)
+    if mask is not None:
+        flag = np.asarray(mask, dtype=float).ravel()
+        if flag.size < grid.n_points or flag[: grid.n_points].min() == flag[: grid.n_points].max():
+            return None
+        probe = grid.copy()
+        probe.point_data["cavitated"] = flag[: grid.n_points]
+        line = probe.contour([0.5], scalars="cavitated")
+        return line if line.n_points else None
+    if not (values.min() < 0.0 < values.max()):
         return None
-    level = 1e-6 * top if cavitated else 0.0
-    if not (values.min() < level < values.max()):
+    line = grid.contour([0.0], scalars=name)
+    if not line.n_points:
         return None
-    line = grid.contour([level], scalars=name)
-    return line if line.n_points else None
+    on_outline = _on_outline(result, np.asarray(line.points)[:, :2])
+    if on_outline is None:
+        return line
+    cells = line.lines.reshape(-1, 3)[:, 1:]
+    keep = ~(on_outline[cells[:, 0]] & on_outline[cells[:, 1]])
+    if not keep.any():
+        return None
+    kept = np.hstack([np.full((keep.sum(), 1), 2), cells[keep]]).ravel()
+    return pv.PolyData(np.asarray(line.points), lines=kept).clean()
+
+
+def _on_outline(result, xy: np.ndarray) -> np.ndarray | None:
+    """Which points lie on the mesh's outer boundary (None if it is not named)."""
+    m = result.basis.mesh
+    facets = (m.boundaries or {}).get("outer")
+    if facets is None:
+        return None
+    a, b = m.p[:, m.facets[0, facets]].T, m.p[:, m.facets[1, facets]].T
+    d = b - a
+    t = np.clip(np.einsum("pmk,mk->pm", xy[:, None, :] - a[None], d) / np.einsum("mk,mk->m", d, d), 0, 1)
+    dist = np.linalg.norm(xy[:, None, :] - (a[None] + t[..., None] * d[None]), axis=-1).min(axis=1)
+    return dist < 1e-9 * (1.0 + np.abs(m.p).max())
 
 
 def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=None, pocket_color=None):
@@ -279,7 +309,11 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
     overlays = [(outline_lines(result, surface=surface, boundary="outer", view=view), "black", 2),
                 (outline_lines(result, surface=surface, boundary="inlet", view=view), "black", 2)]
     if cavitation:
-        zero = _zero_contour(grid, "p", values, getattr(result, "cavitated", None) is not None)
+        flat = grid if view == "unwrapped" else field_grid(result, name="p")
+        zero = _zero_contour(result, flat, "p", np.asarray(flat.point_data["p"]))
+        if zero is not None and view == "wrapped":
+            pts = np.asarray(zero.points)
+            zero.points = _embed(pts[:, 0], pts[:, 1], view, 2e-3)
         overlays.append((zero, "red", 3))
     return _render(path, view, grid, "p", "p [-]", cmap, overlays, window_size, pockets)
 
