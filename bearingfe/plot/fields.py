@@ -264,7 +264,10 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
         else:
             pl.view_vector((1.0, 0.35, 0.6))
             pl.reset_camera()
-        pl.screenshot(str(path))
+        from ..io import atomic_path
+
+        with atomic_path(path) as tmp:  # no half-written picture if rendering fails
+            pl.screenshot(str(tmp))
     finally:
         pl.close()
     return path
