@@ -1,0 +1,215 @@
+"""The ``bearingfe`` command line.
+
+::
+
+    bearingfe run SCENE.toml --out DIR       run a scene file, write pictures and data into DIR
+    bearingfe mesh FILE.geo --size S --out FILE.msh
+    bearingfe validate [--quick]             closed-form and published comparisons
+    bearingfe --version
+
+:func:`main` takes ``argv`` (default ``sys.argv[1:]``) and returns the exit
+code: 0 success, 1 a failed validation or a numerical failure, 2 bad input
+(scene-file errors, bad arguments), with a one-line message and no
+traceback. ``run`` writes into a temporary directory next to ``DIR`` and
+moves it into place only when everything is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+from typing import Sequence
+
+__all__ = ["main"]
+
+
+def _parser() -> argparse.ArgumentParser:
+    from . import __version__
+
+    parser = argparse.ArgumentParser(prog="bearingfe", description=__doc__.split("\n")[0])
+    parser.add_argument("--version", action="version", version=f"bearingfe {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,mesh,validate}")
+
+    run = sub.add_parser("run", help="run a scene file (TOML)")
+    run.add_argument("scene", type=Path, help="scene file, e.g. scenes/default.toml")
+    run.add_argument("--out", type=Path, required=True, help="output directory (replaced if it holds a "
+                     "previous bearingfe output)")
+    run.add_argument("--force", action="store_true", help="replace DIR even if it holds other files")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+    mesh = sub.add_parser("mesh", help="mesh a gmsh .geo file into a .msh 4.1 file")
+    mesh.add_argument("geo", type=Path)
+    mesh.add_argument("--size", type=float, required=True, help="largest element size [-]")
+    mesh.add_argument("--out", type=Path, required=True, help="target .msh file")
+    mesh.add_argument("--order", type=int, choices=(1, 2), default=1, help="geometry order")
+
+    val = sub.add_parser("validate", help="compare with closed forms and published data")
+    val.add_argument("--quick", action="store_true", help="coarser meshes")
+    val.add_argument("--only", action="append", metavar="CHECK", help="run only this check (repeatable)")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``bearingfe`` console script; returns the exit code."""
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, usage errors
+        return int(exc.code or 0)
+    commands = {"run": _run, "mesh": _mesh, "validate": _validate}
+    try:
+        return commands[args.command](args)
+    except (ValueError, FileNotFoundError, FileExistsError) as exc:
+        print(f"bearingfe {args.command}: error: {_one_line(exc)}", file=sys.stderr)
+        return 2
+    except (RuntimeError, ArithmeticError) as exc:
+        print(f"bearingfe {args.command}: failed: {_one_line(exc)}", file=sys.stderr)
+        return 1
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+# -- run --------------------------------------------------------------------------
+
+def _run(args) -> int:
+    from .scenes import load_scene, run_scene
+
+    load_scene(args.scene)  # fail on the scene file before touching the output directory
+    out = args.out.resolve()
+    _check_replaceable(out, args.force)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    work.chmod(0o755)  # mkdtemp makes it private; the result is an ordinary directory
+    try:
+        with _progress(not args.no_progress) as tick:
+            summary = run_scene(args.scene, work, tick)
+        _move_into_place(work, out)
+    finally:
+        if work.exists():
+            shutil.rmtree(work)
+    print(f"{summary.get('title', args.scene.name)}: results in {out}")
+    print(_table(summary.get("table", [])))
+    return 0
+
+
+def _check_replaceable(out: Path, force: bool) -> None:
+    if out.exists() and not out.is_dir():
+        raise FileExistsError(f"--out {out} exists and is not a directory")
+    if out.is_dir() and any(out.iterdir()) and not (out / "summary.json").is_file() and not force:
+        raise FileExistsError(f"--out {out} holds files that are not a bearingfe output; "
+                              f"choose another directory or pass --force")
+
+
+def _move_into_place(work: Path, out: Path) -> None:
+    old = None
+    if out.exists():
+        old = out.with_name(f".{out.name}.old")
+        if old.exists():
+            shutil.rmtree(old)
+        os.replace(out, old)
+    os.replace(work, out)
+    if old is not None:
+        shutil.rmtree(old)
+
+
+class _progress:
+    """A tqdm bar driven by ``tick(done, total, what)`` (a no-op when disabled)."""
+
+    def __init__(self, enabled: bool):
+        self.enabled, self.bar = enabled, None
+
+    def __enter__(self):
+        return self.tick
+
+    def tick(self, done: int, total: int, what: str) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=total, file=sys.stderr, leave=False, dynamic_ncols=True)
+        if self.bar.total != total:
+            self.bar.total = total
+        self.bar.set_description(what)
+        self.bar.update(done - self.bar.n)
+
+    def __exit__(self, *exc):
+        if self.bar is not None:
+            self.bar.close()
+        return False
+
+
+def _table(rows) -> str:
+    if not rows:
+        return ""
+    cells = [(str(q), _fmt(v), str(u)) for q, v, u in rows]
+    w = [max(len(c[i]) for c in cells) for i in range(3)]
+    lines = [f"{'quantity':<{w[0]}}  {'value':>{w[1]}}  unit", "-" * (w[0] + w[1] + w[2] + 4)]
+    lines += [f"{q:<{w[0]}}  {v:>{w[1]}}  {u}" for q, v, u in cells]
+    return "\n".join(lines)
+
+
+def _fmt(value) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return str(value)
+    return str(value) if isinstance(value, int) else f"{value:.6g}"
+
+
+# -- mesh -------------------------------------------------------------------------
+
+def _mesh(args) -> int:
+    from .io import atomic_path
+    from .meshing import gmsh_session, load_mesh
+
+    geo, out = args.geo, args.out
+    if not geo.is_file():
+        raise FileNotFoundError(f"geometry file not found: {geo}")
+    if geo.suffix != ".geo":
+        raise ValueError(f"FILE must be a gmsh .geo file, got {geo.name}")
+    if out.suffix != ".msh":
+        raise ValueError(f"--out must end in .msh, got {out.name}")
+    if not (args.size > 0 and args.size < float("inf")):
+        raise ValueError(f"--size must be a finite element size > 0, got {args.size}")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(out) as tmp:
+        with gmsh_session() as gmsh:
+            gmsh.open(str(geo))
+            if not gmsh.model.getPhysicalGroups(1):
+                raise ValueError(f"{geo.name}: no physical curve groups (need at least 'outer')")
+            gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
+            gmsh.model.mesh.generate(2)
+            if args.order == 2:
+                gmsh.model.mesh.setOrder(2)
+            gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+            gmsh.option.setNumber("Mesh.SaveAll", 0)  # elements of physical groups only, names kept
+            gmsh.write(str(tmp))
+        mesh = load_mesh(tmp)  # the written file must load with its named boundaries
+    names = ", ".join(sorted(mesh.boundaries))
+    print(f"{out}: {mesh.n_nodes} nodes, {mesh.n_elements} triangles, boundaries: {names}")
+    return 0
+
+
+# -- validate ---------------------------------------------------------------------
+
+def _validate(args) -> int:
+    from .validation import run_checks
+
+    rows = run_checks(quick=args.quick, names=args.only)
+    w = max(len(r.name) for r in rows)
+    print(f"{'check':<{w}}  {'computed':>12}  {'expected':>12}  {'rel. error':>10}  {'tol':>7}  ok    reference")
+    for r in rows:
+        print(f"{r.name:<{w}}  {r.computed:>12.6g}  {r.expected:>12.6g}  {r.error:>10.2e}  {r.tolerance:>7.0e}  "
+              f"{'yes' if r.passed else 'NO ':<4}  {r.reference}")
+    failed = [r.name for r in rows if not r.passed]
+    print(f"{len(rows) - len(failed)} of {len(rows)} passed" + (f"; failed: {', '.join(failed)}" if failed else ""))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
