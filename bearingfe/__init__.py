@@ -15,10 +15,16 @@ module                     what it does
 ``efficiency``             crank-slider efficiency against the pressure angle
 ``rotor``                  unbalanced rotor on an elastic frame
 ``mechanism_files``        TOML parameter files in ``mechanisms/``
+``sweep``                  design studies in processes or on a Dask cluster
+``scenes``                 scene files run by the command line
+``validation``             closed-form and published-data checks
+``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
+``plot``                   pyvista fields and matplotlib curves (lazy imports)
+``cli``                    the ``bearingfe`` command
 =========================  =====================================================
 """
 
-from . import crank, efficiency, rotor
+from . import crank, efficiency, io, rotor, scenes, validation
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -30,11 +36,15 @@ from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
+from .scenes import SceneError
 from .sections import ibeam, ibeams
+from .sweep import CHANGES, OUTPUTS, ShoeCase, best_design, read_study, sweep
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "CHANGES", "OUTPUTS", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
+    "validation",
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",

@@ -32,7 +32,7 @@ def _parser() -> argparse.ArgumentParser:
 
     parser = argparse.ArgumentParser(prog="bearingfe", description=__doc__.split("\n")[0])
     parser.add_argument("--version", action="version", version=f"bearingfe {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,mesh,validate}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,mesh,validate,sweep}")
 
     run = sub.add_parser("run", help="run a scene file (TOML)")
     run.add_argument("scene", type=Path, help="scene file, e.g. scenes/default.toml")
@@ -50,6 +50,11 @@ def _parser() -> argparse.ArgumentParser:
     val = sub.add_parser("validate", help="compare with closed forms and published data")
     val.add_argument("--quick", action="store_true", help="coarser meshes")
     val.add_argument("--only", action="append", metavar="CHECK", help="run only this check (repeatable)")
+    sweep = sub.add_parser("sweep", help="run a design study (docs/sweeps.md)")
+    sweep.add_argument("study", type=Path, help="study file, e.g. studies/pocket_study.toml")
+    sweep.add_argument("--out", type=Path, required=True, help="output directory (results, cache)")
+    sweep.add_argument("--scheduler", default=None, help="Dask scheduler tcp://HOST:8786 or local[:N]")
+    sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
 
@@ -60,7 +65,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, --version, usage errors
         return int(exc.code or 0)
-    commands = {"run": _run, "mesh": _mesh, "validate": _validate}
+    commands = {"run": _run, "mesh": _mesh, "validate": _validate, "sweep": _sweep}
     try:
         return commands[args.command](args)
     except (ValueError, FileNotFoundError, FileExistsError) as exc:
@@ -69,6 +74,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (RuntimeError, ArithmeticError) as exc:
         print(f"bearingfe {args.command}: failed: {_one_line(exc)}", file=sys.stderr)
         return 1
+
+
+def _sweep(args) -> int:
+    from .sweep import sweep_command
+
+    return sweep_command(args.study, args.out, scheduler=args.scheduler, progress=not args.no_progress)
 
 
 def _one_line(exc: BaseException) -> str:
