@@ -85,4 +85,4 @@ def main(out_dir: str = "runs/pocket_study") -> None:
 
 
 if __name__ == "__main__":  # required: the sweep starts worker processes with "spawn"
-    main(*sys.argv[1:])
+    main(os.environ.get("BEARINGFE_OUT") or (sys.argv[1] if len(sys.argv) == 2 else "runs/pocket_study"))
