@@ -729,7 +729,8 @@ def _bearing_of(eq: Equilibrium) -> JournalBearing:
 
 # -- closed forms -------------------------------------------------------------------------
 
-def short_bearing_force(eps: float, half_width: float, velocity=(0.0, 0.0), n: int = 4000) -> np.ndarray:
+def short_bearing_force(eps: float, half_width: float, velocity=(0.0, 0.0), wedge: float = 1.0,
+                        n: int = 4000) -> np.ndarray:
     """Force on the bore of the short (Ocvirk) bearing with a half (pi) film, in the frame of the
     line of largest film (journal displaced along ``-x``), moving at ``velocity`` [c omega].
 
@@ -741,6 +742,6 @@ def short_bearing_force(eps: float, half_width: float, velocity=(0.0, 0.0), n: i
     """
     phi = (np.arange(n) + 0.5) * 2 * np.pi / n
     h = 1 + eps * np.cos(phi)
-    s = 6 * (-eps * np.sin(phi)) + 12 * (-velocity[0] * np.cos(phi) - velocity[1] * np.sin(phi))
+    s = 6 * wedge * (-eps * np.sin(phi)) + 12 * (-velocity[0] * np.cos(phi) - velocity[1] * np.sin(phi))
     g = np.where(s < 0, s / h**3, 0.0) * (-(2 * half_width**3) / 3) * (2 * np.pi / n)
     return np.array([np.sum(g * np.cos(phi)), np.sum(g * np.sin(phi))])
