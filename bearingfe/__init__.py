@@ -7,6 +7,8 @@ module                     what it does
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``film``                   film-thickness models (``CosineFilm``)
 ``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
+``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
@@ -24,7 +26,8 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import crank, efficiency, io, rotor, scenes, validation
+from . import cavitation, crank, efficiency, io, journal, rotor, scenes, validation
+from .cavitation import CavitationError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -39,12 +42,15 @@ from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators
 from .scenes import SceneError
 from .sections import ibeam, ibeams
 from .sweep import CHANGES, OUTPUTS, ShoeCase, best_design, read_study, sweep
+from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
 
 __version__ = "0.1.0"
 
 __all__ = [
     "CHANGES", "OUTPUTS", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
+    "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
+    "film_graded_size", "journal",
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",

@@ -60,7 +60,7 @@ __all__ = [
 
 ELEMENTS: Mapping[str, type] = MappingProxyType({"P1": skfem.ElementTriP1, "P2": skfem.ElementTriP2})
 FORMULATIONS = ("pi", "direct")
-CAVITATION = ("none",)
+CAVITATION = ("none", "reynolds", "gumbel")
 #: Unit sources in the order of :attr:`Superposition.fields`.
 SOURCES = ("wedge", "gamma_rate", "phi0_rate", "inlet")
 
@@ -591,6 +591,12 @@ class ReynoldsResult:
     cost : mapping
         Wall times [s]: ``mesh_operators`` (once per mesh), ``assembly``,
         ``factorization``, ``solve``, ``postprocess``; and ``dofs``.
+    cavitation : str
+        Cavitation model used (see :mod:`bearingfe.cavitation`).
+    iterations : int
+        Active-set iterations of the cavitation solve (0 without).
+    cavitated : ndarray of bool or None
+        Ruptured dofs (``p = 0`` imposed by the cavitation condition).
     """
 
     basis: skfem.CellBasis
@@ -610,6 +616,9 @@ class ReynoldsResult:
     coercivity: float
     notes: tuple[str, ...]
     cost: Mapping[str, float]
+    cavitation: str = "none"
+    iterations: int = 0
+    cavitated: np.ndarray | None = None
 
     @property
     def max_pressure(self) -> float:
@@ -625,7 +634,8 @@ class ReynoldsResult:
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
-                   solver: str | Factorize = "splu", on_indefinite: str = "fallback") -> ReynoldsResult:
+                   solver: str | Factorize = "splu", on_indefinite: str = "fallback",
+                   warm_start=None) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -643,8 +653,11 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         Pocket pressure ``p_s`` [-].
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
-    cavitation : {"none"}
-        ``"none"`` lets the pressure go negative (as in the source paper).
+    cavitation : {"none", "reynolds", "gumbel"}
+        ``"none"`` lets the pressure go negative (as in the source paper);
+        ``"reynolds"``: Swift-Stieber ``p >= 0`` with a free boundary, solved
+        as a complementarity problem; ``"gumbel"``: negative part discarded
+        (see :mod:`bearingfe.cavitation`).
     sliding : float, optional
         Sliding speed of the journal relative to the shoe for the Couette
         shear; default ``wedge``.
@@ -652,6 +665,8 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         Sparse linear solver (:data:`bearingfe.linalg.LINEAR_SOLVERS`).
     on_indefinite : {"fallback", "raise"}
         See :func:`superpose`.
+    warm_start : ReynoldsResult or bool mask, optional
+        Rupture set of a previous cavitated solution on the same mesh.
 
     Returns
     -------
@@ -664,4 +679,8 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
     sup = superpose(mesh, film, formulation=formulation, element=element, solver=solver,
                     on_indefinite=on_indefinite)
+    if cavitation != "none":
+        from .cavitation import solve_cavitating
+        return solve_cavitating(sup, wedge, squeeze, inlet_pressure, sliding, model=cavitation,
+                                warm_start=warm_start, solver=solver)
     return sup.combine(wedge, squeeze, inlet_pressure, sliding)

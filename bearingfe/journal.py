@@ -1,0 +1,747 @@
+r"""Journal bearings with the same Reynolds machinery: performance, equilibrium, dynamic coefficients.
+
+Coordinates and scales are the package's (``phi`` along the bore, ``z = Z/R``,
+``h = H/c``, ``p = P c^2/(mu omega R^2)``, forces in ``mu omega R^4/c^2``).
+A bearing of length ``L`` and diameter ``D = 2R`` has the half width
+``a = L/(2R) = L/D`` in ``z``.
+
+The journal centre sits at ``(x, y)`` (units of c) from the bore centre, so
+the film is ``h = 1 - x cos(phi) - y sin(phi)`` = ``CosineFilm(eps, phi0)``
+with ``eps = |(x, y)|`` and ``phi0`` (the line of largest film) opposite
+the journal displacement. The journal surface moves towards ``+phi``
+(``wedge = 1``).
+
+Full bearing (``JournalBearing(pads=None)``): the Raimondi-Boyd 360-degree
+bearing, with ``p = 0`` at the axial edges and along the line of largest
+film, Swift-Stieber cavitation elsewhere. It is meshed once in the frame of
+the line of centres (arc ``(0, 2 pi)`` from the largest film), where the
+answer depends on ``eps`` only. Partial arcs and several pads
+(``pads=((start, end), ...)``) are meshed in the bearing frame, with axial
+supply grooves as pockets at the supply pressure.
+
+Chart variables (Raimondi & Boyd 1958), with ``W`` the load,
+``P = W/(L D)``, ``N`` the speed [rev/s]:
+
+- Sommerfeld number ``S = (R/c)^2 mu N / P = 2 a / (pi w)``, with ``w`` the
+  non-dimensional load;
+- attitude angle: between the load line and the line of centres;
+- friction variable ``(R/c) f = friction / w``: the shear on the journal
+  with the full-film Couette term over the whole clearance (as Petroff and
+  Raimondi-Boyd count it), pressure term where the film is full;
+- flow variable ``Q/(R c N L) = pi q / a`` with ``q`` the flow into the
+  leading edge of the film, side-flow ratio ``Q_s/Q``;
+- maximum-pressure ratio ``P/p_max = w / (4 a p_max)``.
+
+Dynamic coefficients: ``K_ij = -d f_i/d x_j``, ``C_ij = -d f_i/d xdot_j``
+with ``f`` the film force on the journal, by linearization of the discrete
+Reynolds equation on the converged rupture set (direct form: the derivative
+of ``int h^3 grad p . grad v`` is ``int 3 h^2 h_x grad p . grad v``, one
+back-substitution per coefficient column with the factorization already
+made) and, as a check, by central finite differences of the full nonlinear
+solution. Non-dimensional as Lund's ``K c / W``, ``C c omega / W``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+from skfem import BilinearForm, LinearForm
+from skfem.helpers import dot, grad
+
+from .cavitation import obstacle_problem, solve_cavitating
+from .film import CosineFilm
+from .geometry import Rectangle, Surface
+from .meshing import SupportMesh, mesh_surface, refine_uniformly
+from .reynolds import ReynoldsResult, operators, superpose
+
+__all__ = [
+    "Groove",
+    "JournalBearing",
+    "JournalPerformance",
+    "DynamicCoefficients",
+    "ResolutionWarning",
+    "film_graded_size",
+    "journal_mesh",
+    "performance",
+    "equilibrium",
+    "dynamic_coefficients",
+    "short_bearing_force",
+]
+
+#: Eccentricity ratios beyond this are refused (contact in all but name).
+EPS_MAX = 0.995
+
+
+class ResolutionWarning(UserWarning):
+    """The mesh does not resolve the thin-film pressure peak to the requested accuracy."""
+
+
+@dataclass(frozen=True)
+class Groove:
+    """Axial supply groove: a pocket at the supply pressure.
+
+    Parameters
+    ----------
+    angle : float
+        Centre angle in the bearing frame [rad].
+    width : float
+        Angular width [rad], > 0.
+    length_fraction : float
+        Groove length over bearing length, in (0, 1) (a groove must stay
+        inside the film to be a pocket).
+    """
+
+    angle: float
+    width: float
+    length_fraction: float = 0.8
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.angle):
+            raise ValueError(f"Groove.angle must be finite, got {self.angle!r}")
+        if not (math.isfinite(self.width) and 0 < self.width < math.pi):
+            raise ValueError(f"Groove.width must be in (0, pi) rad, got {self.width!r}")
+        if not (0 < self.length_fraction < 1):
+            raise ValueError(f"Groove.length_fraction must be in (0, 1), got {self.length_fraction!r}")
+
+
+@dataclass(frozen=True)
+class JournalBearing:
+    """Geometry of a plain journal bearing (non-dimensional).
+
+    Parameters
+    ----------
+    length_ratio : float
+        ``L/D`` [-], in (0, 4].
+    pads : tuple of (float, float) or None
+        ``None``: full 360-degree film starting at the line of largest film
+        (Raimondi-Boyd). Otherwise arcs ``(start, end)`` [rad] in the
+        bearing frame (a partial arc, or several pads; a 360-degree arc with
+        its edges at a fixed axial groove line).
+    grooves : tuple of Groove
+        Supply grooves inside the pads (only with ``pads``).
+    supply_pressure : float
+        Groove pressure [-] (``P c^2/(mu omega R^2)``), >= 0.
+    """
+
+    length_ratio: float
+    pads: tuple | None = None
+    grooves: tuple = ()
+    supply_pressure: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.length_ratio) and 0 < self.length_ratio <= 4):
+            raise ValueError(f"length_ratio (L/D) must be in (0, 4], got {self.length_ratio!r}")
+        if self.pads is not None:
+            pads = tuple((float(a), float(b)) for a, b in self.pads)
+            for a, b in pads:
+                if not a < b <= a + 2 * math.pi + 1e-12:
+                    raise ValueError(f"pads: each arc needs start < end <= start + 2 pi, got {(a, b)}")
+            object.__setattr__(self, "pads", pads)
+        elif self.grooves:
+            raise ValueError("grooves need explicit pads (the Raimondi-Boyd full bearing has none)")
+        if not (math.isfinite(self.supply_pressure) and self.supply_pressure >= 0):
+            raise ValueError(f"supply_pressure must be >= 0, got {self.supply_pressure!r}")
+        object.__setattr__(self, "grooves", tuple(self.grooves))
+
+    @property
+    def half_width(self) -> float:
+        """``a = L/D`` (z is scaled by the radius) [-]."""
+        return float(self.length_ratio)
+
+    def surfaces(self) -> tuple[Surface, ...]:
+        """Support surfaces of the pads in the bearing frame (full bearing: one
+        arc ``(0, 2 pi)`` in the frame of the line of largest film)."""
+        a = self.half_width
+        if self.pads is None:
+            return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
+        out = []
+        for start, end in self.pads:
+            pockets = tuple(Rectangle((_wrap_into(g.angle, start), 0.0), (g.width, 2 * a * g.length_fraction))
+                            for g in self.grooves if start < _wrap_into(g.angle, start) < end)
+            out.append(Surface(arc=(start, end), half_width=a, inlets=pockets))
+        return tuple(out)
+
+
+def _wrap_into(angle: float, start: float) -> float:
+    return start + (angle - start) % (2 * math.pi)
+
+
+# -- meshes ---------------------------------------------------------------------
+
+def film_graded_size(film, size: float, min_size: float, exponent: float = 0.5):
+    """Element-size function ``s(phi, z)`` for :func:`bearingfe.mesh_surface` driven by the film.
+
+    ``s = clip(size * h^exponent, min_size, size)``: the thin-film pressure
+    spike of a journal at eccentricity ``eps`` has a width of order
+    ``sqrt(h_min)`` around the thinnest line, so ``exponent = 1/2`` keeps the
+    number of elements across it fixed as ``eps -> 1``.
+
+    Parameters
+    ----------
+    film : Film
+    size, min_size : float
+        Largest and smallest element size [-], ``0 < min_size <= size``.
+    exponent : float
+        In (0, 2].
+    """
+    if not (math.isfinite(size) and size > 0 and math.isfinite(min_size) and 0 < min_size <= size):
+        raise ValueError(f"need 0 < min_size <= size, got size={size!r}, min_size={min_size!r}")
+    if not (0 < exponent <= 2):
+        raise ValueError(f"exponent must be in (0, 2], got {exponent!r}")
+
+    def size_function(phi, z):
+        h = np.asarray(film.thickness(np.asarray(phi, float), np.asarray(z, float)), float)
+        return np.clip(size * np.maximum(h, 0.0) ** exponent, min_size, size)
+
+    return size_function
+
+
+@lru_cache(maxsize=32)
+def _mesh(surface: Surface, size: float, min_size: float, eps: float, phi0: float, element: str) -> SupportMesh:
+    graded = film_graded_size(CosineFilm(eps, phi0), size, min_size) if min_size < size else None
+    return mesh_surface(surface, size, size_function=graded, order=1)
+
+
+def journal_mesh(bearing: JournalBearing, size: float, *, min_size: float | None = None,
+                 eps: float = 0.0, phi0: float = 0.0) -> tuple[SupportMesh, ...]:
+    """Meshes of the pads, graded towards the thinnest film of ``CosineFilm(eps, phi0)``.
+
+    Meshes are cached on their arguments (the transient and the Newton
+    iterations reuse them).
+    """
+    min_size = size if min_size is None else float(min_size)
+    return tuple(_mesh(s, float(size), min_size, float(eps), float(phi0), "P1") for s in bearing.surfaces())
+
+
+def default_min_size(size: float, eps: float) -> float:
+    """Smallest element size used by default: ``size * sqrt(1 - eps)`` (see :func:`film_graded_size`)."""
+    return float(size * math.sqrt(max(1.0 - eps, 1e-4)))
+
+
+# -- one journal position --------------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class _State:
+    """Solutions of all pads at one journal position (bearing frame)."""
+
+    results: tuple[ReynoldsResult, ...]
+    sups: tuple
+    force: np.ndarray          # on the shoe/bore = applied load on the journal at equilibrium
+    rotation: float            # mesh frame -> bearing frame angle
+
+
+def _check_eps(eps: float) -> float:
+    eps = float(eps)
+    if not (math.isfinite(eps) and 0 <= eps <= EPS_MAX):
+        raise ValueError(f"eccentricity ratio must be in [0, {EPS_MAX}], got {eps!r} "
+                         "(beyond it the film is thinner than any mesh resolves; the journal touches)")
+    return eps
+
+
+def _rot(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation: str,
+                 squeeze_xy=(0.0, 0.0), rotation: float = 0.0) -> _State:
+    """Solve all pads for a journal at ``(x, y)`` in the frame of the meshes, moving at ``squeeze_xy``."""
+    eps = math.hypot(x, y)
+    phi0 = math.atan2(-y, -x) if eps > 0 else 0.0
+    film = CosineFilm(eps, phi0)
+    xd, yd = squeeze_xy
+    # dh/dt = -xd cos phi - yd sin phi = gamma_rate cos(phi - phi0) + gamma phi0_rate sin(phi - phi0)
+    gamma_rate = -(xd * math.cos(phi0) + yd * math.sin(phi0))
+    phi0_rate = (xd * math.sin(phi0) - yd * math.cos(phi0)) / eps if eps > 0 else 0.0
+    if eps == 0 and (xd or yd):
+        raise ValueError("squeeze velocities at eps = 0 need a finite eccentricity (use eps >= 1e-6)")
+    results, sups, force = [], [], np.zeros(2)
+    for mesh in meshes:
+        sup = superpose(mesh, film, formulation="direct")
+        ps = bearing.supply_pressure if mesh.has_inlet else 0.0
+        if cavitation == "none":
+            res = sup.combine(1.0, (gamma_rate, phi0_rate), ps)
+        else:
+            res = solve_cavitating(sup, 1.0, (gamma_rate, phi0_rate), ps, model=cavitation)
+        results.append(res)
+        sups.append(sup)
+        force += res.force
+    return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation)
+
+
+def _lumped_area(res: ReynoldsResult) -> np.ndarray:
+    @LinearForm
+    def one(v, w):
+        return v
+    return one.assemble(res.basis)
+
+
+@BilinearForm
+def _dh3(u, v, w):
+    return w.c * dot(grad(u), grad(v))
+
+
+@LinearForm
+def _src(v, w):
+    return w.f * v
+
+
+def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
+    """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
+    differentiating the discrete equation on the fixed rupture sets."""
+    dF = np.zeros((2, 4))
+    for res, sup in zip(state.results, state.sups):
+        ops = sup.operators
+        at = sup._at
+        phi = ops.x[0]
+        basis = ops.basis
+        hx, hy = -np.cos(phi), -np.sin(phi)
+        p = res.pressure
+        # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot
+        rhs = np.column_stack([
+            -_src.assemble(basis, f=6.0 * np.sin(phi)) - _dh3.assemble(basis, c=3 * at.h**2 * hx) @ p,
+            -_src.assemble(basis, f=-6.0 * np.cos(phi)) - _dh3.assemble(basis, c=3 * at.h**2 * hy) @ p,
+            -_src.assemble(basis, f=12.0 * hx),
+            -_src.assemble(basis, f=12.0 * hy),
+        ])
+        fp = obstacle_problem(sup)
+        active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
+        if res.cavitation == "gumbel":
+            raise ValueError("linearization is defined for cavitation='reynolds' or 'none'")
+        U = fp.problem.solve_fixed(rhs[fp.interior], active)
+        cos, sin = np.cos(phi) * basis.dx, np.sin(phi) * basis.dx
+        for k in range(4):
+            u = np.zeros(ops.n_dofs)
+            u[fp.interior] = U[:, k]
+            pk = basis.interpolate(u).value
+            dF[:, k] += np.sum(pk * cos), np.sum(pk * sin)
+    return dF[:, :2], dF[:, 2:]
+
+
+# -- results ------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class JournalPerformance:
+    """Raimondi-Boyd chart variables of a full journal bearing at one eccentricity.
+
+    Attributes
+    ----------
+    eps : float
+        Eccentricity ratio [-].
+    sommerfeld : float
+        ``S = (R/c)^2 mu N / P`` [-] (``inf`` at ``eps = 0``).
+    attitude : float
+        Attitude angle [deg] (at ``eps = 0`` its limit ``eps -> 0``).
+    friction_variable : float
+        ``(R/c) f`` [-].
+    flow_variable : float
+        ``Q / (R c N L)`` [-].
+    side_flow_ratio : float
+        ``Q_s / Q`` [-].
+    max_pressure_ratio : float
+        ``P / p_max`` [-].
+    load : float
+        Non-dimensional load ``w`` [mu omega R^4 / c^2].
+    max_pressure : float
+        Largest film pressure [mu omega R^2 / c^2].
+    h_min : float
+        Smallest film thickness [c].
+    cavitated_fraction : float
+        Area of the ruptured region over the film area [-] (lumped nodal
+        areas): the free boundary's convergence measure.
+    iterations : int
+        Active-set iterations of the cavitation solve.
+    n_nodes : int
+        Mesh nodes (of the finest mesh used).
+    error_estimate : float
+        Relative change of the load between the mesh and its uniform
+        refinement (NaN if not estimated); the reported values are those
+        of the refined mesh.
+    attitude_error : float
+        Change of the attitude angle under the refinement [deg].
+    seconds : float
+        Wall time [s].
+    """
+
+    eps: float
+    sommerfeld: float
+    attitude: float
+    friction_variable: float
+    flow_variable: float
+    side_flow_ratio: float
+    max_pressure_ratio: float
+    load: float
+    max_pressure: float
+    h_min: float
+    cavitated_fraction: float
+    iterations: int
+    n_nodes: int
+    error_estimate: float = math.nan
+    attitude_error: float = math.nan
+    seconds: float = 0.0
+
+
+def _chart(bearing: JournalBearing, res: ReynoldsResult, eps: float, n_nodes: int) -> JournalPerformance:
+    a = bearing.half_width
+    F = res.force
+    w = float(np.hypot(*F))
+    # journal displaced towards phi = pi (frame of the largest film at phi = 0): line of centres (-1, 0)
+    attitude = math.degrees(math.atan2(abs(F[1]), -F[0]))
+    q_in = -res.flows["arc_start"]
+    pressure = res.pressure
+    rupture = 0.0
+    if res.cavitated is not None and res.cavitated.any():
+        lumped = _lumped_area(res)
+        rupture = float(lumped[res.cavitated].sum() / lumped.sum())
+    pmax = float(pressure.max())
+    return JournalPerformance(
+        eps=eps, sommerfeld=2 * a / (math.pi * w) if w > 0 else math.inf, attitude=attitude,
+        friction_variable=res.friction / w if w > 0 else math.inf,
+        flow_variable=math.pi * q_in / a, side_flow_ratio=res.flows["side"] / q_in,
+        max_pressure_ratio=w / (4 * a * pmax) if pmax > 0 else math.nan, load=w, max_pressure=pmax,
+        h_min=res.h_min, cavitated_fraction=rupture, iterations=res.iterations, n_nodes=n_nodes)
+
+
+def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_size: float | None = None,
+                cavitation: str = "reynolds", estimate_error: bool = False,
+                error_tolerance: float = 0.02) -> JournalPerformance:
+    """Chart variables of a full (Raimondi-Boyd) bearing at eccentricity ``eps``.
+
+    Parameters
+    ----------
+    bearing : JournalBearing
+        With ``pads=None``.
+    eps : float
+        Eccentricity ratio in ``[0, 0.995]``. At ``eps = 0`` the load is zero
+        (``S = inf``) and the attitude is its limit, evaluated at ``eps = 1e-6``
+        (the pressure is linear in ``eps`` there).
+    size, min_size : float
+        Element sizes [-]; by default ``min_size = size sqrt(1 - eps)`` at the
+        thinnest film (:func:`film_graded_size`).
+    cavitation : {"reynolds", "gumbel", "none"}
+    estimate_error : bool
+        Also solve on the uniformly refined mesh and report the relative
+        change of the load (values returned are the refined ones).
+    error_tolerance : float
+        With ``estimate_error``: a :class:`ResolutionWarning` is issued if
+        the estimate exceeds it.
+    """
+    if bearing.pads is not None:
+        raise ValueError("performance() is for the full Raimondi-Boyd bearing (pads=None); "
+                         "use equilibrium() for pads and partial arcs")
+    eps = _check_eps(eps)
+    if cavitation not in ("reynolds", "gumbel", "none"):
+        raise ValueError(f"cavitation must be 'reynolds', 'gumbel' or 'none', got {cavitation!r}")
+    start = time.perf_counter()
+    e = max(eps, 1e-6)
+    min_size = default_min_size(size, e) if min_size is None else float(min_size)
+    (mesh,) = journal_mesh(bearing, size, min_size=min_size, eps=e)
+    res = _solve_state(bearing, (mesh,), -e, 0.0, cavitation).results[0]
+    perf = _chart(bearing, res, e, mesh.n_nodes)
+    extra = {}
+    if estimate_error:
+        fine = refine_uniformly(mesh)
+        res_f = _solve_state(bearing, (fine,), -e, 0.0, cavitation).results[0]
+        perf_f = _chart(bearing, res_f, e, fine.n_nodes)
+        err = abs(perf_f.load - perf.load) / perf_f.load
+        extra = dict(error_estimate=err, attitude_error=abs(perf_f.attitude - perf.attitude))
+        perf = perf_f
+        if err > error_tolerance:
+            warnings.warn(ResolutionWarning(
+                f"eps = {eps:.4g}: the load changes by {100 * err:.2g} % under mesh refinement "
+                f"(h_min = {1 - e:.3g}, smallest element {min_size:.3g}): the thin-film pressure peak "
+                f"is not resolved; use a smaller min_size"), stacklevel=2)
+    if eps == 0:
+        extra.update(sommerfeld=math.inf, load=0.0, max_pressure=0.0, friction_variable=math.inf, eps=0.0,
+                     max_pressure_ratio=math.nan)
+    return JournalPerformance(**{**perf.__dict__, **extra, "seconds": time.perf_counter() - start})
+
+
+# -- equilibrium -------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """Static equilibrium of the journal under a load.
+
+    Attributes
+    ----------
+    eps : float
+        Eccentricity ratio [-].
+    attitude : float
+        Angle from the load line to the line of centres [deg].
+    position : ndarray, shape (2,)
+        Journal centre in the bearing frame [c].
+    force : ndarray, shape (2,)
+        Film force on the bore (= applied load on the journal) [mu omega R^4/c^2].
+    newton_iterations : int
+    residual : float
+        ``|force - load| / |load|``.
+    """
+
+    eps: float
+    attitude: float
+    position: np.ndarray
+    force: np.ndarray
+    newton_iterations: int
+    residual: float
+    state: _State = field(repr=False, compare=False, default=None)
+    meshes: tuple = field(repr=False, compare=False, default=())
+    bearing: JournalBearing | None = field(repr=False, compare=False, default=None)
+
+
+def _short_eps(load: float, a: float) -> float:
+    """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess."""
+    from scipy.optimize import brentq
+
+    def f(e):
+        return np.hypot(*short_bearing_force(e, a)) - load
+    if f(0.99) < 0:
+        return 0.99
+    return float(brentq(f, 1e-9, 0.99))
+
+
+def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: float | None = None,
+                cavitation: str = "reynolds", tol: float = 1e-8, max_newton: int = 40) -> Equilibrium:
+    """Journal position that carries a load, by Newton's method with the linearized stiffness.
+
+    Parameters
+    ----------
+    bearing : JournalBearing
+    load : (float, float)
+        Applied load on the journal in the bearing frame [mu omega R^4/c^2];
+        for the full bearing only its magnitude and direction matter.
+    size, min_size : float
+        Element sizes (the mesh is graded for the first guess and regenerated
+        once if the answer moved by more than 0.02 in eps).
+    cavitation : {"reynolds", "none"}
+    tol : float
+        Relative tolerance on the force balance.
+    max_newton : int
+
+    Raises
+    ------
+    RuntimeError
+        If Newton does not converge, or the load needs ``eps > 0.995``.
+    """
+    load = np.asarray(load, float)
+    if load.shape != (2,) or not np.all(np.isfinite(load)) or not np.hypot(*load) > 0:
+        raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
+    if cavitation not in ("reynolds", "none"):
+        raise ValueError(f"cavitation must be 'reynolds' or 'none', got {cavitation!r}")
+    w = float(np.hypot(*load))
+    eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
+    theta_load = math.atan2(load[1], load[0])
+    if bearing.pads is None:
+        return _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, tol, max_newton)
+    xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
+    for _ in range(2):
+        ms = default_min_size(size, np.hypot(*xy)) if min_size is None else min_size
+        meshes = journal_mesh(bearing, size, min_size=ms, eps=float(np.hypot(*xy)),
+                              phi0=math.atan2(-xy[1], -xy[0]))
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton)
+        if min_size is not None:
+            break
+    e = float(np.hypot(*xy))
+    att = math.degrees(abs(_angle_between(theta_load, math.atan2(xy[1], xy[0]))))
+    return Equilibrium(eps=e, attitude=att, position=xy, force=state.force, newton_iterations=k,
+                       residual=res, state=state, meshes=meshes, bearing=bearing)
+
+
+def _angle_between(a: float, b: float) -> float:
+    return (b - a + math.pi) % (2 * math.pi) - math.pi
+
+
+def _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton):
+    w = np.hypot(*load)
+    for k in range(max_newton + 1):
+        e = float(np.hypot(*xy))
+        if e > EPS_MAX:
+            raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
+        state = _solve_state(bearing, meshes, xy[0], xy[1], cavitation)
+        R = state.force - load
+        res = float(np.hypot(*R) / w)
+        if res <= tol:
+            return xy, state, k, res
+        K, _ = _linearized(state)
+        step = -np.linalg.solve(K, R)
+        # keep inside the clearance: at most half way to the eccentricity limit per step
+        t = 1.0
+        while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
+            t *= 0.5
+        xy = xy + t * step
+    raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
+                       f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
+
+
+def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, tol, max_newton):
+    """Full bearing: the answer depends on eps only; Newton on |F|(eps) = w."""
+    k_total = 0
+    for _ in range(3):
+        ms = default_min_size(size, eps) if min_size is None else min_size
+        meshes = journal_mesh(bearing, size, min_size=ms, eps=eps)
+        eps_start = eps
+        for k in range(max_newton + 1):
+            state = _solve_state(bearing, meshes, -eps, 0.0, cavitation)
+            F = state.force
+            wf = float(np.hypot(*F))
+            res = abs(wf - w) / w
+            if res <= tol:
+                break
+            K, _ = _linearized(state)
+            dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
+            new = eps - (wf - w) / dw
+            eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+        else:
+            raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
+                               f"(relative load residual {res:.3g})")
+        k_total += k
+        if min_size is not None or abs(eps - eps_start) < 0.02:
+            break
+        if eps >= EPS_MAX * 0.999:
+            raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
+    F = state.force
+    # mesh frame -> bearing frame: rotate so that F points along the load
+    rotation = theta_load - math.atan2(F[1], F[0])
+    xy = _rot(rotation) @ np.array([-eps, 0.0])
+    att = math.degrees(math.atan2(abs(F[1]), -F[0]))
+    state = _State(results=state.results, sups=state.sups, force=_rot(rotation) @ F, rotation=rotation)
+    return Equilibrium(eps=eps, attitude=att, position=xy, force=state.force, newton_iterations=k_total,
+                       residual=res, state=state, meshes=meshes, bearing=bearing)
+
+
+# -- dynamic coefficients --------------------------------------------------------------
+
+@dataclass(frozen=True)
+class DynamicCoefficients:
+    """Stiffness and damping of the film at a static equilibrium.
+
+    Attributes
+    ----------
+    K, C : ndarray, shape (2, 2)
+        Non-dimensional ``K c / W`` and ``C c omega / W`` in the ROSS frame:
+        ``x`` horizontal, ``y`` vertical, the static load on the journal
+        along ``-y`` (gravity), rotation from ``+x`` to ``+y``.
+    load : float
+        Non-dimensional load ``w`` [mu omega R^4 / c^2].
+    eps, attitude : float
+        Equilibrium eccentricity [-] and attitude [deg].
+    method : str
+        ``"linearized"`` or ``"finite-difference"``.
+    """
+
+    K: np.ndarray
+    C: np.ndarray
+    load: float
+    eps: float
+    attitude: float
+    method: str
+
+    def to_si(self, *, viscosity: float, speed: float, radius: float, clearance: float) -> tuple[np.ndarray, np.ndarray]:
+        """Stiffness [N/m] and damping [N s/m] for ``mu`` [Pa s], ``omega`` [rad/s], ``R``, ``c`` [m]."""
+        for name, v in (("viscosity", viscosity), ("speed", speed), ("radius", radius), ("clearance", clearance)):
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+        W = viscosity * speed * radius**4 / clearance**2 * self.load
+        return self.K * W / clearance, self.C * W / (clearance * speed)
+
+    def to_ross_kwargs(self, *, viscosity: float, speed: float, radius: float, clearance: float) -> dict:
+        """Keywords for ``ross.BearingElement(n=..., **kwargs)`` (ROSS is not imported).
+
+        Returns ``kxx, kxy, kyx, kyy`` [N/m], ``cxx, cxy, cyx, cyy`` [N s/m] and
+        ``frequency`` [rad/s] (one-element lists: the coefficients at this speed).
+        """
+        K, C = self.to_si(viscosity=viscosity, speed=speed, radius=radius, clearance=clearance)
+        out = {f"k{a}{b}": [float(K[i, j])] for i, a in enumerate("xy") for j, b in enumerate("xy")}
+        out.update({f"c{a}{b}": [float(C[i, j])] for i, a in enumerate("xy") for j, b in enumerate("xy")})
+        out["frequency"] = [float(speed)]
+        return out
+
+
+def _to_ross_frame(force_dir: float, K: np.ndarray) -> np.ndarray:
+    # rotate so that the static load on the journal (= film force on the bore direction) is along -y
+    Q = _rot(-math.pi / 2 - force_dir)
+    return Q @ K @ Q.T
+
+
+def dynamic_coefficients(eq: Equilibrium, *, method: str = "linearized", step: float = 1e-5) -> DynamicCoefficients:
+    """The eight film coefficients at a static equilibrium.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        From :func:`equilibrium` (its meshes and solution are reused).
+    method : {"linearized", "finite-difference"}
+        Linearization of the discrete Reynolds equation on the rupture set,
+        or central differences of the nonlinear (cavitated) force with
+        ``step`` in position [c] and velocity [c omega].
+
+    Notes
+    -----
+    Both methods keep the meshes fixed, so for the full bearing the
+    ``p = 0`` line stays where the static line of largest film is (as an
+    axial groove would), rather than following the perturbed line of centres.
+    """
+    if method not in ("linearized", "finite-difference"):
+        raise ValueError(f"method must be 'linearized' or 'finite-difference', got {method!r}")
+    if not (0 < step < 1e-2):
+        raise ValueError(f"step must be in (0, 1e-2), got {step!r}")
+    state = eq.state
+    cav = state.results[0].cavitation
+    if cav == "gumbel":
+        raise ValueError("dynamic coefficients need cavitation='reynolds' or 'none'")
+    rot = state.rotation
+    if method == "linearized":
+        dFx, dFv = _linearized(state)
+    else:
+        # journal position in the mesh frame
+        R = _rot(-rot)
+        xy = R @ eq.position
+        dFx, dFv = np.zeros((2, 2)), np.zeros((2, 2))
+        for j in range(2):
+            d = np.zeros(2)
+            d[j] = step
+            fp = _solve_state(_bearing_of(eq), eq.meshes, *(xy + d), cav).force
+            fm = _solve_state(_bearing_of(eq), eq.meshes, *(xy - d), cav).force
+            dFx[:, j] = (fp - fm) / (2 * step)
+            fp = _solve_state(_bearing_of(eq), eq.meshes, *xy, cav, squeeze_xy=d).force
+            fm = _solve_state(_bearing_of(eq), eq.meshes, *xy, cav, squeeze_xy=-d).force
+            dFv[:, j] = (fp - fm) / (2 * step)
+    # K_ij = -d f_journal,i / d x_j = d F_bore,i / d x_j ; from the mesh frame to the bearing frame
+    Rm = _rot(rot)
+    K = Rm @ dFx @ Rm.T
+    C = Rm @ dFv @ Rm.T
+    w = float(np.hypot(*eq.force))
+    direction = math.atan2(eq.force[1], eq.force[0])
+    return DynamicCoefficients(K=_to_ross_frame(direction, K) / w, C=_to_ross_frame(direction, C) / w,
+                               load=w, eps=eq.eps, attitude=eq.attitude, method=method)
+
+
+def _bearing_of(eq: Equilibrium) -> JournalBearing:
+    if eq.bearing is None:
+        raise ValueError("the Equilibrium carries no bearing (build it with equilibrium())")
+    return eq.bearing
+
+
+# -- closed forms -------------------------------------------------------------------------
+
+def short_bearing_force(eps: float, half_width: float, velocity=(0.0, 0.0), wedge: float = 1.0,
+                        n: int = 4000) -> np.ndarray:
+    """Force on the bore of the short (Ocvirk) bearing with a half (pi) film, in the frame of the
+    line of largest film (journal displaced along ``-x``), moving at ``velocity`` [c omega].
+
+    ``p = s (z^2 - a^2) / (2 h^3)`` with ``s = 6 dh/dphi + 12 dh/dt`` where ``s < 0``, else 0;
+    the force ``-(2 a^3/3) int_{s<0} s/h^3 (cos, sin) dphi`` is integrated by the midpoint rule
+    with ``n`` points. At zero velocity its magnitude is Ocvirk's
+    ``W = mu U L^3/(4 c^2) eps/(1-eps^2)^2 sqrt(pi^2 (1-eps^2) + 16 eps^2)``, i.e.
+    ``w = 2 a^3 eps/(1-eps^2)^2 sqrt(pi^2 (1-eps^2) + 16 eps^2)`` in package units.
+    """
+    phi = (np.arange(n) + 0.5) * 2 * np.pi / n
+    h = 1 + eps * np.cos(phi)
+    s = 6 * wedge * (-eps * np.sin(phi)) + 12 * (-velocity[0] * np.cos(phi) - velocity[1] * np.sin(phi))
+    g = np.where(s < 0, s / h**3, 0.0) * (-(2 * half_width**3) / 3) * (2 * np.pi / n)
+    return np.array([np.sum(g * np.cos(phi)), np.sum(g * np.sin(phi))])
