@@ -619,7 +619,25 @@ class ReynoldsResult:
     def interpolate(self, phi, z) -> np.ndarray:
         """Pressure at arbitrary points of the film (NaN-free: points must lie in the mesh)."""
         pts = np.vstack([np.ravel(phi), np.ravel(z)]).astype(float)
-        return (self.basis.probes(pts) @ self.pressure).reshape(np.shape(phi))
+        return (_probes(self.basis, pts) @ self.pressure).reshape(np.shape(phi))
+
+
+def _probes(basis: skfem.CellBasis, x: np.ndarray) -> sp.coo_matrix:
+    """``basis.probes(x)``, also on curved MeshTri2 meshes.
+
+    scikit-fem has no element finder for quadratic meshes, so cells are
+    found on the straight-sided mesh of the same vertices and the reference
+    coordinates then come from the curved (isoparametric) mapping.
+    """
+    if not isinstance(basis.mesh, skfem.MeshTri2):
+        return basis.probes(x)
+    cells = skfem.MeshTri1(basis.mesh.p, basis.mesh.t).element_finder()(*x)
+    ref = basis.mapping.invF(x[:, :, None], tind=cells)
+    values = np.array([basis.elem.gbasis(basis.mapping, ref, k, tind=cells)[0]
+                       for k in range(basis.Nbfun)]).ravel()
+    rows = np.tile(np.arange(x.shape[1]), basis.Nbfun)
+    cols = basis.element_dofs[:, cells].ravel()
+    return sp.coo_matrix((values, (rows, cols)), shape=(x.shape[1], basis.N))
 
 
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
