@@ -137,7 +137,7 @@ class Operators:
         return self._x
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "_x", self.basis.global_coordinates().value)
+        object.__setattr__(self, "_x", self.basis.global_coordinates().get(0))
 
 
 def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
@@ -210,8 +210,8 @@ def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
     fb = skfem.FacetBasis(m, skfem.ElementTriP1(), facets=inlet_facets, intorder=8)
-    phi = fb.global_coordinates().value[0]
-    nphi = fb.normals.value[0]
+    phi = fb.global_coordinates().get(0)[0]
+    nphi = fb.normals.get(0)[0]
     dx = fb.dx
     return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])
 
@@ -476,7 +476,7 @@ def _sources(ops: Operators, film: Film, at: _FilmAt, formulation: str) -> tuple
 def _pressure_at_quadrature(ops: Operators, at: _FilmAt, u: np.ndarray, formulation: str):
     """Pressure and its gradient at the quadrature points from the unknown ``u``."""
     field_ = ops.basis.interpolate(u)
-    value, gradient = field_.value, field_.grad
+    value, gradient = field_.get(0), field_.grad
     if formulation == "direct":
         return value, gradient
     s = at.h**-1.5
@@ -551,15 +551,15 @@ def _normal_flux(v, w):
 
 def _facet_flux(fb: skfem.FacetBasis, film: Film, u: np.ndarray, formulation: str, wedge: float) -> np.ndarray:
     """``int q . n v ds`` on the facets of ``fb`` from the solution gradient."""
-    x = fb.global_coordinates().value
+    x = fb.global_coordinates().get(0)
     at = _film_at(film, x)
     field_ = fb.interpolate(u)
-    p, dp = field_.value, field_.grad
+    p, dp = field_.get(0), field_.grad
     if formulation == "pi":
         s = at.h**-1.5
         p = s * p
         dp = np.array([s * dp[k] - 1.5 * p / at.h * at.dh[k] for k in range(2)])
-    n = fb.normals.value
+    n = fb.normals.get(0)
     qn = (-at.h**3 / 12.0 * dp[0] + 0.5 * wedge * at.h) * n[0] - at.h**3 / 12.0 * dp[1] * n[1]
     return _normal_flux.assemble(fb, qn=qn)
 
