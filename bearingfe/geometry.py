@@ -271,6 +271,8 @@ class Slot:
         object.__setattr__(self, "center", _pair(self.center, "Slot.center"))
         object.__setattr__(self, "length", _positive(self.length, "Slot.length"))
         object.__setattr__(self, "width", _positive(self.width, "Slot.width"))
+        if not math.isfinite(float(self.angle)):
+            raise ValueError(f"Slot.angle must be finite, got {self.angle!r}")
         object.__setattr__(self, "angle", float(self.angle))
 
     @property

@@ -318,7 +318,7 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         for k in range(4):
             u = np.zeros(ops.n_dofs)
             u[fp.interior] = U[:, k]
-            pk = basis.interpolate(u).value
+            pk = np.array(basis.interpolate(u))
             dF[:, k] += np.sum(pk * cos), np.sum(pk * sin)
     return dF[:, :2], dF[:, 2:]
 

@@ -165,9 +165,11 @@ def mesh_surface(
     with gmsh_session(verbose) as gmsh:
         gmsh.model.add("support")
         groups = _build_geometry(gmsh, surface)
-        _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface)
+        errors = _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface)
         gmsh.option.setNumber("Mesh.Algorithm", algorithm)
         gmsh.model.mesh.generate(2)
+        if errors:  # gmsh swallows exceptions raised in its size callback
+            raise ValueError(f"size_function failed: {errors[0]}") from errors[0]
         for _ in range(refine):
             gmsh.model.mesh.refine()
         if order == 2:
@@ -251,7 +253,7 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
     return groups
 
 
-def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface) -> None:
+def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface) -> list:
     opt = gmsh.option
     opt.setNumber("Mesh.MeshSizeMax", size)
     opt.setNumber("Mesh.MeshSizeMin", min(size, inlet_size, corner_size) / 4)
@@ -259,6 +261,7 @@ def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_functi
     opt.setNumber("Mesh.MeshSizeFromCurvature", 0)
     opt.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
     fields = []
+    errors: list[Exception] = []
     mf = gmsh.model.mesh.field
     if groups["inlet"] and inlet_size < size:
         fields.append(_threshold(mf, "CurvesList", groups["inlet"], inlet_size, size, grading))
@@ -272,8 +275,16 @@ def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_functi
         mf.setAsBackgroundMesh(fmin)
     if size_function is not None:
         def callback(dim, tag, x, y, z, lc):
-            return float(min(lc, size_function(np.array(x), np.array(y))))
+            try:
+                value = float(size_function(np.array(x), np.array(y)))
+                if not (math.isfinite(value) and value > 0):
+                    raise ValueError(f"it must return a finite size > 0, got {value!r} at ({x}, {y})")
+            except Exception as exc:  # noqa: BLE001 - re-raised after meshing
+                errors.append(exc)
+                return lc
+            return min(lc, value)
         gmsh.model.mesh.setSizeCallback(callback)
+    return errors
 
 
 def _points_at(gmsh, xy: np.ndarray) -> list[int]:

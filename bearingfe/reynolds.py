@@ -233,7 +233,8 @@ def _film_at(film: Film, x: np.ndarray) -> _FilmAt:
     shapes = tuple(np.asarray(s, dtype=float) for s in film.rate_shapes(x[0], x[1]))
     if len(shapes) != 2:
         raise ValueError("film.rate_shapes must return two shapes (dh/dgamma, dh/dphi0)")
-    D = -0.75 * (2 * h * lap + dh[0] ** 2 + dh[1] ** 2) / h**2
+    with np.errstate(divide="ignore", invalid="ignore"):  # h <= 0 is reported by the caller
+        D = -0.75 * (2 * h * lap + dh[0] ** 2 + dh[1] ** 2) / h**2
     return _FilmAt(h=h, dh=dh, shapes=shapes, D=D)
 
 
@@ -293,12 +294,18 @@ class Superposition:
         Returns ``[[a1, a2, a3], [b1, b2, b3]]`` such that the film force is
         ``(a1, b1) gamma_rate + (a2, b2) phi0_rate + (a3, b3)``.
         """
+        self._check_inlet(inlet_pressure)
         constant = wedge * self.forces[:, 0] + inlet_pressure * self.forces[:, 3]
         return np.column_stack([self.forces[:, 1], self.forces[:, 2], constant])
 
     def force(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0) -> np.ndarray:
         """Film force ``(int p cos phi, int p sin phi)`` at an operating point."""
+        self._check_inlet(inlet_pressure)
         return self.forces @ _weights(wedge, squeeze, inlet_pressure)
+
+    def _check_inlet(self, inlet_pressure: float) -> None:
+        if inlet_pressure != 0.0 and not self.operators.inlet.size:
+            raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
 
     def rates_for_load(self, load: np.ndarray, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
         """Squeeze rates ``(gamma_rate, phi0_rate)`` at which the film force
@@ -310,18 +317,24 @@ class Superposition:
             If the 2x2 system is singular (e.g. ``gamma = 0`` makes the
             ``phi0_rate`` column vanish).
         """
+        load = np.asarray(load, dtype=float)
+        if load.shape != (2,) or not np.all(np.isfinite(load)):
+            raise ValueError(f"load must be two finite numbers (F_cos, F_sin), got {load!r}")
         c = self.coefficients(wedge, inlet_pressure)
         matrix = c[:, :2]
         if abs(np.linalg.det(matrix)) <= 1e-14 * np.abs(matrix).max() ** 2:
             raise np.linalg.LinAlgError(
                 "squeeze coefficients are singular (gamma = 0 leaves phi0_rate undetermined)")
-        return np.linalg.solve(matrix, -np.asarray(load, float) - c[:, 2])
+        return np.linalg.solve(matrix, -load - c[:, 2])
 
     def combine(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                 sliding: float | None = None) -> "ReynoldsResult":
         """The full solution at an operating point (pressure, loads, flows, friction)."""
         start = time.perf_counter()
         wts = _weights(wedge, squeeze, inlet_pressure)
+        self._check_inlet(inlet_pressure)
+        if sliding is not None and not math.isfinite(float(sliding)):
+            raise ValueError(f"sliding must be finite, got {sliding!r}")
         u = self.fields @ wts
         ops = self.operators
         p, dp = _pressure_at_quadrature(ops, self._at, u, self.formulation)
@@ -628,7 +641,25 @@ class ReynoldsResult:
     def interpolate(self, phi, z) -> np.ndarray:
         """Pressure at arbitrary points of the film (NaN-free: points must lie in the mesh)."""
         pts = np.vstack([np.ravel(phi), np.ravel(z)]).astype(float)
-        return (self.basis.probes(pts) @ self.pressure).reshape(np.shape(phi))
+        return (_probes(self.basis, pts) @ self.pressure).reshape(np.shape(phi))
+
+
+def _probes(basis: skfem.CellBasis, x: np.ndarray) -> sp.coo_matrix:
+    """``basis.probes(x)``, also on curved MeshTri2 meshes.
+
+    scikit-fem has no element finder for quadratic meshes, so cells are
+    found on the straight-sided mesh of the same vertices and the reference
+    coordinates then come from the curved (isoparametric) mapping.
+    """
+    if not isinstance(basis.mesh, skfem.MeshTri2):
+        return basis.probes(x)
+    cells = skfem.MeshTri1(basis.mesh.p, basis.mesh.t).element_finder()(*x)
+    ref = basis.mapping.invF(x[:, :, None], tind=cells)
+    values = np.array([basis.elem.gbasis(basis.mapping, ref, k, tind=cells)[0]
+                       for k in range(basis.Nbfun)]).ravel()
+    rows = np.tile(np.arange(x.shape[1]), basis.Nbfun)
+    cols = basis.element_dofs[:, cells].ravel()
+    return sp.coo_matrix((values, (rows, cols)), shape=(x.shape[1], basis.N))
 
 
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
