@@ -50,14 +50,13 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
-from skfem import BilinearForm, LinearForm
-from skfem.helpers import dot, grad
+from skfem import LinearForm
 
 from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
-from .reynolds import ReynoldsResult, operators, superpose
+from .reynolds import ReynoldsResult, _source, _weighted_laplace, operators, superpose
 
 __all__ = [
     "Groove",
@@ -281,16 +280,6 @@ def _lumped_area(res: ReynoldsResult) -> np.ndarray:
     return one.assemble(res.basis)
 
 
-@BilinearForm
-def _dh3(u, v, w):
-    return w.c * dot(grad(u), grad(v))
-
-
-@LinearForm
-def _src(v, w):
-    return w.f * v
-
-
 def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
     differentiating the discrete equation on the fixed rupture sets."""
@@ -304,10 +293,10 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         p = res.pressure
         # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot
         rhs = np.column_stack([
-            -_src.assemble(basis, f=6.0 * np.sin(phi)) - _dh3.assemble(basis, c=3 * at.h**2 * hx) @ p,
-            -_src.assemble(basis, f=-6.0 * np.cos(phi)) - _dh3.assemble(basis, c=3 * at.h**2 * hy) @ p,
-            -_src.assemble(basis, f=12.0 * hx),
-            -_src.assemble(basis, f=12.0 * hy),
+            -_source.assemble(basis, f=6.0 * np.sin(phi)) - _weighted_laplace.assemble(basis, c=3 * at.h**2 * hx) @ p,
+            -_source.assemble(basis, f=-6.0 * np.cos(phi)) - _weighted_laplace.assemble(basis, c=3 * at.h**2 * hy) @ p,
+            -_source.assemble(basis, f=12.0 * hx),
+            -_source.assemble(basis, f=12.0 * hy),
         ])
         fp = obstacle_problem(sup)
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
