@@ -181,9 +181,9 @@ def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: flo
     """Shoe state ``(gamma, delta)`` at which the film carries the load of angle ``beta`` without squeeze.
 
     Solved for the Cartesian eccentricity ``gamma (cos delta, sin delta)``
-    (regular through ``gamma = 0``) by Powell's hybrid method; if that stalls,
-    the frozen-load ODE is relaxed in pseudo-time first (the squeeze film is
-    dissipative) and the result polished.
+    (regular through ``gamma = 0``) by Powell's hybrid method; if that stalls
+    from ``guess``, by continuation in the chamber pressure (load and pocket
+    pressure scaled together from a light load).
 
     Raises
     ------
@@ -195,30 +195,37 @@ def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: flo
     wedge, ps = float(pump.wedge(beta)), float(pump.inlet_pressure(beta))
     scale = max(abs(load[0]), 1e-12)
 
-    def residual(xy):
+    def residual(xy, share):
         g, d = math.hypot(*xy), math.atan2(xy[1], xy[0])
         try:
             sup = model.superposition(g, d)
         except _FilmClosed:
             return np.array([1e3, 1e3]) * (1.0 + g)
-        return (sup.force(wedge, (0.0, 0.0), ps) + load) / scale
+        return (sup.force(wedge, (0.0, 0.0), share * ps) + share * load) / (share * scale)
+
+    def solve(xy, share):
+        sol = root(residual, xy, args=(share,), method="hybr", options={"xtol": 1e-12})
+        ok = sol.success and np.max(np.abs(residual(sol.x, share))) < 1e-8
+        return sol.x, ok, sol.message
 
     g0, d0 = guess
-    xy0 = [g0 * math.cos(d0), g0 * math.sin(d0)]
-    sol = root(residual, xy0, method="hybr", options={"xtol": 1e-12})
-    if not (sol.success and np.max(np.abs(residual(sol.x))) < 1e-8):
-        # relax: the squeeze film is dissipative, so the rates at frozen beta decay to the steady state
-        try:
-            relax = si.solve_ivp(lambda s, y: model.rates(beta, y), (0.0, 200.0), [g0, d0], method="BDF",
-                                 rtol=1e-8, atol=1e-10)
-            g1, d1 = relax.y[:, -1]
-            sol = root(residual, [g1 * math.cos(d1), g1 * math.sin(d1)], method="hybr", options={"xtol": 1e-12})
-        except _FilmClosed:
-            pass
-    res = residual(sol.x)
-    if not (sol.success and np.max(np.abs(res)) < 1e-8):
+    xy, ok, msg = solve([g0 * math.cos(d0), g0 * math.sin(d0)], 1.0)
+    if not ok:
+        # continuation in the chamber pressure (load and pocket pressure together) from a light load
+        xy, share, step = np.array([-0.05, 0.0]), 0.0, 0.05
+        while share < 1.0 and step > 1e-4:
+            trial = min(1.0, share + step)
+            xt, ok_t, msg = solve(xy, trial)
+            if ok_t:
+                xy, share, step = xt, trial, step * 1.5
+            else:
+                step *= 0.5
+        ok = share == 1.0 and ok_t
+    if not ok:
+        res = residual(xy, 1.0)
         raise RuntimeError(f"no steady state of {pump.name!r} at beta = {beta:.4f} rad "
-                           f"(relative force residual {np.max(np.abs(res)):.3g}: {sol.message})")
+                           f"(relative force residual {np.max(np.abs(res)):.3g}: {msg})")
+    sol = type("S", (), {"x": xy})
     return float(math.hypot(*sol.x)), float(math.atan2(sol.x[1], sol.x[0]) % (2 * math.pi))
 
 
