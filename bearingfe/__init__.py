@@ -15,10 +15,12 @@ module                     what it does
 ``efficiency``             crank-slider efficiency against the pressure angle
 ``rotor``                  unbalanced rotor on an elastic frame
 ``mechanism_files``        TOML parameter files in ``mechanisms/``
+``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
+``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
 """
 
-from . import crank, efficiency, rotor
+from . import crank, efficiency, pump, rotor, transient
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -30,12 +32,15 @@ from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
+from .pump import EccentricPump, PressureCycle
 from .sections import ibeam, ibeams
+from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
+    "Circle", "CoercivityError", "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory",
+    "balance_ratio", "pump", "simulate", "steady_state", "transient", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
