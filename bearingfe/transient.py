@@ -442,7 +442,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     method : {"LSODA", "Radau", "BDF"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
-        shipped pump it needed about a quarter of Radau's right-side
+        shipped pump it needed a third to a half of Radau's right-side
         evaluations (one factorization each) for the same accuracy.
     rtol, atol : float
         Integrator tolerances on ``(gamma, delta)``.
