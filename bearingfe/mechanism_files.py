@@ -25,7 +25,7 @@ from bearingfe.machines import (
 )
 from bearingfe.sections import ibeam
 
-__all__ = ["LOADERS", "load_mechanism", "field", "drive_from", "material_from"]
+__all__ = ["LOADERS", "load_mechanism", "field", "drive_from", "material_from", "surface_from"]
 
 
 def field(table: dict, section: str, name: str, label: str, kind: type = float, default: Any = ...):
@@ -203,10 +203,74 @@ def _linkage(data: dict, label: str) -> MillDrive:
     )
 
 
+def _numbers(value, where: str, n: int | None = None) -> tuple:
+    ok = isinstance(value, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in value)
+    if not ok or (n is not None and len(value) != n):
+        raise ValueError(f"{where}: expected {n or 'a list of'} numbers, got {value!r}")
+    return tuple(float(x) for x in value)
+
+
+def _shape(t: dict, k: int, label: str):
+    """One ``[[surface.inlets]]`` entry: ``shape`` = circle, ellipse, rectangle, slot or polygon."""
+    from bearingfe import geometry as g
+
+    sec = f"surface.inlets.{k}"
+    where = f"{label}: [{sec}]"
+    kind = field(t, sec, "shape", label, str)
+    f = lambda n, **kw: field(t, sec, n, label, **kw)  # noqa: E731
+    center = lambda: _numbers(f("center", kind=list), f"{where} center", 2)  # noqa: E731
+    makers = {
+        "circle": lambda: dict(factory=g.Circle, center=center(), radius=f("radius")),
+        "ellipse": lambda: dict(factory=g.Ellipse, center=center(),
+                                semi_axes=_numbers(f("semi_axes", kind=list), f"{where} semi_axes", 2),
+                                angle=f("angle", default=0.0)),
+        "rectangle": lambda: dict(factory=g.Rectangle, center=center(),
+                                  size=_numbers(f("size", kind=list), f"{where} size", 2), angle=f("angle", default=0.0)),
+        "slot": lambda: dict(factory=g.Slot, center=center(), length=f("length"), width=f("width"),
+                             angle=f("angle", default=0.0)),
+        "polygon": lambda: dict(factory=g.Polygon, points=tuple(
+            _numbers(p, f"{where} points", 2) for p in f("points", kind=list))),
+    }
+    if kind not in makers:
+        raise ValueError(f"{where} shape: must be one of {sorted(makers)}, got {kind!r}")
+    kwargs = makers[kind]()
+    return _build(label, sec, kwargs.pop("factory"), **kwargs)
+
+
+def surface_from(data: dict, label: str):
+    """``[surface]`` with ``arc = [a1, a2]`` [rad], ``half_width`` [-] and ``[[surface.inlets]]``."""
+    from bearingfe.geometry import Surface
+
+    t = _table(data, "surface", label)
+    arc = _numbers(field(t, "surface", "arc", label, list), f"{label}: [surface] arc", 2)
+    inlets = field(t, "surface", "inlets", label, list, default=[])
+    shapes = tuple(_shape(s if isinstance(s, dict) else {}, k, label) for k, s in enumerate(inlets))
+    return _build(label, "surface", Surface, arc=arc, half_width=field(t, "surface", "half_width", label),
+                  inlets=shapes)
+
+
+def _eccentric_pump(data: dict, label: str):
+    from bearingfe.pump import EccentricPump, PressureCycle
+
+    e, sh, pl, cy = (_table(data, n, label) for n in ("eccentric", "shoe", "plunger", "cycle"))
+    f = lambda t, s, n, **kw: field(t, s, n, label, **kw)  # noqa: E731
+    cycle = _build(label, "cycle", PressureCycle, discharge=f(cy, "cycle", "discharge"),
+                   suction=f(cy, "cycle", "suction"),
+                   compression=math.radians(f(cy, "cycle", "compression_deg", default=20.0)),
+                   decompression=math.radians(f(cy, "cycle", "decompression_deg", default=20.0)))
+    return _build(label, "eccentric", EccentricPump, name=f(data, "", "name", kind=str),
+                  eccentricity=f(e, "eccentric", "eccentricity"), pivot_distance=f(e, "eccentric", "pivot_distance"),
+                  radius=f(e, "eccentric", "radius"), clearance=f(sh, "shoe", "clearance"),
+                  viscosity=f(sh, "shoe", "viscosity"), plunger_diameter=f(pl, "plunger", "diameter"),
+                  preload=f(pl, "plunger", "preload", default=0.0), drive=drive_from(data, label),
+                  cycle=cycle, surface=surface_from(data, label))
+
+
 LOADERS: dict = {
     "crank_slider": _crank_slider,
     "rotor_frame": _rotor_frame,
     "linkage": _linkage,
+    "eccentric_pump": _eccentric_pump,
 }
 
 
@@ -223,7 +287,8 @@ def load_mechanism(path) -> Any:
     object
         :class:`~bearingfe.machines.CrankMechanism`,
         :class:`~bearingfe.machines.RotorFrame` or
-        :class:`~bearingfe.machines.MillDrive`, by the file's ``kind``.
+        :class:`~bearingfe.machines.MillDrive` or
+        :class:`~bearingfe.pump.EccentricPump`, by the file's ``kind``.
 
     Raises
     ------

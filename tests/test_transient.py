@@ -1,0 +1,144 @@
+"""The shoe transient: equilibrium at stored states, tolerance convergence,
+mass balance, the steady partial-arc limit, rupture and lift-off.
+
+Coarse meshes (size 0.15 R0, ~60 nodes) keep the file fast; tolerances are
+stated with their reason at each assertion.
+"""
+
+import dataclasses
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import bearingfe as bf
+from bearingfe.pump import PressureCycle
+from bearingfe.transient import LiftOffError, pump_mesh
+
+ROOT = Path(__file__).resolve().parents[1]
+PUMP = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+PLAIN = dataclasses.replace(PUMP, surface=bf.Surface(arc=PUMP.surface.arc, half_width=PUMP.surface.half_width))
+SIZE = 0.15
+
+
+@pytest.fixture(scope="module")
+def pocket_mesh():
+    return pump_mesh(PUMP, SIZE)
+
+
+@pytest.fixture(scope="module")
+def plain_mesh():
+    return pump_mesh(PLAIN, SIZE)
+
+
+@pytest.fixture(scope="module")
+def pocket_run(pocket_mesh):
+    return bf.simulate(PUMP, pocket_mesh, 1.0, points_per_revolution=36)
+
+
+def test_run_completes_without_nan(pocket_run):
+    tr = pocket_run
+    assert tr.status == "completed" and "completed" in tr.message
+    for name, col in tr.columns().items():
+        assert np.all(np.isfinite(col)), name
+    assert tr.beta[0] == 0.0 and tr.beta[-1] == pytest.approx(2 * math.pi)
+    assert tr.t[-1] == pytest.approx(2 * math.pi / PUMP.drive.omega)
+    np.testing.assert_allclose(tr.wedge, bf.pump.shoe_wedge(tr.beta, PUMP.e2))
+
+
+def test_film_force_balances_the_load_at_stored_states(pocket_run, pocket_mesh):
+    # re-solve each stored state from scratch with the stored rates: the
+    # superposition is exact in exact arithmetic, so the balance holds to round-off
+    tr = pocket_run
+    for i in (0, 5, 12, 20, 30):
+        res = bf.solve_reynolds(pocket_mesh, bf.CosineFilm(tr.gamma[i], tr.delta[i]), wedge=tr.wedge[i],
+                                squeeze=(tr.gamma_rate[i], tr.delta_rate[i]), inlet_pressure=tr.inlet_pressure[i])
+        np.testing.assert_allclose(res.force + tr.load[i], 0.0, atol=1e-8 * abs(tr.load[i, 0]))
+        assert res.h_min * PUMP.clearance == pytest.approx(tr.h_min[i], rel=1e-12)
+
+
+def test_mass_balance(pocket_run):
+    # the solver's consistent boundary fluxes close the balance up to the
+    # corner-splitting error of the coarse mesh; measured ~1e-4 of the flows
+    assert pocket_run.mass_balance_relative < 2e-3
+    assert np.max(np.abs(pocket_run.flow_inlet)) > 0  # the pocket does feed the film
+
+
+def test_integrator_tolerance_study_converges(plain_mesh):
+    # smallest film over a turn against a tight reference: the error falls
+    # with rtol and is below 0.1 % at rtol = 1e-5
+    ref = bf.simulate(PLAIN, plain_mesh, 1.0, rtol=1e-8, atol=1e-11, points_per_revolution=90).smallest_film
+    errs = [abs(bf.simulate(PLAIN, plain_mesh, 1.0, rtol=r, atol=1e-3 * r, points_per_revolution=90).smallest_film
+                - ref) / ref for r in (1e-2, 1e-3, 1e-5)]
+    assert errs[2] < errs[0]
+    assert errs[2] < 1e-3
+    assert errs[1] < 1e-2
+
+
+def test_constant_load_without_swing_is_the_steady_partial_arc_bearing():
+    # e2 -> infinity removes the swing (wedge -> 1) and equal pressures remove the
+    # load cycle: the state must stay at the steady partial-arc solution, whose
+    # force is checked against the independent finite-difference solver.
+    pump = dataclasses.replace(PLAIN, pivot_distance=1e7 * PLAIN.eccentricity,
+                               cycle=PressureCycle(10e6, 10e6))
+    mesh = pump_mesh(pump, 0.1)
+    tr = bf.simulate(pump, mesh, 0.5, points_per_revolution=24)
+    np.testing.assert_allclose(tr.gamma, tr.gamma[0], atol=1e-6)  # integrator error of a rest state
+    np.testing.assert_allclose(tr.delta, tr.delta[0], atol=1e-6)
+    assert np.max(np.abs(tr.gamma_rate)) < 1e-5
+    a1, a2 = pump.surface.arc
+    fd = bf.solve_reynolds_fd(pump.surface, bf.CosineFilm(tr.gamma[0], tr.delta[0]), shape=(121, 81),
+                              wedge=float(tr.wedge[0]))
+    # FE mesh 0.1 vs FD grid 0.01: both second order, discretization gap measured < 1 %
+    assert fd.force[0] == pytest.approx(-tr.load[0, 0], rel=2e-2)
+    assert abs(fd.force[1]) < 2e-2 * abs(tr.load[0, 0])
+    psi = np.linspace(a1, a2, 200001)  # smallest film over the arc by brute force (grid error ~1e-11)
+    h = 1 + tr.gamma[0] * np.cos(psi - tr.delta[0])
+    assert tr.h_min[0] == pytest.approx(PLAIN.clearance * h.min(), rel=1e-9)
+
+
+def test_periodic_start(plain_mesh):
+    tr = bf.simulate(PLAIN, plain_mesh, 1.0, start="periodic", periodic_tol=1e-6, points_per_revolution=36)
+    assert 1 <= tr.periodic_iterations <= 10 and tr.periodic_residual < 1e-6
+    assert tr.gamma[-1] == pytest.approx(tr.gamma[0], abs=1e-5)  # tol + dense-output error
+    assert (tr.delta[-1] - tr.delta[0]) == pytest.approx(0.0, abs=1e-5)
+
+
+def test_rupture_event_gives_a_clear_result():
+    # ten times the viscosity-speed load factor: at 60 % of the clearance as the bound, the film "ruptures"
+    pump = dataclasses.replace(PLAIN, viscosity=0.003)
+    tr = bf.simulate(pump, pump_mesh(pump, SIZE), 1.0, min_film=0.6 * pump.clearance, points_per_revolution=36)
+    assert tr.status == "ruptured"
+    assert "ruptured" in tr.message and "beta" in tr.message
+    assert 0 < tr.rupture_beta < 2 * math.pi
+    assert tr.beta[-1] == pytest.approx(tr.rupture_beta)
+    assert tr.h_min[-1] == pytest.approx(0.6 * pump.clearance, rel=1e-6)  # bisection on the dense output
+    for name, col in tr.columns().items():
+        assert np.all(np.isfinite(col)), name
+
+
+def test_lift_off_is_detected_before_integrating():
+    big = bf.Surface(arc=PUMP.surface.arc, half_width=PUMP.surface.half_width, inlets=(bf.Circle((0, 0), 0.3),))
+    pump = dataclasses.replace(PUMP, surface=big)
+    mesh = pump_mesh(pump, SIZE)
+    assert bf.balance_ratio(pump, mesh) > 1
+    with pytest.raises(LiftOffError, match="balance ratio"):
+        bf.simulate(pump, mesh)
+
+
+def test_balance_ratio_of_the_shipped_pump(pocket_mesh):
+    # pocket 10 %: hydrostatic lift a little below the plunger force (the TOML's design note)
+    assert 0.8 < bf.balance_ratio(PUMP, pocket_mesh) < 0.95
+    assert bf.balance_ratio(PLAIN) == 0.0
+
+
+def test_bad_options_raise_value_errors(plain_mesh):
+    with pytest.raises(ValueError, match="cavitation"):
+        bf.simulate(PLAIN, plain_mesh, cavitation="bogus")
+    with pytest.raises(ValueError, match="revolutions"):
+        bf.simulate(PLAIN, plain_mesh, revolutions=0)
+    with pytest.raises(ValueError, match="method"):
+        bf.simulate(PLAIN, plain_mesh, method="RK45")
+    with pytest.raises(ValueError, match="start"):
+        bf.simulate(PLAIN, plain_mesh, start=(0.5, "x"))
