@@ -17,26 +17,19 @@ module                     what it does
 ``efficiency``             crank-slider efficiency against the pressure angle
 ``rotor``                  unbalanced rotor on an elastic frame
 ``mechanism_files``        TOML parameter files in ``mechanisms/``
-<<<<<<< HEAD
 ``sweep``                  design studies in processes or on a Dask cluster
 ``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
-=========================  =====================================================
-"""
-
-from . import cavitation, crank, efficiency, io, journal, rotor, scenes, validation
-from .cavitation import CavitationError
-=======
 ``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
 """
 
-from . import crank, efficiency, pump, rotor, transient
->>>>>>> pump
+from . import cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from .cavitation import CavitationError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -48,30 +41,23 @@ from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
-<<<<<<< HEAD
 from .scenes import SceneError
 from .sections import ibeam, ibeams
 from .sweep import CHANGES, OUTPUTS, ShoeCase, best_design, read_study, sweep
 from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
-=======
 from .pump import EccentricPump, PressureCycle
-from .sections import ibeam, ibeams
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
->>>>>>> pump
 
 __version__ = "0.1.0"
 
 __all__ = [
-<<<<<<< HEAD
     "CHANGES", "OUTPUTS", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
+    "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
+    "steady_state", "transient",
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
-=======
-    "Circle", "CoercivityError", "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory",
-    "balance_ratio", "pump", "simulate", "steady_state", "transient", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
->>>>>>> pump
     "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
