@@ -323,7 +323,10 @@ class EccentricPump:
         return np.array([-float(self.load(beta)), 0.0])
 
     def inlet_pressure(self, beta) -> np.ndarray:
-        """Pocket pressure in solver units ``p_s = P c^2/(mu omega R0^2)`` [-]."""
+        """Pocket pressure in solver units ``p_s = P c^2/(mu omega R0^2)`` [-]; zero
+        for a shoe without pockets (nothing carries the chamber pressure to the film)."""
+        if not self.surface.inlets:
+            return np.zeros(np.shape(beta))
         return self.chamber_pressure(beta) / self.scale.pressure
 
     def wedge(self, beta) -> np.ndarray:

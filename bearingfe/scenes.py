@@ -196,9 +196,13 @@ def load_scene(path: str | Path) -> tuple[dict, str]:
 
 
 def run_scene(path: str | Path, out_dir: str | Path, progress: Callable | None = None) -> dict:
-    """Load a scene file and run it through its kind's runner; returns the summary."""
+    """Load a scene file and run it through its kind's runner; returns the summary.
+
+    Paths inside a scene file (e.g. the pump's mechanism file) are relative to
+    the scene file's folder.
+    """
     data, label = load_scene(path)
-    return SCENES[data["kind"]](data, label, Path(out_dir), progress)
+    return SCENES[data["kind"]](data, label, Path(out_dir), progress, base_dir=Path(path).resolve().parent)
 
 
 # -- the static Reynolds scene ----------------------------------------------------
@@ -239,7 +243,8 @@ def _required(data: dict, name: str, label: str):
     return data[name]
 
 
-def run_reynolds_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None) -> dict:
+def run_reynolds_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+                       base_dir: Path | None = None) -> dict:
     """Mesh, solve, draw and write one static Reynolds problem.
 
     Writes ``pressure.png`` (and ``pressure_wrapped.png``, ``film.png`` as
@@ -306,4 +311,13 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
 
 
 #: Scene kinds and their runners.
-SCENES: Mapping[str, Callable[..., dict]] = MappingProxyType({"reynolds": run_reynolds_scene})
+def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+                   base_dir: Path | None = None) -> dict:
+    """The pump transient scene (:mod:`bearingfe.scene_pump`)."""
+    from .scene_pump import run_pump_scene as run
+
+    return run(data, label, out_dir, progress, base_dir)
+
+
+SCENES: Mapping[str, Callable[..., dict]] = MappingProxyType({"reynolds": run_reynolds_scene,
+                                                              "pump": run_pump_scene})

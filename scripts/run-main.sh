@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export VTK_DEFAULT_OPENGL_WINDOW="${VTK_DEFAULT_OPENGL_WINDOW:-vtkEGLRenderWindow}"
 export MPLBACKEND=Agg
-.venv/bin/bearingfe run scenes/default.toml --out "${1:-out}"
+.venv/bin/bearingfe run scenes/pump.toml --out "${1:-out}"

@@ -43,11 +43,12 @@ def test_trajectory_plot_draws_every_quantity(tmp_path):
     np.testing.assert_allclose(axes[0].lines[0].get_xdata(), np.degrees(traj.beta))
     np.testing.assert_allclose(axes[0].lines[0].get_ydata(), traj.gamma)
     np.testing.assert_allclose(axes[1].lines[0].get_ydata(), np.degrees(traj.delta))
-    np.testing.assert_allclose(axes[4].lines[1].get_ydata(), traj.flow_side)
-    # the marked minimum film is the smallest sample: 1 - 0.8 at beta = 90 deg
+    # films in um and flows in cm^3/s from the SI arrays of a Trajectory
+    np.testing.assert_allclose(axes[4].lines[1].get_ydata(), 1e6 * traj.flow_side)
+    # the marked minimum film is the smallest sample: 1 - 0.8 at beta = 90 deg, drawn in um
     marker = [ln for ln in axes[2].lines if ln.get_marker() == "o"][0]
     assert marker.get_xdata()[0] == pytest.approx(90.0)
-    assert marker.get_ydata()[0] == pytest.approx(0.2)
+    assert marker.get_ydata()[0] == pytest.approx(0.2e6)
 
 
 def test_orbit_is_gamma_along_delta(tmp_path):

@@ -3,8 +3,9 @@
 The functions take any trajectory-like object with equal-length arrays
 ``beta`` (shaft angle [rad]), ``gamma`` (eccentricity [-]), ``delta``
 (attitude angle of the line of centres in the shoe frame [rad]), ``h_min``
-[c], ``friction_moment`` [mu omega R0^4 / c], ``flow_inlet`` and
-``flow_side`` [omega R0^2 c]. They build a :class:`matplotlib.figure.Figure`
+[m], ``friction_moment`` [N m], ``flow_inlet`` and ``flow_side`` [m^3/s]
+(the SI arrays of :class:`bearingfe.Trajectory`; films are drawn in um and
+flows in cm^3/s). They build a :class:`matplotlib.figure.Figure`
 directly (no pyplot state), save it if ``path`` is given, and return it.
 The mechanism plots live in :mod:`bearingfe.plot.mechanisms`.
 """
@@ -64,9 +65,9 @@ def trajectory_plot(traj, path=None, *, title: str | None = None):
     panels = [
         (axes[0], [("gamma", d["gamma"])], "gamma [-]"),
         (axes[1], [("delta", np.degrees(d["delta"]))], "attitude delta [deg]"),
-        (axes[2], [("h_min", d["h_min"])], "h_min [c]"),
-        (axes[3], [("friction", d["friction_moment"])], "friction moment\n[mu w R0^4/c]"),
-        (axes[4], [("inlet", d["flow_inlet"]), ("side", d["flow_side"])], "flow [w R0^2 c]"),
+        (axes[2], [("h_min", 1e6 * d["h_min"])], "smallest film [um]"),
+        (axes[3], [("friction", d["friction_moment"])], "friction moment\n[N m]"),
+        (axes[4], [("inlet", 1e6 * d["flow_inlet"]), ("side", 1e6 * d["flow_side"])], "flow [cm^3/s]"),
     ]
     for ax, curves, label in panels:
         for name, y in curves:
@@ -75,8 +76,8 @@ def trajectory_plot(traj, path=None, *, title: str | None = None):
         ax.grid(True, alpha=0.3)
     axes[2].axhline(0.0, color="k", lw=0.8)
     i = int(np.argmin(d["h_min"]))
-    axes[2].plot(deg[i], d["h_min"][i], "o", color="tab:red",
-                 label=f"min {d['h_min'][i]:.3g} at {deg[i]:.0f} deg")
+    axes[2].plot(deg[i], 1e6 * d["h_min"][i], "o", color="tab:red",
+                 label=f"min {1e6 * d['h_min'][i]:.3g} um at {deg[i]:.0f} deg")
     axes[2].legend(loc="best", fontsize="small")
     axes[4].legend(loc="best", fontsize="small")
     axes[-1].set_xlabel("shaft angle beta [deg]")

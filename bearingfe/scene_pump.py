@@ -1,0 +1,167 @@
+"""The ``"pump"`` scene: the plunger shoe over the pump cycle, pocket against plain.
+
+Scene file::
+
+    kind = "pump"
+    title = "..."                                    # optional
+    [pump]
+    mechanism = "../mechanisms/eccentric_pump.toml"  # relative to the scene file
+    compare_plain = true                             # also run the shoe without its pockets
+    [run]
+    revolutions = 1.0
+    start = "periodic"                               # periodic | steady
+    mesh_size = 0.08                                 # element size [R0]
+    rtol = 1e-6
+    frames = 12                                      # pressure fields in the PVD series
+    [output]
+    pictures = ["trajectory", "orbit", "pressure"]
+
+Writes ``trajectory_pocket.csv`` and ``trajectory_plain.csv`` (SI units; see
+:meth:`bearingfe.Trajectory.columns`), ``trajectory.png``,
+``orbit.png``, ``pressure.png`` (the pocketed shoe at its thinnest film),
+``pressure.pvd`` with its VTU frames over the cycle, and ``summary.json``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .scenes import SceneError, _build, _choice, _choices, _nonnegative, _positive, read_table
+
+__all__ = ["run_pump_scene", "pump_settings", "state_result"]
+
+_TABLES = ("kind", "title", "pump", "run", "output")
+PICTURES = ("trajectory", "orbit", "pressure")
+
+
+def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
+    """All validated settings of a ``"pump"`` scene."""
+    unknown = sorted(set(data) - set(_TABLES))
+    if unknown:
+        raise SceneError(f"{label}: {unknown[0]}: unknown table or field; allowed: {', '.join(_TABLES)}")
+    pump = read_table(data.get("pump", {}), label, "pump",
+                      {"mechanism": (_path_text, "../mechanisms/eccentric_pump.toml"),
+                       "compare_plain": (_flag, True)})
+    run = read_table(data.get("run", {}), label, "run",
+                     {"revolutions": (_positive, 1.0), "start": (_choice(("periodic", "steady")), "periodic"),
+                      "mesh_size": (_positive, 0.08), "rtol": (_positive, 1e-6), "frames": (_nonnegative, 12)})
+    output = read_table(data.get("output", {}), label, "output", {"pictures": (_choices(PICTURES), PICTURES)})
+    path = Path(pump["mechanism"])
+    if not path.is_absolute():
+        path = (base_dir or Path.cwd()) / path
+    if not path.is_file():
+        raise SceneError(f"{label}: [pump] mechanism: file not found: {path}")
+    return {"title": str(data.get("title", label)), "mechanism": path, "compare_plain": pump["compare_plain"],
+            "run": run, "output": output}
+
+
+def _path_text(where, value):
+    if not isinstance(value, str) or not value:
+        raise SceneError(f"{where}: expected a file path (text), got {value!r}")
+    return value
+
+
+def _flag(where, value):
+    if not isinstance(value, bool):
+        raise SceneError(f"{where}: expected true or false, got {value!r}")
+    return value
+
+
+def state_result(pump, mesh, traj, k: int):
+    """Re-solve the film of sample ``k`` of a trajectory (shoe frame) for pictures and fields."""
+    from .film import CosineFilm
+    from .reynolds import superpose
+
+    film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
+    sup = superpose(mesh, film)
+    p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
+    return sup.combine(float(traj.wedge[k]), (float(traj.gamma_rate[k]), float(traj.delta_rate[k])), p_s)
+
+
+def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+                   base_dir: Path | None = None) -> dict:
+    """Simulate the pump (and its plain-shoe twin), draw and write the results."""
+    from .geometry import Surface
+    from .io import write_csv, write_json, write_pvd
+    from .mechanism_files import load_mechanism
+    from .plot import curves
+    from .transient import balance_ratio, pump_mesh, simulate
+
+    s = pump_settings(data, label, base_dir)
+    pump = _build(label, "pump", load_mechanism, path=s["mechanism"])
+    designs = {"pocket": pump}
+    if s["compare_plain"] and pump.surface.inlets:
+        plain = Surface(arc=pump.surface.arc, half_width=pump.surface.half_width)
+        designs["plain"] = dataclasses.replace(pump, surface=plain)
+    run, pictures = s["run"], s["output"]["pictures"]
+    steps = len(designs) + len(pictures) + 2
+    tick = progress or (lambda done, total, what: None)
+    start = time.perf_counter()
+    runs, meshes, balance = {}, {}, {}
+    for k, (name, p) in enumerate(designs.items()):
+        tick(k, steps, f"simulating: {name}")
+        meshes[name] = pump_mesh(p, run["mesh_size"])
+        balance[name] = balance_ratio(p, meshes[name]) if p.surface.inlets else 0.0
+        runs[name] = simulate(p, meshes[name], run["revolutions"], start=run["start"], rtol=run["rtol"])
+    done = len(designs)
+    tick(done, steps, "files")
+    files = []
+    for name, traj in runs.items():
+        cols = traj.columns()
+        files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
+    main = runs["pocket"]
+    draw = {
+        "trajectory": lambda: curves.trajectory_plot(main, out_dir / "trajectory.png", title=s["title"]),
+        "orbit": lambda: curves.orbit_plot(main, out_dir / "orbit.png"),
+        "pressure": lambda: _thinnest_picture(pump, meshes["pocket"], main, out_dir / "pressure.png"),
+    }
+    for j, name in enumerate(pictures):
+        tick(done + 1 + j, steps, f"picture: {name}")
+        draw[name]()
+        files.append(f"{name}.png")
+    if run["frames"] > 0:
+        frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
+        results = [state_result(pump, meshes["pocket"], main, k) for k in frames]
+        write_pvd(results, main.beta[frames], out_dir / "pressure.pvd")
+        files.append("pressure.pvd")
+    summary = _summary(s, runs, balance, meshes, time.perf_counter() - start)
+    summary["files"] = files + ["summary.json"]
+    write_json(summary, out_dir / "summary.json")
+    tick(steps, steps, "done")
+    return summary
+
+
+def _thinnest_picture(pump, mesh, traj, path: Path):
+    from .plot import fields
+
+    k = int(np.argmin(traj.h_min))
+    return fields.pressure_picture(state_result(pump, mesh, traj, k), path, surface=pump.surface)
+
+
+def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float) -> dict:
+    table = []
+    results = {}
+    for name, traj in runs.items():
+        table += [(f"{name}: smallest film", traj.smallest_film * 1e6, "um"),
+                  (f"{name}: balance ratio", balance[name], "-"),
+                  (f"{name}: mean friction moment", float(np.mean(traj.friction_moment)), "N m"),
+                  (f"{name}: mass balance (relative)", traj.mass_balance_relative, "-"),
+                  (f"{name}: status", traj.status, "")]
+        results[name] = {"smallest_film_m": traj.smallest_film, "balance_ratio": balance[name],
+                         "status": traj.status, "message": traj.message, "nodes": meshes[name].n_nodes,
+                         "mean_friction_moment_Nm": float(np.mean(traj.friction_moment)),
+                         "mean_inlet_flow_m3s": float(np.mean(traj.flow_inlet)),
+                         "mass_balance_relative": traj.mass_balance_relative,
+                         "periodic_iterations": traj.periodic_iterations}
+    if "plain" in runs:
+        ratio = runs["pocket"].smallest_film / runs["plain"].smallest_film
+        table.append(("smallest film ratio pocket/plain", ratio, "-"))
+        results["film_ratio"] = ratio
+    table.append(("seconds", seconds, "s"))
+    return {"kind": "pump", "title": s["title"], "mechanism": str(s["mechanism"]), "run": s["run"],
+            "results": results, "table": table}
