@@ -33,7 +33,6 @@ transient, so a few revolutions suffice).
 
 from __future__ import annotations
 
-import inspect
 import math
 import time
 from dataclasses import dataclass, field
@@ -44,6 +43,7 @@ import numpy as np
 import scipy.integrate as si
 from scipy.optimize import root
 
+from .cavitation import rates_for_load as cavitating_rates
 from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
@@ -124,6 +124,7 @@ class _Model:
     factorizations: int = 0
     seconds: float = 0.0
     _cache: dict = field(default_factory=dict)
+    _warm: object = None
 
     @property
     def phi_range(self) -> tuple[float, float]:
@@ -150,27 +151,31 @@ class _Model:
         return sup
 
     def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
+        return self.balance(beta, y)[0]
+
+    def balance(self, beta: float, y: np.ndarray):
+        """Rates that balance the plunger load and, under cavitation, the cavitated solution."""
         self.nfev += 1
         sup = self.superposition(y[0], y[1])
         pump = self.pump
         args = (pump.load_vector(beta), float(pump.wedge(beta)), float(pump.inlet_pressure(beta)))
         try:
             if self.cavitation == "none":
-                return sup.rates_for_load(*args)
-            return sup.rates_for_load(*args, cavitation=self.cavitation)
+                return sup.rates_for_load(*args), None
+            # Swift-Stieber or Gumbel: a small Newton on the two rates, warm-started
+            # from the rupture set of the previous evaluation (bearingfe.cavitation)
+            found = cavitating_rates(sup, *args, model=self.cavitation, warm_start=self._warm,
+                                     solver=self.solver)
+            self._warm = found.result
+            return found.rates, found.result
         except np.linalg.LinAlgError as exc:
             raise RuntimeError(f"equilibrium rates undefined at beta = {beta:.4f} rad, gamma = {y[0]:.4g}: "
                                f"{exc}") from None
 
 
 def _check_cavitation(cavitation: str) -> None:
-    if cavitation == "none":
-        return
-    takes = "cavitation" in inspect.signature(Superposition.rates_for_load).parameters
-    if cavitation not in CAVITATION or not takes:
-        raise ValueError(f"cavitation={cavitation!r} is not supported by this build of the Reynolds core "
-                         f"(bearingfe.reynolds.CAVITATION = {CAVITATION}, Superposition.rates_for_load "
-                         f"{'takes' if takes else 'does not take'} a cavitation option); use cavitation='none'")
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
 
 
 # -- steady state ------------------------------------------------------------------------------
@@ -399,8 +404,9 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
                                               "flow_side", "flow_arc", "flow_squeeze", "mass_balance")}
     for i, (b, y) in enumerate(zip(betas, ys)):
         sup = model.superposition(y[0], y[1])
-        rates = model.rates(b, y)
-        res = sup.combine(float(pump.wedge(b)), rates, float(pump.inlet_pressure(b)))
+        rates, res = model.balance(b, y)
+        if res is None:
+            res = sup.combine(float(pump.wedge(b)), rates, float(pump.inlet_pressure(b)))
         fl = res.flows
         out["gamma_rate"][i], out["delta_rate"][i] = rates
         out["h_min"][i] = sc.to_thickness(res.h_min)
@@ -436,9 +442,12 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         periodic_tol``); or given values.
     beta0 : float
         Shaft angle at the start [rad].
-    cavitation : {"none"} or a mode of the core
-        Passed to the Reynolds core; ``"none"`` keeps the paper's model (p may
-        go negative). Any other value needs core support (ValueError if absent).
+    cavitation : {"none", "reynolds", "gumbel"}
+        ``"none"`` keeps the paper's model (p may go negative, rates from the
+        2x2 superposition system); ``"reynolds"`` (Swift-Stieber) and
+        ``"gumbel"`` find the rates by a small Newton on the cavitated film
+        force, warm-started from the previous rupture set
+        (:func:`bearingfe.cavitation.rates_for_load`).
     method : {"LSODA", "Radau", "BDF"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
