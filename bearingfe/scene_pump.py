@@ -10,7 +10,8 @@ Scene file::
     [run]
     revolutions = 1.0
     start = "periodic"                               # periodic | steady
-    mesh_size = 0.08                                 # element size [R0]
+    mesh_size = 0.15                                 # element size [R0]
+    element = "P2"                                   # P1 | P2 (P2 on a curved mesh)
     rtol = 1e-6
     frames = 12                                      # pressure fields in the PVD series
     cavitation = "none"                              # none | reynolds | gumbel
@@ -51,7 +52,8 @@ def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     run = read_table(data.get("run", {}), label, "run",
                      {"revolutions": (_positive, 1.0), "start": (_choice(("periodic", "steady")), "periodic"),
                       "mesh_size": (_positive, 0.08), "rtol": (_positive, 1e-6), "frames": (_nonnegative, 12),
-                      "cavitation": (_choice(("none", "reynolds", "gumbel")), "none")})
+                      "cavitation": (_choice(("none", "reynolds", "gumbel")), "none"),
+                      "element": (_choice(("P1", "P2")), "P2")})
     output = read_table(data.get("output", {}), label, "output", {"pictures": (_choices(PICTURES), PICTURES)})
     path = Path(pump["mechanism"])
     if not path.is_absolute():
@@ -74,14 +76,14 @@ def _flag(where, value):
     return value
 
 
-def state_result(pump, mesh, traj, k: int, cavitation: str = "none"):
+def state_result(pump, mesh, traj, k: int, cavitation: str = "none", element: str = "P1"):
     """Re-solve the film of sample ``k`` of a trajectory (shoe frame) for pictures and fields."""
     from .cavitation import solve_cavitating
     from .film import CosineFilm
     from .reynolds import superpose
 
     film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
-    sup = superpose(mesh, film)
+    sup = superpose(mesh, film, element=element)
     p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
     rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
     if cavitation == "none":
@@ -111,10 +113,10 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     runs, meshes, balance = {}, {}, {}
     for k, (name, p) in enumerate(designs.items()):
         tick(k, steps, f"simulating: {name}")
-        meshes[name] = pump_mesh(p, run["mesh_size"])
+        meshes[name] = pump_mesh(p, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
         balance[name] = balance_ratio(p, meshes[name]) if p.surface.inlets else 0.0
         runs[name] = simulate(p, meshes[name], run["revolutions"], start=run["start"], rtol=run["rtol"],
-                              cavitation=run["cavitation"])
+                              cavitation=run["cavitation"], element=run["element"])
     done = len(designs)
     tick(done, steps, "files")
     files = []
@@ -125,8 +127,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     draw = {
         "trajectory": lambda: curves.trajectory_plot(main, out_dir / "trajectory.png", title=s["title"]),
         "orbit": lambda: curves.orbit_plot(main, out_dir / "orbit.png"),
-        "pressure": lambda: _thinnest_picture(pump, meshes["pocket"], main, out_dir / "pressure.png",
-                                              run["cavitation"]),
+        "pressure": lambda: _thinnest_picture(pump, meshes["pocket"], main, out_dir / "pressure.png", run),
     }
     for j, name in enumerate(pictures):
         tick(done + 1 + j, steps, f"picture: {name}")
@@ -134,7 +135,8 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
         files.append(f"{name}.png")
     if run["frames"] > 0:
         frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
-        results = [state_result(pump, meshes["pocket"], main, k, run["cavitation"]) for k in frames]
+        results = [state_result(pump, meshes["pocket"], main, k, run["cavitation"], run["element"])
+                   for k in frames]
         write_pvd(results, main.beta[frames], out_dir / "pressure.pvd")
         files.append("pressure.pvd")
     summary = _summary(s, runs, balance, meshes, time.perf_counter() - start)
@@ -144,11 +146,12 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     return summary
 
 
-def _thinnest_picture(pump, mesh, traj, path: Path, cavitation: str):
+def _thinnest_picture(pump, mesh, traj, path: Path, run: dict):
     from .plot import fields
 
     k = int(np.argmin(traj.h_min))
-    return fields.pressure_picture(state_result(pump, mesh, traj, k, cavitation), path, surface=pump.surface)
+    res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"])
+    return fields.pressure_picture(res, path, surface=pump.surface)
 
 
 def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float) -> dict:
