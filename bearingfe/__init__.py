@@ -43,7 +43,7 @@ from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators
                        superpose)
 from .scenes import SceneError
 from .sections import ibeam, ibeams
-from .sweep import CHANGES, OUTPUTS, ShoeCase, best_design, read_study, sweep
+from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study, sweep
 from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
@@ -51,7 +51,7 @@ from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady
 __version__ = "0.1.0"
 
 __all__ = [
-    "CHANGES", "OUTPUTS", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
+    "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",

@@ -33,7 +33,7 @@ import os
 import sys
 import time
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
@@ -42,8 +42,8 @@ import numpy as np
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
 
 __all__ = [
-    "CHANGES", "OUTPUTS", "RUNS", "BASES", "ShoeCase", "Study", "apply_changes", "best_design",
-    "case_key", "expand_cases", "read_study", "run_case", "run_shoe", "set_field", "sweep",
+    "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
+    "case_key", "expand_cases", "read_study", "run_case", "run_pump", "run_shoe", "set_field", "sweep",
     "sweep_command",
 ]
 
@@ -108,11 +108,97 @@ def run_shoe(case: ShoeCase):
                           element=case.element)
 
 
+# -- the pump over its cycle -----------------------------------------------------------
+
+_PUMP_FILE = Path(__file__).resolve().parents[1] / "mechanisms" / "eccentric_pump.toml"
+
+
+def _shipped_pump():
+    from .mechanism_files import load_mechanism
+
+    if not _PUMP_FILE.is_file():
+        raise ValueError(f"the shipped pump file is not here ({_PUMP_FILE}); give [base] a pump of your own")
+    return load_mechanism(_PUMP_FILE)
+
+
+@dataclass(frozen=True)
+class PumpCase:
+    """The eccentric pump over one revolution, with the run's numerical settings.
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        Default: ``mechanisms/eccentric_pump.toml``. Its ``surface`` is what
+        the pocket changes act on (``pump.surface``).
+    mesh_size : float
+        Element size [R0], > 0.
+    element : {"P1", "P2"}
+        P2 runs on a curved (order-2) mesh.
+    start : {"periodic", "steady"}
+        Converged periodic state, or the steady state at the start angle.
+    cavitation : {"none", "reynolds", "gumbel"}
+    """
+
+    pump: Any = field(default_factory=_shipped_pump)
+    mesh_size: float = 0.2
+    element: str = "P2"
+    start: str = "periodic"
+    cavitation: str = "none"
+
+    def __post_init__(self) -> None:
+        from .pump import EccentricPump
+
+        if not isinstance(self.pump, EccentricPump):
+            raise ValueError(f"PumpCase.pump must be a bearingfe.EccentricPump, got {type(self.pump).__name__}")
+        size = float(self.mesh_size)
+        if not (math.isfinite(size) and size > 0):
+            raise ValueError(f"PumpCase.mesh_size must be a finite number > 0, got {self.mesh_size!r}")
+        object.__setattr__(self, "mesh_size", size)
+        for name, allowed in (("element", ("P1", "P2")), ("start", ("periodic", "steady")),
+                              ("cavitation", ("none", "reynolds", "gumbel"))):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"PumpCase.{name} must be one of {allowed}, got {getattr(self, name)!r}")
+
+
+@dataclass(frozen=True)
+class PumpOutcome:
+    """What a design study keeps of one pump revolution (SI units).
+
+    ``h_min`` [m], ``flow_inlet`` [m^3/s] and ``friction_power`` [W] are
+    arrays over the cycle; ``peak_pressure`` [Pa] is the largest film or
+    pocket pressure over a dozen states spread over the cycle.
+    """
+
+    h_min: np.ndarray
+    flow_inlet: np.ndarray
+    friction_power: np.ndarray
+    peak_pressure: float
+    balance_ratio: float
+
+
+def run_pump(case: PumpCase) -> PumpOutcome:
+    """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
+    from .scene_pump import state_result
+    from .transient import balance_ratio, pump_mesh, simulate
+
+    pump = case.pump
+    mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
+    traj = simulate(pump, mesh, 1.0, start=case.start, element=case.element, cavitation=case.cavitation)
+    if traj.status != "completed":
+        raise RuntimeError(traj.message)
+    frames = np.unique(np.linspace(0, traj.beta.size - 1, 12).astype(int))
+    peak = max(float(state_result(pump, mesh, traj, k, case.cavitation, case.element).max_pressure)
+               for k in frames) * pump.scale.pressure
+    return PumpOutcome(h_min=traj.h_min, flow_inlet=traj.flow_inlet,
+                       friction_power=traj.friction_moment * pump.drive.omega, peak_pressure=peak,
+                       balance_ratio=balance_ratio(pump, mesh) if pump.surface.inlets else 0.0)
+
+
 #: Run functions by name: ``parameter object -> result``.
-RUNS: dict[str, Callable[[Any], Any]] = {"shoe": run_shoe}
+RUNS: dict[str, Callable[[Any], Any]] = {"shoe": run_shoe, "pump": run_pump}
 
 #: Base parameter objects by name (study files): ``() -> default object``.
-BASES: dict[str, Callable[[], Any]] = {"shoe": ShoeCase}
+BASES: dict[str, Callable[[], Any]] = {"shoe": ShoeCase, "pump": PumpCase}
 
 
 # -- outputs --------------------------------------------------------------------
@@ -162,6 +248,7 @@ OUTPUTS: dict[str, Callable[[Any], float]] = {
     "flow_inlet": _flow_inlet,
     "friction_loss": _friction_loss,
     "load": _load,
+    "balance_ratio": lambda result: float(result.balance_ratio),
 }
 
 #: The outputs of the issue: smallest film, peak pressure, inlet flow, friction loss.
@@ -194,7 +281,9 @@ def _surface_path(base) -> str:
         return ""
     if isinstance(getattr(base, "surface", None), Surface):
         return "surface"
-    raise ValueError(f"{type(base).__name__} carries no support surface (field 'surface')")
+    if isinstance(getattr(getattr(base, "pump", None), "surface", None), Surface):
+        return "pump.surface"
+    raise ValueError(f"{type(base).__name__} carries no support surface (field 'surface' or 'pump.surface')")
 
 
 def _centroid(shape) -> tuple[float, float]:
