@@ -25,7 +25,7 @@ from pathlib import Path
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import scaling, work_precision  # noqa: E402
+from benchmarks import hard_cases, scaling, work_precision  # noqa: E402
 from benchmarks.common import DOCS, ROOT, machine, md_table, optional_versions  # noqa: E402
 
 
@@ -97,6 +97,9 @@ def main(argv=None) -> int:
     sc = scaling.run(args.quick, log=_log)
     _log(f"scaling: {time.perf_counter() - t:.1f} s")
     choice = scaling.recommend(sc)
+    t = time.perf_counter()
+    hard = hard_cases.report()
+    _log(f"hard cases: {time.perf_counter() - t:.1f} s")
     pump = pump_hook(args.quick)
     parts = [
         "# bearingfe benchmarks: speed against error",
@@ -122,6 +125,7 @@ def main(argv=None) -> int:
               "### (d) one pump revolution (h_min error against time)", "", pump, "",
               "## Cost split (finest mesh of each FEM method, seconds)", "", work_precision.cost_split(results), "",
               "## Growth with the number of unknowns; linear solvers", "", scaling.report(sc), "",
+              "## Hard cases", "", hard, "",
               f"Total benchmark time: {time.perf_counter() - start:.0f} s.", ""]
     Path(args.output).write_text("\n".join(parts))
     _log(f"wrote {args.output} in {time.perf_counter() - start:.0f} s")
