@@ -1,0 +1,1 @@
+"""Benchmark scripts (not tests): ``PYTHONPATH=. python benchmarks/run_all.py [--quick]``."""

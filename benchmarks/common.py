@@ -1,0 +1,148 @@
+"""Shared helpers of the benchmark scripts: machine record, timing, tables, plots."""
+
+from __future__ import annotations
+
+import datetime
+import os
+import platform
+import resource
+import time
+from pathlib import Path
+from typing import Callable, Sequence
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+IMG = DOCS / "img"
+
+
+def machine() -> dict[str, str]:
+    """CPU model, cores, memory, Python and library versions, date."""
+    import scipy
+    import skfem
+
+    import numpy
+
+    cpu = platform.processor() or "unknown"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    mem = "unknown"
+    try:
+        kb = int(next(l for l in Path("/proc/meminfo").read_text().splitlines() if l.startswith("MemTotal")).split()[1])
+        mem = f"{kb / 2**20:.1f} GiB"
+    except (OSError, StopIteration, ValueError):
+        pass
+    try:
+        import gmsh
+        gmsh_version = gmsh.__version__
+    except Exception:  # pragma: no cover - gmsh is a core dependency
+        gmsh_version = "?"
+    return {
+        "date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
+        "cpu": cpu,
+        "cores": str(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()),
+        "memory": mem,
+        "os": platform.platform(),
+        "python": platform.python_version(),
+        "numpy": numpy.__version__,
+        "scipy": scipy.__version__,
+        "scikit-fem": skfem.__version__,
+        "gmsh": gmsh_version,
+    }
+
+
+def optional_versions() -> dict[str, str]:
+    out = {}
+    for mod, name in (("pyamg", "pyamg"), ("pypardiso", "pypardiso"), ("cholespy", "cholespy"),
+                      ("sksparse", "scikit-sparse")):
+        try:
+            m = __import__(mod)
+            out[name] = getattr(m, "__version__", "installed")
+        except ImportError:
+            out[name] = "not installed"
+    return out
+
+
+def timed(fn: Callable, *args, repeat: int = 1, **kwargs):
+    """Run ``fn`` ``repeat`` times; return (last result, best wall time [s])."""
+    best, out = np.inf, None
+    for _ in range(repeat):
+        t = time.perf_counter()
+        out = fn(*args, **kwargs)
+        best = min(best, time.perf_counter() - t)
+    return out, best
+
+
+def peak_rss_mib() -> float:
+    """Peak resident set size of this process so far [MiB] (Linux: ru_maxrss in KiB)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
+    """A GitHub-markdown table; floats printed with 3 significant digits."""
+    def fmt(v):
+        if isinstance(v, float):
+            if not np.isfinite(v):
+                return "-"
+            return f"{v:.3g}"
+        return str(v)
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(fmt(v) for v in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def loglog_plot(path: Path, series: dict[str, tuple[Sequence[float], Sequence[float]]], *, xlabel: str,
+                ylabel: str, title: str) -> str:
+    """Write a log-log line plot of ``{label: (x, y)}``; return the path relative to docs/."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5))
+    markers = "os^vD<>ph*x+"
+    for k, (label, (x, y)) in enumerate(series.items()):
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        ok = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+        if ok.any():
+            ax.loglog(x[ok], y[ok], marker=markers[k % len(markers)], label=label,
+                      linestyle="--" if label.startswith("FD") else "-")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return str(path.relative_to(DOCS))
+
+
+def time_at_error(times: Sequence[float], errors: Sequence[float], target: float) -> float:
+    """Wall time a method needs for ``target`` error, by log-log interpolation
+    between its measured points (NaN if the target is outside their range)."""
+    t, e = np.asarray(times, float), np.asarray(errors, float)
+    ok = np.isfinite(t) & np.isfinite(e) & (e > 0)
+    t, e = t[ok], e[ok]
+    if t.size == 0:
+        return np.nan
+    # walk from cheap to expensive; first segment that brackets the target
+    order = np.argsort(t)
+    t, e = t[order], e[order]
+    if e.min() > target:
+        return np.nan
+    for i in range(t.size):
+        if e[i] <= target:
+            if i == 0:
+                return float(t[0])
+            a, b = np.log(e[i - 1]), np.log(e[i])
+            w = (np.log(target) - a) / (b - a) if b != a else 1.0
+            return float(np.exp(np.log(t[i - 1]) + w * (np.log(t[i]) - np.log(t[i - 1]))))
+    return np.nan
