@@ -56,7 +56,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .film import Film
-from .linalg import Factorize, get_linear_solver
+from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from .reynolds import (ReynoldsResult, Superposition, _boundary, _flows, _flux_residual,
                        _pressure_at_quadrature, _pressure_dofs, _sources, _system_matrix, _weights,
                        superpose)
@@ -228,7 +228,7 @@ class _FilmProblem:
 _PROBLEMS: "weakref.WeakKeyDictionary[Superposition, _FilmProblem]" = weakref.WeakKeyDictionary()
 
 
-def obstacle_problem(sup: Superposition, solver: str | Factorize = "splu", *,
+def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,
                      tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> _FilmProblem:
     """The condensed complementarity problem of a film state (cached per superposition)."""
     cached = _PROBLEMS.get(sup)
@@ -299,7 +299,7 @@ def _warm_mask(fp: _FilmProblem, sup: Superposition, wts: np.ndarray, warm_start
 
 def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                      sliding: float | None = None, *, model: str = "reynolds", warm_start=None,
-                     solver: str | Factorize = "splu", tol: float = TOLERANCE,
+                     solver: str | Factorize = DEFAULT_SOLVER, tol: float = TOLERANCE,
                      max_iterations: int = MAX_ITERATIONS) -> ReynoldsResult:
     """Solution of one film state with a cavitation model.
 
@@ -375,7 +375,7 @@ class RatesForLoad:
 
 def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure: float = 0.0, *,
                    model: str = "reynolds", warm_start=None, tol: float = 1e-9, max_newton: int = 30,
-                   solver: str | Factorize = "splu") -> RatesForLoad:
+                   solver: str | Factorize = DEFAULT_SOLVER) -> RatesForLoad:
     """Squeeze rates at which the cavitated film force balances a load (``force + load = 0``).
 
     A Newton method on the two rates: the first guess is the superposition

@@ -15,7 +15,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["LINEAR_SOLVERS", "get_linear_solver", "available_solvers", "PatternFactorizer", "factorize_splu",
+__all__ = ["DEFAULT_SOLVER", "LINEAR_SOLVERS", "get_linear_solver", "available_solvers", "PatternFactorizer", "factorize_splu",
            "factorize_splu_sym", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy"]
 
 Solve = Callable[[np.ndarray], np.ndarray]
@@ -47,6 +47,14 @@ LINEAR_SOLVERS: dict[str, Factorize] = {
     "splu": factorize_splu,
     "amg": factorize_amg,
 }
+
+
+#: The default: SuperLU in symmetric mode needs nothing beyond scipy and
+#: factored the condensed Reynolds systems about 2x faster than COLAMD
+#: (docs/benchmarks.md); the systems it gets are symmetric positive definite
+#: (the pi form is checked first, see bearingfe.reynolds). CHOLMOD and PARDISO
+#: are faster still where installed: pass ``solver="cholmod"`` or ``"pardiso"``.
+DEFAULT_SOLVER = "splu_sym"
 
 
 def get_linear_solver(solver: str | Factorize) -> Factorize:

@@ -42,7 +42,7 @@ from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
 from .film import Film
-from .linalg import Factorize, get_linear_solver
+from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from .meshing import SupportMesh
 
 __all__ = [
@@ -363,7 +363,7 @@ def _weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
 
 
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
-              solver: str | Factorize = "splu", on_indefinite: str = "fallback") -> Superposition:
+              solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback") -> Superposition:
     """Factorize the Reynolds operator of a film state once and solve four unit problems.
 
     Parameters
@@ -665,7 +665,7 @@ def _probes(basis: skfem.CellBasis, x: np.ndarray) -> sp.coo_matrix:
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
-                   solver: str | Factorize = "splu", on_indefinite: str = "fallback",
+                   solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
                    warm_start=None) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 

@@ -30,7 +30,7 @@ The ``"reynolds"`` scene (a static solve)::
     inlet_size = 0.02                  # optional
     element = "P2"                     # P1 | P2
     formulation = "pi"                 # pi | direct
-    linear_solver = "splu"             # splu | amg
+    linear_solver = "splu_sym"         # any key of bearingfe.linalg.LINEAR_SOLVERS
     [output]
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                        # wrapped picture: radial push of the peak pressure [R0]
@@ -213,7 +213,7 @@ PICTURES = ("pressure", "wrapped", "film")
 
 def reynolds_settings(data: dict, label: str) -> dict:
     """All validated settings of a ``"reynolds"`` scene."""
-    from .linalg import LINEAR_SOLVERS
+    from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
     from .reynolds import ELEMENTS, FORMULATIONS
 
     unknown = sorted(set(data) - set(_REYNOLDS_TABLES))
@@ -231,7 +231,7 @@ def reynolds_settings(data: dict, label: str) -> dict:
                              {"size": (_positive, 0.05), "inlet_size": (_positive, None),
                               "element": (_choice(tuple(ELEMENTS)), "P1"),
                               "formulation": (_choice(FORMULATIONS), "pi"),
-                              "linear_solver": (_choice(tuple(LINEAR_SOLVERS)), "splu")}),
+                              "linear_solver": (_choice(tuple(LINEAR_SOLVERS)), DEFAULT_SOLVER)}),
         "output": read_table(data.get("output", {}), label, "output",
                              {"pictures": (_choices(PICTURES), PICTURES), "warp": (_nonnegative, 0.15)}),
     }

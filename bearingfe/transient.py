@@ -47,6 +47,7 @@ from .cavitation import rates_for_load as cavitating_rates
 from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
+from .linalg import DEFAULT_SOLVER
 from .reynolds import CAVITATION, Superposition, superpose
 
 __all__ = [
@@ -181,7 +182,7 @@ def _check_cavitation(cavitation: str) -> None:
 # -- steady state ------------------------------------------------------------------------------
 
 def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: float = 0.0, *,
-                 formulation: str = "pi", element: str = "P1", solver: str = "splu",
+                 formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
                  guess: tuple[float, float] = (0.5, math.pi - 0.5), _model: _Model | None = None
                  ) -> tuple[float, float]:
     """Shoe state ``(gamma, delta)`` at which the film carries the load of angle ``beta`` without squeeze.
@@ -423,7 +424,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
              method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
              min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
-             formulation: str = "pi", element: str = "P1", solver: str = "splu",
+             formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
              periodic_tol: float = 1e-6, periodic_max_iter: int = 30) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 

@@ -229,7 +229,7 @@ class NotAFilm:
     (dict(squeeze=1.0), ValueError, "squeeze"),
     (dict(inlet_pressure=1.0), ValueError, "no pocket"),
     (dict(sliding=math.nan), ValueError, "sliding"),
-    (dict(solver="cholmod"), ValueError, "solver"),
+    (dict(solver="umfpack"), ValueError, "solver"),
     (dict(on_indefinite="ignore"), ValueError, "on_indefinite"),
 ])
 def test_solver_rejects_invalid_inputs(plain, kwargs, error, words):
