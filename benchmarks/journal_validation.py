@@ -13,25 +13,11 @@ from pathlib import Path
 
 from bearingfe import CosineFilm, Surface, mesh_surface, solve_reynolds
 from bearingfe.journal import JournalBearing, equilibrium, dynamic_coefficients, performance
+from bearingfe.validation import RAIMONDI_BOYD
 
-# (L/D, eps) -> (S, attitude deg, (R/c) f, Q/(RcNL), Qs/Q, P/pmax): Raimondi & Boyd (1958), ASLE Trans. 1,
-# full 360-degree bearing, Swift-Stieber conditions; values as reproduced in Shigley's Mechanical
-# Engineering Design (chapter "Lubrication and journal bearings") and Hamrock et al. Quoted from memory of
-# those reproductions: treat the last printed digit as uncertain.
-RB = {
-    1.0: {0.1: (1.33, 79.5, 26.4, 3.37, 0.150, 0.540), 0.2: (0.631, 74.02, 12.8, 3.59, 0.280, 0.529),
-          0.4: (0.264, 63.10, 5.79, 3.99, 0.497, 0.484), 0.6: (0.121, 50.58, 3.22, 4.33, 0.680, 0.415),
-          0.8: (0.0446, 36.24, 1.70, 4.62, 0.842, 0.313), 0.9: (0.0188, 26.45, 1.05, 4.74, 0.919, 0.247),
-          0.97: (0.00474, 15.47, 0.514, 4.82, 0.973, 0.152)},
-    0.5: {0.1: (4.31, 81.62, 85.6, 3.43, 0.173, 0.523), 0.2: (2.03, 74.94, 40.9, 3.72, 0.318, 0.506),
-          0.4: (0.779, 61.45, 17.0, 4.29, 0.552, 0.441), 0.6: (0.319, 48.14, 8.10, 4.85, 0.730, 0.365),
-          0.8: (0.0923, 33.31, 3.26, 5.41, 0.874, 0.267), 0.9: (0.0313, 23.66, 1.60, 5.69, 0.939, 0.206),
-          0.97: (0.00609, 13.75, 0.610, 5.88, 0.980, 0.126)},
-    0.25: {0.1: (16.2, 82.31, 322.0, 3.45, 0.180, 0.515), 0.2: (7.57, 75.18, 153.0, 3.76, 0.330, 0.489),
-           0.4: (2.83, 60.86, 61.1, 4.37, 0.567, 0.415), 0.6: (1.07, 46.72, 26.7, 4.99, 0.746, 0.334),
-           0.8: (0.261, 31.04, 8.80, 5.60, 0.884, 0.240), 0.9: (0.0736, 21.85, 3.50, 5.91, 0.945, 0.180),
-           0.97: (0.0101, 12.22, 0.922, 6.12, 0.984, 0.108)},
-}
+# (L/D, eps) -> (S, attitude deg, (R/c) f, Q/(RcNL), Qs/Q, P/pmax): Raimondi & Boyd (1958); see
+# bearingfe.validation.RAIMONDI_BOYD for the source and its caveats.
+RB = RAIMONDI_BOYD
 
 
 def size_for(ld: float) -> float:
