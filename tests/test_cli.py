@@ -129,7 +129,8 @@ def test_mesh_writes_msh_with_named_boundaries(tmp_path, capsys):
 def test_validate_prints_table(capsys):
     assert main(["validate", "--quick"]) == 0
     out = capsys.readouterr().out
-    assert "annular pad load W" in out and "short bearing" in out and "3 of 3 passed" in out
+    assert "annular pad load W" in out and "short bearing" in out and "Raimondi & Boyd" in out
+    assert "9 of 9 passed" in out  # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude)
     assert main(["validate", "--only", "nonsense"]) == 2
 
 
