@@ -57,8 +57,8 @@ def main(argv=None) -> None:
         f"size 0.03 R0 ({fine.n_nodes} nodes, meshed in {mesh_s:.2f} s), LSODA rtol 1e-9, periodic start "
         f"({ref.periodic_iterations} turns): smallest film {h_ref * 1e6:.4f} um.",
         "Error: |min h_min - reference| / reference over one turn from the same start (1-degree sampling).",
-        "Time: integration of one revolution (all factorizations), splu; mesh and output post-processing "
-        "excluded.",
+        f"Time: integration of one revolution (all factorizations), sparse solver "
+        f"`{bf.linalg.DEFAULT_SOLVER}` (the default); mesh and output post-processing excluded.",
         "",
         "| element | mesh size [R0] | nodes | method | rtol | s / revolution | factorizations | h_min error |",
         "|---|---|---|---|---|---|---|---|",
