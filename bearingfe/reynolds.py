@@ -109,19 +109,20 @@ class Operators:
     """Everything about a mesh and element that does not depend on the film.
 
     Built once per ``(mesh, element)`` by :func:`operators` and cached on
-    the mesh object.
+    the mesh object. ``laplace``, ``mass`` and ``facet_bases`` are built on
+    first use (the direct form needs no Laplacian, the mass matrix serves
+    only the rare eigenvalue check, the facet bases only the flows), which
+    keeps a first force-only solve on a small mesh cheap.
     """
 
     mesh: SupportMesh
     element: str
     basis: skfem.CellBasis
-    laplace: sp.csr_matrix
-    mass: sp.csr_matrix
     outer: np.ndarray
     inlet: np.ndarray
     interior: np.ndarray
     flow_groups: Mapping[str, tuple[np.ndarray, np.ndarray]]
-    facet_bases: Mapping[str, skfem.FacetBasis]  # outflow groups that share corner dofs
+    facet_groups: Mapping[str, np.ndarray]  # facets of the outflow groups that share corner dofs
     pocket_moments: np.ndarray  # (area, int cos phi, int sin phi) over the pockets
     phi_range: tuple[float, float]
     eigen_bound: float  # lower bound of the first Dirichlet eigenvalue
@@ -138,6 +139,30 @@ class Operators:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_x", np.array(self.basis.global_coordinates()))
+        object.__setattr__(self, "_lazy", {})
+
+    def _get(self, name: str, build):
+        if name not in self._lazy:
+            self._lazy[name] = build()
+        return self._lazy[name]
+
+    @property
+    def laplace(self) -> sp.csr_matrix:
+        """Stiffness matrix ``int grad u . grad v``."""
+        return self._get("laplace", lambda: _laplace.assemble(self.basis).tocsr())
+
+    @property
+    def mass(self) -> sp.csr_matrix:
+        """Mass matrix ``int u v``."""
+        return self._get("mass", lambda: _mass.assemble(self.basis).tocsr())
+
+    @property
+    def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
+        """Facet bases of the outflow groups that share corner dofs (for the flows)."""
+        order = 2 if self.element == "P2" else 1
+        return self._get("facet_bases", lambda: MappingProxyType({
+            n: skfem.FacetBasis(self.mesh.mesh, self.basis.elem, facets=f, intorder=2 * order + 2)
+            for n, f in self.facet_groups.items()}))
 
 
 def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
@@ -172,8 +197,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     interior = np.setdiff1d(np.arange(basis.N), fixed)
     names = [n for n in ("side", "arc_start", "arc_end") if n in bnd] or ["outer"]
     groups = _flow_groups(basis, bnd, names)
-    facet_bases = {n: skfem.FacetBasis(m, basis.elem, facets=bnd[n], intorder=2 * order + 2)
-                   for n in names} if len(names) > 1 else {}
+    facet_groups = {n: bnd[n] for n in names} if len(names) > 1 else {}
     if inlet.size:
         groups["inlet"] = (inlet, np.ones(inlet.size))
     xy = m.p
@@ -182,9 +206,8 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     eigen_bound = float(np.pi**2 * np.sum(1.0 / lengths**2))
     return Operators(
         mesh=mesh, element=element, basis=basis,
-        laplace=_laplace.assemble(basis).tocsr(), mass=_mass.assemble(basis).tocsr(),
         outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
-        facet_bases=MappingProxyType(facet_bases),
+        facet_groups=MappingProxyType(facet_groups),
         pocket_moments=_pocket_moments(m, bnd.get("inlet"), element),
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
