@@ -203,50 +203,18 @@ def _linkage(data: dict, label: str) -> MillDrive:
     )
 
 
-def _numbers(value, where: str, n: int | None = None) -> tuple:
-    ok = isinstance(value, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in value)
-    if not ok or (n is not None and len(value) != n):
-        raise ValueError(f"{where}: expected {n or 'a list of'} numbers, got {value!r}")
-    return tuple(float(x) for x in value)
-
-
-def _shape(t: dict, k: int, label: str):
-    """One ``[[surface.inlets]]`` entry: ``shape`` = circle, ellipse, rectangle, slot or polygon."""
-    from bearingfe import geometry as g
-
-    sec = f"surface.inlets.{k}"
-    where = f"{label}: [{sec}]"
-    kind = field(t, sec, "shape", label, str)
-    f = lambda n, **kw: field(t, sec, n, label, **kw)  # noqa: E731
-    center = lambda: _numbers(f("center", kind=list), f"{where} center", 2)  # noqa: E731
-    makers = {
-        "circle": lambda: dict(factory=g.Circle, center=center(), radius=f("radius")),
-        "ellipse": lambda: dict(factory=g.Ellipse, center=center(),
-                                semi_axes=_numbers(f("semi_axes", kind=list), f"{where} semi_axes", 2),
-                                angle=f("angle", default=0.0)),
-        "rectangle": lambda: dict(factory=g.Rectangle, center=center(),
-                                  size=_numbers(f("size", kind=list), f"{where} size", 2), angle=f("angle", default=0.0)),
-        "slot": lambda: dict(factory=g.Slot, center=center(), length=f("length"), width=f("width"),
-                             angle=f("angle", default=0.0)),
-        "polygon": lambda: dict(factory=g.Polygon, points=tuple(
-            _numbers(p, f"{where} points", 2) for p in f("points", kind=list))),
-    }
-    if kind not in makers:
-        raise ValueError(f"{where} shape: must be one of {sorted(makers)}, got {kind!r}")
-    kwargs = makers[kind]()
-    return _build(label, sec, kwargs.pop("factory"), **kwargs)
-
-
 def surface_from(data: dict, label: str):
-    """``[surface]`` with ``arc = [a1, a2]`` [rad], ``half_width`` [-] and ``[[surface.inlets]]``."""
-    from bearingfe.geometry import Surface
+    """``[surface]`` with ``arc = [a1, a2]`` [rad], ``half_width`` [-] and ``[[surface.inlets]]``.
+
+    The same reader as scene files (:func:`bearingfe.scenes.surface_from`), except that a
+    machine's shoe has no default size: ``arc`` and ``half_width`` are required here.
+    """
+    from .scenes import surface_from as read_surface
 
     t = _table(data, "surface", label)
-    arc = _numbers(field(t, "surface", "arc", label, list), f"{label}: [surface] arc", 2)
-    inlets = field(t, "surface", "inlets", label, list, default=[])
-    shapes = tuple(_shape(s if isinstance(s, dict) else {}, k, label) for k, s in enumerate(inlets))
-    return _build(label, "surface", Surface, arc=arc, half_width=field(t, "surface", "half_width", label),
-                  inlets=shapes)
+    field(t, "surface", "arc", label, list)
+    field(t, "surface", "half_width", label)
+    return read_surface(t, label)
 
 
 def _eccentric_pump(data: dict, label: str):
