@@ -36,9 +36,9 @@ __all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "sho
 #: ``L/D -> eps -> (S, attitude [deg], (R/c) f, Q/(R c N L), Qs/Q, P/p_max)``: Raimondi & Boyd
 #: (1958), ASLE Trans. 1, full 360-degree bearing, Swift-Stieber conditions, as reproduced in
 #: Shigley's *Mechanical Engineering Design* (chapter on lubrication and journal bearings) and
-#: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*. Typed from those
-#: reproductions without a scan at hand: treat the last printed digit as uncertain
-#: (docs/validation.md discusses the rows that disagree).
+#: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*. Every row agrees digit for
+#: digit with an independent public transcription of the Shigley tables; not checked against a scan
+#: of the 1958 paper (docs/validation.md discusses the rows that disagree with the package).
 RAIMONDI_BOYD: Mapping[float, Mapping[float, tuple]] = MappingProxyType({
     1.0: {0.1: (1.33, 79.5, 26.4, 3.37, 0.150, 0.540), 0.2: (0.631, 74.02, 12.8, 3.59, 0.280, 0.529),
           0.4: (0.264, 63.10, 5.79, 3.99, 0.497, 0.484), 0.6: (0.121, 50.58, 3.22, 4.33, 0.680, 0.415),

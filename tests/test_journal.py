@@ -4,7 +4,8 @@ Published reference: A. A. Raimondi and J. Boyd, "A solution for the finite jour
 application to analysis and design: III", ASLE Transactions 1 (1958) 194-209, full 360-degree bearing
 with Reynolds (Swift-Stieber) conditions, as reproduced in Shigley's Mechanical Engineering Design
 (Table 12-x / charts) and Hamrock, Schmid & Jacobson, Fundamentals of Fluid Film Lubrication. The values
-below are quoted from memory of those reproductions; the tests allow 1.5 % on S (the published
+below agree with an independent public transcription of the Shigley tables (not with a scan of
+the 1958 paper); the tests allow 1.5 % on S (the published
 tables print 3 significant figures and are themselves a 1958 relaxation solution) and 0.3 degree on
 the attitude angle, on deliberately coarse meshes; docs/validation.md has the converged comparison.
 """
