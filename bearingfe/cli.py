@@ -77,9 +77,49 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _sweep(args) -> int:
-    from .sweep import sweep_command
+    """``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]``.
 
-    return sweep_command(args.study, args.out, scheduler=args.scheduler, progress=not args.no_progress)
+    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
+    design) and ``DIR/cache/`` (per-case records: rerunning resumes). Exit
+    code 0 if every case succeeded, 1 if some failed (they are in the
+    table), 2 if the study file is invalid or no case succeeded.
+    """
+    from .io import write_json
+    from .sweep import best_design, read_study, sweep
+
+    study = read_study(args.study)  # ValueError -> exit code 2 in main()
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    client = _client_for(args.scheduler) if args.scheduler else None
+    try:
+        table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
+                      cache=out / "cache", progress=not args.no_progress)
+    finally:
+        if client is not None:
+            cluster = client.cluster if args.scheduler.startswith("local") else None
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    table.to_csv(out / "results.csv", index=False)
+    failed = int(table["error"].notna().sum())
+    print(f"{study.name}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} from cache; "
+          f"table in {out / 'results.csv'}")
+    best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
+    write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
+    changed = table.columns[:table.columns.get_loc("seconds")]
+    print(f"best ({study.sense} {study.objective}): " + ", ".join(f"{k}={best[k]}" for k in changed))
+    return 1 if failed else 0
+
+
+def _client_for(scheduler: str):
+    """A Dask client: ``"local"`` / ``"local:N"`` starts a LocalCluster of N workers,
+    anything else is a scheduler address (``tcp://host:8786``)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler == "local" or scheduler.startswith("local:"):
+        n = int(scheduler.partition(":")[2] or (os.cpu_count() or 1))
+        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True))
+    return Client(scheduler)
 
 
 def _one_line(exc: BaseException) -> str:

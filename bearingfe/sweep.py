@@ -30,7 +30,6 @@ import itertools
 import json
 import math
 import os
-import sys
 import time
 import tomllib
 from dataclasses import dataclass, field
@@ -44,7 +43,6 @@ from .geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
 __all__ = [
     "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
     "case_key", "expand_cases", "read_study", "run_case", "run_pump", "run_shoe", "set_field", "sweep",
-    "sweep_command",
 ]
 
 
@@ -735,60 +733,3 @@ def read_study(path: str | Path) -> Study:
         raise ValueError(f"{where}: the study has no cases")
     return Study(name=str(study.get("name", path.stem)), base=base, changes=changes, run=run,
                  outputs=tuple(outputs), objective=objective, sense=sense)
-
-
-def _client_for(scheduler: str):
-    """A Dask client: ``"local"`` / ``"local:N"`` starts a LocalCluster of N workers,
-    anything else is a scheduler address (``tcp://host:8786``)."""
-    from distributed import Client, LocalCluster
-
-    if scheduler == "local" or scheduler.startswith("local:"):
-        n = int(scheduler.partition(":")[2] or (os.cpu_count() or 1))
-        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True))
-    return Client(scheduler)
-
-
-def sweep_command(study_path: str | Path, out_dir: str | Path, scheduler: str | None = None,
-                  progress: bool = True) -> int:
-    """The ``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]`` command.
-
-    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
-    design) and ``DIR/cache/`` (per-case records: rerunning resumes).
-
-    Returns
-    -------
-    int
-        0 if every case succeeded, 1 if some failed (they are in the table),
-        2 if the study file is invalid or no case succeeded.
-    """
-    try:
-        study = read_study(study_path)
-    except ValueError as exc:
-        print(f"bearingfe sweep: {exc}", file=sys.stderr)
-        return 2
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    client = _client_for(scheduler) if scheduler else None
-    try:
-        table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
-                      cache=out / "cache", progress=progress)
-    finally:
-        if client is not None:
-            cluster = client.cluster if scheduler.startswith("local") else None
-            client.close()
-            if cluster is not None:
-                cluster.close()
-    table.to_csv(out / "results.csv", index=False)
-    failed = int(table["error"].notna().sum())
-    print(f"{study.name}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} from cache; "
-          f"table in {out / 'results.csv'}")
-    try:
-        best = best_design(table, study.objective, study.sense)
-    except ValueError as exc:
-        print(f"bearingfe sweep: {exc}", file=sys.stderr)
-        return 2
-    best_dict = {k: _jsonable(v.item() if hasattr(v, "item") else v) for k, v in best.items()}
-    (out / "best.json").write_text(json.dumps(best_dict, indent=1))
-    print(f"best ({study.sense} {study.objective}): " +
-          ", ".join(f"{k}={best[k]}" for k in table.columns[:table.columns.get_loc('seconds')]))
-    return 1 if failed else 0

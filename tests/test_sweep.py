@@ -11,7 +11,7 @@ import pytest
 
 from bearingfe import CosineFilm, Circle, Ellipse, Rectangle, Slot, Surface, mesh_surface, solve_reynolds
 from bearingfe.sweep import (CHANGES, ShoeCase, apply_changes, best_design, check_change_name, expand_cases,
-                             read_study, run_shoe, set_field, sweep, sweep_command)
+                             read_study, run_shoe, set_field, sweep)
 
 BASE = ShoeCase(surface=Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=(Circle((0.0, 0.0), 0.12),)),
                 gamma=0.5, inlet_pressure=1.0, mesh_size=0.2)
@@ -179,15 +179,18 @@ def test_pocket_study_file_reads():
 
 
 def test_sweep_command_writes_table_and_best(tmp_path, capsys):
+    from bearingfe.cli import main
+
     (tmp_path / "s.toml").write_text(STUDY)
-    assert sweep_command(tmp_path / "s.toml", tmp_path / "out", progress=False) == 0
+    argv = ["sweep", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--no-progress"]
+    assert main(argv) == 0
     best = json.loads((tmp_path / "out" / "best.json").read_text())
     assert best["pocket_fraction"] == 0.08  # the pocket at p_s = 1 carries more than the plain shoe
     assert "2 cases, 0 failed" in capsys.readouterr().out
-    assert sweep_command(tmp_path / "s.toml", tmp_path / "out", progress=False) == 0
+    assert main(argv) == 0
     assert "2 from cache" in capsys.readouterr().out
     (tmp_path / "bad.toml").write_text("[study\n")
-    assert sweep_command(tmp_path / "bad.toml", tmp_path / "out", progress=False) == 2
+    assert main(["sweep", str(tmp_path / "bad.toml"), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
     assert "not valid TOML" in capsys.readouterr().err
 
 
