@@ -35,7 +35,7 @@ import numpy as np
 
 from .scenes import SceneError, _build, _choice, _choices, _nonnegative, _positive, read_table
 
-__all__ = ["run_pump_scene", "pump_settings", "state_result"]
+__all__ = ["run_pump_scene", "pump_settings"]
 
 _TABLES = ("kind", "title", "pump", "run", "output")
 PICTURES = ("trajectory", "orbit", "pressure")
@@ -76,21 +76,6 @@ def _flag(where, value):
     return value
 
 
-def state_result(pump, mesh, traj, k: int, cavitation: str = "none", element: str = "P1"):
-    """Re-solve the film of sample ``k`` of a trajectory (shoe frame) for pictures and fields."""
-    from .cavitation import solve_cavitating
-    from .film import CosineFilm
-    from .reynolds import superpose
-
-    film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
-    sup = superpose(mesh, film, element=element)
-    p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
-    rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
-    if cavitation == "none":
-        return sup.combine(float(traj.wedge[k]), rates, p_s)
-    return solve_cavitating(sup, float(traj.wedge[k]), rates, p_s, model=cavitation)
-
-
 def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                    base_dir: Path | None = None) -> dict:
     """Simulate the pump (and its plain-shoe twin), draw and write the results."""
@@ -98,7 +83,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from .io import write_csv, write_json, write_pvd
     from .mechanism_files import load_mechanism
     from .plot import curves
-    from .transient import balance_ratio, pump_mesh, simulate
+    from .transient import pump_mesh, simulate, state_result
 
     s = pump_settings(data, label, base_dir)
     pump = _build(label, "pump", load_mechanism, path=s["mechanism"])
@@ -114,9 +99,9 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     for k, (name, p) in enumerate(designs.items()):
         tick(k, steps, f"simulating: {name}")
         meshes[name] = pump_mesh(p, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
-        balance[name] = balance_ratio(p, meshes[name]) if p.surface.inlets else 0.0
         runs[name] = simulate(p, meshes[name], run["revolutions"], start=run["start"], rtol=run["rtol"],
                               cavitation=run["cavitation"], element=run["element"])
+        balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
     done = len(designs)
     tick(done, steps, "files")
     files = []
@@ -148,6 +133,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
 
 def _thinnest_picture(pump, mesh, traj, path: Path, run: dict):
     from .plot import fields
+    from .transient import state_result
 
     k = int(np.argmin(traj.h_min))
     res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"])

@@ -176,8 +176,7 @@ class PumpOutcome:
 
 def run_pump(case: PumpCase) -> PumpOutcome:
     """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
-    from .scene_pump import state_result
-    from .transient import balance_ratio, pump_mesh, simulate
+    from .transient import pump_mesh, simulate, state_result
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
@@ -189,7 +188,7 @@ def run_pump(case: PumpCase) -> PumpOutcome:
                for k in frames) * pump.scale.pressure
     return PumpOutcome(h_min=traj.h_min, flow_inlet=traj.flow_inlet,
                        friction_power=traj.friction_moment * pump.drive.omega, peak_pressure=peak,
-                       balance_ratio=balance_ratio(pump, mesh) if pump.surface.inlets else 0.0)
+                       balance_ratio=traj.stats["balance_ratio"])
 
 
 #: Run functions by name: ``parameter object -> result``.

@@ -43,7 +43,7 @@ import numpy as np
 import scipy.integrate as si
 from scipy.optimize import root
 
-from .cavitation import rates_for_load as cavitating_rates
+from .cavitation import rates_for_load as cavitating_rates, solve_cavitating
 from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
@@ -56,6 +56,7 @@ __all__ = [
     "steady_state",
     "balance_ratio",
     "pump_mesh",
+    "state_result",
     "LiftOffError",
     "INTEGRATORS",
 ]
@@ -553,3 +554,20 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         stats=MappingProxyType(dict(counts, dofs=float(mesh.n_nodes), balance_ratio=ratio,
                                     postprocess_seconds=time.perf_counter() - t_start - seconds)),
         **post)
+
+
+def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: int, cavitation: str = "none",
+                 element: str = "P1"):
+    """Re-solve the film of sample ``k`` of a trajectory (shoe frame): pressure field, flows, friction.
+
+    The same film state, rates and pocket pressure that the run balanced, so
+    the film force equals ``-traj.load[k]``; use it for pictures, fields and
+    peak pressures (``Trajectory`` keeps only the reduced arrays).
+    """
+    film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
+    sup = superpose(mesh, film, element=element)
+    p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
+    rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
+    if cavitation == "none":
+        return sup.combine(float(traj.wedge[k]), rates, p_s)
+    return solve_cavitating(sup, float(traj.wedge[k]), rates, p_s, model=cavitation)
