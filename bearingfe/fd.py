@@ -32,6 +32,14 @@ five-point stencil this is an exact Gauss-Seidel method (for a consistently
 ordered matrix it has the same convergence rate as the lexicographic sweep);
 ``omega_relax != 1`` turns it into SOR.
 
+``cavitation="reynolds"`` imposes the Swift-Stieber condition ``p >= 0`` by
+Christopherson's projected SOR (Proc. IMechE 146 (1941) 126): each
+Gauss-Seidel update is followed by ``x = max(x, 0)``. It shares nothing with
+the finite-element active-set method of :mod:`bearingfe.cavitation` (other
+discretisation, other algorithm), which makes it the independent reference
+for the free boundary; it needs ``method="seidel"`` and, on fine grids,
+over-relaxation (``omega_relax`` about 1.9).
+
 Flows are the discrete conservative fluxes of the dual (finite-volume) cells
 of the node grid; see :func:`solve_reynolds_fd` (Notes).
 """
@@ -153,6 +161,7 @@ def solve_reynolds_fd(
     tol: float = 1e-10,
     max_iter: int = 200_000,
     omega_relax: float = 1.0,
+    cavitation: str = "none",
 ) -> FDResult:
     """Solve the Reynolds equation by five-point finite differences.
 
@@ -182,6 +191,10 @@ def solve_reynolds_fd(
         Seidel sweep cap; reaching it raises RuntimeError.
     omega_relax : float
         Relaxation factor in (0, 2); 1 is Gauss-Seidel.
+    cavitation : {"none", "reynolds"}
+        ``"reynolds"``: Swift-Stieber rupture (``p >= 0``) by projected SOR
+        (needs ``method="seidel"``). The flows then include the ruptured
+        zone's non-conserved Couette flow in the outline cells next to it.
 
     Returns
     -------
@@ -216,6 +229,9 @@ def solve_reynolds_fd(
     n_phi, n_z = _check_shape(shape)
     _check_choice(formulation, FORMULATIONS, "formulation")
     _check_choice(method, METHODS, "method")
+    _check_choice(cavitation, ("none", "reynolds"), "cavitation")
+    if cavitation == "reynolds" and method != "seidel":
+        raise ValueError("cavitation='reynolds' is solved by projected SOR: use method='seidel'")
     tol, max_iter, omega_relax = _check_iteration(tol, max_iter, omega_relax)
     grid = _make_grid(surface, n_phi, n_z)
     rates = _check_rates(film, grid, squeeze)
@@ -230,7 +246,8 @@ def solve_reynolds_fd(
     if method == "direct":
         x, iterations = _solve_sparse(stencil, grid), 0
     else:
-        x, iterations = _solve_seidel(stencil, grid, tol, max_iter, omega_relax)
+        x, iterations = _solve_seidel(stencil, grid, tol, max_iter, omega_relax,
+                                      project=cavitation == "reynolds")
     if not np.all(np.isfinite(x)):
         raise RuntimeError("finite-difference solution is not finite (singular or indefinite system)")
     h = film.thickness(grid.PHI, grid.Z)
@@ -391,8 +408,10 @@ def _solve_sparse(st: _Stencil, grid: _Grid) -> np.ndarray:
     return x
 
 
-def _solve_seidel(st: _Stencil, grid: _Grid, tol: float, max_iter: int, omega: float) -> tuple[np.ndarray, int]:
-    """Red-black Gauss-Seidel (SOR for omega != 1) to the paper's relative-change rule."""
+def _solve_seidel(st: _Stencil, grid: _Grid, tol: float, max_iter: int, omega: float,
+                  project: bool = False) -> tuple[np.ndarray, int]:
+    """Red-black Gauss-Seidel (SOR for omega != 1) to the paper's relative-change rule;
+    ``project``: Christopherson's projection ``x = max(x, 0)`` after each update."""
     x = st.x.copy()
     inner = (slice(1, -1), slice(1, -1))
     J, I = np.meshgrid(np.arange(x.shape[0]), np.arange(x.shape[1]), indexing="ij")
@@ -409,6 +428,8 @@ def _solve_seidel(st: _Stencil, grid: _Grid, tol: float, max_iter: int, omega: f
             gs = b - cE * x[1:-1, 2:] - cW * x[1:-1, :-2] - cN * x[2:, 1:-1] - cS * x[:-2, 1:-1]
             x_in = x[inner]
             x_in[colour] += omega * (gs[colour] - x_in[colour])
+            if project:
+                x_in[colour] = np.maximum(x_in[colour], 0.0)
         new = x[inner][unknown]
         change = _relative_change(new, old)
         if change < tol:

@@ -38,7 +38,9 @@ __all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "sho
 #: Shigley's *Mechanical Engineering Design* (chapter on lubrication and journal bearings) and
 #: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication*. Every row agrees digit for
 #: digit with an independent public transcription of the Shigley tables; not checked against a scan
-#: of the 1958 paper (docs/validation.md discusses the rows that disagree with the package).
+#: of the 1958 paper. Its own accuracy (docs/validation.md): the S of L/D = 1, eps = 0.4 contradicts
+#: the row's own friction variable by 1.3 % (which implies S = 0.2606); three attitudes are 0.32-0.38 deg
+#: off a converged solution that two independent methods agree on to 1e-4; at eps = 0.97 S is 1-3 % low.
 RAIMONDI_BOYD: Mapping[float, Mapping[float, tuple]] = MappingProxyType({
     1.0: {0.1: (1.33, 79.5, 26.4, 3.37, 0.150, 0.540), 0.2: (0.631, 74.02, 12.8, 3.59, 0.280, 0.529),
           0.4: (0.264, 63.10, 5.79, 3.99, 0.497, 0.484), 0.6: (0.121, 50.58, 3.22, 4.33, 0.680, 0.415),

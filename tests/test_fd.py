@@ -248,3 +248,32 @@ def test_non_rectangular_outline_is_rejected():
     oval = Surface(outer=Ellipse((0.0, 0.0), (0.5, 0.4)))
     with pytest.raises(ValueError, match="outer"):
         solve_reynolds_fd(oval, FILM, (21, 17))
+
+
+def test_projected_sor_rupture_is_a_complementarity_solution():
+    # Christopherson's projected SOR: p >= 0; where p > 0 the discrete Reynolds equation holds (its
+    # residual vanishes there to the iteration tolerance); it needs the Seidel method
+    surface = Surface(arc=(0.0, 2 * math.pi), half_width=0.5)
+    film = CosineFilm(0.6, 0.0)
+    r = solve_reynolds_fd(surface, film, (127, 21), formulation="direct", method="seidel",
+                          cavitation="reynolds", omega_relax=1.8, tol=1e-14)
+    linear = solve_reynolds_fd(surface, film, (127, 21), formulation="direct")
+    assert r.pressure.min() == 0.0 and linear.pressure.min() < 0
+    ruptured = r.pressure == 0
+    assert 0.2 < ruptured[1:-1, 1:-1].mean() < 0.6
+    # residual of the five-point equations cP p + sum c_nb p_nb = f = 6 dh/dphi: zero where p > 0, and
+    # <= 0 where p = 0 (there it is -f = -6 dh/dphi < 0 in the divergent film, i.e. a multiplier >= 0)
+    from bearingfe.fd import _direct_stencil, _make_grid, _rhs
+    grid = _make_grid(surface, 127, 21)
+    st = _direct_stencil(film, grid, _rhs(film, grid, 1.0, (0.0, 0.0)), 0.0)
+    x, c = r.pressure, (slice(1, -1), slice(1, -1))
+    res = (st.cP[c] * x[c] + st.cE[c] * x[1:-1, 2:] + st.cW[c] * x[1:-1, :-2] + st.cN[c] * x[2:, 1:-1]
+           + st.cS[c] * x[:-2, 1:-1] - st.b[c])
+    scale = np.abs(st.b).max()
+    assert np.abs(res[~ruptured[c]]).max() < 1e-8 * scale
+    assert res[ruptured[c]].max() < 1e-8 * scale
+    with pytest.raises(ValueError, match="projected SOR"):
+        solve_reynolds_fd(surface, film, (31, 11), cavitation="reynolds")
+    with pytest.raises(ValueError, match="cavitation"):
+        solve_reynolds_fd(surface, film, (31, 11), method="seidel", cavitation="gumbel")
+

@@ -5,9 +5,9 @@ application to analysis and design: III", ASLE Transactions 1 (1958) 194-209, fu
 with Reynolds (Swift-Stieber) conditions, as reproduced in Shigley's Mechanical Engineering Design
 (Table 12-x / charts) and Hamrock, Schmid & Jacobson, Fundamentals of Fluid Film Lubrication. The values
 below agree with an independent public transcription of the Shigley tables (not with a scan of
-the 1958 paper); the tests allow 1.5 % on S (the published
-tables print 3 significant figures and are themselves a 1958 relaxation solution) and 0.3 degree on
-the attitude angle, on deliberately coarse meshes; docs/validation.md has the converged comparison.
+the 1958 paper). The tests require 1 % on S and 0.3 degree on the attitude except at four rows
+where the table itself is shown to be off (REFERENCE_ERRORS below); docs/validation.md has the
+converged comparison with an independent finite-difference reference.
 """
 
 import math
@@ -20,23 +20,36 @@ from bearingfe.journal import (EPS_MAX, Groove, JournalBearing, ResolutionWarnin
                                equilibrium, film_graded_size, performance, short_bearing_force)
 from bearingfe import CosineFilm
 
-# (L/D, eps, S, attitude [deg], (R/c) f, Q/(R c N L)) -- Raimondi & Boyd (1958), full bearing
-RAIMONDI_BOYD = [
-    (1.0, 0.1, 1.33, 79.5, 26.4, 3.37),
-    (1.0, 0.6, 0.121, 50.58, 3.22, 4.33),
-    (1.0, 0.9, 0.0188, 26.45, 1.05, 4.74),
-    (0.5, 0.6, 0.319, 48.14, 8.10, 4.85),
-    (0.25, 0.6, 1.07, 46.72, 26.7, 4.99),
-]
+# Rows of the 1958 table that differ from the converged solution by more than 1 % / 0.3 deg. Two
+# independent discretisations and algorithms (FEM + primal-dual active set, and five-point FD +
+# Christopherson's projected SOR), each converged by Richardson extrapolation, agree with each other
+# to <= 0.01 % in S and <= 0.002 deg in attitude at every row (docs/validation.md), so these are the
+# table's own errors (its 1958 relaxation grid; the S of (1, 0.4) also contradicts the row's own
+# friction variable, see the test below). Values: converged (S, attitude) of benchmarks/journal_validation.py.
+REFERENCE_ERRORS = {(1.0, 0.4): (0.260396, 62.5687), (0.5, 0.4): (0.785431, 61.7750),
+                    (0.5, 0.8): (0.0917145, 32.9319), (0.25, 0.4): (2.84116, 61.1959)}
 
 
-@pytest.mark.parametrize("ld,eps,S,att,fric,flow", RAIMONDI_BOYD)
+def _rb_rows():
+    from bearingfe.validation import RAIMONDI_BOYD
+    return [(ld, eps, *ref[:4]) for ld, table in RAIMONDI_BOYD.items() for eps, ref in table.items() if eps <= 0.95]
+
+
+@pytest.mark.parametrize("ld,eps,S,att,fric,flow", _rb_rows())
 def test_full_bearing_against_raimondi_boyd(ld, eps, S, att, fric, flow):
-    p = performance(JournalBearing(ld), eps, size=min(0.12, ld / 5))
-    assert abs(p.sommerfeld / S - 1) < 0.015
-    assert abs(p.attitude - att) < 0.3
-    assert abs(p.friction_variable / fric - 1) < 0.015
-    assert abs(p.flow_variable / flow - 1) < 0.015
+    # every tabulated row for L/D = 1, 1/2, 1/4 and eps 0.1 .. 0.9: the h-graded mesh refined once
+    # (nested cavitation start) is within 0.3 % of the converged S and 0.05 deg of its attitude
+    p = performance(JournalBearing(ld), eps, size=min(0.1, ld / 5), estimate_error=True)
+    if (ld, eps) in REFERENCE_ERRORS:
+        S_conv, att_conv = REFERENCE_ERRORS[(ld, eps)]
+        assert abs(p.sommerfeld / S_conv - 1) < 0.003
+        assert abs(p.attitude - att_conv) < 0.05
+        assert abs(p.sommerfeld / S - 1) < 0.015 and abs(p.attitude - att) < 0.6  # the table's error, bounded
+    else:
+        assert abs(p.sommerfeld / S - 1) < 0.01
+        assert abs(p.attitude - att) < 0.3
+    assert abs(p.friction_variable / fric - 1) < 0.01
+    assert abs(p.flow_variable / flow - 1) < 0.005
 
 
 def test_zero_eccentricity_limit():
@@ -102,7 +115,8 @@ def test_dynamic_coefficients_linearized_vs_finite_difference():
 
 def test_dynamic_coefficients_short_bearing_limit():
     # short-bearing (Ocvirk, pi film) coefficients by differentiating the closed-form pressure
-    # (its force integral evaluated by quadrature); the finite bearing at L/D = 1/16 is within 4 %
+    # (its force integral evaluated by quadrature); the finite bearing's coefficients differ from it by
+    # 0.70, 0.48, 0.37 % of the largest one at L/D = 1/8, 1/16, 1/32 (measured): 1 % allowed at 1/16
     a, eps = 1.0 / 16, 0.5
     w = np.hypot(*short_bearing_force(eps, a))
     eq = equilibrium(JournalBearing(a), (0.0, -w), size=a / 4)
@@ -121,8 +135,8 @@ def test_dynamic_coefficients_short_bearing_limit():
     direction = math.atan2(F[1], F[0])
     Ks, Cs = _to_ross_frame(direction, K) / w, _to_ross_frame(direction, C) / w
     scale_k, scale_c = np.abs(Ks).max(), np.abs(Cs).max()
-    assert np.abs(lin.K - Ks).max() < 0.06 * scale_k
-    assert np.abs(lin.C - Cs).max() < 0.06 * scale_c
+    assert np.abs(lin.K - Ks).max() < 0.01 * scale_k
+    assert np.abs(lin.C - Cs).max() < 0.01 * scale_c
 
 
 def short_bearing_force_xy(x, y, a, velocity):
@@ -160,3 +174,56 @@ def test_film_graded_size():
     assert s[0] == pytest.approx(0.2) and s[1] == pytest.approx(0.2 * math.sqrt(0.01))
     with pytest.raises(ValueError, match="min_size"):
         film_graded_size(CosineFilm(0.5), 0.1, 0.2)
+
+
+def test_side_flow_ratio_is_mesh_independent_and_matches_raimondi_boyd():
+    # The ruptured zone's Couette source is not side leakage (bearingfe.reynolds._flows, ``ruptured``):
+    # counted in, it biased Qs/Q low by O(size) (measured 0.472, 0.485, 0.492, 0.495 at size 0.1 .. 0.0125,
+    # eps = 0.4). Raimondi & Boyd: Qs/Q = 0.497 (eps 0.4), 0.842 (eps 0.8) for L/D = 1.
+    for eps, ref in ((0.4, 0.497), (0.8, 0.842)):
+        coarse, fine = (performance(JournalBearing(1.0), eps, size=s, min_size=s).side_flow_ratio for s in (0.2, 0.1))
+        assert abs(fine - coarse) < 2e-3
+        assert abs(fine / ref - 1) < 0.01
+
+
+def _friction_identity(S, att_deg, eps):
+    # full film sheared over the whole circumference: (R/c) f = 2 pi^2 S / sqrt(1 - eps^2) + eps sin(att) / 2
+    # exactly (the pressure term of the journal's shear integrates by parts to the load's sine component)
+    return 2 * math.pi**2 * S / math.sqrt(1 - eps**2) + eps * math.sin(math.radians(att_deg)) / 2
+
+
+def test_raimondi_boyd_rows_obey_their_friction_identity_except_one():
+    from bearingfe.validation import RAIMONDI_BOYD
+    off = {}
+    for ld, table in RAIMONDI_BOYD.items():
+        for eps, (S, att, f, *_rest) in table.items():
+            off[(ld, eps)] = abs(_friction_identity(S, att, eps) / f - 1)
+    # 20 of 21 printed rows are consistent to print precision (measured <= 0.30 %) ...
+    assert max(v for k, v in off.items() if k != (1.0, 0.4)) < 0.0035
+    # ... the printed S of L/D = 1, eps = 0.4 (0.264) is 1.3 % above the S its own (R/c) f = 5.79 implies
+    assert off[(1.0, 0.4)] > 0.012
+    # the package's solution obeys the identity (a check of friction, load and attitude together)
+    p = performance(JournalBearing(1.0), 0.4, size=0.12)
+    assert abs(_friction_identity(p.sommerfeld, p.attitude, 0.4) / p.friction_variable - 1) < 1e-3
+
+
+def test_independent_projected_sor_reference_agrees_with_the_active_set_fem():
+    # Christopherson's projected SOR on the five-point FD grid (bearingfe.fd) shares neither the
+    # discretisation nor the algorithm with the FEM active-set solver. Converged by Richardson
+    # extrapolation both give S = 0.260396, attitude 62.5687 deg (docs/validation.md); here the FD grid is
+    # 315 x 101 (S within 1.1e-4 of that) and the FEM mesh size 0.1 refined once (within 8e-4).
+    from bearingfe import Surface
+    from bearingfe.fd import solve_reynolds_fd
+    eps, d = 0.4, 0.02
+    fd = solve_reynolds_fd(Surface(arc=(0.0, 2 * math.pi), half_width=1.0), CosineFilm(eps, 0.0), (315, 101),
+                           formulation="direct", method="seidel", cavitation="reynolds",
+                           omega_relax=2 / (1 + math.sin(math.pi * d / 2)), tol=1e-13)
+    assert fd.pressure.min() >= 0.0 and (fd.pressure == 0).mean() > 0.3  # ruptured over a third of the film
+    w = math.hypot(*fd.force)
+    S_fd, att_fd = 2 / (math.pi * w), math.degrees(math.atan2(abs(fd.force[1]), -fd.force[0]))
+    p = performance(JournalBearing(1.0), eps, size=0.1, estimate_error=True)
+    assert abs(p.sommerfeld / S_fd - 1) < 1e-3
+    assert abs(p.attitude - att_fd) < 0.01
+    # both put the 1958 table's S (0.264) 1.3 % too high and agree with the S implied by its friction
+    # variable, 0.2606 (test above)
+    assert abs(S_fd / 0.264 - 1) > 0.012 and abs(S_fd / 0.2606 - 1) < 0.002
