@@ -150,3 +150,17 @@ def test_bad_input():
     sup = superpose(m, CosineFilm(0.3), formulation="direct")
     with pytest.raises(ValueError, match="warm_start"):
         solve_cavitating(sup, warm_start=np.zeros(3, bool))
+    other = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5), 0.3)
+    with pytest.raises(ValueError, match="warm_start"):  # a result without cavitation carries no rupture set
+        solve_cavitating(sup, warm_start=solve_reynolds(other, CosineFilm(0.3)))
+
+
+def test_warm_start_from_a_mesh_of_another_extent_still_converges_to_the_same_answer(journal_mesh):
+    # dofs outside the previous mesh start full; the active-set iteration then finds the same set
+    film = CosineFilm(0.7, 0.0)
+    cold = solve_reynolds(journal_mesh, film, cavitation="reynolds", formulation="direct")
+    half = mesh_surface(Surface(arc=(0.0, math.pi), half_width=0.5), 0.2)
+    previous = solve_reynolds(half, film, cavitation="reynolds", formulation="direct")
+    warm = solve_reynolds(journal_mesh, film, cavitation="reynolds", formulation="direct", warm_start=previous)
+    np.testing.assert_array_equal(warm.cavitated, cold.cavitated)
+    np.testing.assert_allclose(warm.force, cold.force, rtol=1e-10)
