@@ -38,7 +38,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
+from ..geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
 
 __all__ = [
     "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
@@ -96,9 +96,9 @@ def run_shoe(case: ShoeCase):
 
     Raises ``ValueError`` if the film closes on the surface (``h_min <= 0``).
     """
-    from .film import CosineFilm
-    from .meshing import mesh_surface
-    from .reynolds import solve_reynolds
+    from ..film import CosineFilm
+    from ..meshing import mesh_surface
+    from ..reynolds import solve_reynolds
 
     mesh = mesh_surface(case.surface, case.mesh_size)
     pressure = case.inlet_pressure if case.surface.inlets else 0.0
@@ -108,11 +108,11 @@ def run_shoe(case: ShoeCase):
 
 # -- the pump over its cycle -----------------------------------------------------------
 
-_PUMP_FILE = Path(__file__).resolve().parents[1] / "mechanisms" / "eccentric_pump.toml"
+_PUMP_FILE = Path(__file__).resolve().parents[2] / "mechanisms" / "eccentric_pump.toml"
 
 
 def _shipped_pump():
-    from .mechanism_files import load_mechanism
+    from ..mechanism_files import load_mechanism
 
     if not _PUMP_FILE.is_file():
         raise ValueError(f"the shipped pump file is not here ({_PUMP_FILE}); give [base] a pump of your own")
@@ -144,7 +144,7 @@ class PumpCase:
     cavitation: str = "none"
 
     def __post_init__(self) -> None:
-        from .pump import EccentricPump
+        from ..pump import EccentricPump
 
         if not isinstance(self.pump, EccentricPump):
             raise ValueError(f"PumpCase.pump must be a bearingfe.EccentricPump, got {type(self.pump).__name__}")
@@ -176,7 +176,7 @@ class PumpOutcome:
 
 def run_pump(case: PumpCase) -> PumpOutcome:
     """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
-    from .transient import pump_mesh, simulate, state_result
+    from ..transient import pump_mesh, simulate, state_result
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
@@ -429,7 +429,7 @@ def _name_of(function) -> str:
 
 
 def _version() -> str:
-    from . import __version__
+    from .. import __version__
 
     return __version__
 
