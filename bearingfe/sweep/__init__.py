@@ -425,7 +425,17 @@ def expand_cases(changes) -> list[dict[str, Any]]:
 # -- one case -----------------------------------------------------------------------
 
 def _name_of(function) -> str:
-    return function if isinstance(function, str) else f"{function.__module__}:{function.__qualname__}"
+    """``module:qualname`` of a function (a name passes through), as cache keys spell it.
+
+    Functions of this package's modules are named as if they were still in the
+    one ``bearingfe.sweep`` module, so keys written before the split still match.
+    """
+    if isinstance(function, str):
+        return function
+    module = function.__module__
+    if module.startswith(f"{__package__}."):
+        module = __package__
+    return f"{module}:{function.__qualname__}"
 
 
 def _version() -> str:
