@@ -126,6 +126,19 @@ def test_resume_reruns_nothing_finished(tmp_path, monkeypatch):
     assert record["error"].startswith("ValueError") and record["outputs"]["h_min"] is None
 
 
+def test_cache_key_names_package_functions_by_the_public_module():
+    import hashlib
+
+    from bearingfe import __version__
+    from bearingfe.sweep import OUTPUTS, case_key
+
+    # expected: the key text of the one-module bearingfe.sweep ("version|module:qualname|outputs|repr"),
+    # sha256 to 24 hex digits; caches written before the split into submodules must still be hit
+    text = "|".join([__version__, "bearingfe.sweep:run_shoe", "bearingfe.sweep:_h_min,load", repr(BASE)])
+    assert case_key(BASE, run_shoe, [OUTPUTS["h_min"], "load"]) == hashlib.sha256(text.encode()).hexdigest()[:24]
+    assert case_key(BASE, counting_run, ["load"]) == hashlib.sha256(
+        "|".join([__version__, f"{__name__}:counting_run", "load", repr(BASE)]).encode()).hexdigest()[:24]
+
 def test_best_design():
     import pandas as pd
 
