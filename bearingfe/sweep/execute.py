@@ -181,8 +181,8 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
         Names from :data:`OUTPUTS` (or top-level functions ``result -> float``).
     run : str or callable
         Name from :data:`RUNS` or a top-level (picklable) function
-        ``parameter object -> result``. (The default becomes the pump
-        transient once it is merged into the package.)
+        ``parameter object -> result``; ``"shoe"`` (default) solves one film
+        state, ``"pump"`` the pump over a revolution (:class:`PumpCase`).
     client : distributed.Client, optional
         Run on this Dask cluster instead of local processes.
     cache : path, optional
