@@ -214,7 +214,7 @@ def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: flo
     def solve(xy, share):
         sol = root(residual, xy, args=(share,), method="hybr", options={"xtol": 1e-12})
         ok = sol.success and np.max(np.abs(residual(sol.x, share))) < 1e-8
-        return sol.x, ok, sol.message
+        return sol.x, ok, " ".join(str(sol.message).split())
 
     g0, d0 = guess
     xy, ok, msg = solve([g0 * math.cos(d0), g0 * math.sin(d0)], 1.0)
@@ -229,10 +229,18 @@ def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: flo
             else:
                 step *= 0.5
         ok = share == 1.0 and ok_t
+    else:
+        share = 1.0
     if not ok:
         res = residual(xy, 1.0)
-        raise RuntimeError(f"no steady state of {pump.name!r} at beta = {beta:.4f} rad "
-                           f"(relative force residual {np.max(np.abs(res)):.3g}: {msg})")
+        raise RuntimeError(
+            f"no steady state of {pump.name!r} at beta = {beta:.4f} rad: continuation in the chamber "
+            f"pressure carried {100 * share:.0f} % of it; at the full load its last state, gamma = "
+            f"{math.hypot(*xy):.3f}, delta = {math.atan2(xy[1], xy[0]) % (2 * math.pi):.3f} rad, leaves a "
+            f"relative force residual {np.max(np.abs(res)):.3g} ({msg}). Without squeeze the film cannot "
+            "carry this load (typically an off-centre pocket whose hydrostatic force has a component the "
+            "wedge cannot balance short of contact); simulate(start='periodic') follows the squeeze-film "
+            "motion instead")
     sol = type("S", (), {"x": xy})
     return float(math.hypot(*sol.x)), float(math.atan2(sol.x[1], sol.x[0]) % (2 * math.pi))
 

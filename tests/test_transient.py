@@ -127,6 +127,18 @@ def test_lift_off_is_detected_before_integrating():
         bf.simulate(pump, mesh)
 
 
+def test_missing_steady_state_is_reported_with_its_cause():
+    # A 12 % pocket placed upstream (35 % along the arc) during discharge: its hydrostatic force has a
+    # component the wedge cannot balance. Measured: over gamma in [0.02, 0.98] x delta in [0, 2 pi)
+    # (25 x 73 grid, P1) the smallest relative force residual is 0.05, at gamma = 0.94 -- no steady
+    # state short of contact, so the error is physical, not the solver's. The message says so.
+    from bearingfe.sweep import pocket_fraction, pocket_position
+    from bearingfe.transient import steady_state
+    pump = dataclasses.replace(PUMP, surface=pocket_position(pocket_fraction(PUMP.surface, 0.12), 0.35))
+    with pytest.raises(RuntimeError, match="no steady state.*cannot carry this load.*periodic"):
+        steady_state(pump, pump_mesh(pump, SIZE), beta=math.pi / 2)
+
+
 def test_balance_ratio_of_the_shipped_pump(pocket_mesh):
     # pocket 10 %: hydrostatic lift a little below the plunger force (the TOML's design note)
     assert 0.8 < bf.balance_ratio(PUMP, pocket_mesh) < 0.95
