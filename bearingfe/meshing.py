@@ -83,21 +83,50 @@ class SupportMesh:
         return float(np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0).max())
 
 
+#: Numeric gmsh options this package sets; saved and restored around a session nested in a caller's.
+_TOUCHED_OPTIONS = ("General.Terminal", "General.Verbosity", "Mesh.Algorithm", "Mesh.MeshSizeMax",
+                    "Mesh.MeshSizeMin", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature",
+                    "Mesh.MeshSizeExtendFromBoundary", "Mesh.ElementOrder", "Mesh.MshFileVersion")
+
+
 @contextlib.contextmanager
 def gmsh_session(verbose: bool = False) -> Iterator[object]:
-    """A private gmsh session: initialize, yield the module, always finalize."""
+    """A private gmsh session: yield the gmsh module, leave gmsh as it was found.
+
+    If gmsh is not initialized, it is initialized here and finalized on exit.
+    If the caller already has a gmsh session, it is left open: the models
+    created inside are removed on exit, the caller's current model is made
+    current again and the options this package sets are restored.
+    """
     import gmsh
 
     with _GMSH_LOCK:
-        if gmsh.isInitialized():
-            gmsh.finalize()
-        gmsh.initialize(interruptible=False)
+        if not gmsh.isInitialized():
+            gmsh.initialize(interruptible=False)
+            try:
+                _quiet(gmsh, verbose)
+                yield gmsh
+            finally:
+                gmsh.finalize()
+            return
+        current, before = gmsh.model.getCurrent(), set(gmsh.model.list())
+        saved = {name: gmsh.option.getNumber(name) for name in _TOUCHED_OPTIONS}
         try:
-            gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
-            gmsh.option.setNumber("General.Verbosity", 5 if verbose else 0)
+            _quiet(gmsh, verbose)
             yield gmsh
         finally:
-            gmsh.finalize()
+            for name in [m for m in gmsh.model.list() if m not in before]:
+                gmsh.model.setCurrent(name)
+                gmsh.model.remove()
+            if current in gmsh.model.list():
+                gmsh.model.setCurrent(current)
+            for name, value in saved.items():
+                gmsh.option.setNumber(name, value)
+
+
+def _quiet(gmsh, verbose: bool) -> None:
+    gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
+    gmsh.option.setNumber("General.Verbosity", 5 if verbose else 0)
 
 
 def mesh_surface(

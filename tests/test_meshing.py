@@ -160,6 +160,31 @@ def test_gmsh_is_finalized_after_an_error_inside_the_session():
     assert mesh_surface(Surface(), 0.25).n_nodes > 0
 
 
+def test_a_callers_gmsh_session_is_left_as_it_was():
+    # meshing inside a caller's own gmsh session: the session stays open, the caller's model and its
+    # entities stay current, the options this package sets come back, and the mesh is the same as
+    # from a private session
+    private = _signature(mesh_surface(Surface(inlets=(Circle((0.1, 0.0), 0.1),)), 0.1))
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("mine")
+        gmsh.model.occ.addPoint(0.3, 0.2, 0.0)
+        gmsh.model.occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 7.0)
+        gmsh.option.setNumber("Mesh.Algorithm", 8)
+        nested = _signature(mesh_surface(Surface(inlets=(Circle((0.1, 0.0), 0.1),)), 0.1,
+                                         size_function=lambda x, y: 0.1 + 0 * x))
+        load_mesh(MESHES / "plain_shoe.geo", size=0.3)
+        assert gmsh.isInitialized()
+        assert gmsh.model.getCurrent() == "mine" and gmsh.model.list() == ["", "mine"]
+        assert gmsh.model.getEntities(0) == [(0, 1)]
+        assert gmsh.option.getNumber("Mesh.MeshSizeMax") == 7.0 and gmsh.option.getNumber("Mesh.Algorithm") == 8
+    finally:
+        gmsh.finalize()
+    assert np.array_equal(private[0], nested[0]) and np.array_equal(private[1], nested[1])
+
+
 # -- files ---------------------------------------------------------------------
 
 def test_load_mesh_geo_and_msh_agree(tmp_path):
