@@ -43,7 +43,7 @@ from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators
                        superpose)
 from .scenes import SceneError
 from .sections import ibeam, ibeams
-from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study, sweep
+from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study  # module bearingfe.sweep: sweep()
 from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
