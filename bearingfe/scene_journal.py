@@ -40,6 +40,23 @@ ROSS ``BearingElement`` columns, SI) and the pictures ``pressure.png``,
 ``pressure_wrapped.png``, ``film.png`` (one per pad, ``_pad<k>``, when there
 are several).
 
+The summary (SI, unit in each key): eccentricity, attitude angle (from the
+load line to the line of centres, in the direction of rotation), journal
+position, minimum film, maximum pressure, Sommerfeld number
+``S = mu N L D / W (R/c)^2``, friction torque and power (``T omega``), side
+flow (out of the axial edges), total flow (into the film through the leading
+edges of the pads and the grooves: Raimondi-Boyd's ``Q`` for the full
+bearing) and groove flow; for the full bearing also the Raimondi-Boyd chart
+variables. Stiffness ``K`` [N/m] and damping ``C`` [N s/m] are in the ROSS
+frame (``x`` horizontal, ``y`` up, the journal turning from ``+x`` to ``+y``:
+the bearing frame of the file, whatever the load direction), with their
+non-dimensional forms ``K c/W``, ``C c omega/W`` and the keywords of
+``ross.BearingElement`` (``n`` is the caller's). ``cost`` has nodes,
+iterations and seconds; with ``estimate_error`` the whole computation is
+repeated with half the element size and the relative changes are reported
+(``K``, ``C``: largest entry change over largest entry); the values reported
+are those of the given size.
+
 Pictures show the non-dimensional fields (``p = P c^2/(mu omega R^2)``,
 ``h = H/c``); the full bearing is meshed and drawn in the frame of the line
 of largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
@@ -58,7 +75,7 @@ import numpy as np
 
 from .scenes import _MISSING, SceneError, _build, _choice, _choices, _nonnegative, _number, _positive, read_table
 
-__all__ = ["run_journal_scene", "journal_settings", "PICTURES", "TABLES"]
+__all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "PICTURES", "TABLES"]
 
 _TABLES = ("kind", "title", "bearing", "operating", "solver", "output")
 PICTURES = ("pressure", "wrapped", "film")
@@ -225,7 +242,7 @@ def _solve(bearing, load, size, min_size, cavitation):
     return eq, dc, t1 - t0, time.perf_counter() - t1
 
 
-def fixed_frame(dc, force) -> object:
+def _fixed_frame(dc, force):
     """The coefficients in the bearing frame of the file (``x`` horizontal, ``y`` up).
 
     :func:`bearingfe.journal.dynamic_coefficients` turns its frame so that
@@ -299,7 +316,7 @@ def _summary(s: dict, scale, bearing, eq, dc, seconds: dict, fine) -> dict:
     W, L, D, c = op["load"], b["length"], b["diameter"], b["radial_clearance"]
     N = op["speed"] / 60.0
     film = _film_results(eq, scale)
-    dcf = fixed_frame(dc, eq.force)
+    dcf = _fixed_frame(dc, eq.force)
     K, C = dcf.to_si(viscosity=op["viscosity"], speed=scale.speed, radius=scale.radius, clearance=c)
     results = {"eccentricity": eq.eps, "attitude_deg": eq.attitude,
                "position_m": [float(v) * c for v in eq.position],
@@ -351,7 +368,7 @@ def _scales(scale) -> dict:
 def _error_estimate(eq, dcf, film: dict, fine, scale) -> dict:
     """Change of each result when the element size is halved (the summary keeps the coarser values)."""
     eq_f, dc_f, *_ = fine
-    dcf_f = fixed_frame(dc_f, eq_f.force)
+    dcf_f = _fixed_frame(dc_f, eq_f.force)
     film_f = _film_results(eq_f, scale)
 
     def rel(a, b):
@@ -372,6 +389,8 @@ def _table(r: dict, K, C, err, cost) -> list:
             ("Sommerfeld number", r["sommerfeld"], "-"), ("friction torque", r["friction_torque_Nm"], "N m"),
             ("friction power", r["friction_power_W"], "W"), ("side flow", r["side_flow_m3s"] * 6e4, "l/min"),
             ("total flow", r["total_flow_m3s"] * 6e4, "l/min")]
+    if r["inlet_flow_m3s"] != 0.0:  # grooves
+        rows.append(("groove (supply) flow", r["inlet_flow_m3s"] * 6e4, "l/min"))
     rows += [(f"k{a}{b}", float(K[i, j]), "N/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     rows += [(f"c{a}{b}", float(C[i, j]), "N s/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     if err is not None:
