@@ -319,5 +319,14 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     return run(data, label, out_dir, progress, base_dir)
 
 
+def run_journal_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+                      base_dir: Path | None = None) -> dict:
+    """The journal bearing scene (:mod:`bearingfe.scene_journal`)."""
+    from .scene_journal import run_journal_scene as run
+
+    return run(data, label, out_dir, progress, base_dir)
+
+
 SCENES: Mapping[str, Callable[..., dict]] = MappingProxyType({"reynolds": run_reynolds_scene,
-                                                              "pump": run_pump_scene})
+                                                              "pump": run_pump_scene,
+                                                              "journal": run_journal_scene})
