@@ -284,7 +284,7 @@ def run_journal_scene(data: dict, label: str, out_dir: Path, progress: Callable 
     done = 1 + int(solver["estimate_error"])
     t0 = time.perf_counter()
     files = _tables(out["tables"], s, scale, eq, summary, out_dir)
-    files += _pictures(out, bearing, eq, out_dir, lambda k, what: tick(done + k, steps, what))
+    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what))
     summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
     summary["files"] = files + ["summary.json"]
     tick(steps - 1, steps, "summary")
@@ -435,18 +435,21 @@ def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str
     return files
 
 
-def _pictures(out: dict, bearing, eq, out_dir: Path, tick: Callable) -> list[str]:
+def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable) -> list[str]:
     from .plot import fields
 
+    p_mpa = dict(scale=scale.to_pressure(1.0) / 1e6, unit="MPa")
+    h_um = dict(scale=scale.to_thickness(1.0) * 1e6, unit="um")
     surfaces = bearing.surfaces()
     files, k = [], 0
     for j, (res, surface) in enumerate(zip(eq.state.results, surfaces)):
         suffix = f"_pad{j + 1}" if len(surfaces) > 1 else ""
         draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / f"pressure{suffix}.png",
-                                                            surface=surface),
+                                                            surface=surface, **p_mpa),
                 "wrapped": lambda: fields.pressure_picture(res, out_dir / f"pressure_wrapped{suffix}.png",
-                                                           view="wrapped", warp=out["warp"], surface=surface),
-                "film": lambda: fields.film_picture(res, out_dir / f"film{suffix}.png", surface=surface)}
+                                                           view="wrapped", warp=out["warp"], surface=surface,
+                                                           **p_mpa),
+                "film": lambda: fields.film_picture(res, out_dir / f"film{suffix}.png", surface=surface, **h_um)}
         for name in out["pictures"]:
             tick(k, f"picture: {name}{suffix}")
             files.append(draw[name]().name)

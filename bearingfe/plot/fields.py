@@ -15,6 +15,7 @@ never loads pyvista nor changes any display setting.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
@@ -273,8 +274,18 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
     return path
 
 
+def _check_scale(scale: float, unit: str) -> float:
+    scale = float(scale)
+    if not (math.isfinite(scale) and scale > 0):
+        raise ValueError(f"scale must be a finite number > 0, got {scale!r}")
+    if not isinstance(unit, str) or not unit:
+        raise ValueError(f"unit must be a non-empty string, got {unit!r}")
+    return scale
+
+
 def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", warp: float = 0.0,
-                     cavitation: bool = True, cmap: str = "viridis", window_size=(1000, 600)) -> Path:
+                     cavitation: bool = True, cmap: str = "viridis", window_size=(1000, 600),
+                     scale: float = 1.0, unit: str = "-") -> Path:
     """PNG of the pressure field with pocket outlines and the cavitation boundary.
 
     Parameters
@@ -293,6 +304,9 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
     cavitation : bool
         Draw the ``p = 0`` contour (red) where the pressure changes sign; for
         a result with a ``cavitated`` mask, the edge of the cavitated region.
+    scale, unit : float, str
+        Pressure shown as ``scale * p`` labelled ``p [unit]`` (e.g. the
+        pressure scale in MPa and ``"MPa"``); default non-dimensional.
 
     Returns
     -------
@@ -300,9 +314,10 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
         The written file.
     """
     _check_view(view)
-    grid = field_grid(result, name="p", view=view, warp=warp)
+    scale = _check_scale(scale, unit)
+    grid = field_grid(result, np.asarray(result.pressure, dtype=float) * scale, name="p", view=view, warp=warp)
     values = np.asarray(grid.point_data["p"])
-    inlet = float(getattr(result, "inlet_pressure", 0.0))
+    inlet = float(getattr(result, "inlet_pressure", 0.0)) * scale
     pockets = pocket_patches(result, surface=surface, view=view, value=inlet, name="p")
     if pockets is not None and warp and view == "wrapped":
         scale = np.abs(values).max()
@@ -318,11 +333,11 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
             pts = np.asarray(zero.points)
             zero.points = _embed(pts[:, 0], pts[:, 1], view, 2e-3)
         overlays.append((zero, "red", 3))
-    return _render(path, view, grid, "p", "p [-]", cmap, overlays, window_size, pockets)
+    return _render(path, view, grid, "p", f"p [{unit}]", cmap, overlays, window_size, pockets)
 
 
 def film_picture(result, path, *, film=None, surface=None, view: str = "unwrapped", cmap: str = "plasma",
-                 window_size=(1000, 600)) -> Path:
+                 window_size=(1000, 600), scale: float = 1.0, unit: str = "-") -> Path:
     """PNG of the film thickness ``h = H/c`` over the surface, pockets in grey.
 
     Parameters
@@ -336,17 +351,21 @@ def film_picture(result, path, *, film=None, surface=None, view: str = "unwrappe
     surface : Surface, optional
         Exact outlines instead of mesh edges.
     view : {"unwrapped", "wrapped"}
+    scale, unit : float, str
+        Film shown as ``scale * h`` labelled ``h [unit]`` (e.g. the clearance
+        in um and ``"um"``); default non-dimensional.
 
     Returns
     -------
     Path
     """
     _check_view(view)
+    scale = _check_scale(scale, unit)
     film = result.film if film is None else film
     xy, _ = _vertices(result)
-    h = np.asarray(film.thickness(xy[0], xy[1]), dtype=float)
+    h = np.asarray(film.thickness(xy[0], xy[1]), dtype=float) * scale
     grid = field_grid(result, values=h, name="h", view=view)
     pockets = pocket_patches(result, surface=surface, view=view, name="h")
     overlays = [(outline_lines(result, surface=surface, boundary="outer", view=view), "black", 2),
                 (outline_lines(result, surface=surface, boundary="inlet", view=view), "black", 2)]
-    return _render(path, view, grid, "h", "h [-]", cmap, overlays, window_size, pockets, "lightgrey")
+    return _render(path, view, grid, "h", f"h [{unit}]", cmap, overlays, window_size, pockets, "lightgrey")
