@@ -691,8 +691,8 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
                              formulation=formulation, element=element, cavitation=cavitation, solver=solver,
                              warm_start=previous.result if (cavitation == "reynolds" and previous) else None)
         solved = time.perf_counter()
-        eta = _INDICATOR_FUNCTIONS[indicator](res)
         estimate = _load_change(res, previous.result if previous else None, level)
+        eta = _INDICATOR_FUNCTIONS[indicator](res)
         converged = estimate < tol  # False on the first level (NaN)
         next_held = held
         if not converged and level + 1 < max_levels:
