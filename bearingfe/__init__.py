@@ -7,6 +7,7 @@ module                     what it does
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``film``                   film-thickness models (``CosineFilm``)
 ``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
@@ -28,7 +29,8 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from . import adaptivity, cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
@@ -51,6 +53,8 @@ from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady
 __version__ = "0.1.0"
 
 __all__ = [
+    "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
+    "load_indicators",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",

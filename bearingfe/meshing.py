@@ -137,6 +137,7 @@ def mesh_surface(
     corner_size: float | None = None,
     grading_distance: float | None = None,
     size_function: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    min_size: float | None = None,
     order: int = 1,
     refine: int = 0,
     algorithm: int = 6,
@@ -164,6 +165,10 @@ def mesh_surface(
         ``f(phi, z) -> size`` for any other refinement (e.g. where the film
         is thinnest: see :func:`bearingfe.film_graded_size`); the smallest of
         all requested sizes wins.
+    min_size : float, optional
+        Smallest element size gmsh may use [-], > 0 (sizes asked for below
+        it, e.g. by ``size_function``, are raised to it). Default: a quarter
+        of the smallest of ``size``, ``inlet_size`` and ``corner_size``.
     order : {1, 2}
         Geometry order: 2 gives curved edges on curved pockets (``MeshTri2``),
         which P2 elements need to keep their convergence rate.
@@ -186,6 +191,8 @@ def mesh_surface(
     inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2)
     corner_size = _checked_size(corner_size, "corner_size") if corner_size is not None else inlet_size
     grading = _checked_size(grading_distance, "grading_distance") if grading_distance is not None else 4 * size
+    floor = (_checked_size(min_size, "min_size") if min_size is not None
+             else min(size, inlet_size, corner_size) / 4)
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
     if not (isinstance(refine, int) and 0 <= refine <= 6):
@@ -194,7 +201,7 @@ def mesh_surface(
     with gmsh_session(verbose) as gmsh:
         gmsh.model.add("support")
         groups = _build_geometry(gmsh, surface)
-        errors = _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface)
+        errors = _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface)
         gmsh.option.setNumber("Mesh.Algorithm", algorithm)
         gmsh.model.mesh.generate(2)
         if errors:  # gmsh swallows exceptions raised in its size callback
@@ -282,10 +289,10 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
     return groups
 
 
-def _set_sizes(gmsh, groups, size, inlet_size, corner_size, grading, size_function, surface) -> list:
+def _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface) -> list:
     opt = gmsh.option
     opt.setNumber("Mesh.MeshSizeMax", size)
-    opt.setNumber("Mesh.MeshSizeMin", min(size, inlet_size, corner_size) / 4)
+    opt.setNumber("Mesh.MeshSizeMin", floor)
     opt.setNumber("Mesh.MeshSizeFromPoints", 0)
     opt.setNumber("Mesh.MeshSizeFromCurvature", 0)
     opt.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)

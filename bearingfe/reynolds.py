@@ -40,6 +40,7 @@ import scipy.sparse.linalg as spla
 import skfem
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
+from skfem.mapping import MappingIsoparametric
 
 from .film import Film
 from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
@@ -104,6 +105,25 @@ def _flux_residual(v, w):
 
 # -- per-mesh operators -------------------------------------------------------
 
+class _TolerantMapping(MappingIsoparametric):
+    """Isoparametric mapping whose inverse (Newton) stops at a step of 1e-9 in reference
+    coordinates instead of scikit-fem's 1e-12, which round-off alone exceeds on curved
+    elements smaller than ~1e-3 away from the origin (the iteration then never stops).
+    Newton converges quadratically, so the point is accurate to round-off either way."""
+
+    def invF(self, x, tind=None, newton_max_iters=50, newton_tol=1e-9):
+        return super().invF(x, tind=tind, newton_max_iters=newton_max_iters, newton_tol=newton_tol)
+
+
+def _mapping(m: skfem.Mesh):
+    """``None`` (scikit-fem's default) on straight meshes, a :class:`_TolerantMapping` on curved ones."""
+    if getattr(m, "affine", True):
+        return None
+    if not hasattr(m, "_bearingfe_mapping"):
+        object.__setattr__(m, "_bearingfe_mapping", _TolerantMapping(m, m.elem(), m.bndelem))
+    return m._bearingfe_mapping
+
+
 @dataclass(frozen=True, eq=False)
 class Operators:
     """Everything about a mesh and element that does not depend on the film.
@@ -161,7 +181,8 @@ class Operators:
         """Facet bases of the outflow groups that share corner dofs (for the flows)."""
         order = 2 if self.element == "P2" else 1
         return self._get("facet_bases", lambda: MappingProxyType({
-            n: skfem.FacetBasis(self.mesh.mesh, self.basis.elem, facets=f, intorder=2 * order + 2)
+            n: skfem.FacetBasis(self.mesh.mesh, self.basis.elem, mapping=_mapping(self.mesh.mesh), facets=f,
+                                intorder=2 * order + 2)
             for n, f in self.facet_groups.items()}))
 
 
@@ -187,7 +208,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     start = time.perf_counter()
     m = mesh.mesh
     order = 2 if element == "P2" else 1
-    basis = skfem.Basis(m, ELEMENTS[element](), intorder=2 * order + 2)
+    basis = skfem.Basis(m, ELEMENTS[element](), mapping=_mapping(m), intorder=2 * order + 2)
     bnd = mesh.boundaries
     if "outer" not in bnd:
         raise ValueError("mesh has no boundary named 'outer'")
@@ -232,7 +253,7 @@ def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    fb = skfem.FacetBasis(m, skfem.ElementTriP1(), facets=inlet_facets, intorder=8)
+    fb = skfem.FacetBasis(m, skfem.ElementTriP1(), mapping=_mapping(m), facets=inlet_facets, intorder=8)
     phi = np.array(fb.global_coordinates())[0]
     nphi = np.array(fb.normals)[0]
     dx = fb.dx
