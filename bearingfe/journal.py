@@ -203,7 +203,7 @@ def film_graded_size(film, size: float, min_size: float, exponent: float = 0.5):
 @lru_cache(maxsize=32)
 def _mesh(surface: Surface, size: float, min_size: float, eps: float, phi0: float, element: str) -> SupportMesh:
     graded = film_graded_size(CosineFilm(eps, phi0), size, min_size) if min_size < size else None
-    return mesh_surface(surface, size, size_function=graded, order=1)
+    return mesh_surface(surface, size, size_function=graded, min_size=min(min_size, size), order=1)
 
 
 def journal_mesh(bearing: JournalBearing, size: float, *, min_size: float | None = None,

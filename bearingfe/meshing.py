@@ -167,8 +167,9 @@ def mesh_surface(
         all requested sizes wins.
     min_size : float, optional
         Smallest element size gmsh may use [-], > 0 (sizes asked for below
-        it, e.g. by ``size_function``, are raised to it). Default: a quarter
-        of the smallest of ``size``, ``inlet_size`` and ``corner_size``.
+        it are raised to it). Default: with a ``size_function``, none (its
+        requests are honoured as asked); without, a quarter of the smallest
+        of ``size``, ``inlet_size`` and ``corner_size``.
     order : {1, 2}
         Geometry order: 2 gives curved edges on curved pockets (``MeshTri2``),
         which P2 elements need to keep their convergence rate.
@@ -191,8 +192,10 @@ def mesh_surface(
     inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2)
     corner_size = _checked_size(corner_size, "corner_size") if corner_size is not None else inlet_size
     grading = _checked_size(grading_distance, "grading_distance") if grading_distance is not None else 4 * size
-    floor = (_checked_size(min_size, "min_size") if min_size is not None
-             else min(size, inlet_size, corner_size) / 4)
+    if min_size is not None:
+        floor = _checked_size(min_size, "min_size")
+    else:  # a size function's requests are not raised silently (gmsh's MeshSizeMin 0 = no floor)
+        floor = 0.0 if size_function is not None else min(size, inlet_size, corner_size) / 4
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
     if not (isinstance(refine, int) and 0 <= refine <= 6):

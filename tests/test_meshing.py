@@ -252,3 +252,13 @@ def test_mesh_surface_rejects_bad_sizes_and_options(kwargs, words):
 def test_mesh_surface_needs_a_surface():
     with pytest.raises(ValueError, match="surface"):
         mesh_surface("shoe", 0.1)
+
+
+def test_size_function_requests_below_a_quarter_of_size_are_honoured():
+    # gmsh's MeshSizeMin used to raise them to size/4 without a word (a silent clamp): with a size
+    # function and no min_size there is no floor; an explicit min_size is one
+    m = mesh_surface(Surface(), 0.2, size_function=lambda x, y: 0.02 + 0 * x)
+    edges = m.mesh.p[:, m.mesh.facets[0]] - m.mesh.p[:, m.mesh.facets[1]]
+    assert np.median(np.hypot(*edges)) < 0.03  # requested 0.02; the old floor was 0.05
+    floored = mesh_surface(Surface(), 0.2, size_function=lambda x, y: 0.02 + 0 * x, min_size=0.05)
+    assert floored.n_nodes < m.n_nodes / 3
