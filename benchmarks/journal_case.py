@@ -84,20 +84,25 @@ def run(quick: bool, log=print) -> dict:
             for size in cfg["sizes"][element]:
                 mesh, tm = _mesh(cfg, size, graded, 2 if element == "P2" else 1)
                 res, t = _solve(cfg, mesh, element)
-                run_.dofs.append(int(res.cost["dofs"]))
-                run_.seconds.append(t)
-                run_.meshing.append(tm)
-                run_.force.append(res.force.copy())
-                run_.error.append(float(np.linalg.norm(res.force - F) / np.linalg.norm(F)))
-                run_.costs.append({"iterations": res.iterations, "size": size,
-                                   "factorizations": res.cost.get("cavitation_factorizations", np.nan),
-                                   "cavitation": res.cost.get("cavitation", np.nan)})
-                run_.notes.extend(res.notes)
+                _record(run_, res, t, tm, size, F)
                 log(f"  case c {label} {size}: {run_.dofs[-1]} dofs {t:.3f} s err {run_.error[-1]:.1e} "
                     f"it {res.iterations}")
     runs["FEM P1 graded nested"] = _nested(cfg, F, log)
     runs["FD projected SOR"] = _fd(cfg, F, log)
     return {"config": cfg, "reference": ref, "runs": runs}
+
+
+def _record(run_: Run, res, seconds: float, meshing: float, size: float, F: np.ndarray) -> None:
+    """Append one FEM solve to a work-precision series."""
+    run_.dofs.append(int(res.cost["dofs"]))
+    run_.seconds.append(seconds)
+    run_.meshing.append(meshing)
+    run_.force.append(res.force.copy())
+    run_.error.append(float(np.linalg.norm(res.force - F) / np.linalg.norm(F)))
+    run_.costs.append({"iterations": res.iterations, "size": size,
+                       "factorizations": res.cost.get("cavitation_factorizations", np.nan),
+                       "cavitation": res.cost.get("cavitation", np.nan)})
+    run_.notes.extend(res.notes)
 
 
 def _nested(cfg: dict, F: np.ndarray, log) -> Run:
@@ -109,14 +114,7 @@ def _nested(cfg: dict, F: np.ndarray, log) -> Run:
                        warm_start=previous)
         total += t
         previous = res
-        run_.dofs.append(int(res.cost["dofs"]))
-        run_.seconds.append(total)
-        run_.meshing.append(tm)
-        run_.force.append(res.force.copy())
-        run_.error.append(float(np.linalg.norm(res.force - F) / np.linalg.norm(F)))
-        run_.costs.append({"iterations": res.iterations, "size": size,
-                           "factorizations": res.cost.get("cavitation_factorizations", np.nan),
-                           "cavitation": res.cost.get("cavitation", np.nan)})
+        _record(run_, res, total, tm, size, F)
         log(f"  case c nested {size}: {run_.dofs[-1]} dofs {total:.3f} s err {run_.error[-1]:.1e} "
             f"it {res.iterations}")
     return run_
