@@ -73,7 +73,7 @@ from typing import Callable
 
 import numpy as np
 
-from .scenes import _MISSING, SceneError, _build, _choice, _choices, _nonnegative, _number, _positive, read_table
+from .scenes import _MISSING, SceneError, _build, _choice, _choices, _flag, _nonnegative, _number, _positive, read_table
 
 __all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "PICTURES", "TABLES"]
 
@@ -94,12 +94,6 @@ def _within(lo: float, hi: float, *, lo_open: bool = True, hi_open: bool = False
             raise SceneError(f"{where}: must be in {text}; got {value!r}")
         return x
     return check
-
-
-def _flag(where, value):
-    if not isinstance(value, bool):
-        raise SceneError(f"{where}: expected true or false, got {value!r}")
-    return value
 
 
 def _anything(where, value):

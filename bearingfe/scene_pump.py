@@ -33,7 +33,7 @@ from typing import Callable
 
 import numpy as np
 
-from .scenes import SceneError, _build, _choice, _choices, _nonnegative, _positive, read_table
+from .scenes import SceneError, _build, _choice, _choices, _flag, _nonnegative, _positive, read_table
 
 __all__ = ["run_pump_scene", "pump_settings"]
 
@@ -67,12 +67,6 @@ def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
 def _path_text(where, value):
     if not isinstance(value, str) or not value:
         raise SceneError(f"{where}: expected a file path (text), got {value!r}")
-    return value
-
-
-def _flag(where, value):
-    if not isinstance(value, bool):
-        raise SceneError(f"{where}: expected true or false, got {value!r}")
     return value
 
 

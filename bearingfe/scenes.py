@@ -95,6 +95,12 @@ def _text(where, value):
     return value
 
 
+def _flag(where, value):
+    if not isinstance(value, bool):
+        raise SceneError(f"{where}: expected true or false, got {value!r}")
+    return value
+
+
 def _positive(where, value):
     return _number(where, value, positive=True)
 
