@@ -60,7 +60,7 @@ import scipy.sparse as sp
 
 from .film import Film
 from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
-from .reynolds import (ReynoldsResult, Superposition, _boundary, _flows, _flux_residual,
+from .reynolds import (ReynoldsResult, Superposition, _boundary, _flows, _flux_residual, _outflow,
                        _pressure_at_quadrature, _pressure_dofs, _sources, _system_matrix, _weights,
                        superpose)
 
@@ -268,10 +268,6 @@ def _ruptured_elements(basis, u: np.ndarray, cavitated: np.ndarray) -> np.ndarra
     """Elements with zero pressure at every dof and at least one ruptured dof."""
     dofs = basis.element_dofs
     return np.all(u[dofs] == 0.0, axis=0) & np.any(cavitated[dofs], axis=0)
-
-
-def _outflow(flows: dict) -> float:
-    return float(sum(v for k, v in flows.items() if k not in ("inlet", "squeeze")))
 
 
 def _result(sup: Superposition, u: np.ndarray, wts: np.ndarray, sliding: float | None, model: str,

@@ -592,9 +592,14 @@ def _flows(ops: Operators, film: Film, at: _FilmAt, u: np.ndarray, formulation: 
         flows[name] = float(value)
     flows["inlet"] = -flows["inlet"] if "inlet" in flows else 0.0  # out of the pockets into the film
     flows["squeeze"] = float(np.sum(hdot * ops.basis.dx))
-    outflow = sum(v for k, v in flows.items() if k not in ("inlet", "squeeze"))
+    outflow = _outflow(flows)
     balance = flows["inlet"] - outflow - flows["squeeze"]
     return flows, float(balance)
+
+
+def _outflow(flows: dict) -> float:
+    """Flow out through the boundary groups (everything but the pocket inflow and the squeeze)."""
+    return float(sum(v for k, v in flows.items() if k not in ("inlet", "squeeze")))
 
 
 @LinearForm
