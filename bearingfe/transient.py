@@ -301,6 +301,8 @@ class Trajectory:
         ``max |y(2 pi) - y(0)|`` (attitude wrapped) of the revolution that
         ended the search: with ``"newton"`` the output revolution itself,
         with ``"fixed-point"`` the last iteration (NaN unless periodic).
+    element : str
+        Finite element of the run (``state_result`` re-solves with it).
     stats : mapping
         ``nfev``, ``factorizations``, ``steps``, ``seconds`` (wall time of
         the integration), ``solver_seconds``, ``dofs``.
@@ -330,6 +332,7 @@ class Trajectory:
     periodic_iterations: int
     periodic_residual: float
     stats: Mapping[str, float]
+    element: str = "P1"
 
     @property
     def smallest_film(self) -> float:
@@ -539,9 +542,9 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
 
 def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: float = 1.0, *,
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
-             method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
-             min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
-             formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
+             method: str = "LSODA", rtol: float = 1e-5, atol: float | None = None, max_step: float = math.pi / 8,
+             min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float | None = None,
+             formulation: str = "pi", element: str | None = None, solver: str = DEFAULT_SOLVER,
              periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
              periodic_method: str = "newton") -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
@@ -551,7 +554,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     pump : EccentricPump
     mesh : SupportMesh, optional
         Mesh of ``pump.surface`` (reused for the whole run). Default:
-        :func:`pump_mesh` with ``mesh_size``.
+        :func:`pump_mesh` with ``mesh_size``, curved (order 2) for P2.
     revolutions : float
         Length of the run in shaft turns, > 0.
     start : {"steady", "periodic"} or (gamma, delta)
@@ -574,7 +577,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         shipped pump it needed a third to a half of Radau's right-side
         evaluations (one factorization each) for the same accuracy.
     rtol, atol : float
-        Integrator tolerances on ``(gamma, delta)``.
+        Integrator tolerances on ``(gamma, delta)``; ``atol`` defaults to
+        ``1e-3 rtol``.
     max_step : float
         Largest step in shaft angle [rad].
     min_film : float, optional
@@ -582,10 +586,27 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         2 % of the clearance.
     points_per_revolution : int
         Output samples per turn (from the integrator's dense output), >= 8.
-    mesh_size : float
-        Element size of the default mesh [R0].
-    formulation, element, solver
+    mesh_size : float, optional
+        Element size of the default mesh [R0]: 0.2 for P2, 0.08 for P1.
+    formulation, solver
         See :func:`bearingfe.superpose`.
+    element : {"P1", "P2"}, optional
+        Finite element. Default: P2 on the default mesh and on a curved
+        (order-2) mesh; P1 on a straight mesh passed in (P2 keeps its
+        convergence rate only with curved pocket edges, and a mesh made for
+        P1 would cost four times the unknowns).
+
+    Notes
+    -----
+    The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
+    the cheapest setting measured within 0.1 % of the converged smallest
+    film on the shipped pump, periodic start included
+    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
+    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
+    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
+    Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
+    1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
+    mesh passed in still gets P1).
     periodic_tol, periodic_max_iter
         Periodic start: tolerance on ``(gamma [-], delta [rad])`` and the
         largest number of revolutions.
@@ -614,9 +635,10 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         raise ValueError(f"revolutions must be a finite number > 0, got {revolutions!r}")
     if method not in INTEGRATORS:
         raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {method!r}")
-    for name, v in (("rtol", rtol), ("atol", atol), ("max_step", max_step)):
-        if not (math.isfinite(v) and v > 0):
+    for name, v in (("rtol", rtol), ("atol", 1.0 if atol is None else atol), ("max_step", max_step)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    atol = 1e-3 * rtol if atol is None else atol
     if int(points_per_revolution) < 8:
         raise ValueError(f"points_per_revolution must be >= 8, got {points_per_revolution!r}")
     min_film = 0.02 * pump.clearance if min_film is None else float(min_film)
@@ -629,7 +651,11 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         raise ValueError(f"periodic_tol must be a finite number > 0, got {periodic_tol!r}")
     if not (isinstance(periodic_max_iter, int) and periodic_max_iter >= 1):
         raise ValueError(f"periodic_max_iter must be an integer >= 1, got {periodic_max_iter!r}")
-    mesh = pump_mesh(pump, mesh_size) if mesh is None else mesh
+    if element is None:
+        element = "P2" if mesh is None or getattr(mesh, "geometry_order", 1) == 2 else "P1"
+    if mesh is None:
+        size = (0.2 if element == "P2" else 0.08) if mesh_size is None else mesh_size
+        mesh = pump_mesh(pump, size, order=2 if element == "P2" else 1)
     if not isinstance(mesh, SupportMesh):
         raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
     ratio = balance_ratio(pump, mesh, formulation=formulation, element=element)
@@ -675,22 +701,23 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         wedge=pump.wedge(betas), inlet_pressure=pump.inlet_pressure(betas),
         chamber_pressure=pump.chamber_pressure(betas), load=np.column_stack([-f, np.zeros_like(f)]),
         status=run.status, message=run.message, rupture_beta=run.rupture_beta, start=(float(y0[0]), float(y0[1])),
-        periodic_iterations=iterations, periodic_residual=residual,
+        periodic_iterations=iterations, periodic_residual=residual, element=element,
         stats=MappingProxyType(dict(counts, dofs=float(mesh.n_nodes), balance_ratio=ratio,
                                     postprocess_seconds=time.perf_counter() - t_start - seconds)),
         **post)
 
 
 def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: int, cavitation: str = "none",
-                 element: str = "P1"):
+                 element: str | None = None):
     """Re-solve the film of sample ``k`` of a trajectory (shoe frame): pressure field, flows, friction.
 
     The same film state, rates and pocket pressure that the run balanced, so
     the film force equals ``-traj.load[k]``; use it for pictures, fields and
-    peak pressures (``Trajectory`` keeps only the reduced arrays).
+    peak pressures (``Trajectory`` keeps only the reduced arrays). ``element``
+    defaults to the run's (``traj.element``).
     """
     film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
-    sup = superpose(mesh, film, element=element)
+    sup = superpose(mesh, film, element=traj.element if element is None else element)
     p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
     rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
     if cavitation == "none":

@@ -1,4 +1,4 @@
-"""Periodic start of the pump transient: Newton shooting against the fixed-point iteration.
+"""Periodic start of the pump transient (Newton shooting against the fixed-point iteration) and the defaults.
 
 The reference is the plain fixed-point iteration of the return map (the
 method ``simulate(start="periodic")`` used before Newton shooting), run here
@@ -65,3 +65,19 @@ def test_bad_periodic_options_are_named():
         bf.simulate(PUMP, mesh, start="periodic", periodic_tol=0.0)
     with pytest.raises(ValueError, match="periodic_max_iter"):
         bf.simulate(PUMP, mesh, start="periodic", periodic_max_iter=0)
+
+
+def test_defaults_are_p2_on_a_curved_mesh_within_a_tenth_of_a_percent():
+    # Reference: P2 on a curved 0.1 R0 mesh at rtol 1e-7 from the same start (near the periodic
+    # state); on the pump benchmark (docs/benchmarks_pump.md) that mesh is within 3e-5 of the
+    # converged smallest film, so a 1e-3 bound tests the defaults' own error.
+    start = (0.444, 4.88)
+    default = bf.simulate(PUMP, revolutions=1.0, start=start, points_per_revolution=90)
+    assert default.element == "P2" and default.stats["dofs"] < 120  # the default 0.2 R0 mesh
+    fine = bf.simulate(PUMP, pump_mesh(PUMP, 0.1, order=2), 1.0, start=start, rtol=1e-7,
+                       points_per_revolution=90)
+    assert fine.element == "P2"  # a curved mesh passed in gets P2
+    assert default.smallest_film == pytest.approx(fine.smallest_film, rel=1e-3)
+    # a straight mesh passed in keeps the element of old calls
+    straight = bf.simulate(PUMP, pump_mesh(PUMP, 0.3), 0.05, start=start, points_per_revolution=90)
+    assert straight.element == "P1"
