@@ -81,13 +81,13 @@ PICTURES = ("pressure", "wrapped", "film")
 
 
 def _elements() -> tuple[str, ...]:
-    from .reynolds import ELEMENTS
+    from .parameters import ELEMENTS
 
     return tuple(ELEMENTS)
 
 
 def _formulations() -> tuple[str, ...]:
-    from .reynolds import FORMULATIONS
+    from .parameters import FORMULATIONS
 
     return tuple(FORMULATIONS)
 
