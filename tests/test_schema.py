@@ -250,3 +250,12 @@ def test_read_table_defaults_nested_tables_and_lazy_choices():
         read_table({"x": 0, "items": [{"z": 1}, {}]}, "f.toml", "t", spec)
     with pytest.raises(SchemaError, match=r"^f.toml: \[t.sub\]: expected a table; got 3$"):
         read_table({"x": 0, "sub": 3}, "f.toml", "t", spec)
+
+
+def test_old_field_reader_still_works_and_names_its_replacement():
+    from bearingfe.mechanism_files import field
+
+    with pytest.warns(DeprecationWarning, match="bearingfe.schema.read_table"):
+        assert field({"rod": 2}, "crank", "rod", "m.toml") == 2.0
+    with pytest.warns(DeprecationWarning), pytest.raises(SchemaError, match=r"^m.toml: \[crank\] rod: missing"):
+        field({}, "crank", "rod", "m.toml")
