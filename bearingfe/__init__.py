@@ -5,6 +5,7 @@ module                     what it does
 =========================  =====================================================
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``film``                   film-thickness models (``CosineFilm``)
 ``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
@@ -39,6 +40,7 @@ from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
+from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
@@ -64,6 +66,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]
