@@ -6,6 +6,7 @@ module                     what it does
 ``schema``                 one schema for input files: field checks, tables, errors
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``film``                   film-thickness models (``CosineFilm``)
 ``parameters``             operating point and discretization objects (``operating=``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
@@ -44,6 +45,7 @@ from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
+from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .parameters import Discretization, OperatingPoint
 from .scales import Scale
@@ -71,6 +73,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]
