@@ -52,6 +52,7 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
 
 __all__ = [
@@ -94,6 +95,7 @@ def pump_mesh(pump: EccentricPump, size: float = 0.08, **kwargs) -> SupportMesh:
     return mesh_surface(pump.surface, size, **kwargs)
 
 
+@takes(Discretization)
 def balance_ratio(pump: EccentricPump, mesh: SupportMesh | None = None, *, formulation: str = "pi",
                   element: str = "P1") -> float:
     """Hydrostatic lift of the pockets over the plunger force, worst over the cycle [-].
@@ -190,6 +192,7 @@ def _check_cavitation(cavitation: str) -> None:
 
 # -- steady state ------------------------------------------------------------------------------
 
+@takes(Discretization)
 def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: float = 0.0, *,
                  formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
                  guess: tuple[float, float] = (0.5, math.pi - 0.5), _model: _Model | None = None
@@ -540,6 +543,7 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
     return out
 
 
+@takes(Discretization)
 def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: float = 1.0, *,
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
              method: str = "LSODA", rtol: float = 1e-5, atol: float | None = None, max_step: float = math.pi / 8,
@@ -595,18 +599,6 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         (order-2) mesh; P1 on a straight mesh passed in (P2 keeps its
         convergence rate only with curved pocket edges, and a mesh made for
         P1 would cost four times the unknowns).
-
-    Notes
-    -----
-    The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
-    the cheapest setting measured within 0.1 % of the converged smallest
-    film on the shipped pump, periodic start included
-    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
-    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
-    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
-    Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
-    1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
-    mesh passed in still gets P1).
     periodic_tol, periodic_max_iter
         Periodic start: tolerance on ``(gamma [-], delta [rad])`` and the
         largest number of revolutions.
@@ -616,6 +608,10 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         revolutions on the shipped pump, plus the output revolution, which
         verifies the residual. ``"fixed-point"``: iterate the return map
         (five to six revolutions there, plus the output revolution).
+    discretization : Discretization, optional
+        ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
+        object (:class:`bearingfe.parameters.Discretization`) instead of the
+        keywords.
 
     Returns
     -------
@@ -628,6 +624,18 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         before integrating; see :func:`balance_ratio`).
     ValueError
         Bad argument (message names it).
+
+    Notes
+    -----
+    The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
+    the cheapest setting measured within 0.1 % of the converged smallest
+    film on the shipped pump, periodic start included
+    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
+    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
+    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
+    Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
+    1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
+    mesh passed in still gets P1).
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
