@@ -117,3 +117,11 @@ def test_bad_element_and_order_are_named():
         performance(BEARING, EPS, element="P3")
     with pytest.raises(ValueError, match="order"):
         equilibrium(BEARING, (0.0, -1.0), order=3)
+
+
+def test_discretization_object_carries_the_element():
+    from bearingfe.parameters import Discretization
+
+    by_object = performance(BEARING, EPS, discretization=Discretization(element="P2", mesh_size=0.2))
+    by_keyword = performance(BEARING, EPS, size=0.2, element="P2")
+    assert by_object.load == by_keyword.load
