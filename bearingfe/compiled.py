@@ -29,6 +29,7 @@ The scikit-fem assembly (:func:`bearingfe.superposition.superpose` with
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass, field
 from typing import Callable, Mapping, Sequence
 
@@ -130,6 +131,15 @@ class CompiledOperator:
     _basis: object = field(repr=False)
     _position: np.ndarray = field(repr=False)
     _lazy: dict = field(default_factory=dict, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def __getstate__(self) -> dict:
+        state = self.__dict__.copy()
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, _lock=threading.Lock())
 
     @property
     def nnz(self) -> int:
@@ -209,8 +219,9 @@ class CompiledOperator:
             # matrix object is kept and only its values change (SuperLU copies them when it factors)
             self._lazy["order"] = (order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted)
         order, inverse, psel, template = self._lazy["order"]
-        template.data[:] = data[psel]
-        lu = spla.splu(template, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        with self._lock:  # one matrix object per mesh: fill and factor it in one go (threads)
+            template.data[:] = data[psel]
+            lu = spla.splu(template, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
 
         def solve(b: np.ndarray) -> np.ndarray:
             return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
@@ -355,7 +366,10 @@ def compile_operator(ops) -> CompiledOperator:
             normals = np.asarray(fb.normals).reshape(2, -1)
             xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
             phi_ds = (Ef.T @ sp.diags(np.asarray(fb.dx).ravel())).tocsr()[cdofs].toarray()
-            terms[name] = (Ef, Gfx, Gfz, normals, phi_ds, xf)
+            # only the facets where a corner dof's basis function lives contribute
+            per_facet = np.abs(phi_ds).reshape(cdofs.size, *np.shape(fb.dx)).max(axis=(0, 2))
+            keep = np.repeat(per_facet > 1e-14 * per_facet.max(), np.shape(fb.dx)[1])
+            terms[name] = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], phi_ds[:, keep], xf[:, keep])
             dofs, w = ops.flow_groups[name]
             wc = np.zeros(cdofs.size)
             corner = w < 1
