@@ -40,6 +40,7 @@ from .compiled import CompiledOperator, FilmFlows, compile_operator
 from .forms import FilmAt, film_at, film_flux, mapping, pressure_from_unknown, shear, unknown_scale
 from .linalg import DEFAULT_SOLVER, Factorize, Solve, factorize_splu_sym, get_linear_solver
 from .meshing import SupportMesh
+from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 
 __all__ = [
     "ELEMENTS",
@@ -64,8 +65,6 @@ __all__ = [
     "probes",
 ]
 
-ELEMENTS: Mapping[str, type] = MappingProxyType({"P1": skfem.ElementTriP1, "P2": skfem.ElementTriP2})
-FORMULATIONS = ("pi", "direct")
 #: How a film state's system is built: ``"compiled"`` (:mod:`bearingfe.compiled`, the default) or
 #: ``"reference"`` (scikit-fem form assembly per film; the same numbers to round-off).
 ASSEMBLIES = ("compiled", "reference")
@@ -344,8 +343,10 @@ class Superposition:
         constant = wedge * self.forces[:, 0] + inlet_pressure * self.forces[:, 3]
         return np.column_stack([self.forces[:, 1], self.forces[:, 2], constant])
 
+    @takes(OperatingPoint)
     def force(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0) -> np.ndarray:
-        """Film force ``(int p cos phi, int p sin phi)`` at an operating point."""
+        """Film force ``(int p cos phi, int p sin phi)`` at an operating point (or ``operating=``
+        an :class:`~bearingfe.parameters.OperatingPoint`)."""
         self.check_inlet(inlet_pressure)
         return self.forces @ source_weights(wedge, squeeze, inlet_pressure)
 
@@ -391,9 +392,14 @@ class Superposition:
         force += inlet_pressure * ops.pocket_moments[1:]
         return force, integral + inlet_pressure * ops.pocket_moments[0]
 
+    @takes(OperatingPoint)
     def combine(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                 sliding: float | None = None) -> "ReynoldsResult":
-        """The full solution at an operating point (pressure, loads, flows, friction)."""
+        """The full solution at an operating point (pressure, loads, flows, friction).
+
+        The operating point is given by the keywords or as ``operating=`` an
+        :class:`~bearingfe.parameters.OperatingPoint`.
+        """
         wts = source_weights(wedge, squeeze, inlet_pressure)
         self.check_inlet(inlet_pressure)
         if sliding is not None and not math.isfinite(float(sliding)):
@@ -413,6 +419,7 @@ def source_weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
     return w
 
 
+@takes(Discretization)
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
               solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
               assembly: str = "compiled") -> Superposition:
@@ -437,6 +444,9 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         ``"compiled"``: the film-independent maps of :mod:`bearingfe.compiled`
         (sparse mat-vecs per film); ``"reference"``: scikit-fem form assembly
         per film. Same numbers to round-off.
+    discretization : Discretization, optional
+        ``formulation``, ``element`` and ``solver`` in one object
+        (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
     """
     if formulation not in FORMULATIONS:
         raise ValueError(f"formulation must be one of {FORMULATIONS}, got {formulation!r}")
