@@ -36,6 +36,9 @@ class Study:
         Keys of :data:`OUTPUTS`.
     objective : str
         Output that ranks the designs; ``sense`` is ``"max"`` or ``"min"``.
+    time_limit : float or None
+        ``[study] time_limit``: seconds one case may take (None: the default
+        of :func:`~bearingfe.sweep.sweep`).
     """
 
     name: str
@@ -45,6 +48,7 @@ class Study:
     outputs: tuple[str, ...]
     objective: str
     sense: str
+    time_limit: float | None = None
 
 
 def _table(data: Mapping, key: str, where: str) -> dict:
@@ -80,6 +84,10 @@ def read_study(path: str | Path) -> Study:
         raise ValueError(f"{path} [study]: outputs must be a non-empty list of {sorted(OUTPUTS)}, got {outputs!r}")
     objective = _choice(study, "objective", outputs, outputs[0], f"{path} [study]")
     sense = _choice(study, "sense", ("max", "min"), "max", f"{path} [study]")
+    time_limit = study.get("time_limit")
+    if time_limit is not None and (isinstance(time_limit, bool) or not isinstance(time_limit, (int, float))
+                                   or not 0 < time_limit < float("inf")):
+        raise ValueError(f"{path} [study]: time_limit must be a number of seconds > 0, got {time_limit!r}")
     kind = _choice(base_table, "kind", BASES, run if run in BASES else "shoe", f"{path} [base]")
     settings = _table(base_table, "set", f"{path} [base]")
     base = BASES[kind]()
@@ -102,4 +110,4 @@ def read_study(path: str | Path) -> Study:
     if not cases:
         raise ValueError(f"{where}: the study has no cases")
     return Study(name=str(study.get("name", path.stem)), base=base, changes=changes, run=run,
-                 outputs=tuple(outputs), objective=objective, sense=sense)
+                 outputs=tuple(outputs), objective=objective, sense=sense, time_limit=time_limit)
