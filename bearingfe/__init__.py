@@ -22,6 +22,8 @@ module                     what it does
 ``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
+``outfolder``              output folders: manifest, lock, all-or-nothing move into place
+``limits``                 size guards (revolutions, frames, cases, elements, case time)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
 ``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
@@ -32,6 +34,7 @@ module                     what it does
 from . import adaptivity, cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
+from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -55,6 +58,7 @@ __version__ = "0.1.0"
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "LimitError",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",

@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import os
+import re
 import signal
 import sys
 import threading
@@ -134,6 +135,7 @@ def _sweep(args) -> int:
         raise NotADirectoryError(f"--out {out}: exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
     with lock_folder(out):  # a second sweep into the same folder fails at once
+        _remove_temporaries(out)
         client = _client_for(args.scheduler) if args.scheduler else None
         try:
             table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
@@ -154,6 +156,20 @@ def _sweep(args) -> int:
     changed = table.columns[:table.columns.get_loc("seconds")]
     print(f"best ({study.sense} {study.objective}): " + ", ".join(_printable(f"{k}={best[k]}") for k in changed))
     return 1 if failed else 0
+
+
+_TEMPORARIES = {".": re.compile(r"\.(results|best)\.[A-Za-z0-9_]{8}\.(csv|json)"),
+                "cache": re.compile(r"\.[0-9a-f]{24}\.json\.tmp")}
+
+
+def _remove_temporaries(out: Path) -> None:
+    """Remove temporary files a killed sweep left in ``out`` (names only the package's writers make)."""
+    for sub, pattern in _TEMPORARIES.items():
+        folder = out / sub
+        if folder.is_dir():
+            for path in folder.iterdir():
+                if pattern.fullmatch(path.name) and path.is_file() and not path.is_symlink():
+                    path.unlink()
 
 
 def _client_for(scheduler: str):
