@@ -38,6 +38,7 @@ from pathlib import Path, PurePosixPath
 from typing import Iterable, Iterator
 
 from .io import atomic_path
+from .version import __version__
 
 __all__ = ["MANIFEST", "OutputFolderError", "lock_folder", "output_folder", "read_manifest"]
 
@@ -250,8 +251,6 @@ def _apply(out: Path, journal: dict) -> None:
         path = _safe(out, rel)
         if path is not None and _is_ours(path, sha):
             path.unlink()
-    from . import __version__
-
     with atomic_path(out / MANIFEST) as tmp:
         tmp.write_text(json.dumps({"written_by": f"bearingfe {__version__}", "files": journal["manifest"]},
                                   indent=1))
