@@ -322,7 +322,7 @@ def test_study_time_limit_reaches_the_cases(tmp_path, capsys, monkeypatch):
     text = (tmp_path / "out" / "results.csv").read_text()
     assert text.count("CaseTimeout") == 2
     (tmp_path / "bad.toml").write_text(STUDY.replace("[study]", "[study]\ntime_limit = -1"))
-    with pytest.raises(ValueError, match=r"\[study\]: time_limit must be a number of seconds > 0"):
+    with pytest.raises(ValueError, match=r"\[study\] time_limit: must be > 0"):
         read_study(tmp_path / "bad.toml")
 
 
@@ -508,7 +508,7 @@ def _weak_pump(folder: Path, revolutions=0.25, frames=2) -> Path:
     return scene
 
 
-@pytest.mark.parametrize("field, value", [("revolutions", 1e6), ("frames", 1e9)])
+@pytest.mark.parametrize("field, value", [("revolutions", 1e6), ("frames", 10**9)])
 def test_pump_scene_size_guards(tmp_path, capsys, field, value):
     scene = _weak_pump(tmp_path, **{field: value})
     start = time.monotonic()
