@@ -51,8 +51,10 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .limits import check_limit
 from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
+from .superposition import film_outputs, source_weights
 
 __all__ = [
     "Trajectory",
@@ -551,24 +553,46 @@ def _sample(run: _Run, betas: np.ndarray, y0) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, np.ndarray]:
+    """Rates, smallest film, friction and flows at the samples.
+
+    Each sample needs its own film state (a superposition: one numeric
+    factorization) and its balancing rates; the flows and the friction of all
+    the states solved without cavitation are then evaluated at once by the
+    compiled linear maps (:func:`bearingfe.superposition.film_outputs`), with
+    no per-sample form assembly. Cavitated states come with their result.
+    """
     pump, sc = model.pump, model.pump.scale
-    out = {k: np.empty(betas.size) for k in ("gamma_rate", "delta_rate", "h_min", "friction_moment", "flow_inlet",
-                                              "flow_side", "flow_arc", "flow_squeeze", "mass_balance")}
+    n = betas.size
+    rates, h_min = np.empty((n, 2)), np.empty(n)
+    flows: dict[str, np.ndarray] = {}
+    friction, balance = np.empty(n), np.empty(n)
+    linear: list[tuple[int, Superposition, np.ndarray]] = []
     for i, (b, y) in enumerate(zip(betas, ys)):
         sup = model.superposition(y[0], y[1])
-        rates, res = model.balance(b, y)
+        rates[i], res = model.balance(b, y)
+        h_min[i] = sup.h_min
         if res is None:
-            res = sup.combine(float(pump.wedge(b)), rates, float(pump.inlet_pressure(b)))
-        fl = res.flows
-        out["gamma_rate"][i], out["delta_rate"][i] = rates
-        out["h_min"][i] = sc.to_thickness(res.h_min)
-        out["friction_moment"][i] = sc.to_moment(res.friction)
-        out["flow_inlet"][i] = sc.to_flow(fl.get("inlet", 0.0))
-        out["flow_side"][i] = sc.to_flow(fl.get("side", 0.0))
-        out["flow_arc"][i] = sc.to_flow(sum(v for k, v in fl.items() if k in ("arc_start", "arc_end", "outer")))
-        out["flow_squeeze"][i] = sc.to_flow(fl["squeeze"])
-        out["mass_balance"][i] = sc.to_flow(res.mass_balance)
-    return out
+            weights = source_weights(float(pump.wedge(b)), rates[i], float(pump.inlet_pressure(b)))
+            sup.check_inlet(weights[3])
+            linear.append((i, sup, weights))
+            continue
+        for k, v in res.flows.items():
+            flows.setdefault(k, np.zeros(n))[i] = v
+        friction[i], balance[i] = res.friction, res.mass_balance
+    if linear:
+        index = np.array([i for i, _, _ in linear])
+        weights = np.column_stack([w for _, _, w in linear])
+        u = np.column_stack([sup.fields @ w for _, sup, w in linear])
+        batch = film_outputs([sup for _, sup, _ in linear], u, weights, weights[0])
+        for k, v in batch.flows.items():
+            flows.setdefault(k, np.zeros(n))[index] = v
+        friction[index], balance[index] = batch.friction, batch.mass_balance
+    zero = np.zeros(n)
+    arc = sum((flows[k] for k in ("arc_start", "arc_end", "outer") if k in flows), zero)
+    return {"gamma_rate": rates[:, 0], "delta_rate": rates[:, 1], "h_min": sc.to_thickness(h_min),
+            "friction_moment": sc.to_moment(friction), "flow_inlet": sc.to_flow(flows.get("inlet", zero)),
+            "flow_side": sc.to_flow(flows.get("side", zero)), "flow_arc": sc.to_flow(arc),
+            "flow_squeeze": sc.to_flow(flows.get("squeeze", zero)), "mass_balance": sc.to_flow(balance)}
 
 
 @takes(Discretization)
@@ -578,7 +602,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
              min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float | None = None,
              formulation: str = "pi", element: str | None = None, solver: str = DEFAULT_SOLVER,
              periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
-             periodic_method: str = "newton") -> Trajectory:
+             periodic_method: str = "newton", max_revolutions: float | None = None) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 
     Parameters
@@ -636,6 +660,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         revolutions on the shipped pump, plus the output revolution, which
         verifies the residual. ``"fixed-point"``: iterate the return map
         (five to six revolutions there, plus the output revolution).
+    max_revolutions : float, optional
+        Largest ``revolutions`` accepted (a guard against runaway work);
+        default the ``revolutions`` limit of :mod:`bearingfe.limits` (100).
     discretization : Discretization, optional
         ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
         object (:class:`bearingfe.parameters.Discretization`) instead of the
@@ -651,7 +678,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         The pockets' hydrostatic lift reaches the plunger force (checked
         before integrating; see :func:`balance_ratio`).
     ValueError
-        Bad argument (message names it).
+        Bad argument (message names it); :class:`bearingfe.limits.LimitError`
+        if ``revolutions`` is above its limit.
 
     Notes
     -----
@@ -669,6 +697,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
     if not (isinstance(revolutions, (int, float)) and math.isfinite(revolutions) and revolutions > 0):
         raise ValueError(f"revolutions must be a finite number > 0, got {revolutions!r}")
+    check_limit("revolutions", revolutions, max_revolutions, "max_revolutions")
     if method not in INTEGRATORS:
         raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {method!r}")
     for name, v in (("rtol", rtol), ("atol", 1.0 if atol is None else atol), ("max_step", max_step)):
