@@ -70,18 +70,20 @@ def p1_fine():
 
 def test_p2_equilibrium_and_coefficients_agree_with_fine_p1(p1_fine):
     # Reference: P1 on a 0.04 mesh (6700 nodes). The coefficients, linearized on the converged
-    # rupture set, converge at first order and not monotonically: P1 at 0.04 and P2 at 0.035
-    # (8700 nodes) differ by 8e-4 (K) and 1.3e-3 (C), i.e. 2e-4 of the largest coefficient
-    # (|Kyx| = 3.69, |Cyy| = 6.36). P2 on a 0.14 mesh (600 nodes) must agree with it within
-    # 0.1 % of the largest coefficient, and the eccentricity within 5e-4 (P1 at 0.04 is 2.2e-4
-    # above the P2 value at 0.035, which moves by < 1e-6 from 0.05).
+    # rupture set, converge at first order and not monotonically: on P2 meshes of 0.2 ... 0.035
+    # (300 to 8700 nodes) K_xx reads 2.0144, 2.0051, 2.0014, 2.0034, 2.0038, 2.0043, and a
+    # remeshing of the same nominal size moves it by up to 5e-3; P1 at 0.04 is within 2e-4 of
+    # the largest coefficient (|Kyx| = 3.69, |Cyy| = 6.36) of P2 at 0.035. P2 on a 0.14 mesh
+    # (600 nodes) must agree with it within 0.25 % of the largest coefficient, and the
+    # eccentricity within 5e-4 (P1 at 0.04 is 2.2e-4 above the P2 value at 0.035, which moves
+    # by < 1e-6 from 0.05).
     w, fine_eq, fine = p1_fine
     eq = equilibrium(BEARING, (0.0, -w), size=0.14, element="P2")
     dc = dynamic_coefficients(eq)
     assert eq.element == "P2" and eq.state.sups[0].operators.element == "P2"
     assert eq.eps == pytest.approx(fine_eq.eps, abs=5e-4)
-    assert np.max(np.abs(dc.K - fine.K)) < 1e-3 * np.max(np.abs(fine.K))
-    assert np.max(np.abs(dc.C - fine.C)) < 1e-3 * np.max(np.abs(fine.C))
+    assert np.max(np.abs(dc.K - fine.K)) < 2.5e-3 * np.max(np.abs(fine.K))
+    assert np.max(np.abs(dc.C - fine.C)) < 2.5e-3 * np.max(np.abs(fine.C))
     # on P2 the linearization equals central differences of the nonlinear solution (step 1e-5,
     # truncation error ~1e-10, round-off of the solves ~1e-11 / 1e-5)
     fd = dynamic_coefficients(eq, method="finite-difference")
