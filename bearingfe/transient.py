@@ -485,7 +485,8 @@ def _periodic_start(model: _Model, y0: np.ndarray, beta0: float, opts: dict, met
     """Periodic state ``y = P(y)`` of the return map ``P`` over one revolution from ``beta0``.
 
     ``"newton"``: the first revolution is a fixed-point step (from the steady
-    start the return map is far from linear); the second also gives the
+    start the return map is far from linear), integrated at ``rtol = 1e-3``
+    at most as it moves the state by far more than that; the second also gives the
     monodromy matrix ``M = dP/dy`` (:func:`_monodromy`) and each later one a
     Broyden update of it; the next start is the Newton step
     ``y + (I - M)^-1 (P(y) - y)``. A revolution whose end matches its start
@@ -506,7 +507,9 @@ def _periodic_start(model: _Model, y0: np.ndarray, beta0: float, opts: dict, met
     jacobian, previous = None, None
     iterations, residual = 0, math.nan
     while True:
-        run = _integrate(model, beta0, y, beta0 + 2 * math.pi, **opts)
+        loose = method == "newton" and iterations == 0
+        step_opts = dict(opts, rtol=max(opts["rtol"], 1e-3), atol=max(opts["atol"], 1e-6)) if loose else opts
+        run = _integrate(model, beta0, y, beta0 + 2 * math.pi, **step_opts)
         if run.status != "completed":
             return y, iterations + 1, residual, None
         r = _wrapped(run.y_end - y)
@@ -517,7 +520,7 @@ def _periodic_start(model: _Model, y0: np.ndarray, beta0: float, opts: dict, met
             if residual < tol:
                 return y, iterations, residual, None
         else:
-            if residual < tol:
+            if residual < tol and not loose:
                 return y, iterations, residual, run
             iterations += 1
             if iterations == 2:

@@ -104,14 +104,28 @@ def journal_report(res: dict) -> tuple[str, dict]:
     lines.append(md_table(["series", "size", "nodes", "Newton steps", "active-set iterations", "s", "error"], rows))
     names = list(res["series"])
     facts = {}
-    lines.append("")
+    lines += ["", "The linearized coefficients converge irregularly at the 1e-3 level (the rupture set is held "
+              "fixed, and its discrete boundary jumps from node to node as the mesh changes), so the error is "
+              "not monotone in the mesh size; 'time at an error' is the cheapest run observed at or below it. "
+              "Where no run of a series reaches it, its finest run is a lower bound on the time (and the "
+              "speed-up a lower bound). 'Before' runs the same code base (compiled film operator included) "
+              "with the settings the journal API had: P1, every cavitation solve started afresh.", ""]
     for target in TARGETS:
-        tb, rb = time_at(res["series"][names[0]], target)
-        ta, ra = time_at(res["series"][names[1]], target)
-        facts[f"journal_{target:.0e}"] = dict(before=tb, after=ta, before_size=rb and rb["size"],
-                                             after_size=ra and ra["size"])
-        lines.append(f"- error <= {target:.0e}: before {tb:.3g} s (P1, size {rb and rb['size']}), after {ta:.3g} s "
-                     f"(P2, size {ra and ra['size']}): {tb / ta:.2g}x faster.")
+        rows_b, rows_a = res["series"][names[0]], res["series"][names[1]]
+        tb, rb = time_at(rows_b, target)
+        ta, ra = time_at(rows_a, target)
+        bound = False
+        if rb is None:  # not reached: the finest (slowest) run bounds the time from below
+            rb = max(rows_b, key=lambda r: r["nodes"])
+            tb, bound = rb["seconds"], True
+        facts[f"journal_{target:.0e}"] = dict(before=tb, after=ta, before_size=rb["size"],
+                                             after_size=ra and ra["size"], before_bound=bound)
+        before = (f"not reached (finest P1 run, size {rb['size']}: {tb:.3g} s at error {rb['error']:.1e})"
+                  if bound else f"{tb:.3g} s (P1, size {rb['size']})")
+        after = f"{ta:.3g} s (P2, size {ra['size']})" if ra else "not reached"
+        ratio = tb / ta if ra else float("nan")
+        lines.append(f"- error <= {target:.0e}: before {before}, after {after}: "
+                     f"{'more than ' if bound else ''}{ratio:.2g}x faster.")
     return "\n".join(lines) + "\n", facts
 
 
