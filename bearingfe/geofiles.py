@@ -18,6 +18,8 @@ geometry files as untrusted data by default (docs: README, "Safety"):
 * trusted or not, gmsh parses and meshes the script in a separate process
   with a time limit (:data:`DEFAULT_GEO_TIMEOUT`): a loop that never ends
   or an ``Exit;`` cannot hang or end the caller;
+* the child process is confined: CPU time, :data:`GEO_MEMORY` of address
+  space, and on Linux it dies with its parent;
 * the element count is estimated before meshing and refused beyond
   ``max_elements`` (:data:`DEFAULT_MAX_ELEMENTS`, environment variable
   ``BEARINGFE_MAX_ELEMENTS``).
@@ -61,6 +63,9 @@ DEFAULT_MAX_ELEMENTS = 1_000_000
 #: Seconds gmsh may spend parsing and meshing a ``.geo`` script (``timeout=``, ``--geo-timeout``,
 #: environment variable ``BEARINGFE_GEO_TIMEOUT``).
 DEFAULT_GEO_TIMEOUT = 120.0
+
+#: Address space of the gmsh child process [bytes] (a script that allocates without end fails, not the machine).
+GEO_MEMORY = 4 * 1024**3
 
 MAX_ELEMENTS_ENV = "BEARINGFE_MAX_ELEMENTS"
 GEO_TIMEOUT_ENV = "BEARINGFE_GEO_TIMEOUT"
@@ -531,7 +536,8 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
     worker = Path(__file__).with_name("gmsh_worker.py")
     with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
         request = dict(geo=str(path.resolve()), out=str(Path(out_msh).resolve()), size=size, order=int(order),
-                       max_elements=limit, result=str(Path(work) / "result.json"))
+                       max_elements=limit, result=str(Path(work) / "result.json"), seconds=seconds,
+                       memory=GEO_MEMORY, parent=os.getpid())
         req_file = Path(work) / "request.json"
         req_file.write_text(json.dumps(request))
         code = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
@@ -553,7 +559,8 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
             tail = " ".join(output.decode("utf-8", "replace").split())[-200:]
             raise GeometryFileError(
                 f"{path.name}: gmsh ended (exit status {proc.returncode}) before it made a mesh"
-                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else "")
+                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else
+                   f" (out of its {GEO_MEMORY / 1024**3:g} GiB of memory or CPU time, or a crash?)")
                 + (f": {tail}" if tail else ""))
         result = json.loads(result_file.read_text())
     if result.get("kind") == "too_many":

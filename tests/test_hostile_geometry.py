@@ -410,3 +410,35 @@ def test_resolution_check_warns_near_contact_only():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ResolutionWarning)
         assert check_resolution(mesh, CosineFilm(0.5)) is None
+
+
+def test_gmsh_child_dies_with_its_parent(tmp_path):
+    """A caller killed by SIGKILL (no chance to clean up) does not leave gmsh looping: the child
+    process asked the kernel to kill it with its parent (Linux PR_SET_PDEATHSIG)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    code = f"from bearingfe import load_mesh; load_mesh({str(geo)!r}, size=0.2, timeout=600)"
+    parent = subprocess.Popen([sys.executable, "-c", code], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    child = None
+    for _ in range(300):  # the child appears once bearingfe is imported (a few seconds at most)
+        text = children.read_text().split() if children.exists() else []
+        if text:
+            child = int(text[0])
+            break
+        time.sleep(0.05)
+    assert child is not None
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    parent.wait()
+    for _ in range(100):
+        if not Path(f"/proc/{child}").exists() or "Z" in Path(f"/proc/{child}/stat").read_text().split()[2]:
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(child, signal.SIGKILL)  # the child this test started (through its parent)
+        pytest.fail("the gmsh child outlived its killed parent")
