@@ -442,3 +442,35 @@ def test_gmsh_child_dies_with_its_parent(tmp_path):
     else:
         os.kill(child, signal.SIGKILL)  # the child this test started (through its parent)
         pytest.fail("the gmsh child outlived its killed parent")
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("inlet_pressure", dict(inlet_pressure=1e308)),
+    ("wedge", dict(wedge=-1e300)),
+    (r"squeeze\[1\]", dict(squeeze=(0.0, 1e13))),
+])
+def test_solve_reynolds_operating_point_out_of_range(name, kwargs):
+    from bearingfe import solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)]), 0.2)
+    with pytest.raises(ValueError, match=rf"{name} must be a finite number with \|{name}\| <= 1e\+12"):
+        solve_reynolds(mesh, CosineFilm(0.5), **kwargs)
+
+
+def test_near_contact_solve_warns_and_notes():
+    """Issue 12: at gamma = 1 - 1e-6 the peak pressure changed 400 x with the mesh and nothing said so.
+    Now every solve_reynolds warns and records it in the result's notes; a resolved film (gamma = 0.5
+    on the same mesh: h changes by < 0.1 x h across any element) gets neither."""
+    import warnings
+
+    from bearingfe import ResolutionWarning, solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(2.0, 4.2), half_width=0.5), 0.1)
+    with pytest.warns(ResolutionWarning, match="thin film is not resolved") as record:
+        res = solve_reynolds(mesh, CosineFilm(1 - 1e-6), cavitation="reynolds")
+    assert record[0].filename == __file__  # the warning points at the caller's line
+    assert any("thin film is not resolved" in note for note in res.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        res = solve_reynolds(mesh, CosineFilm(0.5), cavitation="reynolds")
+    assert not any("not resolved" in note for note in res.notes)
