@@ -314,8 +314,12 @@ def check_geo_script(text: str, name: str = "<geo>") -> None:
             raise _refuse(name, prev, _COMMANDS.get(prev.text, "is a command that takes a file name or text"))
         if tok.text in ("Printf", "Error", "Warning") and _redirected(toks, i):
             raise _refuse(name, tok, "writes to a file (> or >> after the message)")
-        if tok.kind != "name" or (prev is not None and prev.text == "."):
-            continue  # option and field members are checked at their group
+        if tok.kind == "name" and prev is not None and prev.text == ".":
+            if nxt is not None and nxt.kind in ("name", "number", "string"):
+                raise _refuse(name, tok, "is used as a command")
+            continue  # an option or field member: checked at its group
+        if tok.kind != "name":
+            continue
         word = tok.text
         if word in _ALLOWED_KEYWORDS:
             continue

@@ -282,6 +282,39 @@ def test_pocket_too_small_is_refused():
         Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 1e-9)])
     with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\)"):
         Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Rectangle((0.0, 0.0), (0.4, 1e-6))])
+    # the sliver that gave "KeyError (-1, -1)" (its contour edges were not edges of the triangles)
+    from bearingfe import Ellipse, Polygon
+
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Polygon(((0.0, 0.0), (0.3, 0.0), (0.15, 1e-8)))])
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Ellipse\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Ellipse((0.0, 0.0), (0.3, 1e-8))])
+
+
+def test_scene_with_a_tiny_pocket_is_one_line(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text("""
+kind = "reynolds"
+title = "tiny pocket"
+[surface]
+arc = [-0.5, 0.5]
+half_width = 0.4
+[[surface.inlets]]
+shape = "circle"
+center = [0.0, 0.0]
+radius = 1e-9
+[film]
+gamma = 0.6
+[operating]
+inlet_pressure = 2.0
+[solver]
+size = 0.2
+[output]
+pictures = []
+""")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "inlets[0] (Circle) is 2e-09 across" in err
 
 
 def test_small_pocket_is_resolved_by_the_mesh():
@@ -474,3 +507,10 @@ def test_near_contact_solve_warns_and_notes():
         warnings.simplefilter("error", ResolutionWarning)
         res = solve_reynolds(mesh, CosineFilm(0.5), cavitation="reynolds")
     assert not any("not resolved" in note for note in res.notes)
+
+
+def test_command_hidden_behind_a_dot_is_refused():
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'Sleep' is used as a command"):
+        check_geo_script(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: .*text value"):
+        check_geo_script(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")
