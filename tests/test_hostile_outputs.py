@@ -561,3 +561,42 @@ def test_titles_print_with_escapes_neutralised(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "\x1b" not in out and "\x07" not in out
     assert out.startswith("red\\x1b[31m\\x07 title: results in")
+
+
+def test_dask_path_reports_a_case_past_its_time_limit():
+    from bearingfe.sweep.execute import run_case_timed
+
+    start = time.monotonic()
+    late = run_case_timed(ShoeCase(gamma=0.9), napping_run, ["h_min"], 0.5)  # the 600 s nap
+    assert time.monotonic() - start < 30
+    assert late["error"].startswith("CaseTimeout") and "0.5 s" in late["error"] and late["seconds"] == 0.5
+    ok = run_case_timed(ShoeCase(gamma=0.3), napping_run, ["h_min"], 30.0)
+    assert ok["error"] is None and ok["outputs"]["h_min"] == pytest.approx(0.7, abs=1e-15)
+
+
+def test_sigterm_ends_a_cli_sweep_and_its_workers(tmp_path):
+    # 2.31 x 0.96 / 0.004^2 = 1.4e5 triangles per case: seconds of meshing, stopped long before the end
+    (tmp_path / "study.toml").write_text(STUDY.replace("mesh_size = 0.2", "mesh_size = 0.004"))
+    parent = subprocess.Popen([PY, "-m", "bearingfe", "sweep", str(tmp_path / "study.toml"), "--out",
+                               str(tmp_path / "out"), "--no-progress"], cwd=ROOT, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 90
+        children = {}
+        while time.monotonic() < deadline:
+            children = _children(parent.pid)
+            if sum("spawn_main" in c for c in children.values()) == 2:
+                break
+            time.sleep(0.2)
+        assert sum("spawn_main" in c for c in children.values()) == 2, children
+        parent.send_signal(signal.SIGTERM)
+        _, err = parent.communicate(timeout=30)
+        assert parent.returncode == 130 and err == "bearingfe sweep: interrupted\n"
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and any(_alive(p) for p in children):
+            time.sleep(0.2)
+        assert not [p for p in children if _alive(p)]
+        assert not (tmp_path / "out" / "results.csv").exists()
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+            parent.communicate()
