@@ -600,3 +600,30 @@ def test_sigterm_ends_a_cli_sweep_and_its_workers(tmp_path):
         if parent.poll() is None:
             parent.kill()
             parent.communicate()
+
+
+def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
+    out = tmp_path / "out"
+    with output_folder(out) as work:
+        for name in "ab":
+            (work / f"{name}.txt").write_text(f"old {name}")
+    script = textwrap.dedent(f"""
+        import os, signal
+        from pathlib import Path
+        import bearingfe.outfolder as of
+        out, real = Path({str(out)!r}), os.replace
+        def replace(src, dst):
+            real(src, dst)
+            if Path(dst).name == "a.txt":  # Ctrl-C after the first of the renames
+                os.kill(os.getpid(), signal.SIGINT)
+        os.replace = replace
+        try:
+            with of.output_folder(out) as work:
+                (work / "a.txt").write_text("new a")
+                (work / "b.txt").write_text("new b")
+        except KeyboardInterrupt:
+            raise SystemExit(42)  # delivered, but only once the move was complete
+    """)
+    assert subprocess.run([PY, "-c", script], cwd=ROOT, timeout=120).returncode == 42
+    assert (out / "a.txt").read_text() == "new a" and (out / "b.txt").read_text() == "new b"
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "a.txt", "b.txt"]  # no journal, no work folder
