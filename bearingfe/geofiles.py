@@ -40,6 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .limits import DEFAULT_LIMITS, LimitError, limit
+
 __all__ = [
     "GeometryFileError",
     "UntrustedGeoError",
@@ -58,7 +60,7 @@ __all__ = [
 
 #: Largest number of triangles a mesh may have unless the caller raises the limit
 #: (``max_elements=``, ``--max-elements`` or the environment variable ``BEARINGFE_MAX_ELEMENTS``).
-DEFAULT_MAX_ELEMENTS = 1_000_000
+DEFAULT_MAX_ELEMENTS = int(DEFAULT_LIMITS["elements"])
 
 #: Seconds gmsh may spend parsing and meshing a ``.geo`` script (``timeout=``, ``--geo-timeout``,
 #: environment variable ``BEARINGFE_GEO_TIMEOUT``).
@@ -82,32 +84,29 @@ class UntrustedGeoError(GeometryFileError):
     """A ``.geo`` script uses a command that reaches outside the geometry (refused unless trusted)."""
 
 
-class MeshSizeError(ValueError):
+class MeshSizeError(LimitError):
     """The mesh asked for would have more elements than the limit allows."""
 
 
 # -- limits ------------------------------------------------------------------------
 
 def max_elements_limit(value: int | None = None) -> int:
-    """The element-count limit: ``value`` if given, else ``$BEARINGFE_MAX_ELEMENTS``, else the default.
+    """The element-count limit: ``value`` if given, else ``$BEARINGFE_MAX_ELEMENTS``, else the default
+    (the ``elements`` limit of :mod:`bearingfe.limits`).
 
     Raises
     ------
     ValueError
-        If the value (or the environment variable) is not an integer >= 1.
+        If the value is not an integer >= 1 (or the environment variable not a number > 0).
     """
-    source = "max_elements"
     if value is None:
-        env = os.environ.get(MAX_ELEMENTS_ENV)
-        if env is None:
-            return DEFAULT_MAX_ELEMENTS
-        value, source = env, MAX_ELEMENTS_ENV
+        return int(limit("elements"))
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{source} must be an integer >= 1, got {value!r}") from None
+        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}") from None
     if not (math.isfinite(number) and number >= 1 and number == int(number)):
-        raise ValueError(f"{source} must be an integer >= 1, got {value!r}")
+        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}")
     return int(number)
 
 
