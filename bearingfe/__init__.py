@@ -6,9 +6,11 @@ module                     what it does
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``film``                   film-thickness models (``CosineFilm``)
-``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
+``superposition``          per-mesh operators, one film state's condensed system, results
+``cavitation``             cavitation models and their table (``MODELS``)
+``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
@@ -24,6 +26,7 @@ module                     what it does
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
+``version``                the package version
 ``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
@@ -50,7 +53,7 @@ from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarn
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",

@@ -37,10 +37,10 @@ def test_pocket_fraction_and_position_are_exact(shape):
     # expected: the requested fraction of the 1.2 x 0.8 outline (closed-form areas), to rounding
     assert new.surface.inlet_fraction == pytest.approx(0.1, rel=1e-12)
     # area centroid at alpha1 + 0.25 (alpha2 - alpha1) = -0.3; z of the centroid unchanged
-    from bearingfe.sweep import _centroid
-    cx, cy = _centroid(new.surface.inlets[0])
+    from bearingfe.sweep import centroid
+    cx, cy = centroid(new.surface.inlets[0])
     assert cx == pytest.approx(-0.3, abs=1e-12)
-    assert cy == pytest.approx(_centroid(shape)[1], abs=1e-12)
+    assert cy == pytest.approx(centroid(shape)[1], abs=1e-12)
     assert apply_changes(base, {"pocket_fraction": 0.0}).surface.inlets == ()
 
 
