@@ -11,6 +11,8 @@ import difflib
 import importlib.util
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -21,6 +23,7 @@ def _generator():
     return module
 
 
+@pytest.mark.slow
 def test_committed_papers_page_is_the_generated_one():
     generated = _generator().render()
     committed = (ROOT / "docs" / "papers.md").read_text(encoding="utf-8")
