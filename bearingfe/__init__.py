@@ -15,6 +15,7 @@ module                     what it does
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
+``schema``                 one schema for input files: field checks, tables, errors
 ``machines``               shared parameter objects of machines (SI)
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle

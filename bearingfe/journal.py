@@ -70,7 +70,11 @@ __all__ = [
     "equilibrium",
     "dynamic_coefficients",
     "short_bearing_force",
+    "EQUILIBRIUM_CAVITATION",
 ]
+
+#: Cavitation models of :func:`equilibrium` (and so of its dynamic coefficients).
+EQUILIBRIUM_CAVITATION = ("reynolds", "none")
 
 #: Eccentricity ratios beyond this are refused (contact in all but name).
 EPS_MAX = 0.995
@@ -526,8 +530,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     load = np.asarray(load, float)
     if load.shape != (2,) or not np.all(np.isfinite(load)) or not np.hypot(*load) > 0:
         raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
-    if cavitation not in ("reynolds", "none"):
-        raise ValueError(f"cavitation must be 'reynolds' or 'none', got {cavitation!r}")
+    if cavitation not in EQUILIBRIUM_CAVITATION:
+        raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
     w = float(np.hypot(*load))
     eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
