@@ -1,7 +1,7 @@
 r"""The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
 
 Geometry (paper 004; ``docs/formulations.md``, section "The eccentric pump")
--------------------------------------------------------------------------------
+----------------------------------------------------------------------------
 The shaft axis ``O1`` is the origin; the shaft angle is ``beta = omega tau``,
 counter-clockwise. The eccentric centre is ``O2 = E (cos beta, sin beta)``.
 The plunger's cylinder pivots about the fixed point ``B = (-E2, 0)``, so the
