@@ -39,7 +39,8 @@ from .cavitation import MODELS, ModelOptions, solve_model
 from .film import Film
 from .linalg import DEFAULT_SOLVER, Factorize
 from .meshing import SupportMesh
-from .superposition import (ELEMENTS, FORMULATIONS, SOURCES, CoercivityError, CondensedSystem, Operators,
+from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
+from .superposition import (SOURCES, CoercivityError, CondensedSystem, Operators,
                             ReynoldsResult, Superposition, operators, source_weights, superpose)
 
 __all__ = [
@@ -55,12 +56,15 @@ __all__ = [
     "ReynoldsResult",
     "solve_reynolds",
     "CoercivityError",
+    "Discretization",
+    "OperatingPoint",
 ]
 
 #: Names of the cavitation models (the keys of :data:`bearingfe.cavitation.MODELS`).
 CAVITATION = tuple(MODELS)
 
 
+@takes(OperatingPoint, Discretization)
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
@@ -101,6 +105,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         cavitated result on another (e.g. coarser) mesh of the same surface,
         interpolated: nested iteration keeps the active-set count bounded
         under refinement (docs/validation.md).
+    operating : OperatingPoint, optional
+        ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
+        object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
+        keywords.
+    discretization : Discretization, optional
+        ``element``, ``formulation`` and ``solver`` in one object
+        (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
 
     Returns
     -------
