@@ -1,7 +1,7 @@
 r"""The plunger shoe over the pump cycle: quasi-static equilibrium integrated in time.
 
-Model (paper 004 eq. 13-14, ``shared/SPEC.md`` §1; frames in :mod:`bearingfe.pump`)
-------------------------------------------------------------------------------------
+Model (paper 004 eq. 13-14, ``docs/formulations.md``; frames in :mod:`bearingfe.pump`)
+--------------------------------------------------------------------------------------
 The plunger's inertia is neglected, so at every shaft angle the film force
 balances the applied load. In the shoe frame the film is
 ``h = 1 + gamma cos(psi - delta)`` and the Reynolds right side is

@@ -134,7 +134,7 @@ def test_long_domain_pi_operator_bound_fails_exact_check_passes():
         ops = operators(mesh, element)
         x = ops.x
         h = film.thickness(x[0], x[1])
-        d_max = float(np.max(0.75 * (3 * h**2 - 4 * h + 1 - film.gamma**2) / h**2))  # SPEC: D of the cosine film
+        d_max = float(np.max(0.75 * (3 * h**2 - 4 * h + 1 - film.gamma**2) / h**2))  # D of the cosine film, docs/formulations.md
         assert ops.eigen_bound < d_max  # the cheap bound cannot decide
         pi = bf.solve_reynolds(mesh, film, element=element, formulation="pi", on_indefinite="raise")
         _finite(pi)
