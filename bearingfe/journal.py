@@ -235,7 +235,10 @@ def journal_mesh(bearing: JournalBearing, size: float, *, min_size: float | None
     """
     min_size = size if min_size is None else float(min_size)
     _check_order(order)
-    return tuple(_mesh(s, float(size), min_size, float(eps), float(phi0), int(order)) for s in bearing.surfaces())
+    # the grading needs eps and phi0 to a few digits only: rounded, round-off in them (e.g. a load
+    # direction of cos(-pi/2) = 6e-17) gives the same (cached) mesh instead of another gmsh mesh
+    eps, phi0 = round(float(eps), 9), round(float(phi0), 9)
+    return tuple(_mesh(s, float(size), min_size, eps, phi0, int(order)) for s in bearing.surfaces())
 
 
 def _check_order(order) -> None:
