@@ -419,7 +419,7 @@ def _one_triangle(points):
 def test_film_variation_closed_form():
     """One triangle with vertices at phi = pi (thinnest point of h = 1 + gamma cos phi) and pi + s:
     (h(pi + s) - h(pi)) / h(pi) = gamma (1 - cos s) / (1 - gamma), exactly (the corner at pi + s is the
-    thickest of the seven sample points)."""
+    thickest vertex)."""
     from bearingfe.checks import film_variation
 
     gamma, s = 0.99, 0.1
