@@ -27,6 +27,8 @@ module                     what it does
 ``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
+``outfolder``              output folders: manifest, lock, all-or-nothing move into place
+``limits``                 size guards (revolutions, frames, cases, elements, case time)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
 ``version``                the package version
@@ -38,6 +40,7 @@ module                     what it does
 from . import adaptivity, cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
+from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -63,6 +66,7 @@ from .version import __version__
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "LimitError",
     "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
