@@ -545,10 +545,12 @@ def test_file_system_errors_are_one_line(tmp_path, capsys):
     _one_line_error(capsys, "file.txt")
 
 
-def test_missing_linear_solver_is_one_line(tmp_path, capsys):
+def test_missing_linear_solver_is_one_line(tmp_path, capsys, monkeypatch):
     from bearingfe import available_solvers
 
-    assert "cholmod" not in available_solvers()  # the CI environment has no scikit-sparse
+    monkeypatch.setitem(sys.modules, "sksparse", None)  # scikit-sparse not installed, wherever this runs
+    monkeypatch.setitem(sys.modules, "sksparse.cholmod", None)
+    assert "cholmod" not in available_solvers()
     scene = _scene(tmp_path, text=SCENE.replace('"splu"', '"cholmod"'))
     assert _run(scene, tmp_path / "out") == 2
     _one_line_error(capsys, "scikit-sparse")
@@ -561,3 +563,69 @@ def test_titles_print_with_escapes_neutralised(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "\x1b" not in out and "\x07" not in out
     assert out.startswith("red\\x1b[31m\\x07 title: results in")
+
+
+def test_dask_path_reports_a_case_past_its_time_limit():
+    from bearingfe.sweep.execute import run_case_timed
+
+    start = time.monotonic()
+    late = run_case_timed(ShoeCase(gamma=0.9), napping_run, ["h_min"], 0.5)  # the 600 s nap
+    assert time.monotonic() - start < 30
+    assert late["error"].startswith("CaseTimeout") and "0.5 s" in late["error"] and late["seconds"] == 0.5
+    ok = run_case_timed(ShoeCase(gamma=0.3), napping_run, ["h_min"], 30.0)
+    assert ok["error"] is None and ok["outputs"]["h_min"] == pytest.approx(0.7, abs=1e-15)
+
+
+def test_sigterm_ends_a_cli_sweep_and_its_workers(tmp_path):
+    # 2.31 x 0.96 / 0.004^2 = 1.4e5 triangles per case: seconds of meshing, stopped long before the end
+    (tmp_path / "study.toml").write_text(STUDY.replace("mesh_size = 0.2", "mesh_size = 0.004"))
+    parent = subprocess.Popen([PY, "-m", "bearingfe", "sweep", str(tmp_path / "study.toml"), "--out",
+                               str(tmp_path / "out"), "--no-progress"], cwd=ROOT, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 90
+        children = {}
+        while time.monotonic() < deadline:
+            children = _children(parent.pid)
+            if sum("spawn_main" in c for c in children.values()) == 2:
+                break
+            time.sleep(0.2)
+        assert sum("spawn_main" in c for c in children.values()) == 2, children
+        parent.send_signal(signal.SIGTERM)
+        _, err = parent.communicate(timeout=30)
+        assert parent.returncode == 130 and err == "bearingfe sweep: interrupted\n"
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and any(_alive(p) for p in children):
+            time.sleep(0.2)
+        assert not [p for p in children if _alive(p)]
+        assert not (tmp_path / "out" / "results.csv").exists()
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+            parent.communicate()
+
+
+def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
+    out = tmp_path / "out"
+    with output_folder(out) as work:
+        for name in "ab":
+            (work / f"{name}.txt").write_text(f"old {name}")
+    script = textwrap.dedent(f"""
+        import os, signal
+        from pathlib import Path
+        import bearingfe.outfolder as of
+        out, real = Path({str(out)!r}), os.replace
+        def replace(src, dst):
+            real(src, dst)
+            if Path(dst).name == "a.txt":  # Ctrl-C after the first of the renames
+                os.kill(os.getpid(), signal.SIGINT)
+        os.replace = replace
+        try:
+            with of.output_folder(out) as work:
+                (work / "a.txt").write_text("new a")
+                (work / "b.txt").write_text("new b")
+        except KeyboardInterrupt:
+            raise SystemExit(42)  # delivered, but only once the move was complete
+    """)
+    assert subprocess.run([PY, "-c", script], cwd=ROOT, timeout=120).returncode == 42
+    assert (out / "a.txt").read_text() == "new a" and (out / "b.txt").read_text() == "new b"
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "a.txt", "b.txt"]  # no journal, no work folder
