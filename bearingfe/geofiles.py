@@ -233,6 +233,7 @@ _GRAMMAR_WORDS = frozenset("""
 #: Non-keyword command words of gmsh (``Word argument;``) and why they are refused.
 _COMMANDS = {
     "SystemCall": "runs a shell command",
+    "System": "runs a shell command",
     "NonBlockingSystemCall": "runs a shell command",
     "Include": "includes another file",
     "Merge": "merges another file",
