@@ -87,6 +87,10 @@ __all__ = [
     "half_space",
     "rectangle_deflection",
     "solve_elastic",
+    "balance_load",
+    "ElasticBalance",
+    "pressure_sensitivity",
+    "newton",
 ]
 
 #: Default tolerance of the coupled solve on ``max |C p - w|`` [clearance].
@@ -319,6 +323,13 @@ class Compliance:
     def n_dofs(self) -> int:
         return int(self.matrix.shape[1])
 
+    @property
+    def basis_doflocs(self) -> np.ndarray:
+        """Coordinates ``(phi, z)`` of the dofs where the deflection is given, shape (2, n_dofs)."""
+        from .reynolds import operators
+
+        return operators(self.mesh, self.element).basis.doflocs
+
     def deflection(self, pressure: np.ndarray, inlet_pressure: float = 0.0) -> np.ndarray:
         """Film opening ``w`` [c] at the dofs for the nodal pressure ``p`` [-]."""
         p = np.asarray(pressure, float)
@@ -519,7 +530,9 @@ class Coupled:
     residual : float
         ``max |g(w) - w|`` [c] at the returned state.
     history : tuple of float
-        The residual after each evaluation.
+        The residual after each accepted step.
+    jacobians : int
+        Jacobians built (the others were reused).
     """
 
     deflection: np.ndarray
@@ -527,10 +540,11 @@ class Coupled:
     iterations: int
     residual: float
     history: tuple[float, ...]
+    jacobians: int = 0
 
 
 def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
-           max_iterations: int = MAX_ITERATIONS) -> Coupled:
+           max_iterations: int = MAX_ITERATIONS, reuse: dict | None = None) -> Coupled:
     """Newton's method on ``F(w) = g(w) - w = 0`` with backtracking and a stated convergence test.
 
     Parameters
@@ -546,14 +560,21 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
         Stop when ``max |g(w) - w| <= tol`` [c].
     max_iterations : int
         Cap on evaluations of ``g``; beyond it :class:`ElasticError`.
+    reuse : dict, optional
+        Holder of the LU factors of ``dg/dw - I`` between calls (a run of
+        nearby states, e.g. the pump transient): steps start with the old
+        factors (a chord step) and the Jacobian is rebuilt only when a step
+        reduces ``max |F|`` by less than 4x.
 
     Notes
     -----
-    A full step is taken when it reduces ``max |F|`` (or ``|F|_2``); else
-    it is halved down to 1/1024. Under a cavitation condition ``g`` is
+    A full step is taken when it reduces ``|F|_2`` (or meets the tolerance);
+    else it is halved down to 1/1024. Under a cavitation condition ``g`` is
     piecewise smooth and this is a semismooth Newton method on the current
     rupture set.
     """
+    import scipy.linalg as sla
+
     if not (0 < tol < 1):
         raise ValueError(f"tol must be in (0, 1) [clearance], got {tol!r}")
     if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -562,7 +583,10 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
     g, payload = evaluate(w)
     F = g - w
     history = [float(np.abs(F).max(initial=0.0))]
-    count = 1
+    count, jacobians = 1, 0
+    lu = None if reuse is None else reuse.get("lu")
+    if lu is not None and lu[0].shape[0] != w.size:
+        lu = None
     while history[-1] > tol:
         if count >= max_iterations:
             raise ElasticError(
@@ -570,31 +594,44 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
                 f"max |C p - w| = {history[-1]:.3g} c > tol = {tol:.3g} c (last residuals "
                 f"{', '.join(f'{h:.2g}' for h in history[-4:])}); the support may be too soft for this "
                 "load (deflection much larger than the film): raise max_iterations or check the modulus")
-        J = jacobian(w, payload) - np.eye(w.size)
-        try:
-            step = -np.linalg.solve(J, F)
-        except np.linalg.LinAlgError:
+        fresh = lu is None
+        if fresh:
+            lu = sla.lu_factor(jacobian(w, payload) - np.eye(w.size), check_finite=False)
+            jacobians += 1
+        step = -sla.lu_solve(lu, F, check_finite=False)
+        if not np.all(np.isfinite(step)):
             raise ElasticError("the Jacobian of the elastic film is singular (I - C dp/dw): no unique "
-                               "deflection at this state") from None
-        t, norm = 1.0, float(np.linalg.norm(F))
+                               "deflection at this state")
+        t, norm, accepted = 1.0, float(np.linalg.norm(F)), False
         while True:
             count += 1
             try:
                 g_t, payload_t = evaluate(w + t * step)
                 F_t = g_t - (w + t * step)
                 if np.linalg.norm(F_t) < (1 - 1e-4 * t) * norm or np.abs(F_t).max() <= tol:
+                    accepted = True
                     break
             except ElasticError:
                 pass
+            if not fresh:
+                break  # an old Jacobian: rebuild it rather than shorten the step
             t *= 0.5
             if t < 1e-3 or count >= max_iterations:
                 raise ElasticError(
                     f"the elastic film (EHD) Newton step found no decrease of max |C p - w| = "
                     f"{history[-1]:.3g} c after {count} solves (the film closes or the rupture set jumps "
                     "along the step); the support may be too soft for this load")
+        if not accepted:
+            lu = None
+            continue
         w, payload, F = w + t * step, payload_t, F_t
         history.append(float(np.abs(F).max(initial=0.0)))
-    return Coupled(deflection=w, payload=payload, iterations=count, residual=history[-1], history=tuple(history))
+        if not fresh and history[-1] > 0.25 * history[-2]:
+            lu = None
+    if reuse is not None:
+        reuse["lu"] = lu
+    return Coupled(deflection=w, payload=payload, iterations=count, residual=history[-1],
+                   history=tuple(history), jacobians=jacobians)
 
 
 @BilinearForm
@@ -613,11 +650,12 @@ def _weighted_load(v, w):
     return w.f * v
 
 
-def pressure_sensitivity(result, free: np.ndarray, *, rates_balance: bool = False) -> np.ndarray:
+def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
+                         rates_balance: bool = False) -> np.ndarray:
     """``dp/dw``: change of the nodal pressure with the nodal film opening (direct form).
 
     Linearization of ``int h^3 grad p . grad v + int (6 wedge dh/dphi + 12 dh/dt) v = 0``
-    at ``result`` (a direct-form solution on a :class:`DeflectedFilm`) with
+    at the solution ``pressure`` on ``film`` (a :class:`DeflectedFilm`) with
     ``p`` held at its Dirichlet values and on the ruptured set, i.e.
     ``dp_F/dw = -A_FF^-1 B_F``. With ``rates_balance`` the squeeze rates move
     with ``w`` so that the film force stays the same (the transient's load
@@ -625,16 +663,23 @@ def pressure_sensitivity(result, free: np.ndarray, *, rates_balance: bool = Fals
 
     Parameters
     ----------
-    result : ReynoldsResult
+    basis : skfem.CellBasis
+    film : Film
+    pressure : ndarray
+        Nodal pressure [-].
+    wedge : float
     free : ndarray of bool
         Dofs where the pressure is an unknown (interior, not ruptured).
+
+    Returns
+    -------
+    ndarray, shape (n_dofs, n_dofs)
     """
-    basis = result.basis
     x = np.array(basis.global_coordinates())
-    h = np.asarray(result.film.thickness(x[0], x[1]))
-    gp = basis.interpolate(result.pressure).grad
+    h = np.asarray(film.thickness(x[0], x[1]))
+    gp = basis.interpolate(pressure).grad
     A = _film_stiffness.assemble(basis, h3=h**3).tocsr()
-    B = _film_sensitivity.assemble(basis, h2=h**2, gp0=gp[0], gp1=gp[1], wedge=np.full(h.shape, result.wedge))
+    B = _film_sensitivity.assemble(basis, h2=h**2, gp0=gp[0], gp1=gp[1], wedge=np.full(h.shape, float(wedge)))
     idx = np.flatnonzero(free)
     out = np.zeros((basis.N, basis.N))
     if not idx.size:
@@ -642,7 +687,7 @@ def pressure_sensitivity(result, free: np.ndarray, *, rates_balance: bool = Fals
     lu = spla.splu(sp.csc_matrix(A[idx][:, idx]))
     out[idx] = -lu.solve(np.asarray(B.tocsr()[idx].todense()))
     if rates_balance:
-        shapes = result.film.rate_shapes(x[0], x[1])
+        shapes = film.rate_shapes(x[0], x[1])
         U = np.zeros((basis.N, 2))
         for k in range(2):
             U[idx, k] = -lu.solve(_weighted_load.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
@@ -743,12 +788,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     interior[operators(mesh, element).interior] = True
 
     def jacobian(w, res):
-        if res.cavitated is None or cavitation == "gumbel":  # Gumbel clips the linear solution afterwards
-            S = pressure_sensitivity(res, interior)
-            if res.cavitated is not None:
-                S[res.cavitated] = 0.0
-            return compliance.matrix @ S
-        return compliance.matrix @ pressure_sensitivity(res, interior & ~res.cavitated)
+        return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
     out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations)
@@ -756,6 +796,124 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     return ElasticSolution(result=out.payload, deflection=out.deflection, iterations=out.iterations,
                            residual=out.residual, max_deflection=float(out.deflection.max(initial=0.0)),
                            rigid_h_min=rigid, history=out.history)
+
+
+def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool = False) -> np.ndarray:
+    """dp/dw of a solution under its cavitation model (semismooth: on the current rupture set)."""
+    args = (res.basis, res.film, res.pressure, res.wedge)
+    if res.cavitated is None or cavitation == "gumbel":  # Gumbel clips the linear solution afterwards
+        S = pressure_sensitivity(*args, interior, rates_balance=rates_balance)
+        if res.cavitated is not None:
+            S[res.cavitated] = 0.0
+        return S
+    return pressure_sensitivity(*args, interior & ~res.cavitated, rates_balance=rates_balance)
+
+
+@dataclass(frozen=True, eq=False)
+class ElasticBalance:
+    """Squeeze rates that balance a load on an elastic support.
+
+    Attributes
+    ----------
+    rates : ndarray, shape (2,)
+        ``(gamma_rate, phi0_rate)`` per radian of shaft turn.
+    result : ReynoldsResult or None
+        The film solution at those rates (None unless asked for).
+    deflection : ndarray
+        Film opening ``w`` [c] at the dofs.
+    iterations, jacobians : int
+        Reynolds solves and Jacobians built.
+    residual : float
+        ``max |C p - w|`` [c].
+    """
+
+    rates: np.ndarray
+    result: object
+    deflection: np.ndarray
+    iterations: int
+    jacobians: int
+    residual: float
+
+
+def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *, wedge: float = 1.0,
+                 inlet_pressure: float = 0.0, element: str = "P1", cavitation: str = "none", solver=None,
+                 initial: np.ndarray | None = None, reuse: dict | None = None, tol: float = TOLERANCE,
+                 max_iterations: int = MAX_ITERATIONS, full_result: bool = True) -> ElasticBalance:
+    """Squeeze rates and film opening at which the film on an elastic support balances ``load``.
+
+    Solves ``force(h_rigid + w, rates) + load = 0`` together with ``w = C p``:
+    for each ``w`` the rates come from the superposition (or the cavitated
+    Newton of :func:`bearingfe.cavitation.rates_for_load`), and Newton on
+    ``w`` uses ``dp/dw`` with the rates moving to keep the force
+    (:func:`pressure_sensitivity`). What the pump transient calls at each
+    right-side evaluation, warm-started (``initial``, ``reuse``) from the last.
+
+    Parameters
+    ----------
+    mesh, film, compliance, wedge, inlet_pressure, element, cavitation, solver
+        As in :func:`solve_elastic`.
+    load : (float, float)
+        Applied load in the arc frame [mu omega R0^4 / c^2].
+    initial : ndarray, optional
+        Starting deflection [c].
+    reuse : dict, optional
+        Jacobian factors kept between calls (see :func:`newton`).
+    full_result : bool
+        Also build the full :class:`ReynoldsResult` (flows, friction) at the answer.
+    """
+    from .cavitation import rates_for_load
+    from .reynolds import operators, superpose
+
+    _check_compliance(compliance, mesh, element)
+    ops = operators(mesh, element)
+    basis = ops.basis
+    interior = np.zeros(basis.N, bool)
+    interior[ops.interior] = True
+    opts = {} if solver is None else {"solver": solver}
+    warm = [None]
+
+    def evaluate(w):
+        try:
+            sup = superpose(mesh, DeflectedFilm(film, basis, w), formulation="direct", element=element, **opts)
+        except ValueError as exc:
+            if "h_min" in str(exc):
+                raise ElasticError(str(exc)) from None
+            raise
+        try:
+            if cavitation == "none":
+                rates = sup.rates_for_load(load, wedge, inlet_pressure)
+                res = _Pressure(basis, sup.film, sup.fields @ np.r_[wedge, rates, inlet_pressure], wedge, None)
+            else:
+                found = rates_for_load(sup, load, wedge, inlet_pressure, model=cavitation, warm_start=warm[0],
+                                       **opts)
+                rates, res = found.rates, found.result
+                warm[0] = res
+        except np.linalg.LinAlgError as exc:
+            raise ElasticError(f"no equilibrium rates on the deflected film: {exc}") from None
+        return compliance.deflection(res.pressure, inlet_pressure), (sup, rates, res)
+
+    def jacobian(w, payload):
+        return compliance.matrix @ _sensitivity(payload[2], interior, cavitation, rates_balance=True)
+
+    w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
+    out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations, reuse=reuse)
+    sup, rates, res = out.payload
+    if full_result and cavitation == "none":
+        res = sup.combine(wedge, rates, inlet_pressure)
+    return ElasticBalance(rates=np.asarray(rates, float), result=res if full_result else None,
+                          deflection=out.deflection, iterations=out.iterations, jacobians=out.jacobians,
+                          residual=out.residual)
+
+
+@dataclass(frozen=True)
+class _Pressure:
+    """The pieces of a solution that the linearization needs (without flows and friction)."""
+
+    basis: object
+    film: Film
+    pressure: np.ndarray
+    wedge: float
+    cavitated: object
 
 
 def solve_rigid_h_min(film: Film, basis) -> float:
