@@ -6,14 +6,17 @@ module                     what it does
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``film``                   film-thickness models (``CosineFilm``)
-``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
+``superposition``          per-mesh operators, one film state's condensed system, results
+``cavitation``             cavitation models and their table (``MODELS``)
+``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
 ``elastic``                elastic support (EHD): half-space compliance, coupled film
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
+``schema``                 one schema for input files: field checks, tables, errors
 ``machines``               shared parameter objects of machines (SI)
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle
@@ -25,6 +28,7 @@ module                     what it does
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
+``version``                the package version
 ``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
@@ -52,7 +56,7 @@ from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarn
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",

@@ -24,12 +24,12 @@ import tempfile
 from pathlib import Path
 from typing import Sequence
 
+from .version import __version__
+
 __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    from . import __version__
-
     parser = argparse.ArgumentParser(prog="bearingfe", description=__doc__.split("\n")[0])
     parser.add_argument("--version", action="version", version=f"bearingfe {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{run,mesh,validate,sweep}")

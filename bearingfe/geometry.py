@@ -20,6 +20,8 @@ from typing import Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
+from .schema import positive
+
 __all__ = [
     "Shape",
     "Circle",
@@ -64,13 +66,6 @@ def _pair(value, name: str) -> tuple[float, float]:
     return x, y
 
 
-def _positive(value: float, name: str) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return value
-
-
 @dataclass(frozen=True)
 class Circle:
     """Circular pocket.
@@ -88,7 +83,7 @@ class Circle:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Circle.center"))
-        object.__setattr__(self, "radius", _positive(self.radius, "Circle.radius"))
+        object.__setattr__(self, "radius", positive("Circle.radius", self.radius))
 
     @property
     def area(self) -> float:
@@ -129,8 +124,8 @@ class Ellipse:
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Ellipse.center"))
         a, b = _pair(self.semi_axes, "Ellipse.semi_axes")
-        _positive(a, "Ellipse.semi_axes[0]")
-        _positive(b, "Ellipse.semi_axes[1]")
+        positive("Ellipse.semi_axes[0]", a)
+        positive("Ellipse.semi_axes[1]", b)
         object.__setattr__(self, "semi_axes", (a, b))
         if not math.isfinite(float(self.angle)):
             raise ValueError(f"Ellipse.angle must be finite, got {self.angle!r}")
@@ -239,8 +234,8 @@ def Rectangle(center: Sequence[float], size: Sequence[float], angle: float = 0.0
     """
     cx, cy = _pair(center, "Rectangle.center")
     w, h = _pair(size, "Rectangle.size")
-    _positive(w, "Rectangle.size[0]")
-    _positive(h, "Rectangle.size[1]")
+    positive("Rectangle.size[0]", w)
+    positive("Rectangle.size[1]", h)
     c, s = math.cos(angle), math.sin(angle)
     local = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2)]
     return Polygon(tuple((cx + c * u - s * v, cy + s * u + c * v) for u, v in local))
@@ -269,8 +264,8 @@ class Slot:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Slot.center"))
-        object.__setattr__(self, "length", _positive(self.length, "Slot.length"))
-        object.__setattr__(self, "width", _positive(self.width, "Slot.width"))
+        object.__setattr__(self, "length", positive("Slot.length", self.length))
+        object.__setattr__(self, "width", positive("Slot.width", self.width))
         if not math.isfinite(float(self.angle)):
             raise ValueError(f"Slot.angle must be finite, got {self.angle!r}")
         object.__setattr__(self, "angle", float(self.angle))
@@ -357,7 +352,7 @@ class Surface:
         if not a1 < a2 <= a1 + 2 * math.pi + 1e-12:
             raise ValueError(f"Surface.arc must satisfy alpha1 < alpha2 <= alpha1 + 2*pi, got {self.arc!r}")
         object.__setattr__(self, "arc", (a1, a2))
-        object.__setattr__(self, "half_width", _positive(self.half_width, "Surface.half_width"))
+        object.__setattr__(self, "half_width", positive("Surface.half_width", self.half_width))
         inlets = (self.inlets,) if isinstance(self.inlets, Shape) else tuple(self.inlets)
         for i, shape in enumerate(inlets):
             if not isinstance(shape, Shape):
