@@ -60,6 +60,7 @@ squeeze term (the squeeze rates are those of the rigid state variables).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -73,10 +74,13 @@ import skfem
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
+from .cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from .film import Film
+from .linalg import DEFAULT_SOLVER
 from .machines import Material
 from .meshing import SupportMesh
 from .scales import Scale
+from .superposition import operators, source_weights, superpose
 
 __all__ = [
     "Compliance",
@@ -243,8 +247,6 @@ def influence_matrix(mesh: SupportMesh, element: str = "P1", points: np.ndarray 
     pocket : ndarray, shape (n,)
         ``int_pockets 1/|x_i - y| dA`` (the pockets are holes of the mesh).
     """
-    from .reynolds import operators
-
     basis = operators(mesh, element).basis
     m = mesh.mesh
     x = np.asarray(basis.doflocs if points is None else points, float)
@@ -326,8 +328,6 @@ class Compliance:
     @property
     def basis_doflocs(self) -> np.ndarray:
         """Coordinates ``(phi, z)`` of the dofs where the deflection is given, shape (2, n_dofs)."""
-        from .reynolds import operators
-
         return operators(self.mesh, self.element).basis.doflocs
 
     def deflection(self, pressure: np.ndarray, inlet_pressure: float = 0.0) -> np.ndarray:
@@ -742,7 +742,7 @@ def _check_compliance(compliance: Compliance, mesh: SupportMesh, element: str) -
 
 def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedge: float = 1.0,
                   squeeze=(0.0, 0.0), inlet_pressure: float = 0.0, element: str = "P1",
-                  cavitation: str = "none", sliding: float | None = None, solver=None,
+                  cavitation: str = "none", sliding: float | None = None, solver=DEFAULT_SOLVER,
                   tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS,
                   initial: np.ndarray | None = None) -> ElasticSolution:
     """Reynolds equation on the film opened by its own pressure: ``h = h_rigid + C p``.
@@ -758,44 +758,49 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     initial : ndarray, optional
         Starting deflection [c] (default zero).
 
+    Returns
+    -------
+    ElasticSolution
+        Its ``result`` carries ``deflection`` and ``elastic_iterations``.
+
     Raises
     ------
     ElasticError
         No convergence within ``max_iterations``, or the film closes.
     """
-    from .reynolds import operators, solve_reynolds
-
     _check_compliance(compliance, mesh, element)
-    basis = operators(mesh, element).basis
-    kwargs = dict(wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure, formulation="direct",
-                  element=element, cavitation=cavitation, sliding=sliding)
-    if solver is not None:
-        kwargs["solver"] = solver
+    if cavitation not in MODELS:
+        raise ValueError(f"cavitation must be one of {tuple(MODELS)}, got {cavitation!r}")
+    weights = source_weights(wedge, squeeze, inlet_pressure)
+    ops = operators(mesh, element)
+    basis = ops.basis
     warm = [None]
 
     def evaluate(w):
         try:
-            res = solve_reynolds(mesh, DeflectedFilm(film, basis, w), warm_start=warm[0], **kwargs)
+            sup = superpose(mesh, DeflectedFilm(film, basis, w), formulation="direct", element=element,
+                            solver=solver)
         except ValueError as exc:
             if "h_min" in str(exc):
                 raise ElasticError(str(exc)) from None
             raise
-        if cavitation == "reynolds":
+        res = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm[0], solver=solver))
+        if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
         return compliance.deflection(res.pressure, inlet_pressure), res
 
     interior = np.zeros(basis.N, bool)
-    interior[operators(mesh, element).interior] = True
+    interior[ops.interior] = True
 
     def jacobian(w, res):
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
     out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations)
-    rigid = solve_rigid_h_min(film, basis)
-    return ElasticSolution(result=out.payload, deflection=out.deflection, iterations=out.iterations,
+    result = dataclasses.replace(out.payload, deflection=out.deflection, elastic_iterations=out.iterations)
+    return ElasticSolution(result=result, deflection=out.deflection, iterations=out.iterations,
                            residual=out.residual, max_deflection=float(out.deflection.max(initial=0.0)),
-                           rigid_h_min=rigid, history=out.history)
+                           rigid_h_min=solve_rigid_h_min(film, basis), history=out.history)
 
 
 def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool = False) -> np.ndarray:
@@ -861,9 +866,6 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
     full_result : bool
         Also build the full :class:`ReynoldsResult` (flows, friction) at the answer.
     """
-    from .cavitation import rates_for_load
-    from .reynolds import operators, superpose
-
     _check_compliance(compliance, mesh, element)
     ops = operators(mesh, element)
     basis = ops.basis
