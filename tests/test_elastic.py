@@ -183,3 +183,55 @@ def test_bad_inputs_are_named(pocket_mesh, plain_mesh):
         solve_elastic(pocket_mesh, CosineFilm(0.6, math.pi), C, inlet_pressure=1.0, max_iterations=1)
     with pytest.raises(ValueError, match="tol"):
         solve_elastic(pocket_mesh, CosineFilm(0.6, math.pi), C, tol=0.0)
+
+
+def test_solve_reynolds_front_door_reports_the_deflection(pocket_mesh):
+    C = half_space(pocket_mesh, SCALE, (STEEL, STEEL))
+    ps = SCALE.from_pressure(32e6)
+    res = solve_reynolds(pocket_mesh, CosineFilm(0.6, math.pi), inlet_pressure=ps, elastic=C)
+    sol = solve_elastic(pocket_mesh, CosineFilm(0.6, math.pi), C, inlet_pressure=ps)
+    assert np.array_equal(res.pressure, sol.result.pressure)
+    assert res.elastic_iterations == sol.iterations > 1
+    assert res.max_deflection == pytest.approx(sol.max_deflection, rel=1e-15)
+    assert res.formulation == "direct" and any("elastic support" in n for n in res.notes)
+    rigid = solve_reynolds(pocket_mesh, CosineFilm(0.6, math.pi), inlet_pressure=ps)
+    assert rigid.deflection is None and rigid.max_deflection == 0.0 and rigid.elastic_iterations == 0
+
+
+def test_balance_load_balances_and_is_rigid_when_stiff(pocket_mesh):
+    from bearingfe import superpose
+    from bearingfe.elastic import balance_load
+
+    film, load, ps = CosineFilm(0.6, math.pi), np.array([-0.42, 0.0]), 1.08
+    rigid = superpose(pocket_mesh, film, formulation="direct").rates_for_load(load, 0.98, ps)
+    stiff = balance_load(pocket_mesh, film, half_space(pocket_mesh, SCALE, math.inf), load, wedge=0.98,
+                         inlet_pressure=ps)
+    np.testing.assert_allclose(stiff.rates, rigid, rtol=1e-12)
+    C = half_space(pocket_mesh, SCALE, (STEEL, STEEL))
+    for cavitation in ("none", "reynolds"):
+        b = balance_load(pocket_mesh, film, C, load, wedge=0.98, inlet_pressure=ps, cavitation=cavitation)
+        np.testing.assert_allclose(b.result.force, -load, atol=1e-10)   # force + load = 0
+        assert np.max(np.abs(C.deflection(b.result.pressure, ps) - b.deflection)) <= 1e-8
+        assert np.max(np.abs(b.rates - rigid)) > 0.1   # the deflection changes the motion
+
+
+def test_pump_transient_on_a_stiff_support_is_the_rigid_one():
+    import bearingfe as bf
+
+    pump = bf.load_mechanism("mechanisms/eccentric_pump.toml")
+    mesh = bf.transient.pump_mesh(pump, 0.3)
+    opts = dict(start="steady", formulation="direct", points_per_revolution=24, beta0=0.3)
+    rigid = bf.simulate(pump, mesh, 0.1, **opts)
+    stiff = bf.simulate(pump, mesh, 0.1, elastic=half_space(mesh, pump.scale, math.inf), **opts)
+    # same right side to round-off, so the same integrator path
+    np.testing.assert_allclose(stiff.gamma, rigid.gamma, rtol=1e-8)
+    np.testing.assert_allclose(stiff.delta, rigid.delta, rtol=1e-8)
+    # the elastic film's minimum is over dofs and quadrature points, the rigid cosine film's is exact
+    np.testing.assert_allclose(stiff.h_min, rigid.h_min, rtol=1e-5)
+    assert np.all(stiff.max_deflection == 0.0) and rigid.max_deflection is None
+    steel = bf.simulate(pump, mesh, 0.1, elastic=half_space(mesh, pump.scale, (STEEL, STEEL)), **opts)
+    assert steel.status == "completed" and np.max(steel.max_deflection) > 5e-6   # several micrometres
+    assert steel.stats["jacobians"] < steel.stats["factorizations"] / 2   # Jacobian factors reused
+    with pytest.raises(ValueError, match="another mesh"):
+        bf.simulate(pump, bf.transient.pump_mesh(pump, 0.3), 0.1,
+                    elastic=half_space(mesh, pump.scale, math.inf), **opts)
