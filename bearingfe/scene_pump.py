@@ -18,6 +18,7 @@ Scene file::
     [elastic]
     enabled = false                                  # also run every design on an elastic support
     model = "half-space"                             # compliance (bearingfe.elastic)
+    dynamics = "squeeze"                             # squeeze | quasi-static (see below)
     [output]
     pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
 
@@ -33,6 +34,12 @@ file): ``trajectory_pocket_elastic.csv``, ``trajectory_plain_elastic.csv``,
 ``pressure_elastic.png``, ``film_elastic.png`` and ``deflection.png`` (the film
 opening in um), and the summary compares the smallest film rigid against
 elastic, with and without the pocket. ``deflection`` is drawn only then.
+``dynamics = "squeeze"`` (default) integrates the pressure as a state so that
+the rate of the deflection squeezes the film
+(:func:`bearingfe.elastic_transient.simulate_elastic`; cavitation "none"
+only); ``"quasi-static"`` lets the deflection follow the pressure
+(``simulate(elastic=...)``, any cavitation model), which on the shipped pump
+closes the plain shoe's film after the inner dead centre.
 """
 
 from __future__ import annotations
@@ -52,6 +59,8 @@ __all__ = ["run_pump_scene", "pump_settings", "PUMP", "PICTURES"]
 PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
 #: Support compliances of :mod:`bearingfe.elastic` by name.
 ELASTIC_MODELS = ("half-space",)
+#: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
+DYNAMICS = ("squeeze", "quasi-static")
 
 
 def _elements() -> tuple[str, ...]:
@@ -81,7 +90,8 @@ PUMP = {
                   "mesh_size": (positive_number, 0.08), "rtol": (positive_number, 1e-6),
                   "frames": (integer(NONNEGATIVE), 12), "cavitation": (choice(_cavitation_models), "none"),
                   "element": (choice(_elements), "P2")}),
-    "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space")}),
+    "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space"),
+                      "dynamics": (choice(DYNAMICS), "squeeze")}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES)}),
 }
 
@@ -96,6 +106,9 @@ def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
         raise SchemaError(f"{label}: [pump] mechanism: file not found: {path}")
     if "deflection" in data.get("output", {}).get("pictures", ()) and not s["elastic"]["enabled"]:
         raise SchemaError(f"{label}: [output] pictures: 'deflection' needs [elastic] enabled = true")
+    if s["elastic"]["enabled"] and s["elastic"]["dynamics"] == "squeeze" and s["run"]["cavitation"] != "none":
+        raise SchemaError(f"{label}: [elastic] dynamics: 'squeeze' needs [run] cavitation = 'none' (the pressure "
+                          f"is a state variable); got cavitation {s['run']['cavitation']!r}: use 'quasi-static'")
     return {"title": label if s["title"] is None else s["title"], "mechanism": path,
             "compare_plain": s["pump"]["compare_plain"], "run": s["run"], "output": s["output"],
             "elastic": s["elastic"]}
@@ -107,6 +120,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from .geometry import Surface
     from .io import write_csv, write_json, write_pvd
     from .mechanism_files import load_mechanism
+    from .elastic_transient import simulate_elastic
     from .transient import pump_mesh, simulate, state_result
 
     s = pump_settings(data, label, base_dir)
@@ -133,9 +147,13 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
         if elastic:
             tick(done, steps, f"simulating: {name} on the elastic support")
             compliances[name] = _compliance(p, meshes[name], run["element"], s["elastic"]["model"])
-            runs[f"{name}_elastic"] = simulate(p, meshes[name], run["revolutions"], start=run["start"],
-                                               rtol=run["rtol"], cavitation=run["cavitation"],
-                                               element=run["element"], elastic=compliances[name])
+            if s["elastic"]["dynamics"] == "squeeze":
+                runs[f"{name}_elastic"] = simulate_elastic(p, compliances[name], run["revolutions"],
+                                                           start=run["start"], rtol=run["rtol"])
+            else:
+                runs[f"{name}_elastic"] = simulate(p, meshes[name], run["revolutions"], start=run["start"],
+                                                   rtol=run["rtol"], cavitation=run["cavitation"],
+                                                   element=run["element"], elastic=compliances[name])
             done += 1
     tick(done, steps, "files")
     files = []
@@ -173,9 +191,14 @@ def _thinnest(pump, mesh, traj, run: dict, compliance=None) -> dict:
     """The film state of a run at its thinnest film, re-solved, with its SI figures."""
     from .transient import state_result
 
+    from .elastic_transient import state_result as pressure_state
+
     k = int(np.argmin(traj.h_min))
-    res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"],
-                       elastic=compliance if traj.max_deflection is not None else None)
+    if traj.pressures is not None:  # the squeeze model: the pressure is a state of the run
+        res = pressure_state(pump, compliance, traj, k)
+    else:
+        res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"],
+                           elastic=compliance if traj.max_deflection is not None else None)
     sc = pump.scale
     d = res.basis.doflocs
     h = np.asarray(res.film.thickness(d[0], d[1]))

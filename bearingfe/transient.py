@@ -333,6 +333,10 @@ class Trajectory:
         support also ``jacobians`` (of the coupled Newton).
     max_deflection : ndarray or None
         Largest film opening by the elastic support [m] (None: rigid).
+    pressures : ndarray or None
+        Nodal pressure [-] at each sample, shape (n, n_dofs), where the
+        pressure is a state of the run
+        (:func:`bearingfe.elastic_transient.simulate_elastic`); else None.
     """
 
     t: np.ndarray
@@ -360,6 +364,7 @@ class Trajectory:
     periodic_residual: float
     stats: Mapping[str, float]
     max_deflection: np.ndarray | None = None
+    pressures: np.ndarray | None = None
 
     @property
     def smallest_film(self) -> float:

@@ -24,6 +24,7 @@ kind = "pump"
 title = "coarse elastic pump"
 [pump]
 mechanism = "{mechanism}"
+compare_plain = {plain}
 [run]
 revolutions = 0.1
 start = "steady"
@@ -37,9 +38,9 @@ pictures = {pictures}
 """
 
 
-def _scene(tmp_path, enabled="true", pictures='["pressure", "film", "deflection"]'):
+def _scene(tmp_path, enabled="true", pictures='["pressure", "film", "deflection"]', plain="true"):
     text = SCENE.format(mechanism=(ROOT / "mechanisms" / "eccentric_pump.toml").as_posix(), enabled=enabled,
-                        pictures=pictures)
+                        pictures=pictures, plain=plain)
     path = tmp_path / "pump.toml"
     path.write_text(text)
     return path
@@ -72,11 +73,28 @@ def test_elastic_pump_scene(tmp_path):
     assert res["pocket"]["thinnest_state"]["deflection_um"] == 0.0
 
 
+def test_quasi_static_dynamics_with_cavitation(tmp_path):
+    path = _scene(tmp_path, pictures='["pressure"]', plain="false")
+    text = path.read_text().replace('element = "P1"', 'element = "P1"\ncavitation = "reynolds"')
+    text = text.replace("revolutions = 0.1", "revolutions = 0.03")
+    path.write_text(text.replace("[elastic]\nenabled = true", '[elastic]\nenabled = true\ndynamics = "quasi-static"'))
+    out = tmp_path / "out"
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["elastic"]["dynamics"] == "quasi-static"
+    res = summary["results"]["pocket_elastic"]
+    assert 0 < res["thinnest_state"]["deflection_um"] <= res["largest_deflection_m"] * 1e6 * (1 + 1e-9)
+
+
 def test_deflection_picture_needs_the_elastic_run(tmp_path):
     from bearingfe.scene_pump import pump_settings
 
     data, label = load_scene(_scene(tmp_path, enabled="false"))
     with pytest.raises(SceneError, match=r"\[output\] pictures: 'deflection' needs \[elastic\] enabled"):
+        pump_settings(data, label, tmp_path)
+    data, label = load_scene(_scene(tmp_path))
+    data["run"]["cavitation"] = "reynolds"
+    with pytest.raises(SceneError, match=r"\[elastic\] dynamics: 'squeeze' needs \[run\] cavitation = 'none'"):
         pump_settings(data, label, tmp_path)
     bad = tmp_path / "bad.toml"
     bad.write_text('kind = "pump"\n[elastic]\nmodel = "rubber"\n')
