@@ -3,9 +3,12 @@
 =========================  =====================================================
 module                     what it does
 =========================  =====================================================
+``schema``                 one schema for input files: field checks, tables, errors
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``film``                   film-thickness models (``CosineFilm``)
+``parameters``             operating point and discretization objects (``operating=``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
 ``superposition``          per-mesh operators, one film state's condensed system, results
 ``cavitation``             cavitation models and their table (``MODELS``)
@@ -16,7 +19,6 @@ module                     what it does
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
-``schema``                 one schema for input files: field checks, tables, errors
 ``machines``               shared parameter objects of machines (SI)
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle
@@ -45,7 +47,9 @@ from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
+from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
+from .parameters import Discretization, OperatingPoint
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
@@ -61,6 +65,7 @@ from .version import __version__
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
@@ -71,6 +76,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]

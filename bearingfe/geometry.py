@@ -408,6 +408,11 @@ class Surface:
             mask |= shape.contains(phi, z)
         return mask
 
+    def inlet_widths(self) -> tuple[float, ...]:
+        """Size of each pocket as its hydraulic diameter ``4 area / perimeter`` [-]
+        (the diameter of a circle, about twice the width of a thin slot)."""
+        return tuple(_hydraulic_diameter(s) for s in self.inlets)
+
     def min_gap(self) -> float:
         """Smallest distance between a pocket and the outline or another pocket."""
         curves = [self._outline.boundary()] + [s.boundary() for s in self.inlets]
@@ -418,11 +423,27 @@ class Surface:
 
 # -- layout checks ---------------------------------------------------------
 
+#: Smallest pocket size and pocket gap, relative to the outline's extent: below, gmsh cannot resolve them.
+MIN_FEATURE = 1e-4
+
+
+def _hydraulic_diameter(shape: Shape) -> float:
+    xy = shape.boundary()
+    perimeter = float(np.sum(np.linalg.norm(np.roll(xy, -1, axis=1) - xy, axis=0)))
+    return 4.0 * abs(_signed_area(xy)) / perimeter
+
+
 def _check_layout(outline: Shape, inlets: tuple) -> None:
     outer_xy = outline.boundary()
     scale = float(np.ptp(outer_xy, axis=1).max())
-    tol = 1e-4 * scale
+    tol = MIN_FEATURE * scale
     for i, shape in enumerate(inlets):
+        width = _hydraulic_diameter(shape)
+        if not width >= tol:
+            raise ValueError(
+                f"Surface.inlets[{i}] ({type(shape).__name__}) is {width:.3g} across (4 area / perimeter), "
+                f"smaller than {MIN_FEATURE:g} x the outline ({scale:.3g}): too small to mesh or resolve; "
+                f"allowed: pocket size >= {tol:.3g}")
         xy = shape.boundary()
         if _polylines_cross(xy, outer_xy) or not outline.contains(*xy).all():
             raise ValueError(f"Surface.inlets[{i}] ({type(shape).__name__}) is not inside the outer contour")

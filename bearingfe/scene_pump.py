@@ -64,15 +64,15 @@ DYNAMICS = ("squeeze", "quasi-static")
 
 
 def _elements() -> tuple[str, ...]:
-    from .reynolds import ELEMENTS
+    from .parameters import ELEMENTS
 
     return tuple(ELEMENTS)
 
 
 def _cavitation_models() -> tuple[str, ...]:
-    from .reynolds import CAVITATION
+    from .cavitation import MODELS
 
-    return tuple(CAVITATION)
+    return tuple(MODELS)
 
 
 def _starts() -> tuple[str, ...]:

@@ -49,7 +49,9 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
+from .superposition import film_outputs, source_weights
 
 __all__ = [
     "Trajectory",
@@ -91,6 +93,7 @@ def pump_mesh(pump: EccentricPump, size: float = 0.08, **kwargs) -> SupportMesh:
     return mesh_surface(pump.surface, size, **kwargs)
 
 
+@takes(Discretization)
 def balance_ratio(pump: EccentricPump, mesh: SupportMesh | None = None, *, formulation: str = "pi",
                   element: str = "P1") -> float:
     """Hydrostatic lift of the pockets over the plunger force, worst over the cycle [-].
@@ -219,6 +222,7 @@ def _check_cavitation(cavitation: str) -> None:
 
 # -- steady state ------------------------------------------------------------------------------
 
+@takes(Discretization)
 def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: float = 0.0, *,
                  formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
                  guess: tuple[float, float] = (0.5, math.pi - 0.5), _model: _Model | None = None
@@ -457,30 +461,53 @@ def _sample(run: _Run, betas: np.ndarray, y0) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, np.ndarray]:
+    """Rates, smallest film, friction and flows at the samples.
+
+    Each sample needs its own film state (a superposition: one numeric
+    factorization) and its balancing rates; the flows and the friction of all
+    the states solved without cavitation are then evaluated at once by the
+    compiled linear maps (:func:`bearingfe.superposition.film_outputs`), with
+    no per-sample form assembly. Cavitated states come with their result.
+    """
     pump, sc = model.pump, model.pump.scale
-    out = {k: np.empty(betas.size) for k in ("gamma_rate", "delta_rate", "h_min", "friction_moment", "flow_inlet",
-                                              "flow_side", "flow_arc", "flow_squeeze", "mass_balance")}
-    if model.elastic is not None:
-        out["max_deflection"] = np.empty(betas.size)
+    n = betas.size
+    rates, h_min = np.empty((n, 2)), np.empty(n)
+    flows: dict[str, np.ndarray] = {}
+    friction, balance = np.empty(n), np.empty(n)
+    linear: list[tuple[int, Superposition, np.ndarray]] = []
+    deflection = np.empty(n) if model.elastic is not None else None
     for i, (b, y) in enumerate(zip(betas, ys)):
         sup = model.superposition(y[0], y[1]) if model.elastic is None else None
-        rates, res = model.balance(b, y)
-        if model.elastic is not None:
-            out["max_deflection"][i] = sc.to_thickness(float(np.max(model._w)))
+        rates[i], res = model.balance(b, y)
+        h_min[i] = sup.h_min if sup is not None else res.h_min  # the elastic result: the deflected film
+        if deflection is not None:
+            deflection[i] = sc.to_thickness(float(np.max(model._w)))
         if res is None:
-            res = sup.combine(float(pump.wedge(b)), rates, float(pump.inlet_pressure(b)))
-        fl = res.flows
-        out["gamma_rate"][i], out["delta_rate"][i] = rates
-        out["h_min"][i] = sc.to_thickness(res.h_min)
-        out["friction_moment"][i] = sc.to_moment(res.friction)
-        out["flow_inlet"][i] = sc.to_flow(fl.get("inlet", 0.0))
-        out["flow_side"][i] = sc.to_flow(fl.get("side", 0.0))
-        out["flow_arc"][i] = sc.to_flow(sum(v for k, v in fl.items() if k in ("arc_start", "arc_end", "outer")))
-        out["flow_squeeze"][i] = sc.to_flow(fl["squeeze"])
-        out["mass_balance"][i] = sc.to_flow(res.mass_balance)
-    return out
+            weights = source_weights(float(pump.wedge(b)), rates[i], float(pump.inlet_pressure(b)))
+            sup.check_inlet(weights[3])
+            linear.append((i, sup, weights))
+            continue
+        for k, v in res.flows.items():
+            flows.setdefault(k, np.zeros(n))[i] = v
+        friction[i], balance[i] = res.friction, res.mass_balance
+    if linear:
+        index = np.array([i for i, _, _ in linear])
+        weights = np.column_stack([w for _, _, w in linear])
+        u = np.column_stack([sup.fields @ w for _, sup, w in linear])
+        batch = film_outputs([sup for _, sup, _ in linear], u, weights, weights[0])
+        for k, v in batch.flows.items():
+            flows.setdefault(k, np.zeros(n))[index] = v
+        friction[index], balance[index] = batch.friction, batch.mass_balance
+    zero = np.zeros(n)
+    arc = sum((flows[k] for k in ("arc_start", "arc_end", "outer") if k in flows), zero)
+    return {"gamma_rate": rates[:, 0], "delta_rate": rates[:, 1], "h_min": sc.to_thickness(h_min),
+            "friction_moment": sc.to_moment(friction), "flow_inlet": sc.to_flow(flows.get("inlet", zero)),
+            "flow_side": sc.to_flow(flows.get("side", zero)), "flow_arc": sc.to_flow(arc),
+            "flow_squeeze": sc.to_flow(flows.get("squeeze", zero)), "mass_balance": sc.to_flow(balance),
+            **({} if deflection is None else {"max_deflection": deflection})}
 
 
+@takes(Discretization)
 def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: float = 1.0, *,
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
              method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
@@ -536,6 +563,10 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         warm-started from the last deflection and reusing the Jacobian
         factors. Quasi-static deflection (``dw/dt`` not in the squeeze term);
         the run starts from the rigid steady (or periodic-iteration) state.
+    discretization : Discretization, optional
+        ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
+        object (:class:`bearingfe.parameters.Discretization`) instead of the
+        keywords.
 
     Returns
     -------
