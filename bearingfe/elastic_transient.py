@@ -55,8 +55,7 @@ from types import MappingProxyType
 import numpy as np
 import scipy.integrate as si
 import scipy.linalg as sla
-from skfem import BilinearForm, LinearForm
-from skfem.helpers import dot, grad
+import scipy.sparse as sp
 
 from .elastic import Compliance, DeflectedFilm, ElasticError, balance_load
 from .film import CosineFilm
@@ -70,30 +69,10 @@ __all__ = ["simulate_elastic", "state_result", "BAUMGARTE"]
 BAUMGARTE = 50.0
 
 
-@BilinearForm
-def _stiffness(u, v, w):
-    return w.h3 * dot(grad(u), grad(v))
-
-
-@BilinearForm
-def _sensitivity(u, v, w):
-    # d/dh_j of int h^3 grad p . grad v_i + 6 wedge dh/dphi v_i for h = ... + w_j phi_j
-    return 3.0 * w.h2 * u * (w.gp0 * v.grad[0] + w.gp1 * v.grad[1]) + 6.0 * w.wedge * u.grad[0] * v
-
-
-@LinearForm
-def _load(v, w):
-    return w.f * v
-
-
-@LinearForm
-def _flux(v, w):
-    return w.q0 * v.grad[0] + w.q1 * v.grad[1] - w.hdot * v
-
-
 @dataclass
 class _Dynamics:
-    """The ODE of one run (not public)."""
+    """The ODE of one run (not public). Works on the compiled film-independent maps of the mesh
+    (:mod:`bearingfe.compiled`): a state costs sparse products, no assembly and no factorization."""
 
     pump: EccentricPump
     compliance: Compliance
@@ -102,31 +81,25 @@ class _Dynamics:
 
     def __post_init__(self) -> None:
         ops = operators(self.compliance.mesh, self.compliance.element)
-        self.ops, self.basis = ops, ops.basis
+        co = ops.compiled
+        self.ops, self.basis, self.co = ops, ops.basis, co
         self.I, self.inlet = ops.interior, ops.inlet
-        self.x = np.array(self.basis.global_coordinates())
+        self.x = co.x
         C = self.compliance.matrix
         M = ops.mass.tocsr()[self.I]
         self.K = sla.lu_factor(12.0 * (M @ C[:, self.I]), check_finite=False)
         self.c_s = 12.0 * (M @ (C[:, self.inlet].sum(axis=1) + self.compliance.pocket))
-        cos, sin = np.cos(self.x[0]), np.sin(self.x[0])
-        self.L = np.vstack([_load.assemble(self.basis, f=cos), _load.assemble(self.basis, f=sin)])
+        self.L = np.asarray(co.loads[:2] @ co.value)  # (2, n_dofs): int phi_j (cos, sin) dphi dz
         self.F_pocket = np.asarray(ops.pocket_moments[1:], float)
+        self.E, self.Gp, self.Gz = co.value, co.grad[0], co.grad[1]
+        self.dx = co.dx
+        self.src = co.sources  # (E^T dx)[I]
 
     def pressure(self, beta: float, p_interior: np.ndarray) -> np.ndarray:
-        p = np.zeros(self.basis.N)
+        p = np.zeros(self.compliance.n_dofs)
         p[self.inlet] = self.pump.inlet_pressure(beta)
         p[self.I] = p_interior
         return p
-
-    def film(self, gamma: float, delta: float, w: np.ndarray):
-        """``h``, ``dh/dphi`` at the quadrature points and ``h`` at the dofs."""
-        rigid = CosineFilm(max(gamma, 0.0), delta)
-        f = self.basis.interpolate(w)
-        h = rigid.thickness(self.x[0], self.x[1]) + np.asarray(f)
-        dh = rigid.gradient(self.x[0], self.x[1])[0] + np.asarray(f.grad[0])
-        d = self.basis.doflocs
-        return h, dh, rigid.thickness(d[0], d[1]) + w, rigid
 
     def rates(self, beta: float, y: np.ndarray):
         """``(gamma', delta')``, ``p_I'`` and the pieces of the film at state ``y``."""
@@ -139,25 +112,29 @@ class _Dynamics:
         load = pump.load_vector(beta)
         dload = (pump.load_vector(beta + eps) - pump.load_vector(beta - eps)) / (2 * eps)
         w = self.compliance.deflection(p, ps)
-        h, dh, h_dofs, rigid = self.film(gamma, delta, w)
+        rigid = CosineFilm(max(gamma, 0.0), delta)
+        h = rigid.thickness(self.x[0], self.x[1]) + self.E @ w
+        dh = rigid.gradient(self.x[0], self.x[1])[0] + self.Gp @ w
+        d = self.basis.doflocs
+        h_dofs = rigid.thickness(d[0], d[1]) + w
         if not (np.all(h > 0) and np.all(h_dofs > 0)):
             raise ElasticError(f"film closed (h_min = {min(h.min(), h_dofs.min()):.3g} c <= 0) at beta = {beta:.4f} rad")
         wedge = float(pump.wedge(beta))
-        A = _stiffness.assemble(self.basis, h3=h**3)
-        R = (A @ p + _load.assemble(self.basis, f=6.0 * wedge * dh))[self.I]
+        A = self.co.matrix(self.co.stiffness_scatter @ h**3)
+        R = (A @ p)[self.I] + self.src @ (6.0 * wedge * dh)
         shapes = rigid.rate_shapes(self.x[0], self.x[1])
-        S = np.column_stack([_load.assemble(self.basis, f=12.0 * s)[self.I] for s in shapes])
+        S = np.column_stack([self.src @ (12.0 * sh) for sh in shapes])
         a = -sla.lu_solve(self.K, R + self.c_s * dps, check_finite=False)
         B = sla.lu_solve(self.K, S, check_finite=False)
         LI = self.L[:, self.I]
         g = self.L @ p + ps * self.F_pocket + load
-        lhs = LI @ B
         rhs = LI @ a + self.kappa * g + (self.L[:, self.inlet].sum(axis=1) + self.F_pocket) * dps + dload
         try:
-            r = np.linalg.solve(lhs, rhs)
+            r = np.linalg.solve(LI @ B, rhs)
         except np.linalg.LinAlgError:
             raise ElasticError(f"load balance singular at beta = {beta:.4f} rad (gamma = {gamma:.4g})") from None
-        return r, a - B @ r, dict(p=p, w=w, h=h, dh=dh, h_dofs=h_dofs, wedge=wedge, dps=dps, shapes=shapes)
+        return r, a - B @ r, dict(p=p, w=w, h=h, dh=dh, h_dofs=h_dofs, wedge=wedge, dps=dps, shapes=shapes, A=A,
+                                  B=B)
 
     def __call__(self, beta: float, y: np.ndarray) -> np.ndarray:
         r, dp, _ = self.rates(beta, y)
@@ -167,25 +144,25 @@ class _Dynamics:
         """``d(rhs)/dy``: analytic in the pressures, central differences in ``(gamma, delta)``.
 
         ``a = -K^-1 (R + c_s p_s')`` has ``da/dp_I = -K^-1 (A_II + B_h C_I)`` with
-        ``B_h`` the film sensitivity of the residual; ``r = G (L_I a + kappa g + ...)``
+        ``B_h`` the film sensitivity of the residual
+        (``int 3 h^2 u grad p . grad v + 6 wedge du/dphi v``); ``r = G (L_I a + kappa g + ...)``
         with ``G = (L_I B)^-1`` gives ``dr/dp_I = G L_I (da/dp_I + kappa)``.
         """
         r, dp, st = self.rates(beta, y)
-        n = y.size
+        n, I = y.size, self.I
         J = np.empty((n, n))
-        gp = self.basis.interpolate(st["p"]).grad
-        A = _stiffness.assemble(self.basis, h3=st["h"] ** 3).tocsr()
-        Bh = _sensitivity.assemble(self.basis, h2=st["h"] ** 2, gp0=gp[0], gp1=gp[1],
-                                   wedge=np.full(st["h"].shape, st["wedge"])).tocsr()
-        I = self.I
-        Da = -sla.lu_solve(self.K, (A[I][:, I]).toarray() + Bh[I] @ self.compliance.matrix[:, I],
+        p, h = st["p"], st["h"]
+        a0 = 3.0 * h**2 * (self.Gp @ p) * self.dx
+        a1 = 3.0 * h**2 * (self.Gz @ p) * self.dx
+        Bh = (self.Gp.T @ sp.diags(a0) + self.Gz.T @ sp.diags(a1)) @ self.E \
+            + 6.0 * st["wedge"] * (self.E.T @ sp.diags(self.dx) @ self.Gp)
+        Bh = sp.csr_matrix(Bh)[I]
+        Da = -sla.lu_solve(self.K, st["A"].tocsr()[I][:, I].toarray() + Bh @ self.compliance.matrix[:, I],
                            check_finite=False)
-        S = np.column_stack([_load.assemble(self.basis, f=12.0 * s)[I] for s in st["shapes"]])
-        B = sla.lu_solve(self.K, S, check_finite=False)
         LI = self.L[:, I]
-        dr = np.linalg.solve(LI @ B, LI @ Da + self.kappa * LI)
+        dr = np.linalg.solve(LI @ st["B"], LI @ Da + self.kappa * LI)
         J[:2, 2:] = dr
-        J[2:, 2:] = Da - B @ dr
+        J[2:, 2:] = Da - st["B"] @ dr
         for k in range(2):
             e = 1e-7 * max(1.0, abs(y[k]))
             yp, ym = y.copy(), y.copy()
@@ -198,24 +175,22 @@ class _Dynamics:
         """SI figures of one state: rates, smallest film, friction, flows, largest deflection."""
         r, dp, st = self.rates(beta, y)
         sc = self.pump.scale
-        p, w = st["p"], st["w"]
-        dw = self.compliance.matrix[:, self.I] @ dp + (self.compliance.matrix[:, self.inlet].sum(axis=1)
-                                                       + self.compliance.pocket) * st["dps"]
-        fw = self.basis.interpolate(dw)
-        hdot = r[0] * st["shapes"][0] + r[1] * st["shapes"][1] + np.asarray(fw)
-        h = st["h"]
-        gp = self.basis.interpolate(p).grad
-        dx = self.basis.dx
-        friction = float(np.sum((st["wedge"] / h + 0.5 * h * gp[0]) * dx))
-        q0 = -h**3 / 12.0 * gp[0] + 0.5 * st["wedge"] * h
-        q1 = -h**3 / 12.0 * gp[1]
-        res = _flux.assemble(self.basis, q0=q0, q1=q1, hdot=hdot)
+        p, w, h = st["p"], st["w"], st["h"]
+        C = self.compliance
+        dw = C.matrix[:, self.I] @ dp + (C.matrix[:, self.inlet].sum(axis=1) + C.pocket) * st["dps"]
+        hdot = r[0] * st["shapes"][0] + r[1] * st["shapes"][1] + self.E @ dw
+        gp0, gp1 = self.Gp @ p, self.Gz @ p
+        friction = float(np.sum((st["wedge"] / h + 0.5 * h * gp0) * self.dx))
+        q0 = (-h**3 / 12.0 * gp0 + 0.5 * st["wedge"] * h) * self.dx
+        q1 = -h**3 / 12.0 * gp1 * self.dx
+        res = self.Gp.T @ q0 + self.Gz.T @ q1 - self.E.T @ (hdot * self.dx)
         flows = {name: float(np.sum(res[d] * wt)) for name, (d, wt) in self.ops.flow_groups.items()}
         inlet = -flows.pop("inlet", 0.0)
-        squeeze = float(np.sum(hdot * dx))
+        squeeze = float(np.sum(hdot * self.dx))
         side = flows.pop("side", 0.0)
         arc = sum(flows.values())
-        return {"gamma_rate": r[0], "delta_rate": r[1], "h_min": sc.to_thickness(float(min(h.min(), st["h_dofs"].min()))),
+        return {"gamma_rate": r[0], "delta_rate": r[1],
+                "h_min": sc.to_thickness(float(min(h.min(), st["h_dofs"].min()))),
                 "friction_moment": sc.to_moment(friction), "flow_inlet": sc.to_flow(inlet),
                 "flow_side": sc.to_flow(side), "flow_arc": sc.to_flow(arc), "flow_squeeze": sc.to_flow(squeeze),
                 "mass_balance": sc.to_flow(inlet - side - arc - squeeze),
