@@ -28,6 +28,8 @@ module                     what it does
 ``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
+``outfolder``              output folders: manifest, lock, all-or-nothing move into place
+``limits``                 size guards (revolutions, frames, cases, elements, case time)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
 ``version``                the package version
@@ -40,6 +42,7 @@ from . import adaptivity, cavitation, crank, elastic, efficiency, io, journal, p
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
 from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solve_elastic
+from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -65,6 +68,7 @@ from .version import __version__
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "LimitError",
     "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",

@@ -57,12 +57,11 @@ import scipy.sparse.linalg as spla
 
 from .forms import film_flux
 from .geometry import Surface
+from .parameters import FORMULATIONS, Discretization, OperatingPoint, takes
 
 __all__ = ["FDResult", "solve_reynolds_fd", "FORMULATIONS", "METHODS"]
 
-#: Discretisations of the Reynolds equation, by name.
-FORMULATIONS = ("pi", "direct")
-#: Linear solvers, by name.
+#: Linear solvers, by name (the formulations are :data:`bearingfe.parameters.FORMULATIONS`).
 METHODS = ("direct", "seidel")
 
 
@@ -149,6 +148,7 @@ class _Stencil:
     x: np.ndarray
 
 
+@takes(OperatingPoint, Discretization)
 def solve_reynolds_fd(
     surface: Surface,
     film,
@@ -196,6 +196,10 @@ def solve_reynolds_fd(
         ``"reynolds"``: Swift-Stieber rupture (``p >= 0``) by projected SOR
         (needs ``method="seidel"``). The flows then include the ruptured
         zone's non-conserved Couette flow in the outline cells next to it.
+    operating, discretization : optional
+        :class:`~bearingfe.parameters.OperatingPoint` (``wedge``, ``squeeze``,
+        ``inlet_pressure``) and :class:`~bearingfe.parameters.Discretization`
+        (``formulation``) instead of the keywords.
 
     Returns
     -------

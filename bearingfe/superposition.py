@@ -333,6 +333,7 @@ class Superposition:
     system: CondensedSystem = field(repr=False)
     assembly: str = "compiled"
 
+    @takes(OperatingPoint)
     def coefficients(self, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
         """The paper's force coefficients in the arc frame.
 
@@ -355,6 +356,7 @@ class Superposition:
         if inlet_pressure != 0.0 and not self.operators.inlet.size:
             raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
 
+    @takes(OperatingPoint)
     def rates_for_load(self, load: np.ndarray, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
         """Squeeze rates ``(gamma_rate, phi0_rate)`` at which the film force
         balances an applied load: ``force + load = 0`` (paper eq. 14).

@@ -49,6 +49,7 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .limits import check_limit
 from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
 from .superposition import film_outputs, source_weights
@@ -513,8 +514,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
              method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
              min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
              formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
-             periodic_tol: float = 1e-6, periodic_max_iter: int = 30, elastic: Compliance | None = None
-             ) -> Trajectory:
+             periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
+             max_revolutions: float | None = None, elastic: Compliance | None = None) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 
     Parameters
@@ -556,6 +557,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         Element size of the default mesh [R0].
     formulation, element, solver
         See :func:`bearingfe.superpose`.
+    max_revolutions : float, optional
+        Largest ``revolutions`` accepted (a guard against runaway work);
+        default the ``revolutions`` limit of :mod:`bearingfe.limits` (100).
     elastic : Compliance, optional
         Compliance of the support on ``mesh`` (:func:`bearingfe.elastic.half_space`):
         at every shaft angle the film ``h_rigid + w`` and the rates are found
@@ -578,12 +582,14 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         The pockets' hydrostatic lift reaches the plunger force (checked
         before integrating; see :func:`balance_ratio`).
     ValueError
-        Bad argument (message names it).
+        Bad argument (message names it); :class:`bearingfe.limits.LimitError`
+        if ``revolutions`` is above its limit.
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
     if not (isinstance(revolutions, (int, float)) and math.isfinite(revolutions) and revolutions > 0):
         raise ValueError(f"revolutions must be a finite number > 0, got {revolutions!r}")
+    check_limit("revolutions", revolutions, max_revolutions, "max_revolutions")
     if method not in INTEGRATORS:
         raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {method!r}")
     for name, v in (("rtol", rtol), ("atol", atol), ("max_step", max_step)):
