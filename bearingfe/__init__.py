@@ -7,6 +7,7 @@ module                     what it does
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
+``checks``                 ranges of solver inputs, thin-film resolution check (``ResolutionWarning``)
 ``film``                   film-thickness models (``CosineFilm``)
 ``parameters``             operating point and discretization objects (``operating=``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
@@ -59,7 +60,8 @@ from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators
 from .scenes import SceneError
 from .sections import ibeam, ibeams
 from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study  # module bearingfe.sweep: sweep()
-from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
+from .checks import ResolutionWarning, check_resolution
+from .journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
@@ -80,7 +82,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
-    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]

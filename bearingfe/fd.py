@@ -55,6 +55,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .checks import check_operating_point
 from .forms import film_flux
 from .geometry import Surface
 from .parameters import FORMULATIONS, Discretization, OperatingPoint, takes
@@ -242,6 +243,7 @@ def solve_reynolds_fd(
     rates = _check_rates(film, grid, squeeze)
     _check_film(film, grid)
     wedge, inlet_pressure = _finite(wedge, "wedge"), _finite(inlet_pressure, "inlet_pressure")
+    check_operating_point(wedge, squeeze, inlet_pressure)
 
     f = _rhs(film, grid, wedge, rates)
     if formulation == "pi":

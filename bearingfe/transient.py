@@ -1,7 +1,7 @@
 r"""The plunger shoe over the pump cycle: quasi-static equilibrium integrated in time.
 
-Model (paper 004 eq. 13-14, ``shared/SPEC.md`` §1; frames in :mod:`bearingfe.pump`)
-------------------------------------------------------------------------------------
+Model (paper 004 eq. 13-14, ``docs/formulations.md``; frames in :mod:`bearingfe.pump`)
+--------------------------------------------------------------------------------------
 The plunger's inertia is neglected, so at every shaft angle the film force
 balances the applied load. In the shoe frame the film is
 ``h = 1 + gamma cos(psi - delta)`` and the Reynolds right side is
@@ -545,7 +545,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         shipped pump it needed a third to a half of Radau's right-side
         evaluations (one factorization each) for the same accuracy.
     rtol, atol : float
-        Integrator tolerances on ``(gamma, delta)``.
+        Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``.
     max_step : float
         Largest step in shaft angle [rad].
     min_film : float, optional
@@ -595,6 +595,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     for name, v in (("rtol", rtol), ("atol", atol), ("max_step", max_step)):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not rtol < 1:
+        raise ValueError(f"rtol must be in (0, 1) (a relative tolerance of 1 or more allows 100 % error), got {rtol!r}")
     if int(points_per_revolution) < 8:
         raise ValueError(f"points_per_revolution must be >= 8, got {points_per_revolution!r}")
     min_film = 0.02 * pump.clearance if min_film is None else float(min_film)
@@ -659,7 +661,12 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
               "seconds": seconds, "solver_seconds": model.seconds}
     if elastic is not None:
         counts["jacobians"] = model.jacobians
-    post = _postprocess(model, betas, ys)
+    try:
+        post = _postprocess(model, betas, ys)
+    except _FilmClosed as exc:  # the dense output between accepted steps left the admissible states
+        raise RuntimeError(f"between the integrator's steps the interpolated state (gamma, delta) = {exc.args[0]} "
+                           f"closes the film: the steps are too coarse for rtol = {rtol:g}; use a smaller rtol "
+                           f"(default 1e-6) or max_step") from None
     f = pump.load(betas)
     return Trajectory(
         t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=ys[:, 0], delta=ys[:, 1],
