@@ -120,7 +120,7 @@ class _Dynamics:
         if not (np.all(h > 0) and np.all(h_dofs > 0)):
             raise ElasticError(f"film closed (h_min = {min(h.min(), h_dofs.min()):.3g} c <= 0) at beta = {beta:.4f} rad")
         wedge = float(pump.wedge(beta))
-        A = self.co.matrix(self.co.stiffness_scatter @ h**3)
+        A = self.co.matrix(self.co.matrix_data("direct", h, None))
         R = (A @ p)[self.I] + self.src @ (6.0 * wedge * dh)
         shapes = rigid.rate_shapes(self.x[0], self.x[1])
         S = np.column_stack([self.src @ (12.0 * sh) for sh in shapes])
