@@ -15,6 +15,7 @@ module                     what it does
 ``cavitation``             cavitation models and their table (``MODELS``)
 ``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
+``elastic``                elastic support (EHD): half-space compliance, coupled film
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
@@ -38,9 +39,10 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from . import adaptivity, cavitation, crank, elastic, efficiency, io, journal, pump, rotor, scenes, transient, validation
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
+from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solve_elastic
 from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
@@ -72,6 +74,7 @@ __all__ = [
     "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
+    "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
     "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",

@@ -39,6 +39,7 @@ import dataclasses
 
 from .cavitation import MODELS, ModelOptions, solve_model
 from .checks import check_operating_point, check_resolution
+from .elastic import Compliance, solve_elastic
 from .film import Film
 from .linalg import DEFAULT_SOLVER, Factorize
 from .meshing import SupportMesh
@@ -72,7 +73,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
-                   warm_start=None) -> ReynoldsResult:
+                   warm_start=None, elastic: Compliance | None = None) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -108,6 +109,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         cavitated result on another (e.g. coarser) mesh of the same surface,
         interpolated: nested iteration keeps the active-set count bounded
         under refinement (docs/validation.md).
+    elastic : Compliance, optional
+        Compliance of the support surfaces on this mesh and element
+        (:func:`bearingfe.elastic.half_space`): the film becomes
+        ``h_rigid + C p`` and is solved with its pressure by Newton
+        (:func:`bearingfe.elastic.solve_elastic`, direct form; the result's
+        ``deflection``, ``max_deflection`` and ``elastic_iterations`` report it).
+        Raises :class:`bearingfe.elastic.ElasticError` if it does not converge.
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
         object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
@@ -136,6 +144,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     check_operating_point(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
+    if elastic is not None:
+        res = solve_elastic(mesh, film, elastic, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
+                            element=element, cavitation=cavitation, sliding=sliding, solver=solver).result
+        if formulation != "direct":
+            note = "elastic support: the direct form was used (the deflected film is a nodal field)"
+            res = dataclasses.replace(res, notes=res.notes + (note,))
+        return res
     sup = superpose(mesh, film, formulation=formulation, element=element, solver=solver,
                     on_indefinite=on_indefinite)
     result = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,

@@ -873,6 +873,11 @@ class ReynoldsResult:
         Active-set iterations of the cavitation solve (0 without).
     cavitated : ndarray of bool or None
         Ruptured dofs (``p = 0`` imposed by the cavitation condition).
+    deflection : ndarray or None
+        Film opening by an elastic support [c] at the dofs (``film`` is then
+        the deflected film); None on rigid surfaces (:mod:`bearingfe.elastic`).
+    elastic_iterations : int
+        Reynolds solves of the coupled elastic (EHD) Newton iteration (0: rigid).
     """
 
     basis: skfem.CellBasis
@@ -895,6 +900,13 @@ class ReynoldsResult:
     cavitation: str = "none"
     iterations: int = 0
     cavitated: np.ndarray | None = None
+    deflection: np.ndarray | None = None
+    elastic_iterations: int = 0
+
+    @property
+    def max_deflection(self) -> float:
+        """Largest film opening by the elastic support [c] (0 on rigid surfaces)."""
+        return 0.0 if self.deflection is None else float(np.max(self.deflection, initial=0.0))
 
     @property
     def max_pressure(self) -> float:
