@@ -22,7 +22,7 @@ import skfem
 
 from .geometry import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly"]
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "strip_mesh"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -384,3 +384,38 @@ def _physical_boundaries(gmsh, mesh, index, renumber) -> dict[str, np.ndarray]:
         if name:
             out[name] = np.array(sorted(set(facets)), dtype=np.int64)
     return out
+
+
+def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:
+    """A structured strip ``[0, length] x [-width/2, width/2]`` for 1-D film problems on the 2-D solvers.
+
+    Only the two ends carry fixed pressure (``outer`` = ``arc_start`` + ``arc_end``);
+    the long sides are left free, i.e. closed to flow (the natural condition
+    ``q . n = 0``), so a film that varies along ``phi`` only gives the 1-D
+    solution. Nodes sit at ``phi = k length / n``, so steps of the film at such
+    abscissae lie on element edges.
+
+    Parameters
+    ----------
+    n : int
+        Number of cells along the strip, >= 2.
+    length : float
+        Strip length along ``phi`` [-], > 0.
+    width : float, optional
+        Strip width [-], > 0; default ``rows * length / n`` (square cells).
+    rows : int
+        Number of cells across, >= 1.
+    """
+    if not (isinstance(n, int) and n >= 2):
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    if not (isinstance(rows, int) and rows >= 1):
+        raise ValueError(f"rows must be an integer >= 1, got {rows!r}")
+    length = _checked_size(length, "length")
+    width = rows * length / n if width is None else _checked_size(width, "width")
+    m = skfem.MeshTri1.init_tensor(np.linspace(0.0, length, n + 1), np.linspace(-width / 2, width / 2, rows + 1))
+    facets = m.boundary_facets()
+    x = m.p[0, m.facets[:, facets]].mean(axis=0)
+    tol = 1e-9 * length
+    bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
+    bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")

@@ -61,7 +61,7 @@ __all__ = [
 
 ELEMENTS: Mapping[str, type] = MappingProxyType({"P1": skfem.ElementTriP1, "P2": skfem.ElementTriP2})
 FORMULATIONS = ("pi", "direct")
-CAVITATION = ("none", "reynolds", "gumbel")
+CAVITATION = ("none", "reynolds", "gumbel", "jfo")
 #: Unit sources in the order of :attr:`Superposition.fields`.
 SOURCES = ("wedge", "gamma_rate", "phi0_rate", "inlet")
 
@@ -672,7 +672,13 @@ class ReynoldsResult:
     iterations : int
         Active-set iterations of the cavitation solve (0 without).
     cavitated : ndarray of bool or None
-        Ruptured dofs (``p = 0`` imposed by the cavitation condition).
+        Ruptured dofs (``p = p_c`` imposed by the cavitation condition).
+    theta : ndarray or None
+        Fill fraction at the dofs (``cavitation="jfo"`` only; 1 in the full film).
+    cavitated_fraction : float
+        Film area with ``theta < 1`` over the film area (``"jfo"``).
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge).
     """
 
     basis: skfem.CellBasis
@@ -695,6 +701,9 @@ class ReynoldsResult:
     cavitation: str = "none"
     iterations: int = 0
     cavitated: np.ndarray | None = None
+    theta: np.ndarray | None = None
+    cavitated_fraction: float = 0.0
+    cavitation_pressure: float = 0.0
 
     @property
     def max_pressure(self) -> float:
@@ -729,7 +738,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
-                   warm_start=None) -> ReynoldsResult:
+                   warm_start=None, cavitation_pressure: float = 0.0) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -747,11 +756,12 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         Pocket pressure ``p_s`` [-].
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
-    cavitation : {"none", "reynolds", "gumbel"}
+    cavitation : {"none", "reynolds", "gumbel", "jfo"}
         ``"none"`` lets the pressure go negative (as in the source paper);
         ``"reynolds"``: Swift-Stieber ``p >= 0`` with a free boundary, solved
         as a complementarity problem; ``"gumbel"``: negative part discarded
-        (see :mod:`bearingfe.cavitation`).
+        (see :mod:`bearingfe.cavitation`); ``"jfo"``: mass-conserving
+        (Elrod-Adams p-theta) cavitation, P1 only (see :mod:`bearingfe.jfo`).
     sliding : float, optional
         Sliding speed of the journal relative to the shoe for the Couette
         shear; default ``wedge``.
@@ -764,6 +774,9 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         cavitated result on another (e.g. coarser) mesh of the same surface,
         interpolated: nested iteration keeps the active-set count bounded
         under refinement (docs/validation.md).
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``;
+        used by ``"jfo"`` (other models need the default 0).
 
     Returns
     -------
@@ -771,6 +784,14 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
+    if cavitation == "jfo":
+        from .jfo import solve_jfo
+        return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
+                         cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
+                         warm_start=warm_start)
+    if float(cavitation_pressure) != 0.0:
+        raise ValueError(f"cavitation_pressure is used by cavitation='jfo' only so far, got "
+                         f"{cavitation_pressure!r} with cavitation={cavitation!r}")
     _weights(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
