@@ -9,6 +9,7 @@ module                     what it does
 ``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
+``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
@@ -29,9 +30,10 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, crank, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from . import adaptivity, cavitation, crank, efficiency, io, jfo, journal, pump, rotor, scenes, transient, validation
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
+from .jfo import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
@@ -57,7 +59,7 @@ __all__ = [
     "load_indicators",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
-    "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
+    "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
