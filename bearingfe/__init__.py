@@ -36,7 +36,7 @@ from .cavitation import CavitationError
 from .jfo import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
-from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
+from .geometry import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
 from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available_solvers
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
@@ -64,7 +64,7 @@ __all__ = [
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
-    "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
+    "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon", "Recess",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",

@@ -189,8 +189,9 @@ class _Solution:
 
 
 def _active_set(system: _System, ops: Operators, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
-                factorize: Factorize, tol: float, max_iterations: int) -> _Solution:
-    """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the interior dofs."""
+                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
+    """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the interior dofs;
+    ``fixed``: one solve on the given sets (no sign tests)."""
     n = ops.n_dofs
     I = ops.interior
     B = np.setdiff1d(np.arange(n), I)
@@ -216,7 +217,7 @@ def _active_set(system: _System, ops: Operators, p_fixed: np.ndarray, p_c: float
         P = np.where(full, y, 0.0)
         theta = np.where(cav, y, 1.0)
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
-        new = np.where(cav, theta < 1.0 - tol, P < -tol_p)
+        new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
         if np.array_equal(new, cav):
             if theta.min(initial=1.0) < -tol:
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
@@ -373,7 +374,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
               inlet_pressure: float = 0.0, cavitation_pressure: float = 0.0, element: str = "P1",
               sliding: float | None = None, solver: str | Factorize = "splu", warm_start=None,
               dt: float | None = None, previous: ReynoldsResult | None = None,
-              tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> ReynoldsResult:
+              tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS,
+              cavitation: str = "jfo") -> ReynoldsResult:
     """Solve the film with mass-conserving (JFO / Elrod-Adams) cavitation.
 
     Parameters
@@ -406,6 +408,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         shaft turn]; ``squeeze`` must then be zero.
     tol, max_iterations
         Sign tolerance and cap of the active-set iteration.
+    cavitation : {"jfo", "none"}
+        ``"none"``: the same discretization with ``theta = 1`` and no
+        pressure bound (the full-film Reynolds equation with exact fluxes
+        across film steps; what :func:`bearingfe.solve_reynolds` uses for
+        surfaces with recesses).
 
     Returns
     -------
@@ -421,6 +428,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         If the active-set iteration does not converge, cycles, or ends with ``theta < 0``.
     """
     start = time.perf_counter()
+    if cavitation not in ("jfo", "none"):
+        raise ValueError(f"cavitation must be 'jfo' or 'none', got {cavitation!r}")
     sq = _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitation_pressure, dt, previous)
     if not (0 < tol < 1e-2):
         raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
@@ -436,9 +445,13 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     p_fixed = np.zeros(ops.n_dofs)
     p_fixed[ops.inlet] = inlet_pressure
     cavity = _warm_cavity(warm_start, ops)
-    if cavity is None:
-        cavity = _initial_cavity(system, ops, p_fixed, p_c, factorize)
-    sol = _active_set(system, ops, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+    if cavitation == "none":
+        sol = _active_set(system, ops, p_fixed, p_c, np.zeros(ops.interior.size, bool), factorize, tol, 1,
+                          fixed=True)
+    else:
+        if cavity is None:
+            cavity = _initial_cavity(system, ops, p_fixed, p_c, factorize)
+        sol = _active_set(system, ops, p_fixed, p_c, cavity, factorize, tol, max_iterations)
     t2 = time.perf_counter()
     p = p_fixed.copy()
     p[ops.interior] = sol.p
@@ -447,11 +460,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     cavitated = np.zeros(ops.n_dofs, bool)
     cavitated[ops.interior] = sol.cavity
     return _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
-                   cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start)
+                   cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
 
 
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
-            cost, start) -> ReynoldsResult:
+            cost, start, model) -> ReynoldsResult:
     basis = ops.basis
     flows, balance = _flows(mesh, ops, film, system, wedge, p, theta)
     x, dx = ops.x, basis.dx
@@ -467,13 +480,13 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     area = system.area
     cav_fraction = float(np.sum(area[theta < 1.0 - 1e-12]) / np.sum(area))
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
-    notes = ("cavitation='jfo' solves the direct (conservative) form with finite-volume Couette fluxes",)
+    notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
     return ReynoldsResult(
         basis=basis, pressure=p, film=film, wedge=wedge, squeeze=sq, inlet_pressure=inlet_pressure,
         formulation="direct", element="P1", force=force, integral=integral, h_min=h_min,
         flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
-        coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation="jfo",
-        iterations=sol.iterations, cavitated=cavitated, theta=theta, cavitated_fraction=cav_fraction,
-        cavitation_pressure=p_c)
+        coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation=model,
+        iterations=sol.iterations if model == "jfo" else 0, cavitated=cavitated if model == "jfo" else None,
+        theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c)

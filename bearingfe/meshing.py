@@ -276,7 +276,10 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
     inlet_curves = [shape.add_to_gmsh(occ) for shape in surface.inlets]
     loops = [occ.addCurveLoop(outer_curves)] + [occ.addCurveLoop(c) for c in inlet_curves]
     face = occ.addPlaneSurface(loops)
+    recess_curves = [r.shape.add_to_gmsh(occ) for r in surface.recesses]
     occ.synchronize()
+    if recess_curves:  # recess contours on element edges: the film step is meshed conformally
+        gmsh.model.mesh.embed(1, [c for cs in recess_curves for c in cs], 2, face)
     groups = {"outer": outer_curves, "inlet": [c for cs in inlet_curves for c in cs]}
     for k, cs in enumerate(inlet_curves):
         groups[f"inlet_{k}"] = cs
@@ -289,6 +292,7 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
         if curves:
             gmsh.model.addPhysicalGroup(1, curves, name=name)
     gmsh.model.addPhysicalGroup(2, [face], name="film")
+    groups["recess"] = [c for cs in recess_curves for c in cs]
     return groups
 
 
@@ -302,9 +306,11 @@ def _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size
     fields = []
     errors: list[Exception] = []
     mf = gmsh.model.mesh.field
-    if groups["inlet"] and inlet_size < size:
-        fields.append(_threshold(mf, "CurvesList", groups["inlet"], inlet_size, size, grading))
-    corners = np.hstack([s.corners() for s in surface.inlets]) if surface.inlets else np.zeros((2, 0))
+    edges = groups["inlet"] + groups.get("recess", [])
+    if edges and inlet_size < size:
+        fields.append(_threshold(mf, "CurvesList", edges, inlet_size, size, grading))
+    shapes = list(surface.inlets) + [r.shape for r in surface.recesses]
+    corners = np.hstack([s.corners() for s in shapes]) if shapes else np.zeros((2, 0))
     if corners.shape[1] and corner_size < size:
         pts = _points_at(gmsh, corners)
         fields.append(_threshold(mf, "PointsList", pts, corner_size, size, grading))

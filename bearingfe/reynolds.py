@@ -429,6 +429,9 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         raise ValueError(f"on_indefinite must be 'fallback' or 'raise', got {on_indefinite!r}")
     if not isinstance(film, Film):
         raise ValueError(f"film must implement the bearingfe.Film protocol, got {type(film).__name__}")
+    if isinstance(mesh, SupportMesh) and mesh.surface is not None and mesh.surface.recesses:
+        raise ValueError("the surface has recesses (film steps): solve it with solve_reynolds(..., "
+                         "cavitation='none' or 'jfo'), whose finite-volume fluxes are exact across the steps")
     ops = operators(mesh, element)
     factorize = get_linear_solver(solver)
     t0 = time.perf_counter()
@@ -784,11 +787,12 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    if cavitation == "jfo":
+    recessed = isinstance(mesh, SupportMesh) and mesh.surface is not None and bool(mesh.surface.recesses)
+    if cavitation == "jfo" or (recessed and cavitation == "none"):
         from .jfo import solve_jfo
         return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
                          cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
-                         warm_start=warm_start)
+                         warm_start=warm_start, cavitation=cavitation)
     if float(cavitation_pressure) != 0.0:
         raise ValueError(f"cavitation_pressure is used by cavitation='jfo' only so far, got "
                          f"{cavitation_pressure!r} with cavitation={cavitation!r}")
