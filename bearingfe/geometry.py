@@ -373,6 +373,12 @@ class Surface:
     recesses : sequence of Recess
         Blind deeper regions of the film; each strictly inside the outline,
         none touching a pocket or another recess.
+    periodic : bool
+        A full 360-degree film with no edge at the arc ends: ``arc`` must span
+        exactly ``2 pi`` (default outline only); the mesh matches its nodes
+        across the seam ``phi = alpha1 ~ alpha2`` and the solver identifies
+        them. Pockets (e.g. axial grooves of partial length) stay strictly
+        inside the arc: choose ``alpha1`` away from them.
     """
 
     arc: tuple[float, float] = (-0.5, 0.5)
@@ -380,6 +386,7 @@ class Surface:
     inlets: tuple = ()
     outer: Shape | None = None
     recesses: tuple = ()
+    periodic: bool = False
     _outline: Shape = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -404,6 +411,11 @@ class Surface:
             if not isinstance(r, Recess):
                 raise ValueError(f"Surface.recesses[{i}] must be a Recess(shape, depth), got {r!r}")
         object.__setattr__(self, "recesses", recesses)
+        if not isinstance(self.periodic, bool):
+            raise ValueError(f"Surface.periodic must be True or False, got {self.periodic!r}")
+        if self.periodic and (self.outer is not None or abs(a2 - a1 - 2 * math.pi) > 1e-9):
+            raise ValueError(f"Surface.periodic needs the default outline with an arc of exactly 2 pi "
+                             f"(alpha2 = alpha1 + 2 pi), got arc={self.arc!r}, outer={self.outer!r}")
         if recesses:
             _check_layout(outline, inlets + tuple(r.shape for r in recesses), names=(
                 [f"Surface.inlets[{i}]" for i in range(len(inlets))]

@@ -59,7 +59,7 @@ from skfem.helpers import dot, grad
 
 from .film import Film
 from .linalg import Factorize, factorize_splu, get_linear_solver
-from .meshing import SupportMesh
+from .meshing import SupportMesh, periodic_pairs
 from .reynolds import Operators, ReynoldsResult, operators
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE"]
@@ -188,21 +188,43 @@ class _Solution:
     residual: float
 
 
-def _active_set(system: _System, ops: Operators, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+@dataclass(frozen=True, eq=False)
+class _Unknowns:
+    """Map from the unknowns (interior dofs, seam pairs of a periodic mesh merged) to all dofs."""
+
+    S: sp.csr_matrix        # (n_dofs, m): full = S @ reduced (zero rows on fixed dofs)
+    rep: np.ndarray         # (m,) a dof of each unknown
+    fixed: np.ndarray       # dofs with given pressure and theta = 1
+
+
+def _unknowns(mesh: SupportMesh, ops: Operators) -> _Unknowns:
+    n, I = ops.n_dofs, ops.interior
+    rep_of = np.arange(n)
+    start, end = periodic_pairs(mesh)
+    rep_of[end] = start
+    reps = np.unique(rep_of[I])
+    cols = np.searchsorted(reps, rep_of[I])
+    S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+    return _Unknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I))
+
+
+def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
+    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b``."""
+    K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
+    St = unk.S.T.tocsr()
+    p0 = np.full(p_fixed.size, p_c)
+    p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
+    theta0 = np.zeros(p_fixed.size)
+    theta0[unk.fixed] = 1.0              # edges and pockets feed full film
+    b = St @ (K @ p0 + G @ theta0 + system.source)
+    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+
+
+def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
-    """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the interior dofs;
+    """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
     ``fixed``: one solve on the given sets (no sign tests)."""
-    n = ops.n_dofs
-    I = ops.interior
-    B = np.setdiff1d(np.arange(n), I)
-    K, G = system.K, system.C + sp.diags(system.storage)
-    KI, GI = K[I], G[I]
-    # theta = 1 and p given on the boundary dofs; P = p - p_c on the interior ones
-    p_B = np.zeros(n)
-    p_B[B] = p_fixed[B]
-    p_B[I] = p_c
-    b = KI @ p_B + GI[:, B] @ np.ones(B.size) + system.source[I]
-    KII, GII = KI[:, I], GI[:, I]
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
@@ -234,6 +256,43 @@ def _active_set(system: _System, ops: Operators, p_fixed: np.ndarray, p_c: float
         cav = new
     raise JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
                    f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+
+
+def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+              factorize: Factorize, tol: float, max_iterations: int) -> _Solution:
+    """Swift-Stieber on the same discretization: theta = 1 everywhere, ``P >= 0``, multiplier
+    ``lam = K P + G 1 + b >= 0`` (the oil the ruptured zone creates), ``P lam = 0``; primal-dual active set."""
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    f = -(b + GII @ np.ones(b.size))
+    cav = cavity.copy()
+    seen: set[bytes] = set()
+    scale = float(np.abs(f).max(initial=0.0)) or 1.0
+    for it in range(1, max_iterations + 1):
+        full = np.flatnonzero(~cav)
+        P = np.zeros(b.size)
+        if full.size:
+            P[full] = np.asarray(factorize(KII[full][:, full].tocsc())(f[full]), float)
+        lam = KII @ P - f
+        lam[full] = 0.0
+        tol_p = tol * max(float(np.abs(P).max(initial=0.0)), 1e-300)
+        new = np.where(cav, lam > -tol * scale, P < -tol_p)
+        if np.array_equal(new, cav):
+            return _Solution(p=P + p_c, theta=np.ones(b.size), cavity=cav, iterations=it,
+                             residual=float(np.abs((KII @ P - f)[full]).max(initial=0.0)) / scale)
+        key = np.packbits(new).tobytes()
+        if key in seen:
+            raise JFOError(f"Swift-Stieber active-set iteration cycles after {it} iterations")
+        seen.add(np.packbits(cav).tobytes())
+        cav = new
+    raise JFOError(f"Swift-Stieber active-set iteration did not converge in {max_iterations} iterations")
+
+
+def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
+                    factorize: Factorize) -> np.ndarray:
+    """Cavity guess: where the full-film (theta = 1) solution falls below p_c."""
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    P = np.asarray(factorize(KII.tocsc())(-b - GII @ np.ones(b.size)), float)
+    return P < 0
 
 
 # -- flows ------------------------------------------------------------------------------
@@ -271,7 +330,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
 
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: _System, wedge: float,
-           p: np.ndarray, theta: np.ndarray) -> tuple[dict[str, float], float]:
+           p: np.ndarray, theta: np.ndarray, created: bool = False) -> tuple[dict[str, float], float]:
     """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative)."""
     basis = ops.basis
     storage = system.storage * theta + system.source
@@ -296,6 +355,8 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: _System, wedge
         flows[k] = value
     flows["inlet"] = -float(np.sum(outflow[ops.inlet])) if ops.inlet.size else 0.0
     flows["squeeze"] = float(np.sum(storage))
+    if created:  # Swift-Stieber: the oil the ruptured zone creates (negative: flows into the film)
+        flows["cavitation"] = -float(np.sum(balance_rest[ops.interior]))
     total_out = sum(v for k, v in flows.items() if k not in ("inlet", "squeeze"))
     # = minus the sum of the interior dofs' residuals: zero to solver tolerance
     return flows, flows["inlet"] - total_out - flows["squeeze"]
@@ -342,7 +403,7 @@ def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitatio
     return sq
 
 
-def _warm_cavity(warm_start, ops: Operators) -> np.ndarray | None:
+def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | None:
     if warm_start is None:
         return None
     if isinstance(warm_start, ReynoldsResult):
@@ -355,19 +416,7 @@ def _warm_cavity(warm_start, ops: Operators) -> np.ndarray | None:
     mask = np.asarray(mask, bool)
     if mask.shape != (ops.n_dofs,):
         raise ValueError(f"warm_start mask must have length {ops.n_dofs}, got shape {mask.shape}")
-    return mask[ops.interior]
-
-
-def _initial_cavity(system: _System, ops: Operators, p_fixed: np.ndarray, p_c: float,
-                    factorize: Factorize) -> np.ndarray:
-    """Cavity guess: where the full-film (theta = 1) solution falls below p_c."""
-    I = ops.interior
-    n = ops.n_dofs
-    B = np.setdiff1d(np.arange(n), I)
-    G = system.C + sp.diags(system.storage)
-    rhs = -(system.K[I][:, B] @ p_fixed[B]) - G[I] @ np.ones(n) - system.source[I]
-    p = np.asarray(factorize(system.K[I][:, I].tocsc())(rhs), float)
-    return p < p_c
+    return mask[unk.rep]
 
 
 def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
@@ -408,11 +457,12 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         shaft turn]; ``squeeze`` must then be zero.
     tol, max_iterations
         Sign tolerance and cap of the active-set iteration.
-    cavitation : {"jfo", "none"}
-        ``"none"``: the same discretization with ``theta = 1`` and no
-        pressure bound (the full-film Reynolds equation with exact fluxes
-        across film steps; what :func:`bearingfe.solve_reynolds` uses for
-        surfaces with recesses).
+    cavitation : {"jfo", "reynolds", "none"}
+        The same discretization with ``theta = 1``: ``"reynolds"``
+        (Swift-Stieber, ``p >= p_c``; the oil it creates in the ruptured zone
+        is booked as ``flows["cavitation"]``) and ``"none"`` (no pressure
+        bound). :func:`bearingfe.solve_reynolds` uses them for recessed and
+        periodic surfaces.
 
     Returns
     -------
@@ -428,8 +478,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         If the active-set iteration does not converge, cycles, or ends with ``theta < 0``.
     """
     start = time.perf_counter()
-    if cavitation not in ("jfo", "none"):
-        raise ValueError(f"cavitation must be 'jfo' or 'none', got {cavitation!r}")
+    if cavitation not in ("jfo", "reynolds", "none"):
+        raise ValueError(f"cavitation must be 'jfo', 'reynolds' or 'none', got {cavitation!r}")
     sq = _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitation_pressure, dt, previous)
     if not (0 < tol < 1e-2):
         raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
@@ -444,21 +494,21 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     t1 = time.perf_counter()
     p_fixed = np.zeros(ops.n_dofs)
     p_fixed[ops.inlet] = inlet_pressure
-    cavity = _warm_cavity(warm_start, ops)
+    unk = _unknowns(mesh, ops)
+    cavity = _warm_cavity(warm_start, ops, unk)
     if cavitation == "none":
-        sol = _active_set(system, ops, p_fixed, p_c, np.zeros(ops.interior.size, bool), factorize, tol, 1,
-                          fixed=True)
+        sol = _active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
         if cavity is None:
-            cavity = _initial_cavity(system, ops, p_fixed, p_c, factorize)
-        sol = _active_set(system, ops, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+            cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
+        solve = _active_set if cavitation == "jfo" else _obstacle
+        sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
     t2 = time.perf_counter()
-    p = p_fixed.copy()
-    p[ops.interior] = sol.p
-    theta = np.ones(ops.n_dofs)
-    theta[ops.interior] = sol.theta
-    cavitated = np.zeros(ops.n_dofs, bool)
-    cavitated[ops.interior] = sol.cavity
+    free = np.zeros(ops.n_dofs, bool)
+    free[ops.interior] = True
+    p = np.where(free, unk.S @ sol.p, p_fixed)
+    theta = np.where(free, unk.S @ sol.theta, 1.0)
+    cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
     return _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
                    cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
 
@@ -466,7 +516,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
             cost, start, model) -> ReynoldsResult:
     basis = ops.basis
-    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta)
+    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds")
     x, dx = ops.x, basis.dx
     pq = basis.interpolate(p)
     dp = pq.grad
@@ -478,7 +528,8 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     force = force + inlet_pressure * pm[1:]
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     area = system.area
-    cav_fraction = float(np.sum(area[theta < 1.0 - 1e-12]) / np.sum(area))
+    emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
+    cav_fraction = float(np.sum(area[emptied]) / np.sum(area))
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
@@ -488,5 +539,5 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         formulation="direct", element="P1", force=force, integral=integral, h_min=h_min,
         flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
         coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation=model,
-        iterations=sol.iterations if model == "jfo" else 0, cavitated=cavitated if model == "jfo" else None,
+        iterations=sol.iterations if model != "none" else 0, cavitated=cavitated if model != "none" else None,
         theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c)

@@ -5,7 +5,9 @@ so meshing works repeatedly in one process and nothing leaks between calls.
 Boundaries come out named: ``outer`` (the outline), ``inlet`` (all pocket
 contours) and ``inlet_0``, ``inlet_1``, ... per pocket; on the default
 rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
-(phi = alpha2) and ``side`` (z = +-a).
+(phi = alpha2) and ``side`` (z = +-a). A periodic surface has no arc edges:
+``outer`` = ``side``, and the seam is named ``periodic_start`` /
+``periodic_end`` (matching nodes, see :func:`periodic_pairs`).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import skfem
 
 from .geometry import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "strip_mesh"]
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "strip_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -283,7 +285,13 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
     groups = {"outer": outer_curves, "inlet": [c for cs in inlet_curves for c in cs]}
     for k, cs in enumerate(inlet_curves):
         groups[f"inlet_{k}"] = cs
-    if surface.is_rectangular:
+    if surface.periodic:
+        # the arc ends are one line of the film: matching nodes, no pressure condition there
+        bottom, right, top, left = outer_curves
+        period = surface.arc[1] - surface.arc[0]
+        gmsh.model.mesh.setPeriodic(1, [right], [left], [1, 0, 0, period, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+        groups.update(outer=[bottom, top], side=[bottom, top], periodic_start=[left], periodic_end=[right])
+    elif surface.is_rectangular:
         # Rectangle vertices are stored counter-clockwise starting at (alpha1, -a):
         # edges bottom (side), right (arc_end), top (side), left (arc_start).
         bottom, right, top, left = outer_curves
@@ -425,3 +433,27 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
     return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+
+
+def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:
+    """Matching vertex pairs ``(start, end)`` across the seam of a periodic surface's mesh.
+
+    Empty arrays for a mesh without the ``periodic_start``/``periodic_end`` boundaries.
+
+    Raises
+    ------
+    ValueError
+        If the seam nodes do not match one to one (same ``z``, ``phi`` one period apart).
+    """
+    bnd = mesh.boundaries
+    if "periodic_start" not in bnd or "periodic_end" not in bnd:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    m = mesh.mesh
+    start = np.unique(m.facets[:, bnd["periodic_start"]])
+    end = np.unique(m.facets[:, bnd["periodic_end"]])
+    start = start[np.argsort(m.p[1, start])]
+    end = end[np.argsort(m.p[1, end])]
+    tol = 1e-9 * max(1.0, float(np.ptp(m.p[0])))
+    if start.size != end.size or np.abs(m.p[1, start] - m.p[1, end]).max(initial=0.0) > tol:
+        raise ValueError("the periodic seam's nodes do not match one to one (the mesh is not periodic)")
+    return start, end

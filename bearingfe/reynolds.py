@@ -406,6 +406,12 @@ def _weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
     return w
 
 
+def _needs_finite_volumes(mesh) -> bool:
+    """Recessed or periodic surfaces: only the finite-volume solver (bearingfe.jfo) handles them."""
+    surface = getattr(mesh, "surface", None)
+    return surface is not None and (bool(surface.recesses) or surface.periodic)
+
+
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
               solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback") -> Superposition:
     """Factorize the Reynolds operator of a film state once and solve four unit problems.
@@ -429,9 +435,10 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         raise ValueError(f"on_indefinite must be 'fallback' or 'raise', got {on_indefinite!r}")
     if not isinstance(film, Film):
         raise ValueError(f"film must implement the bearingfe.Film protocol, got {type(film).__name__}")
-    if isinstance(mesh, SupportMesh) and mesh.surface is not None and mesh.surface.recesses:
-        raise ValueError("the surface has recesses (film steps): solve it with solve_reynolds(..., "
-                         "cavitation='none' or 'jfo'), whose finite-volume fluxes are exact across the steps")
+    if _needs_finite_volumes(mesh):
+        raise ValueError("the surface has recesses (film steps) or is periodic: solve it with "
+                         "solve_reynolds(..., cavitation='none', 'reynolds' or 'jfo'), whose finite-volume fluxes "
+                         "are exact across the steps and which identifies the periodic seam")
     ops = operators(mesh, element)
     factorize = get_linear_solver(solver)
     t0 = time.perf_counter()
@@ -787,8 +794,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    recessed = isinstance(mesh, SupportMesh) and mesh.surface is not None and bool(mesh.surface.recesses)
-    if cavitation == "jfo" or (recessed and cavitation == "none"):
+    if cavitation == "jfo" or (_needs_finite_volumes(mesh) and cavitation in ("none", "reynolds")):
         from .jfo import solve_jfo
         return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
                          cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,

@@ -221,4 +221,71 @@ def test_recess_input_is_checked():
     with pytest.raises(ValueError, match=r"recesses\[0\].*outer contour"):
         Surface(recesses=[Recess(Circle((0.45, 0.0), 0.1), 1.0)])
     with pytest.raises(ValueError, match="recesses"):
-        solve_reynolds(_dimpled(0.2), CosineFilm(0.0), cavitation="reynolds")
+        solve_reynolds(_dimpled(0.2), CosineFilm(0.0), cavitation="gumbel")
+    from bearingfe import superpose
+    with pytest.raises(ValueError, match="recesses"):
+        superpose(_dimpled(0.2), CosineFilm(0.0))
+
+
+def test_dimple_swift_stieber_creates_load_jfo_does_not():
+    # the textured-slider paradox (issue 14): with p >= p_c alone the dimple's low-pressure half is clipped
+    # and oil is created in the cavity, so a parallel slider gets a positive load; mass conservation
+    # starves the converging half and the load is not positive (here slightly negative)
+    mesh = _dimpled(0.05)
+    ss = solve_reynolds(mesh, CosineFilm(0.0), cavitation="reynolds", cavitation_pressure=-0.05)
+    jfo = solve_reynolds(mesh, CosineFilm(0.0), cavitation="jfo", cavitation_pressure=-0.05)
+    assert ss.integral > 0 > jfo.integral
+    assert ss.integral > 10 * abs(jfo.integral)
+    assert ss.flows["cavitation"] < 0  # oil created
+    assert abs(ss.mass_balance) < 1e-12
+
+
+# -- periodic (360-degree) films with a partial-length groove ------------------------------------
+
+def _grooved(size, shift=0.0):
+    from bearingfe import Rectangle
+    return mesh_surface(Surface(arc=(-math.pi + shift, math.pi + shift), half_width=0.5, periodic=True,
+                                inlets=[Rectangle((0.0, 0.0), (0.2, 0.8))]), size)
+
+
+@pytest.fixture(scope="module")
+def grooved():
+    film = CosineFilm(0.6, 0.0)
+    return {shift: {m: solve_reynolds(_grooved(0.1, shift), film, inlet_pressure=0.5, cavitation=m)
+                    for m in ("jfo", "reynolds")} for shift in (0.0, 1.0)}
+
+
+def test_periodic_seam_is_invisible(grooved):
+    from bearingfe.meshing import periodic_pairs
+    res = grooved[0.0]["jfo"]
+    a, b = periodic_pairs(_grooved(0.1))
+    assert a.size > 5
+    assert np.array_equal(res.pressure[a], res.pressure[b]) and np.array_equal(res.theta[a], res.theta[b])
+    # moving the seam by 1 rad changes the answer by discretization error only (measured 0.1 %)
+    moved = grooved[1.0]["jfo"]
+    assert np.linalg.norm(moved.force - res.force) < 3e-3 * np.linalg.norm(res.force)
+    assert moved.flows["inlet"] == pytest.approx(res.flows["inlet"], rel=3e-3)
+
+
+def test_periodic_groove_flow_balance(grooved):
+    jfo, ss = grooved[0.0]["jfo"], grooved[0.0]["reynolds"]
+    # no arc edges: the groove feeds exactly what leaves through the sides (JFO), to round-off
+    assert set(jfo.flows) == {"side", "inlet", "squeeze"}
+    assert abs(jfo.flows["inlet"] - jfo.flows["side"]) < 1e-12 * jfo.flows["inlet"]
+    # Swift-Stieber needs created oil to close its balance, and under-predicts the groove supply
+    # (measured 1.81 vs 1.95) while over-predicting the side leakage (2.23 vs 1.95)
+    assert ss.flows["cavitation"] < -0.3
+    assert ss.flows["inlet"] < 0.95 * jfo.flows["inlet"]
+    assert ss.flows["side"] > 1.1 * jfo.flows["side"]
+    # the loads, set by the full film, agree within a few per cent (measured 2.9 %)
+    assert np.linalg.norm(ss.force) == pytest.approx(np.linalg.norm(jfo.force), rel=5e-2)
+
+
+def test_periodic_input_is_checked():
+    with pytest.raises(ValueError, match="periodic"):
+        Surface(arc=(0.0, 6.0), periodic=True)
+    with pytest.raises(ValueError, match="periodic"):
+        Surface(arc=(0.0, 2 * math.pi), periodic="yes")
+    from bearingfe import superpose
+    with pytest.raises(ValueError, match="periodic"):
+        superpose(_grooved(0.3), CosineFilm(0.5))
