@@ -34,7 +34,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 __all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "short_bearing", "raimondi_boyd",
-           "PocketSlider", "SliderAnswer", "jfo_pocket_slider"]
+           "PocketSlider", "SliderAnswer", "jfo_pocket_slider", "OscillatingSqueeze"]
 
 #: ``L/D -> eps -> (S, attitude [deg], (R/c) f, Q/(R c N L), Qs/Q, P/p_max)``: Raimondi & Boyd
 #: (1958), ASLE Trans. 1, full 360-degree bearing, Swift-Stieber conditions, as reproduced in
@@ -303,6 +303,110 @@ def jfo_pocket_slider(quick: bool = False) -> list[Check]:
             Check("JFO pocket slider flow [m^2/s]", ref, num.flow, ex.flow, 1e-6),
             Check("JFO pocket slider reformation [m]", ref, num.reformation, ex.reformation, 1e-2),
             Check("JFO pocket slider peak pressure [Pa]", ref, num.peak_pressure, ex.peak_pressure, 1e-3)]
+
+
+@dataclass(frozen=True)
+class OscillatingSqueeze:
+    r"""1-D squeeze film between parallel plates with an oscillating gap, JFO cavitation (transient).
+
+    Non-dimensional (the package's scales, no sliding): a strip ``0 < x < 1``
+    with ``p = 0`` at both ends, gap ``h(t) = mean + amplitude cos(t)`` uniform
+    in ``x``, cavity pressure ``p_c < 0``. The case is of the type of Ausas,
+    Jai & Buscaglia (J. Tribol. 131, 031702, 2009), with our own parameters.
+    While the plates approach, the film is full and
+    ``p = 6 h'/h^3 (x^2 - x)``. Once they separate fast enough
+    (``1.5 h'/h^3 > -p_c``) a cavity ``(1/2 - c, 1/2 + c)`` opens at the
+    centre; with ``l = 1/2 - c`` the full film on each side is
+    ``p = p_c + A y + 6 h'/h^3 y^2`` (``y`` from the front), ``p(l) = 0``:
+    ``A = (-p_c - 6 h' l^2/h^3)/l``. Mass across the front gives
+    ``c' (1 - theta_f) h = -h^3 A / 12`` with ``theta_f = h(tau)/h(t)`` the
+    fill of the cavity where the front is (cavitated at time ``tau``, no
+    flux in the cavity since there is no Couette flow). The front advances
+    with ``A = 0`` (``l^2 = -p_c h^3/(6 h')``, fresh cavity has
+    ``theta = 1``) and recedes by the ODE; :meth:`reference` integrates it
+    implicitly (a scalar root per step, so the stiff turn-around is stable)
+    and returns the cavity half-length and the load ``int p dx``.
+    """
+
+    mean: float = 1.0
+    amplitude: float = 0.5
+    p_cav: float = -0.1
+
+    def __post_init__(self) -> None:
+        if not (0 < self.amplitude < self.mean and math.isfinite(self.mean)):
+            raise ValueError("OscillatingSqueeze needs 0 < amplitude < mean")
+        if not (math.isfinite(self.p_cav) and self.p_cav < 0):
+            raise ValueError(f"OscillatingSqueeze.p_cav must be < 0, got {self.p_cav!r}")
+
+    def h(self, t):
+        return self.mean + self.amplitude * np.cos(t)
+
+    def h_rate(self, t):
+        return -self.amplitude * np.sin(t)
+
+    def reference(self, t_end: float = 2 * math.pi, steps: int = 40000) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(t, c, load)`` on ``steps`` equal steps of ``[0, t_end]`` from a full film at rest (t = 0)."""
+        from scipy.optimize import brentq
+
+        dt, c, pc = t_end / steps, 0.0, self.p_cav
+        hist_c: list[float] = []   # front positions reached while the cavity grew ...
+        hist_t: list[float] = []   # ... and when: the fill there is h(tau)/h(t)
+        out = np.zeros((3, steps + 1))
+        for k in range(steps + 1):
+            t = k * dt
+            H, Hd = float(self.h(t)), float(self.h_rate(t))
+            grow = 0.5 - math.sqrt(-pc * H**3 / (6 * Hd)) if Hd > 0 else -math.inf
+            if k and c > 0:
+                c = self._recede(c, dt, t, H, Hd, max(grow, 0.0), hist_c, hist_t, brentq)
+            if grow > c:
+                while hist_c and hist_c[-1] >= c:
+                    hist_c.pop(), hist_t.pop()
+                hist_c.append(max(c, 0.0)), hist_t.append(t - dt if k else t)
+                hist_c.append(grow), hist_t.append(t)
+                c = grow
+            if c <= 0:
+                c, hist_c, hist_t = 0.0, [], []
+            out[:, k] = t, c, self._load(c, H, Hd)
+        return out[0], out[1], out[2]
+
+    def _recede(self, c, dt, t, H, Hd, lo, hist_c, hist_t, brentq) -> float:
+        pc = self.p_cav
+
+        def speed(x):
+            l = 0.5 - x
+            A = (-pc - 6 * Hd * l**2 / H**3) / l
+            fill = float(self.h(np.interp(x, hist_c, hist_t))) / H
+            return -H**2 * A / (12 * max(1.0 - fill, 1e-300))
+
+        if lo >= c:
+            return c
+        g = lambda x: (x - c) / dt - speed(x)  # backward Euler; g(lo) <= 0 <= g(c)
+        return lo if g(lo) >= 0 else brentq(g, lo, c, xtol=1e-14)
+
+    def _load(self, c, H, Hd) -> float:
+        if c <= 0:
+            return -Hd / H**3
+        l = 0.5 - c
+        A = (-self.p_cav - 6 * Hd * l**2 / H**3) / l
+        return 2 * (self.p_cav * 0.5 + A * l**2 / 2 + 2 * Hd / H**3 * l**3)
+
+    def solve(self, n: int, steps: int, t_end: float = 2 * math.pi):
+        """Backward-Euler JFO steps on a strip of ``n`` cells: ``(t, c, load, mass_balance)`` per step."""
+        from .film import UniformFilm
+        from .jfo import solve_jfo
+        from .meshing import strip_mesh
+
+        mesh = strip_mesh(n, rows=1)
+        width = float(np.ptp(mesh.mesh.p[1]))
+        res = solve_jfo(mesh, UniformFilm(float(self.h(0.0))), wedge=0.0, cavitation_pressure=self.p_cav)
+        dt = t_end / steps
+        out = np.zeros((4, steps))
+        for k in range(1, steps + 1):
+            t = k * dt
+            res = solve_jfo(mesh, UniformFilm(float(self.h(t))), wedge=0.0, cavitation_pressure=self.p_cav,
+                            dt=dt, previous=res, warm_start=res)
+            out[:, k - 1] = t, res.cavitated_fraction / 2, res.integral / width, res.mass_balance
+        return out
 
 
 #: Validation checks by name.
