@@ -5,15 +5,19 @@ module                     what it does
 =========================  =====================================================
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``film``                   film-thickness models (``CosineFilm``)
-``reynolds``               FEM Reynolds solver, pi and direct forms, superposition
+``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
+``superposition``          per-mesh operators, one film state's condensed system, results
+``cavitation``             cavitation models and their table (``MODELS``)
+``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``cavitation``             Swift-Stieber (complementarity) and Gumbel cavitation
-``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation
+``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation, finite volumes
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
+``schema``                 one schema for input files: field checks, tables, errors
 ``machines``               shared parameter objects of machines (SI)
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle
@@ -25,6 +29,7 @@ module                     what it does
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
+``version``                the package version
 ``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
@@ -41,6 +46,7 @@ from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
+from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
@@ -52,7 +58,7 @@ from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarn
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
@@ -66,6 +72,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon", "Recess",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]

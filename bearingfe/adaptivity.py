@@ -4,7 +4,7 @@ The film flux (units of the flow scale ``omega R0^2 c`` per unit length)::
 
     q = -h^3/12 grad p + wedge h/2 e_phi,        div q + dh/dt = 0
 
-is what the Reynolds equation conserves (see :func:`bearingfe.reynolds._flows`).
+is what the Reynolds equation conserves (see ``bearingfe.superposition._flows``).
 A finite-element pressure ``p_h`` leaves two residuals: inside each element
 ``R_K = div q_h + dh/dt`` and across each interior edge the jump
 ``J_E = [q_h . n]`` of the normal flux. :func:`error_indicators` combines
@@ -43,14 +43,15 @@ import skfem
 from scipy.sparse.csgraph import dijkstra
 from scipy.spatial import cKDTree
 
-from .cavitation import _ruptured_elements
 from .film import Film
 from .geometry import Surface
 from .journal import ResolutionWarning
 from .linalg import DEFAULT_SOLVER, get_linear_solver
 from .meshing import SupportMesh, mesh_surface
-from .reynolds import (CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, _mapping, _mass, _source,
-                       _weighted_laplace, solve_reynolds)
+from . import forms
+from .forms import film_flux, mapping, pressure_from_unknown, unknown_scale
+from .reynolds import CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, solve_reynolds
+from .superposition import ruptured_elements
 
 __all__ = ["INDICATORS", "NORMS", "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt",
            "error_indicators", "load_indicators", "size_field", "target_sizes"]
@@ -218,7 +219,7 @@ def load_indicators(result: ReynoldsResult) -> np.ndarray:
 def _ruptured(result: ReynoldsResult) -> np.ndarray:
     if result.cavitated is None or not np.any(result.cavitated):
         return np.zeros(result.basis.mesh.nelements, bool)
-    return _ruptured_elements(result.basis, np.asarray(result.pressure), np.asarray(result.cavitated))
+    return ruptured_elements(result.basis, np.asarray(result.pressure), np.asarray(result.cavitated))
 
 
 def _dual_pressure(result: ReynoldsResult, g: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
@@ -226,8 +227,8 @@ def _dual_pressure(result: ReynoldsResult, g: Callable[[np.ndarray], np.ndarray]
     basis = result.basis
     x = np.array(basis.global_coordinates())
     h = np.asarray(result.film.thickness(x[0], x[1]), float)
-    A = _weighted_laplace.assemble(basis, c=h**3 / 12.0).tocsr()
-    b = _source.assemble(basis, f=g(x))
+    A = forms.weighted_laplace.assemble(basis, c=h**3 / 12.0).tocsr()
+    b = forms.load.assemble(basis, f=g(x))
     bnd = basis.mesh.boundaries or {}
     facets = [bnd[n] for n in ("outer", "inlet") if n in bnd]
     fixed = np.zeros(basis.N, bool)
@@ -276,14 +277,14 @@ class _Bases:
         if self.element == "P1" and isinstance(self.mesh, skfem.MeshTri1):
             return np.zeros_like(basis.dx)
         if self._dg is None:
-            dg = skfem.Basis(self.mesh, skfem.ElementDG(skfem.ElementTriP1()), mapping=_mapping(self.mesh),
+            dg = skfem.Basis(self.mesh, skfem.ElementDG(skfem.ElementTriP1()), mapping=mapping(self.mesh),
                              quadrature=(basis.X, basis.W))
-            self._dg = (dg, spla.factorized(_mass.assemble(dg).tocsc()))  # block diagonal, 3x3 blocks
+            self._dg = (dg, spla.factorized(forms.mass.assemble(dg).tocsc()))  # block diagonal, 3x3 blocks
         dg, solve = self._dg
         grad = basis.interpolate(u).grad
         total = np.zeros_like(basis.dx)
         for k in range(2):
-            coefficients = solve(_source.assemble(dg, f=np.asarray(grad[k])))
+            coefficients = solve(forms.load.assemble(dg, f=np.asarray(grad[k])))
             total += np.asarray(dg.interpolate(coefficients).grad[k])
         return total
 
@@ -291,7 +292,7 @@ class _Bases:
     def sides(self):
         """Both sides of the interior facets (``None`` without any)."""
         if self._sides is None and np.any(self.mesh.f2t[1] >= 0):
-            self._sides = [skfem.InteriorFacetBasis(self.mesh, self.basis.elem, mapping=_mapping(self.mesh),
+            self._sides = [skfem.InteriorFacetBasis(self.mesh, self.basis.elem, mapping=mapping(self.mesh),
                                                     side=k, intorder=self.intorder) for k in (0, 1)]
         return self._sides
 
@@ -303,7 +304,7 @@ class _Bases:
             empty = np.zeros(0, np.int64)
             natural = np.setdiff1d(self.mesh.boundary_facets(),
                                    np.union1d(bnd.get("outer", empty), bnd.get("inlet", empty)))
-            self._natural = (skfem.FacetBasis(self.mesh, self.basis.elem, mapping=_mapping(self.mesh),
+            self._natural = (skfem.FacetBasis(self.mesh, self.basis.elem, mapping=mapping(self.mesh),
                                               facets=natural, intorder=self.intorder)
                              if natural.size else False)
         return self._natural or None
@@ -315,7 +316,7 @@ def _unknown(result: ReynoldsResult) -> np.ndarray:
     if result.formulation == "direct":
         return pressure
     loc = result.basis.doflocs
-    return pressure * np.asarray(result.film.thickness(loc[0], loc[1]), float) ** 1.5
+    return pressure / unknown_scale(result.film.thickness(loc[0], loc[1]), result.formulation)
 
 
 def _pressure_fields(f: _Field, basis, x: np.ndarray, lap_u):
@@ -327,12 +328,11 @@ def _pressure_fields(f: _Field, basis, x: np.ndarray, lap_u):
     film = f.film
     h = np.asarray(film.thickness(x[0], x[1]), float)
     dh = np.array([np.asarray(g, float) for g in film.gradient(x[0], x[1])])
-    s = h**-1.5
-    ds = -1.5 * h**-2.5 * dh
-    p = s * value
-    dp = s * grad + value * ds
+    p, dp = pressure_from_unknown(value, grad, h, dh, f.formulation)
     if lap_u is None:
         return p, dp, None
+    s = h**-1.5
+    ds = -1.5 * h**-2.5 * dh
     lap_h = np.asarray(film.laplacian(x[0], x[1]), float)
     lap_s = -1.5 * h**-2.5 * lap_h + 3.75 * h**-3.5 * (dh[0] ** 2 + dh[1] ** 2)
     return p, dp, lap_s * value + 2.0 * (ds[0] * grad[0] + ds[1] * grad[1]) + s * lap_u
@@ -356,7 +356,8 @@ def _pressure_flux_normal(f: _Field, fb, normals: np.ndarray) -> tuple[np.ndarra
     x = np.array(fb.global_coordinates())
     _, dp, _ = _pressure_fields(f, fb, x, None)
     h = np.asarray(f.film.thickness(x[0], x[1]), float)
-    return -h**3 / 12.0 * (dp[0] * normals[0] + dp[1] * normals[1]), h
+    q0, q1 = film_flux(h, dp, 0.0)
+    return q0 * normals[0] + q1 * normals[1], h
 
 
 def _jump_terms(f: _Field, weight: float, bases: _Bases) -> np.ndarray:

@@ -46,6 +46,39 @@ Under cavitation the force is no longer linear in the squeeze rates; the
 transient finds the rates that balance a load with :func:`rates_for_load`,
 a Newton method on two unknowns started from the superposition answer whose
 Jacobian comes from the same factorization (on the converged active set).
+
+The table of models
+-------------------
+:data:`MODELS` maps a model name to its solver (as ``scipy.integrate``'s
+``METHODS`` table maps names to integrators); it is read-only and
+:data:`bearingfe.reynolds.CAVITATION` lists its keys. Every entry is a
+callable with the contract
+
+``solve(sup, weights, options) -> ReynoldsResult``
+
+``sup`` : :class:`~bearingfe.superposition.Superposition`
+    one film state, with everything built once for it: ``sup.operators``
+    (mesh, basis, dofs, quadrature points ``x``), ``sup.at`` (the film at
+    the quadrature points, :class:`~bearingfe.forms.FilmAt`),
+    ``sup.system`` (:class:`~bearingfe.superposition.CondensedSystem`: the
+    assembled condensed matrix, its factorization, the unit right sides
+    and their Dirichlet data) and the linear unit ``fields``.
+``weights`` : ndarray, shape (4,)
+    the operating point as weights of the unit sources ``(wedge,
+    gamma_rate, phi0_rate, inlet_pressure)``, already checked finite (and
+    ``inlet_pressure >= 0`` for every model but ``"none"``) by
+    :func:`solve_model`.
+``options`` : :class:`ModelOptions`
+    ``sliding``, ``warm_start``, ``solver`` and the iteration controls; a
+    model reads the ones it uses. A new model that needs an option adds a
+    field (with a default) to :class:`ModelOptions`.
+
+It returns the :class:`~bearingfe.superposition.ReynoldsResult` built by
+:func:`~bearingfe.superposition.build_result` from its unknown field, the
+model name, its iteration count and its ruptured dofs, so that loads,
+flows and friction are computed in one place for every model. A model that
+changes the film (e.g. an elastic one) calls an entry again on the
+superposition of the new film.
 """
 
 from __future__ import annotations
@@ -54,23 +87,28 @@ import time
 import weakref
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Callable, Mapping
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.spatial import cKDTree
 
-from .film import Film
+from .jfo import solve_model_jfo
 from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
-from .reynolds import (ReynoldsResult, Superposition, _boundary, _flows, _flux_residual, _outflow,
-                       _pressure_at_quadrature, _pressure_dofs, _sources, _system_matrix, _weights,
-                       superpose)
+from .superposition import ReynoldsResult, Superposition, build_result, ruptured_elements, source_weights
 
 __all__ = [
     "CavitationError",
+    "MODELS",
+    "ModelOptions",
     "ObstacleSolution",
     "ObstacleProblem",
+    "FilmProblem",
     "obstacle_problem",
+    "solve_model",
     "solve_cavitating",
     "rates_for_load",
+    "RatesForLoad",
 ]
 
 #: Default relative tolerance on the sign tests of the active-set iteration.
@@ -156,6 +194,15 @@ class ObstacleProblem:
         self._cache[key] = solve
         return solve, 1
 
+    def add_factorization(self, free: np.ndarray, solve) -> None:
+        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache."""
+        free = np.asarray(free, bool)
+        if free.shape != (self.n,):
+            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        if len(self._cache) >= self._cache_size:
+            self._cache.pop(next(iter(self._cache)))
+        self._cache[np.packbits(free).tobytes()] = solve
+
     def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Solve with ``u = 0`` on a given active set (the linearization on a
         fixed rupture set); ``b`` may have several columns."""
@@ -220,87 +267,49 @@ class ObstacleProblem:
 # -- the obstacle problem of a film state -------------------------------------------
 
 @dataclass(frozen=True, eq=False)
-class _FilmProblem:
+class FilmProblem:
+    """The complementarity problem of a film state on its condensed system.
+
+    Attributes
+    ----------
+    problem : ObstacleProblem
+        On ``sup.system.matrix`` (no reassembly); its cache starts with the
+        superposition's own factorization of the full-film set.
+    interior, boundary : ndarray of int
+    rhs : ndarray, shape (n_interior, 4)
+        Unit right sides of the condensed system.
+    lift : ndarray, shape (n_dofs, 4)
+        Dirichlet data of the unit sources.
+    """
+
     problem: ObstacleProblem
     interior: np.ndarray
     boundary: np.ndarray
-    rhs: np.ndarray       # (n_interior, 4) unit right sides of the condensed system
-    lift: np.ndarray      # (n_dofs, 4) Dirichlet data of the unit sources
+    rhs: np.ndarray
+    lift: np.ndarray
 
 
-_PROBLEMS: "weakref.WeakKeyDictionary[Superposition, _FilmProblem]" = weakref.WeakKeyDictionary()
+_PROBLEMS: "weakref.WeakKeyDictionary[Superposition, FilmProblem]" = weakref.WeakKeyDictionary()
 
 
 def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,
-                     tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> _FilmProblem:
+                     tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> FilmProblem:
     """The condensed complementarity problem of a film state (cached per superposition)."""
     cached = _PROBLEMS.get(sup)
     if cached is not None and cached.problem.tol == tol and cached.problem.max_iterations == max_iterations:
         return cached
-    ops = sup.operators
-    A = _system_matrix(ops, sup._at, sup.formulation)
-    F, g = _sources(ops, sup.film, sup._at, sup.formulation)
-    I, B = ops.interior, _boundary(ops)
-    rhs = -F[I] - A[I][:, B] @ g[B]
-    fp = _FilmProblem(problem=ObstacleProblem(A[I][:, I], get_linear_solver(solver), tol=tol,
-                                              max_iterations=max_iterations),
-                      interior=I, boundary=B, rhs=rhs, lift=g)
+    system = sup.system
+    factorize = get_linear_solver(solver)
+    problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
+    if factorize is system.factorize:
+        problem.add_factorization(np.ones(problem.n, bool), system.solve)
+    fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
+                     lift=system.lift)
     _PROBLEMS[sup] = fp
     return fp
 
 
-def _full(fp: _FilmProblem, u_interior: np.ndarray, wts: np.ndarray) -> np.ndarray:
-    u = fp.lift @ wts
-    u[fp.interior] = u_interior
-    return u
-
-
-def _film_loads(sup: Superposition, u: np.ndarray, inlet_pressure: float) -> tuple[np.ndarray, float]:
-    ops = sup.operators
-    p, _ = _pressure_at_quadrature(ops, sup._at, u, sup.formulation)
-    x, dx = ops.x, ops.basis.dx
-    force = np.array([np.sum(p * np.cos(x[0]) * dx), np.sum(p * np.sin(x[0]) * dx)])
-    force += inlet_pressure * ops.pocket_moments[1:]
-    return force, float(np.sum(p * dx) + inlet_pressure * ops.pocket_moments[0])
-
-
-def _ruptured_elements(basis, u: np.ndarray, cavitated: np.ndarray) -> np.ndarray:
-    """Elements with zero pressure at every dof and at least one ruptured dof."""
-    dofs = basis.element_dofs
-    return np.all(u[dofs] == 0.0, axis=0) & np.any(cavitated[dofs], axis=0)
-
-
-def _result(sup: Superposition, u: np.ndarray, wts: np.ndarray, sliding: float | None, model: str,
-            iterations: int, cavitated: np.ndarray, extra_cost: dict) -> ReynoldsResult:
-    start = time.perf_counter()
-    ops, at = sup.operators, sup._at
-    wedge, inlet_pressure = float(wts[0]), float(wts[3])
-    p, dp = _pressure_at_quadrature(ops, at, u, sup.formulation)
-    sliding = wedge if sliding is None else float(sliding)
-    raw, balance = _flows(ops, sup.film, at, u, sup.formulation, p, dp, wedge, wts[1:3])
-    hdot = wts[1] * at.shapes[0] + wts[2] * at.shapes[1]
-    r = _flux_residual.assemble(ops.basis, q0=-at.h**3 / 12.0 * dp[0] + 0.5 * wedge * at.h,
-                                q1=-at.h**3 / 12.0 * dp[1], hdot=hdot)
-    cavitation = float(np.sum(r[cavitated]))
-    balance -= cavitation
-    # boundary flows with the ruptured zone's non-conserved Couette source removed (see _flows);
-    # "cavitation" absorbs the difference so that the balance identity is unchanged
-    flows, _ = _flows(ops, sup.film, at, u, sup.formulation, p, dp, wedge, wts[1:3],
-                      ruptured=_ruptured_elements(ops.basis, u, cavitated))
-    flows["cavitation"] = cavitation + (flows["inlet"] - raw["inlet"]) - (_outflow(flows) - _outflow(raw))
-    friction = float(np.sum((sliding / at.h + 0.5 * at.h * dp[0]) * ops.basis.dx))
-    force, integral = _film_loads(sup, u, inlet_pressure)
-    cost = dict(sup.cost, **extra_cost, postprocess=time.perf_counter() - start)
-    return ReynoldsResult(
-        basis=ops.basis, pressure=_pressure_dofs(ops, sup.film, u, sup.formulation), film=sup.film,
-        wedge=wedge, squeeze=(float(wts[1]), float(wts[2])), inlet_pressure=inlet_pressure,
-        formulation=sup.formulation, element=ops.element, force=force, integral=integral,
-        h_min=sup.h_min, flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
-        coercivity=sup.coercivity, notes=sup.notes, cost=MappingProxyType(cost),
-        cavitation=model, iterations=int(iterations), cavitated=cavitated)
-
-
-def _warm_mask(fp: _FilmProblem, sup: Superposition, wts: np.ndarray, warm_start) -> np.ndarray:
+def _warm_mask(fp: FilmProblem, sup: Superposition, wts: np.ndarray, warm_start) -> np.ndarray:
     if warm_start is None:
         return (sup.fields @ wts)[fp.interior] < 0.0
     basis = sup.operators.basis
@@ -326,14 +335,13 @@ def _transferred_mask(previous: ReynoldsResult, basis) -> np.ndarray:
     Swift-Stieber rupture sets. Dofs outside the previous mesh start full.
     """
     old = previous.basis
-    ruptured = _ruptured_elements(old, np.asarray(previous.pressure), previous.cavitated)
+    ruptured = ruptured_elements(old, np.asarray(previous.pressure), previous.cavitated)
     cells = _containing_cells(old.mesh.p, old.mesh.t[:3], np.asarray(basis.doflocs))
     return np.where(cells >= 0, ruptured[np.maximum(cells, 0)], False)
 
 
 def _containing_cells(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidates: int = 12) -> np.ndarray:
     """Index of the triangle ``(p, t)`` containing each point (-1 if none among the nearest ones)."""
-    from scipy.spatial import cKDTree
     centroids = p[:, t].mean(axis=1)
     k = min(candidates, t.shape[1])
     _, near = cKDTree(centroids.T).query(points.T, k=k)
@@ -352,6 +360,97 @@ def _containing_cells(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidat
     return out
 
 
+# -- the models and their table ------------------------------------------------------
+
+@dataclass(frozen=True)
+class ModelOptions:
+    """Options of one model solve (see the module docstring for the contract).
+
+    Attributes
+    ----------
+    sliding : float, optional
+        Couette speed of the shear (default: the wedge weight).
+    warm_start : ReynoldsResult or bool mask, optional
+        A previous solution (any mesh of the same surface) or rupture mask
+        to start the nonlinear iteration from.
+    solver : str or callable
+        Sparse solver for factorizations the model makes itself.
+    tol : float
+        Relative tolerance of the sign tests of the active-set iteration.
+    max_iterations : int
+        Cap on the model's iterations.
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge, ``<= 0``) of ``"jfo"``.
+    """
+
+    sliding: float | None = None
+    warm_start: object = None
+    solver: str | Factorize = DEFAULT_SOLVER
+    tol: float = TOLERANCE
+    max_iterations: int = MAX_ITERATIONS
+    cavitation_pressure: float = 0.0
+
+
+#: ``solve(sup, weights, options) -> ReynoldsResult`` (see the module docstring).
+ModelSolver = Callable[[Superposition, np.ndarray, ModelOptions], ReynoldsResult]
+
+
+def solve_linear(sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
+    """``"none"``: the superposition itself; the pressure may go negative (the source paper)."""
+    return sup.combine(weights[0], weights[1:3], weights[3], options.sliding)
+
+
+def solve_gumbel(sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
+    """``"gumbel"``: the linear solution with its negative part set to zero."""
+    u = sup.fields @ weights
+    cavitated = np.zeros(u.size, bool)
+    cavitated[sup.operators.interior] = u[sup.operators.interior] < 0
+    u = np.where(cavitated, 0.0, u)
+    return build_result(sup, u, weights, options.sliding, cavitation="gumbel", cavitated=cavitated)
+
+
+def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
+    """``"reynolds"``: ``p >= 0`` with a free boundary, by the primal-dual active-set method."""
+    t0 = time.perf_counter()
+    fp = obstacle_problem(sup, options.solver, tol=options.tol, max_iterations=options.max_iterations)
+    sol = fp.problem.solve(fp.rhs @ weights, _warm_mask(fp, sup, weights, options.warm_start))
+    cavitated = np.zeros(sup.operators.n_dofs, bool)
+    cavitated[fp.interior] = sol.active
+    cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
+    return build_result(sup, sup.system.full(sol.u, weights), weights, options.sliding, cavitation="reynolds",
+                        iterations=sol.iterations, cavitated=cavitated, extra_cost=cost)
+
+
+#: The cavitation models by name (read-only): ``name -> solve(sup, weights, options)``.
+MODELS: Mapping[str, ModelSolver] = MappingProxyType({
+    "none": solve_linear,
+    "reynolds": solve_swift_stieber,
+    "gumbel": solve_gumbel,
+    "jfo": solve_model_jfo,
+})
+
+
+def solve_model(sup: Superposition, weights: np.ndarray, model: str = "none",
+                options: ModelOptions = ModelOptions()) -> ReynoldsResult:
+    """Solve a film state at an operating point with a model of :data:`MODELS`.
+
+    Parameters
+    ----------
+    sup : Superposition
+    weights : array_like, shape (4,)
+        ``(wedge, gamma_rate, phi0_rate, inlet_pressure)``.
+    model : str
+        A key of :data:`MODELS`.
+    options : ModelOptions
+    """
+    if model not in MODELS:
+        raise ValueError(f"cavitation model must be one of {tuple(MODELS)}, got {model!r}")
+    weights = source_weights(weights[0], weights[1:3], weights[3])
+    if model != "none" and weights[3] < 0:
+        raise ValueError(f"inlet_pressure must be >= 0 with cavitation (p >= 0), got {weights[3]!r}")
+    return MODELS[model](sup, weights, options)
+
+
 def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                      sliding: float | None = None, *, model: str = "reynolds", warm_start=None,
                      solver: str | Factorize = DEFAULT_SOLVER, tol: float = TOLERANCE,
@@ -365,7 +464,9 @@ def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0),
         the default warm start (ruptured where the linear solution is negative).
     wedge, squeeze, inlet_pressure, sliding
         As in :func:`bearingfe.solve_reynolds`.
-    model : {"reynolds", "gumbel"}
+    model : str
+        A cavitation model of :data:`MODELS` (not ``"none"``): ``"reynolds"``
+        or ``"gumbel"``.
     warm_start : ReynoldsResult or bool mask, optional
         Rupture set of a previous solution: on the same mesh (e.g. the
         previous time step), or a cavitated result on another mesh of the
@@ -386,24 +487,15 @@ def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0),
     CavitationError
         If the active-set iteration does not converge within the cap.
     """
-    wts = _weights(wedge, squeeze, inlet_pressure)
-    if inlet_pressure < 0:
-        raise ValueError(f"inlet_pressure must be >= 0 with cavitation (p >= 0), got {inlet_pressure!r}")
-    if model == "gumbel":
-        u = sup.fields @ wts
-        cavitated = np.zeros(u.size, bool)
-        cavitated[sup.operators.interior] = u[sup.operators.interior] < 0
-        u = np.where(cavitated, 0.0, u)
-        return _result(sup, u, wts, sliding, model, 0, cavitated, {})
-    if model != "reynolds":
-        raise ValueError(f"model must be 'reynolds' or 'gumbel', got {model!r}")
-    t0 = time.perf_counter()
-    fp = obstacle_problem(sup, solver, tol=tol, max_iterations=max_iterations)
-    sol = fp.problem.solve(fp.rhs @ wts, _warm_mask(fp, sup, wts, warm_start))
-    cavitated = np.zeros(sup.operators.n_dofs, bool)
-    cavitated[fp.interior] = sol.active
-    cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
-    return _result(sup, _full(fp, sol.u, wts), wts, sliding, model, sol.iterations, cavitated, cost)
+    wts = source_weights(wedge, squeeze, inlet_pressure)
+    if model == "none" or model not in MODELS:
+        raise ValueError(f"model must be one of {_CAVITATING}, got {model!r}")
+    options = ModelOptions(sliding=sliding, warm_start=warm_start, solver=solver, tol=tol,
+                           max_iterations=max_iterations)
+    return solve_model(sup, wts, model, options)
+
+
+_CAVITATING = tuple(name for name in MODELS if name != "none")
 
 
 @dataclass(frozen=True, eq=False)
@@ -495,13 +587,13 @@ def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure:
                           f"(|force + load| = {np.linalg.norm(R):.3g}, scale {scale:.3g})")
 
 
-def _rate_jacobian(sup: Superposition, fp: _FilmProblem, res: ReynoldsResult, model: str) -> np.ndarray:
+def _rate_jacobian(sup: Superposition, fp: FilmProblem, res: ReynoldsResult, model: str) -> np.ndarray:
     """d(force)/d(rates) on the current rupture set."""
     if model == "gumbel":
         keep = ~res.cavitated
         J = np.zeros((2, 2))
         for k in (1, 2):
-            J[:, k - 1] = _film_loads(sup, np.where(keep, sup.fields[:, k], 0.0), 0.0)[0]
+            J[:, k - 1] = sup.loads(np.where(keep, sup.fields[:, k], 0.0))[0]
         return J
     active = res.cavitated[fp.interior]
     U = fp.problem.solve_fixed(fp.rhs[:, 1:3], active)
@@ -509,5 +601,5 @@ def _rate_jacobian(sup: Superposition, fp: _FilmProblem, res: ReynoldsResult, mo
     for k in range(2):
         u = np.zeros(sup.operators.n_dofs)
         u[fp.interior] = U[:, k]
-        J[:, k] = _film_loads(sup, u, 0.0)[0]
+        J[:, k] = sup.loads(u)[0]
     return J

@@ -24,12 +24,12 @@ import tempfile
 from pathlib import Path
 from typing import Sequence
 
+from .version import __version__
+
 __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    from . import __version__
-
     parser = argparse.ArgumentParser(prog="bearingfe", description=__doc__.split("\n")[0])
     parser.add_argument("--version", action="version", version=f"bearingfe {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{run,mesh,validate,sweep}")
@@ -46,6 +46,12 @@ def _parser() -> argparse.ArgumentParser:
     mesh.add_argument("--size", type=float, required=True, help="largest element size [-]")
     mesh.add_argument("--out", type=Path, required=True, help="target .msh file")
     mesh.add_argument("--order", type=int, choices=(1, 2), default=1, help="geometry order")
+    mesh.add_argument("--trust-geo", action="store_true", help="run the script even if it uses commands "
+                      "outside the geometry allow-list (shell, files, Include, Exit...); only for files you trust")
+    mesh.add_argument("--geo-timeout", type=float, default=None, metavar="SECONDS",
+                      help="time limit for gmsh (default 120 s or $BEARINGFE_GEO_TIMEOUT)")
+    mesh.add_argument("--max-elements", type=int, default=None, metavar="N",
+                      help="largest number of triangles (default 1000000 or $BEARINGFE_MAX_ELEMENTS)")
 
     val = sub.add_parser("validate", help="compare with closed forms and published data")
     val.add_argument("--quick", action="store_true", help="coarser meshes")
@@ -215,8 +221,12 @@ def _fmt(value) -> str:
 # -- mesh -------------------------------------------------------------------------
 
 def _mesh(args) -> int:
+    """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the script is checked against the
+    geometry allow-list (unless ``--trust-geo``) and meshed by gmsh in a separate process with a
+    time limit; the element count is estimated first (bearingfe.geofiles)."""
+    from .geofiles import run_geo
     from .io import atomic_path
-    from .meshing import gmsh_session, load_mesh
+    from .meshing import load_mesh
 
     geo, out = args.geo, args.out
     if not geo.is_file():
@@ -229,18 +239,9 @@ def _mesh(args) -> int:
         raise ValueError(f"--size must be a finite element size > 0, got {args.size}")
     out.parent.mkdir(parents=True, exist_ok=True)
     with atomic_path(out) as tmp:
-        with gmsh_session() as gmsh:
-            gmsh.open(str(geo))
-            if not gmsh.model.getPhysicalGroups(1):
-                raise ValueError(f"{geo.name}: no physical curve groups (need at least 'outer')")
-            gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
-            gmsh.model.mesh.generate(2)
-            if args.order == 2:
-                gmsh.model.mesh.setOrder(2)
-            gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-            gmsh.option.setNumber("Mesh.SaveAll", 0)  # elements of physical groups only, names kept
-            gmsh.write(str(tmp))
-        mesh = load_mesh(tmp)  # the written file must load with its named boundaries
+        run_geo(geo, tmp, size=args.size, order=args.order, trusted=args.trust_geo, timeout=args.geo_timeout,
+                max_elements=args.max_elements)
+        mesh = load_mesh(tmp, max_elements=args.max_elements)  # the written file must load with its named boundaries
     names = ", ".join(sorted(mesh.boundaries))
     print(f"{out}: {mesh.n_nodes} nodes, {mesh.n_elements} triangles, boundaries: {names}")
     return 0

@@ -55,6 +55,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .forms import film_flux
 from .geometry import Surface
 
 __all__ = ["FDResult", "solve_reynolds_fd", "FORMULATIONS", "METHODS"]
@@ -476,8 +477,8 @@ def _net_outflow(film, grid: _Grid, p: np.ndarray, wedge: float) -> np.ndarray:
     hx, hz = _face_h(film, grid)
     wz = _weights(grid.z.size, grid.dz)[:, None]
     wphi = _weights(grid.phi.size, grid.dphi)[None, :]
-    fx = (-(hx**3) / 12.0 * np.diff(p, axis=1) / grid.dphi + 0.5 * wedge * hx) * wz
-    fz = -(hz**3) / 12.0 * np.diff(p, axis=0) / grid.dz * wphi
+    fx = film_flux(hx, (np.diff(p, axis=1) / grid.dphi, 0.0), wedge)[0] * wz
+    fz = film_flux(hz, (0.0, np.diff(p, axis=0) / grid.dz), 0.0)[1] * wphi
     out = np.zeros(p.shape)
     out[:, :-1] += fx
     out[:, 1:] -= fx

@@ -20,6 +20,8 @@ from typing import Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
+from .schema import positive
+
 __all__ = [
     "Shape",
     "Circle",
@@ -65,13 +67,6 @@ def _pair(value, name: str) -> tuple[float, float]:
     return x, y
 
 
-def _positive(value: float, name: str) -> float:
-    value = float(value)
-    if not (math.isfinite(value) and value > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return value
-
-
 @dataclass(frozen=True)
 class Circle:
     """Circular pocket.
@@ -89,7 +84,7 @@ class Circle:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Circle.center"))
-        object.__setattr__(self, "radius", _positive(self.radius, "Circle.radius"))
+        object.__setattr__(self, "radius", positive("Circle.radius", self.radius))
 
     @property
     def area(self) -> float:
@@ -130,8 +125,8 @@ class Ellipse:
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Ellipse.center"))
         a, b = _pair(self.semi_axes, "Ellipse.semi_axes")
-        _positive(a, "Ellipse.semi_axes[0]")
-        _positive(b, "Ellipse.semi_axes[1]")
+        positive("Ellipse.semi_axes[0]", a)
+        positive("Ellipse.semi_axes[1]", b)
         object.__setattr__(self, "semi_axes", (a, b))
         if not math.isfinite(float(self.angle)):
             raise ValueError(f"Ellipse.angle must be finite, got {self.angle!r}")
@@ -240,8 +235,8 @@ def Rectangle(center: Sequence[float], size: Sequence[float], angle: float = 0.0
     """
     cx, cy = _pair(center, "Rectangle.center")
     w, h = _pair(size, "Rectangle.size")
-    _positive(w, "Rectangle.size[0]")
-    _positive(h, "Rectangle.size[1]")
+    positive("Rectangle.size[0]", w)
+    positive("Rectangle.size[1]", h)
     c, s = math.cos(angle), math.sin(angle)
     local = [(-w / 2, -h / 2), (w / 2, -h / 2), (w / 2, h / 2), (-w / 2, h / 2)]
     return Polygon(tuple((cx + c * u - s * v, cy + s * u + c * v) for u, v in local))
@@ -270,8 +265,8 @@ class Slot:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _pair(self.center, "Slot.center"))
-        object.__setattr__(self, "length", _positive(self.length, "Slot.length"))
-        object.__setattr__(self, "width", _positive(self.width, "Slot.width"))
+        object.__setattr__(self, "length", positive("Slot.length", self.length))
+        object.__setattr__(self, "width", positive("Slot.width", self.width))
         if not math.isfinite(float(self.angle)):
             raise ValueError(f"Slot.angle must be finite, got {self.angle!r}")
         object.__setattr__(self, "angle", float(self.angle))
@@ -351,7 +346,7 @@ class Recess:
     def __post_init__(self) -> None:
         if not isinstance(self.shape, Shape):
             raise ValueError(f"Recess.shape must be a shape (Circle, Ellipse, Polygon, Slot), got {self.shape!r}")
-        object.__setattr__(self, "depth", _positive(self.depth, "Recess.depth"))
+        object.__setattr__(self, "depth", positive("Recess.depth", self.depth))
 
 
 @dataclass(frozen=True)
@@ -394,7 +389,7 @@ class Surface:
         if not a1 < a2 <= a1 + 2 * math.pi + 1e-12:
             raise ValueError(f"Surface.arc must satisfy alpha1 < alpha2 <= alpha1 + 2*pi, got {self.arc!r}")
         object.__setattr__(self, "arc", (a1, a2))
-        object.__setattr__(self, "half_width", _positive(self.half_width, "Surface.half_width"))
+        object.__setattr__(self, "half_width", positive("Surface.half_width", self.half_width))
         inlets = (self.inlets,) if isinstance(self.inlets, Shape) else tuple(self.inlets)
         for i, shape in enumerate(inlets):
             if not isinstance(shape, Shape):
@@ -471,6 +466,11 @@ class Surface:
             mask |= shape.contains(phi, z)
         return mask
 
+    def inlet_widths(self) -> tuple[float, ...]:
+        """Size of each pocket as its hydraulic diameter ``4 area / perimeter`` [-]
+        (the diameter of a circle, about twice the width of a thin slot)."""
+        return tuple(_hydraulic_diameter(s) for s in self.inlets)
+
     def min_gap(self) -> float:
         """Smallest distance between a pocket and the outline or another pocket."""
         curves = [self._outline.boundary()] + [s.boundary() for s in self.inlets]
@@ -481,12 +481,28 @@ class Surface:
 
 # -- layout checks ---------------------------------------------------------
 
+#: Smallest pocket size and pocket gap, relative to the outline's extent: below, gmsh cannot resolve them.
+MIN_FEATURE = 1e-4
+
+
+def _hydraulic_diameter(shape: Shape) -> float:
+    xy = shape.boundary()
+    perimeter = float(np.sum(np.linalg.norm(np.roll(xy, -1, axis=1) - xy, axis=0)))
+    return 4.0 * abs(_signed_area(xy)) / perimeter
+
+
 def _check_layout(outline: Shape, inlets: tuple, names=None) -> None:
     outer_xy = outline.boundary()
     scale = float(np.ptp(outer_xy, axis=1).max())
-    tol = 1e-4 * scale
+    tol = MIN_FEATURE * scale
     names = names or [f"Surface.inlets[{i}]" for i in range(len(inlets))]
     for i, shape in enumerate(inlets):
+        width = _hydraulic_diameter(shape)
+        if not width >= tol:
+            raise ValueError(
+                f"{names[i]} ({type(shape).__name__}) is {width:.3g} across (4 area / perimeter), "
+                f"smaller than {MIN_FEATURE:g} x the outline ({scale:.3g}): too small to mesh or resolve; "
+                f"allowed: pocket size >= {tol:.3g}")
         xy = shape.boundary()
         if _polylines_cross(xy, outer_xy) or not outline.contains(*xy).all():
             raise ValueError(f"{names[i]} ({type(shape).__name__}) is not inside the outer contour")

@@ -50,13 +50,13 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
-from skfem import LinearForm
 
 from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
-from .reynolds import ReynoldsResult, _source, _weighted_laplace, operators, superpose
+from . import forms
+from .superposition import ReynoldsResult, operators, superpose
 
 __all__ = [
     "Groove",
@@ -70,7 +70,11 @@ __all__ = [
     "equilibrium",
     "dynamic_coefficients",
     "short_bearing_force",
+    "EQUILIBRIUM_CAVITATION",
 ]
+
+#: Cavitation models of :func:`equilibrium` (and so of its dynamic coefficients).
+EQUILIBRIUM_CAVITATION = ("reynolds", "none")
 
 #: Eccentricity ratios beyond this are refused (contact in all but name).
 EPS_MAX = 0.995
@@ -276,10 +280,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
 
 
 def _lumped_area(res: ReynoldsResult) -> np.ndarray:
-    @LinearForm
-    def one(v, w):
-        return v
-    return one.assemble(res.basis)
+    return forms.load.assemble(res.basis, f=np.ones_like(res.basis.dx))
 
 
 def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
@@ -288,17 +289,19 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     dF = np.zeros((2, 4))
     for res, sup in zip(state.results, state.sups):
         ops = sup.operators
-        at = sup._at
+        at = sup.at
         phi = ops.x[0]
         basis = ops.basis
         hx, hy = -np.cos(phi), -np.sin(phi)
         p = res.pressure
         # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot
+        dA_dx = forms.weighted_laplace.assemble(basis, c=3 * at.h**2 * hx)
+        dA_dy = forms.weighted_laplace.assemble(basis, c=3 * at.h**2 * hy)
         rhs = np.column_stack([
-            -_source.assemble(basis, f=6.0 * np.sin(phi)) - _weighted_laplace.assemble(basis, c=3 * at.h**2 * hx) @ p,
-            -_source.assemble(basis, f=-6.0 * np.cos(phi)) - _weighted_laplace.assemble(basis, c=3 * at.h**2 * hy) @ p,
-            -_source.assemble(basis, f=12.0 * hx),
-            -_source.assemble(basis, f=12.0 * hy),
+            -forms.load.assemble(basis, f=6.0 * np.sin(phi)) - dA_dx @ p,
+            -forms.load.assemble(basis, f=-6.0 * np.cos(phi)) - dA_dy @ p,
+            -forms.load.assemble(basis, f=12.0 * hx),
+            -forms.load.assemble(basis, f=12.0 * hy),
         ])
         fp = obstacle_problem(sup)
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
@@ -527,8 +530,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     load = np.asarray(load, float)
     if load.shape != (2,) or not np.all(np.isfinite(load)) or not np.hypot(*load) > 0:
         raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
-    if cavitation not in ("reynolds", "none"):
-        raise ValueError(f"cavitation must be 'reynolds' or 'none', got {cavitation!r}")
+    if cavitation not in EQUILIBRIUM_CAVITATION:
+        raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
     w = float(np.hypot(*load))
     eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])

@@ -26,6 +26,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Optional
 
+from .schema import finite, nonnegative, positive
+
 __all__ = [
     "Drive",
     "CrankSlider",
@@ -38,24 +40,6 @@ __all__ = [
     "Frame",
     "RotorFrame",
 ]
-
-
-def _finite(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return float(value)
-
-
-def _positive(name: str, value: float, unit: str = "") -> None:
-    if _finite(name, value) <= 0.0:
-        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}".replace("  ", " "))
-
-
-def _non_negative(name: str, value: float, unit: str = "") -> None:
-    if _finite(name, value) < 0.0:
-        raise ValueError(f"{name} must be >= 0 {unit}, got {value!r}".replace("  ", " "))
 
 
 @dataclass(frozen=True)
@@ -71,12 +55,12 @@ class Drive:
     omega: float
 
     def __post_init__(self) -> None:
-        _positive("omega", self.omega, "rad/s")
+        positive("omega", self.omega, "rad/s")
 
     @classmethod
     def from_rpm(cls, rpm: float) -> "Drive":
         """Drive from a speed in revolutions per minute (> 0)."""
-        _positive("speed_rpm", rpm, "rpm")
+        positive("speed_rpm", rpm, "rpm")
         return cls(omega=2.0 * math.pi * float(rpm) / 60.0)
 
     @property
@@ -128,25 +112,25 @@ class CrankSlider:
     crank_cg_radius: float = 0.0
 
     def __post_init__(self) -> None:
-        _positive("crank", self.crank, "m")
-        _positive("rod", self.rod, "m")
+        positive("crank", self.crank, "m")
+        positive("rod", self.rod, "m")
         if self.rod <= self.crank:
             raise ValueError(
                 f"rod must be longer than crank (rod > {self.crank!r} m), got {self.rod!r} m"
             )
-        _non_negative("rod_mass", self.rod_mass, "kg")
-        _non_negative("slider_mass", self.slider_mass, "kg")
-        _non_negative("crank_mass", self.crank_mass, "kg")
-        _non_negative("crank_cg_radius", self.crank_cg_radius, "m")
+        nonnegative("rod_mass", self.rod_mass, "kg")
+        nonnegative("slider_mass", self.slider_mass, "kg")
+        nonnegative("crank_mass", self.crank_mass, "kg")
+        nonnegative("crank_cg_radius", self.crank_cg_radius, "m")
         if self.rod_cg_from_crank_pin is None:
             object.__setattr__(self, "rod_cg_from_crank_pin", 0.5 * self.rod)
-        la = _finite("rod_cg_from_crank_pin", self.rod_cg_from_crank_pin)
+        la = finite("rod_cg_from_crank_pin", self.rod_cg_from_crank_pin)
         if not 0.0 <= la <= self.rod:
             raise ValueError(
                 f"rod_cg_from_crank_pin must be in [0, rod={self.rod!r}] m, got {la!r}"
             )
         if self.rod_inertia is not None:
-            _non_negative("rod_inertia", self.rod_inertia, "kg m^2")
+            nonnegative("rod_inertia", self.rod_inertia, "kg m^2")
 
     @property
     def lam(self) -> float:
@@ -198,9 +182,9 @@ class CrankMechanism:
     def __post_init__(self) -> None:
         if not isinstance(self.cylinders, int) or isinstance(self.cylinders, bool) or self.cylinders < 1:
             raise ValueError(f"cylinders must be an integer >= 1, got {self.cylinders!r}")
-        _non_negative("plunger_diameter", self.plunger_diameter, "m")
-        _non_negative("cylinder_spacing", self.cylinder_spacing, "m")
-        _non_negative("pressure", self.pressure, "Pa")
+        nonnegative("plunger_diameter", self.plunger_diameter, "m")
+        nonnegative("cylinder_spacing", self.cylinder_spacing, "m")
+        nonnegative("pressure", self.pressure, "Pa")
 
 
 @dataclass(frozen=True)
@@ -230,8 +214,8 @@ class Linkage:
     guide_friction: float = 0.0
 
     def __post_init__(self) -> None:
-        _positive("crank", self.crank, "m")
-        _positive("rod", self.rod, "m")
+        positive("crank", self.crank, "m")
+        positive("rod", self.rod, "m")
         if self.rod <= self.crank:
             raise ValueError(
                 f"rod must be longer than crank (rod > {self.crank!r} m), got {self.rod!r} m"
@@ -242,10 +226,10 @@ class Linkage:
         object.__setattr__(self, "pin_diameters", tuple(float(v) for v in self.pin_diameters))
         object.__setattr__(self, "pin_friction", tuple(float(v) for v in self.pin_friction))
         for i, d in enumerate(self.pin_diameters):
-            _non_negative(f"pin_diameters[{i}]", d, "m")
+            nonnegative(f"pin_diameters[{i}]", d, "m")
         for i, mu in enumerate(self.pin_friction + (self.guide_friction,)):
             name = f"pin_friction[{i}]" if i < 3 else "guide_friction"
-            if not 0.0 <= _finite(name, mu) < 1.0:
+            if not 0.0 <= finite(name, mu) < 1.0:
                 raise ValueError(f"{name} must be in [0, 1), got {mu!r}")
 
     @property
@@ -281,8 +265,8 @@ class MillDrive:
     idle_zone: float = math.radians(30.0)
 
     def __post_init__(self) -> None:
-        _non_negative("load", self.load, "N")
-        if not 0.0 <= _finite("idle_zone", self.idle_zone) < math.pi:
+        nonnegative("load", self.load, "N")
+        if not 0.0 <= finite("idle_zone", self.idle_zone) < math.pi:
             raise ValueError(f"idle_zone must be in [0, pi) rad, got {self.idle_zone!r}")
 
 
@@ -305,8 +289,8 @@ class Material:
     density: float = 0.0
 
     def __post_init__(self) -> None:
-        _positive("youngs_modulus", self.youngs_modulus, "Pa")
-        _non_negative("density", self.density, "kg/m^3")
+        positive("youngs_modulus", self.youngs_modulus, "Pa")
+        nonnegative("density", self.density, "kg/m^3")
 
 
 @dataclass(frozen=True)
@@ -335,10 +319,10 @@ class Section:
     source: str = ""
 
     def __post_init__(self) -> None:
-        _positive("area", self.area, "m^2")
-        _positive("ix", self.ix, "m^4")
-        _positive("iy", self.iy, "m^4")
-        _positive("mass_per_length", self.mass_per_length, "kg/m")
+        positive("area", self.area, "m^2")
+        positive("ix", self.ix, "m^4")
+        positive("iy", self.iy, "m^4")
+        positive("mass_per_length", self.mass_per_length, "kg/m")
 
     def second_moment(self, axis: str) -> float:
         """Second moment of area [m^4] about ``axis`` ('x' strong, 'y' weak)."""
@@ -377,10 +361,10 @@ class Rotor:
     material: Material
 
     def __post_init__(self) -> None:
-        _positive("mass", self.mass, "kg")
-        _positive("shaft_length", self.shaft_length, "m")
-        _positive("shaft_diameter", self.shaft_diameter, "m")
-        _non_negative("eccentricity", self.eccentricity, "m")
+        positive("mass", self.mass, "kg")
+        positive("shaft_length", self.shaft_length, "m")
+        positive("shaft_diameter", self.shaft_diameter, "m")
+        nonnegative("eccentricity", self.eccentricity, "m")
 
 
 @dataclass(frozen=True)
@@ -399,8 +383,8 @@ class Frame:
     stiffness: float
 
     def __post_init__(self) -> None:
-        _positive("mass", self.mass, "kg")
-        _positive("stiffness", self.stiffness, "N/m")
+        positive("mass", self.mass, "kg")
+        positive("stiffness", self.stiffness, "N/m")
 
 
 @dataclass(frozen=True)
@@ -443,14 +427,14 @@ class RotorFrame:
     height_range: tuple = (0.1, 2.0)
 
     def __post_init__(self) -> None:
-        _positive("plate_mass", self.plate_mass, "kg")
-        _positive("height", self.height, "m")
+        positive("plate_mass", self.plate_mass, "kg")
+        positive("height", self.height, "m")
         if not isinstance(self.columns, int) or isinstance(self.columns, bool) or self.columns < 1:
             raise ValueError(f"columns must be an integer >= 1, got {self.columns!r}")
         if self.axis not in ("x", "y"):
             raise ValueError(f"axis must be 'x' or 'y', got {self.axis!r}")
         lo, hi = self.height_range
-        _positive("height_range[0]", lo, "m")
-        if not _finite("height_range[1]", hi) > lo:
+        positive("height_range[0]", lo, "m")
+        if not finite("height_range[1]", hi) > lo:
             raise ValueError(f"height_range must be (lo, hi) with 0 < lo < hi, got {self.height_range!r}")
         object.__setattr__(self, "sections", tuple(self.sections))

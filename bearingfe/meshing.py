@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import tempfile
 import threading
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,9 +23,12 @@ from typing import Callable, Iterator
 import numpy as np
 import skfem
 
+from .geofiles import (GeometryFileError, MeshData, check_element_count, estimate_triangles, max_elements_limit,
+                       read_msh, run_geo)
 from .geometry import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "strip_mesh", "periodic_pairs"]
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+           "strip_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -77,6 +81,13 @@ class SupportMesh:
     @property
     def has_inlet(self) -> bool:
         return "inlet" in self.boundaries and len(self.boundaries["inlet"]) > 0
+
+    @property
+    def needs_finite_volumes(self) -> bool:
+        """True for surfaces with recesses (film steps) or a periodic seam: only the
+        finite-volume solver (:mod:`bearingfe.jfo`) takes them."""
+        surface = self.surface
+        return surface is not None and (bool(surface.recesses) or surface.periodic)
 
     @property
     def max_edge(self) -> float:
@@ -144,6 +155,7 @@ def mesh_surface(
     refine: int = 0,
     algorithm: int = 6,
     verbose: bool = False,
+    max_elements: int | None = None,
 ) -> SupportMesh:
     """Mesh a support surface with gmsh.
 
@@ -182,6 +194,12 @@ def mesh_surface(
         gmsh 2D algorithm (6: Frontal-Delaunay).
     verbose : bool
         Let gmsh print its log.
+    max_elements : int, optional
+        Largest number of triangles: the count is estimated from the film
+        area and the requested sizes before gmsh starts, and refused beyond
+        it (:class:`bearingfe.geofiles.MeshSizeError`). Default
+        :data:`bearingfe.geofiles.DEFAULT_MAX_ELEMENTS` or the environment
+        variable ``BEARINGFE_MAX_ELEMENTS``.
 
     Returns
     -------
@@ -191,7 +209,8 @@ def mesh_surface(
         raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
     size = _checked_size(size, "size")
     gap = surface.min_gap() if surface.inlets else math.inf
-    inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2)
+    widest = min(surface.inlet_widths()) if surface.inlets else math.inf  # the mesh must resolve every pocket
+    inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2, widest)
     corner_size = _checked_size(corner_size, "corner_size") if corner_size is not None else inlet_size
     grading = _checked_size(grading_distance, "grading_distance") if grading_distance is not None else 4 * size
     if min_size is not None:
@@ -202,6 +221,10 @@ def mesh_surface(
         raise ValueError(f"order must be 1 or 2, got {order!r}")
     if not (isinstance(refine, int) and 0 <= refine <= 6):
         raise ValueError(f"refine must be an integer in 0..6, got {refine!r}")
+    estimate = 4**refine * _estimated_triangles(surface, size, floor, inlet_size, grading, size_function)
+    check_element_count(estimate, max_elements,
+                        what=f"size = {size:g}" + (f" with refine = {refine}" if refine else "")
+                        + (" and the size_function" if size_function is not None else ""))
 
     with gmsh_session(verbose) as gmsh:
         gmsh.model.add("support")
@@ -219,12 +242,21 @@ def mesh_surface(
     return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
 
 
-def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1) -> SupportMesh:
+def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
+              timeout: float | None = None, max_elements: int | None = None) -> SupportMesh:
     """Read a support-surface mesh from a gmsh ``.geo`` or ``.msh`` file.
 
     The file must define physical curve groups named ``outer`` and
     (optionally) ``inlet`` and a physical surface; ``arc_start``,
     ``arc_end`` and ``side`` are used for flow splits when present.
+
+    Geometry files are data unless the caller says otherwise
+    (:mod:`bearingfe.geofiles`): a ``.msh`` file is parsed as data (meshio)
+    and must start with ``$MeshFormat``; a ``.geo`` script is checked
+    against an allow-list (no shell commands, file writes, includes,
+    merges, ``Exit``...) and parsed and meshed by gmsh in a separate
+    process with a time limit. Degenerate (zero-area) and duplicated
+    triangles are refused.
 
     Parameters
     ----------
@@ -234,23 +266,49 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1) ->
         For ``.geo``: maximum element size [-] (overrides the file's sizes).
     order : {1, 2}
         For ``.geo``: geometry order of the generated mesh.
+    trusted : bool
+        For ``.geo``: run the script even if it uses commands outside the
+        allow-list (only for files you wrote or trust). It still runs in a
+        separate process with the time limit.
+    timeout : float, optional
+        For ``.geo``: seconds gmsh may take [s]; default
+        :data:`bearingfe.geofiles.DEFAULT_GEO_TIMEOUT` or the environment
+        variable ``BEARINGFE_GEO_TIMEOUT``.
+    max_elements : int, optional
+        Largest number of triangles (estimated before meshing a ``.geo``);
+        default :data:`bearingfe.geofiles.DEFAULT_MAX_ELEMENTS` or the
+        environment variable ``BEARINGFE_MAX_ELEMENTS``.
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file.
+    ValueError
+        Wrong suffix or argument; :class:`bearingfe.geofiles.UntrustedGeoError`
+        (a refused command), :class:`bearingfe.geofiles.GeometryFileError`
+        (not a mesh, gmsh failed or timed out, bad elements) and
+        :class:`bearingfe.geofiles.MeshSizeError` (too many elements) are
+        ValueErrors.
     """
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"mesh file not found: {path}")
     if path.suffix not in (".geo", ".msh"):
         raise ValueError(f"mesh file must be .geo or .msh, got {path.name}")
-    with gmsh_session() as gmsh:
-        gmsh.open(str(path))
-        if path.suffix == ".geo":
-            if size is not None:
-                gmsh.option.setNumber("Mesh.MeshSizeMax", _checked_size(size, "size"))
-            gmsh.model.mesh.generate(2)
-            if order == 2:
-                gmsh.model.mesh.setOrder(2)
-        types = gmsh.model.mesh.getElementTypes(2)
-        read_order = 2 if _TRI[2] in types else 1
-        mesh = _read_gmsh_model(gmsh, read_order)
+    limit = max_elements_limit(max_elements)
+    if path.suffix == ".geo":
+        if size is not None:
+            size = _checked_size(size, "size")
+        if order not in (1, 2):
+            raise ValueError(f"order must be 1 or 2, got {order!r}")
+        with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+            msh = Path(work) / "mesh.msh"
+            run_geo(path, msh, size=size, order=order, trusted=trusted, timeout=timeout, max_elements=limit)
+            data = read_msh(msh)
+    else:
+        data = read_msh(path)
+    check_element_count(data.triangles.shape[1], limit, what=path.name)
+    mesh = mesh_from_data(data, path.name)
     if "outer" not in (mesh.boundaries or {}):
         raise ValueError(f"{path.name}: no physical curve group named 'outer'")
     return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path))
@@ -262,6 +320,39 @@ def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
     if isinstance(m, skfem.MeshTri2):
         raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
     return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size: float, grading: float,
+                         size_function) -> float:
+    """Triangles needed for the film at the requested sizes (corner grading left out: a lower bound).
+
+    The sizes are sampled on a 120 x 120 grid over the outline's bounding box;
+    the band around the pockets where the size grows linearly from
+    ``inlet_size`` to ``size`` over ``grading`` adds
+    ``perimeter * grading / (size - inlet_size) * (1/inlet_size - 1/size)``
+    equilateral-triangle areas.
+    """
+    x0, x1, y0, y1 = surface.bounds
+    n = 120
+    phi, z = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+    inside = surface.outline.contains(phi, z) & ~surface.in_pocket(phi, z)
+    local = np.full(phi.shape, size)
+    if size_function is not None:
+        try:
+            with np.errstate(all="ignore"):
+                asked = np.broadcast_to(np.asarray(size_function(phi, z), dtype=float), phi.shape)
+            local = np.where(np.isfinite(asked) & (asked > 0), np.minimum(local, asked), local)
+        except Exception:  # noqa: BLE001 - scalar-only functions: estimate from size alone
+            pass
+    local = np.maximum(local, floor) if floor > 0 else local
+    cell = (x1 - x0) * (y1 - y0) / n**2
+    sampled = float(np.sum(inside / local**2)) * cell / (math.sqrt(3.0) / 4.0)
+    s0 = max(inlet_size, floor)
+    if surface.inlets and s0 < size:
+        perimeter = sum(float(np.sum(np.linalg.norm(np.roll(xy, -1, axis=1) - xy, axis=0)))
+                        for xy in (shape.boundary() for shape in surface.inlets))
+        sampled += perimeter * grading / (size - s0) * (1 / s0 - 1 / size) / (math.sqrt(3.0) / 4.0)
+    return max(sampled, estimate_triangles(surface.film_area, size))
 
 
 def _checked_size(value: float, name: str) -> float:
@@ -371,33 +462,118 @@ def _read_gmsh_model(gmsh, order: int) -> skfem.Mesh:
     if node_tags.size == 0:
         raise ValueError("gmsh produced no triangles (is there a physical surface?)")
     t = index[node_tags.astype(np.int64)].reshape(-1, 3 * order).T
-    vertices = np.unique(t[:3])
-    if order == 1:
-        renumber = np.full(tags.size, -1, dtype=np.int64)
-        renumber[vertices] = np.arange(vertices.size)
-        mesh = skfem.MeshTri1(np.ascontiguousarray(xy[:, vertices]), np.ascontiguousarray(renumber[t]))
-    else:
-        mesh = skfem.MeshTri2(np.ascontiguousarray(xy), np.ascontiguousarray(t))
-        renumber = np.full(tags.size, -1, dtype=np.int64)
-        renumber[vertices] = np.arange(vertices.size)  # skfem's own renumbering
-    boundaries = _physical_boundaries(gmsh, mesh, index, renumber)
-    return mesh.with_boundaries(boundaries) if boundaries else mesh
-
-
-def _physical_boundaries(gmsh, mesh, index, renumber) -> dict[str, np.ndarray]:
-    facet_of = {(a, b): k for k, (a, b) in enumerate(np.sort(mesh.facets, axis=0).T.tolist())}
-    out = {}
+    curves: dict[str, list] = {}
     for dim, tag in gmsh.model.getPhysicalGroups(1):
         name = gmsh.model.getPhysicalName(dim, tag)
-        facets = []
         for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
             for etype, _, enodes in zip(*gmsh.model.mesh.getElements(1, entity)):
                 nper = gmsh.model.mesh.getElementProperties(etype)[3]
-                ends = renumber[index[enodes.astype(np.int64)].reshape(-1, nper)[:, :2]]
-                facets.extend(facet_of[tuple(sorted(e))] for e in ends.tolist())
-        if name:
-            out[name] = np.array(sorted(set(facets)), dtype=np.int64)
-    return out
+                curves.setdefault(name, []).append(index[enodes.astype(np.int64)].reshape(-1, nper)[:, :2])
+    named = {k: np.vstack(v).T for k, v in curves.items() if k}
+    return mesh_from_data(MeshData(points=xy, triangles=t, curves=named), "gmsh mesh")
+
+
+def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
+    """A scikit-fem mesh with named boundaries from plain arrays, after checking the triangles.
+
+    Parameters
+    ----------
+    data : bearingfe.geofiles.MeshData
+        Nodes, triangles (3 or 6 nodes) and named curves.
+    name : str
+        For the messages (e.g. the file name).
+
+    Raises
+    ------
+    bearingfe.geofiles.GeometryFileError
+        Degenerate (zero-area) or duplicated triangles, triangles that
+        overlap (an edge shared by more than two), or a named curve whose
+        edges are not edges of the triangles (e.g. a pocket too thin for the
+        element size).
+    """
+    t_all = np.asarray(data.triangles, dtype=np.int64)
+    order = 1 if t_all.shape[0] == 3 else 2
+    used = np.unique(t_all)
+    compact = np.full(data.points.shape[1], -1, dtype=np.int64)
+    compact[used] = np.arange(used.size)
+    xy = np.ascontiguousarray(data.points[:, used], dtype=float)
+    t = compact[t_all]
+    check_triangles(xy, t[:3], name)
+    vertices = np.unique(t[:3])
+    renumber = np.full(xy.shape[1], -1, dtype=np.int64)
+    renumber[vertices] = np.arange(vertices.size)  # scikit-fem's own vertex numbering
+    if order == 1:
+        mesh = skfem.MeshTri1(np.ascontiguousarray(xy[:, vertices]), np.ascontiguousarray(renumber[t]))
+    else:
+        mesh = skfem.MeshTri2(xy, np.ascontiguousarray(t))
+    facet_of = {(a, b): k for k, (a, b) in enumerate(np.sort(mesh.facets, axis=0).T.tolist())}
+    boundaries = {}
+    for label, ends in data.curves.items():
+        ends = renumber[compact[np.asarray(ends, dtype=np.int64)]]
+        keys = [tuple(sorted(e)) for e in ends.T.tolist()]
+        missing = [k for k in keys if k not in facet_of]
+        if missing:
+            raise GeometryFileError(
+                f"{name}: {len(missing)} edge(s) of the physical curve '{label}' are not edges of the triangles "
+                f"(a pocket or gap too thin for the element size, or curves not in the meshed surface)")
+        boundaries[label] = np.array(sorted({facet_of[k] for k in keys}), dtype=np.int64)
+    return mesh.with_boundaries(boundaries) if boundaries else mesh
+
+
+def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh") -> None:
+    """Refuse degenerate, duplicated and overlapping triangles.
+
+    Parameters
+    ----------
+    points : ndarray, shape (2, n)
+    triangles : ndarray, shape (3, m)
+        Vertex indices.
+    name : str
+        For the messages.
+
+    Raises
+    ------
+    bearingfe.geofiles.GeometryFileError
+        A triangle of zero area (relative to its longest edge squared,
+        below 1e-10), the same three vertices used twice, or an edge shared
+        by more than two triangles.
+    """
+    a, b, c = (points[:, triangles[k]] for k in range(3))
+    area = 0.5 * np.abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    longest = np.max([np.hypot(*(b - a)), np.hypot(*(c - b)), np.hypot(*(a - c))], axis=0)
+    flat = np.nonzero(~(area > 1e-10 * longest**2))[0]
+    if flat.size:
+        k = int(flat[0])
+        raise GeometryFileError(
+            f"{name}: {flat.size} degenerate (zero-area) triangle(s), e.g. triangle {k} at "
+            f"({a[0, k]:.6g}, {a[1, k]:.6g}); remesh the surface")
+    key = np.sort(triangles, axis=0)
+    unique, counts = np.unique(key, axis=1, return_counts=True)
+    if np.any(counts > 1):
+        k = int(np.argmax(counts > 1))
+        raise GeometryFileError(
+            f"{name}: {int(np.sum(counts - 1))} duplicated triangle(s) (same three nodes), e.g. nodes "
+            f"{unique[:, k].tolist()}; a mesh must cover each point of the surface once")
+    edges = np.sort(np.hstack([triangles[[0, 1]], triangles[[1, 2]], triangles[[2, 0]]]), axis=0)
+    opposite = np.concatenate([triangles[2], triangles[0], triangles[1]])
+    _, inverse, shared = np.unique(edges, axis=1, return_inverse=True, return_counts=True)
+    if np.any(shared > 2):
+        raise GeometryFileError(
+            f"{name}: {int(np.sum(shared > 2))} edge(s) shared by more than two triangles (overlapping "
+            f"triangles); a mesh must cover each point of the surface once")
+    # the two triangles on an inner edge lie on opposite sides of it (else they overlap)
+    p0, p1, pc = points[:, edges[0]], points[:, edges[1]], points[:, opposite]
+    side = np.sign((p1[0] - p0[0]) * (pc[1] - p0[1]) - (p1[1] - p0[1]) * (pc[0] - p0[0]))
+    inverse = np.ravel(inverse)
+    order = np.argsort(inverse, kind="stable")
+    pairs = shared[inverse[order]] == 2
+    first = order[pairs][0::2]
+    second = order[pairs][1::2]
+    folded = int(np.sum(side[first] * side[second] > 0))
+    if folded:
+        raise GeometryFileError(
+            f"{name}: {folded} inner edge(s) with both triangles on the same side (folded or overlapping "
+            f"triangles); a mesh must cover each point of the surface once")
 
 
 def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:

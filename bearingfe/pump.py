@@ -64,6 +64,7 @@ import numpy as np
 from .geometry import Surface
 from .machines import Drive
 from .scales import Scale
+from .schema import nonnegative, positive
 
 __all__ = [
     "PressureCycle",
@@ -200,12 +201,6 @@ class PressureCycle:
 
 # -- the pump -----------------------------------------------------------------------
 
-def _positive(owner: str, name: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{owner}.{name} must be a finite number > 0, got {value!r}")
-    return float(value)
-
-
 @dataclass(frozen=True)
 class EccentricPump:
     """A radial-plunger pump with an eccentric drive and swinging plungers (SI units).
@@ -255,11 +250,8 @@ class EccentricPump:
     def __post_init__(self) -> None:
         own = "EccentricPump"
         for n in ("eccentricity", "pivot_distance", "radius", "clearance", "plunger_diameter", "viscosity"):
-            object.__setattr__(self, n, _positive(own, n, getattr(self, n)))
-        p = self.preload
-        if isinstance(p, bool) or not isinstance(p, (int, float)) or not math.isfinite(p) or p < 0:
-            raise ValueError(f"{own}.preload must be a finite number >= 0 N, got {p!r}")
-        object.__setattr__(self, "preload", float(p))
+            object.__setattr__(self, n, positive(f"{own}.{n}", getattr(self, n)))
+        object.__setattr__(self, "preload", nonnegative(f"{own}.preload", self.preload, "N"))
         if self.pivot_distance <= self.eccentricity + self.radius:
             raise ValueError(f"{own}.pivot_distance must exceed eccentricity + radius "
                              f"({self.eccentricity + self.radius} m), got {self.pivot_distance}")

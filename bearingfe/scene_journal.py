@@ -73,129 +73,103 @@ from typing import Callable
 
 import numpy as np
 
-from .scenes import _MISSING, SceneError, _build, _choice, _choices, _flag, _nonnegative, _number, _positive, read_table
+from .schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
+                     flag, nonnegative_number, number, positive_number, read_table, text)
 
-__all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "PICTURES", "TABLES"]
+__all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "JOURNAL", "PICTURES", "TABLES"]
 
-_TABLES = ("kind", "title", "bearing", "operating", "solver", "output")
 PICTURES = ("pressure", "wrapped", "film")
 TABLES = ("pressure", "coefficients")
 
 
-# -- checks -------------------------------------------------------------------------
-
-def _within(lo: float, hi: float, *, lo_open: bool = True, hi_open: bool = False):
-    """A check for a number in an interval (open or closed at either end)."""
-    text = f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
-
-    def check(where, value):
-        x = _number(where, value)
-        if (x <= lo if lo_open else x < lo) or (x >= hi if hi_open else x > hi):
-            raise SceneError(f"{where}: must be in {text}; got {value!r}")
-        return x
-    return check
-
-
-def _anything(where, value):
-    return value
-
+# -- the schema -------------------------------------------------------------------------
 
 def _pads(where, value):
     """Pads ``[[start_deg, end_deg], ...]``: start < end <= start + 360, no two overlapping."""
     rule = "a list of pads [[start_deg, end_deg], ...] with start < end <= start + 360, not overlapping"
     if not (isinstance(value, list) and value):
-        raise SceneError(f"{where}: expected {rule}; got {value!r}")
+        raise SchemaError(f"{where}: expected {rule}; got {value!r}")
     pads = []
     for pad in value:
         if not (isinstance(pad, list) and len(pad) == 2):
-            raise SceneError(f"{where}: expected {rule}; got {pad!r}")
-        a, b = (_number(where, v) for v in pad)
+            raise SchemaError(f"{where}: expected {rule}; got {pad!r}")
+        a, b = (number()(where, v) for v in pad)
         if not a < b <= a + 360.0:
-            raise SceneError(f"{where}: expected {rule}; got {pad!r}")
+            raise SchemaError(f"{where}: expected {rule}; got {pad!r}")
         pads.append((a, b))
     ordered = sorted(((a % 360.0, a % 360.0 + b - a) for a, b in pads))
     for (a1, b1), (a2, _) in zip(ordered, ordered[1:] + [(ordered[0][0] + 360.0, None)]):
         if b1 > a2 + 1e-9:
-            raise SceneError(f"{where}: expected {rule}; pads overlap after {a1:g} deg")
+            raise SchemaError(f"{where}: expected {rule}; pads overlap after {a1:g} deg")
     return tuple(pads)
 
 
-_BEARING = {"diameter": (_positive, _MISSING), "length": (_positive, _MISSING),
-            "radial_clearance": (_positive, _MISSING), "pads": (_pads, None), "grooves": (_anything, []),
-            "supply_pressure": (_nonnegative, 0.0)}
-_GROOVE = {"angle_deg": (_number, _MISSING), "width_deg": (_within(0.0, 180.0, hi_open=True), _MISSING),
-           "length_fraction": (_within(0.0, 1.0, hi_open=True), 0.8)}
-_OPERATING = {"speed": (_positive, _MISSING), "viscosity": (_positive, _MISSING), "load": (_positive, _MISSING),
-              "load_direction_deg": (_number, -90.0)}
-_OUTPUT = {"pictures": (_choices(PICTURES), PICTURES), "warp": (_nonnegative, 0.15),
-           "tables": (_choices(TABLES), TABLES)}
+def _cavitation_models() -> tuple[str, ...]:
+    from .journal import EQUILIBRIUM_CAVITATION
+
+    return tuple(EQUILIBRIUM_CAVITATION)
 
 
-def _solver_spec():
-    return {"size": (_within(0.0, 1.0), 0.05), "min_size": (_within(0.0, 1.0), None),
-            "cavitation": (_choice(("reynolds", "none")), "reynolds"), "estimate_error": (_flag, False)}
+_OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
+
+#: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.schema`).
+JOURNAL = {
+    "kind": (anything, REQUIRED),
+    "title": (text, None),
+    "bearing": Table({
+        "diameter": (positive_number, REQUIRED), "length": (positive_number, REQUIRED),
+        "radial_clearance": (positive_number, REQUIRED), "pads": (_pads, None),
+        "grooves": Tables({"angle_deg": (number(), REQUIRED),
+                           "width_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), REQUIRED),
+                           "length_fraction": (number(_OPEN_UNIT), 0.8)}),
+        "supply_pressure": (nonnegative_number, 0.0)}, required=True),
+    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, REQUIRED),
+                        "load": (positive_number, REQUIRED), "load_direction_deg": (number(), -90.0)},
+                       required=True),
+    "solver": Table({"size": (number(Range(0.0, 1.0, lo_open=True)), 0.05),
+                     "min_size": (number(Range(0.0, 1.0, lo_open=True)), None),
+                     "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
+    "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
+                     "tables": (choices(TABLES), TABLES)}),
+}
 
 
 def journal_settings(data: dict, label: str) -> dict:
     """All validated settings of a ``"journal"`` scene (SI, angles in degrees)."""
-    unknown = sorted(set(data) - set(_TABLES))
-    if unknown:
-        raise SceneError(f"{label}: {unknown[0]}: unknown table or field; allowed: {', '.join(_TABLES)}")
-    if "bearing" not in data:
-        raise SceneError(f"{label}: [bearing]: missing table (required)")
-    if "operating" not in data:
-        raise SceneError(f"{label}: [operating]: missing table (required)")
-    bearing = read_table(data["bearing"], label, "bearing", _BEARING)
+    s = read_table(data, label, "", JOURNAL)
+    bearing, solver = s["bearing"], s["solver"]
     _check_proportions(bearing, label)
-    bearing["grooves"] = _grooves(bearing, label)
-    solver = read_table(data.get("solver", {}), label, "solver", _solver_spec())
+    _check_grooves(bearing, label)
     if solver["min_size"] is not None and solver["min_size"] > solver["size"]:
-        raise SceneError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
-                         f"got {solver['min_size']!r}")
-    return {"title": _title(data, label), "bearing": bearing,
-            "operating": read_table(data["operating"], label, "operating", _OPERATING),
-            "solver": solver, "output": read_table(data.get("output", {}), label, "output", _OUTPUT)}
-
-
-def _title(data: dict, label: str) -> str:
-    title = data.get("title", label)
-    if not isinstance(title, str):
-        raise SceneError(f"{label}: title: expected a string, got {title!r}")
-    return title
+        raise SchemaError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
+                          f"got {solver['min_size']!r}")
+    return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
+            "operating": s["operating"], "solver": solver, "output": s["output"]}
 
 
 def _check_proportions(b: dict, label: str) -> None:
     ratio = b["length"] / b["diameter"]
     if not ratio <= 4.0:
-        raise SceneError(f"{label}: [bearing] length: L/D must be in (0, 4]; got L/D = {ratio:.4g}")
+        raise SchemaError(f"{label}: [bearing] length: L/D must be in (0, 4]; got L/D = {ratio:.4g}")
     if not b["radial_clearance"] <= b["diameter"] / 20:
-        raise SceneError(f"{label}: [bearing] radial_clearance: must be in (0, diameter/20 = "
-                         f"{b['diameter'] / 20:g}] m (a thin film, c/R <= 0.1); got {b['radial_clearance']!r}")
+        raise SchemaError(f"{label}: [bearing] radial_clearance: must be in (0, diameter/20 = "
+                          f"{b['diameter'] / 20:g}] m (a thin film, c/R <= 0.1); got {b['radial_clearance']!r}")
 
 
-def _grooves(b: dict, label: str) -> tuple[dict, ...]:
+def _check_grooves(b: dict, label: str) -> None:
     items = b["grooves"]
-    if not isinstance(items, list):
-        raise SceneError(f"{label}: [bearing] grooves: expected an array of tables [[bearing.grooves]], "
-                         f"got {items!r}")
     if items and b["pads"] is None:
-        raise SceneError(f"{label}: [bearing] grooves: need pads = [[start_deg, end_deg], ...] "
-                         "(the full Raimondi-Boyd bearing has no grooves)")
+        raise SchemaError(f"{label}: [bearing] grooves: need pads = [[start_deg, end_deg], ...] "
+                          "(the full Raimondi-Boyd bearing has no grooves)")
     if b["supply_pressure"] > 0 and not items:
-        raise SceneError(f"{label}: [bearing] supply_pressure: needs [[bearing.grooves]] to feed; "
-                         f"must be 0 without grooves, got {b['supply_pressure']!r}")
-    out = []
-    for k, item in enumerate(items):
-        section = f"bearing.grooves.{k}"
-        if not isinstance(item, dict):
-            raise SceneError(f"{label}: [{section}]: expected a table, got {item!r}")
-        g = read_table(item, label, section, _GROOVE)
+        raise SchemaError(f"{label}: [bearing] supply_pressure: needs [[bearing.grooves]] to feed; "
+                          f"must be 0 without grooves; got {b['supply_pressure']!r}")
+    for k, g in enumerate(items):
         half = g["width_deg"] / 2
         if not any(a + half < a + (g["angle_deg"] - a) % 360.0 < b_ - half for a, b_ in b["pads"]):
-            raise SceneError(f"{label}: [{section}] angle_deg: the groove (width {g['width_deg']:g} deg) must lie "
-                             f"inside one of the pads {list(map(list, b['pads']))}; got {g['angle_deg']!r}")
-        out.append(g)
-    return tuple(out)
+            raise SchemaError(f"{label}: [bearing.grooves.{k}] angle_deg: the groove (width {g['width_deg']:g} deg) "
+                              f"must lie inside one of the pads {list(map(list, b['pads']))}; "
+                              f"got {g['angle_deg']!r}")
 
 
 # -- the run ------------------------------------------------------------------------------
@@ -215,7 +189,7 @@ def _bearing(s: dict, scale, label: str):
     pads = None if b["pads"] is None else tuple((math.radians(p), math.radians(q)) for p, q in b["pads"])
     grooves = tuple(Groove(math.radians(g["angle_deg"]), math.radians(g["width_deg"]), g["length_fraction"])
                     for g in b["grooves"])
-    return _build(label, "bearing", JournalBearing, length_ratio=b["length"] / b["diameter"], pads=pads,
+    return build(label, "bearing", JournalBearing, length_ratio=b["length"] / b["diameter"], pads=pads,
                   grooves=grooves, supply_pressure=scale.from_pressure(b["supply_pressure"]))
 
 

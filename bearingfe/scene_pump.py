@@ -33,41 +33,55 @@ from typing import Callable
 
 import numpy as np
 
-from .scenes import SceneError, _build, _choice, _choices, _flag, _nonnegative, _positive, read_table
+from .schema import (NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
+                     path_text, positive_number, read_table, text)
 
-__all__ = ["run_pump_scene", "pump_settings"]
+__all__ = ["run_pump_scene", "pump_settings", "PUMP", "PICTURES"]
 
-_TABLES = ("kind", "title", "pump", "run", "output")
 PICTURES = ("trajectory", "orbit", "pressure")
+
+
+def _elements() -> tuple[str, ...]:
+    from .reynolds import ELEMENTS
+
+    return tuple(ELEMENTS)
+
+
+def _cavitation_models() -> tuple[str, ...]:
+    from .reynolds import CAVITATION
+
+    return tuple(CAVITATION)
+
+
+def _starts() -> tuple[str, ...]:
+    from .transient import STARTS
+
+    return tuple(STARTS)
+
+
+#: The ``"pump"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.schema`).
+PUMP = {
+    "kind": (anything, REQUIRED),
+    "title": (text, None),
+    "pump": Table({"mechanism": (path_text, "../mechanisms/eccentric_pump.toml"), "compare_plain": (flag, True)}),
+    "run": Table({"revolutions": (positive_number, 1.0), "start": (choice(_starts), "periodic"),
+                  "mesh_size": (positive_number, 0.08), "rtol": (positive_number, 1e-6),
+                  "frames": (integer(NONNEGATIVE), 12), "cavitation": (choice(_cavitation_models), "none"),
+                  "element": (choice(_elements), "P2")}),
+    "output": Table({"pictures": (choices(PICTURES), PICTURES)}),
+}
 
 
 def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     """All validated settings of a ``"pump"`` scene."""
-    unknown = sorted(set(data) - set(_TABLES))
-    if unknown:
-        raise SceneError(f"{label}: {unknown[0]}: unknown table or field; allowed: {', '.join(_TABLES)}")
-    pump = read_table(data.get("pump", {}), label, "pump",
-                      {"mechanism": (_path_text, "../mechanisms/eccentric_pump.toml"),
-                       "compare_plain": (_flag, True)})
-    run = read_table(data.get("run", {}), label, "run",
-                     {"revolutions": (_positive, 1.0), "start": (_choice(("periodic", "steady")), "periodic"),
-                      "mesh_size": (_positive, 0.08), "rtol": (_positive, 1e-6), "frames": (_nonnegative, 12),
-                      "cavitation": (_choice(("none", "reynolds", "gumbel")), "none"),
-                      "element": (_choice(("P1", "P2")), "P2")})
-    output = read_table(data.get("output", {}), label, "output", {"pictures": (_choices(PICTURES), PICTURES)})
-    path = Path(pump["mechanism"])
+    s = read_table(data, label, "", PUMP)
+    path = Path(s["pump"]["mechanism"])
     if not path.is_absolute():
         path = (base_dir or Path.cwd()) / path
     if not path.is_file():
-        raise SceneError(f"{label}: [pump] mechanism: file not found: {path}")
-    return {"title": str(data.get("title", label)), "mechanism": path, "compare_plain": pump["compare_plain"],
-            "run": run, "output": output}
-
-
-def _path_text(where, value):
-    if not isinstance(value, str) or not value:
-        raise SceneError(f"{where}: expected a file path (text), got {value!r}")
-    return value
+        raise SchemaError(f"{label}: [pump] mechanism: file not found: {path}")
+    return {"title": label if s["title"] is None else s["title"], "mechanism": path,
+            "compare_plain": s["pump"]["compare_plain"], "run": s["run"], "output": s["output"]}
 
 
 def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
@@ -80,7 +94,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from .transient import pump_mesh, simulate, state_result
 
     s = pump_settings(data, label, base_dir)
-    pump = _build(label, "pump", load_mechanism, path=s["mechanism"])
+    pump = build(label, "pump", load_mechanism, path=s["mechanism"])
     designs = {"pocket": pump}
     if s["compare_plain"] and pump.surface.inlets:
         plain = Surface(arc=pump.surface.arc, half_width=pump.surface.half_width)

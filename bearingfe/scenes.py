@@ -38,166 +38,30 @@ The ``"reynolds"`` scene (a static solve)::
 
 from __future__ import annotations
 
-import math
 import time
-import tomllib
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
-__all__ = ["SceneError", "SCENES", "load_scene", "run_scene", "surface_from", "run_reynolds_scene"]
+from .mechanism_files import SURFACE, surface_from, surface_of
+from .schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, nonnegative_number, number,
+                     pair, positive_number, read_table, read_toml, text)
 
-_MISSING = object()
+__all__ = ["SceneError", "SCENES", "REYNOLDS", "load_scene", "run_scene", "surface_from", "run_reynolds_scene",
+           "reynolds_settings"]
 
-
-class SceneError(ValueError):
-    """A scene file is malformed: the message names the file, the field and what is allowed."""
-
-
-# -- field checking -------------------------------------------------------------
-
-def _number(where, value, *, positive=False, nonnegative=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise SceneError(f"{where}: expected a finite number, got {value!r}")
-    if positive and not value > 0:
-        raise SceneError(f"{where}: must be > 0, got {value!r}")
-    if nonnegative and not value >= 0:
-        raise SceneError(f"{where}: must be >= 0, got {value!r}")
-    return float(value)
-
-
-def _pair(where, value):
-    if not (isinstance(value, list) and len(value) == 2):
-        raise SceneError(f"{where}: expected a pair of numbers [x, y], got {value!r}")
-    return tuple(_number(where, v) for v in value)
-
-
-def _choice(allowed):
-    def check(where, value):
-        if value not in allowed:
-            raise SceneError(f"{where}: must be one of {', '.join(repr(a) for a in allowed)}; got {value!r}")
-        return value
-    return check
-
-
-def _choices(allowed):
-    def check(where, value):
-        if not isinstance(value, list):
-            raise SceneError(f"{where}: expected a list drawn from {', '.join(repr(a) for a in allowed)}; "
-                             f"got {value!r}")
-        return tuple(_choice(allowed)(where, v) for v in value)
-    return check
-
-
-def _text(where, value):
-    if not isinstance(value, str):
-        raise SceneError(f"{where}: expected a string, got {value!r}")
-    return value
-
-
-def _flag(where, value):
-    if not isinstance(value, bool):
-        raise SceneError(f"{where}: expected true or false, got {value!r}")
-    return value
-
-
-def _positive(where, value):
-    return _number(where, value, positive=True)
-
-
-def _nonnegative(where, value):
-    return _number(where, value, nonnegative=True)
-
-
-def _points(where, value):
-    if not (isinstance(value, list) and len(value) >= 3):
-        raise SceneError(f"{where}: expected a list of at least 3 points [[phi, z], ...], got {value!r}")
-    return tuple(_pair(where, p) for p in value)
-
-
-def read_table(table: Any, label: str, section: str, spec: Mapping[str, tuple]) -> dict:
-    """Check a TOML table against ``spec = {name: (check, default)}``; unknown names are errors."""
-    if not isinstance(table, dict):
-        raise SceneError(f"{label}: [{section}]: expected a table, got {table!r}")
-    unknown = sorted(set(table) - set(spec))
-    if unknown:
-        raise SceneError(f"{label}: [{section}] {unknown[0]}: unknown field; allowed: {', '.join(spec)}")
-    out = {}
-    for name, (check, default) in spec.items():
-        where = f"{label}: [{section}] {name}"
-        if name not in table:
-            if default is _MISSING:
-                raise SceneError(f"{where}: missing (required)")
-            out[name] = default
-        else:
-            out[name] = check(where, table[name])
-    return out
-
-
-# -- surfaces -------------------------------------------------------------------
-
-def _shape_specs():
-    from . import geometry as g
-
-    return {
-        "circle": (g.Circle, {"center": (_pair, _MISSING), "radius": (_positive, _MISSING)}),
-        "ellipse": (g.Ellipse, {"center": (_pair, _MISSING), "semi_axes": (_pair, _MISSING),
-                                "angle": (_number, 0.0)}),
-        "rectangle": (g.Rectangle, {"center": (_pair, _MISSING), "size": (_pair, _MISSING),
-                                    "angle": (_number, 0.0)}),
-        "polygon": (g.Polygon, {"points": (_points, _MISSING)}),
-        "slot": (g.Slot, {"center": (_pair, _MISSING), "length": (_positive, _MISSING),
-                          "width": (_positive, _MISSING), "angle": (_number, 0.0)}),
-    }
-
-
-def _build(label: str, where: str, factory: Callable, **kwargs):
-    try:
-        return factory(**kwargs)
-    except SceneError:
-        raise
-    except ValueError as exc:
-        raise SceneError(f"{label}: [{where}] {exc}") from None
-
-
-def surface_from(table: Any, label: str):
-    """A :class:`~bearingfe.Surface` from a ``[surface]`` table with ``[[surface.inlets]]``."""
-    from .geometry import Surface
-
-    t = read_table(table, label, "surface", {"arc": (_pair, (-0.5, 0.5)), "half_width": (_positive, 0.5),
-                                             "inlets": (lambda w, v: v, [])})
-    if not isinstance(t["inlets"], list):
-        raise SceneError(f"{label}: [surface] inlets: expected an array of tables [[surface.inlets]], "
-                         f"got {t['inlets']!r}")
-    specs = _shape_specs()
-    inlets = []
-    for k, item in enumerate(t["inlets"]):
-        section = f"surface.inlets.{k}"
-        if not isinstance(item, dict):
-            raise SceneError(f"{label}: [{section}]: expected a table, got {item!r}")
-        kind = _choice(tuple(specs))(f"{label}: [{section}] shape", item.get("shape"))
-        factory, spec = specs[kind]
-        fields = read_table({k2: v for k2, v in item.items() if k2 != "shape"}, label, section, spec)
-        inlets.append(_build(label, section, factory, **fields))
-    return _build(label, "surface", Surface, arc=t["arc"], half_width=t["half_width"], inlets=tuple(inlets))
+#: The error of a malformed scene file (every input file's :class:`~bearingfe.schema.SchemaError`).
+SceneError = SchemaError
 
 
 # -- loading --------------------------------------------------------------------
 
 def load_scene(path: str | Path) -> tuple[dict, str]:
     """Read a scene file; returns ``(data, label)``. Checks that ``kind`` is known."""
-    path = Path(path)
-    if not path.is_file():
-        raise SceneError(f"scene file not found: {path}")
-    label = path.name
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"{label}: not valid TOML: {exc}") from None
-    kind = data.get("kind", _MISSING)
-    if kind is _MISSING:
+    data, label = read_toml(path, "scene file")
+    if "kind" not in data:
         raise SceneError(f"{label}: kind: missing (required); allowed: {', '.join(repr(k) for k in SCENES)}")
-    _choice(tuple(SCENES))(f"{label}: kind", kind)
+    choice(tuple(SCENES))(f"{label}: kind", data["kind"])
     return data, label
 
 
@@ -213,40 +77,57 @@ def run_scene(path: str | Path, out_dir: str | Path, progress: Callable | None =
 
 # -- the static Reynolds scene ----------------------------------------------------
 
-_REYNOLDS_TABLES = ("kind", "title", "surface", "film", "operating", "solver", "output")
 PICTURES = ("pressure", "wrapped", "film")
+
+
+def _elements() -> tuple[str, ...]:
+    from .reynolds import ELEMENTS
+
+    return tuple(ELEMENTS)
+
+
+def _formulations() -> tuple[str, ...]:
+    from .reynolds import FORMULATIONS
+
+    return tuple(FORMULATIONS)
+
+
+def _linear_solvers() -> tuple[str, ...]:
+    from .linalg import LINEAR_SOLVERS
+
+    return tuple(LINEAR_SOLVERS)
+
+
+def _default_solver() -> str:
+    from .linalg import DEFAULT_SOLVER
+
+    return DEFAULT_SOLVER
+
+
+#: The ``"reynolds"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.schema`).
+REYNOLDS = {
+    "kind": (anything, REQUIRED),
+    "title": (text, None),
+    "surface": Table(SURFACE),
+    "film": Table({"gamma": (nonnegative_number, REQUIRED), "phi0": (number(), 0.0)}, required=True),
+    "operating": Table({"wedge": (number(), 1.0), "squeeze": (pair, (0.0, 0.0)),
+                        "inlet_pressure": (number(), 0.0)}),
+    "solver": Table({"size": (positive_number, 0.05), "inlet_size": (positive_number, None),
+                     "element": (choice(_elements), "P1"), "formulation": (choice(_formulations), "pi"),
+                     "linear_solver": (choice(_linear_solvers), None)}),
+    "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15)}),
+}
 
 
 def reynolds_settings(data: dict, label: str) -> dict:
     """All validated settings of a ``"reynolds"`` scene."""
-    from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
-    from .reynolds import ELEMENTS, FORMULATIONS
-
-    unknown = sorted(set(data) - set(_REYNOLDS_TABLES))
-    if unknown:
-        raise SceneError(f"{label}: {unknown[0]}: unknown table or field; allowed: {', '.join(_REYNOLDS_TABLES)}")
-    return {
-        "title": _text(f"{label}: title", data.get("title", label)),
-        "surface": surface_from(data.get("surface", {}), label),
-        "film": read_table(_required(data, "film", label), label, "film",
-                           {"gamma": (_nonnegative, _MISSING), "phi0": (_number, 0.0)}),
-        "operating": read_table(data.get("operating", {}), label, "operating",
-                                {"wedge": (_number, 1.0), "squeeze": (_pair, (0.0, 0.0)),
-                                 "inlet_pressure": (_number, 0.0)}),
-        "solver": read_table(data.get("solver", {}), label, "solver",
-                             {"size": (_positive, 0.05), "inlet_size": (_positive, None),
-                              "element": (_choice(tuple(ELEMENTS)), "P1"),
-                              "formulation": (_choice(FORMULATIONS), "pi"),
-                              "linear_solver": (_choice(tuple(LINEAR_SOLVERS)), DEFAULT_SOLVER)}),
-        "output": read_table(data.get("output", {}), label, "output",
-                             {"pictures": (_choices(PICTURES), PICTURES), "warp": (_nonnegative, 0.15)}),
-    }
-
-
-def _required(data: dict, name: str, label: str):
-    if name not in data:
-        raise SceneError(f"{label}: [{name}]: missing table (required)")
-    return data[name]
+    s = read_table(data, label, "", REYNOLDS)
+    s["title"] = label if s["title"] is None else s["title"]
+    if s["solver"]["linear_solver"] is None:
+        s["solver"]["linear_solver"] = _default_solver()
+    s["surface"] = surface_of(s["surface"], label)
+    del s["kind"]
+    return s
 
 
 def run_reynolds_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
@@ -264,14 +145,14 @@ def run_reynolds_scene(data: dict, label: str, out_dir: Path, progress: Callable
     from .reynolds import solve_reynolds
 
     s = reynolds_settings(data, label)
-    film = _build(label, "film", CosineFilm, **s["film"])
+    film = build(label, "film", CosineFilm, **s["film"])
     solver, op, out = s["solver"], s["operating"], s["output"]
     pictures = out["pictures"]
     steps = 3 + len(pictures)
     tick = progress or (lambda done, total, what: None)
     start = time.perf_counter()
     tick(0, steps, "meshing")
-    mesh = _build(label, "solver", mesh_surface, surface=s["surface"], size=solver["size"],
+    mesh = build(label, "solver", mesh_surface, surface=s["surface"], size=solver["size"],
                   inlet_size=solver["inlet_size"], order=2 if solver["element"] == "P2" else 1)
     tick(1, steps, "solving")
     res = solve_reynolds(mesh, film, wedge=op["wedge"], squeeze=op["squeeze"],

@@ -59,7 +59,11 @@ __all__ = [
     "state_result",
     "LiftOffError",
     "INTEGRATORS",
+    "STARTS",
 ]
+
+#: Named starting states of :func:`simulate` (besides a given ``(gamma, delta)``).
+STARTS = ("periodic", "steady")
 
 #: Stepping integrators by name (scipy's implicit and switching methods).
 INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA})
@@ -517,7 +521,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     opts = dict(method=method, rtol=rtol, atol=atol, max_step=max_step, bound=bound)
     t_start = time.perf_counter()
     iterations, residual = 0, math.nan
-    if isinstance(start, str) and start in ("steady", "periodic"):
+    if isinstance(start, str) and start in STARTS:
         y0 = np.array(steady_state(pump, beta=beta0, _model=model))
     elif isinstance(start, str):
         raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}")

@@ -42,7 +42,8 @@ def build(element: str, dofs: float, path: str) -> dict:
     import scipy.sparse as sp
 
     import bearingfe as bf
-    from bearingfe.reynolds import _film_at, _sources, _system_matrix, operators
+    from bearingfe.forms import film_at
+    from bearingfe.superposition import operators, system_matrix, unit_sources
 
     vertices = dofs / (4.0 if element == "P2" else 1.0)
     size = math.sqrt(2 * AREA / (math.sqrt(3) * vertices))
@@ -53,15 +54,15 @@ def build(element: str, dofs: float, path: str) -> dict:
     ops = operators(mesh, element)
     t2 = time.perf_counter()
     film = bf.CosineFilm(0.6, math.pi + 0.3)
-    at = _film_at(film, ops.x)
-    A = _system_matrix(ops, at, "direct")
-    F, g = _sources(ops, film, at, "direct")
+    at = film_at(film, ops.x)
+    A = system_matrix(ops, at, "direct")
+    F, g = unit_sources(ops, film, at, "direct")
     I = ops.interior
     AI = A[I][:, I].tocsc()
     rhs = -F[I]
     t3 = time.perf_counter()
-    at2 = _film_at(bf.CosineFilm(0.5, math.pi), ops.x)  # a second film state: same pattern, new values
-    A2 = _system_matrix(ops, at2, "direct")[I][:, I].tocsc()
+    at2 = film_at(bf.CosineFilm(0.5, math.pi), ops.x)  # a second film state: same pattern, new values
+    A2 = system_matrix(ops, at2, "direct")[I][:, I].tocsc()
     sp.save_npz(path + "_A.npz", AI)
     sp.save_npz(path + "_A2.npz", A2)
     np.save(path + "_b.npy", rhs)

@@ -310,3 +310,20 @@ def test_oscillating_squeeze_against_moving_boundary_reference():
     # 0.0146 -> 0.0073 (of a load range 1.5) and front errors 0.0039 -> 0.0027
     assert errors[100][0] < 0.01 and errors[50][0] / errors[100][0] > 1.8
     assert errors[100][1] < 0.004 and errors[100][1] < errors[50][1]
+
+
+def test_jfo_is_a_model_of_the_table():
+    from bearingfe import superpose
+    from bearingfe.cavitation import MODELS, ModelOptions, solve_model
+    mesh = _pocket_mesh(0.1)
+    film = CosineFilm(0.6, math.pi)
+    assert "jfo" in MODELS
+    sup = superpose(mesh, film, formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.5])
+    via_table = solve_model(sup, weights, "jfo", ModelOptions(cavitation_pressure=-0.01))
+    direct = solve_reynolds(mesh, film, inlet_pressure=0.5, cavitation="jfo", cavitation_pressure=-0.01)
+    assert via_table.cavitation == "jfo" and via_table.cavitation_pressure == -0.01
+    assert np.array_equal(via_table.pressure, direct.pressure) and np.array_equal(via_table.theta, direct.theta)
+    # the Galerkin models keep p_c = 0 and say so
+    with pytest.raises(ValueError, match="cavitation_pressure"):
+        solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-0.01)

@@ -12,7 +12,8 @@ import scipy.sparse.linalg as spla
 
 import bearingfe as bf
 from bearingfe.linalg import LINEAR_SOLVERS, PatternFactorizer, available_solvers, get_linear_solver
-from bearingfe.reynolds import _film_at, _system_matrix, operators
+from bearingfe.forms import film_at
+from bearingfe.superposition import operators, system_matrix
 
 
 @pytest.fixture(scope="module")
@@ -23,7 +24,7 @@ def mesh():
 
 def _condensed(mesh, gamma, formulation="direct", element="P1"):
     ops = operators(mesh, element)
-    A = _system_matrix(ops, _film_at(bf.CosineFilm(gamma, np.pi + 0.2), ops.x), formulation)
+    A = system_matrix(ops, film_at(bf.CosineFilm(gamma, np.pi + 0.2), ops.x), formulation)
     return A[ops.interior][:, ops.interior].tocsc()
 
 

@@ -37,10 +37,10 @@ def test_pocket_fraction_and_position_are_exact(shape):
     # expected: the requested fraction of the 1.2 x 0.8 outline (closed-form areas), to rounding
     assert new.surface.inlet_fraction == pytest.approx(0.1, rel=1e-12)
     # area centroid at alpha1 + 0.25 (alpha2 - alpha1) = -0.3; z of the centroid unchanged
-    from bearingfe.sweep import _centroid
-    cx, cy = _centroid(new.surface.inlets[0])
+    from bearingfe.sweep import centroid
+    cx, cy = centroid(new.surface.inlets[0])
     assert cx == pytest.approx(-0.3, abs=1e-12)
-    assert cy == pytest.approx(_centroid(shape)[1], abs=1e-12)
+    assert cy == pytest.approx(centroid(shape)[1], abs=1e-12)
     assert apply_changes(base, {"pocket_fraction": 0.0}).surface.inlets == ()
 
 
@@ -170,13 +170,13 @@ pocket_fraction = [0.0, 0.08]
 def test_study_errors_name_the_field(tmp_path):
     path = tmp_path / "s.toml"
     for text, message in [
-        (STUDY.replace('run = "shoe"', 'run = "shoo"'), r"\[study\]: run must be one of"),
-        (STUDY.replace('"load"]', '"lod"]'), r"\[study\]: outputs must be"),
+        (STUDY.replace('run = "shoe"', 'run = "shoo"'), r"s\.toml: \[study\] run: must be one of 'shoe', 'pump'; got 'shoo'"),
+        (STUDY.replace('"load"]', '"lod"]'), r"s\.toml: \[study\] outputs: must be one of 'h_min', .*; got 'lod'"),
         (STUDY.replace("mesh_size = 0.2", "mesh_size = -0.2"), r"\[base.set\] mesh_size: ShoeCase.mesh_size"),
         (STUDY.replace("pocket_fraction =", "pocket_frac ="), r"\[grid\]: change 'pocket_frac'"),
         (STUDY.replace("[0.0, 0.08]", "0.08"), r"\[grid\]: grid values of 'pocket_fraction' must be a list"),
         (STUDY + "[[cases]]\ngamma = 0.1\n", "exactly one of"),
-        (STUDY.replace("[grid]", "[gird]"), r"unknown tables \['gird'\]"),
+        (STUDY.replace("[grid]", "[gird]"), r"s\.toml: gird: unknown table or field; allowed: study, base, grid, cases"),
     ]:
         path.write_text(text)
         with pytest.raises(ValueError, match=message):

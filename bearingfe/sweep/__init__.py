@@ -35,9 +35,9 @@ public path (cache keys name this package's functions by it, too).
 
 from __future__ import annotations
 
-# Names outside __all__ (POCKET_SHAPES, get_field, _centroid, ...) are re-exported as the one module had them.
+# Names outside __all__ (POCKET_SHAPES, get_field, centroid, ...) are re-exported as the one module had them.
 from .cases import BASES, RUNS, PumpCase, PumpOutcome, ShoeCase, run_pump, run_shoe
-from .changes import (CHANGES, POCKET_SHAPES, _centroid, apply_changes, check_change_name, expand_cases, get_field,
+from .changes import (CHANGES, POCKET_SHAPES, apply_changes, centroid, check_change_name, expand_cases, get_field,
                       pocket_fraction, pocket_position, pocket_shape, set_field)
 from .execute import best_design, case_key, run_case, sweep
 from .outputs import OUTPUTS, STANDARD_OUTPUTS

@@ -19,7 +19,7 @@ import numpy as np
 from ..geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
 
 __all__ = [
-    "CHANGES", "POCKET_SHAPES", "apply_changes", "check_change_name", "expand_cases", "get_field", "pocket_fraction",
+    "CHANGES", "POCKET_SHAPES", "apply_changes", "centroid", "check_change_name", "expand_cases", "get_field", "pocket_fraction",
     "pocket_position", "pocket_shape", "set_field",
 ]
 
@@ -53,7 +53,7 @@ def _surface_path(base) -> str:
     raise ValueError(f"{type(base).__name__} carries no support surface (field 'surface' or 'pump.surface')")
 
 
-def _centroid(shape) -> tuple[float, float]:
+def centroid(shape) -> tuple[float, float]:
     if isinstance(shape, Polygon):
         x, y = np.array(shape.points).T
         cross = x * np.roll(y, -1) - np.roll(x, -1) * y
@@ -65,7 +65,7 @@ def _centroid(shape) -> tuple[float, float]:
 
 def _transformed(shape, scale: float, shift: float):
     """The shape scaled by ``scale`` about its centroid and moved ``shift`` along phi."""
-    cx, cy = _centroid(shape)
+    cx, cy = centroid(shape)
     centre = (cx + shift, cy)
     if isinstance(shape, Circle):
         return Circle(centre, shape.radius * scale)
@@ -80,7 +80,7 @@ def _transformed(shape, scale: float, shift: float):
 
 def _pocket_centre(surface: Surface) -> float:
     areas = np.array([s.area for s in surface.inlets])
-    return float(np.array([_centroid(s)[0] for s in surface.inlets]) @ areas / areas.sum())
+    return float(np.array([centroid(s)[0] for s in surface.inlets]) @ areas / areas.sum())
 
 
 def pocket_fraction(base, value):
@@ -141,7 +141,7 @@ def pocket_shape(base, value):
         raise ValueError(f"pocket_shape must be one of {sorted(POCKET_SHAPES)}, got {value!r}")
     path = _surface_path(base)
     surface = get_field(base, path)
-    inlets = tuple(POCKET_SHAPES[value](_centroid(s), s.area) for s in surface.inlets)
+    inlets = tuple(POCKET_SHAPES[value](centroid(s), s.area) for s in surface.inlets)
     return set_field(base, path, dataclasses.replace(surface, inlets=inlets))
 
 

@@ -26,6 +26,7 @@ import time
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
+from ..version import __version__
 from .cases import RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
@@ -50,8 +51,6 @@ def _name_of(function) -> str:
 
 
 def _version() -> str:
-    from .. import __version__
-
     return __version__
 
 

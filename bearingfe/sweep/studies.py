@@ -7,16 +7,16 @@ builders before anything runs.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
+from ..schema import SchemaError, Table, anything, choice, choices, read_table, read_toml, text
 from .cases import BASES, RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
 
-__all__ = ["Study", "read_study"]
+__all__ = ["STUDY", "Study", "read_study"]
 
 
 @dataclass(frozen=True)
@@ -47,59 +47,52 @@ class Study:
     sense: str
 
 
-def _table(data: Mapping, key: str, where: str) -> dict:
-    value = data.get(key, {})
-    if not isinstance(value, Mapping):
-        raise ValueError(f"{where}: [{key}] must be a table, got {value!r}")
-    return dict(value)
-
-
-def _choice(table: Mapping, key: str, allowed, default, where: str):
-    value = table.get(key, default)
-    if value not in allowed:
-        raise ValueError(f"{where}: {key} must be one of {sorted(allowed)}, got {value!r}")
+def _settings(where: str, value) -> dict:
+    if not isinstance(value, dict):
+        raise SchemaError(f"{where}: expected a table of field = value; got {value!r}")
     return value
+
+
+#: The study file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.schema`); the names in
+#: ``[base.set]``, ``[grid]`` and ``[[cases]]`` are checked against the base object and the change builders.
+STUDY = {
+    "study": Table({"name": (text, None), "run": (choice(lambda: RUNS), "shoe"),
+                    "outputs": (choices(lambda: OUTPUTS, empty=False), tuple(STANDARD_OUTPUTS)),
+                    "objective": (text, None), "sense": (choice(("max", "min")), "max")}),
+    "base": Table({"kind": (choice(lambda: BASES), None), "set": (_settings, {})}),
+    "grid": (anything, None),
+    "cases": (anything, None),
+}
 
 
 def read_study(path: str | Path) -> Study:
     """Read and check a study file; every error names the file, table and field."""
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text())
-    except OSError as exc:
-        raise ValueError(f"cannot read study file {path}: {exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML: {exc}") from None
-    unknown = set(data) - {"study", "base", "grid", "cases"}
-    if unknown:
-        raise ValueError(f"{path}: unknown tables {sorted(unknown)}; allowed: study, base, grid, cases")
-    study, base_table = _table(data, "study", str(path)), _table(data, "base", str(path))
-    run = _choice(study, "run", RUNS, "shoe", f"{path} [study]")
-    outputs = study.get("outputs", list(STANDARD_OUTPUTS))
-    if not (isinstance(outputs, list) and outputs and all(o in OUTPUTS for o in outputs)):
-        raise ValueError(f"{path} [study]: outputs must be a non-empty list of {sorted(OUTPUTS)}, got {outputs!r}")
-    objective = _choice(study, "objective", outputs, outputs[0], f"{path} [study]")
-    sense = _choice(study, "sense", ("max", "min"), "max", f"{path} [study]")
-    kind = _choice(base_table, "kind", BASES, run if run in BASES else "shoe", f"{path} [base]")
-    settings = _table(base_table, "set", f"{path} [base]")
+    data, label = read_toml(path, "study file")
+    s = read_table(data, label, "", STUDY)
+    study, base_table = s["study"], s["base"]
+    run, outputs = study["run"], study["outputs"]
+    objective = outputs[0] if study["objective"] is None else study["objective"]
+    choice(outputs)(f"{label}: [study] objective", objective)
+    kind = base_table["kind"] or (run if run in BASES else "shoe")
     base = BASES[kind]()
-    for name, value in settings.items():
+    for name, value in base_table["set"].items():
         try:
             check_change_name(base, name)
             base = apply_changes(base, {name: value})
         except ValueError as exc:
-            raise ValueError(f"{path} [base.set] {name}: {exc}") from None
-    if ("grid" in data) == ("cases" in data):
-        raise ValueError(f"{path}: give exactly one of [grid] (a table of value lists) or [[cases]]")
-    changes = data.get("grid", data.get("cases"))
-    where = f"{path} [grid]" if "grid" in data else f"{path} [[cases]]"
+            raise SchemaError(f"{label}: [base.set] {name}: {exc}") from None
+    if (s["grid"] is None) == (s["cases"] is None):
+        raise SchemaError(f"{label}: give exactly one of [grid] (a table of value lists) or [[cases]]")
+    changes = s["grid"] if s["cases"] is None else s["cases"]
+    where = f"{label}: [grid]" if s["cases"] is None else f"{label}: [[cases]]"
     try:
         cases = expand_cases(changes)
         for name in dict.fromkeys(n for case in cases for n in case):
             check_change_name(base, name)
     except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        raise SchemaError(f"{where}: {exc}") from None
     if not cases:
-        raise ValueError(f"{where}: the study has no cases")
-    return Study(name=str(study.get("name", path.stem)), base=base, changes=changes, run=run,
-                 outputs=tuple(outputs), objective=objective, sense=sense)
+        raise SchemaError(f"{where}: the study has no cases")
+    name = Path(path).stem if study["name"] is None else study["name"]
+    return Study(name=name, base=base, changes=changes, run=run, outputs=tuple(outputs), objective=objective,
+                 sense=study["sense"])

@@ -1,0 +1,573 @@
+"""Geometry files from users: ``.geo`` scripts checked and run apart, ``.msh`` read as data.
+
+A gmsh ``.geo`` file is a program: besides points and curves it can run
+shell commands (``SystemCall``), write files (``Printf(...) > "f"``,
+``Save``), read other files (``Include``, ``Merge``, ``ShapeFromFile``) and
+end the process that reads it (``Exit``). bearingfe therefore treats
+geometry files as untrusted data by default (docs: README, "Safety"):
+
+* ``.msh`` files are read by a data parser (meshio), never by gmsh's script
+  interpreter, and only if their content starts with ``$MeshFormat`` (a
+  ``.geo`` script renamed to ``x.msh`` is refused, not run);
+* ``.geo`` scripts are checked against an allow-list (:func:`check_geo_script`):
+  geometry, mesh-size and physical-group statements, arithmetic, loops,
+  ``Mesh.*`` / ``Geometry.*`` numeric options; anything else (shell,
+  files, other option groups, onelab, plugins, environment, ``Exit``) is
+  refused with :class:`UntrustedGeoError` naming the command and line,
+  unless the caller trusts the file (``trusted=True``, ``--trust-geo``);
+* trusted or not, gmsh parses and meshes the script in a separate process
+  with a time limit (:data:`DEFAULT_GEO_TIMEOUT`): a loop that never ends
+  or an ``Exit;`` cannot hang or end the caller;
+* the element count is estimated before meshing and refused beyond
+  ``max_elements`` (:data:`DEFAULT_MAX_ELEMENTS`, environment variable
+  ``BEARINGFE_MAX_ELEMENTS``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+__all__ = [
+    "GeometryFileError",
+    "UntrustedGeoError",
+    "MeshSizeError",
+    "DEFAULT_MAX_ELEMENTS",
+    "DEFAULT_GEO_TIMEOUT",
+    "MeshData",
+    "max_elements_limit",
+    "geo_timeout_limit",
+    "check_element_count",
+    "estimate_triangles",
+    "check_geo_script",
+    "read_msh",
+    "run_geo",
+]
+
+#: Largest number of triangles a mesh may have unless the caller raises the limit
+#: (``max_elements=``, ``--max-elements`` or the environment variable ``BEARINGFE_MAX_ELEMENTS``).
+DEFAULT_MAX_ELEMENTS = 1_000_000
+
+#: Seconds gmsh may spend parsing and meshing a ``.geo`` script (``timeout=``, ``--geo-timeout``,
+#: environment variable ``BEARINGFE_GEO_TIMEOUT``).
+DEFAULT_GEO_TIMEOUT = 120.0
+
+MAX_ELEMENTS_ENV = "BEARINGFE_MAX_ELEMENTS"
+GEO_TIMEOUT_ENV = "BEARINGFE_GEO_TIMEOUT"
+
+#: Area of an equilateral triangle of unit edge: element counts are estimated as area / (this * h^2).
+_EQUILATERAL = math.sqrt(3.0) / 4.0
+
+
+class GeometryFileError(ValueError):
+    """A geometry file cannot be used (not a mesh, gmsh failed, ended or ran out of time)."""
+
+
+class UntrustedGeoError(GeometryFileError):
+    """A ``.geo`` script uses a command that reaches outside the geometry (refused unless trusted)."""
+
+
+class MeshSizeError(ValueError):
+    """The mesh asked for would have more elements than the limit allows."""
+
+
+# -- limits ------------------------------------------------------------------------
+
+def max_elements_limit(value: int | None = None) -> int:
+    """The element-count limit: ``value`` if given, else ``$BEARINGFE_MAX_ELEMENTS``, else the default.
+
+    Raises
+    ------
+    ValueError
+        If the value (or the environment variable) is not an integer >= 1.
+    """
+    source = "max_elements"
+    if value is None:
+        env = os.environ.get(MAX_ELEMENTS_ENV)
+        if env is None:
+            return DEFAULT_MAX_ELEMENTS
+        value, source = env, MAX_ELEMENTS_ENV
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{source} must be an integer >= 1, got {value!r}") from None
+    if not (math.isfinite(number) and number >= 1 and number == int(number)):
+        raise ValueError(f"{source} must be an integer >= 1, got {value!r}")
+    return int(number)
+
+
+def geo_timeout_limit(value: float | None = None) -> float:
+    """The ``.geo`` time limit [s]: ``value``, else ``$BEARINGFE_GEO_TIMEOUT``, else the default."""
+    source = "timeout"
+    if value is None:
+        env = os.environ.get(GEO_TIMEOUT_ENV)
+        if env is None:
+            return DEFAULT_GEO_TIMEOUT
+        value, source = env, GEO_TIMEOUT_ENV
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{source} must be a number of seconds > 0, got {value!r}") from None
+    if not (math.isfinite(number) and number > 0):
+        raise ValueError(f"{source} must be a finite number of seconds > 0, got {value!r}")
+    return number
+
+
+def estimate_triangles(area: float, size: float) -> float:
+    """Triangles of edge ``size`` needed to cover ``area`` (a lower bound for sizes up to ``size``)."""
+    return float(area) / (_EQUILATERAL * float(size) ** 2)
+
+
+def check_element_count(estimate: float, max_elements: int | None = None, *, what: str = "the mesh") -> None:
+    """Refuse an estimated element count beyond the limit.
+
+    Parameters
+    ----------
+    estimate : float
+        Estimated number of triangles.
+    max_elements : int, optional
+        The limit; default :func:`max_elements_limit` (environment or
+        :data:`DEFAULT_MAX_ELEMENTS`).
+    what : str
+        What is being meshed, for the message (e.g. ``"size = 0.0001"``).
+
+    Raises
+    ------
+    MeshSizeError
+        Naming the estimate, the limit and how to raise it.
+    """
+    limit = max_elements_limit(max_elements)
+    if not estimate <= limit:  # also NaN
+        raise MeshSizeError(
+            f"{what} would need about {estimate:.3g} triangles, more than max_elements = {limit}: use a "
+            f"larger element size, or raise the limit (max_elements= argument, --max-elements on the "
+            f"command line, or the environment variable {MAX_ELEMENTS_ENV})")
+
+
+# -- the .geo allow-list -------------------------------------------------------------
+
+_TOKEN = re.compile(r"""
+    (?P<space>[ \t\r\f]+|\n)
+  | (?P<comment>//[^\n]*|/\*.*?(?:\*/|\Z))
+  | (?P<string>"[^"]*(?:"|\Z)|'[^']*(?:'|\Z))
+  | (?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)
+  | (?P<name>[A-Za-z_][A-Za-z_0-9]*)
+  | (?P<op>\.\.\.|::|\|\||&&|\+\+|--|==|!=|<=|>=|>>|<<|\+=|-=|\*=|/=|.)
+""", re.VERBOSE | re.DOTALL)
+
+#: gmsh .geo keywords an untrusted script may use: geometry, sizes, groups, arithmetic, loops, strings.
+_ALLOWED_KEYWORDS = frozenset("""
+    Abs Acos ArcCos ArcSin ArcTan ArcTan2 Asin Atan Atan2 Ceil Cos Cosh Exp Fabs Floor Fmod Hypot Log Log10
+    Modulo Round Sin Sinh Sqrt Tan Tanh Pi Min Max Step Rand LinSpace LogSpace Unique List Exists Find
+    Str StrCat Sprintf StrCmp StrLen StrSub StrReplace StrPrefix StrFind StrChoice UpperCase LowerCase
+    LowerCaseIn NameToString N2S StringToName S2N
+    newreg newp newl newc newll newcl news newsl newv newf
+    Point Curve Line Circle Ellipse Ellipsis Spline CatmullRom BSpline Bezier Nurbs Knots Order Surface
+    Plane Ruled Physical Rectangle Disk Compound Wire In Using Parametric
+    BooleanCoherence BooleanCommon BooleanCut BooleanDifference BooleanFragments BooleanFuse
+    BooleanIntersection BooleanSection BooleanUnion Fillet Chamfer
+    Rotate Translate Symmetry Dilate Affine Extrude Layers Recombine Transfinite Field Characteristic
+    MeshSize MeshAlgorithm MeshSizeFromBoundary Periodic Reverse ReverseMesh Smoother Coherence
+    Delete Recursive Hide Show Color RefineMesh Hole
+    For EndFor If ElseIf Else EndIf Macro Function Call Return
+    SetFactory Printf Error Warning
+""".split())
+
+#: Every other gmsh .geo keyword (gmsh's lexer), refused when untrusted; the reason if it is a known hazard.
+_REFUSED_KEYWORDS = {
+    "Exit": "ends the program that reads the file",
+    "Abort": "ends the program that reads the file",
+    "OnelabRun": "runs an external program",
+    "OnelabAction": "drives an external (onelab) client",
+    "ShapeFromFile": "reads another file",
+    "ListFromFile": "reads another file",
+    "FileExists": "looks at the file system",
+    "AbsolutePath": "looks at the file system",
+    "CurrentDir": "looks at the file system",
+    "CurrentDirectory": "looks at the file system",
+    "CurrentFileName": "looks at the file system",
+    "DirName": "looks at the file system",
+    "FixRelativePath": "looks at the file system",
+    "StrRelative": "looks at the file system",
+    "GetEnv": "reads the environment",
+    "GetValue": "waits for keyboard input",
+    "GetString": "reads onelab parameters",
+    "GetStringValue": "waits for keyboard input",
+    "GetNumber": "reads onelab parameters",
+    "GetForced": "reads onelab parameters",
+    "GetForcedStr": "reads onelab parameters",
+    "SetNumber": "sets onelab parameters",
+    "SetString": "sets onelab parameters",
+    "DefineConstant": "defines onelab parameters",
+    "DefineNumber": "defines onelab parameters",
+    "DefineString": "defines onelab parameters",
+    "UndefineConstant": "changes onelab parameters",
+    "Plugin": "runs a gmsh plugin (plugins read and write files)",
+    "NewModel": "replaces the model",
+    "GmshExecutableName": "looks at the installation",
+}
+
+#: Words of the .geo grammar that are not lexer keywords but are safe where they appear.
+_GRAMMAR_WORDS = frozenset("""
+    Loop Duplicata Progression Bump Beta Left Right Alternate AlternateLeft AlternateRight
+    Model Physicals Variables Meshes Options
+    Distance Threshold MathEval MathEvalAniso Box Ball Frustum Cylinder Restrict Constant Mean Laplacian
+    Gradient Curvature Param Extend BoundaryLayer AttractorAnisoCurve Attractor MaxEigenHessian Octree
+    AutomaticMeshSizeField Cylinder
+""".split())
+
+#: Non-keyword command words of gmsh (``Word argument;``) and why they are refused.
+_COMMANDS = {
+    "SystemCall": "runs a shell command",
+    "NonBlockingSystemCall": "runs a shell command",
+    "Include": "includes another file",
+    "Merge": "merges another file",
+    "MergeWithBoundingBox": "merges another file",
+    "Save": "writes a file",
+    "Print": "writes a file",
+    "CreateDir": "creates a directory",
+    "Sleep": "waits",
+    "SetName": "renames the model",
+    "Exit": "ends the program that reads the file",
+    "ExternalProcess": "is a size field that runs an external program",
+    "Structured": "is a size field that reads a file",
+    "PostView": "is a size field that reads post-processing views",
+}
+
+#: Option groups an untrusted script may set (numbers only): the others hold paths and programs.
+_OPTION_GROUPS = frozenset({"Mesh", "Geometry"})
+
+_ASSIGN = frozenset({"=", "+=", "-=", "*=", "/=", "++", "--", "[", "(", "."})
+
+
+@dataclass(frozen=True)
+class _Tok:
+    kind: str
+    text: str
+    line: int
+
+
+def _tokens(text: str) -> list[_Tok]:
+    out, line = [], 1
+    for m in _TOKEN.finditer(text):
+        kind, value = m.lastgroup, m.group()
+        if kind not in ("space", "comment"):
+            out.append(_Tok(kind, value, line))
+        line += value.count("\n")
+    return out
+
+
+def _refuse(name: str, tok: _Tok, reason: str) -> UntrustedGeoError:
+    return UntrustedGeoError(
+        f"{name} line {tok.line}: '{tok.text}' {reason}; untrusted .geo scripts may only describe geometry, "
+        f"mesh sizes and physical groups. If you trust this file, pass trusted=True (load_mesh) or "
+        f"--trust-geo (bearingfe mesh)")
+
+
+def check_geo_script(text: str, name: str = "<geo>") -> None:
+    """Refuse a ``.geo`` script that reaches outside its own geometry.
+
+    The check is an allow-list on the script's words (it never runs the
+    script): gmsh keywords must be geometry, mesh-size, physical-group,
+    arithmetic, string or loop keywords; an option assignment must be a
+    number into the ``Mesh.`` or ``Geometry.`` group; every other word must
+    be a variable the script assigns itself. Refused, among others:
+    ``SystemCall``, ``NonBlockingSystemCall``, ``OnelabRun``, ``Include``,
+    ``Merge``, ``ShapeFromFile``, ``Save``, ``Print``, ``CreateDir``,
+    ``Printf(...) > "file"``, ``Exit``, ``Abort``, ``GetEnv``, ``GetValue``,
+    ``Plugin``, the ``ExternalProcess``/``Structured``/``PostView`` size
+    fields and the ``General.``/``Solver.``/``Print.`` option groups.
+
+    Parameters
+    ----------
+    text : str
+        The script.
+    name : str
+        File name for the messages.
+
+    Raises
+    ------
+    UntrustedGeoError
+        Naming the first refused word, its line and how to trust the file.
+    """
+    toks = _tokens(text)
+    defined = _defined_names(toks)
+    for i, tok in enumerate(toks):
+        prev = toks[i - 1] if i else None
+        nxt = toks[i + 1] if i + 1 < len(toks) else None
+        if tok.kind == "string" and prev is not None and prev.kind == "name" and prev.text not in _ALLOWED_KEYWORDS:
+            raise _refuse(name, prev, _COMMANDS.get(prev.text, "is a command that takes a file name or text"))
+        if tok.text in ("Printf", "Error", "Warning") and _redirected(toks, i):
+            raise _refuse(name, tok, "writes to a file (> or >> after the message)")
+        if tok.kind != "name" or (prev is not None and prev.text == "."):
+            continue  # option and field members are checked at their group
+        word = tok.text
+        if word in _ALLOWED_KEYWORDS:
+            continue
+        if word in _REFUSED_KEYWORDS:
+            raise _refuse(name, tok, _REFUSED_KEYWORDS[word])
+        if word in _COMMANDS and (nxt is None or nxt.text not in _ASSIGN - {"."}):
+            raise _refuse(name, tok, _COMMANDS[word])
+        if nxt is not None and nxt.text == ".":
+            if word not in _OPTION_GROUPS:
+                raise _refuse(name, tok, f"sets options of the {word}. group (only Mesh. and Geometry. "
+                                         f"numeric options are accepted)")
+            _check_option_value(toks, i, name)
+            continue
+        if word == "Mesh" and nxt is not None and nxt.kind == "number":
+            continue  # "Mesh 2;": mesh now
+        if word in _GRAMMAR_WORDS:
+            continue
+        if word in defined:
+            if prev is not None and prev.text in ("For", "Macro", "Function", "Call"):
+                continue
+            if nxt is not None and nxt.kind in ("number", "string", "name"):
+                raise _refuse(name, tok, "is used as a command")
+            continue
+        raise _refuse(name, tok, "is not a geometry command or a variable assigned in the script")
+
+
+def _redirected(toks: list[_Tok], i: int) -> bool:
+    """``Printf(...) > file``: the token after the closing parenthesis is ``>`` or ``>>``."""
+    depth = 0
+    for j in range(i + 1, len(toks)):
+        if toks[j].text == "(":
+            depth += 1
+        elif toks[j].text == ")":
+            depth -= 1
+            if depth == 0:
+                return j + 1 < len(toks) and toks[j + 1].text in (">", ">>")
+        elif toks[j].text == ";":
+            return False
+    return False
+
+
+def _defined_names(toks: list[_Tok]) -> set[str]:
+    """Variables, loop variables and macro names the script defines itself (anywhere in it)."""
+    names = set()
+    for i, tok in enumerate(toks):
+        if tok.kind != "name" or tok.text in _ALLOWED_KEYWORDS or tok.text in _REFUSED_KEYWORDS:
+            continue
+        prev = toks[i - 1].text if i else ";"
+        nxt = toks[i + 1].text if i + 1 < len(toks) else ""
+        if prev in ("For", "Macro", "Function"):
+            names.add(tok.text)
+        elif prev != "." and tok.text not in _COMMANDS:
+            if nxt in ("=", "+=", "-=", "*=", "/=", "++", "--") or (nxt in ("[", "(") and _assigned_list(toks, i + 1)):
+                names.add(tok.text)
+    return names
+
+
+def _assigned_list(toks: list[_Tok], i: int) -> bool:
+    """``x[] = ...`` / ``x(2) = ...``: the bracket at ``i`` closes and is followed by an assignment."""
+    depth = 0
+    for j in range(i, len(toks)):
+        if toks[j].text in ("[", "("):
+            depth += 1
+        elif toks[j].text in ("]", ")"):
+            depth -= 1
+            if depth == 0:
+                return j + 1 < len(toks) and toks[j + 1].text in ("=", "+=", "-=", "*=", "/=")
+        elif toks[j].text == ";":
+            return False
+    return False
+
+
+def _check_option_value(toks: list[_Tok], i: int, name: str) -> None:
+    """``Mesh.X = <numeric expression>;``: no strings in the value."""
+    for tok in toks[i:]:
+        if tok.text == ";":
+            return
+        if tok.kind == "string":
+            raise _refuse(name, tok, f"is a text value for a {toks[i].text}. option (only numbers are accepted)")
+
+
+# -- .msh as data --------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class MeshData:
+    """A triangle mesh as plain arrays (read from a file, not yet a scikit-fem mesh).
+
+    Attributes
+    ----------
+    points : ndarray, shape (2, n)
+        Node coordinates ``(phi, z)``.
+    triangles : ndarray, shape (3 or 6, m)
+        Node indices of each triangle (6: gmsh's second-order node order).
+    curves : dict of str to ndarray, shape (2, k)
+        For each named physical curve group, the end nodes of its edges.
+    """
+
+    points: np.ndarray
+    triangles: np.ndarray
+    curves: dict
+
+
+def read_msh(path: str | Path) -> MeshData:
+    """Read a gmsh ``.msh`` file (formats 2.2, 4.0, 4.1; text or binary) as data.
+
+    The file is parsed by meshio, never by gmsh's script interpreter, and
+    only if it starts with ``$MeshFormat``.
+
+    Raises
+    ------
+    GeometryFileError
+        Not a gmsh mesh file (e.g. a ``.geo`` script named ``.msh``), a file
+        meshio cannot parse, or one without triangles.
+    """
+    path = Path(path)
+    with open(path, "rb") as f:
+        head = f.read(64).lstrip()
+    if not head.startswith(b"$MeshFormat"):
+        raise GeometryFileError(
+            f"{path.name} is not a gmsh mesh file (it does not start with $MeshFormat); a .geo script must "
+            f"be named .geo to be meshed (and it is checked before it runs)")
+    import meshio
+
+    try:
+        m = meshio.read(path, file_format="gmsh")
+    except Exception as exc:  # noqa: BLE001 - any parser failure is a bad file
+        raise GeometryFileError(f"{path.name}: not a readable gmsh mesh file ({_short(exc)})") from None
+    points = np.asarray(m.points, dtype=float)
+    if points.ndim != 2 or points.shape[0] == 0 or not np.all(np.isfinite(points)):
+        raise GeometryFileError(f"{path.name}: node coordinates missing or not finite")
+    tri = [(k, c.data) for k, c in enumerate(m.cells) if c.type in ("triangle", "triangle6")]
+    kinds = {m.cells[k].type for k, _ in tri}
+    if not tri:
+        raise GeometryFileError(f"{path.name}: no triangles (is there a physical surface?)")
+    if len(kinds) > 1:
+        raise GeometryFileError(f"{path.name}: mixes straight and curved triangles")
+    triangles = np.vstack([d for _, d in tri]).T.astype(np.int64)
+    curves = _named_curves(m)
+    n = points.shape[0]
+    for arr in (triangles, *curves.values()):
+        if arr.size and (arr.min() < 0 or arr.max() >= n):
+            raise GeometryFileError(f"{path.name}: elements refer to nodes that do not exist")
+    return MeshData(points=np.ascontiguousarray(points[:, :2].T), triangles=triangles, curves=curves)
+
+
+def _named_curves(m) -> dict:
+    """End nodes of the line elements of each named physical curve group."""
+    lines = {k: c.data[:, :2] for k, c in enumerate(m.cells) if c.type in ("line", "line3")}
+    names = {str(name): (int(v[0]), int(v[1])) for name, v in (m.field_data or {}).items() if len(v) >= 2}
+    out: dict[str, list] = {}
+    sets = {k: v for k, v in (m.cell_sets or {}).items() if k in names and names[k][1] == 1}
+    if sets:  # msh 4: an element can belong to several groups
+        for name, per_block in sets.items():
+            for k, idx in enumerate(per_block):
+                if k in lines and idx is not None and len(idx):
+                    out.setdefault(name, []).append(lines[k][np.asarray(idx, dtype=np.int64)])
+    else:  # msh 2: one physical tag per element, elements repeated per group
+        physical = (m.cell_data or {}).get("gmsh:physical")
+        by_tag = {tag: name for name, (tag, dim) in names.items() if dim == 1}
+        for k, edges in lines.items():
+            if physical is None:
+                break
+            tags = np.asarray(physical[k])
+            for tag, name in by_tag.items():
+                sel = edges[tags == tag]
+                if len(sel):
+                    out.setdefault(name, []).append(sel)
+    return {name: np.vstack(parts).T.astype(np.int64) for name, parts in out.items()}
+
+
+def _short(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:200] or type(exc).__name__
+
+
+# -- .geo in a separate process ------------------------------------------------------------
+
+def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None, order: int = 1,
+            trusted: bool = False, timeout: float | None = None, max_elements: int | None = None) -> dict:
+    """Mesh a ``.geo`` script with gmsh in a separate process and write a ``.msh`` 4.1 file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The script.
+    out_msh : str or Path
+        Where the mesh is written (physical groups only, names kept).
+    size : float, optional
+        Largest element size [-] (gmsh's ``Mesh.MeshSizeMax``).
+    order : {1, 2}
+        Geometry order.
+    trusted : bool
+        Skip the allow-list (:func:`check_geo_script`); the script still
+        runs in a separate process with the time limit.
+    timeout : float, optional
+        Seconds for parsing and meshing; default :func:`geo_timeout_limit`.
+    max_elements : int, optional
+        Element-count limit checked before the surface is meshed; default
+        :func:`max_elements_limit`.
+
+    Returns
+    -------
+    dict
+        ``estimate`` (the element-count estimate) and ``elements``.
+
+    Raises
+    ------
+    UntrustedGeoError, GeometryFileError, MeshSizeError
+    """
+    path = Path(path)
+    limit = max_elements_limit(max_elements)
+    seconds = geo_timeout_limit(timeout)
+    if not trusted:
+        try:
+            text = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError:
+            raise GeometryFileError(f"{path.name} is not a text (UTF-8) .geo script") from None
+        check_geo_script(text, path.name)
+    worker = Path(__file__).with_name("gmsh_worker.py")
+    with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
+        request = dict(geo=str(path.resolve()), out=str(Path(out_msh).resolve()), size=size, order=int(order),
+                       max_elements=limit, result=str(Path(work) / "result.json"))
+        req_file = Path(work) / "request.json"
+        req_file.write_text(json.dumps(request))
+        code = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
+        proc = subprocess.Popen([sys.executable, "-I", "-c", code, str(worker), str(req_file)], cwd=work,
+                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                start_new_session=True)
+        try:
+            output, _ = proc.communicate(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            _kill(proc)
+            raise GeometryFileError(
+                f"{path.name}: gmsh did not finish within {seconds:g} s (a loop that does not end, or a very "
+                f"fine mesh?); raise the limit with timeout= (load_mesh), --geo-timeout (bearingfe mesh) or "
+                f"the environment variable {GEO_TIMEOUT_ENV}") from None
+        finally:
+            _kill(proc)  # a trusted script may have started children in the worker's session
+        result_file = Path(request["result"])
+        if not result_file.is_file():
+            tail = " ".join(output.decode("utf-8", "replace").split())[-200:]
+            raise GeometryFileError(
+                f"{path.name}: gmsh ended (exit status {proc.returncode}) before it made a mesh"
+                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else "")
+                + (f": {tail}" if tail else ""))
+        result = json.loads(result_file.read_text())
+    if result.get("kind") == "too_many":
+        check_element_count(result["estimate"], limit, what=f"{path.name}"
+                            + (f" with size = {size:g}" if size is not None else ""))
+    if "error" in result:
+        raise GeometryFileError(f"{path.name}: gmsh failed: {result['error']}")
+    return result
+
+
+def _kill(proc: subprocess.Popen) -> None:
+    """End the worker's process group (the worker and anything it started)."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    proc.wait()
