@@ -3,10 +3,12 @@
 =========================  =====================================================
 module                     what it does
 =========================  =====================================================
+``schema``                 one schema for input files: field checks, tables, errors
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``film``                   film-thickness models (``CosineFilm``)
+``parameters``             operating point and discretization objects (``operating=``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
 ``superposition``          per-mesh operators, one film state's condensed system, results
 ``cavitation``             cavitation models and their table (``MODELS``)
@@ -17,7 +19,6 @@ module                     what it does
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
 ``linalg``                 pluggable sparse solvers
-``schema``                 one schema for input files: field checks, tables, errors
 ``machines``               shared parameter objects of machines (SI)
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle
@@ -48,6 +49,7 @@ from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Mater
 from .mechanism_files import LOADERS, load_mechanism
 from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
 from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
+from .parameters import Discretization, OperatingPoint
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
                        superpose)
@@ -63,6 +65,7 @@ from .version import __version__
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",

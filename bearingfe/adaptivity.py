@@ -48,6 +48,7 @@ from .geometry import Surface
 from .journal import ResolutionWarning
 from .linalg import DEFAULT_SOLVER, get_linear_solver
 from .meshing import SupportMesh, mesh_surface
+from .parameters import Discretization, OperatingPoint, takes
 from . import forms
 from .forms import film_flux, mapping, pressure_from_unknown, unknown_scale
 from .reynolds import CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, solve_reynolds
@@ -612,6 +613,7 @@ class AdaptivityError(RuntimeError):
     """The adaptive loop stopped before the load met the tolerance (``on_unconverged="raise"``)."""
 
 
+@takes(OperatingPoint, Discretization, rename={"mesh_size": "size"})
 def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_levels: int = 8,
           wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0, formulation: str = "direct",
           element: str = "P1", cavitation: str = "none", min_size: float | None = None,
@@ -646,6 +648,12 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
         Most meshes (solves), 2..30.
     wedge, squeeze, inlet_pressure, formulation, element, cavitation, solver
         As in :func:`bearingfe.solve_reynolds` (P2 uses curved order-2 geometry).
+    operating : OperatingPoint, optional
+        ``wedge``, ``squeeze`` and ``inlet_pressure`` in one object
+        (:class:`bearingfe.parameters.OperatingPoint`; ``sliding`` is not used).
+    discretization : Discretization, optional
+        ``element``, ``formulation``, ``solver``, ``size`` (its ``mesh_size``)
+        and ``min_size`` in one object (:class:`bearingfe.parameters.Discretization`).
     min_size : float, optional
         Smallest element size [-], in ``(0, size]``; default ``size * 1e-6``
         (no practical limit). If the sizes asked for fall below it the

@@ -95,6 +95,7 @@ from scipy.spatial import cKDTree
 
 from .jfo import solve_model_jfo
 from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
+from .parameters import OperatingPoint, takes
 from .superposition import ReynoldsResult, Superposition, build_result, ruptured_elements, source_weights
 
 __all__ = [
@@ -451,6 +452,7 @@ def solve_model(sup: Superposition, weights: np.ndarray, model: str = "none",
     return MODELS[model](sup, weights, options)
 
 
+@takes(OperatingPoint)
 def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                      sliding: float | None = None, *, model: str = "reynolds", warm_start=None,
                      solver: str | Factorize = DEFAULT_SOLVER, tol: float = TOLERANCE,
@@ -463,7 +465,8 @@ def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0),
         The film state (:func:`bearingfe.superpose`); its linear fields are
         the default warm start (ruptured where the linear solution is negative).
     wedge, squeeze, inlet_pressure, sliding
-        As in :func:`bearingfe.solve_reynolds`.
+        As in :func:`bearingfe.solve_reynolds` (or ``operating=`` an
+        :class:`~bearingfe.parameters.OperatingPoint`).
     model : str
         A cavitation model of :data:`MODELS` (not ``"none"``): ``"reynolds"``
         or ``"gumbel"``.
@@ -522,6 +525,7 @@ class RatesForLoad:
     residual: float
 
 
+@takes(OperatingPoint)
 def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure: float = 0.0, *,
                    model: str = "reynolds", warm_start=None, tol: float = 1e-9, max_newton: int = 30,
                    solver: str | Factorize = DEFAULT_SOLVER) -> RatesForLoad:
@@ -541,6 +545,8 @@ def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure:
     load : (float, float)
         Applied load in the arc frame [mu omega R0^4 / c^2].
     wedge, inlet_pressure : float
+        Or ``operating=`` an :class:`~bearingfe.parameters.OperatingPoint`
+        (its ``squeeze`` is what is solved for: leave it at zero).
     model : {"reynolds", "gumbel"}
     warm_start : optional
         As in :func:`solve_cavitating`.

@@ -55,6 +55,7 @@ from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
+from .parameters import Discretization, takes
 from . import forms
 from .superposition import ReynoldsResult, operators, superpose
 
@@ -401,6 +402,7 @@ def _chart(bearing: JournalBearing, res: ReynoldsResult, eps: float, n_nodes: in
         h_min=res.h_min, cavitated_fraction=rupture, iterations=res.iterations, n_nodes=n_nodes)
 
 
+@takes(Discretization, rename={"mesh_size": "size"})
 def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_size: float | None = None,
                 cavitation: str = "reynolds", estimate_error: bool = False,
                 error_tolerance: float = 0.02) -> JournalPerformance:
@@ -416,7 +418,10 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
         (the pressure is linear in ``eps`` there).
     size, min_size : float
         Element sizes [-]; by default ``min_size = size sqrt(1 - eps)`` at the
-        thinnest film (:func:`film_graded_size`).
+        thinnest film (:func:`film_graded_size`). Or ``discretization=`` a
+        :class:`bearingfe.parameters.Discretization` with ``mesh_size`` and
+        ``min_size`` (its other fields stay at their defaults: the journal
+        solves choose their own element, form and solver).
     cavitation : {"reynolds", "gumbel", "none"}
     estimate_error : bool
         Also solve on the uniformly refined mesh and report the relative
@@ -504,6 +509,7 @@ def _short_eps(load: float, a: float) -> float:
     return float(brentq(f, 1e-9, 0.99))
 
 
+@takes(Discretization, rename={"mesh_size": "size"})
 def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: float | None = None,
                 cavitation: str = "reynolds", tol: float = 1e-8, max_newton: int = 40) -> Equilibrium:
     """Journal position that carries a load, by Newton's method with the linearized stiffness.
@@ -516,7 +522,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         for the full bearing only its magnitude and direction matter.
     size, min_size : float
         Element sizes (the mesh is graded for the first guess and regenerated
-        once if the answer moved by more than 0.02 in eps).
+        once if the answer moved by more than 0.02 in eps); or
+        ``discretization=`` as in :func:`performance`.
     cavitation : {"reynolds", "none"}
     tol : float
         Relative tolerance on the force balance.

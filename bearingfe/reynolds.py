@@ -40,7 +40,8 @@ from .film import Film
 from .jfo import solve_jfo
 from .linalg import DEFAULT_SOLVER, Factorize
 from .meshing import SupportMesh
-from .superposition import (ELEMENTS, FORMULATIONS, SOURCES, CoercivityError, CondensedSystem, Operators,
+from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
+from .superposition import (SOURCES, CoercivityError, CondensedSystem, Operators,
                             ReynoldsResult, Superposition, operators, source_weights, superpose)
 
 __all__ = [
@@ -56,12 +57,15 @@ __all__ = [
     "ReynoldsResult",
     "solve_reynolds",
     "CoercivityError",
+    "Discretization",
+    "OperatingPoint",
 ]
 
 #: Names of the cavitation models (the keys of :data:`bearingfe.cavitation.MODELS`).
 CAVITATION = tuple(MODELS)
 
 
+@takes(OperatingPoint, Discretization)
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
@@ -110,6 +114,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``.
         Used by ``"jfo"`` and by the finite-volume ``"reynolds"``; the
         Galerkin models need the default 0.
+    operating : OperatingPoint, optional
+        ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
+        object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
+        keywords.
+    discretization : Discretization, optional
+        ``element``, ``formulation`` and ``solver`` in one object
+        (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
 
     Returns
     -------

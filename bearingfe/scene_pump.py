@@ -42,15 +42,15 @@ PICTURES = ("trajectory", "orbit", "pressure")
 
 
 def _elements() -> tuple[str, ...]:
-    from .reynolds import ELEMENTS
+    from .parameters import ELEMENTS
 
     return tuple(ELEMENTS)
 
 
 def _cavitation_models() -> tuple[str, ...]:
-    from .reynolds import CAVITATION
+    from .cavitation import MODELS
 
-    return tuple(CAVITATION)
+    return tuple(MODELS)
 
 
 def _starts() -> tuple[str, ...]:

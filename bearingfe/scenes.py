@@ -2,10 +2,14 @@
 
 A scene file has a top-level ``kind``; :data:`SCENES` maps the kind to a
 runner ``(scene dict, label, output dir, progress) -> summary dict``. To add
-a kind (the pump transient), add one entry. Every schema error is a
-:class:`SceneError` naming the file, the table and the field together with
-what is allowed, e.g. ``default.toml: [solver] element: must be one of
-'P1', 'P2'; got 'P3'``.
+a kind (the pump transient), add one entry. Each kind's file is described
+by a spec read with :func:`bearingfe.schema.read_table` (:data:`REYNOLDS`,
+:data:`bearingfe.scene_pump.PUMP`, :data:`bearingfe.scene_journal.JOURNAL`):
+to add an option, add one ``name: (check, default)`` entry to its table.
+Every schema error is a :class:`SceneError` (the
+:class:`~bearingfe.schema.SchemaError` of every input file) naming the file,
+the table and the field together with what is allowed, e.g.
+``default.toml: [solver] element: must be one of 'P1', 'P2'; got 'P3'``.
 
 The ``"reynolds"`` scene (a static solve)::
 
@@ -41,7 +45,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Callable, Mapping
+from typing import Callable, Mapping
 
 from .mechanism_files import SURFACE, surface_from, surface_of
 from .schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, nonnegative_number, number,
@@ -81,13 +85,13 @@ PICTURES = ("pressure", "wrapped", "film")
 
 
 def _elements() -> tuple[str, ...]:
-    from .reynolds import ELEMENTS
+    from .parameters import ELEMENTS
 
     return tuple(ELEMENTS)
 
 
 def _formulations() -> tuple[str, ...]:
-    from .reynolds import FORMULATIONS
+    from .parameters import FORMULATIONS
 
     return tuple(FORMULATIONS)
 

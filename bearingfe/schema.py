@@ -18,7 +18,7 @@ against a spec; unknown names are errors. Every error has the same form::
 
 The field checks (:func:`number`, :func:`choice`, ...) are built once here;
 choice lists come from the modules that own them (pass a callable, e.g.
-``choice(lambda: reynolds.ELEMENTS)``, to read the list when a file is
+``choice(lambda: parameters.ELEMENTS)``, to read the list when a file is
 checked). :func:`build` calls a parameter-object constructor and re-raises
 its ``ValueError`` with the file and table. The value checks
 :func:`finite`, :func:`positive`, :func:`nonnegative`, :func:`in_range` and
@@ -38,9 +38,10 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
 __all__ = [
-    "REQUIRED", "Range", "SchemaError", "Table", "Tables", "anything", "build", "choice", "choices", "finite",
-    "flag", "in_range", "integer", "nonnegative", "number", "numbers", "one_of", "pair", "path_text", "points",
-    "positive", "read_table", "read_toml", "text", "texts",
+    "NONNEGATIVE", "POSITIVE", "REQUIRED", "Range", "SchemaError", "Table", "Tables", "anything", "build", "choice",
+    "choices", "finite", "flag", "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers",
+    "one_of", "pair", "path_text", "points", "positive", "positive_number", "read_table", "read_toml", "text",
+    "texts",
 ]
 
 

@@ -38,6 +38,7 @@ from . import forms
 from .forms import FilmAt, film_at, film_flux, mapping, pressure_from_unknown, shear, unknown_scale
 from .linalg import DEFAULT_SOLVER, Factorize, Solve, get_linear_solver
 from .meshing import SupportMesh
+from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 
 __all__ = [
     "ELEMENTS",
@@ -60,8 +61,6 @@ __all__ = [
     "probes",
 ]
 
-ELEMENTS: Mapping[str, type] = MappingProxyType({"P1": skfem.ElementTriP1, "P2": skfem.ElementTriP2})
-FORMULATIONS = ("pi", "direct")
 #: Unit sources in the order of :attr:`Superposition.fields`.
 SOURCES = ("wedge", "gamma_rate", "phi0_rate", "inlet")
 
@@ -324,8 +323,10 @@ class Superposition:
         constant = wedge * self.forces[:, 0] + inlet_pressure * self.forces[:, 3]
         return np.column_stack([self.forces[:, 1], self.forces[:, 2], constant])
 
+    @takes(OperatingPoint)
     def force(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0) -> np.ndarray:
-        """Film force ``(int p cos phi, int p sin phi)`` at an operating point."""
+        """Film force ``(int p cos phi, int p sin phi)`` at an operating point (or ``operating=``
+        an :class:`~bearingfe.parameters.OperatingPoint`)."""
         self.check_inlet(inlet_pressure)
         return self.forces @ source_weights(wedge, squeeze, inlet_pressure)
 
@@ -364,9 +365,14 @@ class Superposition:
         force += inlet_pressure * ops.pocket_moments[1:]
         return force, float(np.sum(p * dx) + inlet_pressure * ops.pocket_moments[0])
 
+    @takes(OperatingPoint)
     def combine(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
                 sliding: float | None = None) -> "ReynoldsResult":
-        """The full solution at an operating point (pressure, loads, flows, friction)."""
+        """The full solution at an operating point (pressure, loads, flows, friction).
+
+        The operating point is given by the keywords or as ``operating=`` an
+        :class:`~bearingfe.parameters.OperatingPoint`.
+        """
         wts = source_weights(wedge, squeeze, inlet_pressure)
         self.check_inlet(inlet_pressure)
         if sliding is not None and not math.isfinite(float(sliding)):
@@ -386,6 +392,7 @@ def source_weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
     return w
 
 
+@takes(Discretization)
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
               solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback") -> Superposition:
     """Factorize the Reynolds operator of a film state once and solve four unit problems.
@@ -402,6 +409,9 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         What to do if the discrete pi operator is not positive definite:
         switch to the direct form (and say so in ``notes``) or raise
         :class:`CoercivityError`.
+    discretization : Discretization, optional
+        ``formulation``, ``element`` and ``solver`` in one object
+        (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
     """
     if formulation not in FORMULATIONS:
         raise ValueError(f"formulation must be one of {FORMULATIONS}, got {formulation!r}")

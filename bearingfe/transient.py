@@ -48,6 +48,7 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
 
 __all__ = [
@@ -90,6 +91,7 @@ def pump_mesh(pump: EccentricPump, size: float = 0.08, **kwargs) -> SupportMesh:
     return mesh_surface(pump.surface, size, **kwargs)
 
 
+@takes(Discretization)
 def balance_ratio(pump: EccentricPump, mesh: SupportMesh | None = None, *, formulation: str = "pi",
                   element: str = "P1") -> float:
     """Hydrostatic lift of the pockets over the plunger force, worst over the cycle [-].
@@ -186,6 +188,7 @@ def _check_cavitation(cavitation: str) -> None:
 
 # -- steady state ------------------------------------------------------------------------------
 
+@takes(Discretization)
 def steady_state(pump: EccentricPump, mesh: SupportMesh | None = None, beta: float = 0.0, *,
                  formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
                  guess: tuple[float, float] = (0.5, math.pi - 0.5), _model: _Model | None = None
@@ -433,6 +436,7 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
     return out
 
 
+@takes(Discretization)
 def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: float = 1.0, *,
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
              method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
@@ -480,6 +484,10 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         Element size of the default mesh [R0].
     formulation, element, solver
         See :func:`bearingfe.superpose`.
+    discretization : Discretization, optional
+        ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
+        object (:class:`bearingfe.parameters.Discretization`) instead of the
+        keywords.
 
     Returns
     -------

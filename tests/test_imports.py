@@ -14,16 +14,11 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "bearingfe"
 
-#: Private names still imported across modules, to be removed (input-file schema work of
-#: issue 15); this list may only shrink. Entries: (importing module, imported module, name).
-KNOWN_PRIVATE = frozenset(
-    [("bearingfe.scene_journal", "bearingfe.scenes", n)
-     for n in ("_MISSING", "_build", "_choice", "_choices", "_flag", "_nonnegative", "_number", "_positive")]
-    + [("bearingfe.scene_pump", "bearingfe.scenes", n)
-       for n in ("_build", "_choice", "_choices", "_flag", "_nonnegative", "_positive")])
-#: Import cycles still present (the scene modules), same rule: only shrinks.
-KNOWN_CYCLES = frozenset([frozenset({"bearingfe.scenes", "bearingfe.scene_pump", "bearingfe.scene_journal",
-                                     "bearingfe.mechanism_files"})])
+#: Private names still imported across modules (none left; an entry would need a reason).
+#: Entries: (importing module, imported module, name).
+KNOWN_PRIVATE: frozenset = frozenset()
+#: Import cycles still present (none left since the input-file schema of issue 15).
+KNOWN_CYCLES: frozenset = frozenset()
 
 
 def _modules() -> dict[str, Path]:

