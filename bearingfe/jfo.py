@@ -404,13 +404,20 @@ def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitatio
 
 
 def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | None:
+    """Cavity mask on the unknowns from a previous result (same mesh, or another mesh of the same
+    surface: nearest-node transfer, i.e. nested iteration) or from a boolean mask on the dofs."""
     if warm_start is None:
         return None
     if isinstance(warm_start, ReynoldsResult):
-        mask = warm_start.cavitated
-        if mask is None or warm_start.basis.N != ops.n_dofs:
-            raise ValueError("warm_start must be a cavitated ReynoldsResult on the same mesh or a boolean mask "
+        if warm_start.cavitated is None:
+            raise ValueError("warm_start must be a cavitated ReynoldsResult or a boolean mask "
                              f"of length {ops.n_dofs}")
+        mask = warm_start.cavitated
+        if warm_start.basis.N != ops.n_dofs or warm_start.basis.mesh is not ops.basis.mesh:
+            from scipy.spatial import cKDTree
+
+            _, nearest = cKDTree(warm_start.basis.doflocs.T).query(ops.basis.doflocs.T)
+            mask = mask[nearest]
     else:
         mask = warm_start
     mask = np.asarray(mask, bool)
@@ -450,7 +457,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     solver : str or callable
         Factorization of the non-symmetric active-set systems (``"splu"``).
     warm_start : ReynoldsResult or bool mask, optional
-        Cavitated dofs of a previous solution on the same mesh.
+        Cavitated dofs of a previous solution: on the same mesh, or on another
+        mesh of the same surface (transferred node by nearest node, e.g. from a
+        coarser mesh: nested iteration).
     dt, previous : float, ReynoldsResult, optional
         One backward-Euler step of ``d(theta h)/dt`` from the JFO result
         ``previous`` (its film and theta) to ``film`` over ``dt`` [rad of

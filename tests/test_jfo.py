@@ -327,3 +327,15 @@ def test_jfo_is_a_model_of_the_table():
     # the Galerkin models keep p_c = 0 and say so
     with pytest.raises(ValueError, match="cavitation_pressure"):
         solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-0.01)
+
+
+def test_nested_warm_start_from_a_coarser_mesh(journal):
+    from bearingfe.meshing import refine_uniformly
+    _, coarse = journal
+    fine_mesh = refine_uniformly(journal_mesh(JournalBearing(length_ratio=1.0), 0.1)[0])
+    cold = solve_jfo(fine_mesh, CosineFilm(0.6, 0.0))
+    warm = solve_jfo(fine_mesh, CosineFilm(0.6, 0.0), warm_start=coarse)
+    # the cavity moved node by node from the coarse mesh starts the fine iteration near its end
+    assert warm.iterations < cold.iterations
+    assert np.array_equal(warm.cavitated, cold.cavitated)
+    assert np.allclose(warm.pressure, cold.pressure, rtol=0, atol=1e-10 * np.abs(cold.pressure).max())
