@@ -50,6 +50,7 @@ from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
 from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
+from .jfo import solve_jfo
 from .transient_jfo import jfo_run
 
 __all__ = [
@@ -594,9 +595,11 @@ def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: in
     peak pressures (``Trajectory`` keeps only the reduced arrays).
     """
     film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
-    sup = superpose(mesh, film, element=element)
     p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
     rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
+    if cavitation == "jfo":  # the steady JFO film of that state (the run's history is not re-played)
+        return solve_jfo(mesh, film, wedge=float(traj.wedge[k]), squeeze=rates, inlet_pressure=p_s, element=element)
+    sup = superpose(mesh, film, element=element)
     if cavitation == "none":
         return sup.combine(float(traj.wedge[k]), rates, p_s)
     return solve_cavitating(sup, float(traj.wedge[k]), rates, p_s, model=cavitation)

@@ -38,3 +38,31 @@ def test_jfo_transient_bad_input(pump_and_mesh):
         bf.simulate(pump, mesh, 0.1, cavitation="jfo", element="P2")
     with pytest.raises(ValueError, match="start"):
         bf.simulate(pump, mesh, 0.1, cavitation="jfo", start="cold")
+
+
+def test_pump_scene_runs_with_jfo(tmp_path):
+    import json
+    from pathlib import Path
+
+    from bearingfe.cli import main
+    root = Path(__file__).resolve().parents[1]
+    scene = tmp_path / "pump_jfo.toml"
+    scene.write_text(f"""kind = "pump"
+title = "JFO scene"
+[pump]
+mechanism = "{(root / 'mechanisms' / 'eccentric_pump.toml').as_posix()}"
+compare_plain = false
+[run]
+revolutions = 0.1
+start = "steady"
+mesh_size = 0.15
+element = "P1"
+frames = 2
+cavitation = "jfo"
+[output]
+pictures = []
+""")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out")]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    text = json.dumps(summary)
+    assert "smallest film" in text and (tmp_path / "out" / "pressure.pvd").exists()
