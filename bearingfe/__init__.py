@@ -7,6 +7,7 @@ module                     what it does
 ``geometry``               support-surface outlines and inlet pockets (any shape)
 ``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
 ``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
+``checks``                 ranges of solver inputs, thin-film resolution check (``ResolutionWarning``)
 ``film``                   film-thickness models (``CosineFilm``)
 ``parameters``             operating point and discretization objects (``operating=``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
@@ -28,6 +29,8 @@ module                     what it does
 ``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
+``outfolder``              output folders: manifest, lock, all-or-nothing move into place
+``limits``                 size guards (revolutions, frames, cases, elements, case time)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
 ``version``                the package version
@@ -40,6 +43,7 @@ from . import adaptivity, cavitation, crank, efficiency, io, jfo, journal, pump,
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
 from .jfo import JFOError, solve_jfo
+from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
 from .geometry import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
@@ -56,7 +60,8 @@ from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators
 from .scenes import SceneError
 from .sections import ibeam, ibeams
 from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study  # module bearingfe.sweep: sweep()
-from .journal import DynamicCoefficients, Groove, JournalBearing, ResolutionWarning, film_graded_size
+from .checks import ResolutionWarning, check_resolution
+from .journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .pump import EccentricPump, PressureCycle
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
@@ -65,6 +70,7 @@ from .version import __version__
 __all__ = [
     "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt", "adaptivity", "error_indicators",
     "load_indicators",
+    "LimitError",
     "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
@@ -75,7 +81,7 @@ __all__ = [
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon", "Recess",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
-    "GeometryFileError", "MeshSizeError", "UntrustedGeoError",
+    "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]

@@ -45,7 +45,7 @@ from scipy.spatial import cKDTree
 
 from .film import Film
 from .geometry import Surface
-from .journal import ResolutionWarning
+from .checks import ResolutionWarning
 from .linalg import DEFAULT_SOLVER, get_linear_solver
 from .meshing import SupportMesh, mesh_surface
 from .parameters import Discretization, OperatingPoint, takes

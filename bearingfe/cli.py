@@ -9,18 +9,25 @@
 
 :func:`main` takes ``argv`` (default ``sys.argv[1:]``) and returns the exit
 code: 0 success, 1 a failed validation or a numerical failure, 2 bad input
-(scene-file errors, bad arguments), with a one-line message and no
-traceback. ``run`` writes into a temporary directory next to ``DIR`` and
-moves it into place only when everything is written.
+(scene-file errors, bad arguments, file-system errors, a missing optional
+package), 130 interrupted (Ctrl-C, SIGTERM), with a one-line message and no
+traceback; warnings print as one-line notes. Text from input files (titles)
+is printed with control characters escaped. ``run`` writes into a hidden
+work folder inside ``DIR`` and moves the files into place only when
+everything is written; it replaces only the files of a previous run and
+locks ``DIR`` against a second run (:mod:`bearingfe.outfolder`).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
-import shutil
+import re
+import signal
 import sys
-import tempfile
+import threading
+import warnings
 from pathlib import Path
 from typing import Sequence
 
@@ -36,9 +43,10 @@ def _parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="run a scene file (TOML)")
     run.add_argument("scene", type=Path, help="scene file, e.g. scenes/default.toml")
-    run.add_argument("--out", type=Path, required=True, help="output directory (replaced if it holds a "
-                     "previous bearingfe output)")
-    run.add_argument("--force", action="store_true", help="replace DIR even if it holds other files")
+    run.add_argument("--out", type=Path, required=True, help="output directory (the files of a previous "
+                     "bearingfe run there are replaced; other files are kept)")
+    run.add_argument("--force", action="store_true", help="write into DIR even if it holds files and no "
+                     "previous bearingfe output (those files are kept)")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
 
     mesh = sub.add_parser("mesh", help="mesh a gmsh .geo file into a .msh 4.1 file")
@@ -72,14 +80,47 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, usage errors
         return int(exc.code or 0)
     commands = {"run": _run, "mesh": _mesh, "validate": _validate, "sweep": _sweep}
+    name = args.command
     try:
-        return commands[args.command](args)
-    except (ValueError, FileNotFoundError, FileExistsError) as exc:
-        print(f"bearingfe {args.command}: error: {_one_line(exc)}", file=sys.stderr)
+        with _one_line_warnings(name), _sigterm_exits():
+            return commands[name](args)
+    except (ValueError, OSError, ImportError) as exc:  # bad input, file system, missing optional package
+        print(f"bearingfe {name}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except (RuntimeError, ArithmeticError) as exc:
-        print(f"bearingfe {args.command}: failed: {_one_line(exc)}", file=sys.stderr)
+        print(f"bearingfe {name}: failed: {_one_line(exc)}", file=sys.stderr)
         return 1
+    except KeyboardInterrupt:
+        print(f"bearingfe {name}: interrupted", file=sys.stderr)
+        return 130
+
+
+@contextlib.contextmanager
+def _one_line_warnings(command: str):
+    """Show warnings (e.g. a cache record recomputed) as one line each: ``bearingfe CMD: note: ...``."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"bearingfe {command}: note: {_one_line(message)}", file=sys.stderr)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
+
+
+@contextlib.contextmanager
+def _sigterm_exits():
+    """SIGTERM ends the command like Ctrl-C (so work folders and sweep workers are cleaned up)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+
+    before = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, before)
 
 
 def _sweep(args) -> int:
@@ -90,31 +131,51 @@ def _sweep(args) -> int:
     code 0 if every case succeeded, 1 if some failed (they are in the
     table), 2 if the study file is invalid or no case succeeded.
     """
-    from .io import write_json
+    from .io import atomic_path, write_json
+    from .outfolder import lock_folder
     from .sweep import best_design, read_study, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
     out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise NotADirectoryError(f"--out {out}: exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
-    client = _client_for(args.scheduler) if args.scheduler else None
-    try:
-        table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
-                      cache=out / "cache", progress=not args.no_progress)
-    finally:
-        if client is not None:
-            cluster = client.cluster if args.scheduler.startswith("local") else None
-            client.close()
-            if cluster is not None:
-                cluster.close()
-    table.to_csv(out / "results.csv", index=False)
-    failed = int(table["error"].notna().sum())
-    print(f"{study.name}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} from cache; "
-          f"table in {out / 'results.csv'}")
-    best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
-    write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
+    with lock_folder(out):  # a second sweep into the same folder fails at once
+        _remove_temporaries(out)
+        client = _client_for(args.scheduler) if args.scheduler else None
+        try:
+            table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
+                          cache=out / "cache", progress=not args.no_progress, time_limit=study.time_limit)
+        finally:
+            if client is not None:
+                cluster = client.cluster if args.scheduler.startswith("local") else None
+                client.close()
+                if cluster is not None:
+                    cluster.close()
+        with atomic_path(out / "results.csv") as tmp:
+            table.to_csv(tmp, index=False)
+        failed = int(table["error"].notna().sum())
+        print(f"{_printable(study.name)}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} "
+              f"from cache; table in {_printable(out / 'results.csv')}")
+        best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
+        write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
     changed = table.columns[:table.columns.get_loc("seconds")]
-    print(f"best ({study.sense} {study.objective}): " + ", ".join(f"{k}={best[k]}" for k in changed))
+    print(f"best ({study.sense} {study.objective}): " + ", ".join(_printable(f"{k}={best[k]}") for k in changed))
     return 1 if failed else 0
+
+
+_TEMPORARIES = {".": re.compile(r"\.(results|best)\.[A-Za-z0-9_]{8}\.(csv|json)"),
+                "cache": re.compile(r"\.[0-9a-f]{24}\.json\.tmp")}
+
+
+def _remove_temporaries(out: Path) -> None:
+    """Remove temporary files a killed sweep left in ``out`` (names only the package's writers make)."""
+    for sub, pattern in _TEMPORARIES.items():
+        folder = out / sub
+        if folder.is_dir():
+            for path in folder.iterdir():
+                if pattern.fullmatch(path.name) and path.is_file() and not path.is_symlink():
+                    path.unlink()
 
 
 def _client_for(scheduler: str):
@@ -128,51 +189,28 @@ def _client_for(scheduler: str):
     return Client(scheduler)
 
 
-def _one_line(exc: BaseException) -> str:
-    return " ".join(str(exc).split()) or type(exc).__name__
+def _one_line(exc: BaseException | str) -> str:
+    return _printable(" ".join(str(exc).split()) or type(exc).__name__)
+
+
+def _printable(text: str) -> str:
+    """``text`` with terminal escapes and other control characters shown as ``\\x1b``-style escapes."""
+    return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in str(text))
 
 
 # -- run --------------------------------------------------------------------------
 
 def _run(args) -> int:
+    from .outfolder import output_folder
     from .scenes import load_scene, run_scene
 
     load_scene(args.scene)  # fail on the scene file before touching the output directory
-    out = args.out.resolve()
-    _check_replaceable(out, args.force)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    work.chmod(0o755)  # mkdtemp makes it private; the result is an ordinary directory
-    try:
+    with output_folder(args.out, force=args.force, keep=[args.scene]) as work:
         with _progress(not args.no_progress) as tick:
             summary = run_scene(args.scene, work, tick)
-        _move_into_place(work, out)
-    finally:
-        if work.exists():
-            shutil.rmtree(work)
-    print(f"{summary.get('title', args.scene.name)}: results in {out}")
+    print(f"{_printable(summary.get('title', args.scene.name))}: results in {_printable(args.out)}")
     print(_table(summary.get("table", [])))
     return 0
-
-
-def _check_replaceable(out: Path, force: bool) -> None:
-    if out.exists() and not out.is_dir():
-        raise FileExistsError(f"--out {out} exists and is not a directory")
-    if out.is_dir() and any(out.iterdir()) and not (out / "summary.json").is_file() and not force:
-        raise FileExistsError(f"--out {out} holds files that are not a bearingfe output; "
-                              f"choose another directory or pass --force")
-
-
-def _move_into_place(work: Path, out: Path) -> None:
-    old = None
-    if out.exists():
-        old = out.with_name(f".{out.name}.old")
-        if old.exists():
-            shutil.rmtree(old)
-        os.replace(out, old)
-    os.replace(work, out)
-    if old is not None:
-        shutil.rmtree(old)
 
 
 class _progress:
@@ -205,7 +243,7 @@ class _progress:
 def _table(rows) -> str:
     if not rows:
         return ""
-    cells = [(str(q), _fmt(v), str(u)) for q, v, u in rows]
+    cells = [(_printable(q), _printable(_fmt(v)), _printable(u)) for q, v, u in rows]
     w = [max(len(c[i]) for c in cells) for i in range(3)]
     lines = [f"{'quantity':<{w[0]}}  {'value':>{w[1]}}  unit", "-" * (w[0] + w[1] + w[2] + 4)]
     lines += [f"{q:<{w[0]}}  {v:>{w[1]}}  {u}" for q, v, u in cells]

@@ -305,10 +305,11 @@ def reciprocating_force(cs: CrankSlider, omega: float, phi) -> np.ndarray:
 
 
 def inertia_moment(cs: CrankSlider, omega: float, phi) -> np.ndarray:
-    """Residual inertia moment of the rod, M0 = dJ eps_rod [N m] (paper 000's sign, eq. 3).
+    """Residual inertia moment of the rod, M0 = dJ eps_rod [N m] (paper 000's eq. 3).
 
-    The d'Alembert moment on the rod is ``-dJ eps``; the paper tabulates
-    ``+dJ eps`` (Table 5). Amplitudes are the same.
+    ``eps_rod`` as :func:`rod_angular_acceleration` (about ``-lam w^2 sin phi``,
+    the paper's Table 1). The paper's Tables 4 and 5 print the opposite sign
+    (``+lam w^2 sin phi``); the amplitudes are the same (docs/papers.md).
     """
     return residual_inertia(cs) * rod_angular_acceleration(cs, omega, phi)
 

@@ -55,14 +55,14 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .checks import check_operating_point
 from .forms import film_flux
 from .geometry import Surface
+from .parameters import FORMULATIONS, Discretization, OperatingPoint, takes
 
 __all__ = ["FDResult", "solve_reynolds_fd", "FORMULATIONS", "METHODS"]
 
-#: Discretisations of the Reynolds equation, by name.
-FORMULATIONS = ("pi", "direct")
-#: Linear solvers, by name.
+#: Linear solvers, by name (the formulations are :data:`bearingfe.parameters.FORMULATIONS`).
 METHODS = ("direct", "seidel")
 
 
@@ -149,6 +149,7 @@ class _Stencil:
     x: np.ndarray
 
 
+@takes(OperatingPoint, Discretization)
 def solve_reynolds_fd(
     surface: Surface,
     film,
@@ -196,6 +197,10 @@ def solve_reynolds_fd(
         ``"reynolds"``: Swift-Stieber rupture (``p >= 0``) by projected SOR
         (needs ``method="seidel"``). The flows then include the ruptured
         zone's non-conserved Couette flow in the outline cells next to it.
+    operating, discretization : optional
+        :class:`~bearingfe.parameters.OperatingPoint` (``wedge``, ``squeeze``,
+        ``inlet_pressure``) and :class:`~bearingfe.parameters.Discretization`
+        (``formulation``) instead of the keywords.
 
     Returns
     -------
@@ -238,6 +243,7 @@ def solve_reynolds_fd(
     rates = _check_rates(film, grid, squeeze)
     _check_film(film, grid)
     wedge, inlet_pressure = _finite(wedge, "wedge"), _finite(inlet_pressure, "inlet_pressure")
+    check_operating_point(wedge, squeeze, inlet_pressure)
 
     f = _rhs(film, grid, wedge, rates)
     if formulation == "pi":

@@ -15,6 +15,8 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
+from .checks import MAX_GAMMA, check_angle
+
 __all__ = ["Film", "CosineFilm", "UniformFilm"]
 
 
@@ -49,11 +51,14 @@ class CosineFilm:
     Parameters
     ----------
     gamma : float
-        Relative eccentricity of the bore centre [-], >= 0. On a partial arc
-        it may exceed 1 as long as ``h > 0`` over the arc (checked by the
-        solvers on the actual surface).
+        Relative eccentricity of the bore centre [-], in ``[0, 1000]``
+        (:data:`bearingfe.checks.MAX_GAMMA`). On a partial arc it may exceed
+        1 as long as ``h > 0`` over the arc (checked by the solvers on the
+        actual surface).
     phi0 : float
-        Angle of the line of centres [rad]: where the film is thickest.
+        Angle of the line of centres [rad]: where the film is thickest;
+        ``|phi0| <= 1e6`` (:data:`bearingfe.checks.MAX_ANGLE`: beyond, the
+        angle has no digits left for ``cos(phi - phi0)``).
 
     Notes
     -----
@@ -65,11 +70,11 @@ class CosineFilm:
     phi0: float = 0.0
 
     def __post_init__(self) -> None:
-        gamma, phi0 = float(self.gamma), float(self.phi0)
-        if not (math.isfinite(gamma) and gamma >= 0.0):
-            raise ValueError(f"CosineFilm.gamma must be a finite number >= 0, got {self.gamma!r}")
-        if not math.isfinite(phi0):
-            raise ValueError(f"CosineFilm.phi0 must be finite, got {self.phi0!r}")
+        gamma = float(self.gamma)
+        if not (math.isfinite(gamma) and 0.0 <= gamma <= MAX_GAMMA):
+            raise ValueError(f"CosineFilm.gamma must be a number in [0, {MAX_GAMMA:g}] (beyond, the film is "
+                             f"thousands of clearances thick: not a thin film), got {self.gamma!r}")
+        phi0 = check_angle(self.phi0, "CosineFilm.phi0")
         object.__setattr__(self, "gamma", gamma)
         object.__setattr__(self, "phi0", phi0)
 

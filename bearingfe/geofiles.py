@@ -18,6 +18,8 @@ geometry files as untrusted data by default (docs: README, "Safety"):
 * trusted or not, gmsh parses and meshes the script in a separate process
   with a time limit (:data:`DEFAULT_GEO_TIMEOUT`): a loop that never ends
   or an ``Exit;`` cannot hang or end the caller;
+* the child process is confined: CPU time, :data:`GEO_MEMORY` of address
+  space, and on Linux it dies with its parent;
 * the element count is estimated before meshing and refused beyond
   ``max_elements`` (:data:`DEFAULT_MAX_ELEMENTS`, environment variable
   ``BEARINGFE_MAX_ELEMENTS``).
@@ -38,6 +40,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .limits import DEFAULT_LIMITS, LimitError, limit
+
 __all__ = [
     "GeometryFileError",
     "UntrustedGeoError",
@@ -56,11 +60,14 @@ __all__ = [
 
 #: Largest number of triangles a mesh may have unless the caller raises the limit
 #: (``max_elements=``, ``--max-elements`` or the environment variable ``BEARINGFE_MAX_ELEMENTS``).
-DEFAULT_MAX_ELEMENTS = 1_000_000
+DEFAULT_MAX_ELEMENTS = int(DEFAULT_LIMITS["elements"])
 
 #: Seconds gmsh may spend parsing and meshing a ``.geo`` script (``timeout=``, ``--geo-timeout``,
 #: environment variable ``BEARINGFE_GEO_TIMEOUT``).
 DEFAULT_GEO_TIMEOUT = 120.0
+
+#: Address space of the gmsh child process [bytes] (a script that allocates without end fails, not the machine).
+GEO_MEMORY = 4 * 1024**3
 
 MAX_ELEMENTS_ENV = "BEARINGFE_MAX_ELEMENTS"
 GEO_TIMEOUT_ENV = "BEARINGFE_GEO_TIMEOUT"
@@ -77,32 +84,29 @@ class UntrustedGeoError(GeometryFileError):
     """A ``.geo`` script uses a command that reaches outside the geometry (refused unless trusted)."""
 
 
-class MeshSizeError(ValueError):
+class MeshSizeError(LimitError):
     """The mesh asked for would have more elements than the limit allows."""
 
 
 # -- limits ------------------------------------------------------------------------
 
 def max_elements_limit(value: int | None = None) -> int:
-    """The element-count limit: ``value`` if given, else ``$BEARINGFE_MAX_ELEMENTS``, else the default.
+    """The element-count limit: ``value`` if given, else ``$BEARINGFE_MAX_ELEMENTS``, else the default
+    (the ``elements`` limit of :mod:`bearingfe.limits`).
 
     Raises
     ------
     ValueError
-        If the value (or the environment variable) is not an integer >= 1.
+        If the value is not an integer >= 1 (or the environment variable not a number > 0).
     """
-    source = "max_elements"
     if value is None:
-        env = os.environ.get(MAX_ELEMENTS_ENV)
-        if env is None:
-            return DEFAULT_MAX_ELEMENTS
-        value, source = env, MAX_ELEMENTS_ENV
+        return int(limit("elements"))
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{source} must be an integer >= 1, got {value!r}") from None
+        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}") from None
     if not (math.isfinite(number) and number >= 1 and number == int(number)):
-        raise ValueError(f"{source} must be an integer >= 1, got {value!r}")
+        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}")
     return int(number)
 
 
@@ -309,8 +313,12 @@ def check_geo_script(text: str, name: str = "<geo>") -> None:
             raise _refuse(name, prev, _COMMANDS.get(prev.text, "is a command that takes a file name or text"))
         if tok.text in ("Printf", "Error", "Warning") and _redirected(toks, i):
             raise _refuse(name, tok, "writes to a file (> or >> after the message)")
-        if tok.kind != "name" or (prev is not None and prev.text == "."):
-            continue  # option and field members are checked at their group
+        if tok.kind == "name" and prev is not None and prev.text == ".":
+            if nxt is not None and nxt.kind in ("name", "number", "string"):
+                raise _refuse(name, tok, "is used as a command")
+            continue  # an option or field member: checked at its group
+        if tok.kind != "name":
+            continue
         word = tok.text
         if word in _ALLOWED_KEYWORDS:
             continue
@@ -531,7 +539,8 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
     worker = Path(__file__).with_name("gmsh_worker.py")
     with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
         request = dict(geo=str(path.resolve()), out=str(Path(out_msh).resolve()), size=size, order=int(order),
-                       max_elements=limit, result=str(Path(work) / "result.json"))
+                       max_elements=limit, result=str(Path(work) / "result.json"), seconds=seconds,
+                       memory=GEO_MEMORY, parent=os.getpid())
         req_file = Path(work) / "request.json"
         req_file.write_text(json.dumps(request))
         code = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
@@ -553,7 +562,8 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
             tail = " ".join(output.decode("utf-8", "replace").split())[-200:]
             raise GeometryFileError(
                 f"{path.name}: gmsh ended (exit status {proc.returncode}) before it made a mesh"
-                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else "")
+                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else
+                   f" (out of its {GEO_MEMORY / 1024**3:g} GiB of memory or CPU time, or a crash?)")
                 + (f": {tail}" if tail else ""))
         result = json.loads(result_file.read_text())
     if result.get("kind") == "too_many":

@@ -2,7 +2,9 @@
 
 Run as a file (``runpy.run_path``) with the request file as its argument; it
 imports only gmsh and the standard library, so a script that loops, crashes
-gmsh or calls ``Exit`` affects this process only. It writes the mesh (msh
+gmsh or calls ``Exit`` affects this process only. It confines itself before
+gmsh starts: CPU time (the parent's limit plus 5 s), address space
+(:data:`bearingfe.geofiles.GEO_MEMORY`) and, on Linux, death with its parent. It writes the mesh (msh
 4.1, physical groups only) and a small JSON result; the parent reads both.
 The element count is estimated twice before the surface is meshed: from the
 size options and the points' sizes, then from the meshed boundary curves.
@@ -12,6 +14,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 
 _EQUILATERAL = math.sqrt(3.0) / 4.0
@@ -109,9 +112,33 @@ def _run(request: dict, result: dict) -> None:
         gmsh.finalize()
 
 
+def _confine(request: dict) -> None:
+    """Limits that hold even if the parent dies: CPU seconds, address space, death with the parent (Linux)."""
+    try:
+        import resource
+
+        cpu = int(math.ceil(request["seconds"])) + 5
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
+        memory = int(request["memory"])
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    except (ImportError, ValueError, OSError):  # not on this platform: the parent's time limit remains
+        pass
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            import signal
+
+            ctypes.CDLL(None).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != request["parent"]:  # the parent ended before the line above
+        sys.exit(3)
+
+
 def main(argv: list[str]) -> int:
     with open(argv[0]) as f:
         request = json.load(f)
+    _confine(request)
     result: dict = {}
     _run(request, result)
     with open(request["result"], "w") as f:

@@ -2,7 +2,8 @@
 
 Every writer is atomic: it writes a temporary file next to the target and
 renames it into place only when complete, so a failure never leaves a
-half-written file behind (an existing file stays as it was).
+half-written file behind (an existing file stays as it was). Written files
+get the mode the process umask gives (``0o666 & ~umask``), as ``open`` would.
 """
 
 from __future__ import annotations
@@ -19,7 +20,9 @@ from typing import Iterator, Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["atomic_path", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
+from .limits import check_limit
+
+__all__ = ["atomic_path", "umask", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
 
 #: Trajectory columns written by :func:`write_csv` when present, in this order.
 CSV_FIELDS = ("beta", "gamma", "delta", "phi0", "h_min", "friction_moment", "flow_inlet", "flow_side",
@@ -37,10 +40,24 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     tmp = Path(tmp)
     try:
         yield tmp
+        os.chmod(tmp, 0o666 & ~umask())  # mkstemp made it 0600
         os.replace(tmp, path)
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def umask() -> int:
+    """The process umask (read without changing it where ``/proc`` allows)."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)  # elsewhere: set and restore at once
+    os.umask(mask)
+    return mask
 
 
 def _mesh_arrays(result):
@@ -82,7 +99,8 @@ def write_vtu(result, path: str | Path) -> Path:
     return path
 
 
-def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Path) -> Path:
+def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Path, *,
+              max_frames: int | None = None) -> Path:
     """Write a ParaView time series (``.pvd``) referencing one VTU per time.
 
     Parameters
@@ -94,6 +112,9 @@ def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Pa
         Time value of each entry (e.g. shaft angle [rad]), strictly increasing.
     path : str or Path
         Target ``.pvd`` file.
+    max_frames : int, optional
+        Most entries accepted; default the ``frames`` limit of
+        :mod:`bearingfe.limits` (1000).
 
     Returns
     -------
@@ -102,7 +123,10 @@ def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Pa
     path = Path(path)
     if path.suffix != ".pvd":
         raise ValueError(f"path must end in .pvd, got {path.name}")
+    if hasattr(results_or_paths, "__len__"):  # before a generator is drawn out
+        check_limit("frames", len(results_or_paths), max_frames, "max_frames")
     items = list(results_or_paths)
+    check_limit("frames", len(items), max_frames, "max_frames")
     times = np.asarray(times, dtype=float).ravel()
     if times.size != len(items) or not items:
         raise ValueError(f"times must have one value per entry ({len(items)}), got {times.size}")

@@ -51,6 +51,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from .checks import ResolutionWarning
 from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
@@ -80,10 +81,6 @@ EQUILIBRIUM_CAVITATION = ("reynolds", "none", "jfo")
 
 #: Eccentricity ratios beyond this are refused (contact in all but name).
 EPS_MAX = 0.995
-
-
-class ResolutionWarning(UserWarning):
-    """The mesh does not resolve the thin-film pressure peak to the requested accuracy."""
 
 
 @dataclass(frozen=True)

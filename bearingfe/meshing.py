@@ -32,6 +32,10 @@ __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh
 
 _GMSH_LOCK = threading.Lock()
 
+#: gmsh's 2D meshing algorithms (Mesh.Algorithm): MeshAdapt, Automatic, Initial mesh only, Delaunay,
+#: Frontal-Delaunay, BAMG, Frontal-Delaunay for quads, Packing of parallelograms, Quasi-structured quad.
+ALGORITHMS_2D = (1, 2, 3, 5, 6, 7, 8, 9, 11)
+
 #: gmsh element type codes: triangle (3 and 6 nodes), line (2 and 3 nodes).
 _TRI = {1: 2, 2: 9}
 _LINE = {1: 1, 2: 8}
@@ -191,7 +195,7 @@ def mesh_surface(
         Number of uniform refinements (each splits every triangle in four),
         done by gmsh after meshing so new nodes stay on curved boundaries.
     algorithm : int
-        gmsh 2D algorithm (6: Frontal-Delaunay).
+        gmsh 2D algorithm (6: Frontal-Delaunay), one of :data:`ALGORITHMS_2D`.
     verbose : bool
         Let gmsh print its log.
     max_elements : int, optional
@@ -221,24 +225,31 @@ def mesh_surface(
         raise ValueError(f"order must be 1 or 2, got {order!r}")
     if not (isinstance(refine, int) and 0 <= refine <= 6):
         raise ValueError(f"refine must be an integer in 0..6, got {refine!r}")
+    if algorithm not in ALGORITHMS_2D:
+        raise ValueError(f"algorithm must be one of gmsh's 2D algorithms {ALGORITHMS_2D}, got {algorithm!r}")
     estimate = 4**refine * _estimated_triangles(surface, size, floor, inlet_size, grading, size_function)
     check_element_count(estimate, max_elements,
                         what=f"size = {size:g}" + (f" with refine = {refine}" if refine else "")
                         + (" and the size_function" if size_function is not None else ""))
 
-    with gmsh_session(verbose) as gmsh:
-        gmsh.model.add("support")
-        groups = _build_geometry(gmsh, surface)
-        errors = _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface)
-        gmsh.option.setNumber("Mesh.Algorithm", algorithm)
-        gmsh.model.mesh.generate(2)
-        if errors:  # gmsh swallows exceptions raised in its size callback
-            raise ValueError(f"size_function failed: {errors[0]}") from errors[0]
-        for _ in range(refine):
-            gmsh.model.mesh.refine()
-        if order == 2:
-            gmsh.model.mesh.setOrder(2)
-        mesh = _read_gmsh_model(gmsh, order)
+    try:
+        with gmsh_session(verbose) as gmsh:
+            gmsh.model.add("support")
+            groups = _build_geometry(gmsh, surface)
+            errors = _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface)
+            gmsh.option.setNumber("Mesh.Algorithm", algorithm)
+            gmsh.model.mesh.generate(2)
+            if errors:  # gmsh swallows exceptions raised in its size callback
+                raise ValueError(f"size_function failed: {errors[0]}") from errors[0]
+            for _ in range(refine):
+                gmsh.model.mesh.refine()
+            if order == 2:
+                gmsh.model.mesh.setOrder(2)
+            mesh = _read_gmsh_model(gmsh, order)
+    except Exception as exc:
+        if type(exc) is Exception:  # gmsh's API raises a bare Exception carrying its last error
+            raise RuntimeError(f"gmsh could not mesh the surface: {' '.join(str(exc).split())}") from None
+        raise
     return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
 
 

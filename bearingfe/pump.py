@@ -1,7 +1,7 @@
 r"""The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
 
-Geometry (paper 004, ``shared/SPEC.md`` §1)
--------------------------------------------
+Geometry (paper 004; ``docs/formulations.md``, section "The eccentric pump")
+----------------------------------------------------------------------------
 The shaft axis ``O1`` is the origin; the shaft angle is ``beta = omega tau``,
 counter-clockwise. The eccentric centre is ``O2 = E (cos beta, sin beta)``.
 The plunger's cylinder pivots about the fixed point ``B = (-E2, 0)``, so the
@@ -36,7 +36,7 @@ A :class:`bearingfe.Surface` for the pump therefore has its arc around
   ``dh/dbeta|psi = gamma' cos(psi - delta) + gamma delta' sin(psi - delta)``,
   so the solver's "phi0_rate" *is* ``delta' = d delta/dbeta``. Written in the
   fixed frame the same equation reads
-  ``6 (1 + phi2') dh/dphi + 12 (gamma' cos + gamma phi0' sin)`` (SPEC §1):
+  ``6 (1 + phi2') dh/dphi + 12 (gamma' cos + gamma phi0' sin)`` (docs/formulations.md):
   substituting ``d/dbeta|phi = d/dbeta|psi - phi2' d/dpsi`` turns
   ``6 (1 + phi2')`` into ``6 (1 - phi2')`` and ``phi0'`` into
   ``delta' + phi2'``; the two forms are identical. The state of the

@@ -35,7 +35,10 @@ table in :mod:`bearingfe.cavitation`. This module is the front door:
 
 from __future__ import annotations
 
+import dataclasses
+
 from .cavitation import MODELS, ModelOptions, solve_model
+from .checks import check_operating_point, check_resolution
 from .film import Film
 from .jfo import solve_jfo
 from .linalg import DEFAULT_SOLVER, Factorize
@@ -125,6 +128,16 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     Returns
     -------
     ReynoldsResult
+        If the mesh does not resolve the film where it is thinnest
+        (:func:`bearingfe.checks.check_resolution`), a
+        :class:`bearingfe.ResolutionWarning` is issued and its message
+        added to ``notes``.
+
+    Raises
+    ------
+    ValueError
+        A bad argument, e.g. ``|inlet_pressure| > 1e12``
+        (:func:`bearingfe.checks.check_operating_point`).
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
@@ -137,9 +150,12 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         raise ValueError(f"cavitation_pressure must be 0 for the Galerkin models, got {cavitation_pressure!r} "
                          f"with cavitation={cavitation!r} (use cavitation='jfo')")
     weights = source_weights(wedge, squeeze, inlet_pressure)
+    check_operating_point(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
     sup = superpose(mesh, film, formulation=formulation, element=element, solver=solver,
                     on_indefinite=on_indefinite)
-    return solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,
-                                                              solver=solver))
+    result = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,
+                                                                solver=solver))
+    unresolved = check_resolution(mesh, film, stacklevel=3)  # ResolutionWarning (bearingfe.checks)
+    return result if unresolved is None else dataclasses.replace(result, notes=(*result.notes, unresolved))

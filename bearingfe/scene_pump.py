@@ -33,6 +33,7 @@ from typing import Callable
 
 import numpy as np
 
+from .limits import check_limit
 from .schema import (NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
                      path_text, positive_number, read_table, text)
 
@@ -94,6 +95,8 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from .transient import pump_mesh, simulate, state_result
 
     s = pump_settings(data, label, base_dir)
+    check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
+    check_limit("frames", s["run"]["frames"])
     pump = build(label, "pump", load_mechanism, path=s["mechanism"])
     designs = {"pocket": pump}
     if s["compare_plain"] and pump.surface.inlets:
@@ -164,8 +167,14 @@ def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float) -
                          "mass_balance_relative": traj.mass_balance_relative,
                          "periodic_iterations": traj.periodic_iterations}
     if "plain" in runs:
-        ratio = runs["pocket"].smallest_film / runs["plain"].smallest_film
-        table.append(("smallest film ratio pocket/plain", ratio, "-"))
+        statuses = {name: traj.status for name, traj in runs.items()}
+        if all(status == "completed" for status in statuses.values()):
+            ratio = runs["pocket"].smallest_film / runs["plain"].smallest_film
+            table.append(("smallest film ratio pocket/plain", ratio, "-"))
+        else:  # the smallest film of a ruptured run is where it stopped, not a film of the cycle
+            ratio = None
+            table.append(("smallest film ratio pocket/plain",
+                          "not computed: " + ", ".join(f"{n} {st}" for n, st in statuses.items()), ""))
         results["film_ratio"] = ratio
     table.append(("seconds", seconds, "s"))
     return {"kind": "pump", "title": s["title"], "mechanism": str(s["mechanism"]), "run": s["run"],

@@ -25,8 +25,9 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
-from typing import Mapping
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,14 +36,16 @@ import skfem
 
 from .film import Film
 from . import forms
+from .compiled import CompiledOperator, FilmFlows, compile_operator
 from .forms import FilmAt, film_at, film_flux, mapping, pressure_from_unknown, shear, unknown_scale
-from .linalg import DEFAULT_SOLVER, Factorize, Solve, get_linear_solver
+from .linalg import DEFAULT_SOLVER, Factorize, Solve, factorize_splu_sym, get_linear_solver
 from .meshing import SupportMesh
 from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 
 __all__ = [
     "ELEMENTS",
     "FORMULATIONS",
+    "ASSEMBLIES",
     "SOURCES",
     "CoercivityError",
     "Operators",
@@ -52,6 +55,7 @@ __all__ = [
     "superpose",
     "ReynoldsResult",
     "build_result",
+    "film_outputs",
     "source_weights",
     "system_matrix",
     "unit_sources",
@@ -61,6 +65,9 @@ __all__ = [
     "probes",
 ]
 
+#: How a film state's system is built: ``"compiled"`` (:mod:`bearingfe.compiled`, the default) or
+#: ``"reference"`` (scikit-fem form assembly per film; the same numbers to round-off).
+ASSEMBLIES = ("compiled", "reference")
 #: Unit sources in the order of :attr:`Superposition.fields`.
 SOURCES = ("wedge", "gamma_rate", "phi0_rate", "inlet")
 
@@ -102,7 +109,7 @@ class Operators:
     @property
     def boundary(self) -> np.ndarray:
         """Dirichlet dofs: the outline and the pocket contours."""
-        return np.union1d(self.outer, self.inlet)
+        return self._get("boundary", lambda: np.union1d(self.outer, self.inlet))
 
     @property
     def x(self) -> np.ndarray:
@@ -127,6 +134,11 @@ class Operators:
     def mass(self) -> sp.csr_matrix:
         """Mass matrix ``int u v``."""
         return self._get("mass", lambda: forms.mass.assemble(self.basis).tocsr())
+
+    @property
+    def compiled(self) -> CompiledOperator:
+        """The film-independent linear maps (:mod:`bearingfe.compiled`), built on first use."""
+        return self._get("compiled", lambda: compile_operator(self))
 
     @property
     def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
@@ -250,13 +262,18 @@ class CondensedSystem:
         ``matrix^-1 b`` (the factorization of the full-film system).
     """
 
-    matrix: sp.spmatrix
     rhs: np.ndarray
     lift: np.ndarray
     interior: np.ndarray
     boundary: np.ndarray
     factorize: Factorize
     solve: Solve
+    build_matrix: Callable[[], sp.spmatrix] = field(repr=False)
+
+    @cached_property
+    def matrix(self) -> sp.spmatrix:
+        """``A[I, I]`` (built on first use: the linear model needs only the factorization)."""
+        return self.build_matrix()
 
     def full(self, u_interior: np.ndarray, weights: np.ndarray) -> np.ndarray:
         """The unknown on all dofs from its interior values and the source weights."""
@@ -298,6 +315,8 @@ class Superposition:
     system : CondensedSystem
         The assembled and factorized system the fields solve (reused by
         the cavitation models).
+    assembly : str
+        ``"compiled"`` or ``"reference"`` (see :data:`ASSEMBLIES`).
     """
 
     operators: Operators
@@ -312,7 +331,9 @@ class Superposition:
     cost: Mapping[str, float]
     at: FilmAt = field(repr=False)
     system: CondensedSystem = field(repr=False)
+    assembly: str = "compiled"
 
+    @takes(OperatingPoint)
     def coefficients(self, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
         """The paper's force coefficients in the arc frame.
 
@@ -335,6 +356,7 @@ class Superposition:
         if inlet_pressure != 0.0 and not self.operators.inlet.size:
             raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
 
+    @takes(OperatingPoint)
     def rates_for_load(self, load: np.ndarray, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
         """Squeeze rates ``(gamma_rate, phi0_rate)`` at which the film force
         balances an applied load: ``force + load = 0`` (paper eq. 14).
@@ -359,11 +381,18 @@ class Superposition:
         """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field ``u``
         (pockets at ``inlet_pressure``)."""
         ops = self.operators
-        p, _ = pressure_at_quadrature(ops, self.at, u, self.formulation)
-        x, dx = ops.x, ops.basis.dx
-        force = np.array([np.sum(p * np.cos(x[0]) * dx), np.sum(p * np.sin(x[0]) * dx)])
+        if self.assembly == "compiled":
+            co = ops.compiled
+            p = unknown_scale(self.at.h.ravel(), self.formulation) * (co.value @ u)
+            values = co.loads @ p
+            force, integral = values[:2].copy(), float(values[2])
+        else:
+            p, _ = pressure_at_quadrature(ops, self.at, u, self.formulation)
+            x, dx = ops.x, ops.basis.dx
+            force = np.array([np.sum(p * np.cos(x[0]) * dx), np.sum(p * np.sin(x[0]) * dx)])
+            integral = float(np.sum(p * dx))
         force += inlet_pressure * ops.pocket_moments[1:]
-        return force, float(np.sum(p * dx) + inlet_pressure * ops.pocket_moments[0])
+        return force, integral + inlet_pressure * ops.pocket_moments[0]
 
     @takes(OperatingPoint)
     def combine(self, wedge: float = 1.0, squeeze=(0.0, 0.0), inlet_pressure: float = 0.0,
@@ -394,7 +423,8 @@ def source_weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
 
 @takes(Discretization)
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
-              solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback") -> Superposition:
+              solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
+              assembly: str = "compiled") -> Superposition:
     """Factorize the Reynolds operator of a film state once and solve four unit problems.
 
     Parameters
@@ -404,11 +434,18 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
     solver : str or callable
-        Sparse solver from :data:`bearingfe.linalg.LINEAR_SOLVERS`.
+        Sparse solver from :data:`bearingfe.linalg.LINEAR_SOLVERS`. With the
+        default (``"splu_sym"``) and the compiled assembly the fill-reducing
+        ordering is found once per mesh and each film costs one numeric
+        factorization.
     on_indefinite : {"fallback", "raise"}
         What to do if the discrete pi operator is not positive definite:
         switch to the direct form (and say so in ``notes``) or raise
         :class:`CoercivityError`.
+    assembly : {"compiled", "reference"}
+        ``"compiled"``: the film-independent maps of :mod:`bearingfe.compiled`
+        (sparse mat-vecs per film); ``"reference"``: scikit-fem form assembly
+        per film. Same numbers to round-off.
     discretization : Discretization, optional
         ``formulation``, ``element`` and ``solver`` in one object
         (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
@@ -417,6 +454,8 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         raise ValueError(f"formulation must be one of {FORMULATIONS}, got {formulation!r}")
     if on_indefinite not in ("fallback", "raise"):
         raise ValueError(f"on_indefinite must be 'fallback' or 'raise', got {on_indefinite!r}")
+    if assembly not in ASSEMBLIES:
+        raise ValueError(f"assembly must be one of {ASSEMBLIES}, got {assembly!r}")
     if not isinstance(film, Film):
         raise ValueError(f"film must implement the bearingfe.Film protocol, got {type(film).__name__}")
     if isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes:
@@ -431,11 +470,12 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
     if not h_min > 0:
         raise ValueError(f"film thickness reaches h_min = {h_min:.4g} <= 0 on the surface "
                          f"(film {film!r}): the shoe would touch the journal")
+    build = _CompiledBuild(ops, at) if assembly == "compiled" else _ReferenceBuild(ops, at)
     notes: list[str] = []
     coercivity = math.nan
-    A = system_matrix(ops, at, formulation)
+    build.assemble(formulation)
     if formulation == "pi":
-        coercivity = _coercivity(ops, at, A)
+        coercivity = _coercivity(ops, at, build.full_matrix)
         if not coercivity > 1e-10 * ops.eigen_bound:
             msg = (f"the discrete pi operator is not positive definite (smallest eigenvalue "
                    f"{coercivity:.3g}); the direct form div(h^3 grad p) was used instead")
@@ -443,26 +483,105 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
                 raise CoercivityError(msg)
             notes.append(msg)
             formulation = "direct"
-            A = system_matrix(ops, at, formulation)
-    F, g = unit_sources(ops, film, at, formulation)
-    I, B = ops.interior, ops.boundary
-    rhs = -F[I] - A[I][:, B] @ g[B]
-    A_II = A[I][:, I]
+            build.assemble(formulation)
+    g = _lift(ops, film, formulation)
+    rhs = build.rhs(formulation, g)
     t1 = time.perf_counter()
-    solve = factorize(A_II)
+    solve = build.factorize(factorize)
     t2 = time.perf_counter()
+    I, B = ops.interior, ops.boundary
     U = np.zeros((ops.n_dofs, 4))
     U[B] = g[B]
     U[I] = np.asarray(solve(rhs)).reshape(I.size, 4)
     t3 = time.perf_counter()
-    forces, integrals = _unit_loads(ops, at, U, formulation)
+    forces, integrals = build.unit_loads(U, formulation)
     cost = {"assembly": t1 - t0, "factorization": t2 - t1, "solve": t3 - t2, "dofs": float(ops.n_dofs),
             "mesh_operators": ops.seconds}
-    system = CondensedSystem(matrix=A_II, rhs=rhs, lift=g, interior=I, boundary=B, factorize=factorize,
-                             solve=solve)
+    system = CondensedSystem(rhs=rhs, lift=g, interior=I, boundary=B, factorize=factorize, solve=solve,
+                             build_matrix=build.condensed_matrix)
     return Superposition(operators=ops, film=film, formulation=formulation, fields=U, forces=forces,
                          integrals=integrals, h_min=h_min, coercivity=coercivity, notes=tuple(notes),
-                         cost=MappingProxyType(cost), at=at, system=system)
+                         cost=MappingProxyType(cost), at=at, system=system, assembly=assembly)
+
+
+def _lift(ops: Operators, film: Film, formulation: str) -> np.ndarray:
+    """Dirichlet data of the four unit sources: the inlet column is 1 (direct) or ``h^(3/2)`` (pi)
+    on the pocket dofs."""
+    g = np.zeros((ops.n_dofs, 4))
+    if ops.inlet.size:
+        loc = ops.basis.doflocs[:, ops.inlet]
+        g[ops.inlet, 3] = np.asarray(film.thickness(loc[0], loc[1])) ** 1.5 if formulation == "pi" else 1.0
+    return g
+
+
+class _ReferenceBuild:
+    """The system of a film by scikit-fem form assembly (the reference for the compiled maps)."""
+
+    def __init__(self, ops: Operators, at: FilmAt) -> None:
+        self.ops, self.at = ops, at
+
+    def assemble(self, formulation: str) -> None:
+        self.A = system_matrix(self.ops, self.at, formulation)
+
+    def full_matrix(self) -> sp.csr_matrix:
+        return self.A
+
+    def rhs(self, formulation: str, g: np.ndarray) -> np.ndarray:
+        F = unit_sources(self.ops, self.at, formulation)
+        I, B = self.ops.interior, self.ops.boundary
+        return -F[I] - self.A[I][:, B] @ g[B]
+
+    def condensed_matrix(self) -> sp.csr_matrix:
+        I = self.ops.interior
+        return self.A[I][:, I]
+
+    def factorize(self, factorize: Factorize) -> Solve:
+        return factorize(self.condensed_matrix())
+
+    def unit_loads(self, U: np.ndarray, formulation: str):
+        return _unit_loads(self.ops, self.at, U, formulation)
+
+
+class _CompiledBuild:
+    """The system of a film from the compiled maps: mat-vecs, one numeric factorization."""
+
+    def __init__(self, ops: Operators, at: FilmAt) -> None:
+        self.ops, self.co = ops, ops.compiled
+        self.h, self.D = at.h.ravel(), at.D.ravel()
+        self.at = at
+
+    def assemble(self, formulation: str) -> None:
+        self.data = self.co.matrix_data(formulation, self.h, self.D)
+
+    def full_matrix(self) -> sp.csr_matrix:
+        return self.co.matrix(self.data)
+
+    def rhs(self, formulation: str, g: np.ndarray) -> np.ndarray:
+        at = self.at
+        s = unknown_scale(self.h, formulation)
+        f = np.column_stack([s * 6.0 * at.dh[0].ravel(), s * 12.0 * at.shapes[0].ravel(),
+                             s * 12.0 * at.shapes[1].ravel()])
+        rhs = np.empty((self.ops.interior.size, 4))
+        rhs[:, :3] = -(self.co.sources @ f)
+        rhs[:, 3] = -self.co.coupling_times(self.data, g[self.ops.inlet, 3]) if self.ops.inlet.size else 0.0
+        return rhs
+
+    def condensed_matrix(self) -> sp.csr_matrix:
+        return self.co.condensed(self.data)
+
+    def factorize(self, factorize: Factorize) -> Solve:
+        if factorize is factorize_splu_sym:
+            return self.co.factorize_condensed(self.data)
+        return factorize(self.condensed_matrix())
+
+    def unit_loads(self, U: np.ndarray, formulation: str):
+        p = unknown_scale(self.h, formulation)[..., None] * (self.co.value @ U) if formulation == "pi" \
+            else self.co.value @ U
+        values = self.co.loads @ p
+        forces, integrals = values[:2].copy(), values[2].copy()
+        forces[:, 3] += self.ops.pocket_moments[1:]  # pockets at unit pressure
+        integrals[3] += self.ops.pocket_moments[0]
+        return forces, integrals
 
 
 def system_matrix(ops: Operators, at: FilmAt, formulation: str) -> sp.csr_matrix:
@@ -473,7 +592,7 @@ def system_matrix(ops: Operators, at: FilmAt, formulation: str) -> sp.csr_matrix
     return (ops.laplace - forms.weighted_mass.assemble(ops.basis, c=at.D)).tocsr()
 
 
-def _coercivity(ops: Operators, at: FilmAt, A: sp.csr_matrix) -> float:
+def _coercivity(ops: Operators, at: FilmAt, full_matrix: Callable[[], sp.spmatrix]) -> float:
     """Smallest eigenvalue of the condensed pi operator relative to the mass matrix.
 
     Cheap sufficient test first: Dirichlet eigenvalues only grow when the
@@ -486,27 +605,23 @@ def _coercivity(ops: Operators, at: FilmAt, A: sp.csr_matrix) -> float:
     if ops.eigen_bound > d_max:
         return ops.eigen_bound - d_max
     I = ops.interior
+    A = full_matrix()
     AI, MI = A[I][:, I].tocsc(), ops.mass[I][:, I].tocsc()
     shift = -(max(d_max, 0.0) + 1.0)
     vals = spla.eigsh(AI, k=1, M=MI, sigma=shift, which="LM", return_eigenvectors=False)
     return float(vals.min())
 
 
-def unit_sources(ops: Operators, film: Film, at: FilmAt, formulation: str) -> tuple[np.ndarray, np.ndarray]:
-    """Load vectors ``int f_k v`` of the four unit sources (:data:`SOURCES`) and their Dirichlet data."""
+def unit_sources(ops: Operators, at: FilmAt, formulation: str) -> np.ndarray:
+    """Load vectors ``int f_k v`` of the four unit sources (:data:`SOURCES`; the inlet one is zero)."""
     weight = unknown_scale(at.h, formulation)
     basis = ops.basis
-    F = np.column_stack([
+    return np.column_stack([
         forms.load.assemble(basis, f=weight * 6.0 * at.dh[0]),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[0]),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[1]),
         np.zeros(basis.N),
     ])
-    g = np.zeros((basis.N, 4))
-    if ops.inlet.size:
-        loc = basis.doflocs[:, ops.inlet]
-        g[ops.inlet, 3] = np.asarray(film.thickness(loc[0], loc[1])) ** 1.5 if formulation == "pi" else 1.0
-    return F, g
 
 
 def pressure_at_quadrature(ops: Operators, at: FilmAt, u: np.ndarray, formulation: str):
@@ -653,10 +768,16 @@ def build_result(sup: Superposition, u: np.ndarray, weights: np.ndarray, sliding
     start = time.perf_counter()
     ops, at = sup.operators, sup.at
     wedge, inlet_pressure = float(weights[0]), float(weights[3])
-    _, dp = pressure_at_quadrature(ops, at, u, sup.formulation)
     sliding = wedge if sliding is None else float(sliding)
-    flows, balance = _flows(ops, sup.film, at, u, sup.formulation, dp, wedge, weights[1:3], cavitated)
-    friction = float(np.sum(shear(at.h, dp[0], sliding) * ops.basis.dx))
+    if sup.assembly == "compiled":
+        out = film_outputs([sup], u[:, None], np.asarray(weights, float)[:, None], np.array([sliding]),
+                           None if cavitated is None else cavitated[:, None])
+        flows = {k: float(v[0]) for k, v in out.flows.items()}
+        balance, friction = float(out.mass_balance[0]), float(out.friction[0])
+    else:
+        _, dp = pressure_at_quadrature(ops, at, u, sup.formulation)
+        flows, balance = _flows(ops, sup.film, at, u, sup.formulation, dp, wedge, weights[1:3], cavitated)
+        friction = float(np.sum(shear(at.h, dp[0], sliding) * ops.basis.dx))
     if cavitated is None:
         force, integral = sup.forces @ weights, float(sup.integrals @ weights)
     else:
@@ -669,6 +790,41 @@ def build_result(sup: Superposition, u: np.ndarray, weights: np.ndarray, sliding
         h_min=sup.h_min, flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
         coercivity=sup.coercivity, notes=sup.notes, cost=MappingProxyType(cost),
         cavitation=cavitation, iterations=int(iterations), cavitated=cavitated)
+
+
+def film_outputs(sups: Sequence[Superposition], u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
+                 cavitated: np.ndarray | None = None) -> FilmFlows:
+    """Flows, mass balance and friction of many film states of one mesh at once (compiled maps).
+
+    Parameters
+    ----------
+    sups : sequence of Superposition, length S
+        Film states on the same mesh and element.
+    u : ndarray, shape (n_dofs, S)
+        An unknown field of each state.
+    weights : ndarray, shape (4, S)
+        Unit-source weights of each (:func:`source_weights`).
+    sliding : ndarray, shape (S,)
+        Couette speed of the shear of each.
+    cavitated : ndarray of bool, shape (n_dofs, S), optional
+        Ruptured dofs of each.
+
+    Returns
+    -------
+    FilmFlows
+        Arrays over the samples, as :class:`ReynoldsResult` has them for one
+        (``flows`` [omega R0^2 c], ``mass_balance``, ``friction`` [mu omega R0^4 / c]).
+    """
+    ops = sups[0].operators
+    if any(s.operators is not ops for s in sups):
+        raise ValueError("film_outputs needs film states of one mesh and element")
+    h = np.stack([s.at.h.ravel() for s in sups], axis=1)
+    dh = np.stack([np.stack([s.at.dh[0].ravel(), s.at.dh[1].ravel()]) for s in sups], axis=2)
+    shapes = np.stack([np.stack([s.at.shapes[0].ravel(), s.at.shapes[1].ravel()]) for s in sups], axis=2)
+    hdot = weights[1] * shapes[0] + weights[2] * shapes[1]
+    pi = np.array([s.formulation == "pi" for s in sups])
+    return ops.compiled.outputs(u, [s.film for s in sups], h, dh, hdot, weights, np.asarray(sliding, float), pi,
+                                cavitated)
 
 
 @dataclass(frozen=True, eq=False)

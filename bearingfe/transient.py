@@ -1,7 +1,7 @@
 r"""The plunger shoe over the pump cycle: quasi-static equilibrium integrated in time.
 
-Model (paper 004 eq. 13-14, ``shared/SPEC.md`` §1; frames in :mod:`bearingfe.pump`)
-------------------------------------------------------------------------------------
+Model (paper 004 eq. 13-14, ``docs/formulations.md``; frames in :mod:`bearingfe.pump`)
+--------------------------------------------------------------------------------------
 The plunger's inertia is neglected, so at every shaft angle the film force
 balances the applied load. In the shoe frame the film is
 ``h = 1 + gamma cos(psi - delta)`` and the Reynolds right side is
@@ -48,9 +48,11 @@ from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
 from .linalg import DEFAULT_SOLVER
+from .limits import check_limit
 from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
 from .jfo import solve_jfo
+from .superposition import film_outputs, source_weights
 from .transient_jfo import jfo_run
 
 __all__ = [
@@ -418,24 +420,46 @@ def _sample(run: _Run, betas: np.ndarray, y0) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, np.ndarray]:
+    """Rates, smallest film, friction and flows at the samples.
+
+    Each sample needs its own film state (a superposition: one numeric
+    factorization) and its balancing rates; the flows and the friction of all
+    the states solved without cavitation are then evaluated at once by the
+    compiled linear maps (:func:`bearingfe.superposition.film_outputs`), with
+    no per-sample form assembly. Cavitated states come with their result.
+    """
     pump, sc = model.pump, model.pump.scale
-    out = {k: np.empty(betas.size) for k in ("gamma_rate", "delta_rate", "h_min", "friction_moment", "flow_inlet",
-                                              "flow_side", "flow_arc", "flow_squeeze", "mass_balance")}
+    n = betas.size
+    rates, h_min = np.empty((n, 2)), np.empty(n)
+    flows: dict[str, np.ndarray] = {}
+    friction, balance = np.empty(n), np.empty(n)
+    linear: list[tuple[int, Superposition, np.ndarray]] = []
     for i, (b, y) in enumerate(zip(betas, ys)):
         sup = model.superposition(y[0], y[1])
-        rates, res = model.balance(b, y)
+        rates[i], res = model.balance(b, y)
+        h_min[i] = sup.h_min
         if res is None:
-            res = sup.combine(float(pump.wedge(b)), rates, float(pump.inlet_pressure(b)))
-        fl = res.flows
-        out["gamma_rate"][i], out["delta_rate"][i] = rates
-        out["h_min"][i] = sc.to_thickness(res.h_min)
-        out["friction_moment"][i] = sc.to_moment(res.friction)
-        out["flow_inlet"][i] = sc.to_flow(fl.get("inlet", 0.0))
-        out["flow_side"][i] = sc.to_flow(fl.get("side", 0.0))
-        out["flow_arc"][i] = sc.to_flow(sum(v for k, v in fl.items() if k in ("arc_start", "arc_end", "outer")))
-        out["flow_squeeze"][i] = sc.to_flow(fl["squeeze"])
-        out["mass_balance"][i] = sc.to_flow(res.mass_balance)
-    return out
+            weights = source_weights(float(pump.wedge(b)), rates[i], float(pump.inlet_pressure(b)))
+            sup.check_inlet(weights[3])
+            linear.append((i, sup, weights))
+            continue
+        for k, v in res.flows.items():
+            flows.setdefault(k, np.zeros(n))[i] = v
+        friction[i], balance[i] = res.friction, res.mass_balance
+    if linear:
+        index = np.array([i for i, _, _ in linear])
+        weights = np.column_stack([w for _, _, w in linear])
+        u = np.column_stack([sup.fields @ w for _, sup, w in linear])
+        batch = film_outputs([sup for _, sup, _ in linear], u, weights, weights[0])
+        for k, v in batch.flows.items():
+            flows.setdefault(k, np.zeros(n))[index] = v
+        friction[index], balance[index] = batch.friction, batch.mass_balance
+    zero = np.zeros(n)
+    arc = sum((flows[k] for k in ("arc_start", "arc_end", "outer") if k in flows), zero)
+    return {"gamma_rate": rates[:, 0], "delta_rate": rates[:, 1], "h_min": sc.to_thickness(h_min),
+            "friction_moment": sc.to_moment(friction), "flow_inlet": sc.to_flow(flows.get("inlet", zero)),
+            "flow_side": sc.to_flow(flows.get("side", zero)), "flow_arc": sc.to_flow(arc),
+            "flow_squeeze": sc.to_flow(flows.get("squeeze", zero)), "mass_balance": sc.to_flow(balance)}
 
 
 @takes(Discretization)
@@ -444,7 +468,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
              method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
              min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
              formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
-             periodic_tol: float = 1e-6, periodic_max_iter: int = 30) -> Trajectory:
+             periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
+             max_revolutions: float | None = None) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 
     Parameters
@@ -479,7 +504,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         shipped pump it needed a third to a half of Radau's right-side
         evaluations (one factorization each) for the same accuracy.
     rtol, atol : float
-        Integrator tolerances on ``(gamma, delta)``.
+        Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``.
     max_step : float
         Largest step in shaft angle [rad].
     min_film : float, optional
@@ -491,6 +516,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         Element size of the default mesh [R0].
     formulation, element, solver
         See :func:`bearingfe.superpose`.
+    max_revolutions : float, optional
+        Largest ``revolutions`` accepted (a guard against runaway work);
+        default the ``revolutions`` limit of :mod:`bearingfe.limits` (100).
     discretization : Discretization, optional
         ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
         object (:class:`bearingfe.parameters.Discretization`) instead of the
@@ -506,17 +534,21 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         The pockets' hydrostatic lift reaches the plunger force (checked
         before integrating; see :func:`balance_ratio`).
     ValueError
-        Bad argument (message names it).
+        Bad argument (message names it); :class:`bearingfe.limits.LimitError`
+        if ``revolutions`` is above its limit.
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
     if not (isinstance(revolutions, (int, float)) and math.isfinite(revolutions) and revolutions > 0):
         raise ValueError(f"revolutions must be a finite number > 0, got {revolutions!r}")
+    check_limit("revolutions", revolutions, max_revolutions, "max_revolutions")
     if method not in INTEGRATORS:
         raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {method!r}")
     for name, v in (("rtol", rtol), ("atol", atol), ("max_step", max_step)):
         if not (math.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    if not rtol < 1:
+        raise ValueError(f"rtol must be in (0, 1) (a relative tolerance of 1 or more allows 100 % error), got {rtol!r}")
     if int(points_per_revolution) < 8:
         raise ValueError(f"points_per_revolution must be >= 8, got {points_per_revolution!r}")
     min_film = 0.02 * pump.clearance if min_film is None else float(min_film)
@@ -573,7 +605,12 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     seconds = time.perf_counter() - t_start
     counts = {"nfev": model.nfev, "factorizations": model.factorizations, "steps": run.steps,
               "seconds": seconds, "solver_seconds": model.seconds}
-    post = _postprocess(model, betas, ys)
+    try:
+        post = _postprocess(model, betas, ys)
+    except _FilmClosed as exc:  # the dense output between accepted steps left the admissible states
+        raise RuntimeError(f"between the integrator's steps the interpolated state (gamma, delta) = {exc.args[0]} "
+                           f"closes the film: the steps are too coarse for rtol = {rtol:g}; use a smaller rtol "
+                           f"(default 1e-6) or max_step") from None
     f = pump.load(betas)
     return Trajectory(
         t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=ys[:, 0], delta=ys[:, 1],

@@ -7,8 +7,8 @@ from the reference's periodic start and compares ``min h_min`` over the turn
 (sampled at 1 degree). Wall time is the integration only
 (``stats['seconds']``: factorizations included, mesh and post-processing
 excluded; meshing is reported separately). P1 runs on straight-sided
-meshes, P2 on curved ones (P2 needs the curved pocket edge to keep its rate,
-see ``shared/PLATFORM.md``).
+meshes, P2 on curved ones (on straight-sided triangles P2 stalls at the
+geometric error of the polygonal pocket edge).
 
 Writes ``docs/benchmarks_pump.md``. Run:
 ``PYTHONPATH=. python benchmarks/pump_revolution.py``

@@ -56,7 +56,7 @@ def build(element: str, dofs: float, path: str) -> dict:
     film = bf.CosineFilm(0.6, math.pi + 0.3)
     at = film_at(film, ops.x)
     A = system_matrix(ops, at, "direct")
-    F, g = unit_sources(ops, film, at, "direct")
+    F = unit_sources(ops, at, "direct")
     I = ops.interior
     AI = A[I][:, I].tocsc()
     rhs = -F[I]

@@ -1,7 +1,8 @@
 r"""Plunger shoe of an eccentric radial-plunger pump: plain surface against a 10 %-area inlet pocket.
 
-Reference: paper 004 (``shared/seeds/``), the swinging-plunger support of an
-eccentric pump; physics restated in ``shared/SPEC.md`` §1.
+Reference: paper 004 (Tokar', Krioni, Dangyan, *On the dynamics of the support
+of eccentric pumps*, 1978; see ``docs/papers.md``), the swinging-plunger
+support of an eccentric pump; formulation in ``docs/formulations.md``.
 
 The shoe (bore radius R0 + c) rides on the eccentric; in the shoe frame the
 film is ``h = 1 + gamma cos(psi - delta)`` and the Reynolds equation

@@ -52,7 +52,8 @@ def test_run_writes_outputs_and_prints_table(tmp_path, capsys):
     assert main(["run", str(_scene(tmp_path)), "--out", str(out), "--no-progress"]) == 0
     text = capsys.readouterr().out
     assert "h_min" in text and "flow inlet" in text
-    assert sorted(p.name for p in out.iterdir()) == ["field.vtu", "pressure.png", "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == [".bearingfe-manifest.json", "field.vtu", "pressure.png",
+                                                     "summary.json"]  # the manifest lists the three files
     summary = json.loads((out / "summary.json").read_text())
     # film is thinnest at the arc end phi = -0.5: 1 + 0.6 cos(0.8)
     assert summary["results"]["h_min"] == pytest.approx(1 + 0.6 * np.cos(0.8), rel=1e-12)

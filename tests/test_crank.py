@@ -1,22 +1,14 @@
 """Crank-slider kinematics and inertia (bearingfe.crank) against independent routes and paper 000."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from bearingfe import crank
 from bearingfe.machines import CrankMechanism, CrankSlider, Drive
-from bearingfe.mechanism_files import load_mechanism
 
-ROOT = Path(__file__).resolve().parents[1]
 PHI = np.linspace(0.0, 2 * np.pi, 721)
-
-
-@pytest.fixture(scope="module")
-def snt32():
-    return load_mechanism(ROOT / "mechanisms" / "snt32.toml")
 
 
 def _cs(lam=0.3):

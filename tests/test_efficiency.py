@@ -2,7 +2,6 @@
 
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,15 +9,8 @@ import pytest
 from bearingfe import efficiency as E
 from bearingfe.efficiency import Linkage
 from bearingfe.machines import Drive, MillDrive
-from bearingfe.mechanism_files import load_mechanism
 
-ROOT = Path(__file__).resolve().parents[1]
 THETA = np.linspace(0.0, 2 * np.pi, 361)
-
-
-@pytest.fixture(scope="module")
-def mill():
-    return load_mechanism(ROOT / "mechanisms" / "hpt_mill.toml")
 
 
 @pytest.mark.parametrize("rod_factor", [1.6, 4.68, 10.0])

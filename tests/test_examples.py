@@ -14,6 +14,7 @@ def test_there_are_examples():
     assert any(p.name == "02_pressure_field.py" for p in EXAMPLES)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("script", EXAMPLES, ids=[p.stem for p in EXAMPLES])
 def test_example_runs_and_draws(script, tmp_path, monkeypatch, capsys):
     import matplotlib.image as mpimg

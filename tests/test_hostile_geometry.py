@@ -254,7 +254,7 @@ def test_element_limit_can_be_raised_or_lowered(tmp_path, monkeypatch):
     with pytest.raises(MeshSizeError, match="max_elements = 50"):
         mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.1)  # 0.8 / (sqrt(3)/4 0.01) = 185
     monkeypatch.setenv("BEARINGFE_MAX_ELEMENTS", "many")
-    with pytest.raises(ValueError, match="BEARINGFE_MAX_ELEMENTS must be an integer"):
+    with pytest.raises(ValueError, match="BEARINGFE_MAX_ELEMENTS must be a number > 0"):
         max_elements_limit()
     monkeypatch.delenv("BEARINGFE_MAX_ELEMENTS")
     assert max_elements_limit() == DEFAULT_MAX_ELEMENTS
@@ -282,6 +282,39 @@ def test_pocket_too_small_is_refused():
         Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 1e-9)])
     with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\)"):
         Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Rectangle((0.0, 0.0), (0.4, 1e-6))])
+    # the sliver that gave "KeyError (-1, -1)" (its contour edges were not edges of the triangles)
+    from bearingfe import Ellipse, Polygon
+
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Polygon(((0.0, 0.0), (0.3, 0.0), (0.15, 1e-8)))])
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Ellipse\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Ellipse((0.0, 0.0), (0.3, 1e-8))])
+
+
+def test_scene_with_a_tiny_pocket_is_one_line(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text("""
+kind = "reynolds"
+title = "tiny pocket"
+[surface]
+arc = [-0.5, 0.5]
+half_width = 0.4
+[[surface.inlets]]
+shape = "circle"
+center = [0.0, 0.0]
+radius = 1e-9
+[film]
+gamma = 0.6
+[operating]
+inlet_pressure = 2.0
+[solver]
+size = 0.2
+[output]
+pictures = []
+""")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "inlets[0] (Circle) is 2e-09 across" in err
 
 
 def test_small_pocket_is_resolved_by_the_mesh():
@@ -308,3 +341,176 @@ def test_thin_slot_pocket_meshes_with_named_boundaries():
     assert width == pytest.approx(2e-3, rel=0.01)
     # contour length 0.6 + pi 1e-3; gmsh's edges come out up to ~1.25 x the size asked for
     assert len(mesh.boundaries["inlet"]) >= 0.8 * 0.6 / width
+
+
+# -- solver inputs: silly numbers are refused with the parameter and its range --------------------
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(gamma=0.5, phi0=1e300), r"CosineFilm.phi0 must be an angle \[rad\] with \|CosineFilm.phi0\| <= 1e\+06"),
+    (dict(gamma=0.5, phi0=-1e20), r"CosineFilm.phi0 must be an angle"),
+    (dict(gamma=0.5, phi0=math.nan), r"CosineFilm.phi0 must be an angle"),
+    (dict(gamma=1e300), r"CosineFilm.gamma must be a number in \[0, 1000\]"),
+    (dict(gamma=-0.1), r"CosineFilm.gamma must be a number in \[0, 1000\]"),
+])
+def test_film_parameters_out_of_range(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        CosineFilm(**kwargs)
+
+
+def test_film_angle_at_the_limit_keeps_its_digits():
+    """At |phi0| = 1e6 rad (the limit) cos(phi - phi0) still agrees with the reduced angle to 1e-9:
+    the spacing of doubles near 1e6 is 1.2e-10."""
+    far = CosineFilm(0.5, 1e6)
+    near = CosineFilm(0.5, math.remainder(1e6, 2 * math.pi))
+    phi = np.linspace(-0.5, 0.5, 11)
+    assert np.allclose(far.thickness(phi, 0 * phi), near.thickness(phi, 0 * phi), rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("inlet_pressure", dict(inlet_pressure=1e308)),
+    ("inlet_pressure", dict(inlet_pressure=-1e13)),
+    ("wedge", dict(wedge=1e308)),
+    (r"squeeze\[0\]", dict(squeeze=(1e308, 0.0))),
+])
+def test_fd_operating_point_out_of_range(name, kwargs):
+    from bearingfe import solve_reynolds_fd
+
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)])
+    with pytest.raises(ValueError, match=rf"{name} must be a finite number with \|{name}\| <= 1e\+12"):
+        solve_reynolds_fd(surface, CosineFilm(0.5), (21, 17), **kwargs)
+
+
+def test_pump_rtol_out_of_range_is_named():
+    from bearingfe import load_mechanism, simulate
+
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    with pytest.raises(ValueError, match=r"rtol must be in \(0, 1\)"):
+        simulate(pump, revolutions=0.1, rtol=10)
+
+
+def test_pump_scene_with_rtol_10_is_one_line(tmp_path, capsys):
+    """Issue 12: ``rtol = 10`` in a pump scene leaked the private ``_FilmClosed`` as a traceback."""
+    scene = tmp_path / "pump.toml"
+    scene.write_text((ROOT / "scenes" / "pump.toml").read_text()
+                     .replace('"../mechanisms/eccentric_pump.toml"', f'"{ROOT / "mechanisms" / "eccentric_pump.toml"}"')
+                     .replace("rtol = 1e-6", "rtol = 10"))
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "rtol must be in (0, 1)" in err and "_FilmClosed" not in err
+
+
+def test_mesh_surface_algorithm_is_checked():
+    with pytest.raises(ValueError, match="algorithm must be one of gmsh's 2D algorithms"):
+        mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.2, algorithm=10)
+
+
+# -- the thin-film resolution check -------------------------------------------------------------
+
+def _one_triangle(points):
+    """A SupportMesh-like holder of a single straight triangle (only ``.mesh`` is read)."""
+    import skfem
+
+    class Holder:
+        mesh = skfem.MeshTri1(np.array(points, dtype=float).T, np.array([[0], [1], [2]]))
+
+    return Holder()
+
+
+def test_film_variation_closed_form():
+    """One triangle with vertices at phi = pi (thinnest point of h = 1 + gamma cos phi) and pi + s:
+    (h(pi + s) - h(pi)) / h(pi) = gamma (1 - cos s) / (1 - gamma), exactly (the corner at pi + s is the
+    thickest of the seven sample points)."""
+    from bearingfe.checks import film_variation
+
+    gamma, s = 0.99, 0.1
+    holder = _one_triangle([(math.pi, 0.0), (math.pi + s, 0.0), (math.pi, s)])
+    variation, h_min, size = film_variation(holder, CosineFilm(gamma))
+    assert variation == pytest.approx(gamma * (1 - math.cos(s)) / (1 - gamma), rel=1e-12)
+    assert h_min == pytest.approx(1 - gamma, rel=1e-12) and size == pytest.approx(s * math.sqrt(2), rel=1e-12)
+
+
+def test_resolution_check_warns_near_contact_only():
+    """gamma = 1 - 1e-6 on a 0.05 mesh: across an element at the thinnest film h grows by about
+    gamma s^2 / 2 / 1e-6 ~ 1e3 x h_min (limit 1). gamma = 0.5 on the same mesh changes by < 0.1."""
+    from bearingfe import ResolutionWarning, check_resolution
+
+    mesh = mesh_surface(Surface(arc=(2.0, 4.2), half_width=0.5), 0.05)
+    with pytest.warns(ResolutionWarning, match=r"thin film is not resolved: .* where h = 1e-06"):
+        message = check_resolution(mesh, CosineFilm(1 - 1e-6))
+    assert "film_graded_size" in message
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        assert check_resolution(mesh, CosineFilm(0.5)) is None
+
+
+def test_gmsh_child_dies_with_its_parent(tmp_path):
+    """A caller killed by SIGKILL (no chance to clean up) does not leave gmsh looping: the child
+    process asked the kernel to kill it with its parent (Linux PR_SET_PDEATHSIG)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    code = f"from bearingfe import load_mesh; load_mesh({str(geo)!r}, size=0.2, timeout=600)"
+    parent = subprocess.Popen([sys.executable, "-c", code], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    child = None
+    for _ in range(300):  # the child appears once bearingfe is imported (a few seconds at most)
+        text = children.read_text().split() if children.exists() else []
+        if text:
+            child = int(text[0])
+            break
+        time.sleep(0.05)
+    assert child is not None
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    parent.wait()
+    for _ in range(100):
+        if not Path(f"/proc/{child}").exists() or "Z" in Path(f"/proc/{child}/stat").read_text().split()[2]:
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(child, signal.SIGKILL)  # the child this test started (through its parent)
+        pytest.fail("the gmsh child outlived its killed parent")
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("inlet_pressure", dict(inlet_pressure=1e308)),
+    ("wedge", dict(wedge=-1e300)),
+    (r"squeeze\[1\]", dict(squeeze=(0.0, 1e13))),
+])
+def test_solve_reynolds_operating_point_out_of_range(name, kwargs):
+    from bearingfe import solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)]), 0.2)
+    with pytest.raises(ValueError, match=rf"{name} must be a finite number with \|{name}\| <= 1e\+12"):
+        solve_reynolds(mesh, CosineFilm(0.5), **kwargs)
+
+
+def test_near_contact_solve_warns_and_notes():
+    """Issue 12: at gamma = 1 - 1e-6 the peak pressure changed 400 x with the mesh and nothing said so.
+    Now every solve_reynolds warns and records it in the result's notes; a resolved film (gamma = 0.5
+    on the same mesh: h changes by < 0.1 x h across any element) gets neither."""
+    import warnings
+
+    from bearingfe import ResolutionWarning, solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(2.0, 4.2), half_width=0.5), 0.1)
+    with pytest.warns(ResolutionWarning, match="thin film is not resolved") as record:
+        res = solve_reynolds(mesh, CosineFilm(1 - 1e-6), cavitation="reynolds")
+    assert record[0].filename == __file__  # the warning points at the caller's line
+    assert any("thin film is not resolved" in note for note in res.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        res = solve_reynolds(mesh, CosineFilm(0.5), cavitation="reynolds")
+    assert not any("not resolved" in note for note in res.notes)
+
+
+def test_command_hidden_behind_a_dot_is_refused():
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'Sleep' is used as a command"):
+        check_geo_script(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: .*text value"):
+        check_geo_script(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")

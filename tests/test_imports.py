@@ -14,13 +14,6 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "bearingfe"
 
-#: Private names still imported across modules (none left; an entry would need a reason).
-#: Entries: (importing module, imported module, name).
-KNOWN_PRIVATE: frozenset = frozenset()
-#: Import cycles still present (none left since the input-file schema of issue 15).
-KNOWN_CYCLES: frozenset = frozenset()
-
-
 def _modules() -> dict[str, Path]:
     out = {}
     for path in PACKAGE.rglob("*.py"):
@@ -99,12 +92,11 @@ def test_no_private_name_is_imported_across_modules():
     modules = _modules()
     _, names = _imports(modules)
     private = {(m, t, n) for m, t, n in names if _private(n) and m != t}
-    assert private - KNOWN_PRIVATE == set(), "import the public name, or move the helper to the module that owns it"
+    assert private == set(), "import the public name, or move the helper to the module that owns it"
 
 
 def test_there_is_no_import_cycle():
-    cycles = _cycles(_imports(_modules())[0])
-    assert [c for c in cycles if not any(c <= known for known in KNOWN_CYCLES)] == []
+    assert _cycles(_imports(_modules())[0]) == []
 
 
 def test_the_checks_see_cycles_and_private_names():

@@ -156,3 +156,18 @@ def test_conflicting_or_unused_fields_are_named(mesh, call, message):
 def test_signatures_show_the_new_keywords(func, keywords):
     params = inspect.signature(func).parameters
     assert keywords <= set(params) and all(params[k].kind is inspect.Parameter.KEYWORD_ONLY for k in keywords)
+
+
+def test_fd_reference_and_superposition_methods_take_the_operating_point(mesh):
+    from bearingfe.fd import solve_reynolds_fd
+
+    old = solve_reynolds_fd(SURFACE, FILM, (21, 17), wedge=1.0, squeeze=(0.1, -0.2), inlet_pressure=2.0,
+                            formulation="direct")
+    new = solve_reynolds_fd(SURFACE, FILM, (21, 17), operating=OperatingPoint(1.0, (0.1, -0.2), 2.0),
+                            discretization=Discretization(formulation="direct"))
+    np.testing.assert_array_equal(old.pressure, new.pressure)
+    sup = bf.superpose(mesh, FILM)
+    op = OperatingPoint(wedge=1.0, inlet_pressure=2.0)
+    np.testing.assert_array_equal(sup.coefficients(1.0, 2.0), sup.coefficients(operating=op))
+    np.testing.assert_array_equal(sup.rates_for_load(np.array([-0.3, 0.05]), 1.0, 2.0),
+                                  sup.rates_for_load(np.array([-0.3, 0.05]), operating=op))

@@ -13,6 +13,7 @@ def test_readme_has_examples():
     assert len(BLOCKS) >= 2
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k", range(len(BLOCKS)))
 def test_readme_block_runs(k, tmp_path, monkeypatch, capsys):
     # paths in the README are relative to the repository root; pictures go to tmp_path

@@ -2,7 +2,6 @@
 
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,15 +9,7 @@ from scipy.linalg import eigh, solve
 
 from bearingfe import rotor as R
 from bearingfe.machines import Frame, Material, Rotor
-from bearingfe.mechanism_files import load_mechanism
 from bearingfe.sections import ibeam, ibeam_names
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-@pytest.fixture(scope="module")
-def d816():
-    return load_mechanism(ROOT / "mechanisms" / "converter_tilt_d816.toml")
 
 
 def _matrices(rotor, frame):

@@ -7,7 +7,6 @@ stated with their reason at each assertion.
 
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,38 +15,25 @@ import bearingfe as bf
 from bearingfe.pump import PressureCycle
 from bearingfe.transient import LiftOffError, pump_mesh
 
-ROOT = Path(__file__).resolve().parents[1]
-PUMP = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
-PLAIN = dataclasses.replace(PUMP, surface=bf.Surface(arc=PUMP.surface.arc, half_width=PUMP.surface.half_width))
-SIZE = 0.15
+SIZE = 0.15  # the shared pump meshes of conftest.py (pocket_mesh, plain_mesh) have this size
 
 
 @pytest.fixture(scope="module")
-def pocket_mesh():
-    return pump_mesh(PUMP, SIZE)
+def pocket_run(pump, pocket_mesh):
+    return bf.simulate(pump, pocket_mesh, 1.0, points_per_revolution=36)
 
 
-@pytest.fixture(scope="module")
-def plain_mesh():
-    return pump_mesh(PLAIN, SIZE)
-
-
-@pytest.fixture(scope="module")
-def pocket_run(pocket_mesh):
-    return bf.simulate(PUMP, pocket_mesh, 1.0, points_per_revolution=36)
-
-
-def test_run_completes_without_nan(pocket_run):
+def test_run_completes_without_nan(pocket_run, pump):
     tr = pocket_run
     assert tr.status == "completed" and "completed" in tr.message
     for name, col in tr.columns().items():
         assert np.all(np.isfinite(col)), name
     assert tr.beta[0] == 0.0 and tr.beta[-1] == pytest.approx(2 * math.pi)
-    assert tr.t[-1] == pytest.approx(2 * math.pi / PUMP.drive.omega)
-    np.testing.assert_allclose(tr.wedge, bf.pump.shoe_wedge(tr.beta, PUMP.e2))
+    assert tr.t[-1] == pytest.approx(2 * math.pi / pump.drive.omega)
+    np.testing.assert_allclose(tr.wedge, bf.pump.shoe_wedge(tr.beta, pump.e2))
 
 
-def test_film_force_balances_the_load_at_stored_states(pocket_run, pocket_mesh):
+def test_film_force_balances_the_load_at_stored_states(pocket_run, pocket_mesh, pump):
     # re-solve each stored state from scratch with the stored rates: the
     # superposition is exact in exact arithmetic, so the balance holds to round-off
     tr = pocket_run
@@ -55,7 +41,7 @@ def test_film_force_balances_the_load_at_stored_states(pocket_run, pocket_mesh):
         res = bf.solve_reynolds(pocket_mesh, bf.CosineFilm(tr.gamma[i], tr.delta[i]), wedge=tr.wedge[i],
                                 squeeze=(tr.gamma_rate[i], tr.delta_rate[i]), inlet_pressure=tr.inlet_pressure[i])
         np.testing.assert_allclose(res.force + tr.load[i], 0.0, atol=1e-8 * abs(tr.load[i, 0]))
-        assert res.h_min * PUMP.clearance == pytest.approx(tr.h_min[i], rel=1e-12)
+        assert res.h_min * pump.clearance == pytest.approx(tr.h_min[i], rel=1e-12)
 
 
 def test_mass_balance(pocket_run):
@@ -65,22 +51,22 @@ def test_mass_balance(pocket_run):
     assert np.max(np.abs(pocket_run.flow_inlet)) > 0  # the pocket does feed the film
 
 
-def test_integrator_tolerance_study_converges(plain_mesh):
+def test_integrator_tolerance_study_converges(plain_mesh, plain_pump):
     # smallest film over a turn against a tight reference: the error falls
     # with rtol and is below 0.1 % at rtol = 1e-5
-    ref = bf.simulate(PLAIN, plain_mesh, 1.0, rtol=1e-8, atol=1e-11, points_per_revolution=90).smallest_film
-    errs = [abs(bf.simulate(PLAIN, plain_mesh, 1.0, rtol=r, atol=1e-3 * r, points_per_revolution=90).smallest_film
+    ref = bf.simulate(plain_pump, plain_mesh, 1.0, rtol=1e-8, atol=1e-11, points_per_revolution=90).smallest_film
+    errs = [abs(bf.simulate(plain_pump, plain_mesh, 1.0, rtol=r, atol=1e-3 * r, points_per_revolution=90).smallest_film
                 - ref) / ref for r in (1e-2, 1e-3, 1e-5)]
     assert errs[2] < errs[0]
     assert errs[2] < 1e-3
     assert errs[1] < 1e-2
 
 
-def test_constant_load_without_swing_is_the_steady_partial_arc_bearing():
+def test_constant_load_without_swing_is_the_steady_partial_arc_bearing(plain_pump):
     # e2 -> infinity removes the swing (wedge -> 1) and equal pressures remove the
     # load cycle: the state must stay at the steady partial-arc solution, whose
     # force is checked against the independent finite-difference solver.
-    pump = dataclasses.replace(PLAIN, pivot_distance=1e7 * PLAIN.eccentricity,
+    pump = dataclasses.replace(plain_pump, pivot_distance=1e7 * plain_pump.eccentricity,
                                cycle=PressureCycle(10e6, 10e6))
     mesh = pump_mesh(pump, 0.1)
     tr = bf.simulate(pump, mesh, 0.5, points_per_revolution=24)
@@ -95,19 +81,19 @@ def test_constant_load_without_swing_is_the_steady_partial_arc_bearing():
     assert abs(fd.force[1]) < 2e-2 * abs(tr.load[0, 0])
     psi = np.linspace(a1, a2, 200001)  # smallest film over the arc by brute force (grid error ~1e-11)
     h = 1 + tr.gamma[0] * np.cos(psi - tr.delta[0])
-    assert tr.h_min[0] == pytest.approx(PLAIN.clearance * h.min(), rel=1e-9)
+    assert tr.h_min[0] == pytest.approx(plain_pump.clearance * h.min(), rel=1e-9)
 
 
-def test_periodic_start(plain_mesh):
-    tr = bf.simulate(PLAIN, plain_mesh, 1.0, start="periodic", periodic_tol=1e-6, points_per_revolution=36)
+def test_periodic_start(plain_mesh, plain_pump):
+    tr = bf.simulate(plain_pump, plain_mesh, 1.0, start="periodic", periodic_tol=1e-6, points_per_revolution=36)
     assert 1 <= tr.periodic_iterations <= 10 and tr.periodic_residual < 1e-6
     assert tr.gamma[-1] == pytest.approx(tr.gamma[0], abs=1e-5)  # tol + dense-output error
     assert (tr.delta[-1] - tr.delta[0]) == pytest.approx(0.0, abs=1e-5)
 
 
-def test_rupture_event_gives_a_clear_result():
+def test_rupture_event_gives_a_clear_result(plain_pump):
     # ten times the viscosity-speed load factor: at 60 % of the clearance as the bound, the film "ruptures"
-    pump = dataclasses.replace(PLAIN, viscosity=0.003)
+    pump = dataclasses.replace(plain_pump, viscosity=0.003)
     tr = bf.simulate(pump, pump_mesh(pump, SIZE), 1.0, min_film=0.6 * pump.clearance, points_per_revolution=36)
     assert tr.status == "ruptured"
     assert "ruptured" in tr.message and "beta" in tr.message
@@ -118,39 +104,39 @@ def test_rupture_event_gives_a_clear_result():
         assert np.all(np.isfinite(col)), name
 
 
-def test_lift_off_is_detected_before_integrating():
-    big = bf.Surface(arc=PUMP.surface.arc, half_width=PUMP.surface.half_width, inlets=(bf.Circle((0, 0), 0.3),))
-    pump = dataclasses.replace(PUMP, surface=big)
-    mesh = pump_mesh(pump, SIZE)
-    assert bf.balance_ratio(pump, mesh) > 1
+def test_lift_off_is_detected_before_integrating(pump):
+    big = bf.Surface(arc=pump.surface.arc, half_width=pump.surface.half_width, inlets=(bf.Circle((0, 0), 0.3),))
+    lifted = dataclasses.replace(pump, surface=big)
+    mesh = pump_mesh(lifted, SIZE)
+    assert bf.balance_ratio(lifted, mesh) > 1
     with pytest.raises(LiftOffError, match="balance ratio"):
-        bf.simulate(pump, mesh)
+        bf.simulate(lifted, mesh)
 
 
-def test_missing_steady_state_is_reported_with_its_cause():
+def test_missing_steady_state_is_reported_with_its_cause(pump):
     # A 12 % pocket placed upstream (35 % along the arc) during discharge: its hydrostatic force has a
     # component the wedge cannot balance. Measured: over gamma in [0.02, 0.98] x delta in [0, 2 pi)
     # (25 x 73 grid, P1) the smallest relative force residual is 0.05, at gamma = 0.94 -- no steady
     # state short of contact, so the error is physical, not the solver's. The message says so.
     from bearingfe.sweep import pocket_fraction, pocket_position
     from bearingfe.transient import steady_state
-    pump = dataclasses.replace(PUMP, surface=pocket_position(pocket_fraction(PUMP.surface, 0.12), 0.35))
+    upstream = dataclasses.replace(pump, surface=pocket_position(pocket_fraction(pump.surface, 0.12), 0.35))
     with pytest.raises(RuntimeError, match="no steady state.*cannot carry this load.*periodic"):
-        steady_state(pump, pump_mesh(pump, SIZE), beta=math.pi / 2)
+        steady_state(upstream, pump_mesh(upstream, SIZE), beta=math.pi / 2)
 
 
-def test_balance_ratio_of_the_shipped_pump(pocket_mesh):
+def test_balance_ratio_of_the_shipped_pump(pocket_mesh, pump, plain_pump):
     # pocket 10 %: hydrostatic lift a little below the plunger force (the TOML's design note)
-    assert 0.8 < bf.balance_ratio(PUMP, pocket_mesh) < 0.95
-    assert bf.balance_ratio(PLAIN) == 0.0
+    assert 0.8 < bf.balance_ratio(pump, pocket_mesh) < 0.95
+    assert bf.balance_ratio(plain_pump) == 0.0
 
 
-def test_bad_options_raise_value_errors(plain_mesh):
+def test_bad_options_raise_value_errors(plain_mesh, plain_pump):
     with pytest.raises(ValueError, match="cavitation"):
-        bf.simulate(PLAIN, plain_mesh, cavitation="bogus")
+        bf.simulate(plain_pump, plain_mesh, cavitation="bogus")
     with pytest.raises(ValueError, match="revolutions"):
-        bf.simulate(PLAIN, plain_mesh, revolutions=0)
+        bf.simulate(plain_pump, plain_mesh, revolutions=0)
     with pytest.raises(ValueError, match="method"):
-        bf.simulate(PLAIN, plain_mesh, method="RK45")
+        bf.simulate(plain_pump, plain_mesh, method="RK45")
     with pytest.raises(ValueError, match="start"):
-        bf.simulate(PLAIN, plain_mesh, start=(0.5, "x"))
+        bf.simulate(plain_pump, plain_mesh, start=(0.5, "x"))

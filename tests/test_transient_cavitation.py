@@ -8,19 +8,11 @@ the film never ruptures the trajectory is the uncavitated one.
 """
 
 import dataclasses
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import bearingfe as bf
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-@pytest.fixture(scope="module")
-def pump():
-    return bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
 
 
 def _wide(pump):

@@ -27,6 +27,7 @@ Modules
 ``outputs``   named reductions of a result to one float (OUTPUTS)
 ``changes``   field paths and change builders (CHANGES, apply_changes, expand_cases)
 ``execute``   processes / Dask, the resumable cache, the table (sweep, run_case, case_key)
+``workers``   local worker processes: per-case time limit, no worker outlives its parent
 ``studies``   TOML study files (Study, read_study)
 
 Every name is re-exported here: ``from bearingfe.sweep import ...`` is the
@@ -39,11 +40,12 @@ from __future__ import annotations
 from .cases import BASES, RUNS, PumpCase, PumpOutcome, ShoeCase, run_pump, run_shoe
 from .changes import (CHANGES, POCKET_SHAPES, apply_changes, centroid, check_change_name, expand_cases, get_field,
                       pocket_fraction, pocket_position, pocket_shape, set_field)
-from .execute import best_design, case_key, run_case, sweep
+from .execute import CacheWarning, best_design, case_key, estimated_elements, run_case, sweep
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
 from .studies import Study, read_study
 
 __all__ = [
+    "CacheWarning", "estimated_elements",
     "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
     "case_key", "expand_cases", "read_study", "run_case", "run_pump", "run_shoe", "set_field", "sweep",
 ]

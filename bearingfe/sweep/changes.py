@@ -17,6 +17,7 @@ from typing import Any, Callable, Iterable, Mapping
 import numpy as np
 
 from ..geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
+from ..limits import check_limit
 
 __all__ = [
     "CHANGES", "POCKET_SHAPES", "apply_changes", "centroid", "check_change_name", "expand_cases", "get_field", "pocket_fraction",
@@ -173,9 +174,14 @@ def apply_changes(base, changes: Mapping[str, Any]):
     return base
 
 
-def expand_cases(changes) -> list[dict[str, Any]]:
+def expand_cases(changes, max_cases: int | None = None) -> list[dict[str, Any]]:
     """Cases from a grid ``{name: [values]}`` (Cartesian product, first name outermost)
-    or from a list of ``{name: value}`` mappings."""
+    or from a list of ``{name: value}`` mappings.
+
+    The number of cases is checked against ``max_cases`` (default: the
+    ``cases`` limit of :mod:`bearingfe.limits`, 10000) before the grid is
+    expanded; :class:`bearingfe.limits.LimitError` beyond it.
+    """
     if isinstance(changes, Mapping):
         for name, values in changes.items():
             if isinstance(values, (str, bytes)) or not isinstance(values, Iterable):
@@ -184,7 +190,10 @@ def expand_cases(changes) -> list[dict[str, Any]]:
         for name, values in axes.items():
             if not values:
                 raise ValueError(f"grid values of {name!r} must not be empty")
+        check_limit("cases", math.prod(len(v) for v in axes.values()), max_cases, "max_cases")
         return [dict(zip(axes, combo)) for combo in itertools.product(*axes.values())]
+    if hasattr(changes, "__len__"):
+        check_limit("cases", len(changes), max_cases, "max_cases")
     cases = list(changes)
     for i, case in enumerate(cases):
         if not isinstance(case, Mapping):

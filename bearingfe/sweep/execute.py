@@ -22,16 +22,19 @@ import hashlib
 import json
 import math
 import os
+import threading
 import time
+import warnings
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
+from ..limits import LimitError, check_limit, limit
 from ..version import __version__
 from .cases import RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
 
-__all__ = ["best_design", "case_key", "run_case", "sweep"]
+__all__ = ["CacheWarning", "best_design", "case_key", "estimated_elements", "run_case", "run_case_timed", "sweep"]
 
 
 # -- one case -----------------------------------------------------------------------
@@ -91,24 +94,47 @@ def _output_name(output) -> str:
 
 # -- executors --------------------------------------------------------------------
 
-def _run_local(tasks: dict, run, outputs, max_workers, progress: bool) -> Iterable[tuple[str, dict]]:
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+def _failed(outputs, message: str, seconds: float = math.nan) -> dict:
+    return {"outputs": {_output_name(o): math.nan for o in outputs}, "seconds": seconds, "error": message}
 
+
+def _run_local(tasks: dict, run, outputs, max_workers, progress: bool, time_limit: float
+               ) -> Iterable[tuple[str, dict]]:
     from tqdm.auto import tqdm
 
-    workers = max(1, min(max_workers or os.cpu_count() or 1, len(tasks)))
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(run_case, design, run, outputs): key for key, design in tasks.items()}
-        for future in tqdm(as_completed(futures), total=len(futures), disable=not progress, desc="cases"):
-            yield futures[future], _record(future, outputs)
+    from .workers import run_pool
+
+    workers = max_workers or os.cpu_count() or 1
+    stream = run_pool(tasks, run_case, lambda design: (design, run, outputs), max_workers=workers,
+                      time_limit=time_limit)
+    with tqdm(total=len(tasks), disable=not progress, desc="cases") as bar:
+        for key, ok, value in stream:
+            bar.update(1)
+            yield key, (value if ok else _failed(outputs, value))
 
 
-def _run_dask(client, tasks: dict, run, outputs, progress: bool) -> Iterable[tuple[str, dict]]:
+def run_case_timed(design, run, outputs: Sequence, time_limit: float) -> dict:
+    """:func:`run_case` with a time limit, for workers that are not ours to kill (Dask).
+
+    The case runs in a thread; past ``time_limit`` seconds it is reported as
+    failed at once (its computation ends with the worker's next restart or
+    when it finishes; the result is dropped).
+    """
+    box: dict = {}
+    thread = threading.Thread(target=lambda: box.update(record=run_case(design, run, outputs)), daemon=True)
+    thread.start()
+    thread.join(time_limit)
+    if "record" in box:
+        return box["record"]
+    return _failed(outputs, f"CaseTimeout: the case ran past its time limit of {time_limit:g} s (raise it with "
+                            f"sweep(time_limit=...) or [study] time_limit)", seconds=float(time_limit))
+
+
+def _run_dask(client, tasks: dict, run, outputs, progress: bool, time_limit: float) -> Iterable[tuple[str, dict]]:
     from distributed import as_completed
     from tqdm.auto import tqdm
 
-    futures = {client.submit(run_case, design, run, outputs, key=f"bearingfe-case-{key}"): key
+    futures = {client.submit(run_case_timed, design, run, outputs, time_limit, key=f"bearingfe-case-{key}"): key
                for key, design in tasks.items()}
     for future in tqdm(as_completed(list(futures)), total=len(futures), disable=not progress, desc="cases"):
         yield futures[future], _record(future, outputs)
@@ -120,34 +146,77 @@ def _record(future, outputs) -> dict:
     try:
         return future.result()
     except Exception as exc:
-        return {"outputs": {_output_name(o): math.nan for o in outputs}, "seconds": math.nan,
-                "error": f"{type(exc).__name__}: {exc}"}
+        return _failed(outputs, f"{type(exc).__name__}: {exc}")
 
 
 # -- cache -------------------------------------------------------------------------
 
-def _read_cached(cache: Path | None, key: str) -> dict | None:
+class CacheWarning(UserWarning):
+    """A cache record was not used (damaged, edited, of another version or design): the case is recomputed."""
+
+
+def _checksum(data: Mapping) -> str:
+    body = {k: v for k, v in data.items() if k != "checksum"}
+    return hashlib.sha256(json.dumps(body, sort_keys=True, allow_nan=False).encode()).hexdigest()
+
+
+def _number_or_none(value) -> bool:
+    return value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)
+                             and math.isfinite(value))
+
+
+def _check_record(data, key: str, design, outputs) -> str | None:
+    """Why a cache record cannot be used (None: it can)."""
+    if not isinstance(data, dict):
+        return "not a JSON object"
+    names = [_output_name(o) for o in outputs]
+    if not (isinstance(data.get("outputs"), dict) and sorted(data["outputs"]) == sorted(names)
+            and all(_number_or_none(v) for v in data["outputs"].values())
+            and _number_or_none(data.get("seconds")) and isinstance(data.get("error"), (str, type(None)))):
+        return "fields missing or of the wrong type"
+    if not isinstance(data.get("checksum"), str):
+        return "no checksum (written by an older bearingfe?)"
+    try:
+        if data["checksum"] != _checksum(data):
+            return "checksum does not match its content (edited or damaged)"
+    except ValueError:
+        return "not valid JSON numbers"
+    if data.get("version") != _version():
+        return f"written by bearingfe {data.get('version')!r}, this is {_version()}"
+    if data.get("key") != key or data.get("design") != repr(design):
+        return "it is the record of another case"
+    return None
+
+
+def _read_cached(cache: Path | None, key: str, design=None, outputs: Sequence = ()) -> dict | None:
     if cache is None:
         return None
     path = cache / f"{key}.json"
     if not path.exists():
         return None
     try:
-        record = json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError):
-        return None  # a torn write: run the case again
-    record["outputs"] = {k: math.nan if v is None else v for k, v in record["outputs"].items()}
-    return record
+        data = json.loads(path.read_text())
+        why = _check_record(data, key, design, outputs)
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError, RecursionError) as exc:
+        why = f"unreadable ({type(exc).__name__})"
+    if why is not None:
+        warnings.warn(f"cache record {path.name} not used: {why}; the case is computed again", CacheWarning,
+                      stacklevel=3)
+        return None
+    outputs = {k: math.nan if v is None else float(v) for k, v in data["outputs"].items()}
+    seconds = math.nan if data["seconds"] is None else float(data["seconds"])
+    return {"outputs": outputs, "seconds": seconds, "error": data["error"]}
 
 
 def _write_cached(cache: Path | None, key: str, case: Mapping, design, record: dict) -> None:
     if cache is None:
         return
     data = {"key": key, "version": _version(), "changes": {k: _jsonable(v) for k, v in case.items()},
-            "design": repr(design), "outputs": {k: None if math.isnan(v) else v
+            "design": repr(design), "outputs": {k: None if not math.isfinite(v) else v
                                                 for k, v in record["outputs"].items()},
-            "seconds": None if math.isnan(record["seconds"]) else record["seconds"],
+            "seconds": None if not math.isfinite(record["seconds"]) else record["seconds"],
             "error": record["error"]}
+    data["checksum"] = _checksum(data)
     tmp = cache / f".{key}.json.tmp"
     tmp.write_text(json.dumps(data, indent=1))
     os.replace(tmp, cache / f"{key}.json")  # atomic: a killed sweep leaves no torn file
@@ -155,17 +224,35 @@ def _write_cached(cache: Path | None, key: str, case: Mapping, design, record: d
 
 def _jsonable(value):
     try:
-        json.dumps(value)
+        json.dumps(value, allow_nan=False)
         return value
-    except TypeError:
+    except (TypeError, ValueError):
         return repr(value)
+
+
+# -- size guards --------------------------------------------------------------------
+
+def estimated_elements(design) -> float | None:
+    """Triangles a mesh of ``design`` will have: ``2.3 area / mesh_size^2`` (None if it has no mesh size).
+
+    A design with a ``mesh_size`` and a surface (``surface`` or ``pump.surface``).
+    An equilateral triangle of side ``h`` has area ``0.433 h^2``, so a
+    surface of area ``A`` takes about ``2.3 A / h^2`` of them (gmsh's
+    meshes come within a few tens of percent of this).
+    """
+    size = getattr(design, "mesh_size", None)
+    surface = getattr(design, "surface", None) or getattr(getattr(design, "pump", None), "surface", None)
+    if not isinstance(size, (int, float)) or not size > 0 or not hasattr(surface, "area"):
+        return None
+    return 2.31 * float(surface.area) / float(size) ** 2
 
 
 # -- the sweep ----------------------------------------------------------------------
 
 def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", client=None,
           cache: str | Path | None = None, retry_failed: bool = False, max_workers: int | None = None,
-          progress: bool = False):
+          progress: bool = False, time_limit: float | None = None, max_cases: int | None = None,
+          max_elements: float | None = None):
     """Run a design study: every case in its own process, results in one table.
 
     Parameters
@@ -193,6 +280,20 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
         Local processes (default: CPU count).
     progress : bool
         Show a tqdm progress bar.
+    time_limit : float, optional
+        Seconds one case may run [s]; a case past it is stopped (its local
+        worker killed) and recorded as failed with ``CaseTimeout``. Default
+        the ``case_seconds`` limit of :mod:`bearingfe.limits` (3600 s).
+    max_cases, max_elements : optional
+        Size guards checked before any case runs: the number of cases and
+        the estimated triangles of each case's mesh
+        (:func:`estimated_elements`); defaults from :mod:`bearingfe.limits`.
+
+    Cache records carry a SHA-256 checksum of their content and the package
+    version; a record that does not match (edited, damaged, another version
+    or another case) is not used: the case is computed again and a
+    :class:`CacheWarning` says why. The checksum catches damage and edits,
+    not a forger who recomputes it.
 
     Returns
     -------
@@ -203,7 +304,7 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
     """
     import pandas as pd
 
-    cases = expand_cases(changes)
+    cases = expand_cases(changes, max_cases)
     outputs = list(outputs)
     if not outputs:
         raise ValueError("outputs must name at least one output")
@@ -212,6 +313,10 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
     _resolve(run, RUNS, "run")
     if max_workers is not None and not (isinstance(max_workers, int) and max_workers >= 1):
         raise ValueError(f"max_workers must be an integer >= 1, got {max_workers!r}")
+    if time_limit is None:
+        time_limit = limit("case_seconds")
+    if isinstance(time_limit, bool) or not isinstance(time_limit, (int, float)) or not 0 < time_limit < math.inf:
+        raise ValueError(f"time_limit must be a number of seconds > 0, got {time_limit!r}")
     names = list(dict.fromkeys(name for case in cases for name in case))
     for name in names:
         check_change_name(base, name)
@@ -224,21 +329,32 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
         try:
             design = apply_changes(base, case)
             key = case_key(design, run, outputs)
-            designs.setdefault(key, (case, design))
         except Exception as exc:  # an impossible design fails at once, in this process, uncached
-            key = case_key((base, sorted(case.items(), key=str)), run, outputs)
-            records[key] = {"outputs": {_output_name(o): math.nan for o in outputs}, "seconds": 0.0,
-                            "error": f"{type(exc).__name__}: {exc}"}
+            design, key, error = None, case_key((base, sorted(case.items(), key=str)), run, outputs), exc
+        else:
+            error = None
+            elements = estimated_elements(design)
+            if elements is not None:
+                try:
+                    check_limit("elements", elements, max_elements, "max_elements")
+                except LimitError as exc:
+                    raise LimitError(f"case {case}: {exc}") from None
+            designs.setdefault(key, (case, design))
+        if error is not None:
+            records[key] = _failed(outputs, f"{type(error).__name__}: {error}", seconds=0.0)
             cached[key] = False
+        if key in keys:  # a repeated case: shares the first one's record or run
+            keys.append(key)
+            continue
         keys.append(key)
-        hit = _read_cached(cache, key) if key not in records else None
+        hit = _read_cached(cache, key, design, outputs) if key not in records else None
         if hit is not None and (hit["error"] is None or not retry_failed):
             records[key], cached[key] = hit, True
 
     tasks = {key: design for key, (case, design) in designs.items() if key not in records}
     if tasks:
-        stream = (_run_dask(client, tasks, run, outputs, progress) if client is not None
-                  else _run_local(tasks, run, outputs, max_workers, progress))
+        stream = (_run_dask(client, tasks, run, outputs, progress, time_limit) if client is not None
+                  else _run_local(tasks, run, outputs, max_workers, progress, time_limit))
         for key, record in stream:
             records[key], cached[key] = record, False
             _write_cached(cache, key, *designs[key], record)

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..schema import SchemaError, Table, anything, choice, choices, read_table, read_toml, text
+from ..schema import SchemaError, Table, anything, choice, choices, positive_number, read_table, read_toml, text
 from .cases import BASES, RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
@@ -36,6 +36,9 @@ class Study:
         Keys of :data:`OUTPUTS`.
     objective : str
         Output that ranks the designs; ``sense`` is ``"max"`` or ``"min"``.
+    time_limit : float or None
+        ``[study] time_limit``: seconds one case may take (None: the default
+        of :func:`~bearingfe.sweep.sweep`).
     """
 
     name: str
@@ -45,6 +48,7 @@ class Study:
     outputs: tuple[str, ...]
     objective: str
     sense: str
+    time_limit: float | None = None
 
 
 def _settings(where: str, value) -> dict:
@@ -58,7 +62,8 @@ def _settings(where: str, value) -> dict:
 STUDY = {
     "study": Table({"name": (text, None), "run": (choice(lambda: RUNS), "shoe"),
                     "outputs": (choices(lambda: OUTPUTS, empty=False), tuple(STANDARD_OUTPUTS)),
-                    "objective": (text, None), "sense": (choice(("max", "min")), "max")}),
+                    "objective": (text, None), "sense": (choice(("max", "min")), "max"),
+                    "time_limit": (positive_number, None)}),
     "base": Table({"kind": (choice(lambda: BASES), None), "set": (_settings, {})}),
     "grid": (anything, None),
     "cases": (anything, None),
@@ -95,4 +100,4 @@ def read_study(path: str | Path) -> Study:
         raise SchemaError(f"{where}: the study has no cases")
     name = Path(path).stem if study["name"] is None else study["name"]
     return Study(name=name, base=base, changes=changes, run=run, outputs=tuple(outputs), objective=objective,
-                 sense=study["sense"])
+                 sense=study["sense"], time_limit=study["time_limit"])

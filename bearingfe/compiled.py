@@ -1,0 +1,383 @@
+r"""Compiled film operator: the film-independent linear maps of a mesh and element, built once.
+
+Everything the Reynolds equation needs from a film state enters through a few
+fields at the quadrature points (``h^3`` or ``D``, the sources, ``h`` and its
+gradient). What does not depend on the film is built once per
+``(mesh, element)`` (issue 13):
+
+- the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
+  (gradients) from dofs to the ``n_q`` quadrature points;
+- the sparsity pattern of the system matrix and the scatter matrices
+  ``S_stiff``, ``S_mass`` (``nnz x n_q``) such that the matrix of a film is
+  ``A.data = S_stiff @ h^3`` (direct form) or
+  ``A.data = S_stiff @ 1 - S_mass @ D`` (pi form), with the index maps that
+  cut out the condensed blocks ``A[I, I]`` and ``A[I, inlet]``;
+- the fill-reducing ordering of ``A[I, I]`` (the symbolic part SuperLU lets
+  one keep; see :class:`bearingfe.linalg.PatternFactorizer`), so a new film
+  costs one numeric factorization;
+- the maps from quadrature values to loads (``cos phi dx``, ``sin phi dx``,
+  ``dx``), to the source vectors (``E^T dx`` on the interior dofs) and to the
+  boundary flows of each outflow group (three dense ``n_groups x n_q``
+  matrices, plus the facet maps of the corner dofs).
+
+A film state then costs sparse mat-vecs, one numeric factorization and the
+solves; flows and friction of many states (a trajectory) are dense
+products over the stacked samples (:meth:`CompiledOperator.outputs`).
+The scikit-fem assembly (:func:`bearingfe.superposition.superpose` with
+``assembly="reference"``) gives the same numbers to round-off (tests/test_compiled.py).
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .forms import film_at
+
+__all__ = ["CompiledOperator", "compile_operator", "FilmFlows"]
+
+
+def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet)."""
+    dofs = basis.element_dofs  # (Nbfun, n_cells)
+    n_cells, n_points = np.asarray(basis.basis[0][0]).shape
+    rows = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+    r = np.concatenate([rows.ravel()] * len(basis.basis))
+    c = np.concatenate([np.repeat(dofs[i], n_points) for i in range(len(basis.basis))])
+    out = []
+    for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1]):
+        v = np.concatenate([np.asarray(part(phi[0])).ravel() for phi in basis.basis])
+        out.append(sp.csr_matrix((v, (r, c)), shape=(n_cells * n_points, n_dofs)))
+    return tuple(out)
+
+
+def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CSR pattern of the element matrices' union and, for every (i, j, cell), its position in it."""
+    nb = dofs.shape[0]
+    rows = np.repeat(dofs, nb, axis=0)           # (nb*nb, n_cells): row dof of local pair (i, j)
+    cols = np.tile(dofs, (nb, 1))                # column dof
+    keys = rows.astype(np.int64) * n + cols
+    unique, position = np.unique(keys.ravel(), return_inverse=True)
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
+    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape)
+
+
+def _scatter(basis, position: np.ndarray, nnz: int, kind: str) -> sp.csr_matrix:
+    """``S`` with ``A.data = S @ c`` for ``int c grad u . grad v`` (stiff) or ``int c u v`` (mass)."""
+    nb = len(basis.basis)
+    n_cells, n_points = basis.dx.shape
+    cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+    data, r, c = [], [], []
+    for i in range(nb):
+        vi = basis.basis[i][0]
+        for j in range(nb):
+            vj = basis.basis[j][0]
+            if kind == "stiff":
+                k = vi.grad[0] * vj.grad[0] + vi.grad[1] * vj.grad[1]
+            else:
+                k = np.asarray(vi) * np.asarray(vj)
+            data.append((np.asarray(k) * basis.dx).ravel())
+            r.append(np.repeat(position[i * nb + j], n_points))
+            c.append(cols.ravel())
+    return sp.csr_matrix((np.concatenate(data), (np.concatenate(r), np.concatenate(c))),
+                         shape=(nnz, n_cells * n_points))
+
+
+def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
+    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
+    carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
+    block = carrier[rows][:, cols].tocsr()
+    block.sort_indices()
+    return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+
+
+@dataclass(frozen=True)
+class FilmFlows:
+    """Flows, mass balance and friction of one or many film states (arrays over the samples)."""
+
+    flows: Mapping[str, np.ndarray]
+    mass_balance: np.ndarray
+    friction: np.ndarray
+
+
+@dataclass(eq=False)
+class CompiledOperator:
+    """Film-independent linear maps of one ``(mesh, element)`` (see the module docstring).
+
+    Built by :func:`compile_operator`; the :class:`~bearingfe.superposition.Operators`
+    of a mesh keep one. The scatter matrices are built on first use (the
+    direct form needs no mass scatter).
+    """
+
+    n_dofs: int
+    interior: np.ndarray
+    inlet: np.ndarray
+    x: np.ndarray                  # (2, n_q) quadrature points
+    dx: np.ndarray                 # (n_q,) weights
+    value: sp.csr_matrix           # E: (n_q, n_dofs)
+    grad: tuple[sp.csr_matrix, sp.csr_matrix]
+    indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
+    indices: np.ndarray
+    loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
+    sources: sp.csr_matrix         # (E^T dx)[I]: (n_I, n_q)
+    groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
+    group_maps: np.ndarray         # (3, n_groups, n_q): group sums of the residual of q_phi dx, q_z dx, dh/dt dx
+    corners: tuple                 # facet data of the corner dofs (see _corner_terms)
+    _basis: object = field(repr=False)
+    _position: np.ndarray = field(repr=False)
+    _lazy: dict = field(default_factory=dict, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def __getstate__(self) -> dict:
+        state = self.__dict__.copy()
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, _lock=threading.Lock())
+
+    @property
+    def nnz(self) -> int:
+        return int(self.indices.size)
+
+    def _get(self, name: str, build: Callable):
+        if name not in self._lazy:
+            self._lazy[name] = build()
+        return self._lazy[name]
+
+    @property
+    def stiffness_scatter(self) -> sp.csr_matrix:
+        """``S_stiff``: ``A.data = S_stiff @ c`` for ``int c grad u . grad v``."""
+        return self._get("stiff", lambda: _scatter(self._basis, self._position, self.nnz, "stiff"))
+
+    @property
+    def mass_scatter(self) -> sp.csr_matrix:
+        """``S_mass``: ``A.data = S_mass @ c`` for ``int c u v``."""
+        return self._get("mass", lambda: _scatter(self._basis, self._position, self.nnz, "mass"))
+
+    @property
+    def laplace_data(self) -> np.ndarray:
+        """Values of ``int grad u . grad v`` on the pattern."""
+        return self._get("laplace", lambda: self.stiffness_scatter @ np.ones(self.dx.size))
+
+    def _blocks(self):
+        def build():
+            I, inlet = self.interior, self.inlet
+            return (_block(self.indptr, self.indices, I, I, self.n_dofs),
+                    _block(self.indptr, self.indices, I, inlet, self.n_dofs))
+        return self._get("blocks", build)
+
+    # -- the system of a film -------------------------------------------------------------
+
+    def matrix_data(self, formulation: str, h: np.ndarray, D: np.ndarray) -> np.ndarray:
+        """Values of the system matrix on the pattern for a film (``h``, ``D`` at the points)."""
+        if formulation == "direct":
+            return self.stiffness_scatter @ h**3
+        return self.laplace_data - self.mass_scatter @ D
+
+    def matrix(self, data: np.ndarray) -> sp.csr_matrix:
+        """The full matrix from its values on the pattern."""
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n_dofs, self.n_dofs))
+
+    def condensed(self, data: np.ndarray) -> sp.csr_matrix:
+        """``A[I, I]`` from the values on the pattern."""
+        (sel, idx, ptr), _ = self._blocks()
+        n = self.interior.size
+        return sp.csr_matrix((data[sel], idx, ptr), shape=(n, n))
+
+    def coupling(self, data: np.ndarray) -> sp.csr_matrix:
+        """``A[I, inlet]`` from the values on the pattern."""
+        _, (sel, idx, ptr) = self._blocks()
+        return sp.csr_matrix((data[sel], idx, ptr), shape=(self.interior.size, self.inlet.size))
+
+    def coupling_times(self, data: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """``A[I, inlet] @ g`` from the values on the pattern (no matrix built)."""
+        def build():
+            _, (sel, idx, ptr) = self._blocks()
+            return sel, idx, np.repeat(np.arange(ptr.size - 1), np.diff(ptr))
+        sel, idx, rows = self._get("coupling", build)
+        return np.bincount(rows, weights=data[sel] * g[idx], minlength=self.interior.size)
+
+    def factorize_condensed(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+        """Numeric SuperLU factorization of ``A[I, I]`` (symmetric mode) in a fill-reducing order
+        found once for the pattern (minimum degree on ``A^T + A``, as ``factorize_splu_sym``)."""
+        (sel, idx, ptr), _ = self._blocks()
+        n = self.interior.size
+        if "order" not in self._lazy:
+            lu = spla.splu(sp.csc_matrix((data[sel], idx, ptr), shape=(n, n)), permc_spec="MMD_AT_PLUS_A",
+                           diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+            order = np.argsort(lu.perm_c)
+            carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
+            permuted = carrier[order][:, order].tocsc()
+            permuted.sort_indices()
+            # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
+            # matrix object is kept and only its values change (SuperLU copies them when it factors)
+            self._lazy["order"] = (order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted)
+        order, inverse, psel, template = self._lazy["order"]
+        with self._lock:  # one matrix object per mesh: fill and factor it in one go (threads)
+            template.data[:] = data[psel]
+            lu = spla.splu(template, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
+
+        return solve
+
+    # -- pressure, loads, flows and friction -----------------------------------------------
+
+    def pressure(self, u: np.ndarray, h: np.ndarray, dh: np.ndarray, pi: np.ndarray):
+        """``p`` and ``grad p`` at the points for unknowns ``u`` (``(n_dofs, S)``), films
+        ``h``, ``dh`` (``(n_q, S)``, ``(2, n_q, S)``) and a mask of pi-form samples ``(S,)``."""
+        value = self.value @ u
+        gradient = np.stack([self.grad[0] @ u, self.grad[1] @ u])
+        s = np.where(pi, h**-1.5, 1.0)
+        p = s * value
+        dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
+        return p, dp
+
+    def outputs(self, u: np.ndarray, films: Sequence, h: np.ndarray, dh: np.ndarray, hdot: np.ndarray,
+                weights: np.ndarray, sliding: np.ndarray, pi: np.ndarray,
+                cavitated: np.ndarray | None = None) -> FilmFlows:
+        """Flows, mass balance and friction of ``S`` film states at once.
+
+        Parameters
+        ----------
+        u : ndarray, shape (n_dofs, S)
+            Unknowns (``p`` or ``Pi``).
+        films : sequence of Film, length S
+            For the facet fluxes of the corner dofs.
+        h, dh, hdot : ndarray
+            Film thickness, its gradient and ``dh/dt`` at the points, shapes
+            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``.
+        weights : ndarray, shape (4, S)
+            Unit-source weights; the wedge is ``weights[0]``.
+        sliding : ndarray, shape (S,)
+        pi : ndarray of bool, shape (S,)
+            Samples in the pi form (the others are direct).
+        cavitated : ndarray of bool, shape (n_dofs, S), optional
+            Ruptured dofs (see :func:`bearingfe.superposition._flows`).
+        """
+        wedge = weights[0]
+        _, dp = self.pressure(u, h, dh, pi)
+        c = -h**3 / 12.0
+        q0 = c * dp[0] + 0.5 * wedge * h
+        q1 = c * dp[1]
+        dxc = self.dx[:, None]
+        qx, qz, qh = q0 * dxc, q1 * dxc, hdot * dxc
+        residual = self.group_maps[0] @ qx + self.group_maps[1] @ qz - self.group_maps[2] @ qh
+        residual = residual + self._corner_terms(u, films, wedge, pi)
+        friction = np.sum((sliding / h + 0.5 * h * dp[0]) * dxc, axis=0)
+        squeeze = np.sum(qh, axis=0)
+        flows = self._named(residual, squeeze)
+        balance = flows["inlet"] - self._outflow(flows) - flows["squeeze"]
+        if cavitated is not None:
+            r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
+            cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
+            source = self._ruptured_source(u, cavitated, wedge, dh, hdot)
+            corrected = self._named(residual + self.group_maps[2] @ (source * dxc), squeeze)
+            corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])
+                                       - (self._outflow(corrected) - self._outflow(flows)))
+            flows, balance = corrected, balance - cavitation
+        return FilmFlows(flows=flows, mass_balance=balance, friction=friction)
+
+    def _named(self, residual: np.ndarray, squeeze: np.ndarray) -> dict[str, np.ndarray]:
+        flows = {name: residual[k] for k, name in enumerate(self.groups)}
+        flows["inlet"] = -flows["inlet"] if "inlet" in flows else np.zeros_like(squeeze)
+        flows["squeeze"] = squeeze
+        return flows
+
+    @staticmethod
+    def _outflow(flows: Mapping[str, np.ndarray]) -> np.ndarray:
+        return sum(v for k, v in flows.items() if k not in ("inlet", "squeeze", "cavitation"))
+
+    def _ruptured_source(self, u, cavitated, wedge, dh, hdot) -> np.ndarray:
+        """``wedge/2 dh/dphi + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
+        dofs = self._basis.element_dofs
+        ruptured = np.all(u[dofs] == 0.0, axis=0) & np.any(cavitated[dofs], axis=0)  # (n_cells, S)
+        n_points = self._basis.dx.shape[1]
+        mask = np.repeat(ruptured, n_points, axis=0)
+        return np.where(mask, 0.5 * wedge * dh[0] + hdot, 0.0)
+
+    def _corner_terms(self, u, films, wedge, pi) -> np.ndarray:
+        """Per group: direct facet fluxes at its corner dofs minus their weighted shared sum."""
+        out = np.zeros((len(self.groups), u.shape[1]))
+        if not self.corners:
+            return out
+        dofs, terms = self.corners
+        direct = {}
+        for name, (E, Gx, Gz, normals, weights, x) in terms.items():
+            at = [film_at(f, x) for f in films]
+            h = np.stack([a.h for a in at], axis=1)
+            dh = np.stack([np.stack(a.dh) for a in at], axis=2)
+            value, gx, gz = E @ u, Gx @ u, Gz @ u
+            s = np.where(pi, h**-1.5, 1.0)
+            p = s * value
+            chain = np.where(pi, 1.5 * p / h, 0.0)
+            dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
+            c = -h**3 / 12.0
+            qn = (c * dp0 + 0.5 * wedge * h) * normals[0][:, None] + c * dp1 * normals[1][:, None]
+            direct[name] = weights @ qn  # (n_corner_dofs, S)
+        weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
+        shared = sum(np.where(weights_of[name][:, None] > 0, d, 0.0) for name, d in direct.items())
+        for k, name in enumerate(self.groups):
+            if name in direct:
+                w = weights_of[name]
+                member = w > 0
+                out[k] = np.sum(direct[name][member] - w[member, None] * shared[member], axis=0)
+        return out
+
+
+def compile_operator(ops) -> CompiledOperator:
+    """Build the compiled operator of :class:`~bearingfe.superposition.Operators` ``ops``."""
+    basis, n = ops.basis, ops.n_dofs
+    E, Gx, Gz = _interpolation(basis, n)
+    indptr, indices, position = _pattern(basis.element_dofs, n)
+    dx = np.asarray(basis.dx).ravel()
+    x = np.asarray(ops.x).reshape(2, -1)
+    I = ops.interior
+    loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
+    sources = (E.T.tocsr()[I] @ sp.diags(dx)).tocsr()
+    groups = tuple(ops.flow_groups)
+    A = np.zeros((len(groups), n))
+    corner_dofs = set()
+    for k, name in enumerate(groups):
+        dofs, w = ops.flow_groups[name]
+        corner = w < 1
+        A[k, dofs[~corner]] = 1.0
+        if name in ops.facet_groups:
+            A[k, dofs[corner]] = w[corner]
+            corner_dofs.update(dofs[corner].tolist())
+        else:  # a group without facet fluxes: its corner dofs count with their weight only
+            A[k, dofs[corner]] = w[corner]
+    group_maps = np.stack([(G @ A.T).T for G in (Gx, Gz, E)])
+    corners: tuple = ()
+    lazy: dict = {}
+    if ops.facet_groups and corner_dofs:
+        cdofs = np.array(sorted(corner_dofs))
+        terms = {}
+        weights_of = {}
+        for name, fb in ops.facet_bases.items():
+            Ef, Gfx, Gfz = _interpolation(fb, n)
+            normals = np.asarray(fb.normals).reshape(2, -1)
+            xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
+            phi_ds = (Ef.T @ sp.diags(np.asarray(fb.dx).ravel())).tocsr()[cdofs].toarray()
+            # only the facets where a corner dof's basis function lives contribute
+            per_facet = np.abs(phi_ds).reshape(cdofs.size, *np.shape(fb.dx)).max(axis=(0, 2))
+            keep = np.repeat(per_facet > 1e-14 * per_facet.max(), np.shape(fb.dx)[1])
+            terms[name] = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], phi_ds[:, keep], xf[:, keep])
+            dofs, w = ops.flow_groups[name]
+            wc = np.zeros(cdofs.size)
+            corner = w < 1
+            wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
+            weights_of[name] = wc
+        corners = (cdofs, terms)
+        lazy["corner_weights"] = weights_of
+    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
+                            indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,
+                            group_maps=group_maps, corners=corners, _basis=basis, _position=position,
+                            _lazy=lazy)
