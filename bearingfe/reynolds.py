@@ -114,9 +114,10 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         interpolated: nested iteration keeps the active-set count bounded
         under refinement (docs/validation.md).
     cavitation_pressure : float
-        Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``.
-        Used by ``"jfo"`` and by the finite-volume ``"reynolds"``; the
-        Galerkin models need the default 0.
+        Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``,
+        for ``"jfo"`` and ``"reynolds"`` (``p >= p_c``). A non-zero value
+        with ``"reynolds"`` is solved by the finite-volume Swift-Stieber of
+        :mod:`bearingfe.jfo` (P1, direct form); ``"gumbel"`` needs 0.
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
         object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
@@ -141,14 +142,15 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    if cavitation == "jfo" or (isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes
-                               and cavitation in ("none", "reynolds")):
+    finite_volumes = isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes
+    if cavitation == "jfo" or (finite_volumes and cavitation in ("none", "reynolds")) or (
+            cavitation == "reynolds" and float(cavitation_pressure) != 0.0):
         return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
                          cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
                          warm_start=warm_start, cavitation=cavitation)
     if float(cavitation_pressure) != 0.0:
-        raise ValueError(f"cavitation_pressure must be 0 for the Galerkin models, got {cavitation_pressure!r} "
-                         f"with cavitation={cavitation!r} (use cavitation='jfo')")
+        raise ValueError(f"cavitation_pressure must be 0 with cavitation={cavitation!r}, got "
+                         f"{cavitation_pressure!r} (it applies to 'reynolds' and 'jfo')")
     weights = source_weights(wedge, squeeze, inlet_pressure)
     check_operating_point(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:

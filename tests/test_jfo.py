@@ -324,9 +324,26 @@ def test_jfo_is_a_model_of_the_table():
     direct = solve_reynolds(mesh, film, inlet_pressure=0.5, cavitation="jfo", cavitation_pressure=-0.01)
     assert via_table.cavitation == "jfo" and via_table.cavitation_pressure == -0.01
     assert np.array_equal(via_table.pressure, direct.pressure) and np.array_equal(via_table.theta, direct.theta)
-    # the Galerkin models keep p_c = 0 and say so
+    # Gumbel has no cavity pressure and says so
     with pytest.raises(ValueError, match="cavitation_pressure"):
-        solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-0.01)
+        solve_reynolds(mesh, film, cavitation="gumbel", cavitation_pressure=-0.01)
+
+
+def test_cavitation_pressure_applies_to_swift_stieber():
+    mesh = _pocket_mesh(0.05)
+    film = CosineFilm(0.6, math.pi)
+    zero = solve_reynolds(mesh, film, cavitation="reynolds", formulation="direct")
+    fv_zero = solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-1e-300)
+    low = solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-0.05)
+    # p >= p_c with complementarity on the finite-volume scheme
+    assert low.pressure.min() >= -0.05 - 1e-12 and np.all(low.pressure[low.cavitated] == -0.05)
+    assert low.cavitation_pressure == -0.05 and low.element == "P1"
+    # with p_c -> 0 it is the Galerkin Swift-Stieber solution up to discretization (measured 8e-5)
+    assert np.linalg.norm(fv_zero.force - zero.force) < 1e-3 * np.linalg.norm(zero.force)
+    # a lower cavity pressure lets the film pull more suction: the load (int p) drops
+    assert low.integral < fv_zero.integral
+    with pytest.raises(ValueError, match="P1"):
+        solve_reynolds(mesh, film, cavitation="reynolds", cavitation_pressure=-0.05, element="P2")
 
 
 def test_nested_warm_start_from_a_coarser_mesh(journal):
