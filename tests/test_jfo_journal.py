@@ -77,3 +77,23 @@ def test_periodic_bearing_input():
     bearing = JournalBearing(1.0, periodic=True, grooves=(Groove(0.0, 0.2),))
     with pytest.raises(ValueError, match="Raimondi-Boyd"):
         performance(bearing, 0.5)
+
+
+def test_journal_scene_runs_with_jfo(tmp_path):
+    import json
+    from pathlib import Path
+
+    from bearingfe.cli import main
+    shipped = (Path(__file__).resolve().parents[1] / "scenes" / "journal.toml").read_text()
+    text = shipped.replace('cavitation = "reynolds"', 'cavitation = "jfo"').replace(
+        "estimate_error = true", "estimate_error = false").replace("size = 0.05 ", "size = 0.1  ")
+    text = text.replace('pictures = ["pressure", "wrapped", "film"]', "pictures = []")
+    assert 'cavitation = "jfo"' in text
+    scene = tmp_path / "journal_jfo.toml"
+    scene.write_text(text)
+    assert main(["run", str(scene), "--out", str(tmp_path / "out")]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["solver"]["cavitation"] == "jfo"
+    # the shipped bearing (L/D 0.5, S 0.2) on this mesh: eps 0.688112 under Swift-Stieber, 0.688101 under JFO
+    table = {row[0]: row[1] for row in summary["table"]}
+    assert abs(table["eccentricity ratio"] - 0.688112) < 1e-4
