@@ -8,10 +8,11 @@ gradient). What does not depend on the film is built once per
 - the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
   (gradients) from dofs to the ``n_q`` quadrature points;
 - the sparsity pattern of the system matrix and the scatter matrices
-  ``S_stiff``, ``S_mass`` (``nnz x n_q``) such that the matrix of a film is
-  ``A.data = S_stiff @ h^3`` (direct form) or
-  ``A.data = S_stiff @ 1 - S_mass @ D`` (pi form), with the index maps that
-  cut out the condensed blocks ``A[I, I]`` and ``A[I, inlet]``;
+  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``; both forms are
+  symmetric) such that the matrix of a film is ``A.data = (S_stiff @
+  h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 - S_mass @
+  D)[twins]`` (pi form), with the index maps that cut out the condensed
+  blocks ``A[I, I]`` and ``A[I, inlet]``;
 - the fill-reducing ordering of ``A[I, I]`` (the symbolic part SuperLU lets
   one keep; see :class:`bearingfe.linalg.PatternFactorizer`), so a new film
   costs one numeric factorization;
@@ -67,25 +68,39 @@ def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape)
 
 
-def _scatter(basis, position: np.ndarray, nnz: int, kind: str) -> sp.csr_matrix:
-    """``S`` with ``A.data = S @ c`` for ``int c grad u . grad v`` (stiff) or ``int c u v`` (mass)."""
+def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
+    """For every entry of a symmetric pattern, the index of its upper-triangle twin among the
+    upper-triangle entries; and their number."""
+    rows = np.repeat(np.arange(n), np.diff(indptr))
+    keys = rows.astype(np.int64) * n + indices
+    lo, hi = np.minimum(rows, indices).astype(np.int64), np.maximum(rows, indices)
+    twin = np.searchsorted(keys, lo * n + hi)
+    upper = rows <= indices
+    rank = np.cumsum(upper) - 1
+    return rank[twin], int(upper.sum())
+
+
+def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> sp.csr_matrix:
+    """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
+    (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
+    triangle, and the lower one copies it."""
     nb = len(basis.basis)
     n_cells, n_points = basis.dx.shape
     cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
     data, r, c = [], [], []
     for i in range(nb):
         vi = basis.basis[i][0]
-        for j in range(nb):
+        for j in range(i, nb):
             vj = basis.basis[j][0]
             if kind == "stiff":
                 k = vi.grad[0] * vj.grad[0] + vi.grad[1] * vj.grad[1]
             else:
                 k = np.asarray(vi) * np.asarray(vj)
             data.append((np.asarray(k) * basis.dx).ravel())
-            r.append(np.repeat(position[i * nb + j], n_points))
+            r.append(np.repeat(twins[position[i * nb + j]], n_points))
             c.append(cols.ravel())
     return sp.csr_matrix((np.concatenate(data), (np.concatenate(r), np.concatenate(c))),
-                         shape=(nnz, n_cells * n_points))
+                         shape=(n_upper, n_cells * n_points))
 
 
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
@@ -126,7 +141,7 @@ class CompiledOperator:
     loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
     sources: sp.csr_matrix         # (E^T dx)[I]: (n_I, n_q)
     groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
-    group_maps: np.ndarray         # (3, n_groups, n_q): group sums of the residual of q_phi dx, q_z dx, dh/dt dx
+    group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
     corners: tuple                 # facet data of the corner dofs (see _corner_terms)
     _basis: object = field(repr=False)
     _position: np.ndarray = field(repr=False)
@@ -152,17 +167,22 @@ class CompiledOperator:
 
     @property
     def stiffness_scatter(self) -> sp.csr_matrix:
-        """``S_stiff``: ``A.data = S_stiff @ c`` for ``int c grad u . grad v``."""
-        return self._get("stiff", lambda: _scatter(self._basis, self._position, self.nnz, "stiff"))
+        """``S_stiff``: ``A.data = (S_stiff @ c)[twins]`` for ``int c grad u . grad v``."""
+        return self._get("stiff", lambda: _scatter(self._basis, self._position, *self.twins, "stiff"))
 
     @property
     def mass_scatter(self) -> sp.csr_matrix:
-        """``S_mass``: ``A.data = S_mass @ c`` for ``int c u v``."""
-        return self._get("mass", lambda: _scatter(self._basis, self._position, self.nnz, "mass"))
+        """``S_mass``: ``A.data = (S_mass @ c)[twins]`` for ``int c u v``."""
+        return self._get("mass", lambda: _scatter(self._basis, self._position, *self.twins, "mass"))
+
+    @property
+    def twins(self) -> tuple[np.ndarray, int]:
+        """Index of each pattern entry's upper-triangle twin, and the number of upper entries."""
+        return self._get("twins", lambda: _twins(self.indptr, self.indices, self.n_dofs))
 
     @property
     def laplace_data(self) -> np.ndarray:
-        """Values of ``int grad u . grad v`` on the pattern."""
+        """Values of ``int grad u . grad v`` on the upper triangle of the pattern."""
         return self._get("laplace", lambda: self.stiffness_scatter @ np.ones(self.dx.size))
 
     def _blocks(self):
@@ -177,8 +197,10 @@ class CompiledOperator:
     def matrix_data(self, formulation: str, h: np.ndarray, D: np.ndarray) -> np.ndarray:
         """Values of the system matrix on the pattern for a film (``h``, ``D`` at the points)."""
         if formulation == "direct":
-            return self.stiffness_scatter @ h**3
-        return self.laplace_data - self.mass_scatter @ D
+            upper = self.stiffness_scatter @ h**3
+        else:
+            upper = self.laplace_data - self.mass_scatter @ D
+        return upper[self.twins[0]]
 
     def matrix(self, data: np.ndarray) -> sp.csr_matrix:
         """The full matrix from its values on the pattern."""
@@ -308,20 +330,18 @@ class CompiledOperator:
         out = np.zeros((len(self.groups), u.shape[1]))
         if not self.corners:
             return out
-        dofs, terms = self.corners
-        direct = {}
-        for name, (E, Gx, Gz, normals, weights, x) in terms.items():
-            at = [film_at(f, x) for f in films]
-            h = np.stack([a.h for a in at], axis=1)
-            dh = np.stack([np.stack(a.dh) for a in at], axis=2)
-            value, gx, gz = E @ u, Gx @ u, Gz @ u
-            s = np.where(pi, h**-1.5, 1.0)
-            p = s * value
-            chain = np.where(pi, 1.5 * p / h, 0.0)
-            dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
-            c = -h**3 / 12.0
-            qn = (c * dp0 + 0.5 * wedge * h) * normals[0][:, None] + c * dp1 * normals[1][:, None]
-            direct[name] = weights @ qn  # (n_corner_dofs, S)
+        E, Gx, Gz, normals, x, parts = self.corners  # the facet points of all groups, stacked
+        at = [film_at(f, x) for f in films]
+        h = np.stack([a.h for a in at], axis=1)
+        dh = np.stack([np.stack(a.dh) for a in at], axis=2)
+        value, gx, gz = E @ u, Gx @ u, Gz @ u
+        s = np.where(pi, h**-1.5, 1.0)
+        p = s * value
+        chain = np.where(pi, 1.5 * p / h, 0.0)
+        dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
+        c = -h**3 / 12.0
+        qn = (c * dp0 + 0.5 * wedge * h) * normals[0][:, None] + c * dp1 * normals[1][:, None]
+        direct = {name: phi_ds @ qn[rows] for name, (rows, phi_ds) in parts.items()}  # (n_corner_dofs, S)
         weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
         shared = sum(np.where(weights_of[name][:, None] > 0, d, 0.0) for name, d in direct.items())
         for k, name in enumerate(self.groups):
@@ -354,12 +374,14 @@ def compile_operator(ops) -> CompiledOperator:
             corner_dofs.update(dofs[corner].tolist())
         else:  # a group without facet fluxes: its corner dofs count with their weight only
             A[k, dofs[corner]] = w[corner]
-    group_maps = np.stack([(G @ A.T).T for G in (Gx, Gz, E)])
+    # sparse: only the points of the elements next to a group are non-zero (and a sparse product
+    # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
+    group_maps = tuple(sp.csr_matrix((G @ A.T).T) for G in (Gx, Gz, E))
     corners: tuple = ()
     lazy: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
-        terms = {}
+        terms = []
         weights_of = {}
         for name, fb in ops.facet_bases.items():
             Ef, Gfx, Gfz = _interpolation(fb, n)
@@ -369,13 +391,17 @@ def compile_operator(ops) -> CompiledOperator:
             # only the facets where a corner dof's basis function lives contribute
             per_facet = np.abs(phi_ds).reshape(cdofs.size, *np.shape(fb.dx)).max(axis=(0, 2))
             keep = np.repeat(per_facet > 1e-14 * per_facet.max(), np.shape(fb.dx)[1])
-            terms[name] = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], phi_ds[:, keep], xf[:, keep])
+            terms.append((name, Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep], phi_ds[:, keep]))
             dofs, w = ops.flow_groups[name]
             wc = np.zeros(cdofs.size)
             corner = w < 1
             wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
             weights_of[name] = wc
-        corners = (cdofs, terms)
+        ends = np.cumsum([0] + [t[1].shape[0] for t in terms])
+        corners = (sp.vstack([t[1] for t in terms]).tocsr(), sp.vstack([t[2] for t in terms]).tocsr(),
+                   sp.vstack([t[3] for t in terms]).tocsr(), np.hstack([t[4] for t in terms]),
+                   np.hstack([t[5] for t in terms]),
+                   {t[0]: (slice(ends[k], ends[k + 1]), t[6]) for k, t in enumerate(terms)})
         lazy["corner_weights"] = weights_of
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
                             indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,

@@ -40,7 +40,7 @@ from benchmarks.common import DOCS, machine  # noqa: E402
 
 MECHANISM = Path(__file__).resolve().parents[1] / "mechanisms" / "eccentric_pump.toml"
 #: (label, element size [R0], repeats of superpose, repeats of the reference)
-CASES = (("pump P2 mesh (shipped)", 0.2, 300, 100), ("~1e4 dofs", 0.034, 30, 5), ("~1e5 dofs", 0.0108, 7, 2))
+CASES = (("pump P2 mesh (shipped)", 0.2, 300, 100), ("~1e4 dofs", 0.021, 30, 5), ("~1e5 dofs", 0.0064, 7, 2))
 
 
 def films(n: int) -> list[bf.CosineFilm]:
