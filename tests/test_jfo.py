@@ -293,6 +293,7 @@ def test_periodic_input_is_checked():
 
 # -- (2) transient: oscillating squeeze film with a cavity that opens and recedes -------------------
 
+@pytest.mark.slow
 def test_oscillating_squeeze_against_moving_boundary_reference():
     from bearingfe.validation import OscillatingSqueeze
     case = OscillatingSqueeze()

@@ -26,6 +26,7 @@ def test_slider_rows_match_a_fresh_solve(n):
     assert cells[1] == f"{PocketSlider().solve(n).load:.8g}"
 
 
+@pytest.mark.slow
 def test_squeeze_row_matches_a_fresh_run():
     case = OscillatingSqueeze()
     tr, cr, wr = case.reference(steps=20000)

@@ -26,6 +26,7 @@ def test_performance_jfo_matches_raimondi_boyd_and_swift_stieber():
     assert jfo.friction_variable < ss.friction_variable
 
 
+@pytest.mark.slow
 def test_equilibrium_and_coefficients_with_jfo():
     bearing = JournalBearing(1.0)
     ss = equilibrium(bearing, (0.0, -5.0), size=0.1, cavitation="reynolds")

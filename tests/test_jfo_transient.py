@@ -15,6 +15,7 @@ def pump_and_mesh():
     return pump, transient.pump_mesh(pump, 0.08)
 
 
+@pytest.mark.slow
 def test_jfo_transient_converges_to_the_full_film_trajectory(pump_and_mesh):
     # the shipped pump's film never ruptures (its smallest nodal pressure over the cycle is the edge's 0),
     # so JFO must follow the paper's model ("none", integrated by LSODA at rtol 1e-6) up to the
@@ -40,6 +41,7 @@ def test_jfo_transient_bad_input(pump_and_mesh):
         bf.simulate(pump, mesh, 0.1, cavitation="jfo", start="cold")
 
 
+@pytest.mark.slow
 def test_pump_scene_runs_with_jfo(tmp_path):
     import json
     from pathlib import Path
