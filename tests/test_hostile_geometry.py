@@ -419,7 +419,7 @@ def _one_triangle(points):
 def test_film_variation_closed_form():
     """One triangle with vertices at phi = pi (thinnest point of h = 1 + gamma cos phi) and pi + s:
     (h(pi + s) - h(pi)) / h(pi) = gamma (1 - cos s) / (1 - gamma), exactly (the corner at pi + s is the
-    thickest of the seven sample points)."""
+    thickest vertex)."""
     from bearingfe.checks import film_variation
 
     gamma, s = 0.99, 0.1
@@ -514,3 +514,24 @@ def test_command_hidden_behind_a_dot_is_refused():
         check_geo_script(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
     with pytest.raises(UntrustedGeoError, match="dot.geo line 26: .*text value"):
         check_geo_script(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")
+
+
+def test_scene_with_tiny_mesh_size_is_one_line(tmp_path, capsys):
+    """``size = 1e-4`` in a scene: 0.8 / (sqrt(3)/4 1e-8) = 1.85e8 triangles, refused before gmsh starts."""
+    scene = tmp_path / "s.toml"
+    scene.write_text("""
+kind = "reynolds"
+title = "too fine"
+[surface]
+arc = [-0.5, 0.5]
+half_width = 0.4
+[film]
+gamma = 0.6
+[solver]
+size = 1e-4
+[output]
+pictures = []
+""")
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "1.85e+08 triangles" in err and "BEARINGFE_MAX_ELEMENTS" in err
