@@ -16,6 +16,7 @@ module                     what it does
 ``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation, finite volumes
+``elastic``                elastic support (EHD): half-space compliance, coupled film
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``scales``                 non-dimensional <-> SI conversion
@@ -39,9 +40,11 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, crank, efficiency, io, jfo, journal, pump, rotor, scenes, transient, validation
+from . import (adaptivity, cavitation, crank, elastic, efficiency, io, jfo, journal, pump, rotor, scenes, transient,
+               validation)
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
+from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solve_elastic
 from .jfo import JFOError, solve_jfo
 from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
@@ -74,6 +77,7 @@ __all__ = [
     "Discretization", "OperatingPoint",
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
+    "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",

@@ -282,15 +282,21 @@ class Material:
         Young's modulus E [Pa], > 0.
     density : float
         Density [kg/m^3], >= 0 (0 if not needed).
+    poisson_ratio : float
+        Poisson's ratio nu [-], in (-1, 0.5); 0.3 (steel) by default.
     """
 
     name: str
     youngs_modulus: float
     density: float = 0.0
+    poisson_ratio: float = 0.3
 
     def __post_init__(self) -> None:
         positive("youngs_modulus", self.youngs_modulus, "Pa")
         nonnegative("density", self.density, "kg/m^3")
+        nu = finite("poisson_ratio", self.poisson_ratio)
+        if not -1.0 < nu < 0.5:
+            raise ValueError(f"poisson_ratio must be in (-1, 0.5), got {self.poisson_ratio!r}")
 
 
 @dataclass(frozen=True)

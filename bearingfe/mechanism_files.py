@@ -56,8 +56,11 @@ SURFACE = {"arc": (pair, (-0.5, 0.5)), "half_width": (positive_number, 0.5),
            "inlets": Tables(key="shape", variants={name: spec for name, (_, spec) in SHAPES.items()})}
 
 DRIVE = Table({"speed_rpm": (number(), None), "omega": (number(), None)}, required=True)
-MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), REQUIRED), "density": (number(), 0.0)},
-                 required=True)
+MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), REQUIRED), "density": (number(), 0.0),
+                  "poisson_ratio": (number(), 0.3)}, required=True)
+#: An optional material of a film surface (``[shoe.material]``, ``[eccentric.material]``): steel if absent.
+SURFACE_MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), 210e9), "density": (number(), 7850.0),
+                          "poisson_ratio": (number(), 0.3)})
 
 
 def read_surface(table: Any, label: str, *, required: tuple[str, ...] = ()) -> Surface:
@@ -90,7 +93,7 @@ def drive_of(t: dict, label: str) -> Drive:
 def material_of(t: dict, section: str, label: str) -> Material:
     """The material of a table read against ``MATERIAL`` (``name`` defaults to the table's name)."""
     return build(label, section, Material, name=section if t["name"] is None else t["name"],
-                 youngs_modulus=t["youngs_modulus"], density=t["density"])
+                 youngs_modulus=t["youngs_modulus"], density=t["density"], poisson_ratio=t["poisson_ratio"])
 
 
 # -- the kinds --------------------------------------------------------------------------
@@ -130,8 +133,9 @@ SPECS: Mapping[str, dict] = MappingProxyType({
     "eccentric_pump": _file({
         "drive": DRIVE,
         "eccentric": Table({"eccentricity": (number(), REQUIRED), "pivot_distance": (number(), REQUIRED),
-                            "radius": (number(), REQUIRED)}, required=True),
-        "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED)}, required=True),
+                            "radius": (number(), REQUIRED), "material": SURFACE_MATERIAL}, required=True),
+        "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED),
+                       "material": SURFACE_MATERIAL}, required=True),
         "plunger": Table({"diameter": (number(), REQUIRED), "preload": (number(), 0.0)}, required=True),
         "cycle": Table({"discharge": (number(), REQUIRED), "suction": (number(), REQUIRED),
                         "compression_deg": (number(), 20.0), "decompression_deg": (number(), 20.0)},
@@ -195,7 +199,9 @@ def _eccentric_pump(d: dict, label: str):
     return build(label, "eccentric", EccentricPump, name=d["name"], eccentricity=e["eccentricity"],
                  pivot_distance=e["pivot_distance"], radius=e["radius"], clearance=sh["clearance"],
                  viscosity=sh["viscosity"], plunger_diameter=pl["diameter"], preload=pl["preload"],
-                 drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label))
+                 drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label),
+                 shoe_material=material_of(sh["material"], "shoe.material", label),
+                 eccentric_material=material_of(e["material"], "eccentric.material", label))
 
 
 LOADERS: dict = {

@@ -62,7 +62,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .geometry import Surface
-from .machines import Drive
+from .machines import Drive, Material
 from .scales import Scale
 from .schema import nonnegative, positive
 
@@ -201,6 +201,9 @@ class PressureCycle:
 
 # -- the pump -----------------------------------------------------------------------
 
+#: Structural steel: E = 210 GPa, nu = 0.3, 7850 kg/m^3 (the default of both film surfaces).
+STEEL = Material("steel", 210e9, density=7850.0, poisson_ratio=0.3)
+
 @dataclass(frozen=True)
 class EccentricPump:
     """A radial-plunger pump with an eccentric drive and swinging plungers (SI units).
@@ -232,6 +235,10 @@ class EccentricPump:
         retaining ring) [N], >= 0. The applied force must stay > 0 over the
         cycle: ``suction > 0`` or ``preload > 0``.
     name : str
+    shoe_material, eccentric_material : Material
+        Elastic data of the shoe and of the eccentric (the two film
+        surfaces), for an elastic support (:mod:`bearingfe.elastic`);
+        default :data:`STEEL` (210 GPa, nu = 0.3, 7850 kg/m^3).
     """
 
     eccentricity: float
@@ -245,6 +252,8 @@ class EccentricPump:
     cycle: PressureCycle
     preload: float = 0.0
     name: str = "eccentric pump"
+    shoe_material: Material = STEEL
+    eccentric_material: Material = STEEL
     _scale: Scale = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -268,6 +277,9 @@ class EccentricPump:
             raise ValueError(f"{own}.drive must be a bearingfe.Drive, got {type(self.drive).__name__}")
         if not isinstance(self.cycle, PressureCycle):
             raise ValueError(f"{own}.cycle must be a bearingfe.pump.PressureCycle, got {type(self.cycle).__name__}")
+        for n in ("shoe_material", "eccentric_material"):
+            if not isinstance(getattr(self, n), Material):
+                raise ValueError(f"{own}.{n} must be a bearingfe.Material, got {type(getattr(self, n)).__name__}")
         if self.cycle.suction <= 0 and self.preload <= 0:
             raise ValueError(f"{own}: the applied force vanishes during suction; give cycle.suction > 0 Pa "
                              f"or preload > 0 N")

@@ -39,6 +39,7 @@ import dataclasses
 
 from .cavitation import MODELS, ModelOptions, solve_model
 from .checks import check_operating_point, check_resolution
+from .elastic import Compliance, solve_elastic
 from .film import Film
 from .jfo import solve_jfo
 from .linalg import DEFAULT_SOLVER, Factorize
@@ -73,7 +74,8 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
-                   warm_start=None, cavitation_pressure: float = 0.0) -> ReynoldsResult:
+                   warm_start=None, cavitation_pressure: float = 0.0,
+                   elastic: Compliance | None = None) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -118,6 +120,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         for ``"jfo"`` and ``"reynolds"`` (``p >= p_c``). A non-zero value
         with ``"reynolds"`` is solved by the finite-volume Swift-Stieber of
         :mod:`bearingfe.jfo` (P1, direct form); ``"gumbel"`` needs 0.
+    elastic : Compliance, optional
+        Compliance of the support surfaces on this mesh and element
+        (:func:`bearingfe.elastic.half_space`): the film becomes
+        ``h_rigid + C p`` and is solved with its pressure by Newton
+        (:func:`bearingfe.elastic.solve_elastic`, direct form; the result's
+        ``deflection``, ``max_deflection`` and ``elastic_iterations`` report it).
+        Raises :class:`bearingfe.elastic.ElasticError` if it does not converge.
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
         object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
@@ -145,6 +154,9 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     finite_volumes = isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes
     if cavitation == "jfo" or (finite_volumes and cavitation in ("none", "reynolds")) or (
             cavitation == "reynolds" and float(cavitation_pressure) != 0.0):
+        if elastic is not None:
+            raise ValueError("elastic= is not supported with the finite-volume solver (cavitation='jfo', "
+                             "a non-zero cavitation_pressure, recessed or periodic surfaces)")
         return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
                          cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
                          warm_start=warm_start, cavitation=cavitation)
@@ -155,6 +167,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     check_operating_point(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
+    if elastic is not None:
+        res = solve_elastic(mesh, film, elastic, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
+                            element=element, cavitation=cavitation, sliding=sliding, solver=solver).result
+        if formulation != "direct":
+            note = "elastic support: the direct form was used (the deflected film is a nodal field)"
+            res = dataclasses.replace(res, notes=res.notes + (note,))
+        return res
     sup = superpose(mesh, film, formulation=formulation, element=element, solver=solver,
                     on_indefinite=on_indefinite)
     result = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,

@@ -884,6 +884,11 @@ class ReynoldsResult:
         ``"reynolds"``) over the film area.
     cavitation_pressure : float
         Cavity pressure ``p_c`` [-] (gauge).
+    deflection : ndarray or None
+        Film opening by an elastic support [c] at the dofs (``film`` is then
+        the deflected film); None on rigid surfaces (:mod:`bearingfe.elastic`).
+    elastic_iterations : int
+        Reynolds solves of the coupled elastic (EHD) Newton iteration (0: rigid).
     """
 
     basis: skfem.CellBasis
@@ -909,6 +914,13 @@ class ReynoldsResult:
     theta: np.ndarray | None = None
     cavitated_fraction: float = 0.0
     cavitation_pressure: float = 0.0
+    deflection: np.ndarray | None = None
+    elastic_iterations: int = 0
+
+    @property
+    def max_deflection(self) -> float:
+        """Largest film opening by the elastic support [c] (0 on rigid surfaces)."""
+        return 0.0 if self.deflection is None else float(np.max(self.deflection, initial=0.0))
 
     @property
     def max_pressure(self) -> float:

@@ -44,6 +44,7 @@ import scipy.integrate as si
 from scipy.optimize import root
 
 from .cavitation import rates_for_load as cavitating_rates, solve_cavitating
+from .elastic import Compliance, ElasticError, balance_load, solve_elastic
 from .film import CosineFilm
 from .meshing import SupportMesh, mesh_surface
 from .pump import EccentricPump
@@ -132,11 +133,15 @@ class _Model:
     element: str
     solver: str
     cavitation: str
+    elastic: object = None  # bearingfe.elastic.Compliance on `mesh`, or None (rigid)
     nfev: int = 0
     factorizations: int = 0
     seconds: float = 0.0
+    jacobians: int = 0
     _cache: dict = field(default_factory=dict)
     _warm: object = None
+    _w: object = None  # last film opening of the elastic support [c]
+    _reuse: dict = field(default_factory=dict)
 
     @property
     def phi_range(self) -> tuple[float, float]:
@@ -144,6 +149,9 @@ class _Model:
         return float(b.min()), float(b.max())
 
     def h_min(self, gamma: float, delta: float) -> float:
+        if self.elastic is not None and self._w is not None:  # rigid film opened by the last deflection
+            d = self.elastic.basis_doflocs
+            return float(np.min(CosineFilm(max(gamma, 0.0), delta).thickness(d[0], d[1]) + self._w))
         return CosineFilm(max(gamma, 0.0), delta).minimum(self.phi_range)
 
     def superposition(self, gamma: float, delta: float) -> Superposition:
@@ -163,11 +171,13 @@ class _Model:
         return sup
 
     def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
-        return self.balance(beta, y)[0]
+        return self.balance(beta, y, full=False)[0]
 
-    def balance(self, beta: float, y: np.ndarray):
+    def balance(self, beta: float, y: np.ndarray, full: bool = True):
         """Rates that balance the plunger load and, under cavitation, the cavitated solution."""
         self.nfev += 1
+        if self.elastic is not None:
+            return self._elastic_balance(beta, y, full)
         sup = self.superposition(y[0], y[1])
         pump = self.pump
         args = (pump.load_vector(beta), float(pump.wedge(beta)), float(pump.inlet_pressure(beta)))
@@ -183,6 +193,29 @@ class _Model:
         except np.linalg.LinAlgError as exc:
             raise RuntimeError(f"equilibrium rates undefined at beta = {beta:.4f} rad, gamma = {y[0]:.4g}: "
                                f"{exc}") from None
+
+
+    def _elastic_balance(self, beta: float, y: np.ndarray, full: bool):
+        """Rates and film opening on the elastic support (Newton on the deflection, warm-started)."""
+        gamma, delta = float(y[0]), float(y[1])
+        if not (math.isfinite(gamma) and math.isfinite(delta)) or gamma < 0 or self.h_min(gamma, delta) <= 0:
+            raise _FilmClosed((gamma, delta))
+        pump = self.pump
+        start = time.perf_counter()
+        try:
+            found = balance_load(self.mesh, CosineFilm(gamma, delta), self.elastic, pump.load_vector(beta),
+                                 wedge=float(pump.wedge(beta)), inlet_pressure=float(pump.inlet_pressure(beta)),
+                                 element=self.element, cavitation=self.cavitation, solver=self.solver,
+                                 initial=self._w, reuse=self._reuse, full_result=full)
+        except ElasticError as exc:
+            if "h_min" in str(exc):
+                raise _FilmClosed((gamma, delta)) from None
+            raise RuntimeError(f"elastic film at beta = {beta:.4f} rad, gamma = {gamma:.4g}: {exc}") from None
+        self.seconds += time.perf_counter() - start
+        self.factorizations += found.iterations
+        self.jacobians += found.jacobians
+        self._w = found.deflection
+        return found.rates, found.result
 
 
 def _check_cavitation(cavitation: str) -> None:
@@ -303,7 +336,14 @@ class Trajectory:
         ``max |y(2 pi) - y(0)|`` of the last iteration (NaN unless periodic).
     stats : mapping
         ``nfev``, ``factorizations``, ``steps``, ``seconds`` (wall time of
-        the integration), ``solver_seconds``, ``dofs``.
+        the integration), ``solver_seconds``, ``dofs``; on an elastic
+        support also ``jacobians`` (of the coupled Newton).
+    max_deflection : ndarray or None
+        Largest film opening by the elastic support [m] (None: rigid).
+    pressures : ndarray or None
+        Nodal pressure [-] at each sample, shape (n, n_dofs), where the
+        pressure is a state of the run
+        (:func:`bearingfe.elastic_transient.simulate_elastic`); else None.
     """
 
     t: np.ndarray
@@ -330,6 +370,8 @@ class Trajectory:
     periodic_iterations: int
     periodic_residual: float
     stats: Mapping[str, float]
+    max_deflection: np.ndarray | None = None
+    pressures: np.ndarray | None = None
 
     @property
     def smallest_film(self) -> float:
@@ -349,6 +391,8 @@ class Trajectory:
                  "flow_squeeze", "mass_balance")
         cols = {n: np.asarray(getattr(self, n)) for n in names}
         cols["load_x"], cols["load_y"] = self.load[:, 0], self.load[:, 1]
+        if self.max_deflection is not None:
+            cols["max_deflection"] = np.asarray(self.max_deflection)
         return cols
 
 
@@ -434,10 +478,13 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
     flows: dict[str, np.ndarray] = {}
     friction, balance = np.empty(n), np.empty(n)
     linear: list[tuple[int, Superposition, np.ndarray]] = []
+    deflection = np.empty(n) if model.elastic is not None else None
     for i, (b, y) in enumerate(zip(betas, ys)):
-        sup = model.superposition(y[0], y[1])
+        sup = model.superposition(y[0], y[1]) if model.elastic is None else None
         rates[i], res = model.balance(b, y)
-        h_min[i] = sup.h_min
+        h_min[i] = sup.h_min if sup is not None else res.h_min  # the elastic result: the deflected film
+        if deflection is not None:
+            deflection[i] = sc.to_thickness(float(np.max(model._w)))
         if res is None:
             weights = source_weights(float(pump.wedge(b)), rates[i], float(pump.inlet_pressure(b)))
             sup.check_inlet(weights[3])
@@ -459,7 +506,8 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
     return {"gamma_rate": rates[:, 0], "delta_rate": rates[:, 1], "h_min": sc.to_thickness(h_min),
             "friction_moment": sc.to_moment(friction), "flow_inlet": sc.to_flow(flows.get("inlet", zero)),
             "flow_side": sc.to_flow(flows.get("side", zero)), "flow_arc": sc.to_flow(arc),
-            "flow_squeeze": sc.to_flow(flows.get("squeeze", zero)), "mass_balance": sc.to_flow(balance)}
+            "flow_squeeze": sc.to_flow(flows.get("squeeze", zero)), "mass_balance": sc.to_flow(balance),
+            **({} if deflection is None else {"max_deflection": deflection})}
 
 
 @takes(Discretization)
@@ -469,7 +517,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
              min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
              formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
              periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
-             max_revolutions: float | None = None) -> Trajectory:
+             max_revolutions: float | None = None, elastic: Compliance | None = None) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 
     Parameters
@@ -519,6 +567,13 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     max_revolutions : float, optional
         Largest ``revolutions`` accepted (a guard against runaway work);
         default the ``revolutions`` limit of :mod:`bearingfe.limits` (100).
+    elastic : Compliance, optional
+        Compliance of the support on ``mesh`` (:func:`bearingfe.elastic.half_space`):
+        at every shaft angle the film ``h_rigid + w`` and the rates are found
+        together (:func:`bearingfe.elastic.balance_load`, the direct form),
+        warm-started from the last deflection and reusing the Jacobian
+        factors. Quasi-static deflection (``dw/dt`` not in the squeeze term);
+        the run starts from the rigid steady (or periodic-iteration) state.
     discretization : Discretization, optional
         ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
         object (:class:`bearingfe.parameters.Discretization`) instead of the
@@ -555,6 +610,14 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     if not 0 < min_film < pump.clearance:
         raise ValueError(f"min_film must be in (0, clearance = {pump.clearance} m), got {min_film!r}")
     _check_cavitation(cavitation)
+    if elastic is not None:
+        if not isinstance(elastic, Compliance):
+            raise ValueError(f"elastic must be a bearingfe.elastic.Compliance, got {type(elastic).__name__}")
+        if mesh is not None and elastic.mesh is not mesh:
+            raise ValueError("elastic: the compliance was built on another mesh than `mesh`")
+        if elastic.element != element:
+            raise ValueError(f"elastic: the compliance is for element {elastic.element!r}, the run uses {element!r}")
+        mesh = elastic.mesh
     mesh = pump_mesh(pump, mesh_size) if mesh is None else mesh
     if not isinstance(mesh, SupportMesh):
         raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
@@ -583,6 +646,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
             raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
                              f"min_film over the surface, got {start!r}")
+    model.elastic = elastic  # set after the steady start, which is the rigid one
     if start == "periodic":
         while True:
             run = _integrate(model, beta0, y0, beta0 + 2 * math.pi, **opts)
@@ -605,6 +669,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     seconds = time.perf_counter() - t_start
     counts = {"nfev": model.nfev, "factorizations": model.factorizations, "steps": run.steps,
               "seconds": seconds, "solver_seconds": model.seconds}
+    if elastic is not None:
+        counts["jacobians"] = model.jacobians
     try:
         post = _postprocess(model, betas, ys)
     except _FilmClosed as exc:  # the dense output between accepted steps left the admissible states
@@ -624,7 +690,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
 
 
 def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: int, cavitation: str = "none",
-                 element: str = "P1"):
+                 element: str = "P1", elastic: Compliance | None = None):
     """Re-solve the film of sample ``k`` of a trajectory (shoe frame): pressure field, flows, friction.
 
     The same film state, rates and pocket pressure that the run balanced, so
@@ -634,6 +700,9 @@ def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: in
     film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
     p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
     rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
+    if elastic is not None:  # the coupled film at the run's rates: result.film is the deflected film
+        return solve_elastic(mesh, film, elastic, wedge=float(traj.wedge[k]), squeeze=rates, inlet_pressure=p_s,
+                             element=element, cavitation=cavitation).result
     if cavitation == "jfo":  # the steady JFO film of that state (the run's history is not re-played)
         return solve_jfo(mesh, film, wedge=float(traj.wedge[k]), squeeze=rates, inlet_pressure=p_s, element=element)
     sup = superpose(mesh, film, element=element)

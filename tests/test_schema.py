@@ -111,7 +111,7 @@ def _pump_text():
     ("frames = 3", 'frames = 3\nelement = "P3"', "bad.toml: [run] element: must be one of 'P1', 'P2'; got 'P3'"),
     ("frames = 3", 'frames = 3\nstart = "cold"', "bad.toml: [run] start: must be one of 'periodic', 'steady'"),
     ("[run]", "compare_plain = 1\n[run]", "bad.toml: [pump] compare_plain: expected true or false; got 1"),
-    ("[run]", "[runs]", "bad.toml: runs: unknown table or field; allowed: kind, title, pump, run, output"),
+    ("[run]", "[runs]", "bad.toml: runs: unknown table or field; allowed: kind, title, pump, run, elastic, output"),
 ])
 def test_pump_scene_errors(tmp_path, old, new, fragment):
     message = _scene_error(tmp_path, _edit(_pump_text(), old, new), lambda d, l: pump_settings(d, l, tmp_path))

@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_patches", "pressure_picture", "film_picture"]
+__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_patches", "pressure_picture", "film_picture",
+           "deflection_picture"]
 
 VIEWS = ("unwrapped", "wrapped")
 
@@ -230,7 +231,8 @@ def _on_outline(result, xy: np.ndarray) -> np.ndarray | None:
     return dist < 1e-9 * (1.0 + np.abs(m.p).max())
 
 
-def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=None, pocket_color=None):
+def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=None, pocket_color=None,
+            heading=None):
     pv = _pyvista()
     path = Path(path)
     values = np.asarray(grid.point_data[name])
@@ -247,6 +249,8 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
                    height=0.8, width=0.06)
         shading = dict(smooth_shading=True, ambient=0.35) if view == "wrapped" else dict(lighting=False)
         pl.add_mesh(grid, scalars=name, cmap=cmap, clim=clim, scalar_bar_args=bar, **shading)
+        if heading:
+            pl.add_text(str(heading), position="upper_edge", color="black", font_size=10)
         if pockets is not None:
             if pocket_color is None:
                 pl.add_mesh(pockets, scalars=name, cmap=cmap, clim=clim, show_scalar_bar=False, **shading)
@@ -285,7 +289,7 @@ def _check_scale(scale: float, unit: str) -> float:
 
 def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", warp: float = 0.0,
                      cavitation: bool = True, cmap: str = "viridis", window_size=(1000, 600),
-                     scale: float = 1.0, unit: str = "-") -> Path:
+                     scale: float = 1.0, unit: str = "-", title: str | None = None) -> Path:
     """PNG of the pressure field with pocket outlines and the cavitation boundary.
 
     Parameters
@@ -307,6 +311,8 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
     scale, unit : float, str
         Pressure shown as ``scale * p`` labelled ``p [unit]`` (e.g. the
         pressure scale in MPa and ``"MPa"``); default non-dimensional.
+    title : str, optional
+        Heading above the picture (e.g. the shaft angle).
 
     Returns
     -------
@@ -333,11 +339,11 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
             pts = np.asarray(zero.points)
             zero.points = _embed(pts[:, 0], pts[:, 1], view, 2e-3)
         overlays.append((zero, "red", 3))
-    return _render(path, view, grid, "p", f"p [{unit}]", cmap, overlays, window_size, pockets)
+    return _render(path, view, grid, "p", f"p [{unit}]", cmap, overlays, window_size, pockets, heading=title)
 
 
 def film_picture(result, path, *, film=None, surface=None, view: str = "unwrapped", cmap: str = "plasma",
-                 window_size=(1000, 600), scale: float = 1.0, unit: str = "-") -> Path:
+                 window_size=(1000, 600), scale: float = 1.0, unit: str = "-", title: str | None = None) -> Path:
     """PNG of the film thickness ``h = H/c`` over the surface, pockets in grey.
 
     Parameters
@@ -354,6 +360,8 @@ def film_picture(result, path, *, film=None, surface=None, view: str = "unwrappe
     scale, unit : float, str
         Film shown as ``scale * h`` labelled ``h [unit]`` (e.g. the clearance
         in um and ``"um"``); default non-dimensional.
+    title : str, optional
+        Heading above the picture.
 
     Returns
     -------
@@ -368,4 +376,38 @@ def film_picture(result, path, *, film=None, surface=None, view: str = "unwrappe
     pockets = pocket_patches(result, surface=surface, view=view, name="h")
     overlays = [(outline_lines(result, surface=surface, boundary="outer", view=view), "black", 2),
                 (outline_lines(result, surface=surface, boundary="inlet", view=view), "black", 2)]
-    return _render(path, view, grid, "h", f"h [{unit}]", cmap, overlays, window_size, pockets, "lightgrey")
+    return _render(path, view, grid, "h", f"h [{unit}]", cmap, overlays, window_size, pockets, "lightgrey",
+                   heading=title)
+
+
+def deflection_picture(result, path, *, surface=None, view: str = "unwrapped", cmap: str = "cividis",
+                       window_size=(1000, 600), scale: float = 1.0, unit: str = "-",
+                       title: str | None = None) -> Path:
+    """PNG of the film opening ``w`` by an elastic support (``result.deflection``), pockets in grey.
+
+    Parameters
+    ----------
+    result : ReynoldsResult
+        A solution on an elastic support (``solve_reynolds(..., elastic=...)``).
+    path : str or Path
+    surface : Surface, optional
+    view : {"unwrapped", "wrapped"}
+    scale, unit : float, str
+        Shown as ``scale * w`` labelled ``w [unit]`` (e.g. the clearance in um).
+    title : str, optional
+
+    Returns
+    -------
+    Path
+    """
+    _check_view(view)
+    scale = _check_scale(scale, unit)
+    w = getattr(result, "deflection", None)
+    if w is None:
+        raise ValueError("result has no deflection: solve with an elastic support (elastic=...)")
+    grid = field_grid(result, values=np.asarray(w, dtype=float) * scale, name="w", view=view)
+    pockets = pocket_patches(result, surface=surface, view=view, name="w")
+    overlays = [(outline_lines(result, surface=surface, boundary="outer", view=view), "black", 2),
+                (outline_lines(result, surface=surface, boundary="inlet", view=view), "black", 2)]
+    return _render(path, view, grid, "w", f"w [{unit}]", cmap, overlays, window_size, pockets, "lightgrey",
+                   heading=title)
