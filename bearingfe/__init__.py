@@ -15,6 +15,7 @@ module                     what it does
 ``cavitation``             cavitation models and their table (``MODELS``)
 ``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
+``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation, finite volumes
 ``elastic``                elastic support (EHD): half-space compliance, coupled film
 ``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``fd``                     finite-difference reference (the source paper's scheme)
@@ -39,14 +40,16 @@ module                     what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, crank, elastic, efficiency, io, journal, pump, rotor, scenes, transient, validation
+from . import (adaptivity, cavitation, crank, elastic, efficiency, io, jfo, journal, pump, rotor, scenes, transient,
+               validation)
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
 from .cavitation import CavitationError
 from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solve_elastic
+from .jfo import JFOError, solve_jfo
 from .limits import LimitError
 from .fd import FDResult, solve_reynolds_fd
 from .film import CosineFilm, Film
-from .geometry import Circle, Ellipse, Polygon, Rectangle, Shape, Slot, Surface
+from .geometry import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
 from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available_solvers
 from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
                        RotorFrame, Section)
@@ -75,12 +78,12 @@ __all__ = [
     "CHANGES", "OUTPUTS", "PumpCase", "SceneError", "ShoeCase", "best_design", "io", "read_study", "scenes", "sweep",
     "validation",
     "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
-    "CavitationError", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
+    "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
     "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
-    "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon",
+    "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon", "Recess",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",

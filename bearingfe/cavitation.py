@@ -93,6 +93,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
+from .jfo import solve_model_jfo
 from .linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from .parameters import OperatingPoint, takes
 from .superposition import ReynoldsResult, Superposition, build_result, ruptured_elements, source_weights
@@ -379,6 +380,8 @@ class ModelOptions:
         Relative tolerance of the sign tests of the active-set iteration.
     max_iterations : int
         Cap on the model's iterations.
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge, ``<= 0``) of ``"jfo"``.
     """
 
     sliding: float | None = None
@@ -386,6 +389,7 @@ class ModelOptions:
     solver: str | Factorize = DEFAULT_SOLVER
     tol: float = TOLERANCE
     max_iterations: int = MAX_ITERATIONS
+    cavitation_pressure: float = 0.0
 
 
 #: ``solve(sup, weights, options) -> ReynoldsResult`` (see the module docstring).
@@ -423,6 +427,7 @@ MODELS: Mapping[str, ModelSolver] = MappingProxyType({
     "none": solve_linear,
     "reynolds": solve_swift_stieber,
     "gumbel": solve_gumbel,
+    "jfo": solve_model_jfo,
 })
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from .checks import MAX_GAMMA, check_angle
 
-__all__ = ["Film", "CosineFilm"]
+__all__ = ["Film", "CosineFilm", "UniformFilm"]
 
 
 @runtime_checkable
@@ -101,3 +101,40 @@ class CosineFilm:
         if self.phi0 + math.pi + 2 * math.pi * k <= hi:
             return 1.0 - self.gamma
         return float(min(self.thickness(np.array([lo, hi]), np.zeros(2))))
+
+
+@dataclass(frozen=True)
+class UniformFilm:
+    """Parallel surfaces: ``h`` the same everywhere (a flat slider, or a squeeze film).
+
+    Parameters
+    ----------
+    h : float
+        Film thickness [-], > 0. The state variable is ``h`` itself, so the
+        squeeze shapes are ``(1, 0)``: ``squeeze=(dh/dt, 0)``.
+    """
+
+    h: float
+
+    def __post_init__(self) -> None:
+        h = float(self.h)
+        if not (math.isfinite(h) and h > 0.0):
+            raise ValueError(f"UniformFilm.h must be a finite number > 0, got {self.h!r}")
+        object.__setattr__(self, "h", h)
+
+    def thickness(self, phi, z):
+        return self.h + 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+
+    def gradient(self, phi, z):
+        zero = 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+        return zero, zero
+
+    def laplacian(self, phi, z):
+        return 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+
+    def rate_shapes(self, phi, z):
+        zero = 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+        return zero + 1.0, zero
+
+    def minimum(self, phi_range: tuple[float, float]) -> float:
+        return self.h

@@ -104,15 +104,15 @@ def max_elements_limit(value: int | None = None) -> int:
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}") from None
+        raise ValueError(f"max_elements (--max-elements) must be an integer >= 1, got {value!r}") from None
     if not (math.isfinite(number) and number >= 1 and number == int(number)):
-        raise ValueError(f"max_elements must be an integer >= 1, got {value!r}")
+        raise ValueError(f"max_elements (--max-elements) must be an integer >= 1, got {value!r}")
     return int(number)
 
 
 def geo_timeout_limit(value: float | None = None) -> float:
     """The ``.geo`` time limit [s]: ``value``, else ``$BEARINGFE_GEO_TIMEOUT``, else the default."""
-    source = "timeout"
+    source = "timeout (--geo-timeout)"
     if value is None:
         env = os.environ.get(GEO_TIMEOUT_ENV)
         if env is None:
@@ -233,6 +233,7 @@ _GRAMMAR_WORDS = frozenset("""
 #: Non-keyword command words of gmsh (``Word argument;``) and why they are refused.
 _COMMANDS = {
     "SystemCall": "runs a shell command",
+    "System": "runs a shell command",
     "NonBlockingSystemCall": "runs a shell command",
     "Include": "includes another file",
     "Merge": "merges another file",

@@ -29,6 +29,7 @@ __all__ = [
     "Rectangle",
     "Polygon",
     "Slot",
+    "Recess",
     "Surface",
 ]
 
@@ -324,6 +325,31 @@ class Slot:
 
 
 @dataclass(frozen=True)
+class Recess:
+    """A blind region where the film is deeper (dimple, step, relief groove).
+
+    Unlike an inlet pocket it is not fed: the film runs through it with the
+    extra ``depth``. It is meshed conformally (its contour lies on element
+    edges), so the film step is crossed exactly by the mass-conserving solver.
+
+    Parameters
+    ----------
+    shape : Shape
+        The region in ``(phi, z)``, strictly inside the outline.
+    depth : float
+        Extra film thickness inside [-] (units of the clearance c), > 0.
+    """
+
+    shape: Shape
+    depth: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.shape, Shape):
+            raise ValueError(f"Recess.shape must be a shape (Circle, Ellipse, Polygon, Slot), got {self.shape!r}")
+        object.__setattr__(self, "depth", positive("Recess.depth", self.depth))
+
+
+@dataclass(frozen=True)
 class Surface:
     """A shoe support surface with its inlet pockets.
 
@@ -339,12 +365,23 @@ class Surface:
         touching or overlapping another.
     outer : Shape or None
         Any closed outline replacing the rectangle ``arc x [-a, a]``.
+    recesses : sequence of Recess
+        Blind deeper regions of the film; each strictly inside the outline,
+        none touching a pocket or another recess.
+    periodic : bool
+        A full 360-degree film with no edge at the arc ends: ``arc`` must span
+        exactly ``2 pi`` (default outline only); the mesh matches its nodes
+        across the seam ``phi = alpha1 ~ alpha2`` and the solver identifies
+        them. Pockets (e.g. axial grooves of partial length) stay strictly
+        inside the arc: choose ``alpha1`` away from them.
     """
 
     arc: tuple[float, float] = (-0.5, 0.5)
     half_width: float = 0.5
     inlets: tuple = ()
     outer: Shape | None = None
+    recesses: tuple = ()
+    periodic: bool = False
     _outline: Shape = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -364,6 +401,27 @@ class Surface:
             ((a1 + a2) / 2, 0.0), (a2 - a1, 2 * self.half_width))
         object.__setattr__(self, "_outline", outline)
         _check_layout(outline, inlets)
+        recesses = (self.recesses,) if isinstance(self.recesses, Recess) else tuple(self.recesses)
+        for i, r in enumerate(recesses):
+            if not isinstance(r, Recess):
+                raise ValueError(f"Surface.recesses[{i}] must be a Recess(shape, depth), got {r!r}")
+        object.__setattr__(self, "recesses", recesses)
+        if not isinstance(self.periodic, bool):
+            raise ValueError(f"Surface.periodic must be True or False, got {self.periodic!r}")
+        if self.periodic and (self.outer is not None or abs(a2 - a1 - 2 * math.pi) > 1e-9):
+            raise ValueError(f"Surface.periodic needs the default outline with an arc of exactly 2 pi "
+                             f"(alpha2 = alpha1 + 2 pi), got arc={self.arc!r}, outer={self.outer!r}")
+        if recesses:
+            _check_layout(outline, inlets + tuple(r.shape for r in recesses), names=(
+                [f"Surface.inlets[{i}]" for i in range(len(inlets))]
+                + [f"Surface.recesses[{i}]" for i in range(len(recesses))]))
+
+    def recess_depth(self, phi, z) -> np.ndarray:
+        """Extra film depth of the recesses at the points [-] (0 outside them)."""
+        out = np.zeros(np.broadcast(np.asarray(phi), np.asarray(z)).shape)
+        for r in self.recesses:
+            out = out + r.depth * r.shape.contains(phi, z)
+        return out
 
     @property
     def outline(self) -> Shape:
@@ -433,30 +491,31 @@ def _hydraulic_diameter(shape: Shape) -> float:
     return 4.0 * abs(_signed_area(xy)) / perimeter
 
 
-def _check_layout(outline: Shape, inlets: tuple) -> None:
+def _check_layout(outline: Shape, inlets: tuple, names=None) -> None:
     outer_xy = outline.boundary()
     scale = float(np.ptp(outer_xy, axis=1).max())
     tol = MIN_FEATURE * scale
+    names = names or [f"Surface.inlets[{i}]" for i in range(len(inlets))]
     for i, shape in enumerate(inlets):
         width = _hydraulic_diameter(shape)
         if not width >= tol:
             raise ValueError(
-                f"Surface.inlets[{i}] ({type(shape).__name__}) is {width:.3g} across (4 area / perimeter), "
+                f"{names[i]} ({type(shape).__name__}) is {width:.3g} across (4 area / perimeter), "
                 f"smaller than {MIN_FEATURE:g} x the outline ({scale:.3g}): too small to mesh or resolve; "
                 f"allowed: pocket size >= {tol:.3g}")
         xy = shape.boundary()
         if _polylines_cross(xy, outer_xy) or not outline.contains(*xy).all():
-            raise ValueError(f"Surface.inlets[{i}] ({type(shape).__name__}) is not inside the outer contour")
+            raise ValueError(f"{names[i]} ({type(shape).__name__}) is not inside the outer contour")
         gap = _polyline_distance(xy, outer_xy)
         if gap < tol:
             raise ValueError(
-                f"Surface.inlets[{i}] ({type(shape).__name__}) touches the outer contour "
-                f"(gap {gap:.3g} < {tol:.3g}); keep pockets strictly inside")
+                f"{names[i]} ({type(shape).__name__}) touches the outer contour "
+                f"(gap {gap:.3g} < {tol:.3g}); keep pockets and recesses strictly inside")
         for j in range(i):
             other = inlets[j].boundary()
             if (_polylines_cross(xy, other) or inlets[j].contains(*xy).any()
                     or shape.contains(*other).any() or _polyline_distance(xy, other) < tol):
-                raise ValueError(f"Surface.inlets[{i}] and Surface.inlets[{j}] overlap or touch")
+                raise ValueError(f"{names[i]} and {names[j]} overlap or touch")
 
 
 def _signed_area(xy: np.ndarray) -> float:

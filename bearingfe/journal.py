@@ -55,6 +55,7 @@ from .checks import ResolutionWarning
 from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
+from .jfo import solve_jfo
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
 from .parameters import Discretization, takes
 from . import forms
@@ -76,7 +77,7 @@ __all__ = [
 ]
 
 #: Cavitation models of :func:`equilibrium` (and so of its dynamic coefficients).
-EQUILIBRIUM_CAVITATION = ("reynolds", "none")
+EQUILIBRIUM_CAVITATION = ("reynolds", "none", "jfo")
 
 #: Eccentricity ratios beyond this are refused (contact in all but name).
 EPS_MAX = 0.995
@@ -124,15 +125,23 @@ class JournalBearing:
         bearing frame (a partial arc, or several pads; a 360-degree arc with
         its edges at a fixed axial groove line).
     grooves : tuple of Groove
-        Supply grooves inside the pads (only with ``pads``).
+        Supply grooves inside the pads (with ``pads``) or inside the periodic
+        film (with ``periodic``).
     supply_pressure : float
         Groove pressure [-] (``P c^2/(mu omega R^2)``), >= 0.
+    periodic : bool
+        A full 360-degree film with no edge along the bore (``pads=None``):
+        oil enters only through the grooves (at least one), partial-length
+        pockets at ``supply_pressure``. Solved by the finite-volume scheme
+        (``cavitation="jfo"``, or ``"reynolds"``/``"none"`` on the same
+        discretization), meshed in the bearing frame like pads.
     """
 
     length_ratio: float
     pads: tuple | None = None
     grooves: tuple = ()
     supply_pressure: float = 0.0
+    periodic: bool = False
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.length_ratio) and 0 < self.length_ratio <= 4):
@@ -143,8 +152,13 @@ class JournalBearing:
                 if not a < b <= a + 2 * math.pi + 1e-12:
                     raise ValueError(f"pads: each arc needs start < end <= start + 2 pi, got {(a, b)}")
             object.__setattr__(self, "pads", pads)
-        elif self.grooves:
-            raise ValueError("grooves need explicit pads (the Raimondi-Boyd full bearing has none)")
+        elif self.grooves and not self.periodic:
+            raise ValueError("grooves need explicit pads or periodic=True (the Raimondi-Boyd full bearing has none)")
+        if not isinstance(self.periodic, bool):
+            raise ValueError(f"periodic must be True or False, got {self.periodic!r}")
+        if self.periodic and (self.pads is not None or not self.grooves):
+            raise ValueError("periodic=True needs pads=None and at least one groove (the only oil supply "
+                             "of a film without edges along the bore)")
         if not (math.isfinite(self.supply_pressure) and self.supply_pressure >= 0):
             raise ValueError(f"supply_pressure must be >= 0, got {self.supply_pressure!r}")
         object.__setattr__(self, "grooves", tuple(self.grooves))
@@ -154,10 +168,28 @@ class JournalBearing:
         """``a = L/D`` (z is scaled by the radius) [-]."""
         return float(self.length_ratio)
 
+    @property
+    def raimondi_boyd(self) -> bool:
+        """The full bearing cut at the line of largest film (``pads=None``, not periodic),
+        meshed in the frame of the line of centres."""
+        return self.pads is None and not self.periodic
+
+    def _seam(self) -> float:
+        """Angle of the periodic film's seam: the middle of the widest gap between grooves."""
+        angles = np.sort(np.mod([g.angle for g in self.grooves], 2 * math.pi))
+        gaps = np.diff(np.append(angles, angles[0] + 2 * math.pi))
+        k = int(np.argmax(gaps))
+        return float(angles[k] + gaps[k] / 2)
+
     def surfaces(self) -> tuple[Surface, ...]:
         """Support surfaces of the pads in the bearing frame (full bearing: one
         arc ``(0, 2 pi)`` in the frame of the line of largest film)."""
         a = self.half_width
+        if self.periodic:
+            seam = self._seam()
+            pockets = tuple(Rectangle((_wrap_into(g.angle, seam), 0.0), (g.width, 2 * a * g.length_fraction))
+                            for g in self.grooves)
+            return (Surface(arc=(seam, seam + 2 * math.pi), half_width=a, inlets=pockets, periodic=True),)
         if self.pads is None:
             return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
         out = []
@@ -265,8 +297,15 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     results, sups, force = [], [], np.zeros(2)
     warm = warm_start.results if warm_start is not None else (None,) * len(meshes)
     for mesh, previous in zip(meshes, warm):
-        sup = superpose(mesh, film, formulation="direct")
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
+        if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
+            res = solve_jfo(mesh, film, wedge=1.0, squeeze=(gamma_rate, phi0_rate), inlet_pressure=ps,
+                            cavitation=cavitation, warm_start=previous)
+            results.append(res)
+            sups.append(None)
+            force += res.force
+            continue
+        sup = superpose(mesh, film, formulation="direct")
         if cavitation == "none":
             res = sup.combine(1.0, (gamma_rate, phi0_rate), ps)
         else:
@@ -275,6 +314,23 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
         sups.append(sup)
         force += res.force
     return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation)
+
+
+def _stiffness(bearing: JournalBearing, meshes, state: _State, xy, cavitation: str,
+               step: float = 1e-6) -> np.ndarray:
+    """``dF/d(x, y)`` in the mesh frame: linearized on the rupture sets, or (finite-volume solves,
+    which keep no Galerkin system) by forward differences warm-started from ``state``."""
+    if all(sup is not None for sup in state.sups):
+        return _linearized(state)[0]
+    K = np.zeros((2, 2))
+    base = state.force
+    for j in range(2):
+        d = np.zeros(2)
+        d[j] = step
+        moved = _solve_state(bearing, meshes, *(np.asarray(xy, float) + d), cavitation, rotation=state.rotation,
+                             warm_start=state)
+        K[:, j] = _rot(-state.rotation) @ (moved.force - base) / step
+    return K
 
 
 def _lumped_area(res: ReynoldsResult) -> np.ndarray:
@@ -419,7 +475,9 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
         :class:`bearingfe.parameters.Discretization` with ``mesh_size`` and
         ``min_size`` (its other fields stay at their defaults: the journal
         solves choose their own element, form and solver).
-    cavitation : {"reynolds", "gumbel", "none"}
+    cavitation : {"reynolds", "gumbel", "none", "jfo"}
+        ``"jfo"``: mass-conserving cavitation (:mod:`bearingfe.jfo`); its
+        friction counts the Couette shear on the oil fraction ``theta`` only.
     estimate_error : bool
         Also solve on the uniformly refined mesh and report the relative
         change of the load (values returned are the refined ones). The
@@ -429,12 +487,12 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
         With ``estimate_error``: a :class:`ResolutionWarning` is issued if
         the estimate exceeds it.
     """
-    if bearing.pads is not None:
-        raise ValueError("performance() is for the full Raimondi-Boyd bearing (pads=None); "
+    if not bearing.raimondi_boyd:
+        raise ValueError("performance() is for the full Raimondi-Boyd bearing (pads=None, not periodic); "
                          "use equilibrium() for pads and partial arcs")
     eps = _check_eps(eps)
-    if cavitation not in ("reynolds", "gumbel", "none"):
-        raise ValueError(f"cavitation must be 'reynolds', 'gumbel' or 'none', got {cavitation!r}")
+    if cavitation not in ("reynolds", "gumbel", "none", "jfo"):
+        raise ValueError(f"cavitation must be 'reynolds', 'gumbel', 'none' or 'jfo', got {cavitation!r}")
     start = time.perf_counter()
     e = max(eps, 1e-6)
     min_size = default_min_size(size, e) if min_size is None else float(min_size)
@@ -446,7 +504,7 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
     if estimate_error:
         fine = refine_uniformly(mesh)
         # nested iteration: the coarse rupture set starts the fine one (bounded active-set count)
-        warm = state if cavitation == "reynolds" else None
+        warm = state if cavitation in ("reynolds", "jfo") else None
         res_f = _solve_state(bearing, (fine,), -e, 0.0, cavitation, warm_start=warm).results[0]
         perf_f = _chart(bearing, res_f, e, fine.n_nodes)
         err = abs(perf_f.load - perf.load) / perf_f.load
@@ -521,7 +579,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         Element sizes (the mesh is graded for the first guess and regenerated
         once if the answer moved by more than 0.02 in eps); or
         ``discretization=`` as in :func:`performance`.
-    cavitation : {"reynolds", "none"}
+    cavitation : {"reynolds", "none", "jfo"}
+        With ``"jfo"`` (and for periodic bearings) the stiffness of the
+        Newton steps comes from forward differences of warm-started solves.
     tol : float
         Relative tolerance on the force balance.
     max_newton : int
@@ -539,7 +599,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     w = float(np.hypot(*load))
     eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
-    if bearing.pads is None:
+    if bearing.raimondi_boyd:
         return _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, tol, max_newton)
     xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
     for _ in range(2):
@@ -570,7 +630,7 @@ def _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton):
         res = float(np.hypot(*R) / w)
         if res <= tol:
             return xy, state, k, res
-        K, _ = _linearized(state)
+        K = _stiffness(bearing, meshes, state, xy, cavitation)
         step = -np.linalg.solve(K, R)
         # keep inside the clearance: at most half way to the eccentricity limit per step
         t = 1.0
@@ -595,7 +655,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, t
             res = abs(wf - w) / w
             if res <= tol:
                 break
-            K, _ = _linearized(state)
+            K = _stiffness(bearing, meshes, state, (-eps, 0.0), cavitation)
             dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
             new = eps - (wf - w) / dw
             eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
@@ -699,6 +759,9 @@ def dynamic_coefficients(eq: Equilibrium, *, method: str = "linearized", step: f
         raise ValueError("dynamic coefficients need cavitation='reynolds' or 'none'")
     rot = state.rotation
     if method == "linearized":
+        if any(sup is None for sup in state.sups):
+            raise ValueError("method='linearized' needs the Galerkin system; finite-volume solutions "
+                             "(cavitation='jfo', periodic or recessed surfaces) take method='finite-difference'")
         dFx, dFv = _linearized(state)
     else:
         # journal position in the mesh frame

@@ -5,7 +5,9 @@ so meshing works repeatedly in one process and nothing leaks between calls.
 Boundaries come out named: ``outer`` (the outline), ``inlet`` (all pocket
 contours) and ``inlet_0``, ``inlet_1``, ... per pocket; on the default
 rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
-(phi = alpha2) and ``side`` (z = +-a).
+(phi = alpha2) and ``side`` (z = +-a). A periodic surface has no arc edges:
+``outer`` = ``side``, and the seam is named ``periodic_start`` /
+``periodic_end`` (matching nodes, see :func:`periodic_pairs`).
 """
 
 from __future__ import annotations
@@ -25,7 +27,8 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
                        read_msh, run_geo)
 from .geometry import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles"]
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+           "strip_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -82,6 +85,13 @@ class SupportMesh:
     @property
     def has_inlet(self) -> bool:
         return "inlet" in self.boundaries and len(self.boundaries["inlet"]) > 0
+
+    @property
+    def needs_finite_volumes(self) -> bool:
+        """True for surfaces with recesses (film steps) or a periodic seam: only the
+        finite-volume solver (:mod:`bearingfe.jfo`) takes them."""
+        surface = self.surface
+        return surface is not None and (bool(surface.recesses) or surface.periodic)
 
     @property
     def max_edge(self) -> float:
@@ -370,11 +380,20 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
     inlet_curves = [shape.add_to_gmsh(occ) for shape in surface.inlets]
     loops = [occ.addCurveLoop(outer_curves)] + [occ.addCurveLoop(c) for c in inlet_curves]
     face = occ.addPlaneSurface(loops)
+    recess_curves = [r.shape.add_to_gmsh(occ) for r in surface.recesses]
     occ.synchronize()
+    if recess_curves:  # recess contours on element edges: the film step is meshed conformally
+        gmsh.model.mesh.embed(1, [c for cs in recess_curves for c in cs], 2, face)
     groups = {"outer": outer_curves, "inlet": [c for cs in inlet_curves for c in cs]}
     for k, cs in enumerate(inlet_curves):
         groups[f"inlet_{k}"] = cs
-    if surface.is_rectangular:
+    if surface.periodic:
+        # the arc ends are one line of the film: matching nodes, no pressure condition there
+        bottom, right, top, left = outer_curves
+        period = surface.arc[1] - surface.arc[0]
+        gmsh.model.mesh.setPeriodic(1, [right], [left], [1, 0, 0, period, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+        groups.update(outer=[bottom, top], side=[bottom, top], periodic_start=[left], periodic_end=[right])
+    elif surface.is_rectangular:
         # Rectangle vertices are stored counter-clockwise starting at (alpha1, -a):
         # edges bottom (side), right (arc_end), top (side), left (arc_start).
         bottom, right, top, left = outer_curves
@@ -383,6 +402,7 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
         if curves:
             gmsh.model.addPhysicalGroup(1, curves, name=name)
     gmsh.model.addPhysicalGroup(2, [face], name="film")
+    groups["recess"] = [c for cs in recess_curves for c in cs]
     return groups
 
 
@@ -396,9 +416,11 @@ def _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size
     fields = []
     errors: list[Exception] = []
     mf = gmsh.model.mesh.field
-    if groups["inlet"] and inlet_size < size:
-        fields.append(_threshold(mf, "CurvesList", groups["inlet"], inlet_size, size, grading))
-    corners = np.hstack([s.corners() for s in surface.inlets]) if surface.inlets else np.zeros((2, 0))
+    edges = groups["inlet"] + groups.get("recess", [])
+    if edges and inlet_size < size:
+        fields.append(_threshold(mf, "CurvesList", edges, inlet_size, size, grading))
+    shapes = list(surface.inlets) + [r.shape for r in surface.recesses]
+    corners = np.hstack([s.corners() for s in shapes]) if shapes else np.zeros((2, 0))
     if corners.shape[1] and corner_size < size:
         pts = _points_at(gmsh, corners)
         fields.append(_threshold(mf, "PointsList", pts, corner_size, size, grading))
@@ -563,3 +585,62 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
         raise GeometryFileError(
             f"{name}: {folded} inner edge(s) with both triangles on the same side (folded or overlapping "
             f"triangles); a mesh must cover each point of the surface once")
+
+
+def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:
+    """A structured strip ``[0, length] x [-width/2, width/2]`` for 1-D film problems on the 2-D solvers.
+
+    Only the two ends carry fixed pressure (``outer`` = ``arc_start`` + ``arc_end``);
+    the long sides are left free, i.e. closed to flow (the natural condition
+    ``q . n = 0``), so a film that varies along ``phi`` only gives the 1-D
+    solution. Nodes sit at ``phi = k length / n``, so steps of the film at such
+    abscissae lie on element edges.
+
+    Parameters
+    ----------
+    n : int
+        Number of cells along the strip, >= 2.
+    length : float
+        Strip length along ``phi`` [-], > 0.
+    width : float, optional
+        Strip width [-], > 0; default ``rows * length / n`` (square cells).
+    rows : int
+        Number of cells across, >= 1.
+    """
+    if not (isinstance(n, int) and n >= 2):
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    if not (isinstance(rows, int) and rows >= 1):
+        raise ValueError(f"rows must be an integer >= 1, got {rows!r}")
+    length = _checked_size(length, "length")
+    width = rows * length / n if width is None else _checked_size(width, "width")
+    m = skfem.MeshTri1.init_tensor(np.linspace(0.0, length, n + 1), np.linspace(-width / 2, width / 2, rows + 1))
+    facets = m.boundary_facets()
+    x = m.p[0, m.facets[:, facets]].mean(axis=0)
+    tol = 1e-9 * length
+    bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
+    bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+
+
+def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:
+    """Matching vertex pairs ``(start, end)`` across the seam of a periodic surface's mesh.
+
+    Empty arrays for a mesh without the ``periodic_start``/``periodic_end`` boundaries.
+
+    Raises
+    ------
+    ValueError
+        If the seam nodes do not match one to one (same ``z``, ``phi`` one period apart).
+    """
+    bnd = mesh.boundaries
+    if "periodic_start" not in bnd or "periodic_end" not in bnd:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    m = mesh.mesh
+    start = np.unique(m.facets[:, bnd["periodic_start"]])
+    end = np.unique(m.facets[:, bnd["periodic_end"]])
+    start = start[np.argsort(m.p[1, start])]
+    end = end[np.argsort(m.p[1, end])]
+    tol = 1e-9 * max(1.0, float(np.ptp(m.p[0])))
+    if start.size != end.size or np.abs(m.p[1, start] - m.p[1, end]).max(initial=0.0) > tol:
+        raise ValueError("the periodic seam's nodes do not match one to one (the mesh is not periodic)")
+    return start, end

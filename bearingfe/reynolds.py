@@ -41,6 +41,7 @@ from .cavitation import MODELS, ModelOptions, solve_model
 from .checks import check_operating_point, check_resolution
 from .elastic import Compliance, solve_elastic
 from .film import Film
+from .jfo import solve_jfo
 from .linalg import DEFAULT_SOLVER, Factorize
 from .meshing import SupportMesh
 from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
@@ -73,7 +74,8 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
-                   warm_start=None, elastic: Compliance | None = None) -> ReynoldsResult:
+                   warm_start=None, cavitation_pressure: float = 0.0,
+                   elastic: Compliance | None = None) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -96,7 +98,11 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         ``"none"`` lets the pressure go negative (as in the source paper);
         ``"reynolds"``: Swift-Stieber ``p >= 0`` with a free boundary, solved
         as a complementarity problem; ``"gumbel"``: negative part discarded
-        (see :mod:`bearingfe.cavitation`).
+        (see :mod:`bearingfe.cavitation`); ``"jfo"``: mass-conserving
+        (Elrod-Adams p-theta) cavitation, P1 only (see :mod:`bearingfe.jfo`).
+        Recessed and periodic surfaces (``mesh.needs_finite_volumes``) are
+        solved by the finite-volume scheme of :mod:`bearingfe.jfo` with
+        ``"none"``, ``"reynolds"`` or ``"jfo"``.
     sliding : float, optional
         Sliding speed of the journal relative to the shoe for the Couette
         shear; default ``wedge``.
@@ -109,6 +115,11 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         cavitated result on another (e.g. coarser) mesh of the same surface,
         interpolated: nested iteration keeps the active-set count bounded
         under refinement (docs/validation.md).
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``,
+        for ``"jfo"`` and ``"reynolds"`` (``p >= p_c``). A non-zero value
+        with ``"reynolds"`` is solved by the finite-volume Swift-Stieber of
+        :mod:`bearingfe.jfo` (P1, direct form); ``"gumbel"`` needs 0.
     elastic : Compliance, optional
         Compliance of the support surfaces on this mesh and element
         (:func:`bearingfe.elastic.half_space`): the film becomes
@@ -140,6 +151,18 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
+    finite_volumes = isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes
+    if cavitation == "jfo" or (finite_volumes and cavitation in ("none", "reynolds")) or (
+            cavitation == "reynolds" and float(cavitation_pressure) != 0.0):
+        if elastic is not None:
+            raise ValueError("elastic= is not supported with the finite-volume solver (cavitation='jfo', "
+                             "a non-zero cavitation_pressure, recessed or periodic surfaces)")
+        return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
+                         cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
+                         warm_start=warm_start, cavitation=cavitation)
+    if float(cavitation_pressure) != 0.0:
+        raise ValueError(f"cavitation_pressure must be 0 with cavitation={cavitation!r}, got "
+                         f"{cavitation_pressure!r} (it applies to 'reynolds' and 'jfo')")
     weights = source_weights(wedge, squeeze, inlet_pressure)
     check_operating_point(wedge, squeeze, inlet_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:

@@ -14,7 +14,7 @@ Scene file::
     element = "P2"                                   # P1 | P2 (P2 on a curved mesh)
     rtol = 1e-6
     frames = 12                                      # pressure fields in the PVD series
-    cavitation = "none"                              # none | reynolds | gumbel
+    cavitation = "none"                              # none | reynolds | gumbel | jfo (jfo: element P1)
     [elastic]
     enabled = false                                  # also run every design on an elastic support
     model = "half-space"                             # half-space | body (the 3-D shoe, [shoe] thickness)

@@ -460,6 +460,10 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         if not isinstance(film, Film):
             raise ValueError(f"film must implement the bearingfe.Film protocol, got {type(film).__name__}")
         _FILM_TYPES.add(type(film))
+    if isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes:
+        raise ValueError("the surface has recesses (film steps) or is periodic: solve it with "
+                         "solve_reynolds(..., cavitation='none', 'reynolds' or 'jfo'), whose finite-volume fluxes "
+                         "are exact across the steps and which identifies the periodic seam")
     ops = operators(mesh, element)
     factorize = get_linear_solver(solver)
     t0 = time.perf_counter()
@@ -872,7 +876,14 @@ class ReynoldsResult:
     iterations : int
         Active-set iterations of the cavitation solve (0 without).
     cavitated : ndarray of bool or None
-        Ruptured dofs (``p = 0`` imposed by the cavitation condition).
+        Ruptured dofs (``p = p_c`` imposed by the cavitation condition).
+    theta : ndarray or None
+        Fill fraction at the dofs (``cavitation="jfo"`` only; 1 in the full film).
+    cavitated_fraction : float
+        Film area with ``theta < 1`` (``"jfo"``) or ruptured (finite-volume
+        ``"reynolds"``) over the film area.
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-] (gauge).
     deflection : ndarray or None
         Film opening by an elastic support [c] at the dofs (``film`` is then
         the deflected film); None on rigid surfaces (:mod:`bearingfe.elastic`).
@@ -900,6 +911,9 @@ class ReynoldsResult:
     cavitation: str = "none"
     iterations: int = 0
     cavitated: np.ndarray | None = None
+    theta: np.ndarray | None = None
+    cavitated_fraction: float = 0.0
+    cavitation_pressure: float = 0.0
     deflection: np.ndarray | None = None
     elastic_iterations: int = 0
 

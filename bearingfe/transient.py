@@ -52,7 +52,9 @@ from .linalg import DEFAULT_SOLVER
 from .limits import check_limit
 from .parameters import Discretization, takes
 from .reynolds import CAVITATION, Superposition, superpose
+from .jfo import solve_jfo
 from .superposition import film_outputs, source_weights
+from .transient_jfo import jfo_run
 
 __all__ = [
     "Trajectory",
@@ -533,12 +535,17 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         periodic_tol``); or given values.
     beta0 : float
         Shaft angle at the start [rad].
-    cavitation : {"none", "reynolds", "gumbel"}
+    cavitation : {"none", "reynolds", "gumbel", "jfo"}
         ``"none"`` keeps the paper's model (p may go negative, rates from the
         2x2 superposition system); ``"reynolds"`` (Swift-Stieber) and
         ``"gumbel"`` find the rates by a small Newton on the cavitated film
         force, warm-started from the previous rupture set
-        (:func:`bearingfe.cavitation.rates_for_load`).
+        (:func:`bearingfe.cavitation.rates_for_load`); ``"jfo"``
+        (mass-conserving) carries the fill fraction over the cycle: fixed
+        backward-Euler steps, ``points_per_revolution`` of them per turn
+        (:mod:`bearingfe.transient_jfo`; ``method``, ``rtol``, ``atol`` and
+        ``max_step`` do not apply; P1 only). ``start="periodic"`` then runs
+        one revolution first and starts from its end (film history included).
     method : {"LSODA", "Radau", "BDF"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
@@ -619,6 +626,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         raise LiftOffError(f"{pump.name!r}: the pockets' hydrostatic lift is {ratio:.3f} x the plunger force "
                            f"(balance ratio >= 1): the shoe lifts off, there is no equilibrium with a closed "
                            f"film; make the pockets smaller or the plunger larger")
+    if cavitation == "jfo":
+        return _simulate_jfo(pump, mesh, revolutions, start, beta0, int(points_per_revolution),
+                             min_film / pump.clearance, ratio, formulation, element, solver)
     model = _Model(pump, mesh, formulation, element, solver, cavitation)
     bound = min_film / pump.clearance
     opts = dict(method=method, rtol=rtol, atol=atol, max_step=max_step, bound=bound)
@@ -693,7 +703,69 @@ def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: in
     if elastic is not None:  # the coupled film at the run's rates: result.film is the deflected film
         return solve_elastic(mesh, film, elastic, wedge=float(traj.wedge[k]), squeeze=rates, inlet_pressure=p_s,
                              element=element, cavitation=cavitation).result
+    if cavitation == "jfo":  # the steady JFO film of that state (the run's history is not re-played)
+        return solve_jfo(mesh, film, wedge=float(traj.wedge[k]), squeeze=rates, inlet_pressure=p_s, element=element)
     sup = superpose(mesh, film, element=element)
     if cavitation == "none":
         return sup.combine(float(traj.wedge[k]), rates, p_s)
     return solve_cavitating(sup, float(traj.wedge[k]), rates, p_s, model=cavitation)
+
+
+def _simulate_jfo(pump: EccentricPump, mesh: SupportMesh, revolutions: float, start, beta0: float, per_rev: int,
+                  bound: float, ratio: float, formulation: str, element: str, solver: str) -> Trajectory:
+    """``simulate(..., cavitation="jfo")``: backward-Euler steps carrying theta (bearingfe.transient_jfo)."""
+    if element != "P1":
+        raise ValueError(f"cavitation='jfo' supports element='P1' only, got {element!r}")
+    t_start = time.perf_counter()
+    model = _Model(pump, mesh, formulation, element, solver, "none")
+    if isinstance(start, str) and start in STARTS:
+        y0 = np.array(steady_state(pump, beta=beta0, _model=model))
+    elif isinstance(start, str):
+        raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}")
+    else:
+        try:
+            y0 = np.array([float(v) for v in start])
+        except (TypeError, ValueError):
+            raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}") from None
+        if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
+            raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
+                             f"min_film over the surface, got {start!r}")
+    rates0 = model.rates(beta0, y0)
+    initial, iterations, residual = None, 0, math.nan
+    if start == "periodic":  # one revolution to build the film history, then start from its end
+        first = jfo_run(pump, mesh, y0, rates0, beta0, beta0 + 2 * math.pi, per_rev, bound=bound)
+        iterations = 1
+        if first.status == "completed":
+            d = first.y[-1] - y0
+            d[1] = (d[1] + math.pi) % (2 * math.pi) - math.pi
+            residual = float(np.max(np.abs(d)))
+            y0, rates0, initial = first.y[-1], first.rates[-1], first.results[-1]
+    steps = max(int(round(per_rev * revolutions)), 1)
+    run = jfo_run(pump, mesh, y0, rates0, beta0, beta0 + 2 * math.pi * revolutions, steps, bound=bound,
+                  initial=initial)
+    seconds = time.perf_counter() - t_start
+    betas, sc = run.beta, pump.scale
+    res = run.results
+    flows = [r.flows for r in res]
+    f = pump.load(betas)
+    return Trajectory(
+        t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=run.y[:, 0], delta=run.y[:, 1],
+        gamma_rate=run.rates[:, 0], delta_rate=run.rates[:, 1], wedge=pump.wedge(betas),
+        inlet_pressure=pump.inlet_pressure(betas), chamber_pressure=pump.chamber_pressure(betas),
+        load=np.column_stack([-f, np.zeros_like(f)]),
+        h_min=np.array([sc.to_thickness(r.h_min) for r in res]),
+        friction_moment=np.array([sc.to_moment(r.friction) for r in res]),
+        flow_inlet=np.array([sc.to_flow(fl.get("inlet", 0.0)) for fl in flows]),
+        flow_side=np.array([sc.to_flow(fl.get("side", 0.0)) for fl in flows]),
+        flow_arc=np.array([sc.to_flow(sum(v for k, v in fl.items() if k in ("arc_start", "arc_end", "outer")))
+                           for fl in flows]),
+        flow_squeeze=np.array([sc.to_flow(fl["squeeze"]) for fl in flows]),
+        mass_balance=np.array([sc.to_flow(r.mass_balance) for r in res]),
+        status=run.status, message=run.message,
+        rupture_beta=float(betas[-1]) if run.status != "completed" else math.nan,
+        start=(float(y0[0]), float(y0[1])), periodic_iterations=iterations, periodic_residual=residual,
+        stats=MappingProxyType({"nfev": float(run.solves), "factorizations": float(run.solves),
+                                "steps": float(len(betas) - 1), "seconds": seconds, "solver_seconds": seconds,
+                                "dofs": float(mesh.n_nodes), "balance_ratio": ratio,
+                                "newton_iterations": float(run.newton_iterations),
+                                "cavitated_fraction_max": max(r.cavitated_fraction for r in res)}))

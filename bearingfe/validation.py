@@ -31,7 +31,10 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Callable, Mapping
 
-__all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "short_bearing", "raimondi_boyd"]
+import numpy as np
+
+__all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "short_bearing", "raimondi_boyd",
+           "PocketSlider", "SliderAnswer", "jfo_pocket_slider", "OscillatingSqueeze"]
 
 #: ``L/D -> eps -> (S, attitude [deg], (R/c) f, Q/(R c N L), Qs/Q, P/p_max)``: Raimondi & Boyd
 #: (1958), ASLE Trans. 1, full 360-degree bearing, Swift-Stieber conditions, as reproduced in
@@ -140,11 +143,278 @@ def raimondi_boyd(quick: bool = False, rows=((1.0, 0.6), (1.0, 0.8), (0.5, 0.6))
     return out
 
 
+@dataclass(frozen=True)
+class SliderAnswer:
+    """Per-unit-width answer of a 1-D slider [SI].
+
+    Attributes
+    ----------
+    flow : float
+        Volume flow per unit width [m^2/s] (the same everywhere in steady state).
+    load : float
+        ``int (p - p_edge) dx`` per unit width [N/m].
+    reformation : float
+        Where the film reforms in the pocket [m].
+    theta_cavity : float
+        Fill fraction in the cavity [-].
+    peak_pressure : float
+        Pressure at the pocket's trailing edge [Pa].
+    """
+
+    flow: float
+    load: float
+    reformation: float
+    theta_cavity: float
+    peak_pressure: float
+
+
+@dataclass(frozen=True)
+class _StepFilm:
+    """``h = 1`` with a deeper band ``start < phi < end`` of thickness ``ratio`` (units of the outer film)."""
+
+    start: float
+    end: float
+    ratio: float
+
+    def thickness(self, phi, z):
+        phi = np.asarray(phi, float)
+        return 1.0 + (self.ratio - 1.0) * ((phi > self.start) & (phi < self.end)) + 0.0 * np.asarray(z)
+
+    def gradient(self, phi, z):
+        zero = 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z)
+        return zero, zero
+
+    def laplacian(self, phi, z):
+        return 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z)
+
+    def rate_shapes(self, phi, z):
+        zero = 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z)
+        return zero, zero
+
+    def minimum(self, phi_range) -> float:
+        return 1.0
+
+
+@dataclass(frozen=True)
+class PocketSlider:
+    r"""1-D slider with a deeper pocket, mass-conserving cavitation: the exact solution.
+
+    A surface moves at ``speed`` over a pad of ``length`` whose film is
+    ``h_out`` except on ``start < x < end`` (a pocket, film ``h_in``), with
+    ``p_edge`` at both ends and cavity pressure ``p_cav`` [SI]. The pocket's
+    leading edge is a divergent step: the film ruptures there (the pressure in
+    the inlet land falls linearly from ``p_edge`` to ``p_cav`` at ``x = start``),
+    the pocket carries a cavity of constant ``theta h`` up to the reformation
+    point ``x_r``, full film again from ``x_r`` to ``end`` and through the
+    outlet land. With the flux ``q = -h^3/(12 mu) p' + U theta h/2``,
+    constant in steady state:
+
+    - inlet land: ``q = U h_out/2 + h_out^3 (p_edge - p_cav) / (12 mu start)``;
+    - cavity: ``theta_c = 2 q / (U h_in)``;
+    - outlet land: ``p(end) = p_edge + 12 mu (q - U h_out/2) (length - end) / h_out^3``;
+    - pocket full film: ``p' = 12 mu (U h_in/2 - q)/h_in^3`` from ``p_cav`` at ``x_r``:
+      ``x_r = end - (p(end) - p_cav) h_in^3 / (12 mu (U h_in/2 - q))``.
+
+    This is a JFO solution (``p >= p_cav``, ``0 < theta_c < 1``, flux continuous
+    at the rupture step and at ``x_r``) when ``start < x_r < end``; the
+    constructor checks it. Defaults: issue 14's case (20 mm, 1 m/s,
+    0.01 Pa s, 1 um / 10 um, pocket 2-5 mm, 100 kPa, 50 kPa), derived in
+    ``docs/jfo.md``.
+    """
+
+    length: float = 0.02
+    speed: float = 1.0
+    viscosity: float = 0.01
+    h_out: float = 1e-6
+    h_in: float = 10e-6
+    start: float = 0.002
+    end: float = 0.005
+    p_edge: float = 1e5
+    p_cav: float = 5e4
+
+    def __post_init__(self) -> None:
+        for name in ("length", "speed", "viscosity", "h_out", "h_in", "start", "end", "p_edge"):
+            value = float(getattr(self, name))
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"PocketSlider.{name} must be a finite number > 0, got {value!r}")
+        if not (0 < self.start < self.end < self.length):
+            raise ValueError("PocketSlider needs 0 < start < end < length")
+        if not (self.h_in > self.h_out and 0 <= self.p_cav < self.p_edge):
+            raise ValueError("PocketSlider needs h_in > h_out and 0 <= p_cav < p_edge")
+        ex = self.exact()
+        if not (self.start < ex.reformation < self.end and 0 < ex.theta_cavity < 1):
+            raise ValueError(f"no cavity inside the pocket for these parameters (x_r = {ex.reformation:.4g} m, "
+                             f"theta = {ex.theta_cavity:.4g}): the closed form does not apply")
+
+    def exact(self) -> SliderAnswer:
+        """The closed-form JFO solution (see the class docstring)."""
+        mu, U, ho, hi = self.viscosity, self.speed, self.h_out, self.h_in
+        dp = self.p_edge - self.p_cav
+        q = U * ho / 2 + ho**3 * dp / (12 * mu * self.start)
+        p_end = self.p_edge + 12 * mu * (q - U * ho / 2) * (self.length - self.end) / ho**3
+        x_r = self.end - (p_end - self.p_cav) * hi**3 / (12 * mu * (U * hi / 2 - q))
+        load = (-dp * self.start / 2 - dp * (x_r - self.start)
+                + (p_end - self.p_edge - dp) / 2 * (self.end - x_r) + (p_end - self.p_edge) * (self.length - self.end) / 2)
+        return SliderAnswer(flow=q, load=load, reformation=x_r, theta_cavity=2 * q / (U * hi), peak_pressure=p_end)
+
+    @property
+    def pressure_scale(self) -> float:
+        """``mu U L / h_out^2`` [Pa]: the package's ``p`` with ``R0 = length``, ``c = h_out``, ``wedge = 1``."""
+        return self.viscosity * self.speed * self.length / self.h_out**2
+
+    def film(self):
+        """The non-dimensional step film (``phi = x / length``, ``h`` in units of ``h_out``)."""
+        return _StepFilm(self.start / self.length, self.end / self.length, self.h_in / self.h_out)
+
+    def solve(self, n: int, element: str = "P1") -> SliderAnswer:
+        """Solve on a 2-D strip of ``n`` cells along (``n`` a multiple of the steps' grid) with JFO."""
+        from .meshing import strip_mesh
+        from .reynolds import solve_reynolds
+
+        for x in (self.start, self.end):
+            if abs(x / self.length * n - round(x / self.length * n)) > 1e-9:
+                raise ValueError(f"n = {n} puts no node at x = {x} m; the step must lie on element edges")
+        mesh = strip_mesh(n)
+        width = float(np.ptp(mesh.mesh.p[1]))
+        scale = self.pressure_scale
+        res = solve_reynolds(mesh, self.film(), cavitation="jfo", element=element,
+                             cavitation_pressure=(self.p_cav - self.p_edge) / scale)
+        flow = res.flows["arc_end"] / width * self.speed * self.h_out
+        theta_c = 2 * flow / (self.speed * self.h_in)
+        # reformation from the void volume: int (1 - theta) dx = (x_r - start)(1 - theta_c)
+        from skfem import LinearForm
+
+        void = float(np.sum(LinearForm(lambda v, w: v).assemble(res.basis) * (1 - res.theta))) / width
+        x = res.basis.doflocs[0]
+        inside = (x > self.start / self.length + 1.5 / n) & (res.theta < 1)
+        return SliderAnswer(flow=flow, load=res.integral / width * scale * self.length,
+                            reformation=self.start + void * self.length / (1 - theta_c),
+                            theta_cavity=float(np.median(res.theta[inside])) if inside.any() else 1.0,
+                            peak_pressure=float(res.interpolate(self.end / self.length, 0.0)) * scale + self.p_edge)
+
+
+def jfo_pocket_slider(quick: bool = False) -> list[Check]:
+    """Issue 14's pocket slider with JFO cavitation against its closed form (:class:`PocketSlider`)."""
+    case = PocketSlider()
+    ex = case.exact()
+    num = case.solve(160 if quick else 640)
+    ref = "closed form, 1-D pocket slider with JFO cavitation (docs/jfo.md)"
+    return [Check("JFO pocket slider load [N/m]", ref, num.load, ex.load, 1e-3),
+            Check("JFO pocket slider flow [m^2/s]", ref, num.flow, ex.flow, 1e-6),
+            Check("JFO pocket slider reformation [m]", ref, num.reformation, ex.reformation, 1e-2),
+            Check("JFO pocket slider peak pressure [Pa]", ref, num.peak_pressure, ex.peak_pressure, 1e-3)]
+
+
+@dataclass(frozen=True)
+class OscillatingSqueeze:
+    r"""1-D squeeze film between parallel plates with an oscillating gap, JFO cavitation (transient).
+
+    Non-dimensional (the package's scales, no sliding): a strip ``0 < x < 1``
+    with ``p = 0`` at both ends, gap ``h(t) = mean + amplitude cos(t)`` uniform
+    in ``x``, cavity pressure ``p_c < 0``. The case is of the type of Ausas,
+    Jai & Buscaglia (J. Tribol. 131, 031702, 2009), with our own parameters.
+    While the plates approach, the film is full and
+    ``p = 6 h'/h^3 (x^2 - x)``. Once they separate fast enough
+    (``1.5 h'/h^3 > -p_c``) a cavity ``(1/2 - c, 1/2 + c)`` opens at the
+    centre; with ``l = 1/2 - c`` the full film on each side is
+    ``p = p_c + A y + 6 h'/h^3 y^2`` (``y`` from the front), ``p(l) = 0``:
+    ``A = (-p_c - 6 h' l^2/h^3)/l``. Mass across the front gives
+    ``c' (1 - theta_f) h = -h^3 A / 12`` with ``theta_f = h(tau)/h(t)`` the
+    fill of the cavity where the front is (cavitated at time ``tau``, no
+    flux in the cavity since there is no Couette flow). The front advances
+    with ``A = 0`` (``l^2 = -p_c h^3/(6 h')``, fresh cavity has
+    ``theta = 1``) and recedes by the ODE; :meth:`reference` integrates it
+    implicitly (a scalar root per step, so the stiff turn-around is stable)
+    and returns the cavity half-length and the load ``int p dx``.
+    """
+
+    mean: float = 1.0
+    amplitude: float = 0.5
+    p_cav: float = -0.1
+
+    def __post_init__(self) -> None:
+        if not (0 < self.amplitude < self.mean and math.isfinite(self.mean)):
+            raise ValueError("OscillatingSqueeze needs 0 < amplitude < mean")
+        if not (math.isfinite(self.p_cav) and self.p_cav < 0):
+            raise ValueError(f"OscillatingSqueeze.p_cav must be < 0, got {self.p_cav!r}")
+
+    def h(self, t):
+        return self.mean + self.amplitude * np.cos(t)
+
+    def h_rate(self, t):
+        return -self.amplitude * np.sin(t)
+
+    def reference(self, t_end: float = 2 * math.pi, steps: int = 40000) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(t, c, load)`` on ``steps`` equal steps of ``[0, t_end]`` from a full film at rest (t = 0)."""
+        from scipy.optimize import brentq
+
+        dt, c, pc = t_end / steps, 0.0, self.p_cav
+        hist_c: list[float] = []   # front positions reached while the cavity grew ...
+        hist_t: list[float] = []   # ... and when: the fill there is h(tau)/h(t)
+        out = np.zeros((3, steps + 1))
+        for k in range(steps + 1):
+            t = k * dt
+            H, Hd = float(self.h(t)), float(self.h_rate(t))
+            grow = 0.5 - math.sqrt(-pc * H**3 / (6 * Hd)) if Hd > 0 else -math.inf
+            if k and c > 0:
+                c = self._recede(c, dt, t, H, Hd, max(grow, 0.0), hist_c, hist_t, brentq)
+            if grow > c:
+                while hist_c and hist_c[-1] >= c:
+                    hist_c.pop(), hist_t.pop()
+                hist_c.append(max(c, 0.0)), hist_t.append(t - dt if k else t)
+                hist_c.append(grow), hist_t.append(t)
+                c = grow
+            if c <= 0:
+                c, hist_c, hist_t = 0.0, [], []
+            out[:, k] = t, c, self._load(c, H, Hd)
+        return out[0], out[1], out[2]
+
+    def _recede(self, c, dt, t, H, Hd, lo, hist_c, hist_t, brentq) -> float:
+        pc = self.p_cav
+
+        def speed(x):
+            l = 0.5 - x
+            A = (-pc - 6 * Hd * l**2 / H**3) / l
+            fill = float(self.h(np.interp(x, hist_c, hist_t))) / H
+            return -H**2 * A / (12 * max(1.0 - fill, 1e-300))
+
+        if lo >= c:
+            return c
+        g = lambda x: (x - c) / dt - speed(x)  # backward Euler; g(lo) <= 0 <= g(c)
+        return lo if g(lo) >= 0 else brentq(g, lo, c, xtol=1e-14)
+
+    def _load(self, c, H, Hd) -> float:
+        if c <= 0:
+            return -Hd / H**3
+        l = 0.5 - c
+        A = (-self.p_cav - 6 * Hd * l**2 / H**3) / l
+        return 2 * (self.p_cav * 0.5 + A * l**2 / 2 + 2 * Hd / H**3 * l**3)
+
+    def solve(self, n: int, steps: int, t_end: float = 2 * math.pi):
+        """Backward-Euler JFO steps on a strip of ``n`` cells: ``(t, c, load, mass_balance)`` per step."""
+        from .film import UniformFilm
+        from .jfo import solve_jfo
+        from .meshing import strip_mesh
+
+        mesh = strip_mesh(n, rows=1)
+        width = float(np.ptp(mesh.mesh.p[1]))
+        res = solve_jfo(mesh, UniformFilm(float(self.h(0.0))), wedge=0.0, cavitation_pressure=self.p_cav)
+        dt = t_end / steps
+        out = np.zeros((4, steps))
+        for k in range(1, steps + 1):
+            t = k * dt
+            res = solve_jfo(mesh, UniformFilm(float(self.h(t))), wedge=0.0, cavitation_pressure=self.p_cav,
+                            dt=dt, previous=res, warm_start=res)
+            out[:, k - 1] = t, res.cavitated_fraction / 2, res.integral / width, res.mass_balance
+        return out
+
+
 #: Validation checks by name.
 CHECKS: Mapping[str, Callable[[bool], list[Check]]] = MappingProxyType({
     "annular_pad": annular_pad,
     "short_bearing": short_bearing,
     "raimondi_boyd": raimondi_boyd,
+    "jfo_pocket_slider": jfo_pocket_slider,
 })
 
 

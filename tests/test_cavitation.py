@@ -146,7 +146,7 @@ def test_pure_squeeze_against_published_short_bearing():
 def test_bad_input():
     m = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5), 0.2)
     with pytest.raises(ValueError, match="cavitation"):
-        solve_reynolds(m, CosineFilm(0.3), cavitation="jfo")
+        solve_reynolds(m, CosineFilm(0.3), cavitation="floberg")  # not a model name ("jfo" is one since issue 14)
     sup = superpose(m, CosineFilm(0.3), formulation="direct")
     with pytest.raises(ValueError, match="warm_start"):
         solve_cavitating(sup, warm_start=np.zeros(3, bool))

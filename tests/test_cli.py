@@ -131,7 +131,9 @@ def test_validate_prints_table(capsys):
     assert main(["validate", "--quick"]) == 0
     out = capsys.readouterr().out
     assert "annular pad load W" in out and "short bearing" in out and "Raimondi & Boyd" in out
-    assert "9 of 9 passed" in out  # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude)
+    assert "JFO pocket slider" in out
+    # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude) + 4 JFO pocket slider (load, flow, x_r, peak)
+    assert "13 of 13 passed" in out
     assert main(["validate", "--only", "nonsense"]) == 2
 
 

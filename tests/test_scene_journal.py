@@ -194,7 +194,7 @@ def _edit(text, old, new):
     (("[operating]", 'pads = [[0.0, 180.0]]\n[[bearing.grooves]]\nangle_deg = 90.0\nwidth_deg = 10.0\n'
       'length_fraction = 1.0\n[operating]'), r"\[bearing.grooves.0\] length_fraction: must be in \(0, 1\)"),
     (("load = 10e3", 'load = 10e3\n[solver]\ncavitation = "gumbel"'),
-     r"\[solver\] cavitation: must be one of 'reynolds', 'none'; got 'gumbel'"),
+     r"\[solver\] cavitation: must be one of 'reynolds', 'none', 'jfo'; got 'gumbel'"),
     (("load = 10e3", 'load = 10e3\n[solver]\nestimate_error = "yes"'),
      r"\[solver\] estimate_error: expected true or false"),
     (("load = 10e3", 'load = 10e3\n[solver]\nsize = 2.0'), r"\[solver\] size: must be in \(0, 1\]"),

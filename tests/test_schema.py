@@ -130,7 +130,7 @@ def test_pump_scene_cavitation_choices_come_from_the_solver():
     ("diameter = 0.1", "diameter = 0", "bad.toml: [bearing] diameter: must be > 0; got 0"),
     ("load = 10e3", 'load = 10e3\n[solver]\nsize = 0', "bad.toml: [solver] size: must be in (0, 1]; got 0"),
     ("load = 10e3", 'load = 10e3\n[solver]\ncavitation = "gumbel"',
-     "bad.toml: [solver] cavitation: must be one of 'reynolds', 'none'; got 'gumbel'"),
+     "bad.toml: [solver] cavitation: must be one of 'reynolds', 'none', 'jfo'; got 'gumbel'"),
     ("[operating]", "pads = [[0.0, 180.0]]\n[[bearing.grooves]]\nangle_deg = 90.0\n[operating]",
      "bad.toml: [bearing.grooves.0] width_deg: missing (required)"),
     ("[operating]", "pads = [[0.0, 180.0]]\ngrooves = 3\n[operating]",
