@@ -59,7 +59,7 @@ from .jfo import solve_jfo
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
 from .parameters import Discretization, takes
 from . import forms
-from .superposition import ReynoldsResult, operators, superpose
+from .superposition import ELEMENTS, ReynoldsResult, operators, superpose
 
 __all__ = [
     "Groove",
@@ -234,21 +234,62 @@ def film_graded_size(film, size: float, min_size: float, exponent: float = 0.5):
     return size_function
 
 
+def _cosine_graded_size(eps: float, phi0: float, size: float, min_size: float):
+    """:func:`film_graded_size` of ``CosineFilm(eps, phi0)`` with exponent 1/2 in scalar arithmetic:
+    gmsh calls it once per point (numpy's per-call overhead made it half the meshing time)."""
+    CosineFilm(eps, phi0)  # the same argument checks
+
+    def size_function(phi, z):
+        h = 1.0 + eps * math.cos(float(phi) - phi0)
+        return min(max(size * math.sqrt(max(h, 0.0)), min_size), size)
+
+    return size_function
+
+
 @lru_cache(maxsize=32)
-def _mesh(surface: Surface, size: float, min_size: float, eps: float, phi0: float, element: str) -> SupportMesh:
-    graded = film_graded_size(CosineFilm(eps, phi0), size, min_size) if min_size < size else None
-    return mesh_surface(surface, size, size_function=graded, min_size=min(min_size, size), order=1)
+def _mesh(surface: Surface, size: float, min_size: float, eps: float, phi0: float, order: int) -> SupportMesh:
+    graded = _cosine_graded_size(eps, phi0, size, min_size) if min_size < size else None
+    return mesh_surface(surface, size, size_function=graded, min_size=min(min_size, size), order=order)
 
 
 def journal_mesh(bearing: JournalBearing, size: float, *, min_size: float | None = None,
-                 eps: float = 0.0, phi0: float = 0.0) -> tuple[SupportMesh, ...]:
+                 eps: float = 0.0, phi0: float = 0.0, order: int = 1) -> tuple[SupportMesh, ...]:
     """Meshes of the pads, graded towards the thinnest film of ``CosineFilm(eps, phi0)``.
 
     Meshes are cached on their arguments (the transient and the Newton
     iterations reuse them).
+
+    Parameters
+    ----------
+    order : {1, 2}
+        Geometry order (2: curved ``MeshTri2`` edges, for P2 on pads with
+        curved pockets; the plain bore and rectangular grooves are exact with 1).
     """
     min_size = size if min_size is None else float(min_size)
-    return tuple(_mesh(s, float(size), min_size, float(eps), float(phi0), "P1") for s in bearing.surfaces())
+    _check_order(order)
+    # the grading needs eps and phi0 to a few digits only: rounded, round-off in them (e.g. a load
+    # direction of cos(-pi/2) = 6e-17) gives the same (cached) mesh instead of another gmsh mesh
+    eps, phi0 = round(float(eps), 9), round(float(phi0), 9)
+    return tuple(_mesh(s, float(size), min_size, eps, phi0, int(order)) for s in bearing.surfaces())
+
+
+def _check_order(order) -> None:
+    if order not in (1, 2):
+        raise ValueError(f"order (mesh geometry order) must be 1 or 2, got {order!r}")
+
+
+def _check_element(element) -> None:
+    if element not in ELEMENTS:
+        raise ValueError(f"element must be one of {list(ELEMENTS)}, got {element!r}")
+
+
+def _refined(bearing: JournalBearing, mesh: SupportMesh, size: float, min_size: float, eps: float,
+             order: int) -> SupportMesh:
+    """The error-estimate mesh: the uniform refinement (straight meshes) or a remesh at half the sizes."""
+    if order == 1:
+        return refine_uniformly(mesh)
+    (fine,) = journal_mesh(bearing, size / 2, min_size=min_size / 2, eps=eps, order=order)
+    return fine
 
 
 def default_min_size(size: float, eps: float) -> float:
@@ -282,7 +323,7 @@ def _rot(angle: float) -> np.ndarray:
 
 
 def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation: str,
-                 squeeze_xy=(0.0, 0.0), rotation: float = 0.0, warm_start=None) -> _State:
+                 squeeze_xy=(0.0, 0.0), rotation: float = 0.0, warm_start=None, element: str = "P1") -> _State:
     """Solve all pads for a journal at ``(x, y)`` in the frame of the meshes, moving at ``squeeze_xy``;
     ``warm_start``: a previous state's results (one per pad, any mesh) to start the rupture sets from."""
     eps = math.hypot(x, y)
@@ -305,7 +346,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             sups.append(None)
             force += res.force
             continue
-        sup = superpose(mesh, film, formulation="direct")
+        sup = superpose(mesh, film, formulation="direct", element=element)
         if cavitation == "none":
             res = sup.combine(1.0, (gamma_rate, phi0_rate), ps)
         else:
@@ -339,35 +380,35 @@ def _lumped_area(res: ReynoldsResult) -> np.ndarray:
 
 def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
-    differentiating the discrete equation on the fixed rupture sets."""
+    differentiating the discrete equation on the fixed rupture sets.
+
+    Assembled from the compiled maps of the mesh (:mod:`bearingfe.compiled`):
+    the derivative matrices are the stiffness scatter applied to their
+    coefficients at the quadrature points, the source integrals and the
+    loads are mat-vecs; no form assembly per Newton step.
+    """
     dF = np.zeros((2, 4))
     for res, sup in zip(state.results, state.sups):
-        ops = sup.operators
-        at = sup.at
-        phi = ops.x[0]
-        basis = ops.basis
-        hx, hy = -np.cos(phi), -np.sin(phi)
-        p = res.pressure
-        # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot
-        dA_dx = forms.weighted_laplace.assemble(basis, c=3 * at.h**2 * hx)
-        dA_dy = forms.weighted_laplace.assemble(basis, c=3 * at.h**2 * hy)
-        rhs = np.column_stack([
-            -forms.load.assemble(basis, f=6.0 * np.sin(phi)) - dA_dx @ p,
-            -forms.load.assemble(basis, f=-6.0 * np.cos(phi)) - dA_dy @ p,
-            -forms.load.assemble(basis, f=12.0 * hx),
-            -forms.load.assemble(basis, f=12.0 * hy),
-        ])
-        fp = obstacle_problem(sup)
-        active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
         if res.cavitation == "gumbel":
             raise ValueError("linearization is defined for cavitation='reynolds' or 'none'")
-        U = fp.problem.solve_fixed(rhs[fp.interior], active)
-        cos, sin = np.cos(phi) * basis.dx, np.sin(phi) * basis.dx
-        for k in range(4):
-            u = np.zeros(ops.n_dofs)
-            u[fp.interior] = U[:, k]
-            pk = np.array(basis.interpolate(u))
-            dF[:, k] += np.sum(pk * cos), np.sum(pk * sin)
+        co = sup.operators.compiled
+        phi = co.x[0]
+        h = np.asarray(sup.at.h, float).reshape(-1)
+        hx, hy = -np.cos(phi), -np.sin(phi)
+        p = res.pressure
+        # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot. dA/dx is the
+        # direct-form matrix of the coefficient 3 h^2 dh/dx, i.e. of the "film" cbrt(3 h^2 dh/dx)
+        dA_p = [co.matrix(co.matrix_data("direct", np.cbrt(3 * h**2 * c), None)) @ p for c in (hx, hy)]
+        sources = co.sources @ np.column_stack([6.0 * np.sin(phi), -6.0 * np.cos(phi), 12.0 * hx, 12.0 * hy])
+        fp = obstacle_problem(sup)
+        rhs = -sources
+        rhs[:, 0] -= dA_p[0][fp.interior]
+        rhs[:, 1] -= dA_p[1][fp.interior]
+        active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
+        U = fp.problem.solve_fixed(rhs, active)
+        u = np.zeros((co.n_dofs, 4))
+        u[fp.interior] = U
+        dF += co.loads[:2] @ (co.value @ u)
     return dF[:, :2], dF[:, 2:]
 
 
@@ -458,7 +499,7 @@ def _chart(bearing: JournalBearing, res: ReynoldsResult, eps: float, n_nodes: in
 @takes(Discretization, rename={"mesh_size": "size"})
 def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_size: float | None = None,
                 cavitation: str = "reynolds", estimate_error: bool = False,
-                error_tolerance: float = 0.02) -> JournalPerformance:
+                error_tolerance: float = 0.02, element: str = "P1", order: int = 1) -> JournalPerformance:
     """Chart variables of a full (Raimondi-Boyd) bearing at eccentricity ``eps``.
 
     Parameters
@@ -486,6 +527,12 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
     error_tolerance : float
         With ``estimate_error``: a :class:`ResolutionWarning` is issued if
         the estimate exceeds it.
+    element : {"P1", "P2"}
+        Finite element (P2: third-order load error on smooth films, see
+        docs/benchmarks.md).
+    order : {1, 2}
+        Mesh geometry order (:func:`journal_mesh`); the error estimate of an
+        order-2 mesh remeshes at half the sizes instead of splitting it.
     """
     if not bearing.raimondi_boyd:
         raise ValueError("performance() is for the full Raimondi-Boyd bearing (pads=None, not periodic); "
@@ -493,19 +540,21 @@ def performance(bearing: JournalBearing, eps: float, *, size: float = 0.08, min_
     eps = _check_eps(eps)
     if cavitation not in ("reynolds", "gumbel", "none", "jfo"):
         raise ValueError(f"cavitation must be 'reynolds', 'gumbel', 'none' or 'jfo', got {cavitation!r}")
+    _check_element(element)
+    _check_order(order)
     start = time.perf_counter()
     e = max(eps, 1e-6)
     min_size = default_min_size(size, e) if min_size is None else float(min_size)
-    (mesh,) = journal_mesh(bearing, size, min_size=min_size, eps=e)
-    state = _solve_state(bearing, (mesh,), -e, 0.0, cavitation)
+    (mesh,) = journal_mesh(bearing, size, min_size=min_size, eps=e, order=order)
+    state = _solve_state(bearing, (mesh,), -e, 0.0, cavitation, element=element)
     res = state.results[0]
     perf = _chart(bearing, res, e, mesh.n_nodes)
     extra = {}
     if estimate_error:
-        fine = refine_uniformly(mesh)
+        fine = _refined(bearing, mesh, size, min_size, e, order)
         # nested iteration: the coarse rupture set starts the fine one (bounded active-set count)
         warm = state if cavitation in ("reynolds", "jfo") else None
-        res_f = _solve_state(bearing, (fine,), -e, 0.0, cavitation, warm_start=warm).results[0]
+        res_f = _solve_state(bearing, (fine,), -e, 0.0, cavitation, warm_start=warm, element=element).results[0]
         perf_f = _chart(bearing, res_f, e, fine.n_nodes)
         err = abs(perf_f.load - perf.load) / perf_f.load
         extra = dict(error_estimate=err, attitude_error=abs(perf_f.attitude - perf.attitude))
@@ -540,6 +589,11 @@ class Equilibrium:
     newton_iterations : int
     residual : float
         ``|force - load| / |load|``.
+    active_set_iterations : int
+        Cavitation active-set iterations summed over all film solves of the
+        Newton iteration (each one a sparse factorization at most).
+    element : str
+        Finite element of the solution.
     """
 
     eps: float
@@ -548,6 +602,8 @@ class Equilibrium:
     force: np.ndarray
     newton_iterations: int
     residual: float
+    active_set_iterations: int = 0
+    element: str = "P1"
     state: _State = field(repr=False, compare=False, default=None)
     meshes: tuple = field(repr=False, compare=False, default=())
     bearing: JournalBearing | None = field(repr=False, compare=False, default=None)
@@ -566,7 +622,8 @@ def _short_eps(load: float, a: float) -> float:
 
 @takes(Discretization, rename={"mesh_size": "size"})
 def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: float | None = None,
-                cavitation: str = "reynolds", tol: float = 1e-8, max_newton: int = 40) -> Equilibrium:
+                cavitation: str = "reynolds", tol: float = 1e-8, max_newton: int = 40, element: str = "P1",
+                order: int = 1, warm_start: bool = True) -> Equilibrium:
     """Journal position that carries a load, by Newton's method with the linearized stiffness.
 
     Parameters
@@ -585,6 +642,16 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     tol : float
         Relative tolerance on the force balance.
     max_newton : int
+    element : {"P1", "P2"}
+    order : {1, 2}
+        Mesh geometry order (:func:`journal_mesh`).
+    warm_start : bool
+        Start each cavitation solve from the rupture set of the previous
+        Newton step (and, after a remesh, from the previous mesh's, carried
+        over): the active-set iteration then only corrects the free boundary
+        by the step's motion. ``False`` starts every solve afresh (where the
+        linear solution is negative); the answers agree to the active-set
+        tolerance.
 
     Raises
     ------
@@ -596,41 +663,64 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
     if cavitation not in EQUILIBRIUM_CAVITATION:
         raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
+    _check_element(element)
+    _check_order(order)
+    opts = _Solves(cavitation=cavitation, element=element,
+                   warm=bool(warm_start) and cavitation in ("reynolds", "jfo"))
     w = float(np.hypot(*load))
     eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
     if bearing.raimondi_boyd:
-        return _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, tol, max_newton)
+        return _equilibrium_full(bearing, w, theta_load, eps, size, min_size, opts, tol, max_newton, order)
     xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
     for _ in range(2):
         ms = default_min_size(size, np.hypot(*xy)) if min_size is None else min_size
         meshes = journal_mesh(bearing, size, min_size=ms, eps=float(np.hypot(*xy)),
-                              phi0=math.atan2(-xy[1], -xy[0]))
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton)
+                              phi0=math.atan2(-xy[1], -xy[0]), order=order)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton)
         if min_size is not None:
             break
     e = float(np.hypot(*xy))
     att = math.degrees(abs(_angle_between(theta_load, math.atan2(xy[1], xy[0]))))
     return Equilibrium(eps=e, attitude=att, position=xy, force=state.force, newton_iterations=k,
-                       residual=res, state=state, meshes=meshes, bearing=bearing)
+                       residual=res, active_set_iterations=opts.iterations, element=element, state=state,
+                       meshes=meshes, bearing=bearing)
+
+
+@dataclass
+class _Solves:
+    """Film solves of one equilibrium: options, the warm start and the active-set count."""
+
+    cavitation: str
+    element: str
+    warm: bool
+    previous: _State | None = None
+    iterations: int = 0
+
+    def solve(self, bearing: JournalBearing, meshes, x: float, y: float) -> _State:
+        state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element,
+                             warm_start=self.previous if self.warm else None)
+        self.iterations += sum(r.iterations for r in state.results)
+        self.previous = state
+        return state
 
 
 def _angle_between(a: float, b: float) -> float:
     return (b - a + math.pi) % (2 * math.pi) - math.pi
 
 
-def _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton):
+def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton):
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
         if e > EPS_MAX:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
-        state = _solve_state(bearing, meshes, xy[0], xy[1], cavitation)
+        state = opts.solve(bearing, meshes, xy[0], xy[1])
         R = state.force - load
         res = float(np.hypot(*R) / w)
         if res <= tol:
             return xy, state, k, res
-        K = _stiffness(bearing, meshes, state, xy, cavitation)
+        K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
         step = -np.linalg.solve(K, R)
         # keep inside the clearance: at most half way to the eccentricity limit per step
         t = 1.0
@@ -641,21 +731,21 @@ def _newton_xy(bearing, meshes, xy, load, cavitation, tol, max_newton):
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
 
-def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, tol, max_newton):
+def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, opts: _Solves, tol, max_newton, order):
     """Full bearing: the answer depends on eps only; Newton on |F|(eps) = w."""
     k_total = 0
     for _ in range(3):
         ms = default_min_size(size, eps) if min_size is None else min_size
-        meshes = journal_mesh(bearing, size, min_size=ms, eps=eps)
+        meshes = journal_mesh(bearing, size, min_size=ms, eps=eps, order=order)
         eps_start = eps
         for k in range(max_newton + 1):
-            state = _solve_state(bearing, meshes, -eps, 0.0, cavitation)
+            state = opts.solve(bearing, meshes, -eps, 0.0)
             F = state.force
             wf = float(np.hypot(*F))
             res = abs(wf - w) / w
             if res <= tol:
                 break
-            K = _stiffness(bearing, meshes, state, (-eps, 0.0), cavitation)
+            K = _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation)
             dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
             new = eps - (wf - w) / dw
             eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
@@ -674,7 +764,8 @@ def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, cavitation, t
     att = math.degrees(math.atan2(abs(F[1]), -F[0]))
     state = _State(results=state.results, sups=state.sups, force=_rot(rotation) @ F, rotation=rotation)
     return Equilibrium(eps=eps, attitude=att, position=xy, force=state.force, newton_iterations=k_total,
-                       residual=res, state=state, meshes=meshes, bearing=bearing)
+                       residual=res, active_set_iterations=opts.iterations, element=opts.element, state=state,
+                       meshes=meshes, bearing=bearing)
 
 
 # -- dynamic coefficients --------------------------------------------------------------
@@ -768,15 +859,18 @@ def dynamic_coefficients(eq: Equilibrium, *, method: str = "linearized", step: f
         R = _rot(-rot)
         xy = R @ eq.position
         dFx, dFv = np.zeros((2, 2)), np.zeros((2, 2))
+        element = state.sups[0].operators.element if state.sups[0] is not None else "P1"
+        # every perturbed solve starts from the equilibrium's rupture set (a step of 1e-5 moves it little)
+        warm = state if cav in ("reynolds", "jfo") else None
+
+        def force(at, squeeze=(0.0, 0.0)):
+            return _solve_state(_bearing_of(eq), eq.meshes, *at, cav, squeeze_xy=squeeze, element=element,
+                                warm_start=warm).force
         for j in range(2):
             d = np.zeros(2)
             d[j] = step
-            fp = _solve_state(_bearing_of(eq), eq.meshes, *(xy + d), cav).force
-            fm = _solve_state(_bearing_of(eq), eq.meshes, *(xy - d), cav).force
-            dFx[:, j] = (fp - fm) / (2 * step)
-            fp = _solve_state(_bearing_of(eq), eq.meshes, *xy, cav, squeeze_xy=d).force
-            fm = _solve_state(_bearing_of(eq), eq.meshes, *xy, cav, squeeze_xy=-d).force
-            dFv[:, j] = (fp - fm) / (2 * step)
+            dFx[:, j] = (force(xy + d) - force(xy - d)) / (2 * step)
+            dFv[:, j] = (force(xy, d) - force(xy, -d)) / (2 * step)
     # K_ij = -d f_journal,i / d x_j = d F_bore,i / d x_j ; from the mesh frame to the bearing frame
     Rm = _rot(rot)
     K = Rm @ dFx @ Rm.T

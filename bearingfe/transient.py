@@ -26,9 +26,12 @@ when the smallest film over the surface reaches ``min_film``; the result
 then carries ``status = "ruptured"`` and a message with the shaft angle.
 
 Start: the steady state at the start angle (rates zero under the load of
-that instant), a given ``(gamma, delta)``, or the periodic state found by
-fixed-point iteration of one revolution (the squeeze film damps the
-transient, so a few revolutions suffice).
+that instant), a given ``(gamma, delta)``, or the periodic state: a fixed
+point of the return map ``P`` over one revolution, found by Newton shooting
+with the monodromy matrix ``dP/dy`` from the variational equation along the
+second revolution, Broyden-updated afterwards (or by plain fixed-point
+iteration: the squeeze film damps the transient by a factor of about 20 per
+revolution on the shipped pump, so that takes five to six revolutions).
 """
 
 from __future__ import annotations
@@ -331,9 +334,14 @@ class Trajectory:
     start : tuple of float
         Initial ``(gamma, delta)``.
     periodic_iterations : int
-        Revolutions of the fixed-point iteration (0 unless started periodic).
+        Revolutions integrated to find the periodic start, not counting the
+        output revolution (0 unless started periodic).
     periodic_residual : float
-        ``max |y(2 pi) - y(0)|`` of the last iteration (NaN unless periodic).
+        ``max |y(2 pi) - y(0)|`` (attitude wrapped) of the revolution that
+        ended the search: with ``"newton"`` the output revolution itself,
+        with ``"fixed-point"`` the last iteration (NaN unless periodic).
+    element : str
+        Finite element of the run (``state_result`` re-solves with it).
     stats : mapping
         ``nfev``, ``factorizations``, ``steps``, ``seconds`` (wall time of
         the integration), ``solver_seconds``, ``dofs``; on an elastic
@@ -370,6 +378,7 @@ class Trajectory:
     periodic_iterations: int
     periodic_residual: float
     stats: Mapping[str, float]
+    element: str = "P1"
     max_deflection: np.ndarray | None = None
     pressures: np.ndarray | None = None
 
@@ -447,6 +456,135 @@ def _integrate(model: _Model, beta0: float, y0, beta1: float, *, method: str, rt
     return _Run(segments, float(end), np.asarray(y_end, float), status, message, rupture, steps)
 
 
+#: Ways to find the periodic start: Newton shooting on the return map, or plain fixed-point iteration.
+PERIODIC_METHODS = ("newton", "fixed-point")
+
+
+def _wrapped(d: np.ndarray) -> np.ndarray:
+    """State difference with the attitude difference wrapped into ``[-pi, pi)``."""
+    d = np.array(d, float)
+    d[1] = (d[1] + math.pi) % (2 * math.pi) - math.pi
+    return d
+
+
+def _rate_jacobian(model: _Model, beta: float, y: np.ndarray, step: float = 1e-7) -> np.ndarray:
+    """``d rates / d (gamma, delta)`` at one state by forward differences (two extra film solves)."""
+    f0 = model.rates(beta, y)
+    cols = []
+    for j in range(2):
+        h = step * max(1.0, abs(float(y[j])))
+        e = np.zeros(2)
+        e[j] = h
+        cols.append((model.rates(beta, y + e) - f0) / h)
+    return np.column_stack(cols)
+
+
+def _expm2(a: np.ndarray) -> np.ndarray:
+    """``exp(a)`` of a real 2x2 matrix in closed form (scipy's ``expm`` costs milliseconds per call).
+
+    With ``a = t/2 I + b``, ``b^2 = s^2 I`` (``s^2 = t^2/4 - det a``), so
+    ``exp(a) = e^(t/2) (cosh(s) I + sinh(s)/s b)``; ``s`` is imaginary for
+    complex eigenvalues, where the same formula gives ``cos`` and ``sin``.
+    """
+    half = 0.5 * (a[0, 0] + a[1, 1])
+    b = a - half * np.eye(2)
+    s2 = b[0, 0] ** 2 + b[0, 1] * b[1, 0]
+    if s2 > 1e-8:  # real eigenvalues half +- s: combine the exponentials (no cosh overflow)
+        s = math.sqrt(s2)
+        up, down = math.exp(half + s), math.exp(half - s)
+        c, sh = 0.5 * (up + down), 0.5 * (up - down) / s
+    elif s2 < -1e-8:
+        s = math.sqrt(-s2)
+        e = math.exp(half)
+        c, sh = e * math.cos(s), e * math.sin(s) / s
+    else:
+        e = math.exp(half)
+        c, sh = e * (1.0 + 0.5 * s2), e * (1.0 + s2 / 6.0)
+    return c * np.eye(2) + sh * b
+
+
+def _monodromy(model: _Model, run: _Run, stride: int = 2) -> np.ndarray:
+    """Jacobian ``d y(end) / d y(start)`` of the revolution ``run`` (the return map's derivative).
+
+    The variational equation ``Phi' = J(beta) Phi`` along the computed
+    trajectory, with ``J = d rates/d y`` by forward differences at every
+    ``stride``-th accepted step of the integrator (and the last) and the
+    second-order Magnus step ``Phi <- exp(dbeta (J_i + J_j)/2) Phi`` between
+    them: three film solves per point, no extra integration. On the shipped
+    pump ``stride = 2`` costs about two thirds of a revolution and gives the
+    same periodic state as every step to 4e-8.
+    """
+    betas = [run.segments[0][0]] + [seg[1] for seg in run.segments]
+    states = [run.segments[0][2](betas[0])] + [seg[2](seg[1]) for seg in run.segments]
+    points = list(range(0, len(betas), stride))
+    if points[-1] != len(betas) - 1:
+        points.append(len(betas) - 1)
+    jac = {i: _rate_jacobian(model, betas[i], np.asarray(states[i], float)) for i in points}
+    phi = np.eye(2)
+    for i, j in zip(points[:-1], points[1:]):
+        phi = _expm2((betas[j] - betas[i]) * 0.5 * (jac[i] + jac[j])) @ phi
+    return phi
+
+
+def _periodic_start(model: _Model, y0: np.ndarray, beta0: float, opts: dict, method: str, tol: float,
+                    max_iter: int) -> tuple[np.ndarray, int, float, _Run | None]:
+    """Periodic state ``y = P(y)`` of the return map ``P`` over one revolution from ``beta0``.
+
+    ``"newton"``: the first revolution is a fixed-point step (from the steady
+    start the return map is far from linear), integrated at ``rtol = 1e-3``
+    at most as it moves the state by far more than that; the second also gives the
+    monodromy matrix ``M = dP/dy`` (:func:`_monodromy`) and each later one a
+    Broyden update of it; the next start is the Newton step
+    ``y + (I - M)^-1 (P(y) - y)``. A revolution whose end matches its start
+    within ``tol`` ends the search and is itself the output revolution: the
+    count excludes it, as it excludes the output revolution of the
+    fixed-point iteration.
+
+    ``"fixed-point"``: ``y <- P(y)`` until ``|P(y) - y| < tol``; the start
+    is then ``P(y)`` and the output revolution is integrated afresh.
+
+    Returns
+    -------
+    start, iterations, residual, run
+        ``run`` is the verified revolution from ``start`` (``None`` if the
+        output revolution still has to be integrated).
+    """
+    y = np.asarray(y0, float)
+    jacobian, previous = None, None
+    iterations, residual = 0, math.nan
+    while True:
+        loose = method == "newton" and iterations == 0
+        step_opts = dict(opts, rtol=max(opts["rtol"], 1e-3), atol=max(opts["atol"], 1e-6)) if loose else opts
+        run = _integrate(model, beta0, y, beta0 + 2 * math.pi, **step_opts)
+        if run.status != "completed":
+            return y, iterations + 1, residual, None
+        r = _wrapped(run.y_end - y)
+        residual = float(np.max(np.abs(r)))
+        if method == "fixed-point":
+            iterations += 1
+            y = y + r
+            if residual < tol:
+                return y, iterations, residual, None
+        else:
+            if residual < tol and not loose:
+                return y, iterations, residual, run
+            iterations += 1
+            if iterations == 2:
+                jacobian = _monodromy(model, run)
+            elif jacobian is not None:
+                dy, dp = y - previous[0], (y + r) - (previous[0] + previous[1])
+                jacobian = jacobian + np.outer(dp - jacobian @ dy, dy) / float(dy @ dy)
+            previous = (y, r)
+            step = r if jacobian is None else np.linalg.solve(np.eye(2) - jacobian, r)
+            trial = y + step
+            # a Newton step that leaves the admissible states falls back to the fixed-point step
+            ok = np.all(np.isfinite(trial)) and trial[0] >= 0 and model.h_min(*trial) > opts["bound"]
+            y = trial if ok else y + r
+        if iterations >= max_iter:
+            raise RuntimeError(f"periodic start ({method}) did not converge in {iterations} revolutions "
+                               f"(last residual {residual:.3g} >= periodic_tol = {tol})")
+
+
 def _sample(run: _Run, betas: np.ndarray, y0) -> tuple[np.ndarray, np.ndarray]:
     betas = betas[betas <= run.end + 1e-12]
     if run.status != "completed" and (betas.size == 0 or betas[-1] < run.end):
@@ -513,11 +651,12 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
 @takes(Discretization)
 def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: float = 1.0, *,
              start: str | tuple[float, float] = "steady", beta0: float = 0.0, cavitation: str = "none",
-             method: str = "LSODA", rtol: float = 1e-6, atol: float = 1e-9, max_step: float = math.pi / 8,
-             min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float = 0.08,
-             formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER,
+             method: str = "LSODA", rtol: float = 1e-5, atol: float | None = None, max_step: float = math.pi / 8,
+             min_film: float | None = None, points_per_revolution: int = 180, mesh_size: float | None = None,
+             formulation: str = "pi", element: str | None = None, solver: str = DEFAULT_SOLVER,
              periodic_tol: float = 1e-6, periodic_max_iter: int = 30,
-             max_revolutions: float | None = None, elastic: Compliance | None = None) -> Trajectory:
+             periodic_method: str = "newton", max_revolutions: float | None = None,
+             elastic: Compliance | None = None) -> Trajectory:
     """Integrate the quasi-static equilibrium of the plunger shoe over the pump cycle.
 
     Parameters
@@ -525,14 +664,15 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     pump : EccentricPump
     mesh : SupportMesh, optional
         Mesh of ``pump.surface`` (reused for the whole run). Default:
-        :func:`pump_mesh` with ``mesh_size``.
+        :func:`pump_mesh` with ``mesh_size``, curved (order 2) for P2.
     revolutions : float
         Length of the run in shaft turns, > 0.
     start : {"steady", "periodic"} or (gamma, delta)
         Initial state: the steady state at ``beta0``; the periodic state
-        (fixed-point iteration over one revolution, at most
-        ``periodic_max_iter`` turns, until ``max |y(2pi) - y(0)| <
-        periodic_tol``); or given values.
+        (from the steady state, by ``periodic_method`` over one revolution
+        at a time, at most ``periodic_max_iter`` turns, until ``max |y(2pi)
+        - y(0)| < periodic_tol`` with the attitude difference wrapped); or
+        given values.
     beta0 : float
         Shaft angle at the start [rad].
     cavitation : {"none", "reynolds", "gumbel", "jfo"}
@@ -552,7 +692,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         shipped pump it needed a third to a half of Radau's right-side
         evaluations (one factorization each) for the same accuracy.
     rtol, atol : float
-        Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``.
+        Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``;
+        ``atol`` defaults to ``1e-3 rtol``.
     max_step : float
         Largest step in shaft angle [rad].
     min_film : float, optional
@@ -560,10 +701,24 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         2 % of the clearance.
     points_per_revolution : int
         Output samples per turn (from the integrator's dense output), >= 8.
-    mesh_size : float
-        Element size of the default mesh [R0].
-    formulation, element, solver
+    mesh_size : float, optional
+        Element size of the default mesh [R0]: 0.2 for P2, 0.08 for P1.
+    formulation, solver
         See :func:`bearingfe.superpose`.
+    element : {"P1", "P2"}, optional
+        Finite element. Default: P2 on the default mesh and on a curved
+        (order-2) mesh; P1 on a straight mesh passed in (P2 keeps its
+        convergence rate only with curved pocket edges, and a mesh made for
+        P1 would cost four times the unknowns).
+    periodic_tol, periodic_max_iter
+        Periodic start: tolerance on ``(gamma [-], delta [rad])`` and the
+        largest number of revolutions.
+    periodic_method : {"newton", "fixed-point"}
+        ``"newton"`` (default): Newton shooting on the return map with the
+        monodromy matrix of the second revolution, Broyden-updated; three
+        revolutions on the shipped pump, plus the output revolution, which
+        verifies the residual. ``"fixed-point"``: iterate the return map
+        (five to six revolutions there, plus the output revolution).
     max_revolutions : float, optional
         Largest ``revolutions`` accepted (a guard against runaway work);
         default the ``revolutions`` limit of :mod:`bearingfe.limits` (100).
@@ -591,6 +746,18 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     ValueError
         Bad argument (message names it); :class:`bearingfe.limits.LimitError`
         if ``revolutions`` is above its limit.
+
+    Notes
+    -----
+    The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
+    the cheapest setting measured within 0.1 % of the converged smallest
+    film on the shipped pump, periodic start included
+    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
+    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
+    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
+    Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
+    1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
+    mesh passed in still gets P1).
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
@@ -599,17 +766,29 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     check_limit("revolutions", revolutions, max_revolutions, "max_revolutions")
     if method not in INTEGRATORS:
         raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {method!r}")
-    for name, v in (("rtol", rtol), ("atol", atol), ("max_step", max_step)):
-        if not (math.isfinite(v) and v > 0):
+    for name, v in (("rtol", rtol), ("atol", 1.0 if atol is None else atol), ("max_step", max_step)):
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
             raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
     if not rtol < 1:
         raise ValueError(f"rtol must be in (0, 1) (a relative tolerance of 1 or more allows 100 % error), got {rtol!r}")
+    atol = 1e-3 * rtol if atol is None else atol
     if int(points_per_revolution) < 8:
         raise ValueError(f"points_per_revolution must be >= 8, got {points_per_revolution!r}")
     min_film = 0.02 * pump.clearance if min_film is None else float(min_film)
     if not 0 < min_film < pump.clearance:
         raise ValueError(f"min_film must be in (0, clearance = {pump.clearance} m), got {min_film!r}")
     _check_cavitation(cavitation)
+    if periodic_method not in PERIODIC_METHODS:
+        raise ValueError(f"periodic_method must be one of {PERIODIC_METHODS}, got {periodic_method!r}")
+    if not (isinstance(periodic_tol, (int, float)) and math.isfinite(periodic_tol) and periodic_tol > 0):
+        raise ValueError(f"periodic_tol must be a finite number > 0, got {periodic_tol!r}")
+    if not (isinstance(periodic_max_iter, int) and periodic_max_iter >= 1):
+        raise ValueError(f"periodic_max_iter must be an integer >= 1, got {periodic_max_iter!r}")
+    if element is None:
+        if elastic is not None and isinstance(elastic, Compliance):
+            element = elastic.element
+        else:
+            element = "P2" if mesh is None or getattr(mesh, "geometry_order", 1) == 2 else "P1"
     if elastic is not None:
         if not isinstance(elastic, Compliance):
             raise ValueError(f"elastic must be a bearingfe.elastic.Compliance, got {type(elastic).__name__}")
@@ -618,7 +797,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         if elastic.element != element:
             raise ValueError(f"elastic: the compliance is for element {elastic.element!r}, the run uses {element!r}")
         mesh = elastic.mesh
-    mesh = pump_mesh(pump, mesh_size) if mesh is None else mesh
+    if mesh is None:
+        size = (0.2 if element == "P2" else 0.08) if mesh_size is None else mesh_size
+        mesh = pump_mesh(pump, size, order=2 if element == "P2" else 1)
     if not isinstance(mesh, SupportMesh):
         raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
     ratio = balance_ratio(pump, mesh, formulation=formulation, element=element)
@@ -646,24 +827,16 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
             raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
                              f"min_film over the surface, got {start!r}")
+    found = None
     model.elastic = elastic  # set after the steady start, which is the rigid one
     if start == "periodic":
-        while True:
-            run = _integrate(model, beta0, y0, beta0 + 2 * math.pi, **opts)
-            iterations += 1
-            if run.status != "completed":
-                break
-            d = run.y_end - y0
-            d[1] = (d[1] + math.pi) % (2 * math.pi) - math.pi
-            residual = float(np.max(np.abs(d)))
-            y0 = np.array([run.y_end[0], y0[1] + d[1]])
-            if residual < periodic_tol:
-                break
-            if iterations >= periodic_max_iter:
-                raise RuntimeError(f"periodic start did not converge in {iterations} revolutions "
-                                   f"(last residual {residual:.3g} >= periodic_tol = {periodic_tol})")
+        y0, iterations, residual, found = _periodic_start(model, y0, beta0, opts, periodic_method, periodic_tol,
+                                                          periodic_max_iter)
     beta1 = beta0 + 2 * math.pi * revolutions
-    run = _integrate(model, beta0, y0, beta1, **opts)
+    if found is not None and revolutions == 1:
+        run = found  # the revolution that verified the periodic state is the output revolution
+    else:
+        run = _integrate(model, beta0, y0, beta1, **opts)
     n = max(int(round(points_per_revolution * revolutions)), 2) + 1
     betas, ys = _sample(run, np.linspace(beta0, beta1, n), y0)
     seconds = time.perf_counter() - t_start
@@ -683,21 +856,23 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         wedge=pump.wedge(betas), inlet_pressure=pump.inlet_pressure(betas),
         chamber_pressure=pump.chamber_pressure(betas), load=np.column_stack([-f, np.zeros_like(f)]),
         status=run.status, message=run.message, rupture_beta=run.rupture_beta, start=(float(y0[0]), float(y0[1])),
-        periodic_iterations=iterations, periodic_residual=residual,
+        periodic_iterations=iterations, periodic_residual=residual, element=element,
         stats=MappingProxyType(dict(counts, dofs=float(mesh.n_nodes), balance_ratio=ratio,
                                     postprocess_seconds=time.perf_counter() - t_start - seconds)),
         **post)
 
 
 def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: int, cavitation: str = "none",
-                 element: str = "P1", elastic: Compliance | None = None):
+                 element: str | None = None, elastic: Compliance | None = None):
     """Re-solve the film of sample ``k`` of a trajectory (shoe frame): pressure field, flows, friction.
 
     The same film state, rates and pocket pressure that the run balanced, so
     the film force equals ``-traj.load[k]``; use it for pictures, fields and
-    peak pressures (``Trajectory`` keeps only the reduced arrays).
+    peak pressures (``Trajectory`` keeps only the reduced arrays). ``element``
+    defaults to the run's (``traj.element``).
     """
     film = CosineFilm(float(traj.gamma[k]), float(traj.delta[k]))
+    element = traj.element if element is None else element
     p_s = float(traj.inlet_pressure[k]) if mesh.has_inlet else 0.0
     rates = (float(traj.gamma_rate[k]), float(traj.delta_rate[k]))
     if elastic is not None:  # the coupled film at the run's rates: result.film is the deflected film

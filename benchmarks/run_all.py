@@ -1,24 +1,37 @@
-"""Run every benchmark and write ``docs/benchmarks.md`` (+ PNGs in ``docs/img/``).
+"""Run the benchmarks and write ``docs/benchmarks.md`` (+ PNGs in ``docs/img/``).
 
 Usage (from the repository root)::
 
-    PYTHONPATH=. python benchmarks/run_all.py           # full run, ~10-15 min on 2 cores
-    PYTHONPATH=. python benchmarks/run_all.py --quick   # small sizes, ~2 min
+    PYTHONPATH=. python benchmarks/run_all.py                     # every part, ~15 min on an idle 2-core machine
+    PYTHONPATH=. python benchmarks/run_all.py --only journal,scene # rerun these parts, reuse the others
+    PYTHONPATH=. python benchmarks/run_all.py --quick             # small sizes (a check of the scripts)
 
-Cases: (a) smooth partial arc, (b) rectangular recess at high inlet
-pressure (work-precision diagrams against the FD reference), (c) full
-journal bearing at eccentricity 0.95 with Swift-Stieber cavitation
-(:mod:`benchmarks.journal_case`), (d) one pump revolution
-(``benchmarks/pump_revolution.py``, rerun on a full run, its last output
-reused with ``--quick``; ``docs/benchmarks_pump.md`` is included verbatim),
-cost split, growth of time and memory with the unknowns and the
-linear-solver comparison, hard cases.
+The page is assembled from parts; each part's text and the numbers the
+summary quotes are stored in ``docs/benchmarks_parts/<part>.md`` and
+``.json`` when the part runs, so ``--only`` reruns some parts (e.g. on a
+loaded machine, or after a change that concerns only them) and the page is
+rebuilt from the stored others; each part says when and on what it ran.
+
+Parts: ``precision`` — work-precision diagrams of (a) a smooth partial arc
+and (b) a rectangular recess at high inlet pressure against the FD
+reference, with the cost split; ``journal_c`` — (c) a full journal bearing
+at eccentricity 0.95 with cavitation (:mod:`benchmarks.journal_case`);
+``journal`` — journal equilibrium + 8 coefficients at eps 0.6, before and
+after the P2/warm-start path (:mod:`benchmarks.targets`); ``pump`` — one
+pump revolution against its error (``benchmarks/pump_revolution.py``, which
+also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
+end; ``scaling`` — growth with the unknowns and the linear solvers;
+``hard`` — hard cases. The operator cost floor is measured by
+``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
+(linked, not rerun here).
 """
 
 from __future__ import annotations
 
 import argparse
-import subprocess
+import datetime
+import json
+import math
 import sys
 import time
 from pathlib import Path
@@ -28,129 +41,215 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import hard_cases, journal_case, scaling, work_precision  # noqa: E402
-from benchmarks.common import DOCS, ROOT, machine, md_table, optional_versions  # noqa: E402
+from benchmarks import hard_cases, journal_case, pump_revolution, scaling, targets, work_precision  # noqa: E402
+from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
+
+PARTS_DIR = DOCS / "benchmarks_parts"
+PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard")
 
 
-def _log(msg: str) -> None:
+def _log(msg) -> None:
     print(msg, flush=True)
 
 
-def pump_section(quick: bool) -> str:
-    """Run ``benchmarks/pump_revolution.py`` (full run) or reuse its last output (``--quick``) and
-    return ``docs/benchmarks_pump.md`` with its headings demoted, to be included verbatim."""
-    script = ROOT / "benchmarks" / "pump_revolution.py"
-    out = DOCS / "benchmarks_pump.md"
-    if quick:
-        how = "reused from the last full run of `benchmarks/pump_revolution.py` (`--quick` does not rerun it)"
-    else:
+# -- the parts: each returns (markdown, facts) ------------------------------------------------
+
+def part_precision(quick: bool) -> tuple[str, dict]:
+    results = []
+    for make in (work_precision.case_a, work_precision.case_b):
+        case = make(quick)
         t = time.perf_counter()
-        r = subprocess.run([sys.executable, str(script)], cwd=ROOT, capture_output=True, text=True,
-                           env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
-        if r.returncode != 0:
-            tail = "\n".join(r.stderr.strip().splitlines()[-5:])
-            return f"**Failed** (`benchmarks/pump_revolution.py` exit {r.returncode}):\n\n```\n{tail}\n```"
-        how = f"`benchmarks/pump_revolution.py` rerun by this command ({time.perf_counter() - t:.0f} s)"
-    if not out.exists():
-        return "**Not available**: `docs/benchmarks_pump.md` does not exist; run `benchmarks/pump_revolution.py`."
-    body = out.read_text().splitlines()
-    body = [("##" + l) if l.startswith("#") else l for l in body if not l.startswith("# ")]
-    return f"Included from [benchmarks_pump.md](benchmarks_pump.md), {how}:\n\n" + "\n".join(body).strip()
-
-
-def summary(results: list[dict], solver_choice) -> str:
+        results.append(work_precision.run_case(case, quick))
+        _log(f"case {case.name}: {time.perf_counter() - t:.1f} s")
     b = next(r for r in results if r["case"].name == "b")
-    lines = ["## Summary", ""]
-    rows, verdicts = [], []
+    rows, verdicts, facts = [], [], {}
     for target in (1e-3, 1e-4):
         for force_only, what in ((False, "`solve_reynolds`"), (True, "`superpose(...).force`")):
             best, tf, fd, seidel = work_precision.best_fem_vs_fd(b["runs"], target, force_only=force_only)
             _, tfm, _, _ = work_precision.best_fem_vs_fd(b["runs"], target, with_meshing=True,
                                                          force_only=force_only)
             rows.append([f"{target:.0e}", what, best or "-", tf, tfm, fd, fd / tf, fd / tfm, seidel])
+            facts[f"fd_speedup_{target:.0e}_{'force' if force_only else 'solve'}"] = float(fd / tf)
             if np.isfinite(fd / tf):
-                verdicts.append(f"at {target:.0e} with {what}: {fd / tf:.2g}x "
-                                f"({'met' if fd / tf >= 10 else 'NOT met'}"
-                                f"{'' if fd / tfm >= 10 else '; not met once meshing is counted'})")
+                verdicts.append(f"at {target:.0e} with {what}: {fd / tf:.2g}x")
             else:
                 verdicts.append(f"at {target:.0e} with {what}: not measured (target error outside a sweep)")
-    lines.append("Target 1 (issue 7): at equal load error on case (b), the best FEM method at least 10x faster "
-                 "than the FD reference (FD LU, pi form: the paper's scheme with a direct solve). FEM timed two "
-                 "ways on a fresh mesh: the full `solve_reynolds` (pressure field, loads, flows, friction) and "
-                 "`superpose(...).force` (loads only, what the pump transient calls at every step):")
-    lines.append("")
-    lines.append(md_table(["load error", "FEM call", "best FEM", "FEM s", "FEM+meshing s", "FD LU pi s",
-                           "speed-up", "speed-up incl. meshing", "FD Seidel pi s"], rows))
-    lines.append("")
-    lines.append("Verdict (computed from the table): " + "; ".join(verdicts) + ".")
-    lines.append("")
+    lines = ["### FEM against the FD reference at equal load error, case (b)", "",
+             "Best FEM method against the FD reference (FD LU, pi form: the paper's scheme with a direct solve) "
+             "at equal load error on case (b). FEM timed two ways on a fresh mesh: the full `solve_reynolds` "
+             "(pressure field, loads, flows, friction) and `superpose(...).force` (loads only, what the pump "
+             "transient calls at every step):", "",
+             md_table(["load error", "FEM call", "best FEM", "FEM s", "FEM+meshing s", "FD LU pi s", "speed-up",
+                       "speed-up incl. meshing", "FD Seidel pi s"], rows), "",
+             "Speed-ups (computed from the table): " + "; ".join(verdicts) + ".", "",
+             "### Work-precision diagrams", ""]
+    lines += [work_precision.report(r) for r in results]
+    lines += ["### Cost split (finest mesh of each FEM method, seconds)", "", work_precision.cost_split(results), ""]
+    return "\n".join(lines), facts
+
+
+def part_journal_c(quick: bool) -> tuple[str, dict]:
+    res = journal_case.run(quick, log=_log)
+    return "### (c) full journal bearing, eccentricity 0.95, cavitation\n\n" + journal_case.report(res) + "\n", {}
+
+
+def part_journal(quick: bool) -> tuple[str, dict]:
+    return targets.journal_report(targets.journal_run(quick, log=_log))
+
+
+def part_pump(quick: bool) -> tuple[str, dict]:
+    if quick:
+        path = DOCS / "benchmarks_pump.json"
+        facts = json.loads(path.read_text()) if path.exists() else {}
+        how = "reused from the last run of `benchmarks/pump_revolution.py` (`--quick` does not rerun it)"
+    else:
+        text, facts = pump_revolution.report(pump_revolution.run(log=_log))
+        (DOCS / "benchmarks_pump.md").write_text(text)
+        (DOCS / "benchmarks_pump.json").write_text(json.dumps(facts, indent=1) + "\n")
+        how = "rerun by this part"
+    body = (DOCS / "benchmarks_pump.md").read_text().splitlines() if (DOCS / "benchmarks_pump.md").exists() else []
+    body = [("##" + l) if l.startswith("#") else l for l in body if not l.startswith("# ")]
+    return (f"Included from [benchmarks_pump.md](benchmarks_pump.md) ({how}):\n\n" + "\n".join(body).strip()
+            + "\n", facts)
+
+
+def part_scene(quick: bool) -> tuple[str, dict]:
+    return targets.scene_report(targets.scene_run(log=_log))
+
+
+def part_scaling(quick: bool) -> tuple[str, dict]:
     from bearingfe.linalg import DEFAULT_SOLVER
 
-    (best, why), (core, core_why) = solver_choice
-    lines.append(f"Fastest sparse solver in the comparison below: **{best}** ({why}). Fastest of those that "
-                 f"need only scipy ({', '.join(scaling.CORE)}): **{core}** ({core_why}). The package default "
-                 f"is `DEFAULT_SOLVER = \"{DEFAULT_SOLVER}\"`"
-                 + (", which agrees." if DEFAULT_SOLVER == core else
-                    f", which does NOT agree with these numbers (scipy-only best: {core})."))
-    lines.append("")
-    return "\n".join(lines)
+    sc = scaling.run(quick, log=_log)
+    (best, why), (core, core_why) = scaling.recommend(sc), scaling.recommend(sc, among=scaling.CORE)
+    choice = (f"Fastest sparse solver in the comparison below: **{best}** ({why}). Fastest of those that "
+              f"need only scipy ({', '.join(scaling.CORE)}): **{core}** ({core_why}). The package default "
+              f"is `DEFAULT_SOLVER = \"{DEFAULT_SOLVER}\"`"
+              + (", which agrees." if DEFAULT_SOLVER == core else
+                 f", which does NOT agree with these numbers (scipy-only best: {core})."))
+    return choice + "\n\n" + scaling.report(sc) + "\n", {}
+
+
+def part_hard(quick: bool) -> tuple[str, dict]:
+    return hard_cases.report() + "\n", {}
+
+
+RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal, "pump": part_pump,
+           "scene": part_scene, "scaling": part_scaling, "hard": part_hard}
+TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
+          "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
+          "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
+          "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases"}
+
+
+# -- storage and the page ------------------------------------------------------------------------
+
+def _store(name: str, text: str, facts: dict, seconds: float, quick: bool) -> None:
+    PARTS_DIR.mkdir(parents=True, exist_ok=True)
+    info = machine()
+    stamp = (f"*Part `{name}`: {'QUICK run (small sizes)' if quick else 'full run'} of "
+             f"{info['date']} on {info['cpu']} ({info['cores']} cores), {seconds:.0f} s.*\n\n")
+    (PARTS_DIR / f"{name}.md").write_text(stamp + text)
+    (PARTS_DIR / f"{name}.json").write_text(json.dumps(dict(facts, seconds=seconds, quick=quick), indent=1,
+                                                       default=str) + "\n")
+
+
+def _load(name: str) -> tuple[str, dict]:
+    md, js = PARTS_DIR / f"{name}.md", PARTS_DIR / f"{name}.json"
+    if not md.exists():
+        return f"**Not available**: part `{name}` has not been run (`run_all.py --only {name}`).\n", {}
+    return md.read_text(), json.loads(js.read_text()) if js.exists() else {}
+
+
+def _fmt(x, unit: str = " s") -> str:
+    return "not measured" if x is None or not math.isfinite(x) else f"{x:.3g}{unit}"
+
+
+def targets_summary(facts: dict) -> str:
+    """The issue-13 targets, each with its measured number and a verdict computed from it."""
+    rows = []
+
+    def add(what, goal, measured, ok, note=""):
+        verdict = ok if isinstance(ok, str) else "not measured" if ok is None else ("met" if ok else "NOT met")
+        rows.append([what, goal, measured, verdict, note])
+
+    j = facts.get("journal", {})
+    for target in ("1e-02", "1e-03"):
+        v = j.get(f"journal_{target}", {})
+        b, a = v.get("before", math.nan), v.get("after", math.nan)
+        b = math.nan if b is None else b
+        a = math.nan if a is None else a
+        sp = b / a if math.isfinite(a) and math.isfinite(b) and a > 0 else math.nan
+        more = "more than " if v.get("before_bound") else ""
+        add(f"journal equilibrium + 8 coefficients, error {target}", "5x faster at 1e-03" if target == "1e-03" else
+            "(reported)", f"{_fmt(a)} (before {more}{_fmt(b)}): {more}{_fmt(sp, 'x')}",
+            ("no goal" if target != "1e-03" else (sp >= 5) if math.isfinite(sp) else None),
+            f"P2 size {v.get('after_size')} vs P1 size {v.get('before_size')}")
+    s = facts.get("scene", {}).get("scene", math.nan)
+    add("main scene end to end (2 designs, periodic, pictures)", "<= 5 s", _fmt(s),
+        (s <= 5) if math.isfinite(s) else None, "fresh process, imports included")
+    p = facts.get("pump", {})
+    pb = p.get("pump_best_seconds", math.nan)
+    add("one pump revolution within 0.1 % of the converged smallest film", "<= 0.1 s", _fmt(pb),
+        (pb <= 0.1) if math.isfinite(pb) else None, str(p.get("pump_best", "")))
+    pd = p.get("pump_defaults_seconds", math.nan)
+    pe = p.get("pump_defaults_error", math.nan)
+    add("`simulate()` defaults: one revolution", "within 0.1 %", f"{_fmt(pd)}, error {_fmt(pe, '')}",
+        (pe < 1e-3) if math.isfinite(pe) else None)
+    f = facts.get("precision", {}).get("fd_speedup_1e-03_solve", math.nan)
+    ff = facts.get("precision", {}).get("fd_speedup_1e-03_force", math.nan)
+    add("FEM vs FD at load error 1e-3, case (b)", ">= 3x", f"{_fmt(f, 'x')} (`solve_reynolds`), "
+        f"{_fmt(ff, 'x')} (`superpose(...).force`)", (max(f, ff) >= 3) if math.isfinite(f) else None)
+    return md_table(["target (issue 13)", "goal", "measured", "verdict", "note"], rows)
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="small sizes only (~2 min)")
+    ap.add_argument("--quick", action="store_true", help="small sizes only (a check of the scripts)")
+    ap.add_argument("--only", default=None, help=f"comma-separated parts to rerun (of {', '.join(PARTS)}); "
+                    "the others are reused from docs/benchmarks_parts/")
     ap.add_argument("--output", default=str(DOCS / "benchmarks.md"))
     args = ap.parse_args(argv)
+    todo = PARTS if args.only is None else tuple(p.strip() for p in args.only.split(",") if p.strip())
+    unknown = [p for p in todo if p not in PARTS]
+    if unknown:
+        ap.error(f"unknown part {unknown[0]!r}; parts: {', '.join(PARTS)}")
     start = time.perf_counter()
-    info = machine()
-    results = []
-    for make in (work_precision.case_a, work_precision.case_b):
-        case = make(args.quick)
+    for name in todo:
         t = time.perf_counter()
-        results.append(work_precision.run_case(case, args.quick))
-        _log(f"case {case.name}: {time.perf_counter() - t:.1f} s")
-    t = time.perf_counter()
-    journal = journal_case.run(args.quick, log=_log)
-    _log(f"case c: {time.perf_counter() - t:.1f} s")
-    t = time.perf_counter()
-    sc = scaling.run(args.quick, log=_log)
-    _log(f"scaling: {time.perf_counter() - t:.1f} s")
-    choice = (scaling.recommend(sc), scaling.recommend(sc, among=scaling.CORE))
-    t = time.perf_counter()
-    hard = hard_cases.report()
-    _log(f"hard cases: {time.perf_counter() - t:.1f} s")
-    t = time.perf_counter()
-    pump = pump_section(args.quick)
-    _log(f"case d (pump): {time.perf_counter() - t:.1f} s")
-    parts = [
+        text, facts = RUNNERS[name](args.quick)
+        _store(name, text, facts, time.perf_counter() - t, args.quick)
+        _log(f"part {name}: {time.perf_counter() - t:.1f} s")
+    parts = {name: _load(name) for name in PARTS}
+    info = machine()
+    page = [
         "# bearingfe benchmarks: speed against error",
         "",
-        f"Generated by `PYTHONPATH=. python benchmarks/run_all.py{' --quick' if args.quick else ''}` "
-        f"({'QUICK run: small sizes' if args.quick else 'full run'}). Do not edit by hand.",
+        f"Generated by `PYTHONPATH=. python benchmarks/run_all.py` from its stored parts (this assembly "
+        f"{datetime.datetime.now().strftime('%Y-%m-%d %H:%M')}; rerun: {', '.join(todo)}). Do not edit by hand; "
+        "each part states when it ran.",
         "",
         "Machine: " + ", ".join(f"{k} {v}" for k, v in info.items()),
         "",
         "Optional solver packages: " + ", ".join(f"{k} {v}" for k, v in optional_versions().items()),
         "",
-        "Times are wall-clock seconds of one process (numpy/BLAS may use both cores). FEM 'solve' time is "
-        "everything after meshing for a first solve on a fresh mesh: operators (basis, dof sets, pocket moments; "
-        "the Laplacian, mass matrix and facet bases when first needed; cached per mesh afterwards), assembly, "
-        "factorization, four unit solves, integrals and flows. 'force-only' is `superpose(...).force(...)` on "
-        "a fresh mesh (no pressure field, flows or friction). FD time is the whole `solve_reynolds_fd` call. "
-        "Small problems take the best of 3 runs.",
+        "Times are wall-clock seconds of one process (numpy/BLAS may use both cores). **The machine was shared "
+        "with other jobs while these numbers were measured (2 cores, several concurrent test runs): absolute "
+        "times are several times those of an idle machine**; ratios measured within one part (before/after, "
+        "FEM/FD) are less affected.",
         "",
-        summary(results, choice),
-        "## Work-precision diagrams",
+        "The cost floor of one film state (the compiled operator against its sparse LU and solves) is measured "
+        "separately: [benchmarks_operator.md](benchmarks_operator.md) (`benchmarks/operator_floor.py`).",
+        "",
+        "## Targets of the fast inner loop (issue 13)",
+        "",
+        targets_summary({name: facts for name, (_, facts) in parts.items()}),
         "",
     ]
-    parts += [work_precision.report(r) for r in results]
-    parts += ["### (c) full journal bearing, eccentricity 0.95, cavitation", "", journal_case.report(journal), "",
-              "### (d) one pump revolution (h_min error against time)", "", pump, "",
-              "## Cost split (finest mesh of each FEM method, seconds)", "", work_precision.cost_split(results), "",
-              "## Growth with the number of unknowns; linear solvers", "", scaling.report(sc), "",
-              "## Hard cases", "", hard, "",
-              f"Total benchmark time: {time.perf_counter() - start:.0f} s.", ""]
-    Path(args.output).write_text("\n".join(parts))
+    for name in PARTS:
+        page += [f"## {TITLES[name]}", "", parts[name][0]]
+    page += [f"Time of this command: {time.perf_counter() - start:.0f} s.", ""]
+    Path(args.output).write_text("\n".join(page))
     _log(f"wrote {args.output} in {time.perf_counter() - start:.0f} s")
     return 0
 

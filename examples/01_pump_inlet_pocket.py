@@ -50,7 +50,7 @@ def designs(pump: bf.EccentricPump) -> dict[str, bf.EccentricPump]:
 
 def run(size: float) -> dict[str, bf.Trajectory]:
     pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
-    return {name: bf.simulate(p, bf.transient.pump_mesh(p, size), 1.0, start="periodic", rtol=1e-6)
+    return {name: bf.simulate(p, bf.transient.pump_mesh(p, size), 1.0, start="periodic", rtol=1e-6, element="P1")
             for name, p in designs(pump).items()}
 
 
@@ -74,7 +74,7 @@ def sweep(size: float) -> list[tuple[str, float, float, str]]:
         mesh = bf.transient.pump_mesh(p, size)
         ratio = bf.balance_ratio(p, mesh)
         try:
-            tr = bf.simulate(p, mesh, 1.0, start="periodic", rtol=1e-6)
+            tr = bf.simulate(p, mesh, 1.0, start="periodic", rtol=1e-6, element="P1")
             rows.append((label, ratio, tr.smallest_film, tr.status))
         except bf.LiftOffError:
             rows.append((label, ratio, math.nan, "lift-off"))

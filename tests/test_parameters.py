@@ -137,8 +137,8 @@ def test_journal_functions_take_the_mesh_sizes():
      "force() has no use for OperatingPoint.sliding = 0.5; leave it at None"),
     (lambda m: rates_for_load(bf.superpose(m, FILM), (0.0, -1.0), operating=OperatingPoint(squeeze=(0.1, 0.0))),
      "rates_for_load() has no use for OperatingPoint.squeeze = (0.1, 0.0); leave it at (0.0, 0.0)"),
-    (lambda m: performance(JournalBearing(length_ratio=0.5), 0.5, discretization=Discretization(element="P2")),
-     "performance() has no use for Discretization.element = 'P2'; leave it at 'P1'"),
+    (lambda m: performance(JournalBearing(length_ratio=0.5), 0.5, discretization=Discretization(formulation="direct")),
+     "performance() has no use for Discretization.formulation = 'direct'; leave it at 'pi'"),
     (lambda m: bf.superpose(m, FILM, "pi", discretization=Discretization()), "takes 2 positional arguments"),
 ])
 def test_conflicting_or_unused_fields_are_named(mesh, call, message):

@@ -1,0 +1,161 @@
+"""Speed targets of the fast inner loop (issue 13): journal equilibrium + coefficients, the main scene.
+
+Journal: a plain 360-degree bearing, ``L/D = 0.5``, at eccentricity 0.6.
+Task: the equilibrium under the load that the reference puts at ``eps =
+0.6``, then the eight dynamic coefficients (linearized). Error of a run: the
+largest of ``|eps - eps_ref| / eps_ref``, ``max |K - K_ref| / max |K_ref|``
+and ``max |C - C_ref| / max |C_ref|``. Reference: P2 on the finest mesh of
+the sweep's own kind (``REF_SIZE``), its uncertainty stated as its change
+from the mesh 1.4x coarser. Two series: "before" is the journal API as it
+was (P1, every cavitation solve started afresh: ``warm_start=False``),
+"after" is P2 with warm-started cavitation. Each run starts from empty mesh
+and operator caches (meshing included), best of two.
+
+Main scene: ``bearingfe run scenes/pump.toml`` in a fresh process (imports,
+both designs, periodic start, pictures, files), wall-clock.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+from bearingfe.journal import JournalBearing, _mesh, dynamic_coefficients, equilibrium, performance
+
+from .common import ROOT, md_table
+
+LENGTH_RATIO = 0.5
+EPS = 0.6
+REF_SIZE = 0.035
+SERIES = {
+    "before: P1, cold cavitation starts": dict(element="P1", warm_start=False,
+                                               sizes=(0.2, 0.14, 0.1, 0.08, 0.06, 0.045, 0.035)),
+    "after: P2, warm-started": dict(element="P2", warm_start=True, sizes=(0.4, 0.3, 0.2, 0.14, 0.1)),
+}
+TARGETS = (1e-2, 1e-3)
+
+
+def _solve(load: float, size: float, element: str, warm_start: bool = True):
+    _mesh.cache_clear()  # fresh meshes (and so fresh operators) for every timing
+    eq = equilibrium(JournalBearing(LENGTH_RATIO), (0.0, -load), size=size, element=element, warm_start=warm_start)
+    return eq, dynamic_coefficients(eq)
+
+
+def _error(eq, dc, ref) -> float:
+    eq_ref, dc_ref = ref
+    return float(max(abs(eq.eps - eq_ref.eps) / eq_ref.eps,
+                     np.max(np.abs(dc.K - dc_ref.K)) / np.max(np.abs(dc_ref.K)),
+                     np.max(np.abs(dc.C - dc_ref.C)) / np.max(np.abs(dc_ref.C))))
+
+
+def journal_run(quick: bool = False, log=print) -> dict:
+    """Time and error of equilibrium + coefficients over mesh sizes, before and after."""
+    ref_size = 0.07 if quick else REF_SIZE
+    bearing = JournalBearing(LENGTH_RATIO)
+    load = performance(bearing, EPS, size=ref_size, element="P2").load
+    ref = _solve(load, ref_size, "P2")
+    coarse = _solve(load, ref_size * 1.4, "P2")
+    ref_change = _error(*coarse, ref)
+    log(f"journal reference: eps {ref[0].eps:.6f}, change from 1.4x coarser {ref_change:.2e}")
+    series = {}
+    for name, cfg in SERIES.items():
+        rows = []
+        for size in cfg["sizes"][:3] if quick else cfg["sizes"]:
+            best = math.inf
+            for _ in range(2):
+                t = time.perf_counter()
+                eq, dc = _solve(load, size, cfg["element"], cfg["warm_start"])
+                best = min(best, time.perf_counter() - t)
+            rows.append(dict(size=size, nodes=eq.meshes[0].n_nodes, seconds=best, error=_error(eq, dc, ref),
+                             newton=eq.newton_iterations, active_set=eq.active_set_iterations))
+            log(f"journal {name} {rows[-1]}")
+        series[name] = rows
+    return dict(load=load, ref_size=ref_size, ref_eps=ref[0].eps, ref_nodes=ref[0].meshes[0].n_nodes,
+                ref_change=ref_change, series=series)
+
+
+def time_at(rows: list[dict], target: float) -> tuple[float, dict | None]:
+    """Cheapest run of a series whose error is at most ``target``."""
+    ok = [r for r in rows if r["error"] <= target]
+    if not ok:
+        return math.nan, None
+    best = min(ok, key=lambda r: r["seconds"])
+    return best["seconds"], best
+
+
+def journal_report(res: dict) -> tuple[str, dict]:
+    lines = [f"Plain 360-degree bearing, L/D = {LENGTH_RATIO}, load {res['load']:.6f} (the reference's load at "
+             f"eps = {EPS}): `equilibrium` then `dynamic_coefficients` (8 coefficients, linearized). Reference: P2 "
+             f"on a {res['ref_size']} mesh ({res['ref_nodes']} nodes), eps = {res['ref_eps']:.6f}; it differs "
+             f"from the 1.4x coarser P2 mesh by {res['ref_change']:.1e} in the error measure below, so errors "
+             "below about that are not resolved. Error = max(relative eps error, max |K - K_ref| / max |K_ref|, "
+             "max |C - C_ref| / max |C_ref|). Time: everything from meshing on, best of two runs.", ""]
+    rows = []
+    for name, series in res["series"].items():
+        for r in series:
+            rows.append([name, r["size"], r["nodes"], r["newton"], r["active_set"], r["seconds"], r["error"]])
+    lines.append(md_table(["series", "size", "nodes", "Newton steps", "active-set iterations", "s", "error"], rows))
+    names = list(res["series"])
+    facts = {}
+    lines += ["", "The linearized coefficients converge irregularly at the 1e-3 level (the rupture set is held "
+              "fixed, and its discrete boundary jumps from node to node as the mesh changes), so the error is "
+              "not monotone in the mesh size; 'time at an error' is the cheapest run observed at or below it. "
+              "Where no run of a series reaches it, its finest run is a lower bound on the time (and the "
+              "speed-up a lower bound). 'Before' runs the same code base (compiled film operator included) "
+              "with the settings the journal API had: P1, every cavitation solve started afresh.", ""]
+    for target in TARGETS:
+        rows_b, rows_a = res["series"][names[0]], res["series"][names[1]]
+        tb, rb = time_at(rows_b, target)
+        ta, ra = time_at(rows_a, target)
+        bound = False
+        if rb is None:  # not reached: the finest (slowest) run bounds the time from below
+            rb = max(rows_b, key=lambda r: r["nodes"])
+            tb, bound = rb["seconds"], True
+        facts[f"journal_{target:.0e}"] = dict(before=tb, after=ta, before_size=rb["size"],
+                                             after_size=ra and ra["size"], before_bound=bound)
+        before = (f"not reached (finest P1 run, size {rb['size']}: {tb:.3g} s at error {rb['error']:.1e})"
+                  if bound else f"{tb:.3g} s (P1, size {rb['size']})")
+        after = f"{ta:.3g} s (P2, size {ra['size']})" if ra else "not reached"
+        ratio = tb / ta if ra else float("nan")
+        lines.append(f"- error <= {target:.0e}: before {before}, after {after}: "
+                     f"{'more than ' if bound else ''}{ratio:.2g}x faster.")
+    return "\n".join(lines) + "\n", facts
+
+
+def scene_run(log=print) -> dict:
+    """Wall time of ``bearingfe run scenes/pump.toml`` in a fresh process."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT), MPLBACKEND="Agg",
+               VTK_DEFAULT_OPENGL_WINDOW="vtkEGLRenderWindow")
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        t = time.perf_counter()
+        r = subprocess.run([sys.executable, "-m", "bearingfe.cli", "run", str(ROOT / "scenes" / "pump.toml"),
+                            "--out", out, "--no-progress"], cwd=ROOT, env=env, capture_output=True, text=True)
+        wall = time.perf_counter() - t
+        if r.returncode != 0:
+            return dict(wall=math.nan, error=r.stderr.strip().splitlines()[-1:] or ["?"])
+        summary = json.loads(open(os.path.join(out, "summary.json")).read())
+    inner = next(v for k, v, _ in summary["table"] if k == "seconds")
+    res = dict(wall=wall, inner=inner, periodic={k: v["periodic_iterations"] for k, v in summary["results"].items()
+                                                 if isinstance(v, dict)},
+               film_ratio=summary["results"].get("film_ratio"))
+    log(f"scene {res}")
+    return res
+
+
+def scene_report(res: dict) -> tuple[str, dict]:
+    if not math.isfinite(res["wall"]):
+        return f"**Failed**: {res['error']}\n", dict(scene=math.nan)
+    text = (f"`bearingfe run scenes/pump.toml` (both designs, periodic start, pictures, PVD frames, CSV) in a "
+            f"fresh process: **{res['wall']:.2f} s** wall-clock, of which {res['inner']:.2f} s inside the scene "
+            f"(the rest: Python and library imports, VTK start-up). Periodic start: "
+            + ", ".join(f"{k} {v} revolutions" for k, v in res["periodic"].items())
+            + f" (+ the output revolution); film ratio pocket/plain {res['film_ratio']:.4f}.\n")
+    return text, dict(scene=res["wall"], scene_inner=res["inner"])
