@@ -513,9 +513,17 @@ def _check_layout(outline: Shape, inlets: tuple, names=None) -> None:
                 f"(gap {gap:.3g} < {tol:.3g}); keep pockets and recesses strictly inside")
         for j in range(i):
             other = inlets[j].boundary()
+            if _box_gap(xy, other) >= tol:  # boxes apart by tol: no crossing, containment or contact
+                continue
             if (_polylines_cross(xy, other) or inlets[j].contains(*xy).any()
                     or shape.contains(*other).any() or _polyline_distance(xy, other) < tol):
                 raise ValueError(f"{names[i]} and {names[j]} overlap or touch")
+
+
+def _box_gap(p: np.ndarray, q: np.ndarray) -> float:
+    """Distance between the bounding boxes of two polylines along the axis that separates them most
+    (<= 0 if the boxes overlap); a lower bound of the polylines' distance."""
+    return float(np.max(np.maximum(p.min(axis=1) - q.max(axis=1), q.min(axis=1) - p.max(axis=1))))
 
 
 def _signed_area(xy: np.ndarray) -> float:

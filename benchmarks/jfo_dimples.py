@@ -116,6 +116,15 @@ def main(argv=None) -> None:
         "is a small difference of the dimples' pressure rises and their cavities, so its error is given relative "
         f"to dp L^2 = {w_scale:.4g} N (the load of the ambient-to-cavity pressure drop over the pad).",
         "",
+        "What limits the accuracy: the cavitated fraction falls with refinement and the fitted orders are 1/2. "
+        "Behind each dimple the film leaves a starved wake (theta < 1) with sharp lateral edges along the "
+        "sliding direction; the first-order upwind Couette flux smears such fronts sideways on unstructured "
+        "triangles (crosswind numerical diffusion, a front width of order sqrt(h)), so loads and friction "
+        "converge like h^(1/2) here, unlike the 1-D and journal cases where the fronts cross the flow "
+        "(orders 1-2, [jfo_validation.md](jfo_validation.md)). Meshes aligned with the sliding direction, or a "
+        "limited second-order Couette flux, are the remedies; neither is implemented yet. The Richardson "
+        "references above are therefore rough (order clipped at its lower bound).",
+        "",
         "Published FBNS times (their machine, their grid): "
         + ", ".join(f"{t} s on {n:,} cells" for n, t in PUBLISHED) + ". The issue's goal is the same accuracy at "
         "least 10x faster. Their errors on this case are not quoted, so the comparison here is by resolution: a "
