@@ -36,9 +36,11 @@ same edge terms on their contours. Curved (``MeshTri2``) meshes are
 integrated on the straight triangles of their vertices (the pocket contour by
 its chords); the deflection is still collocated at the curved dofs.
 
-The half-space ignores the finite shoe (its thickness, how it is held): it
-is the upper bound of the deflection of a thick block, and its uniform part
-(about the mean deflection) widens the film everywhere.
+The half-space ignores the finite shoe (its thickness, how it is held); a
+block clamped at its back is stiffer. :func:`shoe_body` models the shoe as
+such a block: 3-D linear elasticity (P1 tetrahedra, scikit-fem) solved once
+per film pressure basis function and condensed to a dense compliance on the
+film dofs, with the eccentric as a half-space on top.
 
 Coupled solve
 -------------

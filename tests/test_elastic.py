@@ -16,6 +16,7 @@ import pytest
 from bearingfe import Circle, CosineFilm, Material, Scale, Surface, mesh_surface, solve_reynolds
 from bearingfe.elastic import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
                                rectangle_deflection, solve_elastic)
+from bearingfe.cavitation import MODELS
 from bearingfe.reynolds import operators
 
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)   # the shipped pump
@@ -112,7 +113,7 @@ def test_infinitely_stiff_support_is_the_rigid_solution(pocket_mesh):
     assert stiff.result.h_min == pytest.approx(rigid.h_min, abs=2e-6)
 
 
-@pytest.mark.parametrize("cavitation", ["none", "reynolds", "gumbel"])
+@pytest.mark.parametrize("cavitation", list(MODELS))  # every model of the table, JFO included
 def test_coupled_solve_satisfies_its_fixed_point(pocket_mesh, cavitation):
     # pump conditions: 32 MPa in the pocket, steel on steel; w = C p(h_rigid + w) at the answer
     C = half_space(pocket_mesh, SCALE, (STEEL, STEEL))
