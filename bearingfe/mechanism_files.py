@@ -135,7 +135,7 @@ SPECS: Mapping[str, dict] = MappingProxyType({
         "eccentric": Table({"eccentricity": (number(), REQUIRED), "pivot_distance": (number(), REQUIRED),
                             "radius": (number(), REQUIRED), "material": SURFACE_MATERIAL}, required=True),
         "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED),
-                       "material": SURFACE_MATERIAL}, required=True),
+                       "thickness": (number(), None), "material": SURFACE_MATERIAL}, required=True),
         "plunger": Table({"diameter": (number(), REQUIRED), "preload": (number(), 0.0)}, required=True),
         "cycle": Table({"discharge": (number(), REQUIRED), "suction": (number(), REQUIRED),
                         "compression_deg": (number(), 20.0), "decompression_deg": (number(), 20.0)},
@@ -200,7 +200,7 @@ def _eccentric_pump(d: dict, label: str):
                  pivot_distance=e["pivot_distance"], radius=e["radius"], clearance=sh["clearance"],
                  viscosity=sh["viscosity"], plunger_diameter=pl["diameter"], preload=pl["preload"],
                  drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label),
-                 shoe_material=material_of(sh["material"], "shoe.material", label),
+                 shoe_material=material_of(sh["material"], "shoe.material", label), shoe_thickness=sh["thickness"],
                  eccentric_material=material_of(e["material"], "eccentric.material", label))
 
 

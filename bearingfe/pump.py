@@ -239,6 +239,9 @@ class EccentricPump:
         Elastic data of the shoe and of the eccentric (the two film
         surfaces), for an elastic support (:mod:`bearingfe.elastic`);
         default :data:`STEEL` (210 GPa, nu = 0.3, 7850 kg/m^3).
+    shoe_thickness : float, optional
+        Depth of the shoe body between the film and its seat on the plunger
+        [m], > 0 (for :func:`bearingfe.elastic.shoe_body`); None if not given.
     """
 
     eccentricity: float
@@ -254,6 +257,7 @@ class EccentricPump:
     name: str = "eccentric pump"
     shoe_material: Material = STEEL
     eccentric_material: Material = STEEL
+    shoe_thickness: float | None = None
     _scale: Scale = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -277,6 +281,8 @@ class EccentricPump:
             raise ValueError(f"{own}.drive must be a bearingfe.Drive, got {type(self.drive).__name__}")
         if not isinstance(self.cycle, PressureCycle):
             raise ValueError(f"{own}.cycle must be a bearingfe.pump.PressureCycle, got {type(self.cycle).__name__}")
+        if self.shoe_thickness is not None:
+            object.__setattr__(self, "shoe_thickness", positive(f"{own}.shoe_thickness", self.shoe_thickness))
         for n in ("shoe_material", "eccentric_material"):
             if not isinstance(getattr(self, n), Material):
                 raise ValueError(f"{own}.{n} must be a bearingfe.Material, got {type(getattr(self, n)).__name__}")

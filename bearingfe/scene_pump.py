@@ -17,7 +17,7 @@ Scene file::
     cavitation = "none"                              # none | reynolds | gumbel | jfo (jfo: element P1)
     [elastic]
     enabled = false                                  # also run every design on an elastic support
-    model = "half-space"                             # compliance (bearingfe.elastic)
+    model = "half-space"                             # half-space | body (the 3-D shoe, [shoe] thickness)
     dynamics = "squeeze"                             # squeeze | quasi-static (see below)
     [output]
     pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
@@ -59,7 +59,7 @@ __all__ = ["run_pump_scene", "pump_settings", "PUMP", "PICTURES"]
 
 PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
 #: Support compliances of :mod:`bearingfe.elastic` by name.
-ELASTIC_MODELS = ("half-space",)
+ELASTIC_MODELS = ("half-space", "body")
 #: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
 DYNAMICS = ("squeeze", "quasi-static")
 
@@ -183,8 +183,13 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
 
 
 def _compliance(pump, mesh, element: str, model: str):
-    from .elastic import half_space
+    from .elastic import half_space, shoe_body
 
+    if model == "body":
+        if pump.shoe_thickness is None:
+            raise ValueError("[elastic] model 'body' needs the shoe's depth: [shoe] thickness in the mechanism file")
+        return shoe_body(mesh, pump.scale, pump.shoe_material, pump.shoe_thickness,
+                         counterpart=pump.eccentric_material, element=element)
     if model != "half-space":  # the schema allows only ELASTIC_MODELS
         raise ValueError(f"elastic model must be one of {ELASTIC_MODELS}, got {model!r}")
     return half_space(mesh, pump.scale, (pump.shoe_material, pump.eccentric_material), element)

@@ -16,6 +16,7 @@ import pytest
 from bearingfe import Circle, CosineFilm, Material, Scale, Surface, mesh_surface, solve_reynolds
 from bearingfe.elastic import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
                                rectangle_deflection, solve_elastic)
+from bearingfe.cavitation import MODELS
 from bearingfe.reynolds import operators
 
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)   # the shipped pump
@@ -112,7 +113,7 @@ def test_infinitely_stiff_support_is_the_rigid_solution(pocket_mesh):
     assert stiff.result.h_min == pytest.approx(rigid.h_min, abs=2e-6)
 
 
-@pytest.mark.parametrize("cavitation", ["none", "reynolds", "gumbel"])
+@pytest.mark.parametrize("cavitation", list(MODELS))  # every model of the table, JFO included
 def test_coupled_solve_satisfies_its_fixed_point(pocket_mesh, cavitation):
     # pump conditions: 32 MPa in the pocket, steel on steel; w = C p(h_rigid + w) at the answer
     C = half_space(pocket_mesh, SCALE, (STEEL, STEEL))
@@ -235,3 +236,30 @@ def test_pump_transient_on_a_stiff_support_is_the_rigid_one():
     with pytest.raises(ValueError, match="another mesh"):
         bf.simulate(pump, bf.transient.pump_mesh(pump, 0.3), 0.1,
                     elastic=half_space(mesh, pump.scale, math.inf), **opts)
+
+
+def test_shoe_body_approaches_the_half_space_as_it_grows(plain_mesh):
+    # uniform pressure on the 60 x 40 mm shoe; a steel block clamped at its back, growing in depth and
+    # width: the opening at the centre grows towards the single-body half-space value (Love) from below,
+    # the gap shrinking with every doubling (measured 0.23 -> 0.15 -> 0.075 -> 0.035 of the half-space
+    # value for depths 20 / 40 / 80 / 160 mm; the two shallow ones here keep the test fast)
+    from bearingfe.elastic import shoe_body
+
+    basis = operators(plain_mesh, "P1").basis
+    k = int(np.argmin(basis.doflocs[0] ** 2 + basis.doflocs[1] ** 2))
+    ones = np.ones(basis.N)
+    half = half_space(plain_mesh, SCALE, STEEL).deflection(ones)[k]
+    gaps = []
+    for depth, margin in ((0.01, 0.0), (0.02, 0.0), (0.04, 0.02)):
+        body = shoe_body(plain_mesh, SCALE, STEEL, depth, margin=margin, size=0.1)
+        assert body.model == "body" and body.matrix.shape == (basis.N, basis.N)
+        gaps.append((half - body.deflection(ones)[k]) / half)
+    assert 0 < gaps[2] < gaps[1] < gaps[0] < 1
+    assert gaps[2] < 0.8 * gaps[1]
+    # the eccentric as a half-space on top: the two compliances add
+    both = shoe_body(plain_mesh, SCALE, STEEL, 0.01, counterpart=STEEL, size=0.1)
+    alone = shoe_body(plain_mesh, SCALE, STEEL, 0.01, size=0.1)
+    np.testing.assert_allclose(both.matrix, alone.matrix + half_space(plain_mesh, SCALE, STEEL).matrix,
+                               rtol=1e-12, atol=1e-15)
+    with pytest.raises(ValueError, match="thickness"):
+        shoe_body(plain_mesh, SCALE, STEEL, 0.0)
