@@ -1,42 +1,53 @@
 """bearingfe: finite-element Reynolds solver for bearing supports with inlet pockets.
 
+Modules in data-flow order: input files and geometry, meshes, the film and its
+parameters, the Reynolds solvers and the models built on them, the machines,
+studies and scenes, and the outputs at the edge.
+
 =========================  =====================================================
 module                     what it does
 =========================  =====================================================
+``version``                the package version
 ``schema``                 one schema for input files: field checks, tables, errors
-``geometry``               support-surface outlines and inlet pockets (any shape)
-``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges
+``limits``                 size guards (revolutions, frames, cases, elements, case time)
+``geometry``               support-surface outlines, inlet pockets and recesses (any shape)
 ``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
-``checks``                 ranges of solver inputs, thin-film resolution check (``ResolutionWarning``)
+``gmsh_worker``            the child process in which gmsh parses and meshes one ``.geo`` script
+``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges, periodic seams
 ``film``                   film-thickness models (``CosineFilm``)
 ``parameters``             operating point and discretization objects (``operating=``)
+``checks``                 ranges of solver inputs, thin-film resolution check (``ResolutionWarning``)
 ``forms``                  weak forms; pressure (pi chain rule), flux and shear formulas
+``linalg``                 pluggable sparse solvers, factorizations that keep their ordering
+``compiled``               compiled film operator: film-independent maps of a mesh, built once
 ``superposition``          per-mesh operators, one film state's condensed system, results
 ``cavitation``             cavitation models and their table (``MODELS``)
-``reynolds``               ``solve_reynolds``: FEM Reynolds solver, pi and direct forms
-``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation, finite volumes
-``elastic``                elastic support (EHD): half-space compliance, coupled film
-``journal``                journal bearings: charts, equilibrium, dynamic coefficients
+``elastic``                elastic support (EHD): half-space and shoe-body compliance, coupled film
+``reynolds``               ``solve_reynolds``: the front door of the Reynolds solvers
 ``fd``                     finite-difference reference (the source paper's scheme)
+``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``scales``                 non-dimensional <-> SI conversion
-``linalg``                 pluggable sparse solvers
+``journal``                journal bearings: charts, equilibrium, dynamic coefficients
 ``machines``               shared parameter objects of machines (SI)
+``sections``               rolled-steel sections (GOST 8239 I-beams) for frames
+``mechanism_files``        TOML parameter files in ``mechanisms/``
+``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
+``transient``              the plunger shoe over the pump cycle (``simulate``)
+``transient_jfo``          the pump cycle under JFO cavitation: the film's history (theta)
+``elastic_transient``      the pump cycle on an elastic support with the deflection's squeeze
 ``crank``                  crank-slider kinematics and inertia forces
 ``efficiency``             crank-slider efficiency against the pressure angle
 ``rotor``                  unbalanced rotor on an elastic frame
-``mechanism_files``        TOML parameter files in ``mechanisms/``
-``sweep``                  design studies in processes or on a Dask cluster
-``scenes``                 scene files run by the command line
 ``validation``             closed-form and published-data checks
+``sweep``                  design studies in processes or on a Dask cluster
+``scenes``                 scene files run by the command line (``reynolds`` kind, registry)
+``scene_pump``             the pump scene: shoe with and without its pocket over a revolution
+``scene_journal``          the journal scene: a journal bearing from a file in SI units
 ``io``                     VTU/PVD, CSV and JSON outputs (atomic writes)
 ``outfolder``              output folders: manifest, lock, all-or-nothing move into place
-``limits``                 size guards (revolutions, frames, cases, elements, case time)
 ``plot``                   pyvista fields and matplotlib curves (lazy imports)
 ``cli``                    the ``bearingfe`` command
-``version``                the package version
-``pump``                   eccentric radial-plunger pump, swinging-plunger kinematics
-``transient``              the plunger shoe over the pump cycle (``simulate``)
 =========================  =====================================================
 """
 
