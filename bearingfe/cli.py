@@ -180,12 +180,14 @@ def _remove_temporaries(out: Path) -> None:
 
 def _client_for(scheduler: str):
     """A Dask client: ``"local"`` / ``"local:N"`` starts a LocalCluster of N workers,
-    anything else is a scheduler address (``tcp://host:8786``)."""
+    anything else is a scheduler address (``tcp://host:8786``). The local workers end with this process
+    (even on SIGKILL): the preload :func:`bearingfe.sweep.workers.dask_setup` ties them to it."""
     from distributed import Client, LocalCluster
 
     if scheduler == "local" or scheduler.startswith("local:"):
         n = int(scheduler.partition(":")[2] or (os.cpu_count() or 1))
-        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True))
+        return Client(LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   preload=["bearingfe.sweep.workers"]))
     return Client(scheduler)
 
 

@@ -295,6 +295,64 @@ def test_workers_end_with_their_parent(sig):
         parent.stdout.close()
 
 
+# A Dask case that holds the GIL in compiled code for minutes (as a long factorization or meshing call can):
+# ``sum(range(10**12))`` loops in C without releasing it. It marks its start with a file named by its pid.
+GIL_HOLDING_SWEEP = """\
+import os, sys
+import bearingfe.sweep.execute as execute
+from bearingfe.cli import main
+flags = sys.argv[2]
+def hold_gil(*args):
+    open(os.path.join(flags, str(os.getpid())), "w").close()
+    return sum(range(10**12))
+execute.run_case_timed = hold_gil  # pickled by value: the Dask workers run this stand-in
+main(["sweep", sys.argv[1], "--out", sys.argv[3], "--scheduler", "local:2", "--no-progress"])
+"""
+
+
+def _descendants(pid: int) -> dict[int, str]:
+    """Children, grandchildren, ... of ``pid``: ``{pid: command line}``."""
+    found, todo = {}, [pid]
+    while todo:
+        children = _children(todo.pop())
+        found.update(children)
+        todo.extend(children)
+    return found
+
+
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM])
+def test_dask_local_workers_end_with_their_parent(sig, tmp_path):
+    # Dask's own tie (a thread that waits on a pipe) needs the GIL, which these cases never give back:
+    # without the worker preload of `--scheduler local` the workers ran on (checked: still alive after 30 s)
+    (tmp_path / "study.toml").write_text(STUDY)
+    flags = tmp_path / "flags"
+    flags.mkdir()
+    parent = subprocess.Popen([PY, "-c", GIL_HOLDING_SWEEP, str(tmp_path / "study.toml"), str(flags),
+                               str(tmp_path / "out")], cwd=ROOT, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    family: dict[int, str] = {}
+    try:
+        deadline = time.monotonic() + 90
+        while time.monotonic() < deadline and len(list(flags.iterdir())) < 2 and parent.poll() is None:
+            time.sleep(0.2)
+        busy = {int(f.name) for f in flags.iterdir()}
+        assert len(busy) == 2, parent.poll()  # both cases run (in two Dask worker processes)
+        family = _descendants(parent.pid)
+        assert busy <= set(family)
+        parent.send_signal(sig)
+        parent.wait(30)
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and any(_alive(p) for p in family):
+            time.sleep(0.2)
+        assert not [p for p in family if _alive(p)]  # workers (and the resource tracker) are gone
+    finally:
+        if parent.poll() is None:
+            parent.kill()
+        for pid in family:  # survivors of a failed check: do not leave them busy
+            if _alive(pid):
+                os.kill(pid, signal.SIGKILL)
+
+
 def napping_run(case):
     """Stand-in run: h_min = 1 - gamma at once, or sleep for 10 minutes when gamma > 0.8."""
     if case.gamma > 0.8:

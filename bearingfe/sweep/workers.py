@@ -14,6 +14,12 @@ yields the results as they finish. Unlike a ``ProcessPoolExecutor`` it
   parent dies (``prctl(PR_SET_PDEATHSIG)``), and on every platform a thread
   in the worker checks twice a second that its parent is still the process
   that started it.
+
+The same module is the Dask worker preload the command line gives the
+``LocalCluster`` it starts (``--scheduler local``): :func:`dask_setup` ties
+each Dask worker process to the process that started it in the same way.
+Dask's own tie (a thread waiting on a pipe) cannot run while a case holds
+the GIL in compiled code, so without it such a worker outlives a killed parent.
 """
 
 from __future__ import annotations
@@ -26,7 +32,7 @@ import time
 from collections import deque
 from typing import Any, Callable, Iterator
 
-__all__ = ["CaseTimeout", "run_pool"]
+__all__ = ["CaseTimeout", "dask_setup", "run_pool"]
 
 _STARTUP_GRACE = 120.0  # s a fresh worker may take to import the package before its case counts
 
@@ -57,6 +63,17 @@ def _die_with_parent(parent_pid: int) -> None:
                 os._exit(1)
 
     threading.Thread(target=watch, name="bearingfe-parent-watch", daemon=True).start()
+
+
+def dask_setup(worker: Any = None) -> None:
+    """Dask preload hook (``preload=["bearingfe.sweep.workers"]``): end this worker process with its parent.
+
+    Parameters
+    ----------
+    worker : distributed.Worker, optional
+        The worker being started (unused: the tie is per process).
+    """
+    _die_with_parent(os.getppid())
 
 
 def _worker_main(conn, parent_pid: int) -> None:
