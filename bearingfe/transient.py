@@ -815,18 +815,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     opts = dict(method=method, rtol=rtol, atol=atol, max_step=max_step, bound=bound)
     t_start = time.perf_counter()
     iterations, residual = 0, math.nan
-    if isinstance(start, str) and start in STARTS:
-        y0 = np.array(steady_state(pump, beta=beta0, _model=model))
-    elif isinstance(start, str):
-        raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}")
-    else:
-        try:
-            y0 = np.array([float(v) for v in start])
-        except (TypeError, ValueError):
-            raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}") from None
-        if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
-            raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
-                             f"min_film over the surface, got {start!r}")
+    y0 = _initial_state(pump, model, start, beta0, bound)
     found = None
     model.elastic = elastic  # set after the steady start, which is the rigid one
     if start == "periodic":
@@ -886,6 +875,23 @@ def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: in
     return solve_cavitating(sup, float(traj.wedge[k]), rates, p_s, model=cavitation)
 
 
+
+def _initial_state(pump: EccentricPump, model: "_Model", start, beta0: float, bound: float) -> np.ndarray:
+    """``(gamma, delta)`` to start from: the steady state at ``beta0`` for ``"steady"`` and
+    ``"periodic"``, else the user's pair, checked (finite, ``gamma >= 0``, film above ``bound`` [c])."""
+    if isinstance(start, str) and start in STARTS:
+        return np.array(steady_state(pump, beta=beta0, _model=model))
+    if isinstance(start, str):
+        raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}")
+    try:
+        y0 = np.array([float(v) for v in start])
+    except (TypeError, ValueError):
+        raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}") from None
+    if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
+        raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
+                         f"min_film over the surface, got {start!r}")
+    return y0
+
 def _simulate_jfo(pump: EccentricPump, mesh: SupportMesh, revolutions: float, start, beta0: float, per_rev: int,
                   bound: float, ratio: float, formulation: str, element: str, solver: str) -> Trajectory:
     """``simulate(..., cavitation="jfo")``: backward-Euler steps carrying theta (bearingfe.transient_jfo)."""
@@ -893,18 +899,7 @@ def _simulate_jfo(pump: EccentricPump, mesh: SupportMesh, revolutions: float, st
         raise ValueError(f"cavitation='jfo' supports element='P1' only, got {element!r}")
     t_start = time.perf_counter()
     model = _Model(pump, mesh, formulation, element, solver, "none")
-    if isinstance(start, str) and start in STARTS:
-        y0 = np.array(steady_state(pump, beta=beta0, _model=model))
-    elif isinstance(start, str):
-        raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}")
-    else:
-        try:
-            y0 = np.array([float(v) for v in start])
-        except (TypeError, ValueError):
-            raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}") from None
-        if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
-            raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
-                             f"min_film over the surface, got {start!r}")
+    y0 = _initial_state(pump, model, start, beta0, bound)
     rates0 = model.rates(beta0, y0)
     initial, iterations, residual = None, 0, math.nan
     if start == "periodic":  # one revolution to build the film history, then start from its end
