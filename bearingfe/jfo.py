@@ -53,11 +53,9 @@ from types import MappingProxyType
 
 import numpy as np
 import scipy.sparse as sp
-import skfem
-from skfem import BilinearForm, LinearForm
-from skfem.helpers import dot, grad
 
 from .film import Film
+from .forms import load, weighted_laplace
 from .linalg import Factorize, factorize_splu, get_linear_solver
 from .meshing import SupportMesh, periodic_pairs
 from .superposition import Operators, ReynoldsResult, operators
@@ -73,15 +71,6 @@ TOLERANCE = 1e-10
 class JFOError(RuntimeError):
     """The JFO complementarity iteration did not converge (or theta left [0, 1])."""
 
-
-@BilinearForm
-def _stiffness(u, v, w):
-    return w.k * dot(grad(u), grad(v))
-
-
-@LinearForm
-def _load(v, w):
-    return w.f * v
 
 
 # -- mesh geometry of the median dual ------------------------------------------------
@@ -157,7 +146,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     if not np.all(h_q > 0):
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
-    K = _stiffness.assemble(basis, k=h_q**3 / 12.0).tocsr()
+    K = weighted_laplace.assemble(basis, c=h_q**3 / 12.0).tocsr()
     d = _dual(mesh)
     h_s = _thickness(mesh, film, d.midpoint[0], d.midpoint[1])
     f = 0.5 * wedge * h_s * d.normal[0]
@@ -165,13 +154,13 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     n = basis.N
     C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([d.i, d.j]), np.concatenate([up, up]))),
                       shape=(n, n)).tocsr()
-    area = _load.assemble(basis, f=np.ones_like(h_q))
-    storage = _load.assemble(basis, f=hdot_q)
+    area = load.assemble(basis, f=np.ones_like(h_q))
+    storage = load.assemble(basis, f=hdot_q)
     source = np.zeros(n)
     if dt is not None:
-        H = _load.assemble(basis, f=h_q)
+        H = load.assemble(basis, f=h_q)
         px = previous.film
-        H_old = _load.assemble(basis, f=_thickness(mesh, px, x[0], x[1]))
+        H_old = load.assemble(basis, f=_thickness(mesh, px, x[0], x[1]))
         storage = storage + H / dt
         source = -previous.theta * H_old / dt
     return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q)
