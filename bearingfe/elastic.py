@@ -73,11 +73,11 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 import skfem
-from skfem import BilinearForm, LinearForm
-from skfem.helpers import dot, grad
+from skfem import BilinearForm
 
 from .cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from .film import Film
+from .forms import load as load_form, weighted_laplace
 from .linalg import DEFAULT_SOLVER
 from .machines import Material
 from .meshing import SupportMesh
@@ -638,19 +638,9 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
 
 
 @BilinearForm
-def _film_stiffness(u, v, w):
-    return w.h3 * dot(grad(u), grad(v))
-
-
-@BilinearForm
 def _film_sensitivity(u, v, w):
     # d/dh_j of int h^3 grad p . grad v_i + 6 wedge dh/dphi v_i, for h = ... + w_j phi_j
     return 3.0 * w.h2 * u * (w.gp0 * v.grad[0] + w.gp1 * v.grad[1]) + 6.0 * w.wedge * u.grad[0] * v
-
-
-@LinearForm
-def _weighted_load(v, w):
-    return w.f * v
 
 
 def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
@@ -681,7 +671,7 @@ def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, 
     x = np.array(basis.global_coordinates())
     h = np.asarray(film.thickness(x[0], x[1]))
     gp = basis.interpolate(pressure).grad
-    A = _film_stiffness.assemble(basis, h3=h**3).tocsr()
+    A = weighted_laplace.assemble(basis, c=h**3).tocsr()
     B = _film_sensitivity.assemble(basis, h2=h**2, gp0=gp[0], gp1=gp[1], wedge=np.full(h.shape, float(wedge)))
     idx = np.flatnonzero(free)
     out = np.zeros((basis.N, basis.N))
@@ -693,9 +683,9 @@ def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, 
         shapes = film.rate_shapes(x[0], x[1])
         U = np.zeros((basis.N, 2))
         for k in range(2):
-            U[idx, k] = -lu.solve(_weighted_load.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
-        cos = _weighted_load.assemble(basis, f=np.cos(x[0]))
-        sin = _weighted_load.assemble(basis, f=np.sin(x[0]))
+            U[idx, k] = -lu.solve(load_form.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
+        cos = load_form.assemble(basis, f=np.cos(x[0]))
+        sin = load_form.assemble(basis, f=np.sin(x[0]))
         L = np.vstack([cos, sin])
         M = L @ U
         out = out - U @ np.linalg.solve(M, L @ out)
