@@ -52,6 +52,7 @@ from typing import Callable
 import numpy as np
 
 from .limits import check_limit
+from .parameters import ELEMENTS
 from .schema import (NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
                      path_text, positive_number, read_table, text)
 
@@ -62,12 +63,6 @@ PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
 ELASTIC_MODELS = ("half-space", "body")
 #: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
 DYNAMICS = ("squeeze", "quasi-static")
-
-
-def _elements() -> tuple[str, ...]:
-    from .parameters import ELEMENTS
-
-    return tuple(ELEMENTS)
 
 
 def _cavitation_models() -> tuple[str, ...]:
@@ -90,7 +85,7 @@ PUMP = {
     "run": Table({"revolutions": (positive_number, 1.0), "start": (choice(_starts), "periodic"),
                   "mesh_size": (positive_number, 0.08), "rtol": (positive_number, 1e-6),
                   "frames": (integer(NONNEGATIVE), 12), "cavitation": (choice(_cavitation_models), "none"),
-                  "element": (choice(_elements), "P2")}),
+                  "element": (choice(ELEMENTS), "P2")}),
     "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space"),
                       "dynamics": (choice(DYNAMICS), "squeeze")}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES)}),

@@ -47,7 +47,9 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Callable, Mapping
 
+from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
 from .mechanism_files import SURFACE, surface_from, surface_of
+from .parameters import ELEMENTS, FORMULATIONS
 from .schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, nonnegative_number, number,
                      pair, positive_number, read_table, read_toml, text)
 
@@ -84,30 +86,6 @@ def run_scene(path: str | Path, out_dir: str | Path, progress: Callable | None =
 PICTURES = ("pressure", "wrapped", "film")
 
 
-def _elements() -> tuple[str, ...]:
-    from .parameters import ELEMENTS
-
-    return tuple(ELEMENTS)
-
-
-def _formulations() -> tuple[str, ...]:
-    from .parameters import FORMULATIONS
-
-    return tuple(FORMULATIONS)
-
-
-def _linear_solvers() -> tuple[str, ...]:
-    from .linalg import LINEAR_SOLVERS
-
-    return tuple(LINEAR_SOLVERS)
-
-
-def _default_solver() -> str:
-    from .linalg import DEFAULT_SOLVER
-
-    return DEFAULT_SOLVER
-
-
 #: The ``"reynolds"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.schema`).
 REYNOLDS = {
     "kind": (anything, REQUIRED),
@@ -117,8 +95,8 @@ REYNOLDS = {
     "operating": Table({"wedge": (number(), 1.0), "squeeze": (pair, (0.0, 0.0)),
                         "inlet_pressure": (number(), 0.0)}),
     "solver": Table({"size": (positive_number, 0.05), "inlet_size": (positive_number, None),
-                     "element": (choice(_elements), "P1"), "formulation": (choice(_formulations), "pi"),
-                     "linear_solver": (choice(_linear_solvers), None)}),
+                     "element": (choice(ELEMENTS), "P1"), "formulation": (choice(FORMULATIONS), "pi"),
+                     "linear_solver": (choice(LINEAR_SOLVERS), None)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15)}),
 }
 
@@ -128,7 +106,7 @@ def reynolds_settings(data: dict, label: str) -> dict:
     s = read_table(data, label, "", REYNOLDS)
     s["title"] = label if s["title"] is None else s["title"]
     if s["solver"]["linear_solver"] is None:
-        s["solver"]["linear_solver"] = _default_solver()
+        s["solver"]["linear_solver"] = DEFAULT_SOLVER
     s["surface"] = surface_of(s["surface"], label)
     del s["kind"]
     return s
