@@ -32,6 +32,7 @@ import argparse
 import datetime
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -144,11 +145,41 @@ TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal
 
 # -- storage and the page ------------------------------------------------------------------------
 
-def _store(name: str, text: str, facts: dict, seconds: float, quick: bool) -> None:
+class OtherLoad:
+    """CPU used by other processes while a part runs, in cores (Linux ``/proc/stat``; NaN elsewhere).
+
+    The machine's busy time over the part minus this process's and its children's CPU time, divided by
+    the wall time: 0 on an idle machine, up to the number of cores when other jobs saturate it.
+    """
+
+    def __init__(self) -> None:
+        self._start = self._sample()
+
+    @staticmethod
+    def _sample() -> tuple[float, float, float]:
+        import resource
+
+        own = sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+                  for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+        try:
+            fields = [float(x) for x in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
+            busy = (sum(fields) - fields[3] - (fields[4] if len(fields) > 4 else 0.0)) / os.sysconf("SC_CLK_TCK")
+        except (OSError, ValueError, IndexError):
+            busy = math.nan
+        return time.perf_counter(), busy, own
+
+    def cores(self) -> float:
+        (t0, b0, o0), (t1, b1, o1) = self._start, self._sample()
+        return max(0.0, ((b1 - b0) - (o1 - o0)) / (t1 - t0)) if t1 > t0 else math.nan
+
+
+def _store(name: str, text: str, facts: dict, seconds: float, quick: bool, other: float) -> None:
     PARTS_DIR.mkdir(parents=True, exist_ok=True)
     info = machine()
     stamp = (f"*Part `{name}`: {'QUICK run (small sizes)' if quick else 'full run'} of "
-             f"{info['date']} on {info['cpu']} ({info['cores']} cores), {seconds:.0f} s.*\n\n")
+             f"{info['date']} on {info['cpu']} ({info['cores']} cores), {seconds:.0f} s; other processes "
+             f"used {other:.2f} cores meanwhile ("
+             f"{'idle machine' if other < 0.25 else 'SHARED machine: absolute times are inflated'}).*\n\n")
     (PARTS_DIR / f"{name}.md").write_text(stamp + text)
     (PARTS_DIR / f"{name}.json").write_text(json.dumps(dict(facts, seconds=seconds, quick=quick), indent=1,
                                                        default=str) + "\n")
@@ -216,9 +247,9 @@ def main(argv=None) -> int:
         ap.error(f"unknown part {unknown[0]!r}; parts: {', '.join(PARTS)}")
     start = time.perf_counter()
     for name in todo:
-        t = time.perf_counter()
+        t, other = time.perf_counter(), OtherLoad()
         text, facts = RUNNERS[name](args.quick)
-        _store(name, text, facts, time.perf_counter() - t, args.quick)
+        _store(name, text, facts, time.perf_counter() - t, args.quick, other.cores())
         _log(f"part {name}: {time.perf_counter() - t:.1f} s")
     parts = {name: _load(name) for name in PARTS}
     info = machine()
@@ -233,10 +264,9 @@ def main(argv=None) -> int:
         "",
         "Optional solver packages: " + ", ".join(f"{k} {v}" for k, v in optional_versions().items()),
         "",
-        "Times are wall-clock seconds of one process (numpy/BLAS may use both cores). **The machine was shared "
-        "with other jobs while these numbers were measured (2 cores, several concurrent test runs): absolute "
-        "times are several times those of an idle machine**; ratios measured within one part (before/after, "
-        "FEM/FD) are less affected.",
+        "Times are wall-clock seconds of one process (numpy/BLAS may use both cores). Each part states how many "
+        "cores other processes used while it ran: on a shared machine absolute times are inflated, up to several times; ratios measured within one part (before/after, FEM/FD) are "
+        "less affected.",
         "",
         "The cost floor of one film state (the compiled operator against its sparse LU and solves) is measured "
         "separately: [benchmarks_operator.md](benchmarks_operator.md) (`benchmarks/operator_floor.py`).",
