@@ -126,6 +126,11 @@ class Operators:
         return self._lazy[name]
 
     @property
+    def angles(self) -> tuple[np.ndarray, np.ndarray]:
+        """``cos phi`` and ``sin phi`` at the quadrature points (for :func:`bearingfe.forms.film_at`)."""
+        return self._get("angles", lambda: (np.cos(self._x[0]), np.sin(self._x[0])))
+
+    @property
     def laplace(self) -> sp.csr_matrix:
         """Stiffness matrix ``int grad u . grad v``."""
         return self._get("laplace", lambda: forms.laplace.assemble(self.basis).tocsr())
@@ -370,12 +375,17 @@ class Superposition:
         load = np.asarray(load, dtype=float)
         if load.shape != (2,) or not np.all(np.isfinite(load)):
             raise ValueError(f"load must be two finite numbers (F_cos, F_sin), got {load!r}")
-        c = self.coefficients(wedge, inlet_pressure)
-        matrix = c[:, :2]
-        if abs(np.linalg.det(matrix)) <= 1e-14 * np.abs(matrix).max() ** 2:
+        self.check_inlet(inlet_pressure)
+        # the 2x2 system of coefficients() by Cramer's rule: an integrator calls this at every step,
+        # where LAPACK's call overhead is most of the cost
+        (w0, a, b, s0), (w1, c, d, s1) = self.forces.tolist()
+        det = a * d - b * c
+        if abs(det) <= 1e-14 * max(abs(a), abs(b), abs(c), abs(d)) ** 2:
             raise np.linalg.LinAlgError(
                 "squeeze coefficients are singular (gamma = 0 leaves phi0_rate undetermined)")
-        return np.linalg.solve(matrix, -load - c[:, 2])
+        r0 = -float(load[0]) - (wedge * w0 + inlet_pressure * s0)
+        r1 = -float(load[1]) - (wedge * w1 + inlet_pressure * s1)
+        return np.array([(d * r0 - b * r1) / det, (a * r1 - c * r0) / det])
 
     def loads(self, u: np.ndarray, inlet_pressure: float = 0.0) -> tuple[np.ndarray, float]:
         """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field ``u``
@@ -467,7 +477,7 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
     ops = operators(mesh, element)
     factorize = get_linear_solver(solver)
     t0 = time.perf_counter()
-    at = film_at(film, ops.x)
+    at = film_at(film, ops.x, ops.angles if assembly == "compiled" else None)
     h_min = _h_min(ops, film, at)
     if not h_min > 0:
         raise ValueError(f"film thickness reaches h_min = {h_min:.4g} <= 0 on the surface "

@@ -145,11 +145,14 @@ class _Model:
     _warm: object = None
     _w: object = None  # last film opening of the elastic support [c]
     _reuse: dict = field(default_factory=dict)
+    _phi_range: tuple[float, float] | None = None
 
     @property
     def phi_range(self) -> tuple[float, float]:
-        b = self.mesh.mesh.p[0]
-        return float(b.min()), float(b.max())
+        if self._phi_range is None:  # asked at every step: computed once
+            b = self.mesh.mesh.p[0]
+            self._phi_range = (float(b.min()), float(b.max()))
+        return self._phi_range
 
     def h_min(self, gamma: float, delta: float) -> float:
         if self.elastic is not None and self._w is not None:  # rigid film opened by the last deflection
