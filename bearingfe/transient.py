@@ -74,8 +74,11 @@ __all__ = [
 #: Named starting states of :func:`simulate` (besides a given ``(gamma, delta)``).
 STARTS = ("periodic", "steady")
 
-#: Stepping integrators by name (scipy's implicit and switching methods).
-INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA})
+#: Stepping integrators by name: scipy's implicit and switching methods, and the explicit
+#: Runge-Kutta pairs for films that are not stiff (on the shipped pump RK23 reaches a given error
+#: of the smallest film with fewer film solves than LSODA: docs/benchmarks_pump.md).
+INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA,
+                                                   "RK23": si.RK23, "RK45": si.RK45})
 
 
 class LiftOffError(ValueError):
@@ -689,11 +692,16 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         (:mod:`bearingfe.transient_jfo`; ``method``, ``rtol``, ``atol`` and
         ``max_step`` do not apply; P1 only). ``start="periodic"`` then runs
         one revolution first and starts from its end (film history included).
-    method : {"LSODA", "Radau", "BDF"}
+    method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
         shipped pump it needed a third to a half of Radau's right-side
-        evaluations (one factorization each) for the same accuracy.
+        evaluations (one factorization each) for the same accuracy. The
+        explicit Runge-Kutta pairs RK23 and RK45 suit films that are not
+        stiff (there they need fewer evaluations still, and their error
+        follows ``rtol`` more closely); where the film is stiff their error
+        control shortens the steps, which stays correct but costs
+        evaluations.
     rtol, atol : float
         Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``;
         ``atol`` defaults to ``1e-3 rtol``.
