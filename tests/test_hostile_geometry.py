@@ -569,3 +569,29 @@ pictures = []
     assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "1.85e+08 triangles" in err and "BEARINGFE_MAX_ELEMENTS" in err
+
+
+def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
+    """``bearingfe mesh`` killed by SIGKILL while gmsh works (no chance to clean up): gmsh wrote into a
+    private temporary folder, so the --out folder holds only what was there before (the .geo)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    out = tmp_path / "m.msh"
+    parent = subprocess.Popen([sys.executable, "-m", "bearingfe.cli", "mesh", str(geo), "--size", "0.2",
+                               "--out", str(out), "--geo-timeout", "600"], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    for _ in range(300):  # gmsh's child appears once bearingfe is imported (a few seconds at most)
+        if children.exists() and children.read_text().split():
+            break
+        time.sleep(0.05)
+    else:
+        parent.kill()
+        pytest.fail("the gmsh child never started")
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    assert parent.wait() == -signal.SIGKILL
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hostile.geo"]
