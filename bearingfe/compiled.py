@@ -189,6 +189,11 @@ class CompiledOperator:
         return self._get("twins", lambda: _twins(self.indptr, self.indices, self.n_dofs))
 
     @property
+    def transposed_value(self) -> sp.csr_matrix:
+        """``E^T``: (weighted) point values -> their integrals against each basis function."""
+        return self._get("value_t", lambda: self.value.T.tocsr())
+
+    @property
     def laplace_data(self) -> np.ndarray:
         """Values of ``int grad u . grad v`` on the upper triangle of the pattern."""
         return self._get("laplace", lambda: self.stiffness_scatter @ np.ones(self.dx.size))

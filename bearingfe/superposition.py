@@ -572,13 +572,25 @@ class _CompiledBuild:
         return self.co.matrix(self.data)
 
     def rhs(self, formulation: str, g: np.ndarray) -> np.ndarray:
-        at = self.at
-        s = self.scale = unknown_scale(self.h, formulation)
-        f = np.column_stack([s * 6.0 * at.dh[0].ravel(), s * 12.0 * at.shapes[0].ravel(),
-                             s * 12.0 * at.shapes[1].ravel()])
+        """The right sides, and (kept for :meth:`unit_loads`) the load weights of the dofs.
+
+        Both are ``E^T`` of fields at the points: the sources ``dx s f_k``
+        and the load densities ``s (cos phi, sin phi, 1) dx`` (``p = s u``),
+        so one sparse product serves the six columns.
+        """
+        at, co = self.at, self.co
+        s = unknown_scale(self.h, formulation)
+        sdx = s * co.dx
+        fields = np.empty((self.h.size, 6))
+        fields[:, 0] = 6.0 * sdx * at.dh[0].ravel()
+        fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
+        fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
+        fields[:, 3:] = (co.loads * s).T
+        weights = co.transposed_value @ fields
+        self.load_weights = weights[:, 3:]
         rhs = np.empty((self.ops.interior.size, 4))
-        rhs[:, :3] = -(self.co.sources @ f)
-        rhs[:, 3] = -self.co.coupling_times(self.data, g[self.ops.inlet, 3]) if self.ops.inlet.size else 0.0
+        rhs[:, :3] = -weights[self.ops.interior, :3]
+        rhs[:, 3] = -co.coupling_times(self.data, g[self.ops.inlet, 3]) if self.ops.inlet.size else 0.0
         return rhs
 
     def condensed_matrix(self) -> sp.csr_matrix:
@@ -590,10 +602,7 @@ class _CompiledBuild:
         return factorize(self.condensed_matrix())
 
     def unit_loads(self, U: np.ndarray, formulation: str):
-        p = self.co.value @ U
-        if formulation == "pi":
-            p *= self.scale[:, None]  # the h^(-3/2) of the right sides, same formulation
-        values = self.co.loads @ p
+        values = self.load_weights.T @ U  # the weights of rhs(), same formulation
         forces, integrals = values[:2].copy(), values[2].copy()
         forces[:, 3] += self.ops.pocket_moments[1:]  # pockets at unit pressure
         integrals[3] += self.ops.pocket_moments[0]

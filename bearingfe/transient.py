@@ -762,10 +762,15 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     -----
     The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
     the cheapest setting measured within 0.1 % of the converged smallest
-    film on the shipped pump, periodic start included
-    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
-    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
-    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
+    film on the shipped pump, periodic start included, that stays there on
+    other designs (``benchmarks/pump_revolution.py``,
+    docs/benchmarks_pump.md): P1 needs far finer meshes for that (P1 on
+    0.08 R0 is 1.4 % off); at ``rtol = 1e-4`` the periodic start needs five
+    revolutions and lands 4e-4 off; ``method="RK23"`` at ``rtol = 1e-3``
+    is the cheapest revolution within 0.1 % on the shipped pump from its
+    periodic state, but its error reaches a few 1e-3 on thinner films
+    (the page's table across designs), where LSODA at the default ``rtol``
+    stays below 1e-4.
     Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
     1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
     mesh passed in still gets P1).
