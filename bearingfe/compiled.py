@@ -43,12 +43,14 @@ from .forms import film_at
 __all__ = ["CompiledOperator", "compile_operator", "FilmFlows"]
 
 
-#: SuperLU panel and supernode sizes of the numeric factorization: one-column panels and no relaxed
-#: supernodes. The Reynolds matrices are 2-D FEM patterns with little fill in the minimum-degree
-#: order, so the supernodal dense kernels (and a threaded BLAS behind them) cost more than they save:
-#: measured 1.5-2x faster than SuperLU's defaults from 200 to 18000 unknowns on the pump's P2 meshes
-#: (benchmarks/operator_floor.py). The factors are the same up to round-off.
+#: SuperLU panel and supernode sizes of the numeric factorization up to ``_SMALL_PANELS_UP_TO``
+#: unknowns: one-column panels and no relaxed supernodes. The Reynolds matrices are 2-D FEM
+#: patterns with little fill in the minimum-degree order, so there the supernodal dense kernels (and
+#: a threaded BLAS behind them) cost more than they save: measured 1.4-2.4x faster than SuperLU's
+#: defaults from 214 to 17670 unknowns on the pump's P2 meshes. Larger systems keep the defaults
+#: (not measured there). The factors are the same up to round-off.
 _SMALL_PANELS = {"panel_size": 1, "relax": 1}
+_SMALL_PANELS_UP_TO = 20000
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -257,7 +259,7 @@ class CompiledOperator:
         with self._lock:  # one matrix object per mesh: fill and factor it in one go (threads)
             template.data[:] = data[psel]
             lu = spla.splu(template, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True},
-                           **_SMALL_PANELS)
+                           **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
 
         def solve(b: np.ndarray) -> np.ndarray:
             return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
