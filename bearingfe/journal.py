@@ -314,8 +314,8 @@ def structured_journal_mesh(bearing: JournalBearing, size: float, *, min_size: f
     (``size sqrt(h)`` clipped to ``[min_size, size]``); the rows are
     uniform, about ``size`` high. The straight edges are exact for the
     rectangle. Building it costs milliseconds where gmsh costs a tenth of a
-    second or more, and its columns are what :func:`equilibrium` refines
-    across the rupture front (``rupture_size``).
+    second or more; :func:`equilibrium` refines it locally at the rupture
+    front (``rupture_size``).
 
     Parameters
     ----------
@@ -388,7 +388,6 @@ def _front_elements(res: ReynoldsResult) -> np.ndarray:
     full = np.zeros(res.basis.mesh.nvertices, bool)
     full[t[:, np.all(p > 0, axis=0)].ravel()] = True
     return np.any(res.cavitated[dofs], axis=0) & np.any(p > 0, axis=0) & np.any(full[t], axis=0)
-
 
 
 # -- one journal position --------------------------------------------------------
@@ -731,7 +730,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         for the full bearing only its magnitude and direction matter.
     size, min_size : float
         Element sizes (the mesh is graded for the first guess and regenerated
-        once if the answer moved by more than 0.02 in eps); or
+        once if the answer moved by more than 0.02 in eps; a structured mesh
+        if that changes its smallest element size by more than 10 %); or
         ``discretization=`` as in :func:`performance`.
     cavitation : {"reynolds", "none", "jfo"}
         With ``"jfo"`` (and for periodic bearings) the stiffness of the
@@ -754,7 +754,22 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         tensor-product mesh, no gmsh) instead of :func:`journal_mesh`.
     rupture_size : float, optional
         Full bearing, ``structured=True``, ``cavitation="reynolds"`` only:
-        element size [-] at the rupture front, in ``(0, size]``. RUPTURE_DOC
+        element size [-] at the rupture front, in ``(0, size]``. After
+        Newton on the structured mesh (to ``max(tol, COARSE_TOL)``), the
+        elements near the discrete rupture front are split (conforming
+        red-green-blue refinement), one level at a time, each level solved
+        once at that position from the previous level's rupture set, until
+        the front lies in elements no longer than ``rupture_size``; then
+        Newton to ``tol`` on that mesh (the returned ``meshes``, which
+        :func:`dynamic_coefficients` reuses). The coefficients are
+        linearized on the converged rupture set; their error is set by how
+        well the mesh resolves the front (the pressure gradient has a kink
+        there), while that of the position is set by ``size``. Use it with
+        ``element="P2"``: on a plain ``L/D = 0.5`` bearing at eps 0.6,
+        ``size = 0.3, rupture_size = 0.05`` puts eps and the eight
+        coefficients within 1e-3 of a converged reference in a fraction of
+        the time of a uniform mesh of that accuracy (docs/benchmarks.md,
+        part ``journal``; measured errors there).
 
     Raises
     ------
@@ -864,6 +879,14 @@ class _Mesher:
     order: int
     structured: bool
 
+    def remesh(self, eps_mesh: float, eps: float) -> bool:
+        """Whether the answer ``eps`` moved too far from the mesh's ``eps_mesh``: by 0.02 (gmsh meshes), or
+        (structured meshes, which are graded in one direction only) enough to change the smallest element
+        size by more than 10 %."""
+        if not self.structured:
+            return abs(eps - eps_mesh) >= 0.02
+        return abs(math.sqrt(1 - eps) / math.sqrt(1 - eps_mesh) - 1) > 0.1
+
     def __call__(self, eps: float) -> tuple[SupportMesh, ...]:
         ms = default_min_size(self.size, eps) if self.min_size is None else self.min_size
         if self.structured:
@@ -873,7 +896,7 @@ class _Mesher:
 
 #: Force-balance tolerance of the Newton iteration on the mesh that :func:`equilibrium` then refines
 #: around the rupture front (the refined mesh's Newton goes on to ``tol``).
-COARSE_TOL = 1e-5
+COARSE_TOL = 1e-3
 
 
 def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int):
@@ -893,14 +916,21 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
                        f"(relative load residual {res:.3g})")
 
 
+#: Rupture refinement: elements within this many front-element diameters of the front are split ...
+RUPTURE_REACH = 1.0
+#: ... this many times per level (one solve per level).
+RUPTURE_SPLITS = 1
+
+
 def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State", eps: float, rupture_size: float,
                     opts: "_Solves") -> tuple[SupportMesh, "_State"]:
     """Refine the elements near the rupture front (conforming red-green-blue splits) until the front lies in
-    elements no longer than ``rupture_size``. Per level: the elements within 1.5 front-element diameters of
-    the front are split twice (diameters / 4), then one solve at ``eps`` started from the previous level's
-    rupture set (nested iteration)."""
+    elements no longer than ``rupture_size``. Per level: the elements within :data:`RUPTURE_REACH` diameters
+    of a front element are split :data:`RUPTURE_SPLITS` times, then one solve at ``eps`` started from the
+    previous level's rupture set (nested iteration)."""
     a = bearing.half_width
-    while True:
+    levels = 8 + 2 * math.ceil(math.log2(max(mesh.size / rupture_size, 1.0)))
+    for _ in range(levels):
         res = state.results[0]
         m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
         front = _front_elements(res)
@@ -908,8 +938,8 @@ def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State",
         if not front.any() or diameters[front].max() <= rupture_size * (1 + 1e-9):
             return mesh, state
         centres = m.p[:, m.t].mean(axis=1)[:, front].T
-        reach = 1.5 * diameters[front]
-        for _ in range(2):  # (two splits per solve)
+        reach = RUPTURE_REACH * diameters[front]
+        for _ in range(RUPTURE_SPLITS):
             d = _diameters(m)
             near = np.zeros(m.nelements, bool)
             for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
@@ -922,6 +952,8 @@ def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State",
         new = _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), a)
         start = _nearest_rupture(res, np.asarray(operators(new, opts.element).basis.doflocs))
         mesh, state = new, opts.solve(bearing, (new,), -eps, 0.0, start=(start,))
+    raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
+                       f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
 
 
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray) -> np.ndarray:
@@ -941,7 +973,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         eps_start = eps
         eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton)
         k_total += k
-        if mesher.min_size is not None or abs(eps - eps_start) < 0.02:
+        if mesher.min_size is not None or not mesher.remesh(eps_start, eps):
             break
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
