@@ -40,7 +40,7 @@ import scipy.sparse.linalg as spla
 
 from .forms import film_at
 
-__all__ = ["CompiledOperator", "compile_operator", "FilmFlows"]
+__all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "interpolation_maps"]
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -55,6 +55,12 @@ def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp
         v = np.concatenate([np.asarray(part(phi[0])).ravel() for phi in basis.basis])
         out.append(sp.csr_matrix((v, (r, c)), shape=(n_cells * n_points, n_dofs)))
     return tuple(out)
+
+
+def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Sparse maps from the dofs of ``basis`` to the values and the two gradient components at its own
+    quadrature points, each of shape ``(n_cells * n_points, basis.N)`` (rows in ``basis.dx`` order)."""
+    return _interpolation(basis, basis.N)
 
 
 def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
