@@ -15,8 +15,7 @@ gradient). What does not depend on the film is built once per
   condensed blocks ``A[I, I]`` and ``A[I, inlet]``;
 - the fill-reducing ordering of ``A[I, I]`` (the symbolic part SuperLU lets
   one keep; see :class:`bearingfe.linalg.PatternFactorizer`), so a new film
-  costs one numeric factorization (the first film's factorization is the
-  one that finds the ordering);
+  costs one numeric factorization;
 - the maps from quadrature values to loads (``cos phi dx``, ``sin phi dx``,
   ``dx``), to the source vectors (``E^T dx`` on the interior dofs) and to the
   boundary flows of each outflow group (three dense ``n_groups x n_q``
@@ -269,18 +268,15 @@ class CompiledOperator:
         """Numeric SuperLU factorization of ``A[I, I]`` (symmetric mode) in a fill-reducing order
         found once for the pattern (minimum degree on ``A^T + A``, as ``factorize_splu_sym``).
 
-        The first film's factorization is the one that finds the order (a fresh mesh's first,
-        often only, film pays for one factorization); the permuted matrix the later films
-        refill is built on the second."""
+        Every film, the first included, is factored in that order from the same matrix object,
+        so a film's numbers do not depend on the films solved on the mesh before it (the
+        factorization that finds the order rounds differently and is not used for solves)."""
         (sel, idx, ptr), _ = self._blocks()
         n = self.interior.size
-        if "perm_c" not in self._lazy:
+        if "order" not in self._lazy:
             lu = spla.splu(sp.csc_matrix((data[sel], idx, ptr), shape=(n, n)), permc_spec="MMD_AT_PLUS_A",
                            diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-            self._lazy["perm_c"] = lu.perm_c.copy()
-            return lambda b: lu.solve(np.asarray(b, dtype=float))
-        if "order" not in self._lazy:
-            order = np.argsort(self._lazy["perm_c"])
+            order = np.argsort(lu.perm_c)
             carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
             permuted = carrier[order][:, order].tocsc()
             permuted.sort_indices()
