@@ -24,8 +24,10 @@ import argparse
 import contextlib
 import os
 import re
+import shutil
 import signal
 import sys
+import tempfile
 import threading
 import warnings
 from pathlib import Path
@@ -278,10 +280,15 @@ def _mesh(args) -> int:
     if not (args.size > 0 and args.size < float("inf")):
         raise ValueError(f"--size must be a finite element size > 0, got {args.size}")
     out.parent.mkdir(parents=True, exist_ok=True)
-    with atomic_path(out) as tmp:
-        run_geo(geo, tmp, size=args.size, order=args.order, trusted=args.trust_geo, timeout=args.geo_timeout,
+    # gmsh writes into a private temporary folder (the system's: a kill during meshing leaves nothing next to
+    # --out); only the checked result is copied to a temporary name beside --out and renamed onto it
+    with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+        made = Path(work) / out.name
+        run_geo(geo, made, size=args.size, order=args.order, trusted=args.trust_geo, timeout=args.geo_timeout,
                 max_elements=args.max_elements)
-        mesh = load_mesh(tmp, max_elements=args.max_elements)  # the written file must load with its named boundaries
+        mesh = load_mesh(made, max_elements=args.max_elements)  # the file must load with its named boundaries
+        with atomic_path(out) as tmp:
+            shutil.copyfile(made, tmp)
     names = ", ".join(sorted(mesh.boundaries))
     print(f"{out}: {mesh.n_nodes} nodes, {mesh.n_elements} triangles, boundaries: {names}")
     return 0

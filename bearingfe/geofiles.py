@@ -11,8 +11,9 @@ geometry files as untrusted data by default (docs: README, "Safety"):
   ``.geo`` script renamed to ``x.msh`` is refused, not run);
 * ``.geo`` scripts are checked against an allow-list (:func:`check_geo_script`):
   geometry, mesh-size and physical-group statements, arithmetic, loops,
-  ``Mesh.*`` / ``Geometry.*`` numeric options; anything else (shell,
-  files, other option groups, onelab, plugins, environment, ``Exit``) is
+  ``Mesh.*`` / ``Geometry.*`` numeric options, numeric ``DefineConstant``
+  parameters; anything else (shell, files, other option groups, other
+  onelab commands, plugins, environment, ``Exit``) is
   refused with :class:`UntrustedGeoError` naming the command and line,
   unless the caller trusts the file (``trusted=True``, ``--trust-geo``);
 * trusted or not, gmsh parses and meshes the script in a separate process
@@ -212,7 +213,6 @@ _REFUSED_KEYWORDS = {
     "GetForcedStr": "reads onelab parameters",
     "SetNumber": "sets onelab parameters",
     "SetString": "sets onelab parameters",
-    "DefineConstant": "defines onelab parameters",
     "DefineNumber": "defines onelab parameters",
     "DefineString": "defines onelab parameters",
     "UndefineConstant": "changes onelab parameters",
@@ -248,6 +248,13 @@ _COMMANDS = {
     "Structured": "is a size field that reads a file",
     "PostView": "is a size field that reads post-processing views",
 }
+
+#: ``DefineConstant[ name = {value, Attribute value, ...} ]``: the onelab attributes an untrusted script may
+#: give a numeric constant (labels and ranges for a GUI; gmsh run by bearingfe has none). Text attributes take
+#: one string, number attributes a numeric expression, ``Choices`` a list of numbers optionally labelled.
+_CONSTANT_TEXT_ATTRIBUTES = frozenset({"Name", "Label", "Help", "Units", "Highlight"})
+_CONSTANT_NUMBER_ATTRIBUTES = frozenset({"Min", "Max", "Step", "Visible", "ReadOnly", "Closed", "ReadOnlyRange"})
+_CONSTANT_LIST_ATTRIBUTES = frozenset({"Choices"})
 
 #: Option groups an untrusted script may set (numbers only): the others hold paths and programs.
 _OPTION_GROUPS = frozenset({"Mesh", "Geometry"})
@@ -305,7 +312,7 @@ def check_geo_script(text: str, name: str = "<geo>") -> None:
     UntrustedGeoError
         Naming the first refused word, its line and how to trust the file.
     """
-    toks = _tokens(text)
+    toks = _constants_as_assignments(_tokens(text), name)
     defined = _defined_names(toks)
     for i, tok in enumerate(toks):
         prev = toks[i - 1] if i else None
@@ -344,6 +351,107 @@ def check_geo_script(text: str, name: str = "<geo>") -> None:
                 raise _refuse(name, tok, "is used as a command")
             continue
         raise _refuse(name, tok, "is not a geometry command or a variable assigned in the script")
+
+
+def _constants_as_assignments(toks: list[_Tok], name: str) -> list[_Tok]:
+    """Each ``DefineConstant[ ... ];`` checked and replaced by plain assignments for the allow-list.
+
+    ``DefineConstant[ a = 1, b = {2, Min 0, Max 5, Name "Parameters/b"} ];`` defines ``a`` and ``b``
+    unless already defined (gmsh's onelab parameters; in batch mode only the values matter). Accepted:
+    numeric values (expressions) with the attributes of :data:`_CONSTANT_TEXT_ATTRIBUTES` (one string),
+    :data:`_CONSTANT_NUMBER_ATTRIBUTES` (an expression) and ``Choices{v, v = "label", ...}``; anything else
+    in the brackets is refused. The values and number attributes become ``name = expression;`` so that the
+    rest of the check sees every word they use; the strings and labels are dropped (they are only text).
+    """
+    out, i = [], 0
+    while i < len(toks):
+        tok = toks[i]
+        if tok.text != "DefineConstant":
+            out.append(tok)
+            i += 1
+            continue
+        if i + 1 >= len(toks) or toks[i + 1].text != "[":
+            raise _refuse(name, tok, "must be followed by [ name = value, ... ]")
+        end = _closing(toks, i + 1, name)
+        for entry in _split_top(toks[i + 2:end], ","):
+            out += _constant_entry(entry, tok, name)
+        i = end + 1
+        if i < len(toks) and toks[i].text == ";":
+            i += 1
+    return out
+
+
+def _closing(toks: list[_Tok], i: int, name: str) -> int:
+    """Index of the bracket closing the one at ``i`` (``[``/``{``/``(`` nest)."""
+    depth = 0
+    for j in range(i, len(toks)):
+        if toks[j].text in ("[", "{", "("):
+            depth += 1
+        elif toks[j].text in ("]", "}", ")"):
+            depth -= 1
+            if depth == 0:
+                return j
+    raise _refuse(name, toks[i], "is not closed")
+
+
+def _split_top(toks: list[_Tok], sep: str) -> list[list[_Tok]]:
+    """``toks`` split at ``sep`` outside any bracket (empty pieces dropped)."""
+    pieces, piece, depth = [], [], 0
+    for tok in toks:
+        if tok.text in ("[", "{", "("):
+            depth += 1
+        elif tok.text in ("]", "}", ")"):
+            depth -= 1
+        if tok.text == sep and depth == 0:
+            pieces.append(piece)
+            piece = []
+        else:
+            piece.append(tok)
+    return [p for p in pieces + [piece] if p]
+
+
+def _constant_entry(entry: list[_Tok], where: _Tok, name: str) -> list[_Tok]:
+    """One ``name = value`` or ``name = {value, attributes}`` of a DefineConstant, as assignments."""
+    if len(entry) < 3 or entry[0].kind != "name" or entry[1].text != "=":
+        raise _refuse(name, entry[0] if entry else where, "in DefineConstant[...] must be 'name = value'")
+    target, value = entry[0], entry[2:]
+    if value[0].text != "{":
+        return _assignment(target, value, name)
+    if _closing(value, 0, name) != len(value) - 1:
+        raise _refuse(name, value[0], "in DefineConstant[...]: nothing may follow the closing brace")
+    parts = _split_top(value[1:-1], ",")
+    if not parts:
+        raise _refuse(name, value[0], "in DefineConstant[...] has no value")
+    out = _assignment(target, parts[0], name)
+    for part in parts[1:]:
+        attribute, rest = part[0], part[1:]
+        if attribute.text in _CONSTANT_TEXT_ATTRIBUTES and len(rest) == 1 and rest[0].kind == "string":
+            continue
+        if attribute.text in _CONSTANT_NUMBER_ATTRIBUTES and rest:
+            out += _assignment(target, rest, name)
+        elif attribute.text in _CONSTANT_LIST_ATTRIBUTES and rest and rest[0].text == "{" \
+                and _closing(rest, 0, name) == len(rest) - 1:
+            for choice in _split_top(rest[1:-1], ","):
+                label = next((k for k, t in enumerate(choice) if t.text == "="), None)
+                if label is not None and not (label == len(choice) - 2 and choice[-1].kind == "string"):
+                    raise _refuse(name, choice[0], "in Choices{...} must be 'number' or 'number = \"label\"'")
+                out += _assignment(target, choice[:label], name)
+        else:
+            raise _refuse(name, attribute, "is not an accepted DefineConstant attribute (accepted: "
+                          + ", ".join(sorted(_CONSTANT_TEXT_ATTRIBUTES | _CONSTANT_NUMBER_ATTRIBUTES
+                                             | _CONSTANT_LIST_ATTRIBUTES)) + ")")
+    return out
+
+
+def _assignment(target: _Tok, value: list[_Tok], name: str) -> list[_Tok]:
+    """``target = value;`` as tokens; a DefineConstant value must be a numeric expression (no text)."""
+    if not value:
+        raise _refuse(name, target, "in DefineConstant[...] has an empty value")
+    for tok in value:
+        if tok.kind == "string":
+            raise _refuse(name, tok, "is a text value in DefineConstant[...] (only numbers are accepted)")
+    line = target.line
+    return [target, _Tok("op", "=", line), *value, _Tok("op", ";", value[-1].line)]
 
 
 def _redirected(toks: list[_Tok], i: int) -> bool:

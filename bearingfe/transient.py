@@ -878,7 +878,7 @@ def state_result(pump: EccentricPump, mesh: SupportMesh, traj: Trajectory, k: in
 
 def _initial_state(pump: EccentricPump, model: "_Model", start, beta0: float, bound: float) -> np.ndarray:
     """``(gamma, delta)`` to start from: the steady state at ``beta0`` for ``"steady"`` and
-    ``"periodic"``, else the user's pair, checked (finite, ``gamma >= 0``, film above ``bound`` [c])."""
+    ``"periodic"``, else the user's pair, checked (finite, ``gamma > 0``, film above ``bound`` [c])."""
     if isinstance(start, str) and start in STARTS:
         return np.array(steady_state(pump, beta=beta0, _model=model))
     if isinstance(start, str):
@@ -887,9 +887,14 @@ def _initial_state(pump: EccentricPump, model: "_Model", start, beta0: float, bo
         y0 = np.array([float(v) for v in start])
     except (TypeError, ValueError):
         raise ValueError(f"start must be 'steady', 'periodic' or (gamma, delta), got {start!r}") from None
-    if y0.shape != (2,) or not np.all(np.isfinite(y0)) or y0[0] < 0 or model.h_min(*y0) <= bound:
-        raise ValueError(f"start (gamma, delta) must be finite with gamma >= 0 and a film thicker than "
-                         f"min_film over the surface, got {start!r}")
+    if y0.shape != (2,) or not np.all(np.isfinite(y0)):
+        raise ValueError(f"start (gamma, delta) must be two finite numbers, got {start!r}")
+    if y0[0] <= 0:
+        raise ValueError(f"start gamma must be > 0 (at gamma = 0 the shoe is concentric, the attitude angle "
+                         f"delta is undefined and the squeeze rates are singular), got {start!r}")
+    if model.h_min(*y0) <= bound:
+        raise ValueError(f"start (gamma, delta) must leave a film thicker than min_film = {bound:g} c over the "
+                         f"surface, got {start!r} (smallest film {model.h_min(*y0):.4g} c)")
     return y0
 
 def _simulate_jfo(pump: EccentricPump, mesh: SupportMesh, revolutions: float, start, beta0: float, per_rev: int,

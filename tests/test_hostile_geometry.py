@@ -57,6 +57,16 @@ HOSTILE = {
     "text Mesh option": ('Mesh.Format = "{marker}";', "text value"),
     "ExternalProcess field": ("Field[1] = ExternalProcess;", "runs an external program"),
     "Plugin": ("Plugin(Crack).Run;", "plugin"),
+    "GetEnv in DefineConstant": ('DefineConstant[ h = GetEnv("HOME") ];', "text value in DefineConstant"),
+    "Exit in DefineConstant": ('DefineConstant[ h = {{Exit, Name "h"}} ];', "ends the program"),
+    "unknown in DefineConstant": ('DefineConstant[ h = {{1, Name "h", Min Frobnicate}} ];', "not a geometry command"),
+    "text DefineConstant": ('DefineConstant[ f = {{"{marker}", Name "x"}} ];', "text value in DefineConstant"),
+    "DefineConstant attribute": ('DefineConstant[ f = {{1, Name "f", Macro "{marker}"}} ];',
+                                 "not an accepted DefineConstant"),
+    "DefineConstant call": ('DefineConstant[ f = {{1, Name "a"}} SystemCall "touch {marker}" ];',
+                            "nothing may follow"),
+    "DefineString": ('DefineString[ f = {{"{marker}"}} ];', "onelab"),
+    "SetNumber": ('SetNumber("x", 1);', "onelab"),
     "Sleep": ("Sleep 1000;", "waits"),
     "unknown command": ("Frobnicate;", "not a geometry command"),
 }
@@ -110,6 +120,24 @@ def test_ordinary_geo_constructs_are_accepted():
     Rotate {{0, 0, 1}, {0, 0, 0}, Pi/2} { Duplicata { Curve{1}; } }
     """
     check_geo_script(text, "ok.geo")
+
+
+def test_numeric_define_constant_is_accepted_and_meshes_like_an_assignment(tmp_path):
+    # gmsh's onelab parameters with numbers only: the mesh equals the one of the plain assignment lc = 0.05
+    # (same script, same gmsh: node for node)
+    parametrised = PLAIN.replace("lc = 0.05;", 'DefineConstant[ lc = {0.05, Min 0.01, Max 0.2, Step 0.01, '
+                                 'Name "Parameters/element size", Units "-", Choices{0.05 = "fine", 0.1 = "coarse"}}, '
+                                 'unused = 2 * Pi ];')
+    assert parametrised != PLAIN
+    plain = load_mesh(_geo(tmp_path, "", "plain.geo"))
+    defined = load_mesh(_write(tmp_path / "defined.geo", parametrised))
+    assert defined.n_nodes == plain.n_nodes
+    np.testing.assert_allclose(defined.mesh.p, plain.mesh.p, atol=1e-12)
+
+
+def _write(path: Path, text: str) -> Path:
+    path.write_text(text)
+    return path
 
 
 def test_trusted_geo_runs_in_a_child_that_exit_cannot_end(tmp_path):
@@ -541,3 +569,29 @@ pictures = []
     assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "1.85e+08 triangles" in err and "BEARINGFE_MAX_ELEMENTS" in err
+
+
+def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
+    """``bearingfe mesh`` killed by SIGKILL while gmsh works (no chance to clean up): gmsh wrote into a
+    private temporary folder, so the --out folder holds only what was there before (the .geo)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    out = tmp_path / "m.msh"
+    parent = subprocess.Popen([sys.executable, "-m", "bearingfe.cli", "mesh", str(geo), "--size", "0.2",
+                               "--out", str(out), "--geo-timeout", "600"], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    for _ in range(300):  # gmsh's child appears once bearingfe is imported (a few seconds at most)
+        if children.exists() and children.read_text().split():
+            break
+        time.sleep(0.05)
+    else:
+        parent.kill()
+        pytest.fail("the gmsh child never started")
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    assert parent.wait() == -signal.SIGKILL
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hostile.geo"]

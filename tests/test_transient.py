@@ -140,3 +140,12 @@ def test_bad_options_raise_value_errors(plain_mesh, plain_pump):
         bf.simulate(plain_pump, plain_mesh, method="RK45")
     with pytest.raises(ValueError, match="start"):
         bf.simulate(plain_pump, plain_mesh, start=(0.5, "x"))
+    # gamma = 0 is the concentric shoe: delta undefined, squeeze rates singular; refused before any step
+    with pytest.raises(ValueError, match=r"start gamma must be > 0"):
+        bf.simulate(plain_pump, plain_mesh, start=(0.0, 0.3))
+    with pytest.raises(ValueError, match=r"start \(gamma, delta\) must be two finite numbers"):
+        bf.simulate(plain_pump, plain_mesh, start=(math.nan, 0.3))
+    # h = 1 + gamma cos(phi - delta): gamma = 1.5 with delta at the arc's middle plus pi leaves a negative film there
+    middle = float(np.mean(plain_mesh.mesh.p[0][[plain_mesh.mesh.p[0].argmin(), plain_mesh.mesh.p[0].argmax()]]))
+    with pytest.raises(ValueError, match=r"min_film"):
+        bf.simulate(plain_pump, plain_mesh, start=(1.5, middle + math.pi))
