@@ -24,6 +24,7 @@ module                     what it does
 ``cavitation``             cavitation models and their table (``MODELS``)
 ``jfo``                    mass-conserving (JFO / Elrod-Adams p-theta) cavitation, finite volumes
 ``elastic``                elastic support (EHD): half-space and shoe-body compliance, coupled film
+``shoe_body``              the real shoe body: 3-D gmsh mesh, linear elasticity, compliance on the film dofs
 ``reynolds``               ``solve_reynolds``: the front door of the Reynolds solvers
 ``fd``                     finite-difference reference (the source paper's scheme)
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes

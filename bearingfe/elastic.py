@@ -305,7 +305,8 @@ class Compliance:
     mesh : SupportMesh
     element : str
     model : str
-        ``"half-space"`` or ``"body"``.
+        ``"half-space"``, ``"body"`` (the block of :func:`shoe_body`) or ``"shoe"``
+        (:func:`bearingfe.shoe_body.shoe_compliance`).
     matrix : ndarray, shape (n_dofs, n_dofs)
         Deflection [c] per unit non-dimensional pressure.
     pocket : ndarray, shape (n_dofs,)
