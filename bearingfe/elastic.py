@@ -78,7 +78,8 @@ from skfem import BilinearForm
 from .cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from .film import Film
 from .forms import load as load_form, weighted_laplace
-from .linalg import DEFAULT_SOLVER
+from .limits import check_limit
+from .linalg import DEFAULT_SOLVER, dense_threads
 from .machines import Material
 from .meshing import SupportMesh
 from .scales import Scale
@@ -98,6 +99,7 @@ __all__ = [
     "ElasticBalance",
     "pressure_sensitivity",
     "newton",
+    "check_dense_size",
 ]
 
 #: Default tolerance of the coupled solve on ``max |C p - w|`` [clearance].
@@ -303,7 +305,8 @@ class Compliance:
     mesh : SupportMesh
     element : str
     model : str
-        ``"half-space"`` or ``"body"``.
+        ``"half-space"``, ``"body"`` (the block of :func:`shoe_body`) or ``"shoe"``
+        (:func:`bearingfe.shoe_body.shoe_compliance`).
     matrix : ndarray, shape (n_dofs, n_dofs)
         Deflection [c] per unit non-dimensional pressure.
     pocket : ndarray, shape (n_dofs,)
@@ -379,6 +382,7 @@ def half_space(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1") ->
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
     e_star = _check_modulus(modulus)
+    check_dense_size(operators(mesh, element).n_dofs)
     start = time.perf_counter()
     G, pocket = influence_matrix(mesh, element)
     kappa = 0.0 if math.isinf(e_star) else scale.pressure * scale.radius / (math.pi * e_star * scale.clearance)
@@ -576,12 +580,18 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
     piecewise smooth and this is a semismooth Newton method on the current
     rupture set.
     """
-    import scipy.linalg as sla
-
     if not (0 < tol < 1):
         raise ValueError(f"tol must be in (0, 1) [clearance], got {tol!r}")
     if not (isinstance(max_iterations, int) and max_iterations >= 1):
         raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+    with dense_threads(1):  # dense n x n algebra: threads only wait for each other on a busy machine
+        return _newton(evaluate, jacobian, w0, tol, max_iterations, reuse)
+
+
+def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int, reuse: dict | None) -> Coupled:
+    """The iteration of :func:`newton` (arguments checked there)."""
+    import scipy.linalg as sla
+
     w = np.asarray(w0, float).copy()
     g, payload = evaluate(w)
     F = g - w
@@ -723,9 +733,22 @@ class ElasticSolution:
     history: tuple[float, ...]
 
 
+def check_dense_size(n_dofs: int) -> None:
+    """Refuse a dense compliance on more than ``limit("compliance")`` film dofs (:mod:`bearingfe.limits`).
+
+    The compliance is a dense ``n x n`` matrix, and the coupled solves and the
+    elastic transient factor dense matrices of that size: memory grows as
+    ``n^2`` (about 64 n^2 bytes in :func:`bearingfe.elastic_transient.simulate_elastic`,
+    1 GB at 4000 dofs) and time as ``n^3``. ``docs/elastic.md`` has the
+    measured costs by mesh size.
+    """
+    check_limit("compliance", n_dofs)
+
+
 def _check_compliance(compliance: Compliance, mesh: SupportMesh, element: str) -> None:
     if not isinstance(compliance, Compliance):
         raise ValueError(f"elastic must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
+    check_dense_size(compliance.n_dofs)
     if compliance.mesh is not mesh:
         raise ValueError("elastic: the compliance was built on another mesh; build it on this one")
     if compliance.element != element:
@@ -976,6 +999,7 @@ def shoe_body(mesh: SupportMesh, scale: Scale, shoe: Material, thickness: float,
     from skfem.models.elasticity import lame_parameters, linear_elasticity
 
     basis2 = operators(mesh, element).basis
+    check_dense_size(basis2.N)
     h = float(size if size is not None else mesh.size)
     if not (math.isfinite(h) and h > 0):
         raise ValueError(f"size must be a finite element size > 0 [R0], got {size!r}")

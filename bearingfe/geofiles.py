@@ -57,6 +57,7 @@ __all__ = [
     "check_geo_script",
     "read_msh",
     "run_geo",
+    "run_gmsh_worker",
 ]
 
 #: Largest number of triangles a mesh may have unless the caller raises the limit
@@ -645,42 +646,76 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
         except UnicodeDecodeError:
             raise GeometryFileError(f"{path.name} is not a text (UTF-8) .geo script") from None
         check_geo_script(text, path.name)
-    worker = Path(__file__).with_name("gmsh_worker.py")
     with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
         request = dict(geo=str(path.resolve()), out=str(Path(out_msh).resolve()), size=size, order=int(order),
-                       max_elements=limit, result=str(Path(work) / "result.json"), seconds=seconds,
-                       memory=GEO_MEMORY, parent=os.getpid())
-        req_file = Path(work) / "request.json"
-        req_file.write_text(json.dumps(request))
-        code = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
-        proc = subprocess.Popen([sys.executable, "-I", "-c", code, str(worker), str(req_file)], cwd=work,
-                                stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                start_new_session=True)
-        try:
-            output, _ = proc.communicate(timeout=seconds)
-        except subprocess.TimeoutExpired:
-            _kill(proc)
-            raise GeometryFileError(
-                f"{path.name}: gmsh did not finish within {seconds:g} s (a loop that does not end, or a very "
-                f"fine mesh?); raise the limit with timeout= (load_mesh), --geo-timeout (bearingfe mesh) or "
-                f"the environment variable {GEO_TIMEOUT_ENV}") from None
-        finally:
-            _kill(proc)  # a trusted script may have started children in the worker's session
-        result_file = Path(request["result"])
-        if not result_file.is_file():
-            tail = " ".join(output.decode("utf-8", "replace").split())[-200:]
-            raise GeometryFileError(
-                f"{path.name}: gmsh ended (exit status {proc.returncode}) before it made a mesh"
-                + (" (an Exit or Abort in the script?)" if proc.returncode in (0, 1) else
-                   f" (out of its {GEO_MEMORY / 1024**3:g} GiB of memory or CPU time, or a crash?)")
-                + (f": {tail}" if tail else ""))
-        result = json.loads(result_file.read_text())
+                       max_elements=limit)
+        result = run_gmsh_worker(request, work, seconds, path.name,
+                                 slow="a loop that does not end, or a very fine mesh?",
+                                 how="timeout= (load_mesh), --geo-timeout (bearingfe mesh)",
+                                 ended="an Exit or Abort in the script?")
     if result.get("kind") == "too_many":
         check_element_count(result["estimate"], limit, what=f"{path.name}"
                             + (f" with size = {size:g}" if size is not None else ""))
     if "error" in result:
         raise GeometryFileError(f"{path.name}: gmsh failed: {result['error']}")
     return result
+
+
+def run_gmsh_worker(request: dict, work: str | Path, seconds: float, name: str, *, slow: str, how: str,
+                    ended: str) -> dict:
+    """Run one request in the gmsh child process (:mod:`bearingfe.gmsh_worker`) and return its result.
+
+    The child is confined (CPU ``seconds`` + 5, :data:`GEO_MEMORY` of address
+    space, death with its parent) and killed with everything it started when
+    it is done or after ``seconds`` of wall time.
+
+    Parameters
+    ----------
+    request : dict
+        The task (plain JSON data: never a command); the limits, the parent's
+        id and the result file are added here.
+    work : str or Path
+        A private temporary folder for the request and result files.
+    seconds : float
+        Wall-time limit [s].
+    name : str
+        What is meshed, first in every message.
+    slow, how, ended : str
+        The likely cause of a time-out, how to raise the limit, and the
+        likely cause of an early end without a result (for the messages).
+
+    Raises
+    ------
+    GeometryFileError
+        Time-out, or the child ended without writing its result.
+    """
+    worker = Path(__file__).with_name("gmsh_worker.py")
+    request = dict(request, result=str(Path(work) / "result.json"), seconds=seconds, memory=GEO_MEMORY,
+                   parent=os.getpid())
+    req_file = Path(work) / "request.json"
+    req_file.write_text(json.dumps(request))
+    code = "import runpy, sys; sys.argv = sys.argv[1:]; runpy.run_path(sys.argv[0], run_name='__main__')"
+    proc = subprocess.Popen([sys.executable, "-I", "-c", code, str(worker), str(req_file)], cwd=work,
+                            stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            start_new_session=True)
+    try:
+        output, _ = proc.communicate(timeout=seconds)
+    except subprocess.TimeoutExpired:
+        _kill(proc)
+        raise GeometryFileError(
+            f"{name}: gmsh did not finish within {seconds:g} s ({slow}); raise the limit with {how} or "
+            f"the environment variable {GEO_TIMEOUT_ENV}") from None
+    finally:
+        _kill(proc)  # a trusted script may have started children in the worker's session
+    result_file = Path(request["result"])
+    if not result_file.is_file():
+        tail = " ".join(output.decode("utf-8", "replace").split())[-200:]
+        raise GeometryFileError(
+            f"{name}: gmsh ended (exit status {proc.returncode}) before it made a mesh"
+            + (f" ({ended})" if proc.returncode in (0, 1) else
+               f" (out of its {GEO_MEMORY / 1024**3:g} GiB of memory or CPU time, or a crash?)")
+            + (f": {tail}" if tail else ""))
+    return json.loads(result_file.read_text())
 
 
 def _kill(proc: subprocess.Popen) -> None:

@@ -13,6 +13,9 @@ name              default    what                                           chec
 ``cases``         10000      cases of one design study                      ``expand_cases``, ``sweep``
 ``elements``      1000000    estimated triangles of one study case's mesh   ``sweep``
 ``case_seconds``  3600       time limit of one study case [s] (default)     ``sweep``
+``compliance``    4000       film dofs of a dense compliance (elastic        ``half_space``,
+                             support): memory and time grow as n^2 and n^3   ``simulate_elastic``,
+                                                                             the coupled solves
 ================  =========  =============================================  ============================
 
 Raise a limit for one call with the function's keyword (``simulate(...,
@@ -34,6 +37,7 @@ __all__ = ["DEFAULT_LIMITS", "LimitError", "check_limit", "limit"]
 #: Default limits by name (see the module table).
 DEFAULT_LIMITS: Mapping[str, float] = MappingProxyType({
     "revolutions": 100, "frames": 1000, "cases": 10_000, "elements": 1_000_000, "case_seconds": 3600,
+    "compliance": 4000,
 })
 
 

@@ -16,7 +16,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 __all__ = ["DEFAULT_SOLVER", "LINEAR_SOLVERS", "get_linear_solver", "available_solvers", "PatternFactorizer", "factorize_splu",
-           "factorize_splu_sym", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy"]
+           "factorize_splu_sym", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy", "dense_threads"]
 
 Solve = Callable[[np.ndarray], np.ndarray]
 Factorize = Callable[[sp.spmatrix], Solve]
@@ -254,3 +254,28 @@ class PatternFactorizer:
             return lu.solve(b[order])[inverse]
 
         return solve
+
+
+# -- dense linear algebra on a shared machine ------------------------------------------
+
+_THREADPOOLS: list = []
+
+
+def dense_threads(limit: int = 1):
+    """Context that caps the BLAS/LAPACK threads (OpenBLAS, MKL) at ``limit`` while it is open.
+
+    The dense matrices of the elastic support (a few hundred to a few
+    thousand rows: the compliance, the Jacobians of the coupled film) are too
+    small for threaded BLAS to pay: on a machine whose cores are busy, its
+    threads wait for each other, and one revolution of the pump on the elastic
+    support took ten times longer with two threads than with one
+    (``docs/elastic.md``). Uses ``threadpoolctl``; the thread counts are
+    restored on exit.
+    """
+    if not (isinstance(limit, int) and limit >= 1):
+        raise ValueError(f"limit must be an integer >= 1 (threads), got {limit!r}")
+    if not _THREADPOOLS:
+        from threadpoolctl import ThreadpoolController
+
+        _THREADPOOLS.append(ThreadpoolController())
+    return _THREADPOOLS[0].limit(limits=limit, user_api="blas")

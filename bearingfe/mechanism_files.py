@@ -30,6 +30,9 @@ from bearingfe.machines import (
     MillDrive,
     Rotor,
     RotorFrame,
+    SHOE_BACKS,
+    SHOE_SEATS,
+    ShoeBody,
 )
 from bearingfe.schema import (REQUIRED, SchemaError, Table, Tables, anything, build, choice, integer, number, numbers,
                               pair, points, positive_number, read_table, read_toml, text, texts)
@@ -61,6 +64,35 @@ MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), REQUIRED), 
 #: An optional material of a film surface (``[shoe.material]``, ``[eccentric.material]``): steel if absent.
 SURFACE_MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), 210e9), "density": (number(), 7850.0),
                           "poisson_ratio": (number(), 0.3)})
+
+
+#: How the plunger holds the shoe body (``[shoe.seat]``, see :class:`bearingfe.machines.ShoeBody`).
+SHOE_SEAT = Table({"kind": (choice(SHOE_SEATS), "clamped"), "radius": (number(), None)})
+#: A bearing lining on the shoe's bore (``[shoe.lining]``): its thickness [m] and material.
+SHOE_LINING = Table({"thickness": (number(), None), "name": (text, None), "youngs_modulus": (number(), None),
+                     "density": (number(), 0.0), "poisson_ratio": (number(), 0.3)})
+
+
+def shoe_body_of(sh: dict, label: str) -> ShoeBody | None:
+    """The shoe body of a ``[shoe]`` table (``thickness``, ``back``, ``[shoe.seat]``, ``[shoe.lining]``)."""
+    seat, lining = sh["seat"], sh["lining"]
+    if sh["thickness"] is None:
+        given = [n for n, v in (("back", sh["back"] != "flat"), ("seat", seat["kind"] != "clamped"
+                                or seat["radius"] is not None), ("lining", lining["thickness"] is not None)) if v]
+        if given:
+            raise SchemaError(f"{label}: [shoe] thickness: missing (the shoe body's depth [m], needed by "
+                              f"[shoe] {given[0]})")
+        return None
+    material = None
+    if lining["thickness"] is not None:
+        if lining["youngs_modulus"] is None:
+            raise SchemaError(f"{label}: [shoe.lining] youngs_modulus: missing (required with a lining thickness)")
+        material = build(label, "shoe.lining", Material, name="lining" if lining["name"] is None else lining["name"],
+                         youngs_modulus=lining["youngs_modulus"], density=lining["density"],
+                         poisson_ratio=lining["poisson_ratio"])
+    return build(label, "shoe", ShoeBody, thickness=sh["thickness"], back=sh["back"], seat=seat["kind"],
+                 seat_radius=seat["radius"], lining=material,
+                 lining_thickness=0.0 if lining["thickness"] is None else lining["thickness"])
 
 
 def read_surface(table: Any, label: str, *, required: tuple[str, ...] = ()) -> Surface:
@@ -135,7 +167,8 @@ SPECS: Mapping[str, dict] = MappingProxyType({
         "eccentric": Table({"eccentricity": (number(), REQUIRED), "pivot_distance": (number(), REQUIRED),
                             "radius": (number(), REQUIRED), "material": SURFACE_MATERIAL}, required=True),
         "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED),
-                       "thickness": (number(), None), "material": SURFACE_MATERIAL}, required=True),
+                       "thickness": (number(), None), "back": (choice(SHOE_BACKS), "flat"),
+                       "material": SURFACE_MATERIAL, "seat": SHOE_SEAT, "lining": SHOE_LINING}, required=True),
         "plunger": Table({"diameter": (number(), REQUIRED), "preload": (number(), 0.0)}, required=True),
         "cycle": Table({"discharge": (number(), REQUIRED), "suction": (number(), REQUIRED),
                         "compression_deg": (number(), 20.0), "decompression_deg": (number(), 20.0)},
@@ -201,6 +234,7 @@ def _eccentric_pump(d: dict, label: str):
                  viscosity=sh["viscosity"], plunger_diameter=pl["diameter"], preload=pl["preload"],
                  drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label),
                  shoe_material=material_of(sh["material"], "shoe.material", label), shoe_thickness=sh["thickness"],
+                 shoe_body=shoe_body_of(sh, label),
                  eccentric_material=material_of(e["material"], "eccentric.material", label))
 
 

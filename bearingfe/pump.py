@@ -62,7 +62,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .geometry import Surface
-from .machines import Drive, Material
+from .machines import Drive, Material, ShoeBody
 from .scales import Scale
 from .schema import nonnegative, positive
 
@@ -242,6 +242,11 @@ class EccentricPump:
     shoe_thickness : float, optional
         Depth of the shoe body between the film and its seat on the plunger
         [m], > 0 (for :func:`bearingfe.elastic.shoe_body`); None if not given.
+    shoe_body : ShoeBody, optional
+        The shoe as an elastic body (depth, back, seat on the plunger,
+        lining) for :func:`bearingfe.shoe_body.shoe_compliance`; default a
+        flat-backed body clamped over its whole back when ``shoe_thickness``
+        is given. Its thickness is ``shoe_thickness`` (given either way).
     """
 
     eccentricity: float
@@ -258,6 +263,7 @@ class EccentricPump:
     shoe_material: Material = STEEL
     eccentric_material: Material = STEEL
     shoe_thickness: float | None = None
+    shoe_body: ShoeBody | None = None
     _scale: Scale = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -283,6 +289,17 @@ class EccentricPump:
             raise ValueError(f"{own}.cycle must be a bearingfe.pump.PressureCycle, got {type(self.cycle).__name__}")
         if self.shoe_thickness is not None:
             object.__setattr__(self, "shoe_thickness", positive(f"{own}.shoe_thickness", self.shoe_thickness))
+        if self.shoe_body is not None:
+            if not isinstance(self.shoe_body, ShoeBody):
+                raise ValueError(f"{own}.shoe_body must be a bearingfe.machines.ShoeBody, got "
+                                 f"{type(self.shoe_body).__name__}")
+            if self.shoe_thickness is None:
+                object.__setattr__(self, "shoe_thickness", self.shoe_body.thickness)
+            elif self.shoe_thickness != self.shoe_body.thickness:
+                raise ValueError(f"{own}.shoe_thickness ({self.shoe_thickness} m) must equal "
+                                 f"shoe_body.thickness ({self.shoe_body.thickness} m)")
+        elif self.shoe_thickness is not None:
+            object.__setattr__(self, "shoe_body", ShoeBody(self.shoe_thickness))
         for n in ("shoe_material", "eccentric_material"):
             if not isinstance(getattr(self, n), Material):
                 raise ValueError(f"{own}.{n} must be a bearingfe.Material, got {type(getattr(self, n)).__name__}")

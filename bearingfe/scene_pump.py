@@ -17,7 +17,7 @@ Scene file::
     cavitation = "none"                              # none | reynolds | gumbel | jfo (jfo: element P1)
     [elastic]
     enabled = false                                  # also run every design on an elastic support
-    model = "half-space"                             # half-space | body (the 3-D shoe, [shoe] thickness)
+    model = "half-space"                             # half-space | block | shoe (see below)
     dynamics = "squeeze"                             # squeeze | quasi-static (see below)
     [output]
     pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
@@ -34,6 +34,13 @@ file): ``trajectory_pocket_elastic.csv``, ``trajectory_plain_elastic.csv``,
 ``pressure_elastic.png``, ``film_elastic.png`` and ``deflection.png`` (the film
 opening in um), and the summary compares the smallest film rigid against
 elastic, with and without the pocket. ``deflection`` is drawn only then.
+``model`` chooses the compliance: ``"half-space"`` (both surfaces elastic
+half-spaces, :func:`bearingfe.elastic.half_space`), ``"block"`` (a flat
+block of ``[shoe] thickness`` clamped over its back,
+:func:`bearingfe.elastic.shoe_body`; ``"body"`` is its old name) or
+``"shoe"`` (the real shoe body of the mechanism file: bore, back, seat on
+the plunger, lining; gmsh tetrahedra, :func:`bearingfe.shoe_body.shoe_compliance`),
+the last two with the eccentric as a half-space.
 ``dynamics = "squeeze"`` (default) integrates the pressure as a state so that
 the rate of the deflection squeezes the film
 (:func:`bearingfe.elastic_transient.simulate_elastic`; cavitation "none"
@@ -60,7 +67,7 @@ __all__ = ["run_pump_scene", "pump_settings", "PUMP", "PICTURES"]
 
 PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
 #: Support compliances of :mod:`bearingfe.elastic` by name.
-ELASTIC_MODELS = ("half-space", "body")
+ELASTIC_MODELS = ("half-space", "block", "shoe", "body")
 #: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
 DYNAMICS = ("squeeze", "quasi-static")
 
@@ -179,12 +186,16 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
 
 def _compliance(pump, mesh, element: str, model: str):
     from .elastic import half_space, shoe_body
+    from .shoe_body import shoe_compliance
 
-    if model == "body":
-        if pump.shoe_thickness is None:
-            raise ValueError("[elastic] model 'body' needs the shoe's depth: [shoe] thickness in the mechanism file")
+    if model in ("block", "body", "shoe") and pump.shoe_thickness is None:
+        raise ValueError(f"[elastic] model {model!r} needs the shoe's depth: [shoe] thickness in the mechanism file")
+    if model in ("block", "body"):
         return shoe_body(mesh, pump.scale, pump.shoe_material, pump.shoe_thickness,
                          counterpart=pump.eccentric_material, element=element)
+    if model == "shoe":
+        return shoe_compliance(mesh, pump.scale, pump.shoe_material, pump.shoe_body,
+                               counterpart=pump.eccentric_material, element=element)
     if model != "half-space":  # the schema allows only ELASTIC_MODELS
         raise ValueError(f"elastic model must be one of {ELASTIC_MODELS}, got {model!r}")
     return half_space(mesh, pump.scale, (pump.shoe_material, pump.eccentric_material), element)

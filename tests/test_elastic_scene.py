@@ -99,5 +99,5 @@ def test_deflection_picture_needs_the_elastic_run(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text('kind = "pump"\n[elastic]\nmodel = "rubber"\n')
     data, label = load_scene(bad)
-    with pytest.raises(SceneError, match=r"\[elastic\] model: must be one of 'half-space', 'body'"):
+    with pytest.raises(SceneError, match=r"\[elastic\] model: must be one of 'half-space', 'block', 'shoe'"):
         pump_settings(data, label, tmp_path)
