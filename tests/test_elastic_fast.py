@@ -70,3 +70,37 @@ def test_chord_bad_inputs(setup):
     chord.state = reuse["chord"].state
     with pytest.raises(ElasticError, match="did not converge in 1 residuals"):  # a state elsewhere, one residual
         chord.solve(bf.CosineFilm(gamma * 1.01, delta), PUMP.load_vector(0.25), **_args(0.25))
+
+
+def test_chord_on_a_rigid_support_gives_the_rigid_rates(setup):
+    # E* = inf: the compliance is zero, the coupled film is the rigid one; the chord answer (seeded at
+    # another state) equals the rigid superposition's rates in the same (direct) form to round-off
+    mesh, _, gamma, delta = setup
+    rigid_c = half_space(mesh, PUMP.scale, math.inf)
+    reuse = {}
+    balance_load(mesh, bf.CosineFilm(gamma, delta), rigid_c, PUMP.load_vector(0.2), reuse=reuse, **_args(0.2))
+    film = bf.CosineFilm(gamma * 1.02, delta - 0.03)
+    fast = balance_load(mesh, film, rigid_c, PUMP.load_vector(0.3), reuse=reuse, **_args(0.3))
+    sup = bf.superpose(mesh, film, formulation="direct", element="P1")
+    a = _args(0.3)
+    np.testing.assert_allclose(fast.rates, sup.rates_for_load(PUMP.load_vector(0.3), a["wedge"], a["inlet_pressure"]),
+                               rtol=1e-9)
+    assert np.all(fast.deflection == 0.0)
+
+
+def test_no_useful_low_rank_compliance():
+    # docs/elastic.md's reason for keeping the compliance dense, recomputed on the coarsest mesh of its
+    # table: singular values above 1 % of the largest are every one of them (276 of 276), above 10 % a few
+    # dozen (30)
+    import json
+    from pathlib import Path
+
+    rows = json.loads((Path(__file__).resolve().parents[1] / "docs" / "elastic.json").read_text())["dense"]
+    row = next(r for r in rows if r["size"] == 0.3)
+    mesh = bf.transient.pump_mesh(PUMP, 0.3, order=2)
+    C = half_space(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material), "P2")
+    sv = np.linalg.svd(C.matrix, compute_uv=False)
+    assert C.n_dofs == row["dofs"]
+    for tol, rank in row["ranks"].items():
+        assert int(np.sum(sv >= float(tol) * sv[0])) == rank
+    assert row["ranks"]["0.01"] == C.n_dofs
