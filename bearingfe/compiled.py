@@ -40,7 +40,7 @@ import scipy.sparse.linalg as spla
 
 from .forms import film_at
 
-__all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter"]
+__all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -64,6 +64,12 @@ def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp
         m.has_sorted_indices = True
         out.append(m)
     return tuple(out)
+
+
+def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Sparse maps from the dofs of ``basis`` to the values and the two gradient components at its own
+    quadrature points, each of shape ``(n_cells * n_points, basis.N)`` (rows in ``basis.dx`` order)."""
+    return _interpolation(basis, basis.N)
 
 
 def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
