@@ -922,9 +922,9 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
 
 
 #: Rupture refinement: elements within this many front-element diameters of the front are split ...
-RUPTURE_REACH = 1.0
+RUPTURE_REACH = 0.75
 #: ... this many times per level (one solve per level).
-RUPTURE_SPLITS = 1
+RUPTURE_SPLITS = 2
 
 
 def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State", eps: float, rupture_size: float,
