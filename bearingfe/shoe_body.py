@@ -7,7 +7,7 @@ with the eccentric's axis as the ``z`` axis and the plunger axis as ``y``,
 the film point ``(psi, z)`` is ``(sin psi, cos psi, z)``. gmsh (OpenCASCADE)
 meshes the body with tetrahedra in a confined child process
 (:func:`bearingfe.geofiles.run_gmsh_worker`, the same sandbox as ``.geo``
-files), graded from ``film_size`` on the bore to ``size`` behind it; the
+files), graded from ``film_size`` on the bore and on the seat's rim to ``size`` elsewhere; the
 seat is a disc of the back about the plunger axis, split off by the mesh.
 
 Linear elasticity (P1 or P2 tetrahedra, scikit-fem; a lining as its own
@@ -143,11 +143,11 @@ def _checked_geometry(surface, radius: float, body: ShoeBody, margin: float,
     return a1, a2, hw, t, seat
 
 
-def _estimated_tets(a1: float, a2: float, hw: float, t: float, size: float, film_size: float,
+def _estimated_tets(a1: float, a2: float, hw: float, t: float, seat: float, size: float, film_size: float,
                     grading: float) -> float:
     """Tetrahedra of a mesh graded from ``film_size`` over ``grading`` to ``size`` (regular tets)."""
     volume = (math.sin(a2) - math.sin(a1) + 2 * t) * (t + 1 - math.cos(max(abs(a1), abs(a2)))) * 2 * hw
-    near = min(volume, (a2 - a1) * 2 * hw * grading)
+    near = min(volume, (a2 - a1) * 2 * hw * grading + 2 * math.pi * seat * math.pi * grading**2 / 2)
     regular = lambda h: h**3 / (6 * math.sqrt(2))  # noqa: E731
     return near / regular(film_size) + max(volume - near, 0.0) / regular(size)
 
@@ -167,7 +167,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
     size : float
         Element size away from the film face [R0], > 0.
     film_size : float, optional
-        Element size on the film face [R0], > 0 (default ``size``).
+        Element size on the film face and the seat's rim [R0], > 0 (default ``size``).
     grading : float, optional
         Distance from the film face over which the size grows to ``size`` [R0]
         (default half the thickness).
@@ -199,7 +199,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
     size = _positive("size", size)
     film_size = size if film_size is None else _positive("film_size", film_size)
     grading = t / 2 if grading is None else _positive("grading", grading)
-    estimate = _estimated_tets(a1, a2, hw, t, size, film_size, grading)
+    estimate = _estimated_tets(a1, a2, hw, t, seat, size, film_size, grading)
     check_element_count(estimate, max_elements, what=f"the shoe body with size = {size:g}, film_size = "
                                                      f"{film_size:g} (tetrahedra)")
     seconds = geo_timeout_limit(timeout)
