@@ -50,12 +50,15 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+import skfem
+from scipy.spatial import cKDTree
 
 from .checks import ResolutionWarning
 from .cavitation import obstacle_problem, solve_cavitating
 from .film import CosineFilm
 from .geometry import Rectangle, Surface
 from .jfo import solve_jfo
+from .geofiles import check_element_count
 from .meshing import SupportMesh, mesh_surface, refine_uniformly
 from .parameters import Discretization, takes
 from . import forms
@@ -69,6 +72,7 @@ __all__ = [
     "ResolutionWarning",
     "film_graded_size",
     "journal_mesh",
+    "structured_journal_mesh",
     "performance",
     "equilibrium",
     "dynamic_coefficients",
@@ -297,6 +301,95 @@ def default_min_size(size: float, eps: float) -> float:
     return float(size * math.sqrt(max(1.0 - eps, 1e-4)))
 
 
+# -- structured meshes of the full bearing ----------------------------------------------
+
+def structured_journal_mesh(bearing: JournalBearing, size: float, *, min_size: float | None = None,
+                            eps: float = 0.0) -> SupportMesh:
+    """Tensor-product mesh of the unwrapped film of the full bearing (no gmsh).
+
+    The rectangle ``(0, 2 pi) x (-a, a)`` of :meth:`JournalBearing.surfaces`
+    (frame of the line of largest film, ``pads=None``) is cut into columns
+    along ``phi`` and rows along ``z``, each rectangle into two triangles.
+    Column widths follow :func:`film_graded_size` of ``CosineFilm(eps, 0)``
+    (``size sqrt(h)`` clipped to ``[min_size, size]``); the rows are
+    uniform, about ``size`` high. The straight edges are exact for the
+    rectangle. Building it costs milliseconds where gmsh costs a tenth of a
+    second or more; :func:`equilibrium` refines it locally at the rupture
+    front (``rupture_size``).
+
+    Parameters
+    ----------
+    bearing : JournalBearing
+        With ``pads=None`` (not periodic).
+    size : float
+        Largest element size [-], in (0, 1].
+    min_size : float, optional
+        Smallest column width [-], in (0, size]; default
+        :func:`default_min_size`.
+    eps : float
+        Eccentricity ratio of the grading, in ``[0, 0.995]``.
+
+    Returns
+    -------
+    SupportMesh
+        Boundaries ``outer``, ``arc_start``, ``arc_end``, ``side``; ``source = "structured"``.
+    """
+    if not bearing.raimondi_boyd:
+        raise ValueError("structured meshes are for the full Raimondi-Boyd bearing (pads=None, not periodic)")
+    if not (isinstance(size, (int, float)) and math.isfinite(size) and 0 < size <= 1):
+        raise ValueError(f"size must be in (0, 1], got {size!r}")
+    eps = _check_eps(eps)
+    min_size = default_min_size(size, eps) if min_size is None else float(min_size)
+    if not (math.isfinite(min_size) and 0 < min_size <= size):
+        raise ValueError(f"min_size must be in (0, size = {size}], got {min_size!r}")
+    phis = _graded_columns(2 * math.pi, size, min_size, eps)
+    a = bearing.half_width
+    zs = np.linspace(-a, a, max(2, math.ceil(2 * a / size - 1e-9)) + 1)
+    return _named_rectangle(skfem.MeshTri1.init_tensor(phis, zs), bearing.surfaces()[0], (0.0, 2 * math.pi), a)
+
+
+def _graded_columns(length: float, size: float, min_size: float, eps: float) -> np.ndarray:
+    """Column edges on ``[0, length]`` with widths about ``clip(size sqrt(1 + eps cos phi), min_size, size)``:
+    equidistribution of the width function (its inverse integrated on a fine grid, then split evenly)."""
+    x = np.linspace(0.0, length, 4097)
+    width = np.clip(size * np.sqrt(np.maximum(1.0 + eps * np.cos(x), 0.0)), min_size, size)
+    count = np.concatenate([[0.0], np.cumsum(0.5 * (1 / width[1:] + 1 / width[:-1]) * np.diff(x))])
+    n = max(2, math.ceil(count[-1] - 1e-9))
+    phis = np.interp(np.linspace(0.0, count[-1], n + 1), count, x)
+    phis[0], phis[-1] = 0.0, length
+    return phis
+
+
+def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float) -> SupportMesh:
+    """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`."""
+    facets = m.boundary_facets()
+    mid = m.p[:, m.facets[:, facets]].mean(axis=1)
+    tol = 1e-9 * (phis[1] - phis[0])
+    bnd = {"arc_start": facets[np.abs(mid[0] - phis[0]) < tol], "arc_end": facets[np.abs(mid[0] - phis[1]) < tol],
+           "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
+    bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=float(_diameters(m).max()),
+                       source="structured")
+
+
+def _diameters(m: skfem.Mesh) -> np.ndarray:
+    """Longest edge of each triangle."""
+    p = m.p[:, m.t[:3]]
+    return np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
+
+
+def _front_elements(res: ReynoldsResult) -> np.ndarray:
+    """Elements holding the discrete rupture front: a ruptured dof, a dof with a positive pressure and a
+    vertex shared with an element of positive pressure at every dof (P2 leaves isolated small positive
+    values, of order 1e-5 of the largest pressure, behind the front; this skips them)."""
+    dofs = res.basis.element_dofs
+    p = np.asarray(res.pressure)[dofs]
+    t = res.basis.mesh.t[:3]
+    full = np.zeros(res.basis.mesh.nvertices, bool)
+    full[t[:, np.all(p > 0, axis=0)].ravel()] = True
+    return np.any(res.cavitated[dofs], axis=0) & np.any(p > 0, axis=0) & np.any(full[t], axis=0)
+
+
 # -- one journal position --------------------------------------------------------
 
 @dataclass(frozen=True, eq=False)
@@ -325,7 +418,8 @@ def _rot(angle: float) -> np.ndarray:
 def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation: str,
                  squeeze_xy=(0.0, 0.0), rotation: float = 0.0, warm_start=None, element: str = "P1") -> _State:
     """Solve all pads for a journal at ``(x, y)`` in the frame of the meshes, moving at ``squeeze_xy``;
-    ``warm_start``: a previous state's results (one per pad, any mesh) to start the rupture sets from."""
+    ``warm_start``: a previous state (its results, one per pad, on any mesh) or one start per pad (a result
+    or a rupture mask of all dofs) to start the rupture sets from."""
     eps = math.hypot(x, y)
     phi0 = math.atan2(-y, -x) if eps > 0 else 0.0
     film = CosineFilm(eps, phi0)
@@ -336,7 +430,8 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     if eps == 0 and (xd or yd):
         raise ValueError("squeeze velocities at eps = 0 need a finite eccentricity (use eps >= 1e-6)")
     results, sups, force = [], [], np.zeros(2)
-    warm = warm_start.results if warm_start is not None else (None,) * len(meshes)
+    warm = ((None,) * len(meshes) if warm_start is None else
+            warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
     for mesh, previous in zip(meshes, warm):
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
         if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
@@ -623,7 +718,8 @@ def _short_eps(load: float, a: float) -> float:
 @takes(Discretization, rename={"mesh_size": "size"})
 def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: float | None = None,
                 cavitation: str = "reynolds", tol: float = 1e-8, max_newton: int = 40, element: str = "P1",
-                order: int = 1, warm_start: bool = True) -> Equilibrium:
+                order: int = 1, warm_start: bool = True, structured: bool = False,
+                rupture_size: float | None = None) -> Equilibrium:
     """Journal position that carries a load, by Newton's method with the linearized stiffness.
 
     Parameters
@@ -634,7 +730,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         for the full bearing only its magnitude and direction matter.
     size, min_size : float
         Element sizes (the mesh is graded for the first guess and regenerated
-        once if the answer moved by more than 0.02 in eps); or
+        once if the answer moved by more than 0.02 in eps; a structured mesh
+        if that changes its smallest element size by more than 10 %); or
         ``discretization=`` as in :func:`performance`.
     cavitation : {"reynolds", "none", "jfo"}
         With ``"jfo"`` (and for periodic bearings) the stiffness of the
@@ -652,6 +749,27 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         by the step's motion. ``False`` starts every solve afresh (where the
         linear solution is negative); the answers agree to the active-set
         tolerance.
+    structured : bool
+        Full bearing only: mesh with :func:`structured_journal_mesh` (a graded
+        tensor-product mesh, no gmsh) instead of :func:`journal_mesh`.
+    rupture_size : float, optional
+        Full bearing, ``structured=True``, ``cavitation="reynolds"`` only:
+        element size [-] at the rupture front, in ``(0, size]``. After
+        Newton on the structured mesh (to ``max(tol, COARSE_TOL)``), the
+        elements near the discrete rupture front are split (conforming
+        red-green-blue refinement), one level at a time, each level solved
+        once at that position from the previous level's rupture set, until
+        the front lies in elements no longer than ``rupture_size``; then
+        Newton to ``tol`` on that mesh (the returned ``meshes``, which
+        :func:`dynamic_coefficients` reuses). The coefficients are
+        linearized on the converged rupture set; their error is set by how
+        well the mesh resolves the front (the pressure gradient has a kink
+        there), while that of the position is set by ``size``. Use it with
+        ``element="P2"``: on a plain ``L/D = 0.5`` bearing at eps 0.6,
+        ``size = 0.3, rupture_size = 0.05`` puts eps and the eight
+        coefficients within 1e-3 of a converged reference in a fraction of
+        the time of a uniform mesh of that accuracy (docs/benchmarks.md,
+        part ``journal``; measured errors there).
 
     Raises
     ------
@@ -665,13 +783,15 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
     _check_element(element)
     _check_order(order)
+    _check_structured(bearing, structured, rupture_size, size, cavitation, order)
     opts = _Solves(cavitation=cavitation, element=element,
                    warm=bool(warm_start) and cavitation in ("reynolds", "jfo"))
     w = float(np.hypot(*load))
     eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
     if bearing.raimondi_boyd:
-        return _equilibrium_full(bearing, w, theta_load, eps, size, min_size, opts, tol, max_newton, order)
+        mesher = _Mesher(bearing, size, min_size, order, structured)
+        return _equilibrium_full(bearing, w, theta_load, eps, mesher, opts, tol, max_newton, rupture_size)
     xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
     for _ in range(2):
         ms = default_min_size(size, np.hypot(*xy)) if min_size is None else min_size
@@ -697,9 +817,10 @@ class _Solves:
     previous: _State | None = None
     iterations: int = 0
 
-    def solve(self, bearing: JournalBearing, meshes, x: float, y: float) -> _State:
-        state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element,
-                             warm_start=self.previous if self.warm else None)
+    def solve(self, bearing: JournalBearing, meshes, x: float, y: float, start=None) -> _State:
+        """``start``: rupture masks (one per pad) to start from instead of the previous state."""
+        warm = start if start is not None else self.previous if self.warm else None
+        state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element, warm_start=warm)
         self.iterations += sum(r.iterations for r in state.results)
         self.previous = state
         return state
@@ -731,32 +852,136 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton):
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
 
-def _equilibrium_full(bearing, w, theta_load, eps, size, min_size, opts: _Solves, tol, max_newton, order):
+def _check_structured(bearing: JournalBearing, structured, rupture_size, size, cavitation: str, order) -> None:
+    if not isinstance(structured, bool):
+        raise ValueError(f"structured must be True or False, got {structured!r}")
+    if structured and not bearing.raimondi_boyd:
+        raise ValueError("structured=True is for the full Raimondi-Boyd bearing (pads=None, not periodic)")
+    if structured and order != 1:
+        raise ValueError("structured meshes are straight-sided (exact for the unwrapped film): use order=1")
+    if rupture_size is None:
+        return
+    if not structured or cavitation != "reynolds":
+        raise ValueError("rupture_size needs structured=True and cavitation='reynolds' (it refines a "
+                         "structured mesh around the Swift-Stieber rupture front)")
+    if not (isinstance(rupture_size, (int, float)) and math.isfinite(rupture_size)
+            and 0 < rupture_size <= size):
+        raise ValueError(f"rupture_size must be in (0, size = {size}], got {rupture_size!r}")
+
+
+@dataclass(frozen=True)
+class _Mesher:
+    """How :func:`equilibrium` meshes the full bearing at an eccentricity."""
+
+    bearing: JournalBearing
+    size: float
+    min_size: float | None
+    order: int
+    structured: bool
+
+    def remesh(self, eps_mesh: float, eps: float) -> bool:
+        """Whether the answer ``eps`` moved too far from the mesh's ``eps_mesh``: by 0.02 (gmsh meshes), or
+        (structured meshes, which are graded in one direction only) enough to change the smallest element
+        size by more than 10 %."""
+        if not self.structured:
+            return abs(eps - eps_mesh) >= 0.02
+        return abs(math.sqrt(1 - eps) / math.sqrt(1 - eps_mesh) - 1) > 0.1
+
+    def __call__(self, eps: float) -> tuple[SupportMesh, ...]:
+        ms = default_min_size(self.size, eps) if self.min_size is None else self.min_size
+        if self.structured:
+            return (structured_journal_mesh(self.bearing, self.size, min_size=ms, eps=eps),)
+        return journal_mesh(self.bearing, self.size, min_size=ms, eps=eps, order=self.order)
+
+
+#: Force-balance tolerance of the Newton iteration on the mesh that :func:`equilibrium` then refines
+#: around the rupture front (the refined mesh's Newton goes on to ``tol``).
+COARSE_TOL = 1e-3
+
+
+def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int):
+    """Newton on ``|F|(eps) = w`` on fixed meshes: ``(eps, state, steps, residual)``."""
+    for k in range(max_newton + 1):
+        state = opts.solve(bearing, meshes, -eps, 0.0)
+        F = state.force
+        wf = float(np.hypot(*F))
+        res = abs(wf - w) / w
+        if res <= tol:
+            return eps, state, k, res
+        K = _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation)
+        dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
+        new = eps - (wf - w) / dw
+        eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+    raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
+                       f"(relative load residual {res:.3g})")
+
+
+#: Rupture refinement: elements within this many front-element diameters of the front are split ...
+RUPTURE_REACH = 1.0
+#: ... this many times per level (one solve per level).
+RUPTURE_SPLITS = 1
+
+
+def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State", eps: float, rupture_size: float,
+                    opts: "_Solves") -> tuple[SupportMesh, "_State"]:
+    """Refine the elements near the rupture front (conforming red-green-blue splits) until the front lies in
+    elements no longer than ``rupture_size``. Per level: the elements within :data:`RUPTURE_REACH` diameters
+    of a front element are split :data:`RUPTURE_SPLITS` times, then one solve at ``eps`` started from the
+    previous level's rupture set (nested iteration)."""
+    a = bearing.half_width
+    levels = 8 + 2 * math.ceil(math.log2(max(mesh.size / rupture_size, 1.0)))
+    for _ in range(levels):
+        res = state.results[0]
+        m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
+        front = _front_elements(res)
+        diameters = _diameters(m)
+        if not front.any() or diameters[front].max() <= rupture_size * (1 + 1e-9):
+            return mesh, state
+        centres = m.p[:, m.t].mean(axis=1)[:, front].T
+        reach = RUPTURE_REACH * diameters[front]
+        for _ in range(RUPTURE_SPLITS):
+            d = _diameters(m)
+            near = np.zeros(m.nelements, bool)
+            for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
+                near[hits] = True
+            marked = np.flatnonzero(near & (d > rupture_size * (1 + 1e-9)))
+            if not marked.size:
+                break
+            m = m.refined(marked)
+        check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
+        new = _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), a)
+        start = _nearest_rupture(res, np.asarray(operators(new, opts.element).basis.doflocs))
+        mesh, state = new, opts.solve(bearing, (new,), -eps, 0.0, start=(start,))
+    raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
+                       f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
+
+
+def _nearest_rupture(res: ReynoldsResult, points: np.ndarray) -> np.ndarray:
+    """Rupture mask at ``points`` (shape (2, n)): the state of the nearest dof of ``res`` (its front is
+    then off by at most half the dof spacing)."""
+    nearest = cKDTree(np.asarray(res.basis.doflocs).T).query(points.T)[1]
+    return np.asarray(res.cavitated, bool)[nearest]
+
+
+def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solves, tol, max_newton,
+                      rupture_size: float | None = None):
     """Full bearing: the answer depends on eps only; Newton on |F|(eps) = w."""
     k_total = 0
+    first_tol = tol if rupture_size is None else max(tol, COARSE_TOL)
     for _ in range(3):
-        ms = default_min_size(size, eps) if min_size is None else min_size
-        meshes = journal_mesh(bearing, size, min_size=ms, eps=eps, order=order)
+        meshes = mesher(eps)
         eps_start = eps
-        for k in range(max_newton + 1):
-            state = opts.solve(bearing, meshes, -eps, 0.0)
-            F = state.force
-            wf = float(np.hypot(*F))
-            res = abs(wf - w) / w
-            if res <= tol:
-                break
-            K = _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation)
-            dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
-            new = eps - (wf - w) / dw
-            eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
-        else:
-            raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
-                               f"(relative load residual {res:.3g})")
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton)
         k_total += k
-        if min_size is not None or abs(eps - eps_start) < 0.02:
+        if mesher.min_size is not None or not mesher.remesh(eps_start, eps):
             break
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
+    if rupture_size is not None:
+        mesh, state = _refine_rupture(bearing, meshes[0], state, eps, rupture_size, opts)
+        meshes = (mesh,)
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton)
+        k_total += k
     F = state.force
     # mesh frame -> bearing frame: rotate so that F points along the load
     rotation = theta_load - math.atan2(F[1], F[0])

@@ -215,7 +215,8 @@ def targets_summary(facts: dict) -> str:
         add(f"journal equilibrium + 8 coefficients, error {target}", "5x faster at 1e-03" if target == "1e-03" else
             "(reported)", f"{_fmt(a)} (before {more}{_fmt(b)}): {more}{_fmt(sp, 'x')}",
             ("no goal" if target != "1e-03" else (sp >= 5) if math.isfinite(sp) else None),
-            f"after: {v.get('after_element', 'P2')} size {v.get('after_size')}, before: P1 size {v.get('before_size')}")
+            f"after: {v.get('after_label') or (str(v.get('after_element', 'P2')) + ' size ' + str(v.get('after_size')))}"
+            f", before: P1 size {v.get('before_size')}")
     s = facts.get("scene", {}).get("scene", math.nan)
     add("main scene end to end (2 designs, periodic, pictures)", "<= 5 s", _fmt(s),
         (s <= 5) if math.isfinite(s) else None, "fresh process, imports included")
