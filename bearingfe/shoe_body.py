@@ -58,14 +58,14 @@ import skfem
 from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad, trace
 
-from .elastic import Compliance, combined_modulus, half_space
+from .elastic import Compliance, check_dense_size, combined_modulus, half_space
 from .geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
 from .machines import Material, ShoeBody
 from .meshing import SupportMesh
 from .scales import Scale
 from .superposition import operators
 
-__all__ = ["ShoeMesh", "mesh_shoe", "shoe_compliance", "BODY_ORDERS"]
+__all__ = ["ShoeMesh", "mesh_shoe", "shoe_compliance", "condense", "overlay", "BODY_ORDERS"]
 
 #: Polynomial orders of the body's tetrahedra.
 BODY_ORDERS = (1, 2)
@@ -494,6 +494,13 @@ def shoe_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, body: ShoeB
     Compliance
         ``model = "shoe"``; ``matrix`` [c per unit pressure] with
         ``M @ matrix`` symmetric (``M`` the film mass matrix).
+
+    Raises
+    ------
+    ValueError
+        A parameter out of range (named); see also :func:`mesh_shoe`.
+    LimitError
+        More film dofs than the ``compliance`` limit (:func:`bearingfe.elastic.check_dense_size`).
     """
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
@@ -505,6 +512,7 @@ def shoe_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, body: ShoeB
         raise ValueError(f"order must be one of {BODY_ORDERS} (body tetrahedra), got {order!r}")
     start = time.perf_counter()
     ops = operators(mesh, element)  # checks the element
+    check_dense_size(ops.basis.N)
     film = mesh.size if film_size is None else film_size
     body_mesh = mesh_shoe(mesh.surface, scale.radius, body, 2 * film if size is None else size,
                           film_size=film, margin=margin, flat_film=flat_film, timeout=timeout,

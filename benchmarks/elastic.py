@@ -276,8 +276,16 @@ def _real_shoe_section(data: dict) -> str:
 The shoe of the mechanism file as a 3-D body (`bearingfe.shoe_body.shoe_compliance`): the bore (the
 film surface, 60 x 40 mm), a {b['back']} back {b['thickness_mm']:.0f} mm behind the bore's apex,
 {seat}; gmsh (OpenCASCADE) tetrahedra, P2, {data['size']} R0 on the film and twice that behind it,
-condensed to the film dofs, on the eccentric as a half-space. Smallest film over the periodic revolution
-(squeeze model, as above):
+condensed to the film dofs, on the eccentric as a half-space. The mechanism file describes the body:
+`[shoe] thickness` and `back` ("flat": a slipper block whose back is a plane across the plunger axis,
+thicker at the ends of the arc; "concentric": a shell of uniform thickness), `[shoe.seat]` (how the
+plunger holds it: `kind = "clamped"` fixes the seat, a shoe bonded to a rigid plunger head;
+`"frictionless"` lets the seat slide across the plunger's end face but not into it, the sideways
+motion and the spin held only on average over the seat, so the body is held without being
+over-constrained; `radius`: the seat disc about the plunger axis) and an optional `[shoe.lining]`
+(thickness and material of a bearing lining on the bore). The displacement is measured from the
+plunger; the shoe's rigid motion is the film balance's (the eccentricity and attitude of the
+transient). Smallest film over the periodic revolution (squeeze model, as above):
 
 | shoe | rigid | real shoe body (angle, largest deflection) |
 |---|---|---|
