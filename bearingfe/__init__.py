@@ -13,7 +13,7 @@ module                     what it does
 ``geometry``               support-surface outlines, inlet pockets and recesses (any shape)
 ``geofiles``               untrusted geometry files: ``.geo`` allow-list and sandbox, ``.msh`` as data
 ``gmsh_worker``            the child process in which gmsh parses and meshes one ``.geo`` script
-``meshing``                gmsh meshing, ``.geo``/``.msh`` reading, named edges, periodic seams
+``meshing``                gmsh meshing, structured grids, ``.geo``/``.msh`` reading, named edges, periodic seams
 ``film``                   film-thickness models (``CosineFilm``)
 ``parameters``             operating point and discretization objects (``operating=``)
 ``checks``                 ranges of solver inputs, thin-film resolution check (``ResolutionWarning``)
@@ -67,7 +67,7 @@ from .machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Mater
                        RotorFrame, Section)
 from .mechanism_files import LOADERS, load_mechanism
 from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
-from .meshing import SupportMesh, load_mesh, mesh_surface, refine_uniformly
+from .meshing import SupportMesh, grid_mesh, load_mesh, mesh_surface, refine_uniformly
 from .parameters import Discretization, OperatingPoint
 from .scales import Scale
 from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
@@ -99,5 +99,5 @@ __all__ = [
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
-    "mesh_surface", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
+    "mesh_surface", "grid_mesh", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
 ]

@@ -329,8 +329,10 @@ class Recess:
     """A blind region where the film is deeper (dimple, step, relief groove).
 
     Unlike an inlet pocket it is not fed: the film runs through it with the
-    extra ``depth``. It is meshed conformally (its contour lies on element
-    edges), so the film step is crossed exactly by the mass-conserving solver.
+    extra ``depth``. ``mesh_surface`` meshes it conformally (its contour lies
+    on element edges); ``grid_mesh`` cuts it through the cells, whose film is
+    then integrated exactly. Either way the mass-conserving solver crosses the
+    film step with the exact flux.
 
     Parameters
     ----------

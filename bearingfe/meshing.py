@@ -28,7 +28,7 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
 from .geometry import Surface
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
-           "strip_mesh", "periodic_pairs"]
+           "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -620,6 +620,66 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
     return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+
+
+def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
+              max_elements: int | None = None) -> SupportMesh:
+    """A structured mesh of a rectangular surface, aligned with the sliding direction ``phi``.
+
+    Uniform cells of at most ``size`` along ``phi`` and ``size_z`` along
+    ``z``, each split into two triangles (``skfem.MeshTri1.init_tensor``).
+    Recess contours are NOT on element edges: the film is integrated exactly
+    over the cells and faces they cut (see ``couette="grid"`` in
+    :func:`bearingfe.jfo.solve_jfo`, where the mass-conserving solver
+    carries the Couette flux along the grid lines, free of crosswind
+    smearing). Boundaries are named as by :func:`mesh_surface`:
+    ``arc_start``, ``arc_end``, ``side`` and ``outer``, or on a periodic
+    surface ``side`` = ``outer`` and the seam ``periodic_start`` /
+    ``periodic_end``. Meshing takes milliseconds (no gmsh).
+
+    Parameters
+    ----------
+    surface : Surface
+        Default rectangular outline, no pockets (a pocket's contour must lie
+        on element edges to carry its pressure: use :func:`mesh_surface`).
+    size : float
+        Largest cell length along ``phi`` [-], > 0.
+    size_z : float, optional
+        Largest cell length along ``z`` [-], > 0; default ``size``.
+    max_elements : int, optional
+        Largest number of triangles (as in :func:`mesh_surface`).
+
+    Returns
+    -------
+    SupportMesh
+        ``source="grid"``.
+    """
+    if not isinstance(surface, Surface):
+        raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
+    if not surface.is_rectangular:
+        raise ValueError("grid_mesh needs the default rectangular outline (Surface(outer=None)); "
+                         "use mesh_surface for other outlines")
+    if surface.inlets:
+        raise ValueError("grid_mesh cannot carry pockets (Surface.inlets): their contours must lie on "
+                         "element edges; use mesh_surface")
+    size = _checked_size(size, "size")
+    size_z = size if size_z is None else _checked_size(size_z, "size_z")
+    a1, a2 = surface.arc
+    width = 2 * surface.half_width
+    nx, nz = max(2, math.ceil((a2 - a1) / size - 1e-9)), max(1, math.ceil(width / size_z - 1e-9))
+    check_element_count(2.0 * nx * nz, max_elements, what=f"grid_mesh with size = {size:g}, size_z = {size_z:g}")
+    m = skfem.MeshTri1.init_tensor(np.linspace(a1, a2, nx + 1), np.linspace(-width / 2, width / 2, nz + 1))
+    facets = m.boundary_facets()
+    mid = m.p[:, m.facets[:, facets]].mean(axis=1)
+    tol = 1e-9 * max(a2 - a1, width)
+    start, end = facets[np.abs(mid[0] - a1) < tol], facets[np.abs(mid[0] - a2) < tol]
+    side = facets[np.abs(np.abs(mid[1]) - width / 2) < tol]
+    if surface.periodic:
+        bnd = {"outer": side, "side": side, "periodic_start": start, "periodic_end": end}
+    else:
+        bnd = {"outer": np.concatenate([start, end, side]), "arc_start": start, "arc_end": end, "side": side}
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=max((a2 - a1) / nx, width / nz),
+                       source="grid")
 
 
 def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:

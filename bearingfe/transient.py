@@ -725,9 +725,12 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     elastic : Compliance, optional
         Compliance of the support on ``mesh`` (:func:`bearingfe.elastic.half_space`):
         at every shaft angle the film ``h_rigid + w`` and the rates are found
-        together (:func:`bearingfe.elastic.balance_load`, the direct form),
-        warm-started from the last deflection and reusing the Jacobian
-        factors. Quasi-static deflection (``dw/dt`` not in the squeeze term);
+        together (:func:`bearingfe.elastic.balance_load`, the direct form):
+        without cavitation by a chord Newton from the last answer whose dense
+        Jacobian is kept over the right sides (:class:`bearingfe.elastic.ChordBalance`;
+        ``stats["factorizations"]`` then counts its residuals), else by the damped
+        Newton on the deflection. Quasi-static deflection (``dw/dt`` not in the
+        squeeze term; :func:`bearingfe.elastic_transient.simulate_elastic` has it);
         the run starts from the rigid steady (or periodic-iteration) state.
     discretization : Discretization, optional
         ``element``, ``formulation``, ``solver`` and ``mesh_size`` in one
