@@ -869,8 +869,8 @@ def _check_structured(bearing: JournalBearing, structured, rupture_size, size, c
     if not structured or cavitation != "reynolds":
         raise ValueError("rupture_size needs structured=True and cavitation='reynolds' (it refines a "
                          "structured mesh around the Swift-Stieber rupture front)")
-    if not (isinstance(rupture_size, (int, float)) and math.isfinite(rupture_size)
-            and 0 < rupture_size <= size):
+    if not (isinstance(rupture_size, (int, float)) and not isinstance(rupture_size, bool)
+            and math.isfinite(rupture_size) and 0 < rupture_size <= size):
         raise ValueError(f"rupture_size must be in (0, size = {size}], got {rupture_size!r}")
 
 

@@ -115,6 +115,7 @@ def test_structured_equilibrium_agrees_with_gmsh_at_equal_size():
     (dict(structured=True, rupture_size=0.5, size=0.3), "rupture_size must be in"),
     (dict(structured=True, rupture_size=0.0), "rupture_size must be in"),
     (dict(structured=True, rupture_size=float("nan")), "rupture_size must be in"),
+    (dict(structured=True, rupture_size=True), "rupture_size must be in"),
     (dict(structured=True, rupture_size=0.05, cavitation="none"), "cavitation='reynolds'"),
     (dict(structured=True, order=2), "use order=1"),
     (dict(structured="yes"), "structured must be True or False"),
