@@ -7,12 +7,12 @@ gradient). What does not depend on the film is built once per
 
 - the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
   (gradients) from dofs to the ``n_q`` quadrature points;
-- the sparsity pattern of the system matrix and the scatter matrices
-  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``; both forms are
-  symmetric) such that the matrix of a film is ``A.data = (S_stiff @
-  h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 - S_mass @
-  D)[twins]`` (pi form), with the index maps that cut out the condensed
-  blocks ``A[I, I]`` and ``A[I, inlet]``;
+- the sparsity pattern of the system matrix and the scatters
+  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``, :class:`Scatter`; both
+  forms are symmetric) such that the matrix of a film is ``A.data =
+  (S_stiff @ h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 -
+  S_mass @ D)[twins]`` (pi form), with the index maps that cut out the
+  condensed blocks ``A[I, I]`` and ``A[I, inlet]``;
 - the fill-reducing ordering of ``A[I, I]`` (the symbolic part SuperLU lets
   one keep; see :class:`bearingfe.linalg.PatternFactorizer`), so a new film
   costs one numeric factorization;
@@ -40,21 +40,36 @@ import scipy.sparse.linalg as spla
 
 from .forms import film_at
 
-__all__ = ["CompiledOperator", "compile_operator", "FilmFlows"]
+__all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet)."""
-    dofs = basis.element_dofs  # (Nbfun, n_cells)
+    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet).
+
+    Row ``cell * n_points + point`` holds the ``Nbfun`` basis functions of its cell, so the CSR
+    arrays are written directly (columns sorted per row: the canonical form a COO build gives).
+    """
+    dofs = np.asarray(basis.element_dofs)  # (Nbfun, n_cells)
+    nb = len(basis.basis)
     n_cells, n_points = np.asarray(basis.basis[0][0]).shape
-    rows = np.arange(n_cells * n_points).reshape(n_cells, n_points)
-    r = np.concatenate([rows.ravel()] * len(basis.basis))
-    c = np.concatenate([np.repeat(dofs[i], n_points) for i in range(len(basis.basis))])
+    sort = np.argsort(dofs, axis=0, kind="stable")  # per cell: its dofs in increasing order
+    cols = np.take_along_axis(dofs, sort, axis=0).T  # (n_cells, nb)
+    indices = np.broadcast_to(cols[:, None, :], (n_cells, n_points, nb)).ravel().astype(np.int32)
+    indptr = np.arange(0, n_cells * n_points * nb + 1, nb, dtype=np.int32)
     out = []
     for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1]):
-        v = np.concatenate([np.asarray(part(phi[0])).ravel() for phi in basis.basis])
-        out.append(sp.csr_matrix((v, (r, c)), shape=(n_cells * n_points, n_dofs)))
+        v = np.stack([np.asarray(part(phi[0])) for phi in basis.basis])  # (nb, n_cells, n_points)
+        v = np.take_along_axis(v, sort[:, :, None], axis=0).transpose(1, 2, 0)
+        m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(n_cells * n_points, n_dofs))
+        m.has_sorted_indices = True
+        out.append(m)
     return tuple(out)
+
+
+def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Sparse maps from the dofs of ``basis`` to the values and the two gradient components at its own
+    quadrature points, each of shape ``(n_cells * n_points, basis.N)`` (rows in ``basis.dx`` order)."""
+    return _interpolation(basis, basis.N)
 
 
 def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -80,27 +95,57 @@ def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray,
     return rank[twin], int(upper.sum())
 
 
-def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> sp.csr_matrix:
+def _pair_values(basis, kind: str) -> tuple[list[tuple[int, int]], np.ndarray]:
+    """The local pairs ``i <= j`` and ``grad phi_i . grad phi_j dx`` (stiff) or ``phi_i phi_j dx``
+    (mass) at every point, shape ``(n_pairs, n_cells, n_points)``."""
+    nb = len(basis.basis)
+    pairs = [(i, j) for i in range(nb) for j in range(i, nb)]
+    data = np.empty((len(pairs), *basis.dx.shape))
+    for k, (i, j) in enumerate(pairs):
+        vi, vj = basis.basis[i][0], basis.basis[j][0]
+        if kind == "stiff":
+            data[k] = vi.grad[0] * vj.grad[0] + vi.grad[1] * vj.grad[1]
+        else:
+            data[k] = np.asarray(vi) * np.asarray(vj)
+    data *= basis.dx
+    return pairs, data
+
+
+@dataclass(frozen=True, eq=False)
+class Scatter:
+    """``c -> S @ c``: the upper-triangle values of ``int c grad u . grad v`` (stiff) or
+    ``int c u v`` (mass) on the pattern, for a field ``c`` at the quadrature points.
+
+    Kept as the per-point products of the local pairs (``values``, ``(n_pairs, n_cells,
+    n_points)``) and the upper entry each pair of each cell adds to (``rows``): a film costs
+    one contraction over the points and one scatter-add, and building it sorts nothing.
+    """
+
+    values: np.ndarray
+    rows: np.ndarray
+    n_upper: int
+
+    def __matmul__(self, c: np.ndarray) -> np.ndarray:
+        per_pair = np.einsum("pcq,cq->pc", self.values, np.reshape(c, self.values.shape[1:]))
+        return np.bincount(self.rows, weights=per_pair.ravel(), minlength=self.n_upper)
+
+    def tocsr(self) -> sp.csr_matrix:
+        """``S`` as a sparse matrix ``(n_upper, n_q)``."""
+        n_pairs, n_cells, n_points = self.values.shape
+        cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+        return sp.csr_matrix((self.values.ravel(), (np.repeat(self.rows, n_points),
+                                                    np.tile(cols.ravel(), n_pairs))),
+                             shape=(self.n_upper, n_cells * n_points))
+
+
+def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> Scatter:
     """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
     (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
     triangle, and the lower one copies it."""
     nb = len(basis.basis)
-    n_cells, n_points = basis.dx.shape
-    cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
-    data, r, c = [], [], []
-    for i in range(nb):
-        vi = basis.basis[i][0]
-        for j in range(i, nb):
-            vj = basis.basis[j][0]
-            if kind == "stiff":
-                k = vi.grad[0] * vj.grad[0] + vi.grad[1] * vj.grad[1]
-            else:
-                k = np.asarray(vi) * np.asarray(vj)
-            data.append((np.asarray(k) * basis.dx).ravel())
-            r.append(np.repeat(twins[position[i * nb + j]], n_points))
-            c.append(cols.ravel())
-    return sp.csr_matrix((np.concatenate(data), (np.concatenate(r), np.concatenate(c))),
-                         shape=(n_upper, n_cells * n_points))
+    pairs, values = _pair_values(basis, kind)
+    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()  # (n_pairs * n_cells,)
+    return Scatter(values=values, rows=rows, n_upper=n_upper)
 
 
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
@@ -166,12 +211,12 @@ class CompiledOperator:
         return self._lazy[name]
 
     @property
-    def stiffness_scatter(self) -> sp.csr_matrix:
+    def stiffness_scatter(self) -> Scatter:
         """``S_stiff``: ``A.data = (S_stiff @ c)[twins]`` for ``int c grad u . grad v``."""
         return self._get("stiff", lambda: _scatter(self._basis, self._position, *self.twins, "stiff"))
 
     @property
-    def mass_scatter(self) -> sp.csr_matrix:
+    def mass_scatter(self) -> Scatter:
         """``S_mass``: ``A.data = (S_mass @ c)[twins]`` for ``int c u v``."""
         return self._get("mass", lambda: _scatter(self._basis, self._position, *self.twins, "mass"))
 
@@ -227,7 +272,11 @@ class CompiledOperator:
 
     def factorize_condensed(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
         """Numeric SuperLU factorization of ``A[I, I]`` (symmetric mode) in a fill-reducing order
-        found once for the pattern (minimum degree on ``A^T + A``, as ``factorize_splu_sym``)."""
+        found once for the pattern (minimum degree on ``A^T + A``, as ``factorize_splu_sym``).
+
+        Every film, the first included, is factored in that order from the same matrix object,
+        so a film's numbers do not depend on the films solved on the mesh before it (the
+        factorization that finds the order rounds differently and is not used for solves)."""
         (sel, idx, ptr), _ = self._blocks()
         n = self.interior.size
         if "order" not in self._lazy:
@@ -361,7 +410,8 @@ def compile_operator(ops) -> CompiledOperator:
     x = np.asarray(ops.x).reshape(2, -1)
     I = ops.interior
     loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
-    sources = (E.T.tocsr()[I] @ sp.diags(dx)).tocsr()
+    scaled = sp.csr_matrix((E.data * np.repeat(dx, np.diff(E.indptr)), E.indices, E.indptr), shape=E.shape)
+    sources = scaled.T.tocsr()[I]  # (E^T dx)[I]
     groups = tuple(ops.flow_groups)
     A = np.zeros((len(groups), n))
     corner_dofs = set()
@@ -381,27 +431,28 @@ def compile_operator(ops) -> CompiledOperator:
     lazy: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
-        terms = []
-        weights_of = {}
-        for name, fb in ops.facet_bases.items():
-            Ef, Gfx, Gfz = _interpolation(fb, n)
-            normals = np.asarray(fb.normals).reshape(2, -1)
-            xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
-            phi_ds = (Ef.T @ sp.diags(np.asarray(fb.dx).ravel())).tocsr()[cdofs].toarray()
+        fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
+        Ef, Gfx, Gfz = _interpolation(fb, n)
+        normals = np.asarray(fb.normals).reshape(2, -1)
+        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
+        n_points = np.shape(fb.dx)[1]
+        phi_ds_all = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()  # (n_corner_dofs, n_facet_points)
+        keep = np.zeros(phi_ds_all.shape[1], dtype=bool)
+        weights_of, kept = {}, {}
+        for name, facets in parts.items():
+            rows = slice(facets.start * n_points, facets.stop * n_points)
             # only the facets where a corner dof's basis function lives contribute
-            per_facet = np.abs(phi_ds).reshape(cdofs.size, *np.shape(fb.dx)).max(axis=(0, 2))
-            keep = np.repeat(per_facet > 1e-14 * per_facet.max(), np.shape(fb.dx)[1])
-            terms.append((name, Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep], phi_ds[:, keep]))
+            per_facet = np.abs(phi_ds_all[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
+            keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
+            kept[name] = phi_ds_all[:, rows][:, keep[rows]]
             dofs, w = ops.flow_groups[name]
             wc = np.zeros(cdofs.size)
             corner = w < 1
             wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
             weights_of[name] = wc
-        ends = np.cumsum([0] + [t[1].shape[0] for t in terms])
-        corners = (sp.vstack([t[1] for t in terms]).tocsr(), sp.vstack([t[2] for t in terms]).tocsr(),
-                   sp.vstack([t[3] for t in terms]).tocsr(), np.hstack([t[4] for t in terms]),
-                   np.hstack([t[5] for t in terms]),
-                   {t[0]: (slice(ends[k], ends[k + 1]), t[6]) for k, t in enumerate(terms)})
+        ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
+        corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
+                   {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
         lazy["corner_weights"] = weights_of
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
                             indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,

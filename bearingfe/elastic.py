@@ -75,6 +75,7 @@ import scipy.sparse.linalg as spla
 import skfem
 from skfem import BilinearForm
 
+from .compiled import interpolation_maps
 from .cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from .film import Film
 from .forms import load as load_form, weighted_laplace
@@ -100,6 +101,7 @@ __all__ = [
     "pressure_sensitivity",
     "newton",
     "check_dense_size",
+    "ChordBalance",
 ]
 
 #: Default tolerance of the coupled solve on ``max |C p - w|`` [clearance].
@@ -440,13 +442,18 @@ class _Evaluator:
 
     def at(self, x: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if x.shape == self.quadrature.shape and np.array_equal(x, self.quadrature):
-            f = self.basis.interpolate(w)
-            return np.asarray(f), np.asarray(f.grad[0]), np.asarray(f.grad[1])
+            if "quadrature" not in self.cache:  # the basis's own points: exact sparse maps, no cell search
+                self.cache["quadrature"] = interpolation_maps(self.basis)
+            shape = x.shape[1:]
+            return tuple((P @ w).reshape(shape) for P in self.cache["quadrature"])
         flat = x.reshape(2, -1)
         key = (flat.shape, hash(flat.tobytes()))
         if key not in self.cache:
             if len(self.cache) > 16:
+                kept = self.cache.get("quadrature")
                 self.cache.clear()
+                if kept is not None:
+                    self.cache["quadrature"] = kept
             self.cache[key] = _probe_matrices(self.basis, flat)
         shape = x.shape[1:]
         return tuple((P @ w).reshape(shape) for P in self.cache[key])
@@ -856,6 +863,152 @@ class ElasticBalance:
     residual: float
 
 
+class ChordBalance:
+    """The quasi-static coupled film that balances a load, by a chord Newton whose factors are kept.
+
+    Unknowns: the interior pressure ``p_I`` and the two squeeze rates ``r``;
+    equations: the Reynolds residual on the film ``h = h_rigid + C p`` (direct
+    form) and the load balance ``L p + p_s F_pocket + load = 0``. The Jacobian
+
+        [[A_II + B_h C_I, S], [L_I, 0]]
+
+    (``B_h`` the film sensitivity of the residual, ``S`` the unit squeeze
+    sources) is dense; it is factored once and reused over the iterations and
+    over the calls (a run of nearby states: the pump transient), and rebuilt
+    only when a step shrinks by less than half from the one before. An
+    iteration costs the residual (sparse products with the quadrature points
+    of the compiled operator, no assembly) and one dense solve: no sparse
+    factorization at all. Cavitation ``"none"`` only.
+
+    Convergence: the last step moves the film opening by at most ``tol``
+    [c] (``max |C_I dp_I|``) and the rates by at most ``tol`` relative.
+
+    Parameters
+    ----------
+    compliance : Compliance
+    tol : float
+        [c], in (0, 1).
+    max_iterations : int
+        Residual evaluations per call, >= 1.
+
+    Attributes
+    ----------
+    state : ndarray or None
+        The last answer ``(p_I, r)``: the start of the next call (set it to seed the first).
+    jacobians : int
+        Jacobians built so far.
+    """
+
+    def __init__(self, compliance: Compliance, tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS):
+        if not isinstance(compliance, Compliance):
+            raise ValueError(f"compliance must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
+        if not (0 < tol < 1):
+            raise ValueError(f"tol must be in (0, 1) [clearance], got {tol!r}")
+        if not (isinstance(max_iterations, int) and max_iterations >= 1):
+            raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+        check_dense_size(compliance.n_dofs)
+        self.compliance, self.tol, self.max_iterations = compliance, float(tol), max_iterations
+        ops = operators(compliance.mesh, compliance.element)
+        co = ops.compiled
+        self.ops, self.co, self.I, self.inlet = ops, co, ops.interior, ops.inlet
+        C = np.asarray(compliance.matrix, float)
+        self.C_I = np.ascontiguousarray(C[:, self.I])
+        self.c_in = C[:, self.inlet].sum(axis=1) + compliance.pocket
+        self.E, self.Gp, self.Gz, self.dx = co.value, co.grad[0], co.grad[1], co.dx
+        self.GpT, self.GzT = self.Gp.T.tocsr()[self.I], self.Gz.T.tocsr()[self.I]
+        self.src = co.sources
+        self.src_grad = (self.src @ self.Gp).tocsr()
+        L = np.asarray(co.loads[:2] @ co.value)
+        self.LI = L[:, self.I]
+        self.L_in = L[:, self.inlet].sum(axis=1) + np.asarray(ops.pocket_moments[1:], float)
+        self.state: np.ndarray | None = None
+        self.jacobians = 0
+        self.contraction = 0.1  # a chord step must shrink the film step 10x, else the Jacobian is rebuilt
+        self._lu = None
+
+    def _film(self, film: Film):
+        x, d = self.co.x, self.ops.basis.doflocs
+        shapes = [np.asarray(s, float) for s in film.rate_shapes(x[0], x[1])]
+        return (np.asarray(film.thickness(x[0], x[1]), float), np.asarray(film.gradient(x[0], x[1])[0], float),
+                np.asarray(film.thickness(d[0], d[1]), float), shapes,
+                np.column_stack([self.src @ (12.0 * s) for s in shapes]))
+
+    def _residual(self, rigid, y: np.ndarray, wedge: float, ps: float, load: np.ndarray):
+        h0, dh0, hd0, _, S = rigid
+        n = self.I.size
+        pI, r = y[:n], y[n:]
+        p = np.zeros(self.compliance.n_dofs)
+        p[self.inlet] = ps
+        p[self.I] = pI
+        w = self.C_I @ pI + ps * self.c_in
+        h = h0 + self.E @ w
+        h_dofs = hd0 + w
+        if not (np.all(h > 0) and np.all(h_dofs > 0)):
+            raise ElasticError(f"film closed: h_min = {min(h.min(), h_dofs.min()):.3g} c <= 0")
+        gp, gz = self.Gp @ p, self.Gz @ p
+        h3 = h**3 * self.dx
+        R = self.GpT @ (h3 * gp) + self.GzT @ (h3 * gz) + 6.0 * wedge * (self.src @ dh0 + self.src_grad @ w) + S @ r
+        G = self.LI @ pI + ps * self.L_in + load
+        return np.concatenate([R, G]), (h, gp, gz, w)
+
+    def _jacobian(self, rigid, st, wedge: float) -> np.ndarray:
+        h, gp, gz, _ = st
+        n = self.I.size
+        h2 = 3.0 * h**2 * self.dx
+        Bh = (self.GpT @ sp.diags(h2 * gp) + self.GzT @ sp.diags(h2 * gz)) @ self.E + 6.0 * wedge * self.src_grad
+        J = np.zeros((n + 2, n + 2))
+        J[:n, :n] = self.co.condensed(self.co.matrix_data("direct", h, None)).toarray() + Bh @ self.C_I
+        J[:n, n:] = rigid[4]
+        J[n:, :n] = self.LI
+        return J
+
+    def solve(self, film: Film, load, wedge: float, inlet_pressure: float) -> tuple[np.ndarray, int, int, float]:
+        """``(p_I, r)`` of the film ``film`` opened by its pressure under ``load``, from :attr:`state`.
+
+        Returns the answer, the residual evaluations, the Jacobians built and
+        the size of the last step. Raises :class:`ElasticError` if the film
+        closes, a fresh Jacobian does not contract, or ``max_iterations`` is reached.
+        """
+        import scipy.linalg as sla
+
+        if self.state is None:
+            raise ValueError("ChordBalance.state is None: seed it with a solution (p_I, rates)")
+        load = np.asarray(load, float)
+        ps, wedge = float(inlet_pressure), float(wedge)
+        rigid = self._film(film)
+        y, n = self.state.copy(), self.I.size
+        count, built, previous, age = 0, 0, math.inf, 0
+        with dense_threads(1):
+            while True:
+                if count >= self.max_iterations:
+                    raise ElasticError(f"the chord iteration of the elastic film did not converge in "
+                                       f"{self.max_iterations} residuals (last step {previous:.3g})")
+                F, st = self._residual(rigid, y, wedge, ps, load)
+                count += 1
+                if self._lu is None:
+                    self._lu = sla.lu_factor(self._jacobian(rigid, st, wedge), check_finite=False)
+                    self.jacobians += 1
+                    built, age = built + 1, 0
+                dy = -sla.lu_solve(self._lu, F, check_finite=False)
+                dw = float(np.abs(self.C_I @ dy[:n]).max(initial=0.0))  # contraction measured on the film
+                size = max(dw, float(np.abs(dy[n:]).max()) / max(1.0, float(np.abs(y[n:]).max())))
+                if not math.isfinite(size):
+                    self._lu = None
+                    raise ElasticError("the Jacobian of the elastic film is singular")
+                if age > 0 and dw > self.contraction * previous and size > self.tol:
+                    self._lu = None
+                    if age == 1 and dw > previous:  # after a fresh Jacobian: Newton itself diverges here
+                        raise ElasticError(f"the chord iteration of the elastic film does not contract (film "
+                                           f"step {previous:.3g} c then {dw:.3g} c)")
+                    continue
+                y += dy
+                previous, age = dw, age + 1
+                if size <= self.tol:
+                    break
+        self.state = y
+        return y, count, built, size
+
+
 def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *, wedge: float = 1.0,
                  inlet_pressure: float = 0.0, element: str = "P1", cavitation: str = "none", solver=None,
                  initial: np.ndarray | None = None, reuse: dict | None = None, tol: float = TOLERANCE,
@@ -878,16 +1031,40 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
     initial : ndarray, optional
         Starting deflection [c].
     reuse : dict, optional
-        Jacobian factors kept between calls (see :func:`newton`).
+        What is kept between calls (a run of nearby states): the Jacobian
+        factors of :func:`newton`, and without cavitation a
+        :class:`ChordBalance` started from the last answer, which then
+        solves the call with no sparse factorization (the damped Newton above
+        takes over when it does not contract, and seeds it again).
     full_result : bool
         Also build the full :class:`ReynoldsResult` (flows, friction) at the answer.
     """
     _check_compliance(compliance, mesh, element)
     ops = operators(mesh, element)
     basis = ops.basis
+    opts = {} if solver is None else {"solver": solver}
+    chord = None
+    if cavitation == "none" and reuse is not None:
+        chord = reuse.get("chord")
+        if not (isinstance(chord, ChordBalance) and chord.compliance is compliance and chord.tol == tol):
+            chord = reuse["chord"] = ChordBalance(compliance, tol=tol, max_iterations=max_iterations)
+        if chord.state is not None:
+            try:
+                y, count, built, size = chord.solve(film, load, wedge, inlet_pressure)
+            except ElasticError:
+                chord.state = None  # far from the last state, or the film closes on the way: the damped Newton
+            else:
+                n = ops.interior.size
+                w = chord.C_I @ y[:n] + float(inlet_pressure) * chord.c_in
+                res = None
+                if full_result:
+                    sup = superpose(mesh, DeflectedFilm(film, basis, w), formulation="direct", element=element,
+                                    **opts)
+                    res = sup.combine(wedge, y[n:], inlet_pressure)
+                return ElasticBalance(rates=y[n:].copy(), result=res, deflection=w, iterations=count,
+                                      jacobians=built, residual=size)
     interior = np.zeros(basis.N, bool)
     interior[ops.interior] = True
-    opts = {} if solver is None else {"solver": solver}
     warm = [None]
 
     def evaluate(w):
@@ -916,6 +1093,8 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
     out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations, reuse=reuse)
     sup, rates, res = out.payload
+    if chord is not None:  # seed the chord iteration of the next call with this answer
+        chord.state = np.concatenate([res.pressure[ops.interior], np.asarray(rates, float)])
     if full_result and cavitation == "none":
         res = sup.combine(wedge, rates, inlet_pressure)
     return ElasticBalance(rates=np.asarray(rates, float), result=res if full_result else None,

@@ -28,11 +28,11 @@ import numpy as np
 import skfem
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
-from skfem.mapping import MappingIsoparametric
+from skfem.mapping import MappingAffine, MappingIsoparametric
 
 __all__ = ["laplace", "mass", "weighted_mass", "weighted_laplace", "load", "flux_residual", "FilmAt",
            "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "shear", "TolerantMapping",
-           "mapping"]
+           "mapping", "straight_edges", "STRAIGHT_TOLERANCE"]
 
 
 # -- weak forms ----------------------------------------------------------------------
@@ -154,10 +154,36 @@ class TolerantMapping(MappingIsoparametric):
 
 
 def mapping(m: skfem.Mesh):
-    """``None`` (scikit-fem's default) on straight meshes, a :class:`TolerantMapping` on curved ones
-    (one per mesh, kept on it)."""
+    """The reference mapping of a mesh, one per mesh (kept on it).
+
+    ``None`` (scikit-fem's default, affine) on straight-sided meshes; an
+    affine mapping too on a quadratic (``MeshTri2``) mesh whose edges are all
+    straight (:func:`straight_edges`, e.g. a rectangle with rectangular
+    pockets meshed with ``order=2``), where the isoparametric map is affine
+    and only costs more; a :class:`TolerantMapping` on curved meshes.
+    """
     if getattr(m, "affine", True):
         return None
     if not hasattr(m, "_bearingfe_mapping"):
-        object.__setattr__(m, "_bearingfe_mapping", TolerantMapping(m, m.elem(), m.bndelem))
+        chosen = MappingAffine(m) if straight_edges(m) else TolerantMapping(m, m.elem(), m.bndelem)
+        object.__setattr__(m, "_bearingfe_mapping", chosen)
     return m._bearingfe_mapping
+
+
+#: Largest distance of a quadratic mesh's edge node from its edge's midpoint, relative to the mesh's
+#: extent, for the edge to count as straight (gmsh places them at the midpoint to round-off).
+STRAIGHT_TOLERANCE = 1e-12
+
+
+def straight_edges(m: skfem.Mesh) -> bool:
+    """True if every edge node of a quadratic triangle mesh lies at its edge's midpoint
+    (to :data:`STRAIGHT_TOLERANCE` of the mesh's extent): the element maps are then affine."""
+    if not isinstance(m, skfem.MeshTri2):
+        return bool(getattr(m, "affine", True))
+    vertices = int(m.t.max()) + 1
+    edge_nodes = m.doflocs[:, vertices:]
+    if edge_nodes.shape[1] != m.facets.shape[1]:  # not the vertex-then-edge node layout scikit-fem builds
+        return False
+    midpoints = 0.5 * (m.doflocs[:, m.facets[0]] + m.doflocs[:, m.facets[1]])
+    extent = float(np.ptp(m.doflocs, axis=1).max())
+    return bool(np.abs(edge_nodes - midpoints).max(initial=0.0) <= STRAIGHT_TOLERANCE * extent)

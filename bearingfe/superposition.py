@@ -33,6 +33,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 import skfem
+from skfem.quadrature import get_quadrature
+from skfem.refdom import RefLine
 
 from .film import Film
 from . import forms
@@ -96,7 +98,7 @@ class Operators:
     inlet: np.ndarray
     interior: np.ndarray
     flow_groups: Mapping[str, tuple[np.ndarray, np.ndarray]]
-    facet_groups: Mapping[str, np.ndarray]  # facets of the outflow groups that share corner dofs
+    facet_groups: Mapping[str, np.ndarray]  # per outflow group, its facets at the corner dofs it shares
     pocket_moments: np.ndarray  # (area, int cos phi, int sin phi) over the pockets
     phi_range: tuple[float, float]
     eigen_bound: float  # lower bound of the first Dirichlet eigenvalue
@@ -141,12 +143,22 @@ class Operators:
         return self._get("compiled", lambda: compile_operator(self))
 
     @property
+    def corner_basis(self) -> tuple[skfem.FacetBasis, Mapping[str, slice]]:
+        """One facet basis over the facets of all :attr:`facet_groups` (in their order) and, per
+        group, the slice of its facets in it (for the compiled corner fluxes)."""
+        def build():
+            names = list(self.facet_groups)
+            ends = np.cumsum([0] + [len(self.facet_groups[n]) for n in names])
+            facets = np.concatenate([self.facet_groups[n] for n in names])
+            fb = _facet_basis(self.basis, facets, _intorder(self.element))
+            return fb, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
+        return self._get("corner_basis", build)
+
+    @property
     def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
         """Facet bases of the outflow groups that share corner dofs (for the flows)."""
-        order = 2 if self.element == "P2" else 1
         return self._get("facet_bases", lambda: MappingProxyType({
-            n: skfem.FacetBasis(self.mesh.mesh, self.basis.elem, mapping=mapping(self.mesh.mesh), facets=f,
-                                intorder=2 * order + 2)
+            n: _facet_basis(self.basis, f, _intorder(self.element))
             for n, f in self.facet_groups.items()}))
 
 
@@ -168,11 +180,15 @@ def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
     return mesh._cache[key]
 
 
+def _intorder(element: str) -> int:
+    """Quadrature order of the cell and facet integrals: ``2 k + 2`` for elements of degree ``k``."""
+    return 6 if element == "P2" else 4
+
+
 def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     start = time.perf_counter()
     m = mesh.mesh
-    order = 2 if element == "P2" else 1
-    basis = skfem.Basis(m, ELEMENTS[element](), mapping=mapping(m), intorder=2 * order + 2)
+    basis = skfem.Basis(m, ELEMENTS[element](), mapping=mapping(m), intorder=_intorder(element))
     bnd = mesh.boundaries
     if "outer" not in bnd:
         raise ValueError("mesh has no boundary named 'outer'")
@@ -182,7 +198,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     interior = np.setdiff1d(np.arange(basis.N), fixed)
     names = [n for n in ("side", "arc_start", "arc_end") if n in bnd] or ["outer"]
     groups = _flow_groups(basis, bnd, names)
-    facet_groups = {n: bnd[n] for n in names} if len(names) > 1 else {}
+    facet_groups = _corner_facets(m, basis, bnd, groups) if len(names) > 1 else {}
     if inlet.size:
         groups["inlet"] = (inlet, np.ones(inlet.size))
     xy = m.p
@@ -193,7 +209,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         mesh=mesh, element=element, basis=basis,
         outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
         facet_groups=MappingProxyType(facet_groups),
-        pocket_moments=_pocket_moments(m, bnd.get("inlet"), element),
+        pocket_moments=_pocket_moments(basis, bnd.get("inlet")),
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
 
@@ -206,7 +222,46 @@ def _flow_groups(basis, bnd, names) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     return {n: (d, 1.0 / count[d]) for n, d in dofs.items()}
 
 
-def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
+def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
+    """Per outflow group, its facets next to the dofs it shares with another group (the corners
+    of the outline): where the direct facet fluxes that split a corner dof's flow are non-zero.
+
+    A vertex dof's basis function vanishes on the facets away from its vertex, so a group's
+    facets that do not touch a shared vertex add nothing to those fluxes. If a shared dof is not
+    a vertex dof, all the group's facets are kept."""
+    shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()] or [np.zeros(0, np.int64)]))
+    vertex_dofs = np.asarray(basis.nodal_dofs)
+    if vertex_dofs.shape[0] != 1 or not np.isin(shared, vertex_dofs[0]).all():
+        return {n: bnd[n] for n in groups}
+    at_shared = np.zeros(m.nvertices, dtype=bool)
+    owner = np.full(basis.N, -1, dtype=np.int64)
+    owner[vertex_dofs[0]] = np.arange(vertex_dofs.shape[1])
+    at_shared[owner[shared]] = True
+    out = {}
+    for n in groups:
+        f = np.asarray(bnd[n])
+        near = f[at_shared[m.facets[:, f]].any(axis=0)]
+        if near.size:  # a group without shared dofs needs no facet fluxes
+            out[n] = near
+    return out
+
+
+#: Gauss-Legendre rules on the reference facet by integration order, tabulated once (scikit-fem
+#: recomputes them for every facet basis; they are constants).
+_LINE_RULES = {k: get_quadrature(RefLine, k) for k in (4, 6, 8)}
+
+
+def _facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> skfem.FacetBasis:
+    """A facet basis of ``basis``'s element and map on ``facets`` (its dof numbering and a tabulated
+    quadrature rule: the same basis scikit-fem would build, without recomputing either)."""
+    if basis.mesh.brefdom is not RefLine or intorder not in _LINE_RULES:
+        return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                                intorder=intorder)
+    return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                            quadrature=_LINE_RULES[intorder])
+
+
+def _pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """Area and first trigonometric moments of the pocket regions.
 
     The pockets are holes in the mesh, so their integrals come from the
@@ -217,7 +272,7 @@ def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    fb = skfem.FacetBasis(m, skfem.ElementTriP1(), mapping=mapping(m), facets=inlet_facets, intorder=8)
+    fb = _facet_basis(basis, inlet_facets, 8)  # the integrands need only the points, normals and weights
     phi = np.array(fb.global_coordinates())[0]
     nphi = np.array(fb.normals)[0]
     dx = fb.dx
