@@ -16,7 +16,7 @@ over the arc ``psi in [a1, a2]`` (``x = r sin psi``, ``y = r cos psi``) and
 the back, extruded over ``|z| <= half_width``; an optional lining (the layer
 ``r <= 1 + lining``) as its own volume; the seat split off the back by the
 cylinder ``x^2 + z^2 <= seat^2`` about the plunger axis ``y``. The tetrahedra
-are graded from ``film_size`` on the bore to ``size``. Physical groups:
+are graded from ``film_size`` on the bore and on the seat's rim to ``size``. Physical groups:
 volumes ``backing`` and ``lining``, surfaces ``film`` (the bore) and ``seat``.
 It writes the nodes and elements as JSON (``out``).
 """
@@ -196,15 +196,24 @@ def _shoe_geometry(gmsh, g: dict) -> None:
         raise ValueError(f"the shoe's film face ({len(film)}) or seat ({len(seats)}) was not found")
     gmsh.model.addPhysicalGroup(2, film, name="film")
     gmsh.model.addPhysicalGroup(2, seats, name="seat")
-    distance = gmsh.model.mesh.field.add("Distance")
-    gmsh.model.mesh.field.setNumbers(distance, "SurfacesList", film)
-    threshold = gmsh.model.mesh.field.add("Threshold")
-    gmsh.model.mesh.field.setNumber(threshold, "InField", distance)
-    gmsh.model.mesh.field.setNumber(threshold, "SizeMin", float(g["film_size"]))
-    gmsh.model.mesh.field.setNumber(threshold, "SizeMax", float(g["size"]))
-    gmsh.model.mesh.field.setNumber(threshold, "DistMin", 0.0)
-    gmsh.model.mesh.field.setNumber(threshold, "DistMax", float(g["grading"]))
-    gmsh.model.mesh.field.setAsBackgroundMesh(threshold)
+    fields = []
+    # graded from film_size on the film face, and on the seat's rim (where the hold's stresses concentrate)
+    rims = [abs(c) for _, c in gmsh.model.getBoundary([(2, k) for k in seats], combined=True, oriented=False)]
+    for dim, tags in ((2, film), (1, rims if seat > 0 else [])):
+        if not tags:
+            continue
+        distance = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(distance, "SurfacesList" if dim == 2 else "CurvesList", tags)
+        threshold = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(threshold, "InField", distance)
+        gmsh.model.mesh.field.setNumber(threshold, "SizeMin", float(g["film_size"]))
+        gmsh.model.mesh.field.setNumber(threshold, "SizeMax", float(g["size"]))
+        gmsh.model.mesh.field.setNumber(threshold, "DistMin", 0.0)
+        gmsh.model.mesh.field.setNumber(threshold, "DistMax", float(g["grading"]))
+        fields.append(threshold)
+    smallest = gmsh.model.mesh.field.add("Min")
+    gmsh.model.mesh.field.setNumbers(smallest, "FieldsList", fields)
+    gmsh.model.mesh.field.setAsBackgroundMesh(smallest)
     for name in ("Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature", "Mesh.MeshSizeExtendFromBoundary"):
         gmsh.option.setNumber(name, 0)
     gmsh.option.setNumber("Mesh.MeshSizeMax", float(g["size"]))

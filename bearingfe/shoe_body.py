@@ -7,7 +7,7 @@ with the eccentric's axis as the ``z`` axis and the plunger axis as ``y``,
 the film point ``(psi, z)`` is ``(sin psi, cos psi, z)``. gmsh (OpenCASCADE)
 meshes the body with tetrahedra in a confined child process
 (:func:`bearingfe.geofiles.run_gmsh_worker`, the same sandbox as ``.geo``
-files), graded from ``film_size`` on the bore to ``size`` behind it; the
+files), graded from ``film_size`` on the bore and on the seat's rim to ``size`` elsewhere; the
 seat is a disc of the back about the plunger axis, split off by the mesh.
 
 Linear elasticity (P1 or P2 tetrahedra, scikit-fem; a lining as its own
@@ -58,14 +58,14 @@ import skfem
 from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad, trace
 
-from .elastic import Compliance, combined_modulus, half_space
+from .elastic import Compliance, check_dense_size, combined_modulus, half_space
 from .geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
 from .machines import Material, ShoeBody
 from .meshing import SupportMesh
 from .scales import Scale
 from .superposition import operators
 
-__all__ = ["ShoeMesh", "mesh_shoe", "shoe_compliance", "BODY_ORDERS"]
+__all__ = ["ShoeMesh", "mesh_shoe", "shoe_compliance", "condense", "overlay", "BODY_ORDERS"]
 
 #: Polynomial orders of the body's tetrahedra.
 BODY_ORDERS = (1, 2)
@@ -143,11 +143,11 @@ def _checked_geometry(surface, radius: float, body: ShoeBody, margin: float,
     return a1, a2, hw, t, seat
 
 
-def _estimated_tets(a1: float, a2: float, hw: float, t: float, size: float, film_size: float,
+def _estimated_tets(a1: float, a2: float, hw: float, t: float, seat: float, size: float, film_size: float,
                     grading: float) -> float:
     """Tetrahedra of a mesh graded from ``film_size`` over ``grading`` to ``size`` (regular tets)."""
     volume = (math.sin(a2) - math.sin(a1) + 2 * t) * (t + 1 - math.cos(max(abs(a1), abs(a2)))) * 2 * hw
-    near = min(volume, (a2 - a1) * 2 * hw * grading)
+    near = min(volume, (a2 - a1) * 2 * hw * grading + 2 * math.pi * seat * math.pi * grading**2 / 2)
     regular = lambda h: h**3 / (6 * math.sqrt(2))  # noqa: E731
     return near / regular(film_size) + max(volume - near, 0.0) / regular(size)
 
@@ -167,7 +167,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
     size : float
         Element size away from the film face [R0], > 0.
     film_size : float, optional
-        Element size on the film face [R0], > 0 (default ``size``).
+        Element size on the film face and the seat's rim [R0], > 0 (default ``size``).
     grading : float, optional
         Distance from the film face over which the size grows to ``size`` [R0]
         (default half the thickness).
@@ -199,7 +199,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
     size = _positive("size", size)
     film_size = size if film_size is None else _positive("film_size", film_size)
     grading = t / 2 if grading is None else _positive("grading", grading)
-    estimate = _estimated_tets(a1, a2, hw, t, size, film_size, grading)
+    estimate = _estimated_tets(a1, a2, hw, t, seat, size, film_size, grading)
     check_element_count(estimate, max_elements, what=f"the shoe body with size = {size:g}, film_size = "
                                                      f"{film_size:g} (tetrahedra)")
     seconds = geo_timeout_limit(timeout)
@@ -494,6 +494,13 @@ def shoe_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, body: ShoeB
     Compliance
         ``model = "shoe"``; ``matrix`` [c per unit pressure] with
         ``M @ matrix`` symmetric (``M`` the film mass matrix).
+
+    Raises
+    ------
+    ValueError
+        A parameter out of range (named); see also :func:`mesh_shoe`.
+    LimitError
+        More film dofs than the ``compliance`` limit (:func:`bearingfe.elastic.check_dense_size`).
     """
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
@@ -505,6 +512,7 @@ def shoe_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, body: ShoeB
         raise ValueError(f"order must be one of {BODY_ORDERS} (body tetrahedra), got {order!r}")
     start = time.perf_counter()
     ops = operators(mesh, element)  # checks the element
+    check_dense_size(ops.basis.N)
     film = mesh.size if film_size is None else film_size
     body_mesh = mesh_shoe(mesh.surface, scale.radius, body, 2 * film if size is None else size,
                           film_size=film, margin=margin, flat_film=flat_film, timeout=timeout,

@@ -23,3 +23,12 @@ def test_love_numbers_recomputed():
     for point in ("centre", "corner"):
         assert now[point]["computed_um"] == pytest.approx(data[point]["computed_um"], rel=1e-12)
         assert now[point]["relative_error"] < 1e-10
+
+
+def test_real_shoe_part_describes_the_shipped_shoe():
+    # the real-shoe numbers were computed for the shoe body the machine file describes now
+    data = json.loads((DOCS / "elastic.json").read_text())["shoe"]
+    body = bf.load_mechanism(DOCS.parent / "mechanisms" / "eccentric_pump.toml").shoe_body
+    assert data["body"] == {"thickness_mm": pytest.approx(body.thickness * 1e3), "back": body.back,
+                            "seat": body.seat, "seat_radius_mm": pytest.approx(body.seat_radius * 1e3)}
+    assert data["shoe_ratio"] == pytest.approx(data["pocket"]["shoe_um"] / data["plain"]["shoe_um"], rel=1e-12)

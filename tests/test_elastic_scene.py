@@ -101,3 +101,39 @@ def test_deflection_picture_needs_the_elastic_run(tmp_path):
     data, label = load_scene(bad)
     with pytest.raises(SceneError, match=r"\[elastic\] model: must be one of 'half-space', 'block', 'shoe'"):
         pump_settings(data, label, tmp_path)
+
+
+def test_film_ratios_need_completed_runs_of_their_own_pair():
+    """The rigid ratio pocket/plain needs the two rigid runs completed, the elastic ratio the two elastic
+    runs: a stopped elastic run (its smallest film is where it stopped) leaves the rigid ratio standing."""
+    from types import SimpleNamespace
+
+    from bearingfe.scene_pump import _film_ratio
+
+    done = SimpleNamespace(status="completed", smallest_film=9e-6)
+    plain = SimpleNamespace(status="completed", smallest_film=6e-6)
+    stopped = SimpleNamespace(status="no-equilibrium", smallest_film=1e-6)
+    assert _film_ratio(done, plain, "") == (1.5, (1.5, "-"))
+    ratio, row = _film_ratio(done, stopped, "_elastic")
+    assert ratio is None and row == ("not computed: pocket_elastic completed, plain_elastic no-equilibrium", "")
+
+
+def test_pump_scene_on_the_real_shoe_body(tmp_path):
+    # model = "shoe": the scene builds the machine file's shoe body (bearingfe.shoe_body) and runs the
+    # squeeze model on it; the same run through the API gives the same smallest film (deterministic)
+    import bearingfe as bf
+    from bearingfe.elastic_transient import simulate_elastic
+    from bearingfe.shoe_body import shoe_compliance
+
+    path = _scene(tmp_path, pictures='["trajectory"]', plain="false")
+    path.write_text(path.read_text().replace("[elastic]\nenabled = true", '[elastic]\nenabled = true\nmodel = "shoe"'))
+    out = tmp_path / "out"
+    assert main(["run", str(path), "--out", str(out), "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["elastic"]["model"] == "shoe"
+    pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    mesh = bf.transient.pump_mesh(pump, 0.3, order=1)
+    C = shoe_compliance(mesh, pump.scale, pump.shoe_material, pump.shoe_body, counterpart=pump.eccentric_material,
+                        element="P1")
+    run = simulate_elastic(pump, C, 0.1, start="steady", rtol=1e-6)
+    assert summary["results"]["pocket_elastic"]["smallest_film_m"] == pytest.approx(run.smallest_film, rel=1e-9)

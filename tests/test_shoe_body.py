@@ -178,3 +178,17 @@ def test_the_shipped_pump_describes_its_shoe():
                                                                  "mechanisms/eccentric_pump.toml"))
     assert pump.shoe_body == ShoeBody(0.015, back="flat", seat="frictionless", seat_radius=0.0175)
     assert pump.shoe_thickness == 0.015
+
+
+def test_machine_file_lining_and_concentric_back(tmp_path):
+    # [shoe.lining] and back = "concentric" reach the ShoeBody with their SI values
+    base = open(bf.mechanism_files.__file__.replace("bearingfe/mechanism_files.py",
+                                                    "mechanisms/eccentric_pump.toml")).read()
+    text = base.replace('back = "flat"', 'back = "concentric"', 1).replace(
+        "[shoe.seat]", '[shoe.lining]\nthickness = 0.002\nname = "bronze"\nyoungs_modulus = 110e9\n'
+                       "poisson_ratio = 0.34\n\n[shoe.seat]", 1)
+    path = tmp_path / "pump.toml"
+    path.write_text(text)
+    body = bf.load_mechanism(path).shoe_body
+    assert body == ShoeBody(0.015, back="concentric", seat="frictionless", seat_radius=0.0175,
+                            lining=Material("bronze", 110e9, poisson_ratio=0.34), lining_thickness=0.002)
