@@ -8,6 +8,7 @@ processes and Dask workers.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,6 +24,13 @@ __all__ = ["BASES", "RUNS", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "
 
 
 # -- a cheap static case (built on the core) ----------------------------------
+
+@functools.lru_cache(maxsize=1)
+def _default_shoe_surface() -> Surface:
+    """The default shoe of :class:`ShoeCase`, built on first use (its layout checks take ~50 ms,
+    which a class-level default spent at every ``import bearingfe``)."""
+    return Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=(Circle((0.0, 0.0), 0.12),))
+
 
 @dataclass(frozen=True)
 class ShoeCase:
@@ -43,7 +51,7 @@ class ShoeCase:
     element : {"P1", "P2"}
     """
 
-    surface: Surface = Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=(Circle((0.0, 0.0), 0.12),))
+    surface: Surface = field(default_factory=lambda: _default_shoe_surface())
     gamma: float = 0.6
     phi0: float = math.pi
     inlet_pressure: float = 1.0
