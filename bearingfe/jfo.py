@@ -287,6 +287,7 @@ def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, s
     return h_q, inv_q, h3_q
 
 
+
 def _rate(film: Film, phi: np.ndarray, z: np.ndarray, squeeze) -> np.ndarray:
     if squeeze[0] == 0.0 and squeeze[1] == 0.0:
         return np.zeros_like(phi)
@@ -390,6 +391,64 @@ def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
     return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
 
 
+#: Largest number of switched unknowns solved by a low-rank update of the last factorization
+#: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
+LOW_RANK_SWITCHES = 24
+
+
+class _SetSolver:
+    """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
+
+    A set that differs from the last factorized one in ``k <= LOW_RANK_SWITCHES`` columns is solved
+    by Sherman-Morrison-Woodbury on that factorization (``k`` extra triangular solves, cached per
+    column while the factorization lives), with the residual checked against a fresh factorization's
+    accuracy; larger changes, or a residual that is not at round-off, refactorize.
+    """
+
+    def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize):
+        self.K, self.G, self.factorize = K.tocsc(), G.tocsc(), factorize
+        self.solve = None
+        self.base = None
+        self.z: dict[int, np.ndarray] = {}
+        self.factorizations = 0
+
+    def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
+        return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
+
+    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix) -> None:
+        self.solve, self.base, self.z = self.factorize(M), cav.copy(), {}
+        self.factorizations += 1
+
+    def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        M = self.matrix(cav)
+        if self.solve is not None:
+            J = np.flatnonzero(cav != self.base)
+            if 0 < J.size <= LOW_RANK_SWITCHES:
+                y = self._woodbury(J, rhs)
+                if y is not None and np.abs(M @ y - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
+                    return y
+            elif J.size == 0:
+                return np.asarray(self.solve(rhs), float)
+        self._refactorize(cav, M)
+        return np.asarray(self.solve(rhs), float)
+
+    def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+        new = [j for j in J if j not in self.z]
+        if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
+            sign = np.where(self.base[new], -1.0, 1.0)
+            U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
+            Z = np.asarray(self.solve(U), float).reshape(U.shape)
+            for k, j in enumerate(new):
+                self.z[j] = Z[:, k]
+        Z = np.column_stack([self.z[j] for j in J])
+        w = np.asarray(self.solve(rhs), float)
+        C = np.eye(J.size) + Z[J, :]
+        try:
+            return w - Z @ np.linalg.solve(C, w[J])
+        except np.linalg.LinAlgError:
+            return None
+
+
 def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
@@ -398,11 +457,11 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
+    solver = _SetSolver(KII, GII, factorize)
     for it in range(1, max_iterations + 1):
         full = ~cav
-        M = (KII @ sp.diags(full.astype(float)) + GII @ sp.diags(cav.astype(float))).tocsc()
         rhs = -b - GII @ full.astype(float)
-        y = np.asarray(factorize(M)(rhs), float)
+        y = solver(cav, rhs)
         if not np.all(np.isfinite(y)):
             raise JFOError("the linear solve of the JFO active-set step returned non-finite values "
                            "(singular system: is every film region connected to a fixed-pressure edge?)")

@@ -15,7 +15,10 @@ Full bearing (``JournalBearing(pads=None)``): the Raimondi-Boyd 360-degree
 bearing, with ``p = 0`` at the axial edges and along the line of largest
 film, Swift-Stieber cavitation elsewhere. It is meshed once in the frame of
 the line of centres (arc ``(0, 2 pi)`` from the largest film), where the
-answer depends on ``eps`` only. Partial arcs and several pads
+answer depends on ``eps`` only (by gmsh, or as a tensor-product mesh of the
+unwrapped film, :func:`structured_journal_mesh`, which :func:`equilibrium`
+can refine locally at the rupture front: ``rupture_size``, since the
+dynamic coefficients' error comes from there). Partial arcs and several pads
 (``pads=((start, end), ...)``) are meshed in the bearing frame, with axial
 supply grooves as pockets at the supply pressure.
 
@@ -379,15 +382,17 @@ def _diameters(m: skfem.Mesh) -> np.ndarray:
 
 
 def _front_elements(res: ReynoldsResult) -> np.ndarray:
-    """Elements holding the discrete rupture front: a ruptured dof, a dof with a positive pressure and a
-    vertex shared with an element of positive pressure at every dof (P2 leaves isolated small positive
-    values, of order 1e-5 of the largest pressure, behind the front; this skips them)."""
+    """Elements holding the discrete rupture front: a ruptured dof and a positive pressure, with a vertex
+    shared with a full-film element (a positive pressure and no ruptured dof). P2 leaves isolated small
+    positive values (of order 1e-5 of the largest pressure) behind the front, among ruptured dofs only;
+    the last condition skips them."""
     dofs = res.basis.element_dofs
-    p = np.asarray(res.pressure)[dofs]
+    positive = np.any(np.asarray(res.pressure)[dofs] > 0, axis=0)
+    ruptured = np.any(res.cavitated[dofs], axis=0)
     t = res.basis.mesh.t[:3]
     full = np.zeros(res.basis.mesh.nvertices, bool)
-    full[t[:, np.all(p > 0, axis=0)].ravel()] = True
-    return np.any(res.cavitated[dofs], axis=0) & np.any(p > 0, axis=0) & np.any(full[t], axis=0)
+    full[t[:, positive & ~ruptured].ravel()] = True
+    return ruptured & positive & np.any(full[t], axis=0)
 
 
 # -- one journal position --------------------------------------------------------
@@ -765,11 +770,11 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         linearized on the converged rupture set; their error is set by how
         well the mesh resolves the front (the pressure gradient has a kink
         there), while that of the position is set by ``size``. Use it with
-        ``element="P2"``: on a plain ``L/D = 0.5`` bearing at eps 0.6,
-        ``size = 0.3, rupture_size = 0.05`` puts eps and the eight
-        coefficients within 1e-3 of a converged reference in a fraction of
-        the time of a uniform mesh of that accuracy (docs/benchmarks.md,
-        part ``journal``; measured errors there).
+        ``element="P2"``: ``size = 0.2, rupture_size = 0.04`` put eps and
+        the eight coefficients within 5e-4 of converged references on plain
+        bearings of L/D 0.25 and 0.5 at eps 0.3 to 0.8, many times faster
+        than a uniform mesh of that accuracy (docs/benchmarks.md, part
+        ``journal``: errors and times of other settings there).
 
     Raises
     ------
@@ -864,8 +869,8 @@ def _check_structured(bearing: JournalBearing, structured, rupture_size, size, c
     if not structured or cavitation != "reynolds":
         raise ValueError("rupture_size needs structured=True and cavitation='reynolds' (it refines a "
                          "structured mesh around the Swift-Stieber rupture front)")
-    if not (isinstance(rupture_size, (int, float)) and math.isfinite(rupture_size)
-            and 0 < rupture_size <= size):
+    if not (isinstance(rupture_size, (int, float)) and not isinstance(rupture_size, bool)
+            and math.isfinite(rupture_size) and 0 < rupture_size <= size):
         raise ValueError(f"rupture_size must be in (0, size = {size}], got {rupture_size!r}")
 
 
@@ -917,9 +922,9 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
 
 
 #: Rupture refinement: elements within this many front-element diameters of the front are split ...
-RUPTURE_REACH = 1.0
+RUPTURE_REACH = 0.75
 #: ... this many times per level (one solve per level).
-RUPTURE_SPLITS = 1
+RUPTURE_SPLITS = 2
 
 
 def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State", eps: float, rupture_size: float,

@@ -217,9 +217,11 @@ def _thinnest(pump, mesh, traj, run: dict, compliance=None) -> dict:
     d = res.basis.doflocs
     h = np.asarray(res.film.thickness(d[0], d[1]))
     at = int(np.argmin(h))
+    on_edge = bool(np.isin(at, res.basis.get_dofs().all()))  # a boundary: the pressure there is prescribed
     return {"result": res, "beta_deg": float(np.degrees(traj.beta[k]) % 360.0),
             "film_um": sc.to_thickness(res.h_min) * 1e6,
             "pressure_at_thinnest_MPa": sc.to_pressure(float(res.pressure[at])) / 1e6,
+            "thinnest_on_edge": on_edge,
             "peak_pressure_MPa": sc.to_pressure(res.max_pressure) / 1e6,
             "deflection_um": sc.to_thickness(res.max_deflection) * 1e6}
 
@@ -253,6 +255,16 @@ def _draw(name: str, pump, runs: dict, states: dict, title: str, out_dir: Path) 
     return written
 
 
+def _film_ratio(pocket, plain, suffix: str) -> tuple[float | None, tuple]:
+    """Smallest film pocket/plain, or ``None`` and the reason when a run did not complete (the smallest
+    film of a stopped run is where it stopped, not a film of the cycle)."""
+    statuses = {f"pocket{suffix}": pocket.status, f"plain{suffix}": plain.status}
+    if all(status == "completed" for status in statuses.values()):
+        ratio = pocket.smallest_film / plain.smallest_film
+        return ratio, (ratio, "-")
+    return None, ("not computed: " + ", ".join(f"{n} {st}" for n, st in statuses.items()), "")
+
+
 def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, scale, states: dict) -> dict:
     table = []
     results = {}
@@ -275,23 +287,16 @@ def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, s
             results[name]["largest_deflection_m"] = largest
     for key, st in states.items():
         table += [(f"{key}: thinnest film at beta", st["beta_deg"], "deg"),
-                  (f"{key}: pressure at the thinnest film", st["pressure_at_thinnest_MPa"], "MPa"),
+                  (f"{key}: pressure at the thinnest film"
+                   + (" (on a boundary of the film: its prescribed pressure)" if st["thinnest_on_edge"] else ""),
+                   st["pressure_at_thinnest_MPa"], "MPa"),
                   (f"{key}: peak pressure at that state", st["peak_pressure_MPa"], "MPa")]
         results[key]["thinnest_state"] = {k: v for k, v in st.items() if k != "result"}
-    if "plain" in runs:
-        statuses = {name: traj.status for name, traj in runs.items()}
-        if all(status == "completed" for status in statuses.values()):
-            ratio = runs["pocket"].smallest_film / runs["plain"].smallest_film
-            table.append(("smallest film ratio pocket/plain", ratio, "-"))
-        else:  # the smallest film of a ruptured run is where it stopped, not a film of the cycle
-            ratio = None
-            table.append(("smallest film ratio pocket/plain",
-                          "not computed: " + ", ".join(f"{n} {st}" for n, st in statuses.items()), ""))
-        results["film_ratio"] = ratio
-    if "plain_elastic" in runs:
-        ratio = runs["pocket_elastic"].smallest_film / runs["plain_elastic"].smallest_film
-        table.append(("smallest film ratio pocket/plain, elastic support", ratio, "-"))
-        results["film_ratio_elastic"] = ratio
+    for suffix, what in (("", ""), ("_elastic", ", elastic support")):
+        if f"plain{suffix}" in runs:
+            ratio, row = _film_ratio(runs[f"pocket{suffix}"], runs[f"plain{suffix}"], suffix)
+            table.append((f"smallest film ratio pocket/plain{what}", *row))
+            results[f"film_ratio{suffix}"] = ratio
     table.append(("seconds", seconds, "s"))
     return {"kind": "pump", "title": s["title"], "mechanism": str(s["mechanism"]), "run": s["run"],
             "elastic": s["elastic"], "results": results, "table": table}

@@ -33,6 +33,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 import skfem
+from skfem.quadrature import get_quadrature
+from skfem.refdom import RefLine
 
 from .film import Film
 from . import forms
@@ -148,8 +150,7 @@ class Operators:
             names = list(self.facet_groups)
             ends = np.cumsum([0] + [len(self.facet_groups[n]) for n in names])
             facets = np.concatenate([self.facet_groups[n] for n in names])
-            fb = skfem.FacetBasis(self.mesh.mesh, self.basis.elem, mapping=mapping(self.mesh.mesh), facets=facets,
-                                  intorder=_intorder(self.element))
+            fb = _facet_basis(self.basis, facets, _intorder(self.element))
             return fb, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
         return self._get("corner_basis", build)
 
@@ -157,8 +158,7 @@ class Operators:
     def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
         """Facet bases of the outflow groups that share corner dofs (for the flows)."""
         return self._get("facet_bases", lambda: MappingProxyType({
-            n: skfem.FacetBasis(self.mesh.mesh, self.basis.elem, mapping=mapping(self.mesh.mesh), facets=f,
-                                intorder=_intorder(self.element))
+            n: _facet_basis(self.basis, f, _intorder(self.element))
             for n, f in self.facet_groups.items()}))
 
 
@@ -209,7 +209,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         mesh=mesh, element=element, basis=basis,
         outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
         facet_groups=MappingProxyType(facet_groups),
-        pocket_moments=_pocket_moments(m, bnd.get("inlet"), element),
+        pocket_moments=_pocket_moments(basis, bnd.get("inlet")),
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
 
@@ -246,7 +246,22 @@ def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
     return out
 
 
-def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
+#: Gauss-Legendre rules on the reference facet by integration order, tabulated once (scikit-fem
+#: recomputes them for every facet basis; they are constants).
+_LINE_RULES = {k: get_quadrature(RefLine, k) for k in (4, 6, 8)}
+
+
+def _facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> skfem.FacetBasis:
+    """A facet basis of ``basis``'s element and map on ``facets`` (its dof numbering and a tabulated
+    quadrature rule: the same basis scikit-fem would build, without recomputing either)."""
+    if basis.mesh.brefdom is not RefLine or intorder not in _LINE_RULES:
+        return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                                intorder=intorder)
+    return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                            quadrature=_LINE_RULES[intorder])
+
+
+def _pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """Area and first trigonometric moments of the pocket regions.
 
     The pockets are holes in the mesh, so their integrals come from the
@@ -257,7 +272,7 @@ def _pocket_moments(m: skfem.Mesh, inlet_facets, element: str) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    fb = skfem.FacetBasis(m, skfem.ElementTriP1(), mapping=mapping(m), facets=inlet_facets, intorder=8)
+    fb = _facet_basis(basis, inlet_facets, 8)  # the integrands need only the points, normals and weights
     phi = np.array(fb.global_coordinates())[0]
     nphi = np.array(fb.normals)[0]
     dx = fb.dx

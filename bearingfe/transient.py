@@ -86,6 +86,10 @@ class _FilmClosed(Exception):
     """A trial state of the integrator has h <= 0 somewhere on the surface."""
 
 
+class _NoElasticBalance(Exception):
+    """The coupled elastic film found no deflection carrying the load at a trial state (message: where, why)."""
+
+
 # -- mesh and hydrostatic balance -------------------------------------------------------
 
 def pump_mesh(pump: EccentricPump, size: float = 0.08, **kwargs) -> SupportMesh:
@@ -213,7 +217,8 @@ class _Model:
         except ElasticError as exc:
             if "h_min" in str(exc):
                 raise _FilmClosed((gamma, delta)) from None
-            raise RuntimeError(f"elastic film at beta = {beta:.4f} rad, gamma = {gamma:.4g}: {exc}") from None
+            raise _NoElasticBalance(f"no equilibrium of the elastic film at beta = {beta:.4f} rad "
+                                    f"({math.degrees(beta) % 360:.1f} deg), gamma = {gamma:.4g}: {exc}") from None
         self.seconds += time.perf_counter() - start
         self.factorizations += found.iterations
         self.jacobians += found.jacobians
@@ -327,10 +332,17 @@ class Trajectory:
     mass_balance : ndarray
         ``inlet - side - arc - squeeze`` [m^3/s].
     status : str
-        ``"completed"`` or ``"ruptured"``.
+        ``"completed"``, ``"ruptured"`` (the film reached ``min_film`` or
+        closed), or ``"no-equilibrium"`` (on an elastic support, the coupled
+        film found no deflection that carries the load: the support is too
+        soft for it there, or the quasi-static model has no solution; the
+        message says where and why). A run that did not complete ends at its
+        last accepted state.
     message : str
     rupture_beta : float
-        Shaft angle where the film reached ``min_film`` (NaN if it did not).
+        Shaft angle where a run that did not complete stopped (the film
+        reached ``min_film`` or closed, or no elastic equilibrium); NaN if it
+        completed.
     start : tuple of float
         Initial ``(gamma, delta)``.
     periodic_iterations : int
@@ -433,6 +445,10 @@ def _integrate(model: _Model, beta0: float, y0, beta1: float, *, method: str, rt
             status, rupture = "ruptured", float(t_old)
             message = (f"film closed (h <= 0) in a trial step after beta = {t_old:.4f} rad "
                        f"({math.degrees(t_old) % 360:.1f} deg); stopped at the last accepted state")
+            break
+        except _NoElasticBalance as exc:
+            status, rupture = "no-equilibrium", float(t_old)
+            message = f"{exc}; stopped at the last accepted state (beta = {t_old:.4f} rad)"
             break
         if solver.status == "failed":
             raise RuntimeError(f"integrator {method} failed at beta = {solver.t:.4f} rad: {msg}")
@@ -841,7 +857,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     except _FilmClosed as exc:  # the dense output between accepted steps left the admissible states
         raise RuntimeError(f"between the integrator's steps the interpolated state (gamma, delta) = {exc.args[0]} "
                            f"closes the film: the steps are too coarse for rtol = {rtol:g}; use a smaller rtol "
-                           f"(default 1e-6) or max_step") from None
+                           f"or max_step") from None
     f = pump.load(betas)
     return Trajectory(
         t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=ys[:, 0], delta=ys[:, 1],

@@ -37,23 +37,28 @@ from .common import ROOT, md_table
 LENGTH_RATIO = 0.5
 EPS = 0.6
 REF_SIZE = 0.035
+STRUCTURED = "after: P2, structured, refined at the rupture front"
 SERIES = {
     "before: P1, cold cavitation starts": [dict(element="P1", warm_start=False, size=h)
                                            for h in (0.2, 0.14, 0.1, 0.08, 0.06, 0.045, 0.035)],
     "after: P1, warm-started": [dict(element="P1", size=h) for h in (0.14, 0.1, 0.08, 0.06, 0.045, 0.035)],
     "after: P2, warm-started": [dict(element="P2", size=h) for h in (0.4, 0.3, 0.2, 0.14, 0.1, 0.07)],
     # structured mesh, refined at the rupture front (equilibrium(..., structured=True, rupture_size=...))
-    "after: P2, structured, refined at the rupture front": [
+    STRUCTURED: [
         dict(element="P2", structured=True, size=h, rupture_size=r)
         for h, r in ((0.4, 0.1), (0.3, 0.1), (0.3, 0.05), (0.25, 0.05), (0.2, 0.04), (0.2, 0.02), (0.15, 0.02),
                      (0.1, 0.01))],
 }
 TARGETS = (1e-2, 1e-3)
+#: Other bearings (L/D, eps) on which the structured series is also checked against its own reference of the
+#: same kind: a setting counts for the "after" time at an error only if it reaches that error on all of them
+#: too, not by luck on the timed case.
+CHECK_CASES = ((0.25, 0.6), (0.5, 0.3), (0.5, 0.8))
 
 
-def _solve(load: float, **options):
+def _solve(load: float, bearing: JournalBearing | None = None, **options):
     _mesh.cache_clear()  # fresh meshes (and so fresh operators) for every timing
-    eq = equilibrium(JournalBearing(LENGTH_RATIO), (0.0, -load), **options)
+    eq = equilibrium(bearing or JournalBearing(LENGTH_RATIO), (0.0, -load), **options)
     return eq, dynamic_coefficients(eq)
 
 
@@ -100,8 +105,25 @@ def journal_run(quick: bool = False, log=print) -> dict:
                              newton=eq.newton_iterations, active_set=eq.active_set_iterations))
             log(f"journal {name} {rows[-1]}")
         series[name] = rows
+    checks = [] if quick else _check_cases(ref_size, log)
+    for row, options in zip(series[STRUCTURED], SERIES[STRUCTURED]):
+        row["check_errors"] = [c["errors"][_label(options)] for c in checks]
+        row["worst_error"] = max([row["error"], *row["check_errors"]])
     return dict(load=load, ref_size=ref_size, ref_eps=ref[0].eps, ref_nodes=ref[0].meshes[0].n_nodes,
-                ref_change=ref_change, series=series)
+                ref_change=ref_change, series=series, checks=checks)
+
+
+def _check_cases(ref_size: float, log) -> list[dict]:
+    """Errors of the structured series on :data:`CHECK_CASES`, each against P2 on a ``ref_size`` gmsh mesh."""
+    out = []
+    for length_ratio, eps in CHECK_CASES:
+        bearing = JournalBearing(length_ratio)
+        load = performance(bearing, eps, size=ref_size, element="P2").load
+        ref = _solve(load, bearing, size=ref_size, element="P2")
+        errors = {_label(o): _error(*_solve(load, bearing, **o), ref) for o in SERIES[STRUCTURED]}
+        out.append(dict(length_ratio=length_ratio, eps=eps, errors=errors))
+        log(f"journal check L/D {length_ratio} eps {eps}: {errors}")
+    return out
 
 
 def time_at(rows: list[dict], target: float) -> tuple[float, dict | None]:
@@ -121,16 +143,25 @@ def journal_report(res: dict) -> tuple[str, dict]:
              "below about that are not resolved. Error = max(relative eps error, max |K - K_ref| / max |K_ref|, "
              "max |C - C_ref| / max |C_ref|). Time: everything from meshing on, best of two runs.", ""]
     rows = []
+    checks = res.get("checks", [])
     for name, series in res["series"].items():
         for r in series:
             rows.append([name.split(": ")[0], r["label"], r["nodes"], r["newton"], r["active_set"], r["seconds"],
-                         r["error"], r["eps_error"], r["k_error"], r["c_error"]])
+                         r["error"], r["eps_error"], r["k_error"], r["c_error"]]
+                        + ([r["worst_error"] if "worst_error" in r else "-"] if checks else []))
+    cases = ", ".join(f"L/D {c['length_ratio']} eps {c['eps']}" for c in checks)
     lines.append(md_table(["series", "run", "nodes", "Newton steps", "active-set iterations", "s", "error",
-                           "eps error", "K error", "C error"], rows))
+                           "eps error", "K error", "C error"] + ([f"worst error, {1 + len(checks)} bearings"] if checks else []),
+                          rows))
     names = list(res["series"])
-    refined = res["series"][names[-1]]
+    refined = res["series"][STRUCTURED]
     fine = [r for r in refined if r["rupture_size"] is not None and r["rupture_size"] <= 0.05]
     facts = {}
+    if checks:
+        lines += ["", f"'Worst error, {1 + len(checks)} bearings': the largest error of the same setting on this bearing and on "
+                  f"{cases} (each against P2 on a {res['ref_size']} gmsh mesh under the load of that eps). The "
+                  "structured runs count for the 'after' time at an error only by this worst error: a setting "
+                  "that meets the error here by the luck of where the front falls on the mesh does not count."]
     lines += ["", "The linearized coefficients converge irregularly on meshes that do not resolve the rupture "
               "front (the rupture set is held fixed, and its discrete boundary jumps from node to node as the mesh "
               "changes): the error is not monotone in the mesh size, and 'time at an error' is the cheapest run "
@@ -148,7 +179,8 @@ def journal_report(res: dict) -> tuple[str, dict]:
                  f"reference ({len(fine)} runs)." if fine else ""), ""]
     for target in TARGETS:
         rows_b = res["series"][names[0]]
-        rows_a = [r for n in names[1:] for r in res["series"][n]]
+        rows_a = [dict(r, error=r.get("worst_error", r["error"]), here=r["error"])
+                  for n in names[1:] for r in res["series"][n]]
         tb, rb = time_at(rows_b, target)
         ta, ra = time_at(rows_a, target)
         bound = False
@@ -160,7 +192,9 @@ def journal_report(res: dict) -> tuple[str, dict]:
                                              after_label=ra and ra["label"], before_bound=bound)
         before = (f"not reached (finest P1 run, size {rb['size']}: {tb:.3g} s at error {rb['error']:.1e})"
                   if bound else f"{tb:.3g} s ({rb['label']})")
-        after = f"{ta:.3g} s ({ra['label']}, error {ra['error']:.1e})" if ra else "not reached"
+        after = (f"{ta:.3g} s ({ra['label']}, error {ra['here']:.1e}"
+                 + (f", worst over the {1 + len(checks)} bearings {ra['worst_error']:.1e})" if checks and "worst_error" in ra else ")")
+                 if ra else "not reached")
         ratio = tb / ta if ra else float("nan")
         lines.append(f"- error <= {target:.0e}: before {before}, after {after}"
                      + (f": {'more than ' if bound else ''}{ratio:.2g}x faster." if ra else "."))

@@ -103,6 +103,21 @@ def test_deflection_picture_needs_the_elastic_run(tmp_path):
         pump_settings(data, label, tmp_path)
 
 
+def test_film_ratios_need_completed_runs_of_their_own_pair():
+    """The rigid ratio pocket/plain needs the two rigid runs completed, the elastic ratio the two elastic
+    runs: a stopped elastic run (its smallest film is where it stopped) leaves the rigid ratio standing."""
+    from types import SimpleNamespace
+
+    from bearingfe.scene_pump import _film_ratio
+
+    done = SimpleNamespace(status="completed", smallest_film=9e-6)
+    plain = SimpleNamespace(status="completed", smallest_film=6e-6)
+    stopped = SimpleNamespace(status="no-equilibrium", smallest_film=1e-6)
+    assert _film_ratio(done, plain, "") == (1.5, (1.5, "-"))
+    ratio, row = _film_ratio(done, stopped, "_elastic")
+    assert ratio is None and row == ("not computed: pocket_elastic completed, plain_elastic no-equilibrium", "")
+
+
 def test_pump_scene_on_the_real_shoe_body(tmp_path):
     # model = "shoe": the scene builds the machine file's shoe body (bearingfe.shoe_body) and runs the
     # squeeze model on it; the same run through the API gives the same smallest film (deterministic)

@@ -106,3 +106,12 @@ def test_scatter_equals_its_sparse_matrix():
     c = np.cos(np.arange(co.dx.size))
     for scatter in (co.stiffness_scatter, co.mass_scatter):
         _close(scatter @ c, scatter.tocsr() @ c)
+
+
+def test_pocket_moments_of_a_rectangle_are_its_area_and_cosine_moments():
+    # closed form for the pocket (0.05, 0) +- (0.24, 0.2): area, int cos(phi) and int sin(phi) over it;
+    # the straight contour is integrated with the tabulated 5-point Gauss rule (exact to ~1e-13 here)
+    a, b, width = 0.05 - 0.24, 0.05 + 0.24, 0.4
+    exact = [width * (b - a), width * (np.sin(b) - np.sin(a)), width * (np.cos(a) - np.cos(b))]
+    for element in ("P1", "P2"):
+        np.testing.assert_allclose(operators(_mesh(), element).pocket_moments, exact, rtol=1e-12, atol=1e-14)

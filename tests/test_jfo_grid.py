@@ -194,3 +194,18 @@ def test_periodic_grid_carries_the_flux_across_the_seam():
         assert abs(res.mass_balance) < 1e-12 * 0.5 and abs(res.flows["side"]) < 1e-12 * 0.5
         loads.append(res.integral)
     assert loads[1] == pytest.approx(loads[0], rel=1e-9), loads
+
+
+def test_low_rank_tail_of_the_active_set_matches_fresh_factorizations(monkeypatch):
+    # the last active-set steps switch a few dofs; they are solved by Sherman-Morrison-Woodbury on the
+    # previous factorization: same sets, same iterations and the same solution to round-off
+    import bearingfe.jfo as jfo
+
+    mesh = grid_mesh(_dimpled(), 1 / 60)
+    fast = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    monkeypatch.setattr(jfo, "LOW_RANK_SWITCHES", 0)
+    slow = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert fast.iterations == slow.iterations and np.array_equal(fast.cavitated, slow.cavitated)
+    assert np.abs(fast.pressure - slow.pressure).max() < 1e-10 * np.abs(slow.pressure).max()
+    assert np.abs(fast.theta - slow.theta).max() < 1e-10
+    assert fast.cost["active_set_residual"] < 1e-12

@@ -36,7 +36,8 @@ def longest_edges(m) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def refined():
-    eq = equilibrium(BEARING, (0.0, -REF_LOAD), element="P2", structured=True, size=0.3, rupture_size=0.1)
+    # the setting the equilibrium docstring recommends
+    eq = equilibrium(BEARING, (0.0, -REF_LOAD), element="P2", structured=True, size=0.2, rupture_size=0.04)
     return eq, dynamic_coefficients(eq)
 
 
@@ -67,9 +68,9 @@ def test_rupture_refinement_meets_the_1e3_target(refined):
 
 def test_the_unrefined_structured_mesh_of_the_same_size_does_not(refined):
     # the refinement is what brings the coefficients in: the same mesh without it misses the target
-    # (measured 2.2e-3 against 4.1e-4 refined; the unrefined error is irregular in the size, 1e-3 to 2e-2)
-    eq = equilibrium(BEARING, (0.0, -REF_LOAD), element="P2", structured=True, size=0.3)
-    assert error(eq, dynamic_coefficients(eq)) > 2 * error(*refined)
+    # (measured 3.0e-3 against 3.1e-4 refined)
+    eq = equilibrium(BEARING, (0.0, -REF_LOAD), element="P2", structured=True, size=0.2)
+    assert error(eq, dynamic_coefficients(eq)) > max(1e-3, 5 * error(*refined))
     assert eq.meshes[0].n_nodes < refined[0].meshes[0].n_nodes
 
 
@@ -77,15 +78,16 @@ def test_front_lies_in_elements_no_longer_than_rupture_size(refined):
     eq, _ = refined
     res = eq.state.results[0]
     dofs = res.basis.element_dofs
-    p = np.asarray(res.pressure)[dofs]
+    positive = np.any(np.asarray(res.pressure)[dofs] > 0, axis=0)
+    ruptured = np.any(res.cavitated[dofs], axis=0)
     t = eq.meshes[0].mesh.t
     full = np.zeros(eq.meshes[0].mesh.nvertices, bool)
-    full[t[:, np.all(p > 0, axis=0)].ravel()] = True
-    front = np.any(res.cavitated[dofs], axis=0) & np.any(p > 0, axis=0) & np.any(full[t], axis=0)
+    full[t[:, positive & ~ruptured].ravel()] = True
+    front = ruptured & positive & np.any(full[t], axis=0)  # elements across the front
     edges = longest_edges(eq.meshes[0].mesh)
     assert front.sum() > 10
-    assert edges[front].max() <= 0.1 + 1e-12
-    assert edges.max() > 0.25  # refined locally only
+    assert edges[front].max() <= 0.04 + 1e-12
+    assert edges.max() > 0.2  # refined locally only
     # the refined mesh is conforming: every interior edge is shared by exactly two triangles
     m = eq.meshes[0].mesh
     assert m.f2t.shape[1] == m.facets.shape[1] and np.all(m.f2t[0] >= 0)
@@ -113,6 +115,7 @@ def test_structured_equilibrium_agrees_with_gmsh_at_equal_size():
     (dict(structured=True, rupture_size=0.5, size=0.3), "rupture_size must be in"),
     (dict(structured=True, rupture_size=0.0), "rupture_size must be in"),
     (dict(structured=True, rupture_size=float("nan")), "rupture_size must be in"),
+    (dict(structured=True, rupture_size=True), "rupture_size must be in"),
     (dict(structured=True, rupture_size=0.05, cavitation="none"), "cavitation='reynolds'"),
     (dict(structured=True, order=2), "use order=1"),
     (dict(structured="yes"), "structured must be True or False"),
