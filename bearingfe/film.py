@@ -43,6 +43,11 @@ class Film(Protocol):
     def minimum(self, phi_range: tuple[float, float]) -> float | None:
         """Exact smallest ``h`` over ``phi_range`` if known, else None."""
 
+    # Optional, not part of the protocol: ``fields_from_angles(cos_phi, sin_phi)`` returning
+    # ``(h, (dh/dphi, dh/dz), laplacian, shapes)`` at points whose angles' cosines and sines are
+    # given (:meth:`CosineFilm.fields_from_angles`); :func:`bearingfe.forms.film_at` uses it when
+    # the caller passes them, which spares the trigonometric calls of every film state.
+
 
 @dataclass(frozen=True)
 class CosineFilm:
@@ -91,6 +96,22 @@ class CosineFilm:
     def rate_shapes(self, phi, z):
         s = np.asarray(phi) - self.phi0 + 0.0 * np.asarray(z)
         return np.cos(s), self.gamma * np.sin(s)
+
+    def fields_from_angles(self, cos_phi: np.ndarray, sin_phi: np.ndarray):
+        """``h``, ``(dh/dphi, dh/dz)``, the Laplacian and the squeeze shapes from ``cos phi`` and
+        ``sin phi`` of the points (no trigonometric call: a mesh computes those once).
+
+        ``cos(phi - phi0) = cos phi cos phi0 + sin phi sin phi0`` and
+        ``sin(phi - phi0) = sin phi cos phi0 - cos phi sin phi0``, so the
+        fields equal those of :meth:`thickness` and the others to round-off.
+        Used by :func:`bearingfe.forms.film_at` when given the angles.
+        """
+        c0, s0 = math.cos(self.phi0), math.sin(self.phi0)
+        c = cos_phi * c0 + sin_phi * s0
+        s = sin_phi * c0 - cos_phi * s0
+        gs = self.gamma * s
+        gc = self.gamma * c
+        return 1.0 + gc, (-gs, np.zeros_like(c)), -gc, (c, gs)
 
     def minimum(self, phi_range: tuple[float, float]) -> float:
         """Smallest ``h`` for ``phi`` in ``phi_range`` (the thinnest point may

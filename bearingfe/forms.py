@@ -97,12 +97,21 @@ class FilmAt:
     D: np.ndarray
 
 
-def film_at(film, x: np.ndarray) -> FilmAt:
-    """Evaluate a :class:`~bearingfe.film.Film` at points ``x`` (shape ``(2, ...)``)."""
-    h = np.asarray(film.thickness(x[0], x[1]), dtype=float)
-    dh = tuple(np.asarray(g, dtype=float) for g in film.gradient(x[0], x[1]))
-    lap = np.asarray(film.laplacian(x[0], x[1]), dtype=float)
-    shapes = tuple(np.asarray(s, dtype=float) for s in film.rate_shapes(x[0], x[1]))
+def film_at(film, x: np.ndarray, angles: tuple[np.ndarray, np.ndarray] | None = None) -> FilmAt:
+    """Evaluate a :class:`~bearingfe.film.Film` at points ``x`` (shape ``(2, ...)``).
+
+    ``angles``, optional: ``(cos x[0], sin x[0])``, computed once per set of
+    points; a film with ``fields_from_angles`` (:class:`~bearingfe.film.CosineFilm`)
+    then needs no trigonometric call (same fields to round-off).
+    """
+    fast = getattr(film, "fields_from_angles", None) if angles is not None else None
+    if fast is not None:
+        h, dh, lap, shapes = fast(*angles)
+    else:
+        h = np.asarray(film.thickness(x[0], x[1]), dtype=float)
+        dh = tuple(np.asarray(g, dtype=float) for g in film.gradient(x[0], x[1]))
+        lap = np.asarray(film.laplacian(x[0], x[1]), dtype=float)
+        shapes = tuple(np.asarray(s, dtype=float) for s in film.rate_shapes(x[0], x[1]))
     if len(shapes) != 2:
         raise ValueError("film.rate_shapes must return two shapes (dh/dgamma, dh/dphi0)")
     with np.errstate(divide="ignore", invalid="ignore"):  # h <= 0 is reported by the caller

@@ -530,9 +530,10 @@ def _box_fill(mesh: SupportMesh, film: Film, system: _System, theta: np.ndarray,
               samples: int = 8) -> tuple[float, float]:
     """Shear deficit ``int (1 - fill)/h`` and area ``int [fill < 1]`` of the emptied box cells of a grid.
 
-    In a cavity the pressure is uniform, so the oil flux ``theta h`` is constant along ``phi``: inside
-    the box of an emptied node the fill is ``min(1, theta_i hbar_i / h)``, with ``theta_i hbar_i`` the
-    flux through its downstream face. A box that straddles a rupture step thus keeps the full film on
+    In a steady cavity the pressure is uniform, so the oil flux ``theta h`` is constant along ``phi``:
+    inside the box of an emptied node the fill is ``min(1, theta_i hbar_i / h)``, with ``theta_i hbar_i``
+    the flux through its downstream face (with a squeeze or a time step, the same rule neglects the
+    change of the flux across one box). A box that straddles a rupture step thus keeps the full film on
     its upstream part (a box-wise ``theta_i`` would starve it, a bias of half a cell along every rupture
     line). Integrated by the midpoint rule on ``samples**2`` points per box.
     """

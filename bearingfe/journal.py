@@ -904,10 +904,12 @@ class _Mesher:
 COARSE_TOL = 1e-3
 
 
-def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int):
-    """Newton on ``|F|(eps) = w`` on fixed meshes: ``(eps, state, steps, residual)``."""
+def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int,
+                first: "_State | None" = None):
+    """Newton on ``|F|(eps) = w`` on fixed meshes: ``(eps, state, steps, residual)``; ``first``: the solution
+    at ``eps`` on these meshes if already made."""
     for k in range(max_newton + 1):
-        state = opts.solve(bearing, meshes, -eps, 0.0)
+        state = first if k == 0 and first is not None else opts.solve(bearing, meshes, -eps, 0.0)
         F = state.force
         wf = float(np.hypot(*F))
         res = abs(wf - w) / w
@@ -985,7 +987,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
     if rupture_size is not None:
         mesh, state = _refine_rupture(bearing, meshes[0], state, eps, rupture_size, opts)
         meshes = (mesh,)
-        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton)
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
         k_total += k
     F = state.force
     # mesh frame -> bearing frame: rotate so that F points along the load

@@ -635,7 +635,9 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
     smearing). Boundaries are named as by :func:`mesh_surface`:
     ``arc_start``, ``arc_end``, ``side`` and ``outer``, or on a periodic
     surface ``side`` = ``outer`` and the seam ``periodic_start`` /
-    ``periodic_end``. Meshing takes milliseconds (no gmsh).
+    ``periodic_end``. Meshing takes milliseconds (no gmsh). Recesses should be
+    wider than a cell: a contour is located exactly along each cell face
+    only where it crosses an eighth of the face at most once.
 
     Parameters
     ----------

@@ -145,6 +145,12 @@ def _ramp(x: np.ndarray) -> np.ndarray:
     return 0.5 * (1.0 - np.cos(math.pi * x))
 
 
+def _ramp_scalar(x: float) -> float:
+    """:func:`_ramp` of one number."""
+    x = min(max(x, 0.0), 1.0)
+    return 0.5 * (1.0 - math.cos(math.pi * x))
+
+
 @dataclass(frozen=True)
 class PressureCycle:
     """Chamber pressure over one turn, tied to the plunger stroke.
@@ -189,6 +195,11 @@ class PressureCycle:
 
     def fraction(self, beta) -> np.ndarray:
         """0 at suction, 1 at discharge, smooth ramps in between [-]."""
+        if isinstance(beta, float):  # one angle (an integrator's call): the same formulas without arrays
+            b = beta % (2.0 * math.pi)
+            if b < math.pi:
+                return np.float64(_ramp_scalar(b / self.compression))
+            return np.float64(1.0 - _ramp_scalar((b - math.pi) / self.decompression))
         b = np.mod(np.asarray(beta, dtype=float), 2.0 * math.pi)
         up = _ramp(b / self.compression)
         down = _ramp((b - math.pi) / self.decompression)

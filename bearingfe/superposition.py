@@ -128,6 +128,11 @@ class Operators:
         return self._lazy[name]
 
     @property
+    def angles(self) -> tuple[np.ndarray, np.ndarray]:
+        """``cos phi`` and ``sin phi`` at the quadrature points (for :func:`bearingfe.forms.film_at`)."""
+        return self._get("angles", lambda: (np.cos(self._x[0]), np.sin(self._x[0])))
+
+    @property
     def laplace(self) -> sp.csr_matrix:
         """Stiffness matrix ``int grad u . grad v``."""
         return self._get("laplace", lambda: forms.laplace.assemble(self.basis).tocsr())
@@ -425,12 +430,17 @@ class Superposition:
         load = np.asarray(load, dtype=float)
         if load.shape != (2,) or not np.all(np.isfinite(load)):
             raise ValueError(f"load must be two finite numbers (F_cos, F_sin), got {load!r}")
-        c = self.coefficients(wedge, inlet_pressure)
-        matrix = c[:, :2]
-        if abs(np.linalg.det(matrix)) <= 1e-14 * np.abs(matrix).max() ** 2:
+        self.check_inlet(inlet_pressure)
+        # the 2x2 system of coefficients() by Cramer's rule: an integrator calls this at every step,
+        # where LAPACK's call overhead is most of the cost
+        (w0, a, b, s0), (w1, c, d, s1) = self.forces.tolist()
+        det = a * d - b * c
+        if abs(det) <= 1e-14 * max(abs(a), abs(b), abs(c), abs(d)) ** 2:
             raise np.linalg.LinAlgError(
                 "squeeze coefficients are singular (gamma = 0 leaves phi0_rate undetermined)")
-        return np.linalg.solve(matrix, -load - c[:, 2])
+        r0 = -float(load[0]) - (wedge * w0 + inlet_pressure * s0)
+        r1 = -float(load[1]) - (wedge * w1 + inlet_pressure * s1)
+        return np.array([(d * r0 - b * r1) / det, (a * r1 - c * r0) / det])
 
     def loads(self, u: np.ndarray, inlet_pressure: float = 0.0) -> tuple[np.ndarray, float]:
         """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field ``u``
@@ -522,7 +532,7 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
     ops = operators(mesh, element)
     factorize = get_linear_solver(solver)
     t0 = time.perf_counter()
-    at = film_at(film, ops.x)
+    at = film_at(film, ops.x, ops.angles if assembly == "compiled" else None)
     h_min = _h_min(ops, film, at)
     if not h_min > 0:
         raise ValueError(f"film thickness reaches h_min = {h_min:.4g} <= 0 on the surface "
@@ -617,13 +627,25 @@ class _CompiledBuild:
         return self.co.matrix(self.data)
 
     def rhs(self, formulation: str, g: np.ndarray) -> np.ndarray:
-        at = self.at
-        s = self.scale = unknown_scale(self.h, formulation)
-        f = np.column_stack([s * 6.0 * at.dh[0].ravel(), s * 12.0 * at.shapes[0].ravel(),
-                             s * 12.0 * at.shapes[1].ravel()])
+        """The right sides, and (kept for :meth:`unit_loads`) the load weights of the dofs.
+
+        Both are ``E^T`` of fields at the points: the sources ``dx s f_k``
+        and the load densities ``s (cos phi, sin phi, 1) dx`` (``p = s u``),
+        so one sparse product serves the six columns.
+        """
+        at, co = self.at, self.co
+        s = unknown_scale(self.h, formulation)
+        sdx = s * co.dx
+        fields = np.empty((self.h.size, 6))
+        fields[:, 0] = 6.0 * sdx * at.dh[0].ravel()
+        fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
+        fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
+        fields[:, 3:] = (co.loads * s).T
+        weights = co.transposed_value @ fields
+        self.load_weights = weights[:, 3:]
         rhs = np.empty((self.ops.interior.size, 4))
-        rhs[:, :3] = -(self.co.sources @ f)
-        rhs[:, 3] = -self.co.coupling_times(self.data, g[self.ops.inlet, 3]) if self.ops.inlet.size else 0.0
+        rhs[:, :3] = -weights[self.ops.interior, :3]
+        rhs[:, 3] = -co.coupling_times(self.data, g[self.ops.inlet, 3]) if self.ops.inlet.size else 0.0
         return rhs
 
     def condensed_matrix(self) -> sp.csr_matrix:
@@ -635,10 +657,7 @@ class _CompiledBuild:
         return factorize(self.condensed_matrix())
 
     def unit_loads(self, U: np.ndarray, formulation: str):
-        p = self.co.value @ U
-        if formulation == "pi":
-            p *= self.scale[:, None]  # the h^(-3/2) of the right sides, same formulation
-        values = self.co.loads @ p
+        values = self.load_weights.T @ U  # the weights of rhs(), same formulation
         forces, integrals = values[:2].copy(), values[2].copy()
         forces[:, 3] += self.ops.pocket_moments[1:]  # pockets at unit pressure
         integrals[3] += self.ops.pocket_moments[0]

@@ -74,8 +74,11 @@ __all__ = [
 #: Named starting states of :func:`simulate` (besides a given ``(gamma, delta)``).
 STARTS = ("periodic", "steady")
 
-#: Stepping integrators by name (scipy's implicit and switching methods).
-INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA})
+#: Stepping integrators by name: scipy's implicit and switching methods, and the explicit
+#: Runge-Kutta pairs for films that are not stiff (on the shipped pump RK23 reaches a given error
+#: of the smallest film with fewer film solves than LSODA: docs/benchmarks_pump.md).
+INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA,
+                                                   "RK23": si.RK23, "RK45": si.RK45})
 
 
 class LiftOffError(ValueError):
@@ -149,11 +152,14 @@ class _Model:
     _warm: object = None
     _w: object = None  # last film opening of the elastic support [c]
     _reuse: dict = field(default_factory=dict)
+    _phi_range: tuple[float, float] | None = None
 
     @property
     def phi_range(self) -> tuple[float, float]:
-        b = self.mesh.mesh.p[0]
-        return float(b.min()), float(b.max())
+        if self._phi_range is None:  # asked at every step: computed once
+            b = self.mesh.mesh.p[0]
+            self._phi_range = (float(b.min()), float(b.max()))
+        return self._phi_range
 
     def h_min(self, gamma: float, delta: float) -> float:
         if self.elastic is not None and self._w is not None:  # rigid film opened by the last deflection
@@ -702,11 +708,16 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         (:mod:`bearingfe.transient_jfo`; ``method``, ``rtol``, ``atol`` and
         ``max_step`` do not apply; P1 only). ``start="periodic"`` then runs
         one revolution first and starts from its end (film history included).
-    method : {"LSODA", "Radau", "BDF"}
+    method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
         shipped pump it needed a third to a half of Radau's right-side
-        evaluations (one factorization each) for the same accuracy.
+        evaluations (one factorization each) for the same accuracy. The
+        explicit Runge-Kutta pairs RK23 and RK45 suit films that are not
+        stiff (there they need fewer evaluations still, and their error
+        follows ``rtol`` more closely); where the film is stiff their error
+        control shortens the steps, which stays correct but costs
+        evaluations.
     rtol, atol : float
         Integrator tolerances on ``(gamma, delta)``; ``0 < rtol < 1``;
         ``atol`` defaults to ``1e-3 rtol``.
@@ -770,10 +781,15 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     -----
     The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
     the cheapest setting measured within 0.1 % of the converged smallest
-    film on the shipped pump, periodic start included
-    (``benchmarks/pump_revolution.py``, docs/benchmarks_pump.md): P1 needs
-    far finer meshes for that (P1 on 0.08 R0 is 1.4 % off), and at ``rtol
-    = 1e-4`` the periodic start needs five revolutions and lands 8e-4 off.
+    film on the shipped pump, periodic start included, that stays there on
+    other designs (``benchmarks/pump_revolution.py``,
+    docs/benchmarks_pump.md): P1 needs far finer meshes for that (P1 on
+    0.08 R0 is 1.4 % off); at ``rtol = 1e-4`` the periodic start needs five
+    revolutions and lands 4e-4 off; ``method="RK23"`` at ``rtol = 1e-3``
+    is the cheapest revolution within 0.1 % on the shipped pump from its
+    periodic state, but its error reaches a few 1e-3 on thinner films
+    (the page's table across designs), where LSODA at the default ``rtol``
+    stays below 1e-4.
     Before these defaults the call was P1, ``mesh_size = 0.08``, ``rtol =
     1e-6``, ``atol = 1e-9``: pass them to reproduce old runs (a straight
     mesh passed in still gets P1).
