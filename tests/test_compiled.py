@@ -134,6 +134,27 @@ def test_film_fields_from_precomputed_angles_equal_the_direct_evaluation():
             np.testing.assert_allclose(a, b, rtol=0, atol=tol * max(1.0, np.abs(b).max()))
 
 
+@pytest.mark.parametrize("geometry, element, banded", [("straight", "P1", True), ("curved", "P2", False)])
+def test_condensed_factorization_banded_or_sparse_solves_the_system(meshes, geometry, element, banded):
+    # small bands (half-bandwidth <= 31 in the reverse Cuthill-McKee order: the P1 test mesh has 11)
+    # are factored by banded Cholesky, wider ones (the curved P2 mesh) by SuperLU; both give
+    # scipy's sparse direct solution to round-off (1e-12 relative: backward-stable factorizations
+    # of a matrix whose condition number is ~1e2 here)
+    import scipy.sparse.linalg as spla
+
+    ops = operators(meshes[geometry], element)
+    co = ops.compiled
+    at = film_at(FILM, ops.x)
+    data = co.matrix_data("pi", at.h.ravel(), at.D.ravel())
+    assert co.banded == banded
+    b = np.random.default_rng(3).standard_normal((ops.interior.size, 4))
+    reference = spla.spsolve(co.condensed(data).tocsc(), b)
+    _close(co.factorize_condensed(data)(b), reference, np.abs(reference).max() * 1e-2)
+    _close(co.factorize_condensed(data)(b[:, 0]), reference[:, 0], np.abs(reference).max() * 1e-2)
+    # a matrix that is not positive definite (here negative definite) cannot take Cholesky: SuperLU
+    _close(co.factorize_condensed(-data)(b), -reference, np.abs(reference).max() * 1e-2)
+
+
 def test_assembly_choice_is_checked(meshes):
     with pytest.raises(ValueError, match="assembly must be one of"):
         bf.superpose(meshes["straight"], FILM, assembly="fast")

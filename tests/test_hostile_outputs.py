@@ -205,6 +205,9 @@ def test_sigkill_during_the_move_into_place_is_finished_by_the_next_run(tmp_path
         import os, signal
         from pathlib import Path
         import bearingfe.outfolder as of
+        # a normal Ctrl-C whatever the test runner's process left to its children (mask, disposition)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         out, real = Path({str(out)!r}), os.replace
         def replace(src, dst):
             real(src, dst)
@@ -671,6 +674,9 @@ def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
         import os, signal
         from pathlib import Path
         import bearingfe.outfolder as of
+        # a normal Ctrl-C whatever the test runner's process left to its children (mask, disposition)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         out, real = Path({str(out)!r}), os.replace
         def replace(src, dst):
             real(src, dst)
@@ -684,6 +690,7 @@ def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
         except KeyboardInterrupt:
             raise SystemExit(42)  # delivered, but only once the move was complete
     """)
-    assert subprocess.run([PY, "-c", script], cwd=ROOT, timeout=120).returncode == 42
+    run = subprocess.run([PY, "-c", script], cwd=ROOT, timeout=120, capture_output=True, text=True)
+    assert run.returncode == 42, (run.returncode, run.stderr[-2000:])
     assert (out / "a.txt").read_text() == "new a" and (out / "b.txt").read_text() == "new b"
     assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "a.txt", "b.txt"]  # no journal, no work folder
