@@ -246,7 +246,7 @@ def _shoe_mesh(data: dict, body: ShoeBody, flat_film: bool) -> ShoeMesh:
     def facets(key: str) -> np.ndarray:
         tri = np.sort(renum[index[np.asarray(data[key], np.int64)].reshape(-1, 3).T], axis=0)
         n = mesh.p.shape[1]
-        have = np.sort(mesh.facets, axis=0)
+        have = np.sort(mesh.facets, axis=0).astype(np.int64)  # codes up to n^3: no int32
         code = lambda f: (f[0] * n + f[1]) * n + f[2]  # noqa: E731
         order = np.argsort(code(have))
         pos = np.searchsorted(code(have)[order], code(tri))
