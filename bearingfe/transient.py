@@ -68,6 +68,7 @@ __all__ = [
     "state_result",
     "LiftOffError",
     "INTEGRATORS",
+    "IMPLICIT_INTEGRATORS",
     "STARTS",
 ]
 
@@ -79,6 +80,8 @@ STARTS = ("periodic", "steady")
 #: of the smallest film with fewer film solves than LSODA: docs/benchmarks_pump.md).
 INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si.BDF, "LSODA": si.LSODA,
                                                    "RK23": si.RK23, "RK45": si.RK45})
+#: The implicit (or stiffness-switching) ones of :data:`INTEGRATORS`, for stiff systems.
+IMPLICIT_INTEGRATORS = ("Radau", "BDF", "LSODA")
 
 
 class LiftOffError(ValueError):

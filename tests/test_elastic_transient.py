@@ -130,6 +130,8 @@ def test_periodic_start_anderson_and_fixed_point_agree(setup):
     np.testing.assert_allclose(a.h_min, f.h_min, atol=1e-4 * PUMP.clearance)
     with pytest.raises(ValueError, match="periodic_method"):
         simulate_elastic(PUMP, C, 1.0, periodic_method="newton")
+    with pytest.raises(ValueError, match="method must be one of"):  # explicit pairs: not for stiff modes
+        simulate_elastic(PUMP, C, 1.0, method="RK23")
 
 
 def test_dense_compliance_size_guard(setup, monkeypatch):
