@@ -234,8 +234,10 @@ def targets_summary(facts: dict) -> str:
         (pe < 1e-3) if math.isfinite(pe) else None)
     f = facts.get("precision", {}).get("fd_speedup_1e-03_solve", math.nan)
     ff = facts.get("precision", {}).get("fd_speedup_1e-03_force", math.nan)
-    add("FEM vs FD at load error 1e-3, case (b)", ">= 3x", f"{_fmt(f, 'x')} (`solve_reynolds`), "
-        f"{_fmt(ff, 'x')} (`superpose(...).force`)", (max(f, ff) >= 3) if math.isfinite(f) else None)
+    # three decimals: near the goal a rounded "3x" would hide a 2.995x that is not met
+    add("FEM vs FD at load error 1e-3, case (b)", ">= 3x", f"{f:.3f}x (`solve_reynolds`), "
+        f"{ff:.3f}x (`superpose(...).force`)" if math.isfinite(f) and math.isfinite(ff) else "not measured",
+        (max(f, ff) >= 3) if math.isfinite(f) and math.isfinite(ff) else None)
     return md_table(["target (issue 13)", "goal", "measured", "verdict", "note"], rows)
 
 
