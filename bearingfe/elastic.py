@@ -94,6 +94,7 @@ __all__ = [
     "combined_modulus",
     "half_space",
     "shoe_body",
+    "body_compliance",
     "rectangle_deflection",
     "solve_elastic",
     "balance_load",
@@ -1210,15 +1211,46 @@ def shoe_body(mesh: SupportMesh, scale: Scale, shoe: Material, thickness: float,
     uz = probe @ U  # rows: the dofs' ux, uy, uz stacked by component
     n = d.shape[1]
     opening = -np.asarray(uz)[2 * n:3 * n] if uz.shape[0] == 3 * n else -np.asarray(uz)
+    return body_compliance(mesh, scale, shoe, opening[:, :-1], opening[:, -1], model="body", element=element,
+                           counterpart=counterpart, start=start)
+
+
+def body_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, opening: np.ndarray, pocket: np.ndarray, *,
+                    model: str, element: str, counterpart: Material | None = None,
+                    start: float | None = None) -> Compliance:
+    """The :class:`Compliance` of an elastic body from its film openings under unit loads.
+
+    Parameters
+    ----------
+    mesh, scale, element
+        The film mesh, its scales and element.
+    shoe : Material
+        The body's material; ``opening`` was computed with Young's modulus 1
+        and pressures in units of ``scale.pressure``.
+    opening : ndarray, shape (n, n)
+        Film opening at each film dof under the unit load of each film dof,
+        from the body solved with Young's modulus 1, lengths in R0 and
+        pressures in units of ``scale.pressure`` [R0]; the factor
+        ``p_scale R0 / (E c)`` makes it clearances per unit pressure.
+    pocket : ndarray, shape (n,)
+        The opening under a unit pressure over the pockets (same units).
+    model : str
+        Name of the body model (``"body"``, ``"shoe"``).
+    counterpart : Material, optional
+        The other surface, an elastic half-space added in series.
+    start : float, optional
+        ``time.perf_counter()`` when the build began (for ``seconds``).
+    """
     factor = scale.pressure * scale.radius / (shoe.youngs_modulus * scale.clearance)
-    matrix, pocket = factor * opening[:, :-1], factor * opening[:, -1]
+    matrix, pocket = factor * np.asarray(opening), factor * np.asarray(pocket)
     e_star = shoe.youngs_modulus / (1 - shoe.poisson_ratio**2)
     if counterpart is not None:
         other = half_space(mesh, scale, counterpart, element)
         matrix, pocket = matrix + other.matrix, pocket + other.pocket
         e_star = combined_modulus(shoe, counterpart)
-    return Compliance(mesh=mesh, element=element, model="body", matrix=matrix, pocket=pocket, modulus=e_star,
-                      scale=scale, seconds=time.perf_counter() - start)
+    seconds = math.nan if start is None else time.perf_counter() - start
+    return Compliance(mesh=mesh, element=element, model=model, matrix=matrix, pocket=pocket, modulus=e_star,
+                      scale=scale, seconds=seconds)
 
 
 def _film_face_probe(basis2, mesh: SupportMesh, pts: np.ndarray):

@@ -58,7 +58,7 @@ import skfem
 from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad, trace
 
-from .elastic import Compliance, check_dense_size, combined_modulus, half_space
+from .elastic import Compliance, body_compliance, check_dense_size
 from .geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
 from .machines import Material, ShoeBody
 from .meshing import SupportMesh
@@ -545,12 +545,5 @@ def condense(shoe_mesh: ShoeMesh, mesh: SupportMesh, scale: Scale, shoe: Materia
         S[:, j:j + _BLOCK] = FT @ solve(F[:, j:j + _BLOCK])
     s_pocket = FT @ solve(f_pocket[:, None])[:, 0]
     lu = spla.splu(sp.csc_matrix(ops.mass))
-    factor = scale.pressure * scale.radius / (shoe.youngs_modulus * scale.clearance)
-    matrix, pocket_col = factor * lu.solve(S), factor * lu.solve(s_pocket)
-    e_star = shoe.youngs_modulus / (1 - shoe.poisson_ratio**2)
-    if counterpart is not None:
-        other = half_space(mesh, scale, counterpart, element)
-        matrix, pocket_col = matrix + other.matrix, pocket_col + other.pocket
-        e_star = combined_modulus(shoe, counterpart)
-    return Compliance(mesh=mesh, element=element, model="shoe", matrix=matrix, pocket=pocket_col, modulus=e_star,
-                      scale=scale, seconds=time.perf_counter() - start)
+    return body_compliance(mesh, scale, shoe, lu.solve(S), lu.solve(s_pocket), model="shoe", element=element,
+                           counterpart=counterpart, start=start)
