@@ -11,6 +11,9 @@ that no test mutates, so one copy serves every file):
 ``snt32``          paper 000's crank-slider pump, ``mechanisms/snt32.toml``
 ``d816``           paper 002's rotor on an elastic frame, ``mechanisms/converter_tilt_d816.toml``
 ``mill``           paper 003's assumed mill drive, ``mechanisms/hpt_mill.toml``
+``results_agree``  ``results_agree(a, b, rtol)``: two film results (pressure, loads, integrals,
+                   friction, every flow and the mass balance) agree to ``rtol`` of each quantity's
+                   largest value (the flows and mass balance: of the largest flow)
 
 Marker ``slow`` (registered in ``pyproject.toml``): a test that takes more
 than about 5 s on an idle 2-core machine (whole examples, README blocks, the
@@ -24,6 +27,7 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import bearingfe as bf
@@ -72,3 +76,23 @@ def d816():
 @pytest.fixture(scope="session")
 def mill():
     return bf.load_mechanism(ROOT / "mechanisms" / "hpt_mill.toml")
+
+
+def _assert_results_agree(a, b, rtol: float) -> None:
+    def close(x, y, scale=None):
+        x, y = np.asarray(x, float), np.asarray(y, float)
+        scale = np.max(np.abs(y)) if scale is None else scale
+        assert np.max(np.abs(x - y)) <= rtol * scale
+
+    for name in ("pressure", "force", "integral", "friction"):
+        close(getattr(a, name), getattr(b, name))
+    assert set(a.flows) == set(b.flows)
+    flow_scale = max(abs(v) for v in b.flows.values())
+    for name in b.flows:
+        close(a.flows[name], b.flows[name], flow_scale)
+    close(a.mass_balance, b.mass_balance, flow_scale)
+
+
+@pytest.fixture(scope="session")
+def results_agree():
+    return _assert_results_agree
