@@ -205,9 +205,6 @@ def test_sigkill_during_the_move_into_place_is_finished_by_the_next_run(tmp_path
         import os, signal
         from pathlib import Path
         import bearingfe.outfolder as of
-        # a normal Ctrl-C whatever the test runner's process left to its children (mask, disposition)
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
-        signal.signal(signal.SIGINT, signal.default_int_handler)
         out, real = Path({str(out)!r}), os.replace
         def replace(src, dst):
             real(src, dst)
