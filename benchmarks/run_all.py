@@ -163,8 +163,8 @@ class OtherLoad:
     def _sample() -> tuple[float, float, float]:
         import resource
 
-        own = sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
-                  for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+        usage = [resource.getrusage(who) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)]
+        own = sum(u.ru_utime + u.ru_stime for u in usage)
         try:
             fields = [float(x) for x in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
             busy = (sum(fields) - fields[3] - (fields[4] if len(fields) > 4 else 0.0)) / os.sysconf("SC_CLK_TCK")
