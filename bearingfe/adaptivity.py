@@ -4,7 +4,7 @@ The film flux (units of the flow scale ``omega R0^2 c`` per unit length)::
 
     q = -h^3/12 grad p + wedge h/2 e_phi,        div q + dh/dt = 0
 
-is what the Reynolds equation conserves (see ``bearingfe.superposition._flows``).
+is what the Reynolds equation conserves (see ``bearingfe.film.superposition._flows``).
 A finite-element pressure ``p_h`` leaves two residuals: inside each element
 ``R_K = div q_h + dh/dt`` and across each interior edge the jump
 ``J_E = [q_h . n]`` of the normal flux. :func:`error_indicators` combines
@@ -43,16 +43,16 @@ import skfem
 from scipy.sparse.csgraph import dijkstra
 from scipy.spatial import cKDTree
 
-from .film import Film
-from .geometry import Surface
-from .checks import ResolutionWarning
-from .linalg import DEFAULT_SOLVER, get_linear_solver
-from .meshing import SupportMesh, mesh_surface
-from .parameters import Discretization, OperatingPoint, takes
-from . import forms
-from .forms import film_flux, mapping, pressure_from_unknown, unknown_scale
+from .film.thickness import Film
+from .geometry.surface import Surface
+from .core.checks import ResolutionWarning
+from .core.linalg import DEFAULT_SOLVER, get_linear_solver
+from .geometry.meshing import SupportMesh, mesh_surface
+from .core.parameters import Discretization, OperatingPoint, takes
+from .film import forms
+from .film.forms import film_flux, mapping, pressure_from_unknown, unknown_scale
 from .reynolds import CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, solve_reynolds
-from .superposition import ruptured_elements
+from .film.superposition import ruptured_elements
 
 __all__ = ["INDICATORS", "NORMS", "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt",
            "error_indicators", "load_indicators", "size_field", "target_sizes"]
@@ -650,10 +650,10 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
         As in :func:`bearingfe.solve_reynolds` (P2 uses curved order-2 geometry).
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze`` and ``inlet_pressure`` in one object
-        (:class:`bearingfe.parameters.OperatingPoint`; ``sliding`` is not used).
+        (:class:`bearingfe.core.parameters.OperatingPoint`; ``sliding`` is not used).
     discretization : Discretization, optional
         ``element``, ``formulation``, ``solver``, ``size`` (its ``mesh_size``)
-        and ``min_size`` in one object (:class:`bearingfe.parameters.Discretization`).
+        and ``min_size`` in one object (:class:`bearingfe.core.parameters.Discretization`).
     min_size : float, optional
         Smallest element size [-], in ``(0, size]``; default ``size * 1e-6``
         (no practical limit). If the sizes asked for fall below it the
@@ -667,7 +667,7 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
     max_nodes : int
         The loop stops (unconverged) rather than solve on a mesh with more nodes.
     on_unconverged : {"warn", "raise"}
-        If ``tol`` is not met: issue a :class:`bearingfe.journal.ResolutionWarning`
+        If ``tol`` is not met: issue a :class:`bearingfe.bearings.journal.ResolutionWarning`
         naming the cause and return the last level, or raise :class:`AdaptivityError`.
     on_level : callable, optional
         Called with each finished :class:`AdaptiveLevel` (progress reporting).

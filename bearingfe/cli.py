@@ -15,7 +15,7 @@ traceback; warnings print as one-line notes. Text from input files (titles)
 is printed with control characters escaped. ``run`` writes into a hidden
 work folder inside ``DIR`` and moves the files into place only when
 everything is written; it replaces only the files of a previous run and
-locks ``DIR`` against a second run (:mod:`bearingfe.outfolder`).
+locks ``DIR`` against a second run (:mod:`bearingfe.io.outfolder`).
 """
 
 from __future__ import annotations
@@ -133,8 +133,8 @@ def _sweep(args) -> int:
     code 0 if every case succeeded, 1 if some failed (they are in the
     table), 2 if the study file is invalid or no case succeeded.
     """
-    from .io import atomic_path, write_json
-    from .outfolder import lock_folder
+    from .io.writers import atomic_path, write_json
+    from .io.outfolder import lock_folder
     from .sweep import best_design, read_study, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
@@ -205,7 +205,7 @@ def _printable(text: str) -> str:
 # -- run --------------------------------------------------------------------------
 
 def _run(args) -> int:
-    from .outfolder import output_folder
+    from .io.outfolder import output_folder
     from .scenes import load_scene, run_scene
 
     load_scene(args.scene)  # fail on the scene file before touching the output directory
@@ -265,10 +265,10 @@ def _fmt(value) -> str:
 def _mesh(args) -> int:
     """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the script is checked against the
     geometry allow-list (unless ``--trust-geo``) and meshed by gmsh in a separate process with a
-    time limit; the element count is estimated first (bearingfe.geofiles)."""
-    from .geofiles import run_geo
-    from .io import atomic_path
-    from .meshing import load_mesh
+    time limit; the element count is estimated first (bearingfe.geometry.geofiles)."""
+    from .geometry.geofiles import run_geo
+    from .io.writers import atomic_path
+    from .geometry.meshing import load_mesh
 
     geo, out = args.geo, args.out
     if not geo.is_file():

@@ -26,10 +26,10 @@ unit right sides (wedge, the two squeeze rates, inlet pressure):
 operating point, which is what the pump transient calls at each step.
 
 Where things live: the weak forms and the pressure, flux and shear formulas
-in :mod:`bearingfe.forms`; the per-mesh operators, the film state
+in :mod:`bearingfe.film.forms`; the per-mesh operators, the film state
 (:class:`Superposition` with its condensed system) and the one result
-builder in :mod:`bearingfe.superposition`; the cavitation models and their
-table in :mod:`bearingfe.cavitation`. This module is the front door:
+builder in :mod:`bearingfe.film.superposition`; the cavitation models and their
+table in :mod:`bearingfe.cavitation.models`. This module is the front door:
 :func:`solve_reynolds` and the names above, re-exported.
 """
 
@@ -37,15 +37,15 @@ from __future__ import annotations
 
 import dataclasses
 
-from .cavitation import MODELS, ModelOptions, solve_model
-from .checks import check_operating_point, check_resolution
-from .elastic import Compliance, solve_elastic
-from .film import Film
-from .jfo import solve_jfo
-from .linalg import DEFAULT_SOLVER, Factorize
-from .meshing import SupportMesh
-from .parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
-from .superposition import (SOURCES, CoercivityError, CondensedSystem, Operators,
+from .cavitation.models import MODELS, ModelOptions, solve_model
+from .core.checks import check_operating_point, check_resolution
+from .elastic.coupled import Compliance, solve_elastic
+from .film.thickness import Film
+from .film.finite_volume import solve_jfo
+from .core.linalg import DEFAULT_SOLVER, Factorize
+from .geometry.meshing import SupportMesh
+from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
+from .film.superposition import (SOURCES, CoercivityError, CondensedSystem, Operators,
                             ReynoldsResult, Superposition, operators, source_weights, superpose)
 
 __all__ = [
@@ -65,7 +65,7 @@ __all__ = [
     "OperatingPoint",
 ]
 
-#: Names of the cavitation models (the keys of :data:`bearingfe.cavitation.MODELS`).
+#: Names of the cavitation models (the keys of :data:`bearingfe.cavitation.models.MODELS`).
 CAVITATION = tuple(MODELS)
 
 
@@ -94,20 +94,20 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
     cavitation : str
-        A model of :data:`bearingfe.cavitation.MODELS` (:data:`CAVITATION`):
+        A model of :data:`bearingfe.cavitation.models.MODELS` (:data:`CAVITATION`):
         ``"none"`` lets the pressure go negative (as in the source paper);
         ``"reynolds"``: Swift-Stieber ``p >= 0`` with a free boundary, solved
         as a complementarity problem; ``"gumbel"``: negative part discarded
-        (see :mod:`bearingfe.cavitation`); ``"jfo"``: mass-conserving
-        (Elrod-Adams p-theta) cavitation, P1 only (see :mod:`bearingfe.jfo`).
+        (see :mod:`bearingfe.cavitation.models`); ``"jfo"``: mass-conserving
+        (Elrod-Adams p-theta) cavitation, P1 only (see :mod:`bearingfe.film.finite_volume`).
         Recessed and periodic surfaces (``mesh.needs_finite_volumes``) are
-        solved by the finite-volume scheme of :mod:`bearingfe.jfo` with
+        solved by the finite-volume scheme of :mod:`bearingfe.film.finite_volume` with
         ``"none"``, ``"reynolds"`` or ``"jfo"``.
     sliding : float, optional
         Sliding speed of the journal relative to the shoe for the Couette
         shear; default ``wedge``.
     solver : str or callable
-        Sparse linear solver (:data:`bearingfe.linalg.LINEAR_SOLVERS`).
+        Sparse linear solver (:data:`bearingfe.core.linalg.LINEAR_SOLVERS`).
     on_indefinite : {"fallback", "raise"}
         See :func:`superpose`.
     warm_start : ReynoldsResult or bool mask, optional
@@ -119,27 +119,27 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         Cavity pressure ``p_c`` [-] (gauge: the edges are at 0), ``<= 0``,
         for ``"jfo"`` and ``"reynolds"`` (``p >= p_c``). A non-zero value
         with ``"reynolds"`` is solved by the finite-volume Swift-Stieber of
-        :mod:`bearingfe.jfo` (P1, direct form); ``"gumbel"`` needs 0.
+        :mod:`bearingfe.film.finite_volume` (P1, direct form); ``"gumbel"`` needs 0.
     elastic : Compliance, optional
         Compliance of the support surfaces on this mesh and element
-        (:func:`bearingfe.elastic.half_space`): the film becomes
+        (:func:`bearingfe.elastic.coupled.half_space`): the film becomes
         ``h_rigid + C p`` and is solved with its pressure by Newton
-        (:func:`bearingfe.elastic.solve_elastic`, direct form; the result's
+        (:func:`bearingfe.elastic.coupled.solve_elastic`, direct form; the result's
         ``deflection``, ``max_deflection`` and ``elastic_iterations`` report it).
-        Raises :class:`bearingfe.elastic.ElasticError` if it does not converge.
+        Raises :class:`bearingfe.elastic.coupled.ElasticError` if it does not converge.
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
-        object (:class:`bearingfe.parameters.OperatingPoint`) instead of the
+        object (:class:`bearingfe.core.parameters.OperatingPoint`) instead of the
         keywords.
     discretization : Discretization, optional
         ``element``, ``formulation`` and ``solver`` in one object
-        (:class:`bearingfe.parameters.Discretization`) instead of the keywords.
+        (:class:`bearingfe.core.parameters.Discretization`) instead of the keywords.
 
     Returns
     -------
     ReynoldsResult
         If the mesh does not resolve the film where it is thinnest
-        (:func:`bearingfe.checks.check_resolution`), a
+        (:func:`bearingfe.core.checks.check_resolution`), a
         :class:`bearingfe.ResolutionWarning` is issued and its message
         added to ``notes``.
 
@@ -147,7 +147,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     ------
     ValueError
         A bad argument, e.g. ``|inlet_pressure| > 1e12``
-        (:func:`bearingfe.checks.check_operating_point`).
+        (:func:`bearingfe.core.checks.check_operating_point`).
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
@@ -178,5 +178,5 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                     on_indefinite=on_indefinite)
     result = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,
                                                                 solver=solver))
-    unresolved = check_resolution(mesh, film, stacklevel=3)  # ResolutionWarning (bearingfe.checks)
+    unresolved = check_resolution(mesh, film, stacklevel=3)  # ResolutionWarning (bearingfe.core.checks)
     return result if unresolved is None else dataclasses.replace(result, notes=(*result.notes, unresolved))

@@ -92,9 +92,9 @@ class Check:
 
 def annular_pad(quick: bool = False, r_in: float = 0.1, r_out: float = 0.4) -> list[Check]:
     """Hydrostatic annular pad: load and flow against the closed form (P2 elements)."""
-    from .film import CosineFilm
-    from .geometry import Circle, Surface
-    from .meshing import mesh_surface
+    from .film.thickness import CosineFilm
+    from .geometry.surface import Circle, Surface
+    from .geometry.meshing import mesh_surface
     from .reynolds import solve_reynolds
 
     surface = Surface(outer=Circle((0.0, 0.0), r_out), inlets=(Circle((0.0, 0.0), r_in),))
@@ -110,9 +110,9 @@ def annular_pad(quick: bool = False, r_in: float = 0.1, r_out: float = 0.4) -> l
 
 def short_bearing(quick: bool = False, half_width: float = 0.05, gamma: float = 0.5) -> list[Check]:
     """Narrow full journal bearing against the Ocvirk short-bearing load."""
-    from .film import CosineFilm
-    from .geometry import Surface
-    from .meshing import mesh_surface
+    from .film.thickness import CosineFilm
+    from .geometry.surface import Surface
+    from .geometry.meshing import mesh_surface
     from .reynolds import solve_reynolds
 
     surface = Surface(arc=(0.0, 2 * math.pi), half_width=half_width)
@@ -130,7 +130,7 @@ def raimondi_boyd(quick: bool = False, rows=((1.0, 0.6), (1.0, 0.8), (0.5, 0.6))
     Sommerfeld number within 1 % and attitude angle within 1 % (about 0.3-0.5
     degree) on h-graded meshes; docs/validation.md has the full table.
     """
-    from .journal import JournalBearing, performance
+    from .bearings.journal import JournalBearing, performance
 
     out = []
     for ld, eps in rows:
@@ -268,7 +268,7 @@ class PocketSlider:
 
     def solve(self, n: int, element: str = "P1") -> SliderAnswer:
         """Solve on a 2-D strip of ``n`` cells along (``n`` a multiple of the steps' grid) with JFO."""
-        from .meshing import strip_mesh
+        from .geometry.meshing import strip_mesh
         from .reynolds import solve_reynolds
 
         for x in (self.start, self.end):
@@ -392,9 +392,9 @@ class OscillatingSqueeze:
 
     def solve(self, n: int, steps: int, t_end: float = 2 * math.pi):
         """Backward-Euler JFO steps on a strip of ``n`` cells: ``(t, c, load, mass_balance)`` per step."""
-        from .film import UniformFilm
-        from .jfo import solve_jfo
-        from .meshing import strip_mesh
+        from .film.thickness import UniformFilm
+        from .film.finite_volume import solve_jfo
+        from .geometry.meshing import strip_mesh
 
         mesh = strip_mesh(n, rows=1)
         width = float(np.ptp(mesh.mesh.p[1]))

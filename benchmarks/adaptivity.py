@@ -16,7 +16,7 @@ Cases:
 
 Methods: uniform gmsh meshes (P1, P2 on curved order-2 geometry), for the
 journal also meshes graded towards the thin film with
-:func:`bearingfe.journal.film_graded_size` (``min_size = size sqrt(1 - eps)``,
+:func:`bearingfe.bearings.journal.film_graded_size` (``min_size = size sqrt(1 - eps)``,
 passed to ``mesh_surface`` as its floor), and :func:`bearingfe.adaptivity.adapt`
 (P1, P2; load indicator, growth 2.5). Error: relative error of the load
 ``|F|`` against a reference value that is computed in the same run by
@@ -43,7 +43,7 @@ if __package__ in (None, ""):  # run as a script: make the repository root impor
 
 import bearingfe as bf  # noqa: E402
 from bearingfe.adaptivity import adapt  # noqa: E402
-from bearingfe.journal import ResolutionWarning, film_graded_size  # noqa: E402
+from bearingfe.bearings.journal import ResolutionWarning, film_graded_size  # noqa: E402
 
 from benchmarks.common import DOCS, IMG, loglog_plot, machine, md_table, time_at_error  # noqa: E402
 
@@ -414,7 +414,7 @@ def main(argv=None) -> int:
         *body,
         "## Notes",
         "",
-        "- `bearingfe.journal.journal_mesh` (hence `performance`, `equilibrium`) calls `mesh_surface` without "
+        "- `bearingfe.bearings.journal.journal_mesh` (hence `performance`, `equilibrium`) calls `mesh_surface` without "
         "`min_size`, so gmsh's default floor (a quarter of `size`) overrides `film_graded_size`'s "
         "`min_size = size sqrt(1 - eps)` when eps > 15/16; the graded meshes here pass the floor explicitly "
         "(`mesh_surface(..., min_size=...)`).",

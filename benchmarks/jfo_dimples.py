@@ -13,7 +13,7 @@ pitch, centred. Their FBNS solver needed 47.1 s on 360,000 cells and 11.3 s on 9
 
 Three discretizations of the same problem:
 
-- ours, ``couette="grid"``: P1 JFO on :func:`bearingfe.meshing.grid_mesh` (cells aligned with the sliding
+- ours, ``couette="grid"``: P1 JFO on :func:`bearingfe.geometry.meshing.grid_mesh` (cells aligned with the sliding
   direction, dimples cut through the cells and integrated exactly), cold solves;
 - ours, ``couette="median"``: P1 JFO on gmsh meshes with the dimple contours on element edges (the
   median-dual upwind flux smears the wakes sideways: shown for comparison);
@@ -46,8 +46,8 @@ from benchmarks.common import DOCS, machine, md_table, time_at_error  # noqa: E4
 from benchmarks.run_all import OtherLoad  # noqa: E402
 
 import bearingfe as bf  # noqa: E402
-from bearingfe.film import UniformFilm  # noqa: E402
-from bearingfe.jfo import solve_jfo  # noqa: E402
+from bearingfe.film.thickness import UniformFilm  # noqa: E402
+from bearingfe.film.finite_volume import solve_jfo  # noqa: E402
 
 L, U, MU, H_MIN, DEPTH, P_AMB, P_CAV = 0.08, 5.0, 0.03, 15e-6, 12e-6, 1e5, 3e4
 PUBLISHED = ((90_000, 11.3), (360_000, 47.1))

@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from benchmarks.common import DOCS, machine, md_table  # noqa: E402
 
 import bearingfe as bf  # noqa: E402
-from bearingfe.journal import Groove, JournalBearing, equilibrium, performance  # noqa: E402
+from bearingfe.bearings.journal import Groove, JournalBearing, equilibrium, performance  # noqa: E402
 from bearingfe.validation import OscillatingSqueeze, PocketSlider  # noqa: E402
 
 

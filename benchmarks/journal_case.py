@@ -1,18 +1,18 @@
 """Case (c): a full 360-degree journal bearing at eccentricity 0.95 with Swift-Stieber cavitation.
 
-The Raimondi-Boyd full bearing of :mod:`bearingfe.journal` (``L/D = 1``,
+The Raimondi-Boyd full bearing of :mod:`bearingfe.bearings.journal` (``L/D = 1``,
 ``p = 0`` at the axial edges and along the line of largest film), meshed in
 the frame of the line of centres (arc ``(0, 2 pi)`` from the largest film,
 ``h = 1 + 0.95 cos(phi)``, thinnest film 0.05 at ``phi = pi``), solved with
 ``cavitation="reynolds"`` (primal-dual active set on the obstacle problem,
 direct form) for P1 and P2, on uniform meshes and on meshes graded towards
-the thin film with :func:`bearingfe.journal.film_graded_size`
+the thin film with :func:`bearingfe.bearings.journal.film_graded_size`
 (``min_size = size sqrt(1 - eps)``, the journal module's default).
 
 Error: relative error of the load vector ``int p (cos, sin)`` against a
 converged reference: P2 on a graded curved (order-2) mesh finer than any in
 the sweep; its own error is estimated by the change from the mesh twice as
-coarse. FD curve: :func:`bearingfe.fd.solve_reynolds_fd` with Christopherson's
+coarse. FD curve: :func:`bearingfe.film.fd.solve_reynolds_fd` with Christopherson's
 projected SOR (``cavitation="reynolds"``, five-point direct scheme, uniform grid,
 SOR factor ``2 / (1 + sin(pi d / 2))``). Nested series: P1 on the graded meshes,
 each solve started from the previous (coarser) mesh's rupture set; its time is
@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 import bearingfe as bf
-from bearingfe.journal import default_min_size, film_graded_size
+from bearingfe.bearings.journal import default_min_size, film_graded_size
 
 from .common import IMG, loglog_plot, md_table, time_at_error, timed
 from .work_precision import Run
@@ -143,7 +143,7 @@ def report(result: dict) -> str:
     w = float(np.linalg.norm(F))
     attitude = math.degrees(math.atan2(abs(F[1]), -F[0]))
     lines = [
-        f"Full 360-degree bearing (`bearingfe.journal.JournalBearing({LENGTH_RATIO})`, L/D = {LENGTH_RATIO}), "
+        f"Full 360-degree bearing (`bearingfe.bearings.journal.JournalBearing({LENGTH_RATIO})`, L/D = {LENGTH_RATIO}), "
         f"eccentricity {EPS} (thinnest film {1 - EPS:.2g} c), wedge 1, Swift-Stieber cavitation "
         "(`solve_reynolds(..., formulation=\"direct\", cavitation=\"reynolds\")`, primal-dual active set). "
         "Graded meshes: `film_graded_size(film, size, size*sqrt(1-eps))`. Time = one `solve_reynolds` call "
@@ -155,7 +155,7 @@ def report(result: dict) -> str:
         f"{2 * LENGTH_RATIO / (math.pi * w):.6g}. It moved by {ref['change']:.1e} (relative) from the graded "
         f"P2 mesh twice as coarse, so errors below ~{max(ref['change'] / 10, 1e-12):.0e} are not resolved.",
         "",
-        "**FD curve**: `bearingfe.fd` with Christopherson's projected SOR on uniform grids of spacing d "
+        "**FD curve**: `bearingfe.film.fd` with Christopherson's projected SOR on uniform grids of spacing d "
         "(column 'size'; 'active-set iterations' are its SOR sweeps there). **Nested**: P1 on the graded "
         "meshes, each level started from the previous level's rupture set (`warm_start=`), time cumulative.",
         "",

@@ -11,7 +11,7 @@ Three solutions per tabulated row:
   from the previous level's rupture set), Richardson-extrapolated from the last two levels (the
   measured order is printed);
 * a converged finite-difference value: five-point direct scheme with Christopherson's projected SOR
-  (``bearingfe.fd``, ``cavitation="reynolds"``) on grids of spacing 0.02 and 0.01 (axially at most
+  (``bearingfe.film.fd``, ``cavitation="reynolds"``) on grids of spacing 0.02 and 0.01 (axially at most
   L/D / 10 and half that), Richardson-extrapolated. It shares neither discretisation nor algorithm
   with the FEM.
 """
@@ -25,10 +25,10 @@ import warnings
 from pathlib import Path
 
 from bearingfe import CosineFilm, Surface
-from bearingfe.fd import solve_reynolds_fd
-from bearingfe.journal import (JournalBearing, _chart, _solve_state, default_min_size, dynamic_coefficients,
+from bearingfe.film.fd import solve_reynolds_fd
+from bearingfe.bearings.journal import (JournalBearing, _chart, _solve_state, default_min_size, dynamic_coefficients,
                                equilibrium, journal_mesh, performance)
-from bearingfe.meshing import refine_uniformly
+from bearingfe.geometry.meshing import refine_uniformly
 from bearingfe.validation import RAIMONDI_BOYD
 
 RB = RAIMONDI_BOYD
@@ -171,7 +171,7 @@ def verdict(out, summary) -> None:
         "everyday answer's `err` column is its own estimate there.\n")
     out("The side-flow ratio now agrees with the table to about 0.5 %: side leakage is counted from the "
         "full film only, with the ruptured zone's non-conserved Couette source removed from the boundary "
-        "fluxes (`bearingfe.superposition._flows`, `cavitated`). Counted in, it biased Qs/Q low by O(element "
+        "fluxes (`bearingfe.film.superposition._flows`, `cavitated`). Counted in, it biased Qs/Q low by O(element "
         "size) (1-5 % on these meshes), which was the unexplained gap of the first version of this page.\n")
 
 

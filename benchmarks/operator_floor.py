@@ -33,8 +33,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import bearingfe as bf  # noqa: E402
-from bearingfe.linalg import factorize_splu_sym  # noqa: E402
-from bearingfe.superposition import film_outputs, source_weights  # noqa: E402
+from bearingfe.core.linalg import factorize_splu_sym  # noqa: E402
+from bearingfe.film.superposition import film_outputs, source_weights  # noqa: E402
 
 from benchmarks.common import DOCS, machine  # noqa: E402
 
@@ -105,7 +105,7 @@ def write(rows: list[tuple[str, dict]], post: dict, seconds: float, path: Path) 
         "`superpose` on the eccentric pump's shoe (`mechanisms/eccentric_pump.toml`), P2 elements on "
         "curved (order-2) meshes, pi formulation, default solver (`splu_sym`). The floor is "
         "`factorize_splu_sym(A_II)` (ordering + numeric LU) and the solve of the four unit right sides "
-        "of the same condensed matrix. Compiled: the film-independent maps of `bearingfe.compiled` "
+        "of the same condensed matrix. Compiled: the film-independent maps of `bearingfe.film.compiled` "
         "(quadrature maps, scatter `A.data = S @ coefficient`, condensed blocks, the fill-reducing order "
         "found once, load maps); reference: scikit-fem form assembly per film.",
         "",

@@ -123,7 +123,7 @@ def part_scene(quick: bool) -> tuple[str, dict]:
 
 
 def part_scaling(quick: bool) -> tuple[str, dict]:
-    from bearingfe.linalg import DEFAULT_SOLVER
+    from bearingfe.core.linalg import DEFAULT_SOLVER
 
     sc = scaling.run(quick, log=_log)
     (best, why), (core, core_why) = scaling.recommend(sc), scaling.recommend(sc, among=scaling.CORE)

@@ -5,9 +5,9 @@ its own: ``build`` meshes the plain partial arc of case (a), builds the
 operators, assembles the direct-form Reynolds matrix and the four unit right
 sides, condenses them and saves them (``.npz``); ``factor`` loads one such
 system and factorizes and solves it with one solver from
-:data:`bearingfe.linalg.LINEAR_SOLVERS`, then (where the backend supports
+:data:`bearingfe.core.linalg.LINEAR_SOLVERS`, then (where the backend supports
 it) refactorizes new values on the same pattern through
-:class:`bearingfe.linalg.PatternFactorizer`, as every step of a transient does.
+:class:`bearingfe.core.linalg.PatternFactorizer`, as every step of a transient does.
 
 Run as ``python -m benchmarks.scaling build|factor ...`` (internal); the
 driver is :func:`run`.
@@ -42,8 +42,8 @@ def build(element: str, dofs: float, path: str) -> dict:
     import scipy.sparse as sp
 
     import bearingfe as bf
-    from bearingfe.forms import film_at
-    from bearingfe.superposition import operators, system_matrix, unit_sources
+    from bearingfe.film.forms import film_at
+    from bearingfe.film.superposition import operators, system_matrix, unit_sources
 
     vertices = dofs / (4.0 if element == "P2" else 1.0)
     size = math.sqrt(2 * AREA / (math.sqrt(3) * vertices))
@@ -73,7 +73,7 @@ def build(element: str, dofs: float, path: str) -> dict:
 def factor(solver: str, path: str) -> dict:
     import scipy.sparse as sp
 
-    from bearingfe.linalg import LINEAR_SOLVERS, PatternFactorizer
+    from bearingfe.core.linalg import LINEAR_SOLVERS, PatternFactorizer
 
     A = sp.load_npz(path + "_A.npz").tocsc()
     A2 = sp.load_npz(path + "_A2.npz").tocsc()
@@ -120,7 +120,7 @@ CAPS = {"splu": 4e5, "splu_sym": 1.2e6, "amg": 3.1e5, "cholmod": 1.2e6, "pardiso
 
 
 def run(quick: bool, log=print) -> dict:
-    from bearingfe.linalg import available_solvers
+    from bearingfe.core.linalg import available_solvers
 
     solvers = available_solvers()
     targets = {"P1": (1e4, 5e4), "P2": (5e4,)} if quick else \

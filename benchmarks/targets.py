@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from bearingfe.journal import JournalBearing, _mesh, dynamic_coefficients, equilibrium, performance
+from bearingfe.bearings.journal import JournalBearing, _mesh, dynamic_coefficients, equilibrium, performance
 
 from .common import ROOT, md_table
 

@@ -25,8 +25,8 @@ from typing import Callable
 import numpy as np
 
 import bearingfe as bf
-from bearingfe.fd import solve_reynolds_fd
-from bearingfe.linalg import available_solvers
+from bearingfe.film.fd import solve_reynolds_fd
+from bearingfe.core.linalg import available_solvers
 
 from .common import IMG, loglog_plot, md_table, time_at_error, timed
 

@@ -59,8 +59,8 @@ def _pct(x: float) -> str:
 
 def paper_000() -> str:
     from bearingfe import crank
-    from bearingfe.machines import CrankMechanism, CrankSlider, Drive
-    from bearingfe.mechanism_files import load_mechanism
+    from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider, Drive
+    from bearingfe.mechanisms.files import load_mechanism
 
     mech = load_mechanism(ROOT / "mechanisms" / "snt32.toml")
     cs, w = mech.linkage, mech.drive.omega
@@ -111,7 +111,7 @@ def paper_000() -> str:
         "V. G. Gulyaev, K. V. Gulyaev, S. A. Anokhina, *Analiz kinematicheskikh i dinamicheskikh svoistv "
         "krivoshipno-shatunnogo mekhanizma v privode nasosnogo agregata* (Kinematic and dynamic properties of "
         "the crank-slider mechanism in the drive of a pump unit), Donetsk National Technical University, 2007. "
-        "Data from its Table 3, stored in `mechanisms/snt32.toml`. `bearingfe.crank.analyze` uses the exact "
+        "Data from its Table 3, stored in `mechanisms/snt32.toml`. `bearingfe.mechanisms.crank.analyze` uses the exact "
         f"motion with omega = 2 pi 588/60 = {w:.3f} 1/s and lambda = 0.0188/0.288 = {cs.lam:.5f}; the paper "
         "rounds to omega = 62 1/s and lambda = 0.065. Where a column says \"w = 62\", the package was run with "
         "the paper's rounded speed.",
@@ -224,7 +224,7 @@ def paper_002() -> str:
     from scipy.optimize import brentq
 
     from bearingfe import rotor as R
-    from bearingfe.mechanism_files import load_mechanism
+    from bearingfe.mechanisms.files import load_mechanism
 
     sys_ = load_mechanism(ROOT / "mechanisms" / "converter_tilt_d816.toml")
     rot = sys_.rotor
@@ -314,7 +314,7 @@ def paper_002() -> str:
         "expression |",
         "| E2 = 2.2e11 Pa | data | used as printed | higher than usual for steel (2.0-2.1e11); kept |",
         "",
-        "Design method: `bearingfe.rotor.exclusion_table` applies the paper's steps 4-6 to every section and "
+        "Design method: `bearingfe.mechanisms.rotor.exclusion_table` applies the paper's steps 4-6 to every section and "
         "both modes. With the paper's data the upper mode p1 stays within 0.9-1.1 of its reference value for "
         f"all L >= {l_p1:.2f} m (it is essentially the rotor-on-shaft mode), so column height cannot detune it; "
         "only the lower mode gives useful exclusion bands. `bearingfe.plot.mechanisms.plot_natural_frequencies` "
@@ -357,7 +357,7 @@ def paper_003_corrected_loss(link, theta) -> float:
 
 def paper_003() -> str:
     from bearingfe import efficiency as E
-    from bearingfe.mechanism_files import load_mechanism
+    from bearingfe.mechanisms.files import load_mechanism
 
     mill = load_mechanism(ROOT / "mechanisms" / "hpt_mill.toml")
     link = mill.linkage
@@ -563,8 +563,8 @@ def paper_004() -> str:
         "Headline: an inlet region of 10 % of the surface raised \"the highest value of the film thickness\" "
         "by almost 40 % against the plain surface (pump IR-F 400/500, whose data are not printed).",
         "",
-        "**What reproduces in bearingfe.** The whole chain: `bearingfe.pump` (kinematics `phi2`, `lam`, their "
-        "rates, the chamber-pressure cycle), `bearingfe.transient.simulate` (eq. 13-14 with an adaptive scipy "
+        "**What reproduces in bearingfe.** The whole chain: `bearingfe.bearings.pump` (kinematics `phi2`, `lam`, their "
+        "rates, the chamber-pressure cycle), `bearingfe.transient.quasi_static.simulate` (eq. 13-14 with an adaptive scipy "
         "integrator, one mesh and one factorization per state, a periodic or steady start, events for a "
         "closing film) and `examples/01_pump_inlet_pocket.py`. Frames, signs and the fixed-frame equation are "
         "in `docs/formulations.md` (the paper's N1..N3 are unreadable in the OCR copy); `tests/test_pump.py` "

@@ -31,7 +31,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.transient import pump_mesh
+from bearingfe.transient.quasi_static import pump_mesh
 
 ROOT = Path(__file__).resolve().parents[1]
 #: Element size [R0] of the shared pump meshes.

@@ -3,7 +3,7 @@
 Expected values: closed forms (a linear pressure ramp, the 1-D Reynolds
 solution of a film that varies along phi only), the converged loads
 documented in docs/adaptivity.md (benchmarks/adaptivity.py) and
-bearingfe.journal.performance on a fine graded mesh.
+bearingfe.bearings.journal.performance on a fine graded mesh.
 """
 
 import math
@@ -16,9 +16,9 @@ from scipy.integrate import quad
 
 import bearingfe as bf
 from bearingfe.adaptivity import AdaptivityError, adapt, error_indicators, load_indicators
-from bearingfe.superposition import ruptured_elements
-from bearingfe.journal import ResolutionWarning, performance
-from bearingfe.meshing import SupportMesh
+from bearingfe.film.superposition import ruptured_elements
+from bearingfe.bearings.journal import ResolutionWarning, performance
+from bearingfe.geometry.meshing import SupportMesh
 
 # -- (a) indicators of exact and of smooth solutions ----------------------------------------
 
@@ -179,7 +179,7 @@ def test_cavitated_journal_converges_and_agrees_with_performance():
     assert run.error_estimate < 1e-3
     # within its own estimate of the converged value (measured error 3.1e-5, estimate 4.1e-5)
     assert abs(run.load / JOURNAL_LOAD - 1) < run.error_estimate
-    # bearingfe.journal.performance: graded mesh, refined once, with its own refinement estimate
+    # bearingfe.bearings.journal.performance: graded mesh, refined once, with its own refinement estimate
     # (measured: 10.17945, estimate 2.8e-3; difference 8.9e-4)
     perf = performance(bf.JournalBearing(0.5), 0.9, size=0.08, estimate_error=True)
     assert abs(run.load - perf.load) / perf.load < perf.error_estimate + run.error_estimate

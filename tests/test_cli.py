@@ -8,7 +8,7 @@ import pytest
 
 import bearingfe
 from bearingfe.cli import main
-from bearingfe.meshing import load_mesh
+from bearingfe.geometry.meshing import load_mesh
 from bearingfe.scenes import SceneError, load_scene, reynolds_settings
 
 ROOT = Path(__file__).resolve().parents[1]

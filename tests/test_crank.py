@@ -1,4 +1,4 @@
-"""Crank-slider kinematics and inertia (bearingfe.crank) against independent routes and paper 000."""
+"""Crank-slider kinematics and inertia (bearingfe.mechanisms.crank) against independent routes and paper 000."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from bearingfe import crank
-from bearingfe.machines import CrankMechanism, CrankSlider, Drive
+from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider, Drive
 
 PHI = np.linspace(0.0, 2 * np.pi, 721)
 

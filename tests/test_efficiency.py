@@ -1,4 +1,4 @@
-"""Crank-slider efficiency with friction (bearingfe.efficiency) against energy balance and paper 003."""
+"""Crank-slider efficiency with friction (bearingfe.mechanisms.efficiency) against energy balance and paper 003."""
 
 import math
 from dataclasses import replace
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from bearingfe import efficiency as E
-from bearingfe.efficiency import Linkage
-from bearingfe.machines import Drive, MillDrive
+from bearingfe.mechanisms.efficiency import Linkage
+from bearingfe.mechanisms.machines import Drive, MillDrive
 
 THETA = np.linspace(0.0, 2 * np.pi, 361)
 

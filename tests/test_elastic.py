@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from bearingfe import Circle, CosineFilm, Material, Scale, Surface, mesh_surface, solve_reynolds
-from bearingfe.elastic import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
+from bearingfe.elastic.coupled import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
                                rectangle_deflection, solve_elastic)
-from bearingfe.cavitation import MODELS
+from bearingfe.cavitation.models import MODELS
 from bearingfe.reynolds import operators
 
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)   # the shipped pump
@@ -201,7 +201,7 @@ def test_solve_reynolds_front_door_reports_the_deflection(pocket_mesh):
 
 def test_balance_load_balances_and_is_rigid_when_stiff(pocket_mesh):
     from bearingfe import superpose
-    from bearingfe.elastic import balance_load
+    from bearingfe.elastic.coupled import balance_load
 
     film, load, ps = CosineFilm(0.6, math.pi), np.array([-0.42, 0.0]), 1.08
     rigid = superpose(pocket_mesh, film, formulation="direct").rates_for_load(load, 0.98, ps)
@@ -243,7 +243,7 @@ def test_shoe_body_approaches_the_half_space_as_it_grows(plain_mesh):
     # width: the opening at the centre grows towards the single-body half-space value (Love) from below,
     # the gap shrinking with every doubling (measured 0.23 -> 0.15 -> 0.075 -> 0.035 of the half-space
     # value for depths 20 / 40 / 80 / 160 mm; the two shallow ones here keep the test fast)
-    from bearingfe.elastic import shoe_body
+    from bearingfe.elastic.coupled import shoe_body
 
     basis = operators(plain_mesh, "P1").basis
     k = int(np.argmin(basis.doflocs[0] ** 2 + basis.doflocs[1] ** 2))

@@ -1,4 +1,4 @@
-"""The chord iteration of the quasi-static elastic film (bearingfe.elastic.ChordBalance) against the damped
+"""The chord iteration of the quasi-static elastic film (bearingfe.elastic.coupled.ChordBalance) against the damped
 Newton of balance_load, which it replaces inside a run of nearby states (simulate(elastic=...)).
 
 Expected values: balance_load without reuse (Newton on the deflection with a fresh superposition per
@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.elastic import ChordBalance, ElasticError, balance_load, half_space
+from bearingfe.elastic.coupled import ChordBalance, ElasticError, balance_load, half_space
 
 PUMP = bf.load_mechanism("mechanisms/eccentric_pump.toml")
 

@@ -87,7 +87,7 @@ def test_quasi_static_dynamics_with_cavitation(tmp_path):
 
 
 def test_deflection_picture_needs_the_elastic_run(tmp_path):
-    from bearingfe.scene_pump import pump_settings
+    from bearingfe.scenes.pump import pump_settings
 
     data, label = load_scene(_scene(tmp_path, enabled="false"))
     with pytest.raises(SceneError, match=r"\[output\] pictures: 'deflection' needs \[elastic\] enabled"):
@@ -108,7 +108,7 @@ def test_film_ratios_need_completed_runs_of_their_own_pair():
     runs: a stopped elastic run (its smallest film is where it stopped) leaves the rigid ratio standing."""
     from types import SimpleNamespace
 
-    from bearingfe.scene_pump import _film_ratio
+    from bearingfe.scenes.pump import _film_ratio
 
     done = SimpleNamespace(status="completed", smallest_film=9e-6)
     plain = SimpleNamespace(status="completed", smallest_film=6e-6)
@@ -119,11 +119,11 @@ def test_film_ratios_need_completed_runs_of_their_own_pair():
 
 
 def test_pump_scene_on_the_real_shoe_body(tmp_path):
-    # model = "shoe": the scene builds the machine file's shoe body (bearingfe.shoe_body) and runs the
+    # model = "shoe": the scene builds the machine file's shoe body (bearingfe.elastic.shoe) and runs the
     # squeeze model on it; the same run through the API gives the same smallest film (deterministic)
     import bearingfe as bf
-    from bearingfe.elastic_transient import simulate_elastic
-    from bearingfe.shoe_body import shoe_compliance
+    from bearingfe.transient.elastic import simulate_elastic
+    from bearingfe.elastic.shoe import shoe_compliance
 
     path = _scene(tmp_path, pictures='["trajectory"]', plain="false")
     path.write_text(path.read_text().replace("[elastic]\nenabled = true", '[elastic]\nenabled = true\nmodel = "shoe"'))

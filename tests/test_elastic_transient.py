@@ -1,4 +1,4 @@
-"""The pump shoe on an elastic support with the squeeze of the deflection (bearingfe.elastic_transient).
+"""The pump shoe on an elastic support with the squeeze of the deflection (bearingfe.transient.elastic).
 
 Checks: on the discharge plateau (chamber pressure constant) the deflection changes only slowly and the
 run agrees with the quasi-static elastic model of ``simulate(elastic=...)``; the mass balance of the
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.elastic import half_space
-from bearingfe.elastic_transient import simulate_elastic
+from bearingfe.elastic.coupled import half_space
+from bearingfe.transient.elastic import simulate_elastic
 
 PUMP = bf.load_mechanism("mechanisms/eccentric_pump.toml")
 
@@ -51,7 +51,7 @@ def test_bad_inputs_are_named(setup):
 
 
 def test_state_result_balances_the_load(setup):
-    from bearingfe.elastic_transient import state_result
+    from bearingfe.transient.elastic import state_result
 
     mesh, C = setup
     traj = simulate_elastic(PUMP, C, 0.02, start="steady", beta0=1.2, points_per_revolution=100)
@@ -135,7 +135,7 @@ def test_periodic_start_anderson_and_fixed_point_agree(setup):
 
 
 def test_dense_compliance_size_guard(setup, monkeypatch):
-    from bearingfe.limits import LimitError
+    from bearingfe.core.limits import LimitError
 
     mesh, C = setup
     monkeypatch.setenv("BEARINGFE_MAX_COMPLIANCE", "50")
@@ -148,7 +148,7 @@ def test_dense_compliance_size_guard(setup, monkeypatch):
 def test_dense_threads_caps_and_restores():
     from threadpoolctl import threadpool_info
 
-    from bearingfe.linalg import dense_threads
+    from bearingfe.core.linalg import dense_threads
 
     before = [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
     with dense_threads(1):

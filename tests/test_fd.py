@@ -1,4 +1,4 @@
-"""Finite-difference reference solver (bearingfe.fd) against closed forms and itself.
+"""Finite-difference reference solver (bearingfe.film.fd) against closed forms and itself.
 
 Closed forms used:
 * gamma = 0 (h = 1), wedge = 0, squeeze (gamma_rate, phi0_rate) = (1, 0):
@@ -17,9 +17,9 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe.fd import FDResult, solve_reynolds_fd
-from bearingfe.film import CosineFilm
-from bearingfe.geometry import Circle, Ellipse, Rectangle, Surface
+from bearingfe.film.fd import FDResult, solve_reynolds_fd
+from bearingfe.film.thickness import CosineFilm
+from bearingfe.geometry.surface import Circle, Ellipse, Rectangle, Surface
 
 SHOE = Surface(arc=(-0.5, 0.5), half_width=0.4)  # the default 1.0 x 0.8 shoe
 POCKET = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=(Circle((0.0, 0.0), math.sqrt(0.08 / math.pi)),))
@@ -263,7 +263,7 @@ def test_projected_sor_rupture_is_a_complementarity_solution():
     assert 0.2 < ruptured[1:-1, 1:-1].mean() < 0.6
     # residual of the five-point equations cP p + sum c_nb p_nb = f = 6 dh/dphi: zero where p > 0, and
     # <= 0 where p = 0 (there it is -f = -6 dh/dphi < 0 in the divergent film, i.e. a multiplier >= 0)
-    from bearingfe.fd import _direct_stencil, _make_grid, _rhs
+    from bearingfe.film.fd import _direct_stencil, _make_grid, _rhs
     grid = _make_grid(surface, 127, 21)
     st = _direct_stencil(film, grid, _rhs(film, grid, 1.0, (0.0, 0.0)), 0.0)
     x, c = r.pressure, (slice(1, -1), slice(1, -1))

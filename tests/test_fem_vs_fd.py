@@ -1,6 +1,6 @@
 """FEM and the finite-difference reference converge to the same load.
 
-Two independent discretizations of the same equation (``bearingfe.fd``: the
+Two independent discretizations of the same equation (``bearingfe.film.fd``: the
 source paper's five-point scheme on a uniform grid; ``bearingfe.reynolds``:
 P2 finite elements on a gmsh mesh). The FEM solution on a fine mesh is the
 reference (its own load error is < 1e-6, see test_convergence.py); the FD
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from bearingfe import Circle, CosineFilm, Surface, mesh_surface, solve_reynolds
-from bearingfe.fd import solve_reynolds_fd
+from bearingfe.film.fd import solve_reynolds_fd
 
 FILM = CosineFilm(0.6, 0.3)
 SMOOTH = Surface(arc=(-0.5, 0.5), half_width=0.4)

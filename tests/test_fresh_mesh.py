@@ -18,9 +18,10 @@ import skfem
 from skfem.mapping import MappingAffine
 
 import bearingfe as bf
-from bearingfe import forms, superposition
-from bearingfe.forms import TolerantMapping, mapping, straight_edges
-from bearingfe.superposition import operators
+from bearingfe.film import forms
+from bearingfe.film import superposition
+from bearingfe.film.forms import TolerantMapping, mapping, straight_edges
+from bearingfe.film.superposition import operators
 
 RTOL = 1e-12
 RECTANGLE = bf.Surface(arc=(-0.6, 0.6), half_width=0.5,

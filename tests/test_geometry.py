@@ -23,7 +23,7 @@ def test_shape_areas_match_closed_forms():
 
 def test_boundary_polylines_enclose_the_stated_area():
     # a fine polyline of a smooth curve has the curve's area up to O(1/n^2)
-    from bearingfe.geometry import _signed_area
+    from bearingfe.geometry.surface import _signed_area
 
     for shape in (Circle((0, 0), 0.2), Ellipse((0.1, 0), (0.3, 0.1), 0.5), Slot((0, 0), 0.4, 0.1, 0.3)):
         xy = shape.boundary(4000)
@@ -32,7 +32,7 @@ def test_boundary_polylines_enclose_the_stated_area():
 
 def test_polygon_is_stored_counter_clockwise_and_contains_is_strict():
     clockwise = Polygon(((0, 0), (0, 1), (1, 1), (1, 0)))
-    from bearingfe.geometry import _signed_area
+    from bearingfe.geometry.surface import _signed_area
 
     assert _signed_area(np.array(clockwise.points).T) > 0
     assert clockwise.contains(np.array([0.5, 1.5, 0.999]), np.array([0.5, 0.5, 0.001])).tolist() == [True, False, True]

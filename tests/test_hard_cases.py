@@ -141,7 +141,7 @@ def test_long_domain_pi_operator_bound_fails_exact_check_passes():
             warnings.simplefilter("always")
             pi = bf.solve_reynolds(mesh, film, element=element, formulation="pi", on_indefinite="raise")
         # the 0.6 P1 mesh is deliberately coarse: the film changes by ~2 h across an element where h = 0.136
-        # (bearingfe.checks limit: 1 h), so the solve must say so; the 0.3 mesh is within the limit
+        # (bearingfe.core.checks limit: 1 h), so the solve must say so; the 0.3 mesh is within the limit
         coarse = any(issubclass(w.category, bf.ResolutionWarning) for w in caught)
         assert coarse == (size == 0.6)
         _finite(pi)

@@ -17,7 +17,7 @@ import pytest
 
 from bearingfe import Circle, CosineFilm, Rectangle, Slot, Surface, load_mesh, mesh_surface
 from bearingfe.cli import main
-from bearingfe.geofiles import (DEFAULT_MAX_ELEMENTS, GeometryFileError, MeshSizeError, UntrustedGeoError,
+from bearingfe.geometry.geofiles import (DEFAULT_MAX_ELEMENTS, GeometryFileError, MeshSizeError, UntrustedGeoError,
                                 check_geo_script, max_elements_limit)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -299,7 +299,7 @@ def test_mesh_surface_with_tiny_size_is_refused_before_meshing():
 
 def test_mesh_surface_element_estimate_is_close():
     """The estimate (film area / equilateral triangle of the size) against what gmsh makes: within 20 %."""
-    from bearingfe.meshing import _estimated_triangles  # noqa: PLC2701 - white-box check of the estimate
+    from bearingfe.geometry.meshing import _estimated_triangles  # noqa: PLC2701 - white-box check of the estimate
 
     surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)])
     mesh = mesh_surface(surface, 0.05)
@@ -454,7 +454,7 @@ def test_film_variation_closed_form():
     """One triangle with vertices at phi = pi (thinnest point of h = 1 + gamma cos phi) and pi + s:
     (h(pi + s) - h(pi)) / h(pi) = gamma (1 - cos s) / (1 - gamma), exactly (the corner at pi + s is the
     thickest vertex)."""
-    from bearingfe.checks import film_variation
+    from bearingfe.core.checks import film_variation
 
     gamma, s = 0.99, 0.1
     holder = _one_triangle([(math.pi, 0.0), (math.pi + s, 0.0), (math.pi, s)])

@@ -22,9 +22,9 @@ from pathlib import Path
 import pytest
 
 from bearingfe.cli import main
-from bearingfe.io import atomic_path, write_pvd
-from bearingfe.limits import DEFAULT_LIMITS, LimitError, check_limit, limit
-from bearingfe.outfolder import MANIFEST, OutputFolderError, output_folder, read_manifest
+from bearingfe.io.writers import atomic_path, write_pvd
+from bearingfe.core.limits import DEFAULT_LIMITS, LimitError, check_limit, limit
+from bearingfe.io.outfolder import MANIFEST, OutputFolderError, output_folder, read_manifest
 from bearingfe.sweep import CacheWarning, ShoeCase, expand_cases, read_study, sweep
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -204,7 +204,7 @@ def test_sigkill_during_the_move_into_place_is_finished_by_the_next_run(tmp_path
     script = textwrap.dedent(f"""
         import os, signal
         from pathlib import Path
-        import bearingfe.outfolder as of
+        import bearingfe.io.outfolder as of
         out, real = Path({str(out)!r}), os.replace
         def replace(src, dst):
             real(src, dst)
@@ -670,7 +670,7 @@ def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
     script = textwrap.dedent(f"""
         import os, signal
         from pathlib import Path
-        import bearingfe.outfolder as of
+        import bearingfe.io.outfolder as of
         # a normal Ctrl-C whatever the test runner's process left to its children (mask, disposition)
         signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
         signal.signal(signal.SIGINT, signal.default_int_handler)

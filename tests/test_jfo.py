@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from bearingfe import Circle, CosineFilm, Surface, mesh_surface, solve_reynolds
-from bearingfe.jfo import JFOError, solve_jfo
-from bearingfe.journal import JournalBearing, journal_mesh
-from bearingfe.meshing import strip_mesh
+from bearingfe.film.finite_volume import JFOError, solve_jfo
+from bearingfe.bearings.journal import JournalBearing, journal_mesh
+from bearingfe.geometry.meshing import strip_mesh
 from bearingfe.validation import PocketSlider
 
 
@@ -256,7 +256,7 @@ def grooved():
 
 
 def test_periodic_seam_is_invisible(grooved):
-    from bearingfe.meshing import periodic_pairs
+    from bearingfe.geometry.meshing import periodic_pairs
     res = grooved[0.0]["jfo"]
     a, b = periodic_pairs(_grooved(0.1))
     assert a.size > 5
@@ -315,7 +315,7 @@ def test_oscillating_squeeze_against_moving_boundary_reference():
 
 def test_jfo_is_a_model_of_the_table():
     from bearingfe import superpose
-    from bearingfe.cavitation import MODELS, ModelOptions, solve_model
+    from bearingfe.cavitation.models import MODELS, ModelOptions, solve_model
     mesh = _pocket_mesh(0.1)
     film = CosineFilm(0.6, math.pi)
     assert "jfo" in MODELS
@@ -348,7 +348,7 @@ def test_cavitation_pressure_applies_to_swift_stieber():
 
 
 def test_nested_warm_start_from_a_coarser_mesh(journal):
-    from bearingfe.meshing import refine_uniformly
+    from bearingfe.geometry.meshing import refine_uniformly
     _, coarse = journal
     fine_mesh = refine_uniformly(journal_mesh(JournalBearing(length_ratio=1.0), 0.1)[0])
     cold = solve_jfo(fine_mesh, CosineFilm(0.6, 0.0))

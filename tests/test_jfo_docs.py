@@ -44,8 +44,8 @@ def test_dimple_page_rows_match_fresh_solves():
     import sys
 
     from bearingfe import grid_mesh, mesh_surface
-    from bearingfe.film import UniformFilm
-    from bearingfe.jfo import solve_jfo
+    from bearingfe.film.thickness import UniformFilm
+    from bearingfe.film.finite_volume import solve_jfo
     sys.path.insert(0, str(PAGE.parents[1]))
     from benchmarks.jfo_dimples import DEPTH, FORCE, H_MIN, P_C, SHEAR, surface
 

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from bearingfe import Circle, CosineFilm, Recess, Rectangle, Surface, grid_mesh, mesh_surface, solve_reynolds
-from bearingfe.film import UniformFilm
-from bearingfe.jfo import COUETTE_FLUXES, solve_jfo
-from bearingfe.meshing import periodic_pairs, strip_mesh
+from bearingfe.film.thickness import UniformFilm
+from bearingfe.film.finite_volume import COUETTE_FLUXES, solve_jfo
+from bearingfe.geometry.meshing import periodic_pairs, strip_mesh
 
 from bearingfe.validation import PocketSlider
 
@@ -199,7 +199,7 @@ def test_periodic_grid_carries_the_flux_across_the_seam():
 def test_low_rank_tail_of_the_active_set_matches_fresh_factorizations(monkeypatch):
     # the last active-set steps switch a few dofs; they are solved by Sherman-Morrison-Woodbury on the
     # previous factorization: same sets, same iterations and the same solution to round-off
-    import bearingfe.jfo as jfo
+    import bearingfe.film.finite_volume as jfo
 
     mesh = grid_mesh(_dimpled(), 1 / 60)
     fast = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, performance)
+from bearingfe.bearings.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, performance)
 from bearingfe.validation import RAIMONDI_BOYD
 
 

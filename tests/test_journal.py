@@ -16,7 +16,7 @@ import warnings
 import numpy as np
 import pytest
 
-from bearingfe.journal import (EPS_MAX, Groove, JournalBearing, ResolutionWarning, dynamic_coefficients,
+from bearingfe.bearings.journal import (EPS_MAX, Groove, JournalBearing, ResolutionWarning, dynamic_coefficients,
                                equilibrium, film_graded_size, performance, short_bearing_force)
 from bearingfe import CosineFilm
 
@@ -131,7 +131,7 @@ def test_dynamic_coefficients_short_bearing_limit():
         fp = short_bearing_force_xy(-eps, 0.0, a, e); fm = short_bearing_force_xy(-eps, 0.0, a, -e)
         C[:, j] = (fp - fm) / (2 * d)
     F = short_bearing_force(eps, a)
-    from bearingfe.journal import _to_ross_frame
+    from bearingfe.bearings.journal import _to_ross_frame
     direction = math.atan2(F[1], F[0])
     Ks, Cs = _to_ross_frame(direction, K) / w, _to_ross_frame(direction, C) / w
     scale_k, scale_c = np.abs(Ks).max(), np.abs(Cs).max()
@@ -177,7 +177,7 @@ def test_film_graded_size():
 
 
 def test_side_flow_ratio_is_mesh_independent_and_matches_raimondi_boyd():
-    # The ruptured zone's Couette source is not side leakage (bearingfe.superposition._flows, ``cavitated``):
+    # The ruptured zone's Couette source is not side leakage (bearingfe.film.superposition._flows, ``cavitated``):
     # counted in, it biased Qs/Q low by O(size) (measured 0.472, 0.485, 0.492, 0.495 at size 0.1 .. 0.0125,
     # eps = 0.4). Raimondi & Boyd: Qs/Q = 0.497 (eps 0.4), 0.842 (eps 0.8) for L/D = 1.
     for eps, ref in ((0.4, 0.497), (0.8, 0.842)):
@@ -208,12 +208,12 @@ def test_raimondi_boyd_rows_obey_their_friction_identity_except_one():
 
 
 def test_independent_projected_sor_reference_agrees_with_the_active_set_fem():
-    # Christopherson's projected SOR on the five-point FD grid (bearingfe.fd) shares neither the
+    # Christopherson's projected SOR on the five-point FD grid (bearingfe.film.fd) shares neither the
     # discretisation nor the algorithm with the FEM active-set solver. Converged by Richardson
     # extrapolation both give S = 0.260396, attitude 62.5687 deg (docs/validation.md); here the FD grid is
     # 315 x 101 (S within 1.1e-4 of that) and the FEM mesh size 0.1 refined once (within 8e-4).
     from bearingfe import Surface
-    from bearingfe.fd import solve_reynolds_fd
+    from bearingfe.film.fd import solve_reynolds_fd
     eps, d = 0.4, 0.02
     fd = solve_reynolds_fd(Surface(arc=(0.0, 2 * math.pi), half_width=1.0), CosineFilm(eps, 0.0), (315, 101),
                            formulation="direct", method="seidel", cavitation="reynolds",

@@ -16,9 +16,9 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe.journal import (JournalBearing, _solve_state, dynamic_coefficients, equilibrium, journal_mesh,
+from bearingfe.bearings.journal import (JournalBearing, _solve_state, dynamic_coefficients, equilibrium, journal_mesh,
                                performance)
-from bearingfe.meshing import refine_uniformly
+from bearingfe.geometry.meshing import refine_uniformly
 
 BEARING = JournalBearing(0.5)
 EPS = 0.6
@@ -122,7 +122,7 @@ def test_bad_element_and_order_are_named():
 
 
 def test_discretization_object_carries_the_element():
-    from bearingfe.parameters import Discretization
+    from bearingfe.core.parameters import Discretization
 
     by_object = performance(BEARING, EPS, discretization=Discretization(element="P2", mesh_size=0.2))
     by_keyword = performance(BEARING, EPS, size=0.2, element="P2")

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe.journal import (JournalBearing, dynamic_coefficients, equilibrium, journal_mesh,
+from bearingfe.bearings.journal import (JournalBearing, dynamic_coefficients, equilibrium, journal_mesh,
                                structured_journal_mesh)
 
 BEARING = JournalBearing(0.5)

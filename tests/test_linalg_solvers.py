@@ -11,9 +11,9 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 import bearingfe as bf
-from bearingfe.linalg import LINEAR_SOLVERS, PatternFactorizer, available_solvers, get_linear_solver
-from bearingfe.forms import film_at
-from bearingfe.superposition import operators, system_matrix
+from bearingfe.core.linalg import LINEAR_SOLVERS, PatternFactorizer, available_solvers, get_linear_solver
+from bearingfe.film.forms import film_at
+from bearingfe.film.superposition import operators, system_matrix
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from bearingfe.machines import CrankMechanism, MillDrive, RotorFrame
-from bearingfe.mechanism_files import LOADERS, load_mechanism
+from bearingfe.mechanisms.machines import CrankMechanism, MillDrive, RotorFrame
+from bearingfe.mechanisms.files import LOADERS, load_mechanism
 
 ROOT = Path(__file__).resolve().parents[1]
 MECH = ROOT / "mechanisms"

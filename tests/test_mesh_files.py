@@ -1,4 +1,4 @@
-"""The example gmsh files in meshes/ read through bearingfe.meshing.load_mesh.
+"""The example gmsh files in meshes/ read through bearingfe.geometry.meshing.load_mesh.
 
 Every file describes the default shoe (arc [-0.5, 0.5], half width 0.4: area
 0.8) with one pocket; the analytic pocket areas come from the dimensions
@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bearingfe.meshing import load_mesh
+from bearingfe.geometry.meshing import load_mesh
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
 OUTLINE_AREA = 1.0 * 0.8

@@ -14,7 +14,7 @@ import pytest
 import skfem
 
 from bearingfe import Circle, Rectangle, Surface, load_mesh, mesh_surface, refine_uniformly
-from bearingfe.meshing import SupportMesh
+from bearingfe.geometry.meshing import SupportMesh
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
 

@@ -1,4 +1,4 @@
-"""Parameter objects (bearingfe.parameters): OperatingPoint and Discretization.
+"""Parameter objects (bearingfe.core.parameters): OperatingPoint and Discretization.
 
 Their checks name the field and the allowed range; the solver functions take them as
 ``operating=`` / ``discretization=`` and give bit-for-bit the result of the old keyword call
@@ -9,13 +9,15 @@ import inspect
 import math
 import warnings
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.cavitation import rates_for_load, solve_cavitating
-from bearingfe.journal import JournalBearing, equilibrium, performance
-from bearingfe.parameters import Discretization, OperatingPoint
+from bearingfe.cavitation.models import rates_for_load, solve_cavitating
+from bearingfe.bearings.journal import JournalBearing, equilibrium, performance
+from bearingfe.core.parameters import Discretization, OperatingPoint
 
 SURFACE = bf.Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=(bf.Circle((0.0, 0.0), 0.1),))
 FILM = bf.CosineFilm(0.6, 0.3)
@@ -106,7 +108,7 @@ def test_adapt_old_and_new_calls_agree():
 
 
 def test_simulate_old_and_new_calls_agree():
-    pump = bf.load_mechanism(bf.transient.__file__.replace("bearingfe/transient.py", "mechanisms/eccentric_pump.toml"))
+    pump = bf.load_mechanism(Path(__file__).resolve().parents[1] / "mechanisms" / "eccentric_pump.toml")
     kw = dict(start="steady", points_per_revolution=40)
     old = bf.simulate(pump, None, 0.05, mesh_size=0.25, element="P1", formulation="pi", **kw)
     new = bf.simulate(pump, None, 0.05, discretization=Discretization(mesh_size=0.25), **kw)
@@ -159,7 +161,7 @@ def test_signatures_show_the_new_keywords(func, keywords):
 
 
 def test_fd_reference_and_superposition_methods_take_the_operating_point(mesh):
-    from bearingfe.fd import solve_reynolds_fd
+    from bearingfe.film.fd import solve_reynolds_fd
 
     old = solve_reynolds_fd(SURFACE, FILM, (21, 17), wedge=1.0, squeeze=(0.1, -0.2), inlet_pressure=2.0,
                             formulation="direct")

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.transient import pump_mesh
+from bearingfe.transient.quasi_static import pump_mesh
 
 ROOT = Path(__file__).resolve().parents[1]
 PUMP = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")

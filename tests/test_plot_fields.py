@@ -45,7 +45,7 @@ def result_signed():
 
 
 def test_import_bearingfe_loads_no_plotting_library():
-    code = ("import os, sys, bearingfe, bearingfe.plot, bearingfe.cli, bearingfe.io; "
+    code = ("import os, sys, bearingfe, bearingfe.plot, bearingfe.cli, bearingfe.io.writers; "
             "bad = [m for m in ('pyvista', 'vtk', 'matplotlib.pyplot') if m in sys.modules]; "
             "assert not bad, bad; assert 'VTK_DEFAULT_OPENGL_WINDOW' not in os.environ")
     env = {k: v for k, v in __import__("os").environ.items() if k != "VTK_DEFAULT_OPENGL_WINDOW"}

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bearingfe.mechanism_files import load_mechanism
+from bearingfe.mechanisms.files import load_mechanism
 from bearingfe.plot.mechanisms import plot_crank_kinematics, plot_efficiency, plot_natural_frequencies
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.pump import (EccentricPump, PressureCycle, attitude, pivot_ratio, pivot_ratio_rate, plunger_stroke,
+from bearingfe.bearings.pump import (EccentricPump, PressureCycle, attitude, pivot_ratio, pivot_ratio_rate, plunger_stroke,
                             shoe_wedge, swing_angle, swing_rate)
 
 E, E2, R0 = 0.008, 0.05, 0.03  # e2 = 6.25: strong swing, so sign errors show

@@ -11,8 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe import (Circle, CosineFilm, Ellipse, Rectangle, Scale, Slot, Surface, mesh_surface,
-                       solve_reynolds, superpose)
+from bearingfe import Circle, CosineFilm, Ellipse, Rectangle, Scale, Slot, Surface, mesh_surface, solve_reynolds, superpose
 from bearingfe.reynolds import CoercivityError  # noqa: F401  (public name, exported)
 
 

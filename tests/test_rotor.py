@@ -1,4 +1,4 @@
-"""Rotor on an elastic frame (bearingfe.rotor) against independent routes and paper 002."""
+"""Rotor on an elastic frame (bearingfe.mechanisms.rotor) against independent routes and paper 002."""
 
 import math
 from dataclasses import replace
@@ -8,8 +8,8 @@ import pytest
 from scipy.linalg import eigh, solve
 
 from bearingfe import rotor as R
-from bearingfe.machines import Frame, Material, Rotor
-from bearingfe.sections import ibeam, ibeam_names
+from bearingfe.mechanisms.machines import Frame, Material, Rotor
+from bearingfe.mechanisms.sections import ibeam, ibeam_names
 
 
 def _matrices(rotor, frame):

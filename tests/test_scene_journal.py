@@ -5,7 +5,7 @@ consistency and units, not on converged numbers: the summary must equal the dire
 (equilibrium + dynamic_coefficients + to_si) to round-off, and its SI values must agree with scales
 computed here by hand (pressure mu omega R^2/c^2, force mu omega R^4/c^2, flow omega R^2 c: journal.py
 and scales.py; L enters only through the half width a = L/D) and with the Raimondi-Boyd chart variables
-of bearingfe.journal.performance at the summary's eccentricity.
+of bearingfe.bearings.journal.performance at the summary's eccentricity.
 """
 
 import csv
@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from bearingfe.cli import main
-from bearingfe.journal import Groove, JournalBearing, dynamic_coefficients, equilibrium, performance
-from bearingfe.scene_journal import journal_settings
+from bearingfe.bearings.journal import Groove, JournalBearing, dynamic_coefficients, equilibrium, performance
+from bearingfe.scenes.journal import journal_settings
 from bearingfe.scenes import SCENES, SceneError, load_scene
 
 ROOT = Path(__file__).resolve().parents[1]

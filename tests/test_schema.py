@@ -1,8 +1,8 @@
-"""The one input-file schema (bearingfe.schema): every file kind gives the same error form.
+"""The one input-file schema (bearingfe.core.schema): every file kind gives the same error form.
 
 Each row below edits a valid file into a bad one and names the fragment its error must contain:
 ``<file>: [<table>] <field>: <what is wrong>`` with the allowed range or choices. The expected
-texts are the documented error form of :mod:`bearingfe.schema` (module docstring), not output
+texts are the documented error form of :mod:`bearingfe.core.schema` (module docstring), not output
 copied from a run.
 """
 
@@ -11,11 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from bearingfe.mechanism_files import load_mechanism
-from bearingfe.scene_journal import journal_settings
-from bearingfe.scene_pump import pump_settings
+from bearingfe.mechanisms.files import load_mechanism
+from bearingfe.scenes.journal import journal_settings
+from bearingfe.scenes.pump import pump_settings
 from bearingfe.scenes import SceneError, load_scene, reynolds_settings
-from bearingfe.schema import (REQUIRED, Range, SchemaError, Table, Tables, choice, finite, in_range, integer,
+from bearingfe.core.schema import (REQUIRED, Range, SchemaError, Table, Tables, choice, finite, in_range, integer,
                               nonnegative, number, one_of, positive, read_table)
 from bearingfe.sweep import read_study
 
@@ -120,7 +120,7 @@ def test_pump_scene_errors(tmp_path, old, new, fragment):
 
 def test_pump_scene_cavitation_choices_come_from_the_solver():
     from bearingfe.reynolds import CAVITATION
-    from bearingfe.scene_pump import PUMP
+    from bearingfe.scenes.pump import PUMP
 
     check = PUMP["run"].spec["cavitation"][0]
     assert all(check("w", name) == name for name in CAVITATION)  # every model the solver has, no copy
@@ -253,9 +253,9 @@ def test_read_table_defaults_nested_tables_and_lazy_choices():
 
 
 def test_old_field_reader_still_works_and_names_its_replacement():
-    from bearingfe.mechanism_files import field
+    from bearingfe.mechanisms.files import field
 
-    with pytest.warns(DeprecationWarning, match="bearingfe.schema.read_table"):
+    with pytest.warns(DeprecationWarning, match="bearingfe.core.schema.read_table"):
         assert field({"rod": 2}, "crank", "rod", "m.toml") == 2.0
     with pytest.warns(DeprecationWarning), pytest.raises(SchemaError, match=r"^m.toml: \[crank\] rod: missing"):
         field({}, "crank", "rod", "m.toml")

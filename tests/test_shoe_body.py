@@ -1,8 +1,8 @@
-"""The real shoe body (bearingfe.shoe_body): gmsh tetrahedra, linear elasticity, compliance on the film dofs.
+"""The real shoe body (bearingfe.elastic.shoe): gmsh tetrahedra, linear elasticity, compliance on the film dofs.
 
 Expected values: the flat block clamped at its back is the problem of the tensor-mesh model
-(bearingfe.elastic.shoe_body), which it must match within that model's own mesh error; a body growing
-in depth and width approaches the elastic half-space (Love's rectangle, bearingfe.elastic.half_space)
+(bearingfe.elastic.coupled.shoe_body), which it must match within that model's own mesh error; a body growing
+in depth and width approaches the elastic half-space (Love's rectangle, bearingfe.elastic.coupled.half_space)
 from below; reciprocity (``M C`` symmetric: the load and the read-out are adjoint) holds to round-off;
 a conforming displacement model is too stiff, so the compliance energy under uniform pressure grows
 under refinement towards its limit with shrinking steps (measured sequences quoted at each test).
@@ -14,12 +14,13 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
+from conftest import ROOT
 from bearingfe import Circle, Material, Scale, Surface, mesh_surface, solve_reynolds
-from bearingfe.elastic import half_space, shoe_body
-from bearingfe.machines import ShoeBody
+from bearingfe.elastic.coupled import half_space, shoe_body
+from bearingfe.mechanisms.machines import ShoeBody
 from bearingfe.reynolds import operators
-from bearingfe.schema import SchemaError
-from bearingfe.shoe_body import mesh_shoe, overlay, shoe_compliance
+from bearingfe.core.schema import SchemaError
+from bearingfe.elastic.shoe import mesh_shoe, overlay, shoe_compliance
 
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)  # the shipped pump
 STEEL = Material("steel", 210e9, poisson_ratio=0.3)
@@ -155,10 +156,10 @@ def test_bad_shoe_inputs_are_named(tmp_path):
         mesh_shoe(PLAIN, 0.05, ShoeBody(0.015), -1.0)
     with pytest.raises(ValueError, match="order must be one of"):
         shoe_compliance(mesh_surface(PLAIN, 0.3), SCALE, STEEL, ShoeBody(0.015), order=3)
-    with pytest.raises(bf.geofiles.MeshSizeError, match="tetrahedra"):
+    with pytest.raises(bf.MeshSizeError, match="tetrahedra"):
         mesh_shoe(PLAIN, 0.05, ShoeBody(0.015), 0.2, film_size=1e-4)
     # the machine file: the fields of [shoe], [shoe.seat] and [shoe.lining] are checked and named
-    text = (bf.mechanism_files.__file__.replace("bearingfe/mechanism_files.py", "mechanisms/eccentric_pump.toml"))
+    text = ROOT / "mechanisms" / "eccentric_pump.toml"
     base = open(text).read()
     for old, new, message in (
             ('kind = "frictionless"', 'kind = "glued"', r"\[shoe.seat\] kind: must be one of 'clamped'"),
@@ -174,16 +175,14 @@ def test_bad_shoe_inputs_are_named(tmp_path):
 
 
 def test_the_shipped_pump_describes_its_shoe():
-    pump = bf.load_mechanism(bf.mechanism_files.__file__.replace("bearingfe/mechanism_files.py",
-                                                                 "mechanisms/eccentric_pump.toml"))
+    pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
     assert pump.shoe_body == ShoeBody(0.015, back="flat", seat="frictionless", seat_radius=0.0175)
     assert pump.shoe_thickness == 0.015
 
 
 def test_machine_file_lining_and_concentric_back(tmp_path):
     # [shoe.lining] and back = "concentric" reach the ShoeBody with their SI values
-    base = open(bf.mechanism_files.__file__.replace("bearingfe/mechanism_files.py",
-                                                    "mechanisms/eccentric_pump.toml")).read()
+    base = open(ROOT / "mechanisms" / "eccentric_pump.toml").read()
     text = base.replace('back = "flat"', 'back = "concentric"', 1).replace(
         "[shoe.seat]", '[shoe.lining]\nthickness = 0.002\nname = "bronze"\nyoungs_modulus = 110e9\n'
                        "poisson_ratio = 0.34\n\n[shoe.seat]", 1)

@@ -2,7 +2,7 @@
 
 Expected behaviour, from the model itself: with ``cavitation="reynolds"`` the
 rates at every stored state come from the complementarity solve
-(``bearingfe.cavitation.rates_for_load``), so the cavitated film force
+(``bearingfe.cavitation.models.rates_for_load``), so the cavitated film force
 balances the applied load (paper eq. 13-14) with ``p >= 0`` everywhere; where
 the film never ruptures the trajectory is the uncavitated one.
 """
@@ -28,7 +28,7 @@ def test_cavitated_states_balance_the_load_with_nonnegative_pressure(pump):
     traj = bf.simulate(wide, mesh, 0.5, cavitation="reynolds", **run)
     plain = bf.simulate(wide, mesh, 0.5, cavitation="none", **run)
     assert traj.status == "completed"
-    model = bf.transient._Model(wide, mesh, "pi", "P1", "splu", "reynolds")
+    model = bf.transient.quasi_static._Model(wide, mesh, "pi", "P1", "splu", "reynolds")
     ruptured = 0
     for k in range(0, traj.beta.size, 6):
         rates, res = model.balance(traj.beta[k], np.array([traj.gamma[k], traj.delta[k]]))

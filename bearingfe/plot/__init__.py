@@ -1,1 +1,10 @@
-"""Pictures: pyvista fields and matplotlib curves, imported lazily (never on ``import bearingfe``)."""
+"""Pictures: pyvista fields and matplotlib curves, imported lazily (never on ``import bearingfe``).
+
+==============  ==============================================================
+module          what it draws
+==============  ==============================================================
+``fields``      pressure and film fields on the surface (pyvista, off-screen)
+``curves``      trajectories, orbits and other curves (matplotlib)
+``mechanisms``  the crank and rotor models' curves (matplotlib)
+==============  ==============================================================
+"""

@@ -269,7 +269,7 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
         else:
             pl.view_vector((1.0, 0.35, 0.6))
             pl.reset_camera()
-        from ..io import atomic_path
+        from ..io.writers import atomic_path
 
         with atomic_path(path) as tmp:  # no half-written picture if rendering fails
             pl.screenshot(str(tmp))

@@ -16,9 +16,9 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ..geometry import Circle, Surface
-from ..parameters import ELEMENTS
-from ..schema import one_of
+from ..geometry.surface import Circle, Surface
+from ..core.parameters import ELEMENTS
+from ..core.schema import one_of
 
 __all__ = ["BASES", "RUNS", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "run_shoe"]
 
@@ -78,8 +78,8 @@ def run_shoe(case: ShoeCase):
 
     Raises ``ValueError`` if the film closes on the surface (``h_min <= 0``).
     """
-    from ..film import CosineFilm
-    from ..meshing import mesh_surface
+    from ..film.thickness import CosineFilm
+    from ..geometry.meshing import mesh_surface
     from ..reynolds import solve_reynolds
 
     mesh = mesh_surface(case.surface, case.mesh_size)
@@ -94,7 +94,7 @@ _PUMP_FILE = Path(__file__).resolve().parents[2] / "mechanisms" / "eccentric_pum
 
 
 def _shipped_pump():
-    from ..mechanism_files import load_mechanism
+    from ..mechanisms.files import load_mechanism
 
     if not _PUMP_FILE.is_file():
         raise ValueError(f"the shipped pump file is not here ({_PUMP_FILE}); give [base] a pump of your own")
@@ -126,9 +126,9 @@ class PumpCase:
     cavitation: str = "none"
 
     def __post_init__(self) -> None:
-        from ..cavitation import MODELS
-        from ..pump import EccentricPump
-        from ..transient import STARTS
+        from ..cavitation.models import MODELS
+        from ..bearings.pump import EccentricPump
+        from ..transient.quasi_static import STARTS
 
         if not isinstance(self.pump, EccentricPump):
             raise ValueError(f"PumpCase.pump must be a bearingfe.EccentricPump, got {type(self.pump).__name__}")
@@ -158,7 +158,7 @@ class PumpOutcome:
 
 def run_pump(case: PumpCase) -> PumpOutcome:
     """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
-    from ..transient import pump_mesh, simulate, state_result
+    from ..transient.quasi_static import pump_mesh, simulate, state_result
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)

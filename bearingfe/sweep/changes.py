@@ -16,8 +16,8 @@ from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
 
-from ..geometry import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
-from ..limits import check_limit
+from ..geometry.surface import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
+from ..core.limits import check_limit
 
 __all__ = [
     "CHANGES", "POCKET_SHAPES", "apply_changes", "centroid", "check_change_name", "expand_cases", "get_field", "pocket_fraction",
@@ -179,8 +179,8 @@ def expand_cases(changes, max_cases: int | None = None) -> list[dict[str, Any]]:
     or from a list of ``{name: value}`` mappings.
 
     The number of cases is checked against ``max_cases`` (default: the
-    ``cases`` limit of :mod:`bearingfe.limits`, 10000) before the grid is
-    expanded; :class:`bearingfe.limits.LimitError` beyond it.
+    ``cases`` limit of :mod:`bearingfe.core.limits`, 10000) before the grid is
+    expanded; :class:`bearingfe.core.limits.LimitError` beyond it.
     """
     if isinstance(changes, Mapping):
         for name, values in changes.items():

@@ -28,7 +28,7 @@ import warnings
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
-from ..limits import LimitError, check_limit, limit
+from ..core.limits import LimitError, check_limit, limit
 from ..version import __version__
 from .cases import RUNS
 from .changes import apply_changes, check_change_name, expand_cases
@@ -283,11 +283,11 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
     time_limit : float, optional
         Seconds one case may run [s]; a case past it is stopped (its local
         worker killed) and recorded as failed with ``CaseTimeout``. Default
-        the ``case_seconds`` limit of :mod:`bearingfe.limits` (3600 s).
+        the ``case_seconds`` limit of :mod:`bearingfe.core.limits` (3600 s).
     max_cases, max_elements : optional
         Size guards checked before any case runs: the number of cases and
         the estimated triangles of each case's mesh
-        (:func:`estimated_elements`); defaults from :mod:`bearingfe.limits`.
+        (:func:`estimated_elements`); defaults from :mod:`bearingfe.core.limits`.
 
     Cache records carry a SHA-256 checksum of their content and the package
     version; a record that does not match (edited, damaged, another version

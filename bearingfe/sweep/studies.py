@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..schema import SchemaError, Table, anything, choice, choices, positive_number, read_table, read_toml, text
+from ..core.schema import SchemaError, Table, anything, choice, choices, positive_number, read_table, read_toml, text
 from .cases import BASES, RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
@@ -57,7 +57,7 @@ def _settings(where: str, value) -> dict:
     return value
 
 
-#: The study file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.schema`); the names in
+#: The study file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`); the names in
 #: ``[base.set]``, ``[grid]`` and ``[[cases]]`` are checked against the base object and the change builders.
 STUDY = {
     "study": Table({"name": (text, None), "run": (choice(lambda: RUNS), "shoe"),

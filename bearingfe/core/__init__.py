@@ -1,0 +1,13 @@
+"""The layer every other one stands on: input schema, size limits, argument checks, scales, parameter objects and sparse linear algebra.
+
+================  ============================================================
+module            what it does
+================  ============================================================
+``schema``        One schema for every input file: scene, mechanism and study files.
+``limits``        Size limits: guards against runaway work, checked before the work starts.
+``checks``        Checks that keep answers honest: ranges of solver inputs and the mesh resolution of the thin film.
+``scales``        Conversion between the non-dimensional Reynolds problem and SI units.
+``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
+``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
+================  ============================================================
+"""

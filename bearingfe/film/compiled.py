@@ -1,0 +1,554 @@
+r"""Compiled film operator: the film-independent linear maps of a mesh and element, built once.
+
+Everything the Reynolds equation needs from a film state enters through a few
+fields at the quadrature points (``h^3`` or ``D``, the sources, ``h`` and its
+gradient). What does not depend on the film is built once per
+``(mesh, element)`` (issue 13):
+
+- the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
+  (gradients) from dofs to the ``n_q`` quadrature points;
+- the sparsity pattern of the system matrix and the scatters
+  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``, :class:`Scatter`; both
+  forms are symmetric) such that the matrix of a film is ``A.data =
+  (S_stiff @ h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 -
+  S_mass @ D)[twins]`` (pi form), with the index maps that cut out the
+  condensed blocks ``A[I, I]`` and ``A[I, inlet]``;
+- the fill-reducing ordering of ``A[I, I]`` (the symbolic part SuperLU lets
+  one keep; see :class:`bearingfe.core.linalg.PatternFactorizer`), so a new film
+  costs one numeric factorization;
+- the maps from quadrature values to loads (``cos phi dx``, ``sin phi dx``,
+  ``dx``), to the source vectors (``E^T dx`` on the interior dofs) and to the
+  boundary flows of each outflow group (three dense ``n_groups x n_q``
+  matrices, plus the facet maps of the corner dofs).
+
+A film state then costs sparse mat-vecs, one numeric factorization and the
+solves; flows and friction of many states (a trajectory) are dense
+products over the stacked samples (:meth:`CompiledOperator.outputs`).
+The scikit-fem assembly (:func:`bearingfe.film.superposition.superpose` with
+``assembly="reference"``) gives the same numbers to round-off (tests/test_compiled.py).
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from scipy.linalg.lapack import dpbtrf, dpbtrs
+from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+from .forms import film_at
+
+__all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
+
+
+#: SuperLU panel and supernode sizes of the numeric factorization up to ``_SMALL_PANELS_UP_TO``
+#: unknowns: one-column panels and no relaxed supernodes. The Reynolds matrices are 2-D FEM
+#: patterns with little fill in the minimum-degree order, so there the supernodal dense kernels (and
+#: a threaded BLAS behind them) cost more than they save: measured 1.4-2.4x faster than SuperLU's
+#: defaults from 214 to 17670 unknowns on the pump's P2 meshes. Larger systems keep the defaults
+#: (not measured there). The factors are the same up to round-off.
+_SMALL_PANELS = {"panel_size": 1, "relax": 1}
+_SMALL_PANELS_UP_TO = 20000
+
+#: Largest half-bandwidth (in the reverse Cuthill-McKee order) factored by banded Cholesky
+#: (LAPACK ``dpbtrf``, lower storage) instead of SuperLU. Up to 31 LAPACK runs its unblocked
+#: column algorithm, whose only BLAS calls are a scale and a rank-one update of unit-stride vectors
+#: of length <= 31 (no threads); wider bands go blocked, into threaded BLAS-3 kernels, which on a
+#: busy machine cost milliseconds. Measured on the pump's P2 shoe mesh of 0.2 R0 (214 unknowns,
+#: half-bandwidth 31): factorization and four solves 2x faster than SuperLU's, one pump revolution
+#: 20-25 % faster; the solutions agree to round-off (tests/test_compiled.py).
+_BAND_MAX = 31
+
+
+def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet).
+
+    Row ``cell * n_points + point`` holds the ``Nbfun`` basis functions of its cell, so the CSR
+    arrays are written directly (columns sorted per row: the canonical form a COO build gives).
+    """
+    dofs = np.asarray(basis.element_dofs)  # (Nbfun, n_cells)
+    nb = len(basis.basis)
+    n_cells, n_points = np.asarray(basis.basis[0][0]).shape
+    sort = np.argsort(dofs, axis=0, kind="stable")  # per cell: its dofs in increasing order
+    cols = np.take_along_axis(dofs, sort, axis=0).T  # (n_cells, nb)
+    indices = np.broadcast_to(cols[:, None, :], (n_cells, n_points, nb)).ravel().astype(np.int32)
+    indptr = np.arange(0, n_cells * n_points * nb + 1, nb, dtype=np.int32)
+    out = []
+    for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1]):
+        v = np.stack([np.asarray(part(phi[0])) for phi in basis.basis])  # (nb, n_cells, n_points)
+        v = np.take_along_axis(v, sort[:, :, None], axis=0).transpose(1, 2, 0)
+        m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(n_cells * n_points, n_dofs))
+        m.has_sorted_indices = True
+        out.append(m)
+    return tuple(out)
+
+
+def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+    """Sparse maps from the dofs of ``basis`` to the values and the two gradient components at its own
+    quadrature points, each of shape ``(n_cells * n_points, basis.N)`` (rows in ``basis.dx`` order)."""
+    return _interpolation(basis, basis.N)
+
+
+def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CSR pattern of the element matrices' union and, for every (i, j, cell), its position in it."""
+    nb = dofs.shape[0]
+    rows = np.repeat(dofs, nb, axis=0)           # (nb*nb, n_cells): row dof of local pair (i, j)
+    cols = np.tile(dofs, (nb, 1))                # column dof
+    keys = rows.astype(np.int64) * n + cols
+    unique, position = np.unique(keys.ravel(), return_inverse=True)
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
+    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape)
+
+
+def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
+    """For every entry of a symmetric pattern, the index of its upper-triangle twin among the
+    upper-triangle entries; and their number."""
+    rows = np.repeat(np.arange(n), np.diff(indptr))
+    keys = rows.astype(np.int64) * n + indices
+    lo, hi = np.minimum(rows, indices).astype(np.int64), np.maximum(rows, indices)
+    twin = np.searchsorted(keys, lo * n + hi)
+    upper = rows <= indices
+    rank = np.cumsum(upper) - 1
+    return rank[twin], int(upper.sum())
+
+
+def _pair_values(basis, kind: str) -> tuple[list[tuple[int, int]], np.ndarray]:
+    """The local pairs ``i <= j`` and ``grad phi_i . grad phi_j dx`` (stiff) or ``phi_i phi_j dx``
+    (mass) at every point, shape ``(n_pairs, n_cells, n_points)``."""
+    nb = len(basis.basis)
+    pairs = [(i, j) for i in range(nb) for j in range(i, nb)]
+    data = np.empty((len(pairs), *basis.dx.shape))
+    for k, (i, j) in enumerate(pairs):
+        vi, vj = basis.basis[i][0], basis.basis[j][0]
+        if kind == "stiff":
+            data[k] = vi.grad[0] * vj.grad[0] + vi.grad[1] * vj.grad[1]
+        else:
+            data[k] = np.asarray(vi) * np.asarray(vj)
+    data *= basis.dx
+    return pairs, data
+
+
+@dataclass(frozen=True, eq=False)
+class Scatter:
+    """``c -> S @ c``: the upper-triangle values of ``int c grad u . grad v`` (stiff) or
+    ``int c u v`` (mass) on the pattern, for a field ``c`` at the quadrature points.
+
+    Kept as the per-point products of the local pairs (``values``, ``(n_pairs, n_cells,
+    n_points)``) and the upper entry each pair of each cell adds to (``rows``): a film costs
+    one contraction over the points and one scatter-add, and building it sorts nothing.
+    """
+
+    values: np.ndarray
+    rows: np.ndarray
+    n_upper: int
+
+    def __matmul__(self, c: np.ndarray) -> np.ndarray:
+        per_pair = np.einsum("pcq,cq->pc", self.values, np.reshape(c, self.values.shape[1:]))
+        return np.bincount(self.rows, weights=per_pair.ravel(), minlength=self.n_upper)
+
+    def tocsr(self) -> sp.csr_matrix:
+        """``S`` as a sparse matrix ``(n_upper, n_q)``."""
+        n_pairs, n_cells, n_points = self.values.shape
+        cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+        return sp.csr_matrix((self.values.ravel(), (np.repeat(self.rows, n_points),
+                                                    np.tile(cols.ravel(), n_pairs))),
+                             shape=(self.n_upper, n_cells * n_points))
+
+
+def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> Scatter:
+    """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
+    (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
+    triangle, and the lower one copies it."""
+    nb = len(basis.basis)
+    pairs, values = _pair_values(basis, kind)
+    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()  # (n_pairs * n_cells,)
+    return Scatter(values=values, rows=rows, n_upper=n_upper)
+
+
+def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
+    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
+    carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
+    block = carrier[rows][:, cols].tocsr()
+    block.sort_indices()
+    return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+
+
+@dataclass(frozen=True, eq=False)
+class _BandPlan:
+    """Where the values of ``A[I, I]`` go in LAPACK's lower band storage (reverse Cuthill-McKee order)."""
+
+    perm: np.ndarray     # band position -> interior index
+    inverse: np.ndarray  # interior index -> band position
+    kd: int              # half-bandwidth
+    flat: np.ndarray     # column-major positions in the (kd + 1, n) band array
+    take: np.ndarray     # the pattern values that fill them
+    n: int
+
+
+def _band_cholesky(plan: _BandPlan, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+    """Banded Cholesky of ``A[I, I]`` from its pattern values; None if it is not positive definite."""
+    ab = np.zeros((plan.kd + 1, plan.n), order="F")
+    ab.ravel(order="F")[plan.flat] = data[plan.take]
+    factor, info = dpbtrf(ab, lower=1, overwrite_ab=1)
+    if info != 0:
+        return None
+    perm, inverse, n = plan.perm, plan.inverse, plan.n
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        b = np.asarray(b, dtype=float)
+        x, _ = dpbtrs(factor, b[perm].reshape(n, -1), lower=1)
+        return x[inverse].reshape(b.shape)
+
+    return solve
+
+
+@dataclass(frozen=True)
+class FilmFlows:
+    """Flows, mass balance and friction of one or many film states (arrays over the samples)."""
+
+    flows: Mapping[str, np.ndarray]
+    mass_balance: np.ndarray
+    friction: np.ndarray
+
+
+@dataclass(eq=False)
+class CompiledOperator:
+    """Film-independent linear maps of one ``(mesh, element)`` (see the module docstring).
+
+    Built by :func:`compile_operator`; the :class:`~bearingfe.film.superposition.Operators`
+    of a mesh keep one. The scatter matrices are built on first use (the
+    direct form needs no mass scatter).
+    """
+
+    n_dofs: int
+    interior: np.ndarray
+    inlet: np.ndarray
+    x: np.ndarray                  # (2, n_q) quadrature points
+    dx: np.ndarray                 # (n_q,) weights
+    value: sp.csr_matrix           # E: (n_q, n_dofs)
+    grad: tuple[sp.csr_matrix, sp.csr_matrix]
+    indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
+    indices: np.ndarray
+    loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
+    sources: sp.csr_matrix         # (E^T dx)[I]: (n_I, n_q)
+    groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
+    group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
+    corners: tuple                 # facet data of the corner dofs (see _corner_terms)
+    _basis: object = field(repr=False)
+    _position: np.ndarray = field(repr=False)
+    _lazy: dict = field(default_factory=dict, repr=False)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def __getstate__(self) -> dict:
+        state = self.__dict__.copy()
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state, _lock=threading.Lock())
+
+    @property
+    def nnz(self) -> int:
+        return int(self.indices.size)
+
+    def _get(self, name: str, build: Callable):
+        if name not in self._lazy:
+            self._lazy[name] = build()
+        return self._lazy[name]
+
+    @property
+    def stiffness_scatter(self) -> Scatter:
+        """``S_stiff``: ``A.data = (S_stiff @ c)[twins]`` for ``int c grad u . grad v``."""
+        return self._get("stiff", lambda: _scatter(self._basis, self._position, *self.twins, "stiff"))
+
+    @property
+    def mass_scatter(self) -> Scatter:
+        """``S_mass``: ``A.data = (S_mass @ c)[twins]`` for ``int c u v``."""
+        return self._get("mass", lambda: _scatter(self._basis, self._position, *self.twins, "mass"))
+
+    @property
+    def twins(self) -> tuple[np.ndarray, int]:
+        """Index of each pattern entry's upper-triangle twin, and the number of upper entries."""
+        return self._get("twins", lambda: _twins(self.indptr, self.indices, self.n_dofs))
+
+    @property
+    def transposed_value(self) -> sp.csr_matrix:
+        """``E^T``: (weighted) point values -> their integrals against each basis function."""
+        return self._get("value_t", lambda: self.value.T.tocsr())
+
+    @property
+    def laplace_data(self) -> np.ndarray:
+        """Values of ``int grad u . grad v`` on the upper triangle of the pattern."""
+        return self._get("laplace", lambda: self.stiffness_scatter @ np.ones(self.dx.size))
+
+    def _blocks(self):
+        def build():
+            I, inlet = self.interior, self.inlet
+            return (_block(self.indptr, self.indices, I, I, self.n_dofs),
+                    _block(self.indptr, self.indices, I, inlet, self.n_dofs))
+        return self._get("blocks", build)
+
+    # -- the system of a film -------------------------------------------------------------
+
+    def matrix_data(self, formulation: str, h: np.ndarray, D: np.ndarray) -> np.ndarray:
+        """Values of the system matrix on the pattern for a film (``h``, ``D`` at the points)."""
+        if formulation == "direct":
+            upper = self.stiffness_scatter @ h**3
+        else:
+            upper = self.laplace_data - self.mass_scatter @ D
+        return upper[self.twins[0]]
+
+    def matrix(self, data: np.ndarray) -> sp.csr_matrix:
+        """The full matrix from its values on the pattern."""
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n_dofs, self.n_dofs))
+
+    def condensed(self, data: np.ndarray) -> sp.csr_matrix:
+        """``A[I, I]`` from the values on the pattern."""
+        (sel, idx, ptr), _ = self._blocks()
+        n = self.interior.size
+        return sp.csr_matrix((data[sel], idx, ptr), shape=(n, n))
+
+    def coupling(self, data: np.ndarray) -> sp.csr_matrix:
+        """``A[I, inlet]`` from the values on the pattern."""
+        _, (sel, idx, ptr) = self._blocks()
+        return sp.csr_matrix((data[sel], idx, ptr), shape=(self.interior.size, self.inlet.size))
+
+    def coupling_times(self, data: np.ndarray, g: np.ndarray) -> np.ndarray:
+        """``A[I, inlet] @ g`` from the values on the pattern (no matrix built)."""
+        def build():
+            _, (sel, idx, ptr) = self._blocks()
+            return sel, idx, np.repeat(np.arange(ptr.size - 1), np.diff(ptr))
+        sel, idx, rows = self._get("coupling", build)
+        return np.bincount(rows, weights=data[sel] * g[idx], minlength=self.interior.size)
+
+    def factorize_condensed(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+        """Numeric factorization of ``A[I, I]``: banded Cholesky where the pattern's half-bandwidth
+        in the reverse Cuthill-McKee order is at most :data:`_BAND_MAX` (small meshes), else SuperLU
+        (symmetric mode) in a fill-reducing order found once for the pattern (minimum degree on
+        ``A^T + A``, as ``factorize_splu_sym``). A matrix that is not positive definite in floating
+        point goes to SuperLU.
+
+        Every film, the first included, is factored in that order from the same matrix object,
+        so a film's numbers do not depend on the films solved on the mesh before it (the
+        factorization that finds the order rounds differently and is not used for solves)."""
+        band = self._band_plan()
+        if band is not None:
+            solve = _band_cholesky(band, data)
+            if solve is not None:
+                return solve
+            # not positive definite in floating point: SuperLU (diagonal pivots) as for wider bands
+        (sel, idx, ptr), _ = self._blocks()
+        n = self.interior.size
+        if "order" not in self._lazy:
+            # the small panels change the supernodes, not the order (perm_c is the same): faster here too
+            lu = spla.splu(sp.csc_matrix((data[sel], idx, ptr), shape=(n, n)), permc_spec="MMD_AT_PLUS_A",
+                           diag_pivot_thresh=0.0, options={"SymmetricMode": True},
+                           **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
+            order = np.argsort(lu.perm_c)
+            carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
+            permuted = carrier[order][:, order].tocsc()
+            permuted.sort_indices()
+            # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
+            # matrix object is kept and only its values change (SuperLU copies them when it factors)
+            self._lazy["order"] = (order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted)
+        order, inverse, psel, template = self._lazy["order"]
+        with self._lock:  # one matrix object per mesh: fill and factor it in one go (threads)
+            template.data[:] = data[psel]
+            lu = spla.splu(template, permc_spec="NATURAL", diag_pivot_thresh=0.0, options={"SymmetricMode": True},
+                           **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
+
+        return solve
+
+    @property
+    def banded(self) -> bool:
+        """True if ``A[I, I]`` is factored by banded Cholesky (see :meth:`factorize_condensed`)."""
+        return self._band_plan() is not None
+
+    def _band_plan(self):
+        """Banded storage of ``A[I, I]`` in the reverse Cuthill-McKee order, or None if its
+        half-bandwidth exceeds :data:`_BAND_MAX` (built once per pattern)."""
+        def build():
+            (sel, idx, ptr), _ = self._blocks()
+            n = self.interior.size
+            if n == 0:
+                return None
+            pattern = sp.csr_matrix((np.ones(sel.size), idx, ptr), shape=(n, n))
+            perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
+            inverse = np.argsort(perm)
+            rows = np.repeat(np.arange(n), np.diff(ptr))
+            i, j = inverse[rows], inverse[idx]          # positions in the band order
+            kd = int(np.max(np.abs(i - j)))
+            if kd > _BAND_MAX:
+                return None
+            lower = i >= j
+            # LAPACK lower band storage, column-major: AB[i - j, j] = A[i, j]
+            flat = (i - j)[lower] + j[lower] * (kd + 1)
+            return _BandPlan(perm=perm, inverse=inverse, kd=kd, flat=flat, take=sel[lower], n=n)
+        return self._get("band", build)
+
+    # -- pressure, loads, flows and friction -----------------------------------------------
+
+    def pressure(self, u: np.ndarray, h: np.ndarray, dh: np.ndarray, pi: np.ndarray):
+        """``p`` and ``grad p`` at the points for unknowns ``u`` (``(n_dofs, S)``), films
+        ``h``, ``dh`` (``(n_q, S)``, ``(2, n_q, S)``) and a mask of pi-form samples ``(S,)``."""
+        value = self.value @ u
+        gradient = np.stack([self.grad[0] @ u, self.grad[1] @ u])
+        s = np.where(pi, h**-1.5, 1.0)
+        p = s * value
+        dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
+        return p, dp
+
+    def outputs(self, u: np.ndarray, films: Sequence, h: np.ndarray, dh: np.ndarray, hdot: np.ndarray,
+                weights: np.ndarray, sliding: np.ndarray, pi: np.ndarray,
+                cavitated: np.ndarray | None = None) -> FilmFlows:
+        """Flows, mass balance and friction of ``S`` film states at once.
+
+        Parameters
+        ----------
+        u : ndarray, shape (n_dofs, S)
+            Unknowns (``p`` or ``Pi``).
+        films : sequence of Film, length S
+            For the facet fluxes of the corner dofs.
+        h, dh, hdot : ndarray
+            Film thickness, its gradient and ``dh/dt`` at the points, shapes
+            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``.
+        weights : ndarray, shape (4, S)
+            Unit-source weights; the wedge is ``weights[0]``.
+        sliding : ndarray, shape (S,)
+        pi : ndarray of bool, shape (S,)
+            Samples in the pi form (the others are direct).
+        cavitated : ndarray of bool, shape (n_dofs, S), optional
+            Ruptured dofs (see :func:`bearingfe.film.superposition._flows`).
+        """
+        wedge = weights[0]
+        _, dp = self.pressure(u, h, dh, pi)
+        c = -h**3 / 12.0
+        q0 = c * dp[0] + 0.5 * wedge * h
+        q1 = c * dp[1]
+        dxc = self.dx[:, None]
+        qx, qz, qh = q0 * dxc, q1 * dxc, hdot * dxc
+        residual = self.group_maps[0] @ qx + self.group_maps[1] @ qz - self.group_maps[2] @ qh
+        residual = residual + self._corner_terms(u, films, wedge, pi)
+        friction = np.sum((sliding / h + 0.5 * h * dp[0]) * dxc, axis=0)
+        squeeze = np.sum(qh, axis=0)
+        flows = self._named(residual, squeeze)
+        balance = flows["inlet"] - self._outflow(flows) - flows["squeeze"]
+        if cavitated is not None:
+            r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
+            cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
+            source = self._ruptured_source(u, cavitated, wedge, dh, hdot)
+            corrected = self._named(residual + self.group_maps[2] @ (source * dxc), squeeze)
+            corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])
+                                       - (self._outflow(corrected) - self._outflow(flows)))
+            flows, balance = corrected, balance - cavitation
+        return FilmFlows(flows=flows, mass_balance=balance, friction=friction)
+
+    def _named(self, residual: np.ndarray, squeeze: np.ndarray) -> dict[str, np.ndarray]:
+        flows = {name: residual[k] for k, name in enumerate(self.groups)}
+        flows["inlet"] = -flows["inlet"] if "inlet" in flows else np.zeros_like(squeeze)
+        flows["squeeze"] = squeeze
+        return flows
+
+    @staticmethod
+    def _outflow(flows: Mapping[str, np.ndarray]) -> np.ndarray:
+        return sum(v for k, v in flows.items() if k not in ("inlet", "squeeze", "cavitation"))
+
+    def _ruptured_source(self, u, cavitated, wedge, dh, hdot) -> np.ndarray:
+        """``wedge/2 dh/dphi + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
+        dofs = self._basis.element_dofs
+        ruptured = np.all(u[dofs] == 0.0, axis=0) & np.any(cavitated[dofs], axis=0)  # (n_cells, S)
+        n_points = self._basis.dx.shape[1]
+        mask = np.repeat(ruptured, n_points, axis=0)
+        return np.where(mask, 0.5 * wedge * dh[0] + hdot, 0.0)
+
+    def _corner_terms(self, u, films, wedge, pi) -> np.ndarray:
+        """Per group: direct facet fluxes at its corner dofs minus their weighted shared sum."""
+        out = np.zeros((len(self.groups), u.shape[1]))
+        if not self.corners:
+            return out
+        E, Gx, Gz, normals, x, parts = self.corners  # the facet points of all groups, stacked
+        at = [film_at(f, x) for f in films]
+        h = np.stack([a.h for a in at], axis=1)
+        dh = np.stack([np.stack(a.dh) for a in at], axis=2)
+        value, gx, gz = E @ u, Gx @ u, Gz @ u
+        s = np.where(pi, h**-1.5, 1.0)
+        p = s * value
+        chain = np.where(pi, 1.5 * p / h, 0.0)
+        dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
+        c = -h**3 / 12.0
+        qn = (c * dp0 + 0.5 * wedge * h) * normals[0][:, None] + c * dp1 * normals[1][:, None]
+        direct = {name: phi_ds @ qn[rows] for name, (rows, phi_ds) in parts.items()}  # (n_corner_dofs, S)
+        weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
+        shared = sum(np.where(weights_of[name][:, None] > 0, d, 0.0) for name, d in direct.items())
+        for k, name in enumerate(self.groups):
+            if name in direct:
+                w = weights_of[name]
+                member = w > 0
+                out[k] = np.sum(direct[name][member] - w[member, None] * shared[member], axis=0)
+        return out
+
+
+def compile_operator(ops) -> CompiledOperator:
+    """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
+    basis, n = ops.basis, ops.n_dofs
+    E, Gx, Gz = _interpolation(basis, n)
+    indptr, indices, position = _pattern(basis.element_dofs, n)
+    dx = np.asarray(basis.dx).ravel()
+    x = np.asarray(ops.x).reshape(2, -1)
+    I = ops.interior
+    loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
+    scaled = sp.csr_matrix((E.data * np.repeat(dx, np.diff(E.indptr)), E.indices, E.indptr), shape=E.shape)
+    sources = scaled.T.tocsr()[I]  # (E^T dx)[I]
+    groups = tuple(ops.flow_groups)
+    A = np.zeros((len(groups), n))
+    corner_dofs = set()
+    for k, name in enumerate(groups):
+        dofs, w = ops.flow_groups[name]
+        corner = w < 1
+        A[k, dofs[~corner]] = 1.0
+        if name in ops.facet_groups:
+            A[k, dofs[corner]] = w[corner]
+            corner_dofs.update(dofs[corner].tolist())
+        else:  # a group without facet fluxes: its corner dofs count with their weight only
+            A[k, dofs[corner]] = w[corner]
+    # sparse: only the points of the elements next to a group are non-zero (and a sparse product
+    # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
+    group_maps = tuple(sp.csr_matrix((G @ A.T).T) for G in (Gx, Gz, E))
+    corners: tuple = ()
+    lazy: dict = {}
+    if ops.facet_groups and corner_dofs:
+        cdofs = np.array(sorted(corner_dofs))
+        fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
+        Ef, Gfx, Gfz = _interpolation(fb, n)
+        normals = np.asarray(fb.normals).reshape(2, -1)
+        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
+        n_points = np.shape(fb.dx)[1]
+        phi_ds_all = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()  # (n_corner_dofs, n_facet_points)
+        keep = np.zeros(phi_ds_all.shape[1], dtype=bool)
+        weights_of, kept = {}, {}
+        for name, facets in parts.items():
+            rows = slice(facets.start * n_points, facets.stop * n_points)
+            # only the facets where a corner dof's basis function lives contribute
+            per_facet = np.abs(phi_ds_all[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
+            keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
+            kept[name] = phi_ds_all[:, rows][:, keep[rows]]
+            dofs, w = ops.flow_groups[name]
+            wc = np.zeros(cdofs.size)
+            corner = w < 1
+            wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
+            weights_of[name] = wc
+        ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
+        corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
+                   {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
+        lazy["corner_weights"] = weights_of
+    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
+                            indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,
+                            group_maps=group_maps, corners=corners, _basis=basis, _position=position,
+                            _lazy=lazy)

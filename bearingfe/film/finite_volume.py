@@ -1,0 +1,844 @@
+r"""Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
+
+Unknowns are the pressure ``p`` and the fill fraction ``theta`` (the part of
+the gap filled with oil) at the mesh nodes. With the flux
+``q = -h^3/12 grad p + wedge/2 theta h e_phi`` (units omega R0^2 c), the film
+conserves mass::
+
+    div q + d(theta h)/dt = 0,   p >= p_c,   0 <= theta <= 1,   (p - p_c)(1 - theta) = 0,
+
+which is ``div(h^3 grad p) = 6 wedge d(theta h)/dphi + 12 d(theta h)/dt``. In
+the full film ``theta = 1`` and this is the Reynolds equation; in a cavity
+``p = p_c`` and the oil is carried by the Couette flux ``wedge/2 theta h``
+alone. Boundaries and pockets feed oil: ``theta = 1`` there.
+
+Discretization (P1, vertex-centred finite volumes on the median dual mesh):
+
+- the Poiseuille part is the P1 Galerkin stiffness of ``h^3/12``, which is
+  the median-dual finite-volume flux for an element-wise constant film;
+- the Couette part is the flux ``wedge/2 h theta n_phi`` through each
+  median-dual segment (edge midpoint to centroid) inside each triangle,
+  with ``h`` taken at the segment midpoint (strictly inside the triangle)
+  and ``theta`` from the upwind node. A step of ``h`` along element edges
+  (a recess meshed conformally) is therefore crossed with the exact flux of
+  each side: no derivative of ``h`` is ever formed;
+- on a tensor grid (:func:`bearingfe.geometry.meshing.grid_mesh`) the Couette flux can
+  instead pass through the faces of the nodes' box cells normal to ``phi``
+  (``couette="grid"``): between ``phi``-neighbours only, so fronts along the
+  sliding direction are not smeared sideways, with the film of each face
+  integrated exactly across recess contours that cut the cells;
+- the storage ``int theta h`` is lumped on the dual cells
+  (``H_i = int h phi_i``); the steady squeeze term is ``theta_i int dh/dt
+  phi_i``, a time step backward Euler ``(theta H - theta_old H_old)/dt``.
+
+Every dual-segment flux leaves one cell and enters its neighbour, so the
+scheme conserves mass exactly: the boundary flows (Couette and Poiseuille
+parts) balance the pocket inflow and the squeeze to the solver's tolerance.
+
+With ``P = p - p_c`` and ``r = 1 - theta`` each node carries one equation and
+the complementarity ``P >= 0, r >= 0, P r = 0``: a mixed linear
+complementarity problem, solved by the primal-dual active-set method, i.e.
+semismooth Newton on ``min(P, r) = 0`` (Hintermueller, Ito & Kunisch, SIAM J.
+Optim. 13 (2003) 865; for JFO see Woloszynski et al., Tribol. Lett. 58:18
+(2015)): on the full set the unknown is ``P`` (``theta = 1``), on the
+cavitated set ``theta`` (``p = p_c``); nodes with ``P < 0`` move to the cavity,
+nodes with ``theta > 1`` back to the full film, until the sets stop
+changing. A warm start (the cavity of a previous solution) usually ends it in
+one or two linear solves. The equations and their derivation are in
+``docs/jfo.md``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import weakref
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+import scipy.sparse as sp
+
+from .thickness import Film
+from .forms import load, weighted_laplace
+from ..core.linalg import Factorize, factorize_splu, get_linear_solver
+from ..geometry.meshing import SupportMesh, periodic_pairs
+from .superposition import Operators, ReynoldsResult, operators
+
+__all__ = ["JFOError", "solve_jfo", "solve_model_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES"]
+
+#: Default cap on active-set iterations.
+MAX_ITERATIONS = 80
+#: Default relative tolerance of the sign tests (scaled by the largest |P| and 1 for theta).
+TOLERANCE = 1e-10
+#: Couette flux discretizations of :func:`solve_jfo` (``couette=``): ``"median"`` (median-dual segments,
+#: any straight P1 mesh), ``"grid"`` (box cells of a tensor grid, flux along the grid lines only) and
+#: ``"auto"`` (``"grid"`` on meshes of :func:`bearingfe.geometry.meshing.grid_mesh`, else ``"median"``).
+COUETTE_FLUXES = ("auto", "median", "grid")
+
+
+class JFOError(RuntimeError):
+    """The JFO complementarity iteration did not converge (or theta left [0, 1])."""
+
+
+
+# -- mesh geometry of the median dual ------------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class _Dual:
+    """Median-dual segments of a straight P1 mesh: one per (triangle, edge)."""
+
+    i: np.ndarray          # first node of the edge
+    j: np.ndarray          # second node
+    normal: np.ndarray     # (2, n) normal from i to j, scaled by the segment length
+    midpoint: np.ndarray   # (2, n) segment midpoint (strictly inside its triangle)
+
+
+_DUALS: "weakref.WeakKeyDictionary[SupportMesh, _Dual]" = weakref.WeakKeyDictionary()
+
+
+def _dual(mesh: SupportMesh) -> _Dual:
+    if mesh in _DUALS:
+        return _DUALS[mesh]
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    g = p[:, t].mean(axis=1)
+    ii, jj, nn, xx = [], [], [], []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        i, j = t[a], t[b]
+        mid = 0.5 * (p[:, i] + p[:, j])
+        s = g - mid
+        n = np.array([s[1], -s[0]])
+        flip = np.sum(n * (p[:, j] - p[:, i]), axis=0) < 0
+        n[:, flip] *= -1
+        ii.append(i), jj.append(j), nn.append(n), xx.append(0.5 * (mid + g))
+    d = _Dual(i=np.concatenate(ii), j=np.concatenate(jj), normal=np.hstack(nn), midpoint=np.hstack(xx))
+    _DUALS[mesh] = d
+    return d
+
+
+@dataclass(frozen=True, eq=False)
+class _GridFaces:
+    """Box-cell faces of a tensor grid normal to phi: one per pair of phi-neighbours."""
+
+    i: np.ndarray      # node (k, l)
+    j: np.ndarray      # node (k + 1, l)
+    x0: np.ndarray     # phi of the two nodes (the face lies midway)
+    x1: np.ndarray
+    lo: np.ndarray     # z range of the face (midway to the z-neighbours, or the edge)
+    hi: np.ndarray
+    box: np.ndarray    # (4, n_nodes) box cell of each node: phi_lo, phi_hi, z_lo, z_hi
+
+
+_GRIDS: "weakref.WeakKeyDictionary[SupportMesh, _GridFaces]" = weakref.WeakKeyDictionary()
+
+
+def _grid_faces(mesh: SupportMesh) -> _GridFaces:
+    """Faces of the box cells of a tensor-grid mesh (``grid_mesh``, ``strip_mesh``).
+
+    Raises
+    ------
+    ValueError
+        If the mesh is not a tensor grid split into triangles.
+    """
+    if mesh in _GRIDS:
+        return _GRIDS[mesh]
+    m = mesh.mesh
+    p = m.p
+    tol = 1e-9 * float(max(np.ptp(p[0]), np.ptp(p[1]), 1e-300))
+    ux, kx = np.unique(np.round(p[0] / tol).astype(np.int64), return_inverse=True)
+    uy, ky = np.unique(np.round(p[1] / tol).astype(np.int64), return_inverse=True)
+    nx, ny = ux.size, uy.size
+    grid = np.full((nx, ny), -1, dtype=np.int64)
+    grid[kx, ky] = np.arange(p.shape[1])
+    t = m.t[:3]
+    if (nx * ny != p.shape[1] or np.any(grid < 0) or np.any(np.ptp(kx[t], axis=0) != 1)
+            or np.any(np.ptp(ky[t], axis=0) != 1)):
+        raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
+                         "nodes on the lines of a rectangular grid, each cell split into two triangles")
+    xs = np.array([p[0, grid[k, 0]] for k in range(nx)])
+    ys = np.array([p[1, grid[0, k]] for k in range(ny)])
+    ylo = np.concatenate([[ys[0]], 0.5 * (ys[:-1] + ys[1:])])
+    yhi = np.concatenate([0.5 * (ys[:-1] + ys[1:]), [ys[-1]]])
+    xlo = np.concatenate([[xs[0]], 0.5 * (xs[:-1] + xs[1:])])
+    xhi = np.concatenate([0.5 * (xs[:-1] + xs[1:]), [xs[-1]]])
+    box = np.empty((4, p.shape[1]))
+    box[0, grid], box[1, grid] = xlo[:, None], xhi[:, None]
+    box[2, grid], box[3, grid] = ylo[None, :], yhi[None, :]
+    faces = _GridFaces(i=grid[:-1].ravel(), j=grid[1:].ravel(), box=box,
+                       x0=np.repeat(xs[:-1], ny), x1=np.repeat(xs[1:], ny), lo=np.tile(ylo, nx - 1), hi=np.tile(yhi, nx - 1))
+    _GRIDS[mesh] = faces
+    return faces
+
+
+# -- film with recesses --------------------------------------------------------------
+
+def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """Film thickness plus the depth of any recess of the surface at the points."""
+    h = np.asarray(film.thickness(phi, z), dtype=float) + 0.0 * phi
+    surface = mesh.surface
+    if surface is not None and getattr(surface, "recesses", ()):
+        h = h + surface.recess_depth(phi, z)
+    return h
+
+
+#: Gauss-Legendre points and weights on [-1, 1] for the smooth film along a face.
+_GAUSS = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
+
+
+def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
+    """Mask of the rectangles ``[x0, x1] x [z0, z1]`` that overlap the bounding box of a recess (with a
+    margin of 1 % of its size): elsewhere the recess depth is zero and need not be sampled."""
+    near = np.zeros(np.shape(x0), bool)
+    for r in surface.recesses:
+        b = r.shape.boundary()
+        lo, hi = b.min(axis=1), b.max(axis=1)
+        pad = 0.01 * (hi - lo)
+        lo, hi = lo - pad, hi + pad
+        near |= (x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1])
+    return near
+
+
+def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
+                 bisections: int = 30) -> np.ndarray:
+    """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
+    crossing of a recess contour located by bisection (30 halvings: to 1e-9 of a sub-interval) in
+    ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
+    an eighth of a cell). All segments and sub-intervals are bisected together."""
+    z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
+    d = surface.recess_depth(x[:, None] + 0.0 * z, z)
+    a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
+    piece = np.where(da == db, da * (b - a), 0.0)
+    seg, k = np.nonzero(da != db)
+    if seg.size:
+        aa, bb, xc, dA = a[seg, k].copy(), b[seg, k].copy(), x[seg], da[seg, k]
+        for _ in range(bisections):
+            c = 0.5 * (aa + bb)
+            left = surface.recess_depth(xc, c) == dA
+            aa, bb = np.where(left, c, aa), np.where(left, bb, c)
+        c = 0.5 * (aa + bb)
+        piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
+    return piece.sum(axis=1)
+
+
+def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+               lines: int = 8) -> np.ndarray:
+    """Mean over ``x0 < phi < x1`` of ``int h dz`` on ``lo < z < hi``: the film of a box face, averaged
+    over the two cells it joins, so that a step between two nodes acts on both in proportion to its
+    position (as the P1 Galerkin wedge term does) instead of on the nearer face only.
+
+    The film by 3 x 3 Gauss points (interior: a step of the film on a node line is integrated
+    exactly); the recess depth by the midpoint rule on ``lines`` lines in ``phi``, each line
+    integral exact in ``z`` (:func:`_line_recess`), where the outer lines and the middle line
+    disagree (a recess contour crosses the rectangle), else by the middle line."""
+    g, w = _GAUSS
+    mean = np.zeros_like(x0)
+    for gx, wx in zip(g, w):
+        x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
+        for gz, wz in zip(g, w):
+            z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
+            mean += 0.25 * wx * wz * (hi - lo) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    surface = mesh.surface
+    if surface is None or not surface.recesses:
+        return mean
+    near = np.flatnonzero(_near_recess(surface, x0, x1, lo, hi))
+    x0, x1, lo, hi = x0[near], x1[near], lo[near], hi[near]
+    def lines_at(ks, idx):   # line integrals on the lines ks of the rectangles idx, shape (len(ks), len(idx))
+        x = np.concatenate([x0[idx] + (k + 0.5) / lines * (x1[idx] - x0[idx]) for k in ks])
+        return _line_recess(surface, x, np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))).reshape(len(ks), -1)
+
+    first, middle, last = lines_at((0, lines // 2, lines - 1), np.arange(near.size))
+    cut = np.flatnonzero((first != middle) | (middle != last))
+    depth = middle
+    if cut.size:
+        depth[cut] = lines_at(range(lines), cut).mean(axis=0)
+    mean[near] += depth
+    return mean
+
+
+def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, subdivisions: int = 8):
+    """``h``, ``1/h`` and ``h^3`` at the quadrature points, replaced on the triangles a recess contour
+    cuts (a grid mesh) by their means over ``subdivisions**2`` sub-triangle centroids: the P1
+    stiffness needs only ``int_T h^3``, which plain quadrature gets wrong across a step."""
+    inv_q, h3_q = 1.0 / h_q, h_q**3
+    surface = mesh.surface
+    if mesh.source != "grid" or surface is None or not surface.recesses:
+        return h_q, inv_q, h3_q
+    m = mesh.mesh
+    t = m.t[:3]
+    px, pz = m.p[0, t], m.p[1, t]
+    near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
+    dep_q = surface.recess_depth(x[0][near], x[1][near])
+    dep_v = surface.recess_depth(px[:, near], pz[:, near])
+    cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
+    if cut.size == 0:
+        return h_q, inv_q, h3_q
+    n = subdivisions
+    lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
+    lam += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n - 1) for j in range(n - 1 - i)]
+    lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
+    corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
+    pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
+    hh = _thickness(mesh, film, pts[0], pts[1])
+    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
+    h_q[cut] = hh.mean(axis=1)[:, None]
+    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
+    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
+    return h_q, inv_q, h3_q
+
+
+
+def _rate(film: Film, phi: np.ndarray, z: np.ndarray, squeeze) -> np.ndarray:
+    if squeeze[0] == 0.0 and squeeze[1] == 0.0:
+        return np.zeros_like(phi)
+    shapes = film.rate_shapes(phi, z)
+    return squeeze[0] * np.asarray(shapes[0], float) + squeeze[1] * np.asarray(shapes[1], float)
+
+
+@dataclass(frozen=True, eq=False)
+class _System:
+    """Discrete JFO operators of one film state and operating point (all dofs)."""
+
+    K: sp.csr_matrix       # Poiseuille: int h^3/12 grad p . grad v
+    C: sp.csr_matrix       # upwind Couette outflow of theta per dual cell
+    storage: np.ndarray    # diagonal coefficient of theta in the time/squeeze term
+    source: np.ndarray     # theta-independent part of the time term (-theta_old H_old/dt)
+    area: np.ndarray       # lumped nodal areas int phi_i
+    h_q: np.ndarray        # h at the quadrature points (cell means on cut triangles of a grid)
+    hdot_q: np.ndarray     # dh/dt at the quadrature points
+    inv_h_q: np.ndarray    # 1/h at the quadrature points (for the shear)
+    faces: _GridFaces | None = None       # grid flux: the box faces ...
+    face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
+
+
+def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
+              couette: str = "median") -> _System:
+    basis = ops.basis
+    x = ops.x
+    h_q = _thickness(mesh, film, x[0], x[1])
+    if not np.all(h_q > 0):
+        raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
+    hdot_q = _rate(film, x[0], x[1], squeeze)
+    h_q, inv_h_q, h3_q = _cell_means(mesh, film, x, h_q)
+    K = weighted_laplace.assemble(basis, c=h3_q / 12.0).tocsr()
+    if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
+        g = _grid_faces(mesh)
+        fi, fj = g.i, g.j
+        face_film = _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
+        f = 0.5 * wedge * face_film
+    else:                   # median dual: one segment per (triangle, edge)
+        d = _dual(mesh)
+        fi, fj = d.i, d.j
+        f = 0.5 * wedge * _thickness(mesh, film, d.midpoint[0], d.midpoint[1]) * d.normal[0]
+    up = np.where(f > 0, fi, fj)
+    n = basis.N
+    C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
+                      shape=(n, n)).tocsr()
+    area = load.assemble(basis, f=np.ones_like(h_q))
+    storage = load.assemble(basis, f=hdot_q)
+    source = np.zeros(n)
+    if dt is not None:
+        H = load.assemble(basis, f=h_q)
+        px = previous.film
+        H_old = load.assemble(basis, f=_thickness(mesh, px, x[0], x[1]))
+        storage = storage + H / dt
+        source = -previous.theta * H_old / dt
+    grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
+    return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
+                   **grid)
+
+
+# -- the complementarity solve ----------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Solution:
+    p: np.ndarray
+    theta: np.ndarray
+    cavity: np.ndarray
+    iterations: int
+    residual: float
+
+
+@dataclass(frozen=True, eq=False)
+class _Unknowns:
+    """Map from the unknowns (interior dofs, seam pairs of a periodic mesh merged) to all dofs."""
+
+    S: sp.csr_matrix        # (n_dofs, m): full = S @ reduced (zero rows on fixed dofs)
+    rep: np.ndarray         # (m,) a dof of each unknown
+    fixed: np.ndarray       # dofs with given pressure and theta = 1
+
+
+def _unknowns(mesh: SupportMesh, ops: Operators) -> _Unknowns:
+    n, I = ops.n_dofs, ops.interior
+    rep_of = np.arange(n)
+    start, end = periodic_pairs(mesh)
+    rep_of[end] = start
+    reps = np.unique(rep_of[I])
+    cols = np.searchsorted(reps, rep_of[I])
+    S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+    return _Unknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I))
+
+
+def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
+    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b``."""
+    K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
+    St = unk.S.T.tocsr()
+    p0 = np.full(p_fixed.size, p_c)
+    p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
+    theta0 = np.zeros(p_fixed.size)
+    theta0[unk.fixed] = 1.0              # edges and pockets feed full film
+    b = St @ (K @ p0 + G @ theta0 + system.source)
+    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+
+
+#: Largest number of switched unknowns solved by a low-rank update of the last factorization
+#: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
+LOW_RANK_SWITCHES = 24
+
+
+class _SetSolver:
+    """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
+
+    A set that differs from the last factorized one in ``k <= LOW_RANK_SWITCHES`` columns is solved
+    by Sherman-Morrison-Woodbury on that factorization (``k`` extra triangular solves, cached per
+    column while the factorization lives), with the residual checked against a fresh factorization's
+    accuracy; larger changes, or a residual that is not at round-off, refactorize.
+    """
+
+    def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize):
+        self.K, self.G, self.factorize = K.tocsc(), G.tocsc(), factorize
+        self.solve = None
+        self.base = None
+        self.z: dict[int, np.ndarray] = {}
+        self.factorizations = 0
+
+    def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
+        return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
+
+    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix) -> None:
+        self.solve, self.base, self.z = self.factorize(M), cav.copy(), {}
+        self.factorizations += 1
+
+    def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        M = self.matrix(cav)
+        if self.solve is not None:
+            J = np.flatnonzero(cav != self.base)
+            if 0 < J.size <= LOW_RANK_SWITCHES:
+                y = self._woodbury(J, rhs)
+                if y is not None and np.abs(M @ y - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
+                    return y
+            elif J.size == 0:
+                return np.asarray(self.solve(rhs), float)
+        self._refactorize(cav, M)
+        return np.asarray(self.solve(rhs), float)
+
+    def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+        new = [j for j in J if j not in self.z]
+        if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
+            sign = np.where(self.base[new], -1.0, 1.0)
+            U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
+            Z = np.asarray(self.solve(U), float).reshape(U.shape)
+            for k, j in enumerate(new):
+                self.z[j] = Z[:, k]
+        Z = np.column_stack([self.z[j] for j in J])
+        w = np.asarray(self.solve(rhs), float)
+        C = np.eye(J.size) + Z[J, :]
+        try:
+            return w - Z @ np.linalg.solve(C, w[J])
+        except np.linalg.LinAlgError:
+            return None
+
+
+def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
+    """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
+    ``fixed``: one solve on the given sets (no sign tests)."""
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    cav = cavity.copy()
+    seen: set[bytes] = set()
+    scale = float(np.abs(b).max(initial=0.0)) or 1.0
+    solver = _SetSolver(KII, GII, factorize)
+    for it in range(1, max_iterations + 1):
+        full = ~cav
+        rhs = -b - GII @ full.astype(float)
+        y = solver(cav, rhs)
+        if not np.all(np.isfinite(y)):
+            raise JFOError("the linear solve of the JFO active-set step returned non-finite values "
+                           "(singular system: is every film region connected to a fixed-pressure edge?)")
+        P = np.where(full, y, 0.0)
+        theta = np.where(cav, y, 1.0)
+        tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
+        new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
+        if np.array_equal(new, cav):
+            if theta.min(initial=1.0) < -tol:
+                raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
+                               "film empties faster than the Couette flow refills it (time step too long, "
+                               "or a squeeze rate no oil film can follow)")
+            res = KII @ P + GII @ theta + b
+            return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
+                             residual=float(np.abs(res).max(initial=0.0)) / scale)
+        key = np.packbits(new).tobytes()
+        if key in seen:
+            raise JFOError(f"JFO active-set iteration cycles after {it} iterations "
+                           f"({int(new.sum())} cavitated dofs); refine the mesh or warm-start closer")
+        seen.add(np.packbits(cav).tobytes())
+        cav = new
+    raise JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
+                   f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+
+
+def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+              factorize: Factorize, tol: float, max_iterations: int) -> _Solution:
+    """Swift-Stieber on the same discretization: theta = 1 everywhere, ``P >= 0``, multiplier
+    ``lam = K P + G 1 + b >= 0`` (the oil the ruptured zone creates), ``P lam = 0``; primal-dual active set."""
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    f = -(b + GII @ np.ones(b.size))
+    cav = cavity.copy()
+    seen: set[bytes] = set()
+    scale = float(np.abs(f).max(initial=0.0)) or 1.0
+    for it in range(1, max_iterations + 1):
+        full = np.flatnonzero(~cav)
+        P = np.zeros(b.size)
+        if full.size:
+            P[full] = np.asarray(factorize(KII[full][:, full].tocsc())(f[full]), float)
+        lam = KII @ P - f
+        lam[full] = 0.0
+        tol_p = tol * max(float(np.abs(P).max(initial=0.0)), 1e-300)
+        new = np.where(cav, lam > -tol * scale, P < -tol_p)
+        if np.array_equal(new, cav):
+            return _Solution(p=P + p_c, theta=np.ones(b.size), cavity=cav, iterations=it,
+                             residual=float(np.abs((KII @ P - f)[full]).max(initial=0.0)) / scale)
+        key = np.packbits(new).tobytes()
+        if key in seen:
+            raise JFOError(f"Swift-Stieber active-set iteration cycles after {it} iterations")
+        seen.add(np.packbits(cav).tobytes())
+        cav = new
+    raise JFOError(f"Swift-Stieber active-set iteration did not converge in {max_iterations} iterations")
+
+
+def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
+                    factorize: Factorize) -> np.ndarray:
+    """Cavity guess: where the full-film (theta = 1) solution falls below p_c."""
+    KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    P = np.asarray(factorize(KII.tocsc())(-b - GII @ np.ones(b.size)), float)
+    return P < 0
+
+
+# -- the fill inside the box cells of a grid ------------------------------------------------
+
+def _box_fill(mesh: SupportMesh, film: Film, system: _System, theta: np.ndarray, wedge: float,
+              samples: int = 8) -> tuple[float, float]:
+    """Shear deficit ``int (1 - fill)/h`` and area ``int [fill < 1]`` of the emptied box cells of a grid.
+
+    In a steady cavity the pressure is uniform, so the oil flux ``theta h`` is constant along ``phi``:
+    inside the box of an emptied node the fill is ``min(1, theta_i hbar_i / h)``, with ``theta_i hbar_i``
+    the flux through its downstream face (with a squeeze or a time step, the same rule neglects the
+    change of the flux across one box). A box that straddles a rupture step thus keeps the full film on
+    its upstream part (a box-wise ``theta_i`` would starve it, a bias of half a cell along every rupture
+    line). Integrated by the midpoint rule on ``samples**2`` points per box.
+    """
+    g = system.faces
+    n = theta.size
+    hbar = np.full(n, np.nan)
+    hbar[g.i if wedge >= 0 else g.j] = system.face_film
+    emptied = np.flatnonzero(theta < 1.0 - 1e-12)
+    if emptied.size == 0:
+        return 0.0, 0.0
+    c = theta[emptied] * hbar[emptied]
+    b = g.box[:, emptied]
+    t = (np.arange(samples) + 0.5) / samples
+    X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
+    Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
+    h = _thickness(mesh, film, X, Z)
+    cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
+    fill = np.minimum(1.0, cc / h)
+    w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
+    return float(np.sum(w * (1.0 - fill) / h)), float(np.sum(w * (fill < 1.0 - 1e-12)))
+
+
+# -- flows ------------------------------------------------------------------------------
+
+def _group_dofs(mesh: SupportMesh, basis) -> dict[str, np.ndarray]:
+    bnd = mesh.boundaries
+    names = [k for k in ("side", "arc_start", "arc_end") if k in bnd] or ["outer"]
+    return {k: basis.get_dofs(bnd[k]).all() for k in names}
+
+
+def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
+                facets: np.ndarray) -> np.ndarray:
+    """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node.
+
+    ``grad_p`` is the (element-wise constant) P1 pressure gradient, shape (2, n_elements).
+    """
+    m = mesh.mesh
+    out = np.zeros(m.nvertices)
+    if facets.size == 0:
+        return out
+    a, b = m.facets[:, facets]
+    elem = m.f2t[0, facets]
+    pa, pb = m.p[:, a], m.p[:, b]
+    tvec = pb - pa
+    length = np.linalg.norm(tvec, axis=0)
+    n = np.array([tvec[1], -tvec[0]]) / length
+    centre = m.p[:, m.t[:, elem]].mean(axis=1)
+    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
+    g = grad_p[:, elem]
+    for node, quarter in ((a, 0.75 * pa + 0.25 * pb), (b, 0.25 * pa + 0.75 * pb)):
+        h = _thickness(mesh, film, quarter[0], quarter[1])
+        qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * n[0]
+        np.add.at(out, node, 0.5 * length * qn)
+    return out
+
+
+def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: _System, wedge: float,
+           p: np.ndarray, theta: np.ndarray, created: bool = False) -> tuple[dict[str, float], float]:
+    """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative)."""
+    basis = ops.basis
+    storage = system.storage * theta + system.source
+    balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
+    outflow = -balance_rest   # what leaves a boundary dof's cell through the boundary
+    groups = _group_dofs(mesh, basis)
+    count = np.zeros(basis.N)
+    for d in groups.values():
+        count[d] += 1
+    grad_p = np.asarray(basis.interpolate(p).grad)[:, :, 0]
+    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, mesh.boundaries[k]) for k in groups}
+    corner = count > 1
+    shared = np.zeros(basis.N)
+    for k in groups:
+        shared += direct[k]
+    flows = {}
+    for k, d in groups.items():
+        c = corner[d]
+        value = float(np.sum(outflow[d[~c]]))
+        cd = d[c]
+        value += float(np.sum(direct[k][cd] + (outflow[cd] - shared[cd]) / count[cd]))
+        flows[k] = value
+    flows["inlet"] = -float(np.sum(outflow[ops.inlet])) if ops.inlet.size else 0.0
+    flows["squeeze"] = float(np.sum(storage))
+    if created:  # Swift-Stieber: the oil the ruptured zone creates (negative: flows into the film)
+        flows["cavitation"] = -float(np.sum(balance_rest[ops.interior]))
+    total_out = sum(v for k, v in flows.items() if k not in ("inlet", "squeeze"))
+    # = minus the sum of the interior dofs' residuals: zero to solver tolerance
+    return flows, flows["inlet"] - total_out - flows["squeeze"]
+
+
+# -- public entry point --------------------------------------------------------------------
+
+def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitation_pressure, dt, previous):
+    if not isinstance(mesh, SupportMesh):
+        raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
+    if element != "P1":
+        raise ValueError(f"cavitation='jfo' supports element='P1' only (the finite-volume Couette flux "
+                         f"is built on the P1 median dual), got element={element!r}")
+    if mesh.geometry_order != 1:
+        raise ValueError("cavitation='jfo' needs a straight-sided mesh (mesh_surface(..., order=1))")
+    if not isinstance(film, Film):
+        raise ValueError(f"film must implement the bearingfe.Film protocol, got {type(film).__name__}")
+    try:
+        sq = tuple(float(s) for s in squeeze)
+        if len(sq) != 2:
+            raise ValueError
+    except (TypeError, ValueError):
+        raise ValueError(f"squeeze must be a pair (gamma_rate, phi0_rate), got {squeeze!r}") from None
+    values = [float(wedge), *sq, float(inlet_pressure), float(cavitation_pressure)]
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"wedge, squeeze, inlet_pressure and cavitation_pressure must be finite, got {values}")
+    if inlet_pressure != 0.0 and not mesh.has_inlet:
+        raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
+    if cavitation_pressure > min(0.0, inlet_pressure):
+        raise ValueError(f"cavitation_pressure must be <= the edge pressure 0 and the pocket pressure "
+                         f"{inlet_pressure!r} (the film is full where oil is fed), got {cavitation_pressure!r}")
+    if (dt is None) != (previous is None):
+        raise ValueError("a time step needs both dt and previous (the result of the step before)")
+    if dt is not None:
+        if not (math.isfinite(float(dt)) and dt > 0):
+            raise ValueError(f"dt must be a finite time step > 0, got {dt!r}")
+        if not isinstance(previous, ReynoldsResult) or previous.theta is None:
+            raise ValueError("previous must be a ReynoldsResult of cavitation='jfo' (it carries theta)")
+        if previous.theta.shape != (operators(mesh, "P1").n_dofs,) or previous.basis.mesh is not mesh.mesh:
+            raise ValueError("previous must be a solution on the same mesh")
+        if sq != (0.0, 0.0):
+            raise ValueError("with a time step the film change comes from previous.film -> film: "
+                             f"squeeze must be (0, 0), got {squeeze!r}")
+    return sq
+
+
+def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | None:
+    """Cavity mask on the unknowns from a previous result (same mesh, or another mesh of the same
+    surface: nearest-node transfer, i.e. nested iteration) or from a boolean mask on the dofs."""
+    if warm_start is None:
+        return None
+    if isinstance(warm_start, ReynoldsResult):
+        if warm_start.cavitated is None:
+            raise ValueError("warm_start must be a cavitated ReynoldsResult or a boolean mask "
+                             f"of length {ops.n_dofs}")
+        mask = warm_start.cavitated
+        if warm_start.basis.N != ops.n_dofs or warm_start.basis.mesh is not ops.basis.mesh:
+            from scipy.spatial import cKDTree
+
+            _, nearest = cKDTree(warm_start.basis.doflocs.T).query(ops.basis.doflocs.T)
+            mask = mask[nearest]
+    else:
+        mask = warm_start
+    mask = np.asarray(mask, bool)
+    if mask.shape != (ops.n_dofs,):
+        raise ValueError(f"warm_start mask must have length {ops.n_dofs}, got shape {mask.shape}")
+    return mask[unk.rep]
+
+
+def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
+              inlet_pressure: float = 0.0, cavitation_pressure: float = 0.0, element: str = "P1",
+              sliding: float | None = None, solver: str | Factorize = "splu", warm_start=None,
+              dt: float | None = None, previous: ReynoldsResult | None = None,
+              tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS,
+              cavitation: str = "jfo", couette: str = "auto") -> ReynoldsResult:
+    """Solve the film with mass-conserving (JFO / Elrod-Adams) cavitation.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        Straight-sided mesh; recesses of ``mesh.surface`` deepen the film.
+    film : Film
+        Film thickness model (non-dimensional, units of c).
+    wedge : float
+        Entrainment factor: the Couette flux is ``wedge/2 theta h`` along phi.
+    squeeze : (float, float)
+        ``(gamma_rate, phi0_rate)`` per radian of shaft turn (steady squeeze term
+        ``theta dh/dt``).
+    inlet_pressure : float
+        Pocket pressure ``p_s`` [-] (gauge, the edges are at 0).
+    cavitation_pressure : float
+        Cavity pressure ``p_c`` [-], gauge, ``<= 0`` (may be negative).
+    element : {"P1"}
+        Only P1: any other choice is refused with a ValueError.
+    sliding : float, optional
+        Sliding speed for the shear; default ``wedge``. The Couette shear acts
+        on the oil fraction ``theta``.
+    solver : str or callable
+        Factorization of the non-symmetric active-set systems (``"splu"``).
+    warm_start : ReynoldsResult or bool mask, optional
+        Cavitated dofs of a previous solution: on the same mesh, or on another
+        mesh of the same surface (transferred node by nearest node, e.g. from a
+        coarser mesh: nested iteration).
+    dt, previous : float, ReynoldsResult, optional
+        One backward-Euler step of ``d(theta h)/dt`` from the JFO result
+        ``previous`` (its film and theta) to ``film`` over ``dt`` [rad of
+        shaft turn]; ``squeeze`` must then be zero.
+    tol, max_iterations
+        Sign tolerance and cap of the active-set iteration.
+    cavitation : {"jfo", "reynolds", "none"}
+        The same discretization with ``theta = 1``: ``"reynolds"``
+        (Swift-Stieber, ``p >= p_c``; the oil it creates in the ruptured zone
+        is booked as ``flows["cavitation"]``) and ``"none"`` (no pressure
+        bound). :func:`bearingfe.solve_reynolds` uses them for recessed and
+        periodic surfaces.
+    couette : {"auto", "median", "grid"}
+        Discretization of the Couette flux ``wedge/2 theta h``. ``"median"``:
+        through the median-dual segments of any straight P1 mesh (first-order
+        upwinding smears fronts that run along ``phi`` sideways, by a width of
+        order sqrt(mesh size)). ``"grid"``: through the faces of the box cells
+        of a tensor-grid mesh (:func:`bearingfe.geometry.meshing.grid_mesh`,
+        :func:`bearingfe.geometry.meshing.strip_mesh`), i.e. between ``phi``-neighbours
+        only, with ``int h dz`` over each face exact across recess steps: no
+        crosswind smearing. ``"auto"``: ``"grid"`` on meshes of ``grid_mesh``,
+        else ``"median"``. See ``docs/jfo.md``.
+
+    Returns
+    -------
+    ReynoldsResult
+        ``cavitation="jfo"``, ``theta`` (fill fraction at the dofs),
+        ``cavitated`` (dofs at ``p = p_c``), ``cavitated_fraction`` (area with
+        ``theta < 1`` over the film area), flows with their Couette and
+        Poiseuille parts and ``mass_balance`` at solver tolerance.
+
+    Raises
+    ------
+    JFOError
+        If the active-set iteration does not converge, cycles, or ends with ``theta < 0``.
+    """
+    start = time.perf_counter()
+    if cavitation not in ("jfo", "reynolds", "none"):
+        raise ValueError(f"cavitation must be 'jfo', 'reynolds' or 'none', got {cavitation!r}")
+    sq = _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitation_pressure, dt, previous)
+    if not (0 < tol < 1e-2):
+        raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
+    if not (isinstance(max_iterations, int) and max_iterations >= 1):
+        raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+    if sliding is not None and not math.isfinite(float(sliding)):
+        raise ValueError(f"sliding must be finite, got {sliding!r}")
+    if couette not in COUETTE_FLUXES:
+        raise ValueError(f"couette must be one of {COUETTE_FLUXES}, got {couette!r}")
+    if couette == "auto":
+        couette = "grid" if mesh.source == "grid" else "median"
+    factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
+    ops = operators(mesh, "P1")
+    p_c = float(cavitation_pressure)
+    system = _assemble(ops, mesh, film, float(wedge), sq, dt, previous, couette)
+    t1 = time.perf_counter()
+    p_fixed = np.zeros(ops.n_dofs)
+    p_fixed[ops.inlet] = inlet_pressure
+    unk = _unknowns(mesh, ops)
+    cavity = _warm_cavity(warm_start, ops, unk)
+    if cavitation == "none":
+        sol = _active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
+    else:
+        if cavity is None:
+            cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
+        solve = _active_set if cavitation == "jfo" else _obstacle
+        sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+    t2 = time.perf_counter()
+    free = np.zeros(ops.n_dofs, bool)
+    free[ops.interior] = True
+    p = np.where(free, unk.S @ sol.p, p_fixed)
+    theta = np.where(free, unk.S @ sol.theta, 1.0)
+    cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+    return _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
+                   cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
+
+
+def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
+            cost, start, model) -> ReynoldsResult:
+    basis = ops.basis
+    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds")
+    x, dx = ops.x, basis.dx
+    pq = basis.interpolate(p)
+    dp = pq.grad
+    theta_q = np.array(basis.interpolate(theta))
+    sliding = wedge if sliding is None else float(sliding)
+    area = system.area
+    emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
+    cav_fraction = float(np.sum(area[emptied]) / np.sum(area))
+    if system.faces is not None and model == "jfo":   # grid: the fill inside each box cell (_box_fill)
+        deficit, cavity = _box_fill(mesh, film, system, theta, wedge)
+        friction = float(np.sum((sliding * system.inv_h_q + 0.5 * system.h_q * dp[0]) * dx)) - sliding * deficit
+        cav_fraction = cavity / float(np.sum(area))
+    else:
+        friction = float(np.sum((theta_q * sliding * system.inv_h_q + 0.5 * system.h_q * dp[0]) * dx))
+    pm = ops.pocket_moments
+    force = np.array([np.sum(np.array(pq) * np.cos(x[0]) * dx), np.sum(np.array(pq) * np.sin(x[0]) * dx)])
+    force = force + inlet_pressure * pm[1:]
+    integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
+    h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
+    notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
+    cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
+                mesh_operators=ops.seconds, active_set_residual=sol.residual)
+    return ReynoldsResult(
+        basis=basis, pressure=p, film=film, wedge=wedge, squeeze=sq, inlet_pressure=inlet_pressure,
+        formulation="direct", element="P1", force=force, integral=integral, h_min=h_min,
+        flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
+        coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation=model,
+        iterations=sol.iterations if model != "none" else 0, cavitated=cavitated if model != "none" else None,
+        theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c)
+
+
+def solve_model_jfo(sup, weights: np.ndarray, options) -> ReynoldsResult:
+    """``"jfo"`` in :data:`bearingfe.cavitation.models.MODELS`: the film state ``sup`` (its mesh and film)
+    at the operating point ``weights = (wedge, gamma_rate, phi0_rate, inlet_pressure)``, with
+    ``options.cavitation_pressure``, ``sliding`` and ``warm_start``. The Galerkin system of ``sup`` is
+    not used: call :func:`solve_jfo` directly to avoid building it."""
+    max_iterations = max(int(options.max_iterations), MAX_ITERATIONS)
+    return solve_jfo(sup.operators.mesh, sup.film, wedge=float(weights[0]), squeeze=tuple(weights[1:3]),
+                     inlet_pressure=float(weights[3]), cavitation_pressure=options.cavitation_pressure,
+                     sliding=options.sliding, warm_start=options.warm_start,
+                     element=sup.operators.element, max_iterations=max_iterations)

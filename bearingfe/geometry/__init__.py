@@ -1,0 +1,11 @@
+"""The support surface and its meshes: outlines and pockets, gmsh meshing, untrusted geometry files.
+
+================  ============================================================
+module            what it does
+================  ============================================================
+``surface``       Support-surface geometry in unwrapped non-dimensional coordinates.
+``geofiles``      Geometry files from users: ``.geo`` scripts checked and run apart, ``.msh`` read as data.
+``gmsh_worker``   Child process in which gmsh meshes: one ``.geo`` script (:func:`bearingfe.geometry.geofiles.run_geo`
+``meshing``       Meshing support surfaces with gmsh and reading meshes into scikit-fem.
+================  ============================================================
+"""

@@ -1,0 +1,708 @@
+"""Meshing support surfaces with gmsh and reading meshes into scikit-fem.
+
+Every call opens and closes its own gmsh session (gmsh keeps global state),
+so meshing works repeatedly in one process and nothing leaks between calls.
+Boundaries come out named: ``outer`` (the outline), ``inlet`` (all pocket
+contours) and ``inlet_0``, ``inlet_1``, ... per pocket; on the default
+rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
+(phi = alpha2) and ``side`` (z = +-a). A periodic surface has no arc edges:
+``outer`` = ``side``, and the seam is named ``periodic_start`` /
+``periodic_end`` (matching nodes, see :func:`periodic_pairs`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import tempfile
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Iterator
+
+import numpy as np
+import skfem
+
+from .geofiles import (GeometryFileError, MeshData, check_element_count, estimate_triangles, max_elements_limit,
+                       read_msh, run_geo)
+from .surface import Surface
+
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+           "strip_mesh", "grid_mesh", "periodic_pairs"]
+
+_GMSH_LOCK = threading.Lock()
+
+#: gmsh's 2D meshing algorithms (Mesh.Algorithm): MeshAdapt, Automatic, Initial mesh only, Delaunay,
+#: Frontal-Delaunay, BAMG, Frontal-Delaunay for quads, Packing of parallelograms, Quasi-structured quad.
+ALGORITHMS_2D = (1, 2, 3, 5, 6, 7, 8, 9, 11)
+
+#: gmsh element type codes: triangle (3 and 6 nodes), line (2 and 3 nodes).
+_TRI = {1: 2, 2: 9}
+_LINE = {1: 1, 2: 8}
+
+
+@dataclass(frozen=True, eq=False)
+class SupportMesh:
+    """A triangular mesh of a support surface with named boundaries.
+
+    Attributes
+    ----------
+    mesh : skfem.MeshTri1 or skfem.MeshTri2
+        The scikit-fem mesh in ``(phi, z)``; ``MeshTri2`` carries curved
+        (second-order) element edges.
+    surface : Surface or None
+        The geometry it was meshed from (None for a mesh read from a file).
+    size : float
+        Nominal element size [-] (longest requested edge).
+    source : str
+        Where the mesh came from (``"gmsh"`` or the file path).
+    """
+
+    mesh: skfem.Mesh
+    surface: Surface | None = None
+    size: float = math.nan
+    source: str = "gmsh"
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    @property
+    def boundaries(self) -> dict[str, np.ndarray]:
+        """Boundary facet indices by name."""
+        return dict(self.mesh.boundaries or {})
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.mesh.nvertices)
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.mesh.nelements)
+
+    @property
+    def geometry_order(self) -> int:
+        """1 for straight-sided triangles, 2 for curved (MeshTri2)."""
+        return 2 if isinstance(self.mesh, skfem.MeshTri2) else 1
+
+    @property
+    def has_inlet(self) -> bool:
+        return "inlet" in self.boundaries and len(self.boundaries["inlet"]) > 0
+
+    @property
+    def needs_finite_volumes(self) -> bool:
+        """True for surfaces with recesses (film steps) or a periodic seam: only the
+        finite-volume solver (:mod:`bearingfe.film.finite_volume`) takes them."""
+        surface = self.surface
+        return surface is not None and (bool(surface.recesses) or surface.periodic)
+
+    @property
+    def max_edge(self) -> float:
+        """Longest element edge [-]."""
+        p, f = self.mesh.p, self.mesh.facets
+        return float(np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0).max())
+
+
+#: Numeric gmsh options this package sets; saved and restored around a session nested in a caller's.
+_TOUCHED_OPTIONS = ("General.Terminal", "General.Verbosity", "Mesh.Algorithm", "Mesh.MeshSizeMax",
+                    "Mesh.MeshSizeMin", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature",
+                    "Mesh.MeshSizeExtendFromBoundary", "Mesh.ElementOrder", "Mesh.MshFileVersion")
+
+
+@contextlib.contextmanager
+def gmsh_session(verbose: bool = False) -> Iterator[object]:
+    """A private gmsh session: yield the gmsh module, leave gmsh as it was found.
+
+    If gmsh is not initialized, it is initialized here and finalized on exit.
+    If the caller already has a gmsh session, it is left open: the models
+    created inside are removed on exit, the caller's current model is made
+    current again and the options this package sets are restored.
+    """
+    import gmsh
+
+    with _GMSH_LOCK:
+        if not gmsh.isInitialized():
+            gmsh.initialize(interruptible=False)
+            try:
+                _quiet(gmsh, verbose)
+                yield gmsh
+            finally:
+                gmsh.finalize()
+            return
+        current, before = gmsh.model.getCurrent(), set(gmsh.model.list())
+        saved = {name: gmsh.option.getNumber(name) for name in _TOUCHED_OPTIONS}
+        try:
+            _quiet(gmsh, verbose)
+            yield gmsh
+        finally:
+            for name in [m for m in gmsh.model.list() if m not in before]:
+                gmsh.model.setCurrent(name)
+                gmsh.model.remove()
+            if current in gmsh.model.list():
+                gmsh.model.setCurrent(current)
+            for name, value in saved.items():
+                gmsh.option.setNumber(name, value)
+
+
+def _quiet(gmsh, verbose: bool) -> None:
+    gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
+    gmsh.option.setNumber("General.Verbosity", 5 if verbose else 0)
+
+
+def mesh_surface(
+    surface: Surface,
+    size: float,
+    *,
+    inlet_size: float | None = None,
+    corner_size: float | None = None,
+    grading_distance: float | None = None,
+    size_function: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
+    min_size: float | None = None,
+    order: int = 1,
+    refine: int = 0,
+    algorithm: int = 6,
+    verbose: bool = False,
+    max_elements: int | None = None,
+) -> SupportMesh:
+    """Mesh a support surface with gmsh.
+
+    Parameters
+    ----------
+    surface : Surface
+        Outline and pockets in ``(phi, z)``.
+    size : float
+        Element size away from refinement zones [-], > 0.
+    inlet_size : float, optional
+        Element size on the pocket contours; grows linearly to ``size`` over
+        ``grading_distance``. Default: ``size`` (no grading), but never
+        larger than half the narrowest gap between a pocket and the outline.
+    corner_size : float, optional
+        Element size at the sharp corners of pockets (rectangles, polygons),
+        where the pressure gradient is singular. Default: ``inlet_size``.
+    grading_distance : float, optional
+        Distance over which refined sizes grow back to ``size`` [-].
+        Default: ``4 * size``.
+    size_function : callable, optional
+        ``f(phi, z) -> size`` for any other refinement (e.g. where the film
+        is thinnest: see :func:`bearingfe.film_graded_size`); the smallest of
+        all requested sizes wins.
+    min_size : float, optional
+        Smallest element size gmsh may use [-], > 0 (sizes asked for below
+        it are raised to it). Default: with a ``size_function``, none (its
+        requests are honoured as asked); without, a quarter of the smallest
+        of ``size``, ``inlet_size`` and ``corner_size``.
+    order : {1, 2}
+        Geometry order: 2 gives curved edges on curved pockets (``MeshTri2``),
+        which P2 elements need to keep their convergence rate.
+    refine : int
+        Number of uniform refinements (each splits every triangle in four),
+        done by gmsh after meshing so new nodes stay on curved boundaries.
+    algorithm : int
+        gmsh 2D algorithm (6: Frontal-Delaunay), one of :data:`ALGORITHMS_2D`.
+    verbose : bool
+        Let gmsh print its log.
+    max_elements : int, optional
+        Largest number of triangles: the count is estimated from the film
+        area and the requested sizes before gmsh starts, and refused beyond
+        it (:class:`bearingfe.geometry.geofiles.MeshSizeError`). Default
+        :data:`bearingfe.geometry.geofiles.DEFAULT_MAX_ELEMENTS` or the environment
+        variable ``BEARINGFE_MAX_ELEMENTS``.
+
+    Returns
+    -------
+    SupportMesh
+    """
+    if not isinstance(surface, Surface):
+        raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
+    size = _checked_size(size, "size")
+    gap = surface.min_gap() if surface.inlets else math.inf
+    widest = min(surface.inlet_widths()) if surface.inlets else math.inf  # the mesh must resolve every pocket
+    inlet_size = min(_checked_size(inlet_size, "inlet_size") if inlet_size is not None else size, gap / 2, widest)
+    corner_size = _checked_size(corner_size, "corner_size") if corner_size is not None else inlet_size
+    grading = _checked_size(grading_distance, "grading_distance") if grading_distance is not None else 4 * size
+    if min_size is not None:
+        floor = _checked_size(min_size, "min_size")
+    else:  # a size function's requests are not raised silently (gmsh's MeshSizeMin 0 = no floor)
+        floor = 0.0 if size_function is not None else min(size, inlet_size, corner_size) / 4
+    if order not in (1, 2):
+        raise ValueError(f"order must be 1 or 2, got {order!r}")
+    if not (isinstance(refine, int) and 0 <= refine <= 6):
+        raise ValueError(f"refine must be an integer in 0..6, got {refine!r}")
+    if algorithm not in ALGORITHMS_2D:
+        raise ValueError(f"algorithm must be one of gmsh's 2D algorithms {ALGORITHMS_2D}, got {algorithm!r}")
+    estimate = 4**refine * _estimated_triangles(surface, size, floor, inlet_size, grading, size_function)
+    check_element_count(estimate, max_elements,
+                        what=f"size = {size:g}" + (f" with refine = {refine}" if refine else "")
+                        + (" and the size_function" if size_function is not None else ""))
+
+    try:
+        with gmsh_session(verbose) as gmsh:
+            gmsh.model.add("support")
+            groups = _build_geometry(gmsh, surface)
+            errors = _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface)
+            gmsh.option.setNumber("Mesh.Algorithm", algorithm)
+            gmsh.model.mesh.generate(2)
+            if errors:  # gmsh swallows exceptions raised in its size callback
+                raise ValueError(f"size_function failed: {errors[0]}") from errors[0]
+            for _ in range(refine):
+                gmsh.model.mesh.refine()
+            if order == 2:
+                gmsh.model.mesh.setOrder(2)
+            mesh = _read_gmsh_model(gmsh, order)
+    except Exception as exc:
+        if type(exc) is Exception:  # gmsh's API raises a bare Exception carrying its last error
+            raise RuntimeError(f"gmsh could not mesh the surface: {' '.join(str(exc).split())}") from None
+        raise
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
+
+
+def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
+              timeout: float | None = None, max_elements: int | None = None) -> SupportMesh:
+    """Read a support-surface mesh from a gmsh ``.geo`` or ``.msh`` file.
+
+    The file must define physical curve groups named ``outer`` and
+    (optionally) ``inlet`` and a physical surface; ``arc_start``,
+    ``arc_end`` and ``side`` are used for flow splits when present.
+
+    Geometry files are data unless the caller says otherwise
+    (:mod:`bearingfe.geometry.geofiles`): a ``.msh`` file is parsed as data (meshio)
+    and must start with ``$MeshFormat``; a ``.geo`` script is checked
+    against an allow-list (no shell commands, file writes, includes,
+    merges, ``Exit``...) and parsed and meshed by gmsh in a separate
+    process with a time limit. Degenerate (zero-area) and duplicated
+    triangles are refused.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.geo`` (meshed here) or ``.msh`` (read as is).
+    size : float, optional
+        For ``.geo``: maximum element size [-] (overrides the file's sizes).
+    order : {1, 2}
+        For ``.geo``: geometry order of the generated mesh.
+    trusted : bool
+        For ``.geo``: run the script even if it uses commands outside the
+        allow-list (only for files you wrote or trust). It still runs in a
+        separate process with the time limit.
+    timeout : float, optional
+        For ``.geo``: seconds gmsh may take [s]; default
+        :data:`bearingfe.geometry.geofiles.DEFAULT_GEO_TIMEOUT` or the environment
+        variable ``BEARINGFE_GEO_TIMEOUT``.
+    max_elements : int, optional
+        Largest number of triangles (estimated before meshing a ``.geo``);
+        default :data:`bearingfe.geometry.geofiles.DEFAULT_MAX_ELEMENTS` or the
+        environment variable ``BEARINGFE_MAX_ELEMENTS``.
+
+    Raises
+    ------
+    FileNotFoundError
+        No such file.
+    ValueError
+        Wrong suffix or argument; :class:`bearingfe.geometry.geofiles.UntrustedGeoError`
+        (a refused command), :class:`bearingfe.geometry.geofiles.GeometryFileError`
+        (not a mesh, gmsh failed or timed out, bad elements) and
+        :class:`bearingfe.geometry.geofiles.MeshSizeError` (too many elements) are
+        ValueErrors.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"mesh file not found: {path}")
+    if path.suffix not in (".geo", ".msh"):
+        raise ValueError(f"mesh file must be .geo or .msh, got {path.name}")
+    limit = max_elements_limit(max_elements)
+    if path.suffix == ".geo":
+        if size is not None:
+            size = _checked_size(size, "size")
+        if order not in (1, 2):
+            raise ValueError(f"order must be 1 or 2, got {order!r}")
+        with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+            msh = Path(work) / "mesh.msh"
+            run_geo(path, msh, size=size, order=order, trusted=trusted, timeout=timeout, max_elements=limit)
+            data = read_msh(msh)
+    else:
+        data = read_msh(path)
+    check_element_count(data.triangles.shape[1], limit, what=path.name)
+    mesh = mesh_from_data(data, path.name)
+    if "outer" not in (mesh.boundaries or {}):
+        raise ValueError(f"{path.name}: no physical curve group named 'outer'")
+    return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path))
+
+
+def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
+    """Split every triangle in four ``times`` times (straight edges only)."""
+    m = mesh.mesh
+    if isinstance(m, skfem.MeshTri2):
+        raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
+    return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size: float, grading: float,
+                         size_function) -> float:
+    """Triangles needed for the film at the requested sizes (corner grading left out: a lower bound).
+
+    The sizes are sampled on a 120 x 120 grid over the outline's bounding box;
+    the band around the pockets where the size grows linearly from
+    ``inlet_size`` to ``size`` over ``grading`` adds
+    ``perimeter * grading / (size - inlet_size) * (1/inlet_size - 1/size)``
+    equilateral-triangle areas.
+    """
+    x0, x1, y0, y1 = surface.bounds
+    n = 120
+    phi, z = np.meshgrid(np.linspace(x0, x1, n), np.linspace(y0, y1, n))
+    inside = surface.outline.contains(phi, z) & ~surface.in_pocket(phi, z)
+    local = np.full(phi.shape, size)
+    if size_function is not None:
+        try:
+            with np.errstate(all="ignore"):
+                asked = np.broadcast_to(np.asarray(size_function(phi, z), dtype=float), phi.shape)
+            local = np.where(np.isfinite(asked) & (asked > 0), np.minimum(local, asked), local)
+        except Exception:  # noqa: BLE001 - scalar-only functions: estimate from size alone
+            pass
+    local = np.maximum(local, floor) if floor > 0 else local
+    cell = (x1 - x0) * (y1 - y0) / n**2
+    sampled = float(np.sum(inside / local**2)) * cell / (math.sqrt(3.0) / 4.0)
+    s0 = max(inlet_size, floor)
+    if surface.inlets and s0 < size:
+        perimeter = sum(float(np.sum(np.linalg.norm(np.roll(xy, -1, axis=1) - xy, axis=0)))
+                        for xy in (shape.boundary() for shape in surface.inlets))
+        sampled += perimeter * grading / (size - s0) * (1 / s0 - 1 / size) / (math.sqrt(3.0) / 4.0)
+    return max(sampled, estimate_triangles(surface.film_area, size))
+
+
+def _checked_size(value: float, name: str) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a finite element size > 0, got {value!r}")
+    return value
+
+
+def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
+    occ = gmsh.model.occ
+    outline = surface.outline
+    outer_curves = outline.add_to_gmsh(occ)
+    inlet_curves = [shape.add_to_gmsh(occ) for shape in surface.inlets]
+    loops = [occ.addCurveLoop(outer_curves)] + [occ.addCurveLoop(c) for c in inlet_curves]
+    face = occ.addPlaneSurface(loops)
+    recess_curves = [r.shape.add_to_gmsh(occ) for r in surface.recesses]
+    occ.synchronize()
+    if recess_curves:  # recess contours on element edges: the film step is meshed conformally
+        gmsh.model.mesh.embed(1, [c for cs in recess_curves for c in cs], 2, face)
+    groups = {"outer": outer_curves, "inlet": [c for cs in inlet_curves for c in cs]}
+    for k, cs in enumerate(inlet_curves):
+        groups[f"inlet_{k}"] = cs
+    if surface.periodic:
+        # the arc ends are one line of the film: matching nodes, no pressure condition there
+        bottom, right, top, left = outer_curves
+        period = surface.arc[1] - surface.arc[0]
+        gmsh.model.mesh.setPeriodic(1, [right], [left], [1, 0, 0, period, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
+        groups.update(outer=[bottom, top], side=[bottom, top], periodic_start=[left], periodic_end=[right])
+    elif surface.is_rectangular:
+        # Rectangle vertices are stored counter-clockwise starting at (alpha1, -a):
+        # edges bottom (side), right (arc_end), top (side), left (arc_start).
+        bottom, right, top, left = outer_curves
+        groups.update(arc_start=[left], arc_end=[right], side=[bottom, top])
+    for name, curves in groups.items():
+        if curves:
+            gmsh.model.addPhysicalGroup(1, curves, name=name)
+    gmsh.model.addPhysicalGroup(2, [face], name="film")
+    groups["recess"] = [c for cs in recess_curves for c in cs]
+    return groups
+
+
+def _set_sizes(gmsh, groups, size, floor, inlet_size, corner_size, grading, size_function, surface) -> list:
+    opt = gmsh.option
+    opt.setNumber("Mesh.MeshSizeMax", size)
+    opt.setNumber("Mesh.MeshSizeMin", floor)
+    opt.setNumber("Mesh.MeshSizeFromPoints", 0)
+    opt.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    opt.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    fields = []
+    errors: list[Exception] = []
+    mf = gmsh.model.mesh.field
+    edges = groups["inlet"] + groups.get("recess", [])
+    if edges and inlet_size < size:
+        fields.append(_threshold(mf, "CurvesList", edges, inlet_size, size, grading))
+    shapes = list(surface.inlets) + [r.shape for r in surface.recesses]
+    corners = np.hstack([s.corners() for s in shapes]) if shapes else np.zeros((2, 0))
+    if corners.shape[1] and corner_size < size:
+        pts = _points_at(gmsh, corners)
+        fields.append(_threshold(mf, "PointsList", pts, corner_size, size, grading))
+    if fields:
+        fmin = mf.add("Min")
+        mf.setNumbers(fmin, "FieldsList", fields)
+        mf.setAsBackgroundMesh(fmin)
+    if size_function is not None:
+        def callback(dim, tag, x, y, z, lc):
+            try:
+                value = float(size_function(np.array(x), np.array(y)))
+                if not (math.isfinite(value) and value > 0):
+                    raise ValueError(f"it must return a finite size > 0, got {value!r} at ({x}, {y})")
+            except Exception as exc:  # noqa: BLE001 - re-raised after meshing
+                errors.append(exc)
+                return lc
+            return min(lc, value)
+        gmsh.model.mesh.setSizeCallback(callback)
+    return errors
+
+
+def _points_at(gmsh, xy: np.ndarray) -> list[int]:
+    """Tags of the geometry points (already on pocket contours) at the given corners."""
+    tags = [tag for _, tag in gmsh.model.getEntities(0)]
+    where = np.array([gmsh.model.getValue(0, tag, [])[:2] for tag in tags]).T
+    near = np.hypot(where[0][:, None] - xy[0], where[1][:, None] - xy[1]) < 1e-9 * (1 + np.abs(xy).max())
+    return [tags[i] for i in np.nonzero(near.any(axis=1))[0]]
+
+
+def _threshold(mf, kind: str, entities: list[int], small: float, large: float, distance: float) -> int:
+    dist = mf.add("Distance")
+    mf.setNumbers(dist, kind, entities)
+    mf.setNumber(dist, "Sampling", 200)
+    thr = mf.add("Threshold")
+    mf.setNumber(thr, "InField", dist)
+    mf.setNumber(thr, "SizeMin", small)
+    mf.setNumber(thr, "SizeMax", large)
+    mf.setNumber(thr, "DistMin", 0.0)
+    mf.setNumber(thr, "DistMax", distance)
+    return thr
+
+
+def _read_gmsh_model(gmsh, order: int) -> skfem.Mesh:
+    """Convert gmsh's current 2D mesh to scikit-fem with named boundaries."""
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xy = coords.reshape(-1, 3)[:, :2].T
+    index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    index[tags.astype(np.int64)] = np.arange(tags.size)
+    _, node_tags = gmsh.model.mesh.getElementsByType(_TRI[order])
+    if node_tags.size == 0:
+        raise ValueError("gmsh produced no triangles (is there a physical surface?)")
+    t = index[node_tags.astype(np.int64)].reshape(-1, 3 * order).T
+    curves: dict[str, list] = {}
+    for dim, tag in gmsh.model.getPhysicalGroups(1):
+        name = gmsh.model.getPhysicalName(dim, tag)
+        for entity in gmsh.model.getEntitiesForPhysicalGroup(dim, tag):
+            for etype, _, enodes in zip(*gmsh.model.mesh.getElements(1, entity)):
+                nper = gmsh.model.mesh.getElementProperties(etype)[3]
+                curves.setdefault(name, []).append(index[enodes.astype(np.int64)].reshape(-1, nper)[:, :2])
+    named = {k: np.vstack(v).T for k, v in curves.items() if k}
+    return mesh_from_data(MeshData(points=xy, triangles=t, curves=named), "gmsh mesh")
+
+
+def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
+    """A scikit-fem mesh with named boundaries from plain arrays, after checking the triangles.
+
+    Parameters
+    ----------
+    data : bearingfe.geometry.geofiles.MeshData
+        Nodes, triangles (3 or 6 nodes) and named curves.
+    name : str
+        For the messages (e.g. the file name).
+
+    Raises
+    ------
+    bearingfe.geometry.geofiles.GeometryFileError
+        Degenerate (zero-area) or duplicated triangles, triangles that
+        overlap (an edge shared by more than two), or a named curve whose
+        edges are not edges of the triangles (e.g. a pocket too thin for the
+        element size).
+    """
+    t_all = np.asarray(data.triangles, dtype=np.int64)
+    order = 1 if t_all.shape[0] == 3 else 2
+    used = np.unique(t_all)
+    compact = np.full(data.points.shape[1], -1, dtype=np.int64)
+    compact[used] = np.arange(used.size)
+    xy = np.ascontiguousarray(data.points[:, used], dtype=float)
+    t = compact[t_all]
+    check_triangles(xy, t[:3], name)
+    vertices = np.unique(t[:3])
+    renumber = np.full(xy.shape[1], -1, dtype=np.int64)
+    renumber[vertices] = np.arange(vertices.size)  # scikit-fem's own vertex numbering
+    if order == 1:
+        mesh = skfem.MeshTri1(np.ascontiguousarray(xy[:, vertices]), np.ascontiguousarray(renumber[t]))
+    else:
+        mesh = skfem.MeshTri2(xy, np.ascontiguousarray(t))
+    facet_of = {(a, b): k for k, (a, b) in enumerate(np.sort(mesh.facets, axis=0).T.tolist())}
+    boundaries = {}
+    for label, ends in data.curves.items():
+        ends = renumber[compact[np.asarray(ends, dtype=np.int64)]]
+        keys = [tuple(sorted(e)) for e in ends.T.tolist()]
+        missing = [k for k in keys if k not in facet_of]
+        if missing:
+            raise GeometryFileError(
+                f"{name}: {len(missing)} edge(s) of the physical curve '{label}' are not edges of the triangles "
+                f"(a pocket or gap too thin for the element size, or curves not in the meshed surface)")
+        boundaries[label] = np.array(sorted({facet_of[k] for k in keys}), dtype=np.int64)
+    return mesh.with_boundaries(boundaries) if boundaries else mesh
+
+
+def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh") -> None:
+    """Refuse degenerate, duplicated and overlapping triangles.
+
+    Parameters
+    ----------
+    points : ndarray, shape (2, n)
+    triangles : ndarray, shape (3, m)
+        Vertex indices.
+    name : str
+        For the messages.
+
+    Raises
+    ------
+    bearingfe.geometry.geofiles.GeometryFileError
+        A triangle of zero area (relative to its longest edge squared,
+        below 1e-10), the same three vertices used twice, or an edge shared
+        by more than two triangles.
+    """
+    a, b, c = (points[:, triangles[k]] for k in range(3))
+    area = 0.5 * np.abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    longest = np.max([np.hypot(*(b - a)), np.hypot(*(c - b)), np.hypot(*(a - c))], axis=0)
+    flat = np.nonzero(~(area > 1e-10 * longest**2))[0]
+    if flat.size:
+        k = int(flat[0])
+        raise GeometryFileError(
+            f"{name}: {flat.size} degenerate (zero-area) triangle(s), e.g. triangle {k} at "
+            f"({a[0, k]:.6g}, {a[1, k]:.6g}); remesh the surface")
+    key = np.sort(triangles, axis=0)
+    unique, counts = np.unique(key, axis=1, return_counts=True)
+    if np.any(counts > 1):
+        k = int(np.argmax(counts > 1))
+        raise GeometryFileError(
+            f"{name}: {int(np.sum(counts - 1))} duplicated triangle(s) (same three nodes), e.g. nodes "
+            f"{unique[:, k].tolist()}; a mesh must cover each point of the surface once")
+    edges = np.sort(np.hstack([triangles[[0, 1]], triangles[[1, 2]], triangles[[2, 0]]]), axis=0)
+    opposite = np.concatenate([triangles[2], triangles[0], triangles[1]])
+    _, inverse, shared = np.unique(edges, axis=1, return_inverse=True, return_counts=True)
+    if np.any(shared > 2):
+        raise GeometryFileError(
+            f"{name}: {int(np.sum(shared > 2))} edge(s) shared by more than two triangles (overlapping "
+            f"triangles); a mesh must cover each point of the surface once")
+    # the two triangles on an inner edge lie on opposite sides of it (else they overlap)
+    p0, p1, pc = points[:, edges[0]], points[:, edges[1]], points[:, opposite]
+    side = np.sign((p1[0] - p0[0]) * (pc[1] - p0[1]) - (p1[1] - p0[1]) * (pc[0] - p0[0]))
+    inverse = np.ravel(inverse)
+    order = np.argsort(inverse, kind="stable")
+    pairs = shared[inverse[order]] == 2
+    first = order[pairs][0::2]
+    second = order[pairs][1::2]
+    folded = int(np.sum(side[first] * side[second] > 0))
+    if folded:
+        raise GeometryFileError(
+            f"{name}: {folded} inner edge(s) with both triangles on the same side (folded or overlapping "
+            f"triangles); a mesh must cover each point of the surface once")
+
+
+def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:
+    """A structured strip ``[0, length] x [-width/2, width/2]`` for 1-D film problems on the 2-D solvers.
+
+    Only the two ends carry fixed pressure (``outer`` = ``arc_start`` + ``arc_end``);
+    the long sides are left free, i.e. closed to flow (the natural condition
+    ``q . n = 0``), so a film that varies along ``phi`` only gives the 1-D
+    solution. Nodes sit at ``phi = k length / n``, so steps of the film at such
+    abscissae lie on element edges.
+
+    Parameters
+    ----------
+    n : int
+        Number of cells along the strip, >= 2.
+    length : float
+        Strip length along ``phi`` [-], > 0.
+    width : float, optional
+        Strip width [-], > 0; default ``rows * length / n`` (square cells).
+    rows : int
+        Number of cells across, >= 1.
+    """
+    if not (isinstance(n, int) and n >= 2):
+        raise ValueError(f"n must be an integer >= 2, got {n!r}")
+    if not (isinstance(rows, int) and rows >= 1):
+        raise ValueError(f"rows must be an integer >= 1, got {rows!r}")
+    length = _checked_size(length, "length")
+    width = rows * length / n if width is None else _checked_size(width, "width")
+    m = skfem.MeshTri1.init_tensor(np.linspace(0.0, length, n + 1), np.linspace(-width / 2, width / 2, rows + 1))
+    facets = m.boundary_facets()
+    x = m.p[0, m.facets[:, facets]].mean(axis=0)
+    tol = 1e-9 * length
+    bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
+    bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+
+
+def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
+              max_elements: int | None = None) -> SupportMesh:
+    """A structured mesh of a rectangular surface, aligned with the sliding direction ``phi``.
+
+    Uniform cells of at most ``size`` along ``phi`` and ``size_z`` along
+    ``z``, each split into two triangles (``skfem.MeshTri1.init_tensor``).
+    Recess contours are NOT on element edges: the film is integrated exactly
+    over the cells and faces they cut (see ``couette="grid"`` in
+    :func:`bearingfe.film.finite_volume.solve_jfo`, where the mass-conserving solver
+    carries the Couette flux along the grid lines, free of crosswind
+    smearing). Boundaries are named as by :func:`mesh_surface`:
+    ``arc_start``, ``arc_end``, ``side`` and ``outer``, or on a periodic
+    surface ``side`` = ``outer`` and the seam ``periodic_start`` /
+    ``periodic_end``. Meshing takes milliseconds (no gmsh). Recesses should be
+    wider than a cell: a contour is located exactly along each cell face
+    only where it crosses an eighth of the face at most once.
+
+    Parameters
+    ----------
+    surface : Surface
+        Default rectangular outline, no pockets (a pocket's contour must lie
+        on element edges to carry its pressure: use :func:`mesh_surface`).
+    size : float
+        Largest cell length along ``phi`` [-], > 0.
+    size_z : float, optional
+        Largest cell length along ``z`` [-], > 0; default ``size``.
+    max_elements : int, optional
+        Largest number of triangles (as in :func:`mesh_surface`).
+
+    Returns
+    -------
+    SupportMesh
+        ``source="grid"``.
+    """
+    if not isinstance(surface, Surface):
+        raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
+    if not surface.is_rectangular:
+        raise ValueError("grid_mesh needs the default rectangular outline (Surface(outer=None)); "
+                         "use mesh_surface for other outlines")
+    if surface.inlets:
+        raise ValueError("grid_mesh cannot carry pockets (Surface.inlets): their contours must lie on "
+                         "element edges; use mesh_surface")
+    size = _checked_size(size, "size")
+    size_z = size if size_z is None else _checked_size(size_z, "size_z")
+    a1, a2 = surface.arc
+    width = 2 * surface.half_width
+    nx, nz = max(2, math.ceil((a2 - a1) / size - 1e-9)), max(1, math.ceil(width / size_z - 1e-9))
+    check_element_count(2.0 * nx * nz, max_elements, what=f"grid_mesh with size = {size:g}, size_z = {size_z:g}")
+    m = skfem.MeshTri1.init_tensor(np.linspace(a1, a2, nx + 1), np.linspace(-width / 2, width / 2, nz + 1))
+    facets = m.boundary_facets()
+    mid = m.p[:, m.facets[:, facets]].mean(axis=1)
+    tol = 1e-9 * max(a2 - a1, width)
+    start, end = facets[np.abs(mid[0] - a1) < tol], facets[np.abs(mid[0] - a2) < tol]
+    side = facets[np.abs(np.abs(mid[1]) - width / 2) < tol]
+    if surface.periodic:
+        bnd = {"outer": side, "side": side, "periodic_start": start, "periodic_end": end}
+    else:
+        bnd = {"outer": np.concatenate([start, end, side]), "arc_start": start, "arc_end": end, "side": side}
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=max((a2 - a1) / nx, width / nz),
+                       source="grid")
+
+
+def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:
+    """Matching vertex pairs ``(start, end)`` across the seam of a periodic surface's mesh.
+
+    Empty arrays for a mesh without the ``periodic_start``/``periodic_end`` boundaries.
+
+    Raises
+    ------
+    ValueError
+        If the seam nodes do not match one to one (same ``z``, ``phi`` one period apart).
+    """
+    bnd = mesh.boundaries
+    if "periodic_start" not in bnd or "periodic_end" not in bnd:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    m = mesh.mesh
+    start = np.unique(m.facets[:, bnd["periodic_start"]])
+    end = np.unique(m.facets[:, bnd["periodic_end"]])
+    start = start[np.argsort(m.p[1, start])]
+    end = end[np.argsort(m.p[1, end])]
+    tol = 1e-9 * max(1.0, float(np.ptp(m.p[0])))
+    if start.size != end.size or np.abs(m.p[1, start] - m.p[1, end]).max(initial=0.0) > tol:
+        raise ValueError("the periodic seam's nodes do not match one to one (the mesh is not periodic)")
+    return start, end

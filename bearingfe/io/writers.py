@@ -1,0 +1,235 @@
+"""Files users open elsewhere: VTU/PVD for ParaView, CSV trajectories, JSON summaries.
+
+Every writer is atomic: it writes a temporary file next to the target and
+renames it into place only when complete, so a failure never leaves a
+half-written file behind (an existing file stays as it was). Written files
+get the mode the process umask gives (``0o666 & ~umask``), as ``open`` would.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import json
+import math
+import os
+import tempfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Iterator, Mapping, Sequence
+
+import numpy as np
+
+from ..core.limits import check_limit
+
+__all__ = ["atomic_path", "umask", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
+
+#: Trajectory columns written by :func:`write_csv` when present, in this order.
+CSV_FIELDS = ("beta", "gamma", "delta", "phi0", "h_min", "friction_moment", "flow_inlet", "flow_side",
+              "flow_arc_start", "flow_arc_end", "flow_squeeze", "inlet_pressure", "load")
+
+
+@contextlib.contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path next to ``path``; rename it onto ``path`` on success, remove it on failure."""
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise FileNotFoundError(f"directory does not exist: {path.parent}")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    tmp = Path(tmp)
+    try:
+        yield tmp
+        os.chmod(tmp, 0o666 & ~umask())  # mkstemp made it 0600
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def umask() -> int:
+    """The process umask (read without changing it where ``/proc`` allows)."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)  # elsewhere: set and restore at once
+    os.umask(mask)
+    return mask
+
+
+def _mesh_arrays(result):
+    m = result.basis.mesh
+    nv = int(m.nvertices)
+    t = np.asarray(m.t[:3]).T
+    xy = np.asarray(m.p[:, :nv], dtype=float)
+    points = np.column_stack([xy[0], xy[1], np.zeros(nv)])
+    pressure = np.asarray(result.pressure, dtype=float)[:nv]
+    h = np.asarray(result.film.thickness(xy[0], xy[1]), dtype=float)
+    return points, t, pressure, h
+
+
+def write_vtu(result, path: str | Path) -> Path:
+    """Write a result's mesh with point data ``pressure`` and ``film_thickness`` as VTU.
+
+    Points are ``(phi, z, 0)`` in the unwrapped plane; P2 results write their
+    vertex values.
+
+    Parameters
+    ----------
+    result : ReynoldsResult
+    path : str or Path
+        Target ``.vtu`` file.
+
+    Returns
+    -------
+    Path
+    """
+    import meshio
+
+    path = Path(path)
+    if path.suffix != ".vtu":
+        raise ValueError(f"path must end in .vtu, got {path.name}")
+    points, t, pressure, h = _mesh_arrays(result)
+    mesh = meshio.Mesh(points, [("triangle", t)], point_data={"pressure": pressure, "film_thickness": h})
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu")
+    return path
+
+
+def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Path, *,
+              max_frames: int | None = None) -> Path:
+    """Write a ParaView time series (``.pvd``) referencing one VTU per time.
+
+    Parameters
+    ----------
+    results_or_paths : sequence
+        Either results (each written as ``<stem>_<k>.vtu`` next to ``path``)
+        or paths of existing ``.vtu`` files.
+    times : sequence of float
+        Time value of each entry (e.g. shaft angle [rad]), strictly increasing.
+    path : str or Path
+        Target ``.pvd`` file.
+    max_frames : int, optional
+        Most entries accepted; default the ``frames`` limit of
+        :mod:`bearingfe.core.limits` (1000).
+
+    Returns
+    -------
+    Path
+    """
+    path = Path(path)
+    if path.suffix != ".pvd":
+        raise ValueError(f"path must end in .pvd, got {path.name}")
+    if hasattr(results_or_paths, "__len__"):  # before a generator is drawn out
+        check_limit("frames", len(results_or_paths), max_frames, "max_frames")
+    items = list(results_or_paths)
+    check_limit("frames", len(items), max_frames, "max_frames")
+    times = np.asarray(times, dtype=float).ravel()
+    if times.size != len(items) or not items:
+        raise ValueError(f"times must have one value per entry ({len(items)}), got {times.size}")
+    if not (np.all(np.isfinite(times)) and np.all(np.diff(times) > 0)):
+        raise ValueError("times must be finite and strictly increasing")
+    files = []
+    for k, item in enumerate(items):
+        if isinstance(item, (str, Path)):
+            f = Path(item)
+            if not f.is_file():
+                raise FileNotFoundError(f"VTU file not found: {f}")
+        else:
+            f = write_vtu(item, path.with_name(f"{path.stem}_{k:04d}.vtu"))
+        files.append(os.path.relpath(f.resolve(), path.parent.resolve()))
+    root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
+    coll = ET.SubElement(root, "Collection")
+    for t, f in zip(times, files):
+        ET.SubElement(coll, "DataSet", timestep=repr(float(t)), group="", part="0", file=Path(f).as_posix())
+    ET.indent(root)
+    with atomic_path(path) as tmp:
+        ET.ElementTree(root).write(tmp, encoding="utf-8", xml_declaration=True)
+    return path
+
+
+def read_pvd(path: str | Path) -> list[tuple[float, Path]]:
+    """``(time, vtu path)`` pairs of a ``.pvd`` file (paths resolved against its directory)."""
+    path = Path(path)
+    root = ET.parse(path).getroot()
+    return [(float(d.get("timestep")), path.parent / d.get("file")) for d in root.iter("DataSet")]
+
+
+def _column(traj, name):
+    value = traj[name] if isinstance(traj, Mapping) else getattr(traj, name, None)
+    if value is None:
+        return None
+    arr = np.asarray(value, dtype=float)
+    return arr if arr.ndim == 1 else None
+
+
+def write_csv(traj, path: str | Path, fields: Sequence[str] | None = None) -> Path:
+    """Write a trajectory's 1-D arrays as CSV columns.
+
+    Parameters
+    ----------
+    traj : Trajectory-like or mapping
+        Object (or dict) with equal-length 1-D arrays.
+    path : str or Path
+    fields : sequence of str, optional
+        Columns to write (all must exist); default: those of
+        :data:`CSV_FIELDS` present (``beta`` required).
+    """
+    path = Path(path)
+    names = list(fields) if fields is not None else [f for f in CSV_FIELDS if _has(traj, f)]
+    if fields is None and "beta" not in names:
+        raise ValueError("trajectory has no 'beta' array (shaft angle)")
+    cols = {}
+    for name in names:
+        col = _column(traj, name) if _has(traj, name) else None
+        if col is None:
+            raise ValueError(f"trajectory has no 1-D array {name!r}")
+        cols[name] = col
+    n = {c.size for c in cols.values()}
+    if len(n) != 1:
+        raise ValueError(f"trajectory columns differ in length: { {k: v.size for k, v in cols.items()} }")
+    with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(names)
+        for row in zip(*cols.values()):
+            writer.writerow([repr(float(v)) for v in row])
+    return path
+
+
+def _has(traj, name) -> bool:
+    return name in traj if isinstance(traj, Mapping) else hasattr(traj, name)
+
+
+def _jsonable(value):
+    if isinstance(value, Mapping):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return [_jsonable(v) for v in value.tolist()]
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        if not math.isfinite(value):
+            return None  # JSON has no NaN/inf
+        return value
+    if isinstance(value, Path):
+        return str(value)
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    raise ValueError(f"cannot write {type(value).__name__} to JSON: {value!r}")
+
+
+def write_json(summary: Mapping, path: str | Path) -> Path:
+    """Write a summary mapping as indented JSON (numpy scalars and arrays converted, NaN -> null)."""
+    path = Path(path)
+    if not isinstance(summary, Mapping):
+        raise ValueError(f"summary must be a mapping, got {type(summary).__name__}")
+    text = json.dumps(_jsonable(summary), indent=2, sort_keys=False)
+    with atomic_path(path) as tmp:
+        tmp.write_text(text + "\n")
+    return path

@@ -1,0 +1,426 @@
+"""The ``"journal"`` scene: a journal bearing under a load, in SI units, through ``bearingfe run``.
+
+Scene file::
+
+    kind = "journal"
+    title = "..."                        # optional
+    [bearing]
+    diameter = 0.100                     # D [m]
+    length = 0.050                       # L [m]; L/D in (0, 4]
+    radial_clearance = 75e-6             # c [m]; 0 < c <= D/20
+    pads = [[-60.0, 300.0]]              # optional [deg]; absent: full 360 (Raimondi-Boyd)
+    supply_pressure = 1.0e5              # [Pa] in the grooves (needs grooves)
+    [[bearing.grooves]]                  # any number, each inside a pad (needs pads)
+    angle_deg = 120.0
+    width_deg = 20.0                     # in (0, 180)
+    length_fraction = 0.8                # groove length / L, in (0, 1)
+    [operating]
+    speed = 3000.0                       # [rpm]
+    viscosity = 0.018                    # [Pa s]
+    load = 10.0e3                        # [N]
+    load_direction_deg = -90.0           # load on the journal: gravity (-y) by default
+    [solver]
+    size = 0.05                          # element size [R], in (0, 1]
+    min_size = 0.02                      # optional; default size sqrt(1 - eps) at the thinnest film
+    cavitation = "reynolds"              # reynolds | none | jfo
+    estimate_error = false               # also solve with half the element size
+    [output]
+    pictures = ["pressure", "wrapped", "film"]
+    warp = 0.15                          # wrapped picture: radial push of the peak pressure [R]
+    tables = ["pressure", "coefficients"]
+
+Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
+(up), the direction in which the journal turns. The runner finds the
+equilibrium under the load (:func:`bearingfe.bearings.journal.equilibrium`, Newton),
+the eight film coefficients by linearization
+(:func:`bearingfe.bearings.journal.dynamic_coefficients`), and writes
+``summary.json``, ``pressure_field.csv`` (every node: pad, angle, axial
+position, pressure [Pa], film [m], ruptured flag), ``coefficients.csv`` (the
+ROSS ``BearingElement`` columns, SI) and the pictures ``pressure.png``,
+``pressure_wrapped.png``, ``film.png`` (one per pad, ``_pad<k>``, when there
+are several).
+
+The summary (SI, unit in each key): eccentricity, attitude angle (from the
+load line to the line of centres, in the direction of rotation), journal
+position, minimum film, maximum pressure, Sommerfeld number
+``S = mu N L D / W (R/c)^2``, friction torque and power (``T omega``), side
+flow (out of the axial edges), total flow (into the film through the leading
+edges of the pads and the grooves: Raimondi-Boyd's ``Q`` for the full
+bearing) and groove flow; for the full bearing also the Raimondi-Boyd chart
+variables. Stiffness ``K`` [N/m] and damping ``C`` [N s/m] are in the ROSS
+frame (``x`` horizontal, ``y`` up, the journal turning from ``+x`` to ``+y``:
+the bearing frame of the file, whatever the load direction), with their
+non-dimensional forms ``K c/W``, ``C c omega/W`` and the keywords of
+``ross.BearingElement`` (``n`` is the caller's). ``cost`` has nodes,
+iterations and seconds; with ``estimate_error`` the whole computation is
+repeated with half the element size and the relative changes are reported
+(``K``, ``C``: largest entry change over largest entry); the values reported
+are those of the given size.
+
+Pictures show the non-dimensional fields (``p = P c^2/(mu omega R^2)``,
+``h = H/c``); the full bearing is meshed and drawn in the frame of the line
+of largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
+bearing frame is in the summary.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from ..core.schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
+                     flag, nonnegative_number, number, positive_number, read_table, text)
+
+__all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "JOURNAL", "PICTURES", "TABLES"]
+
+PICTURES = ("pressure", "wrapped", "film")
+TABLES = ("pressure", "coefficients")
+
+
+# -- the schema -------------------------------------------------------------------------
+
+def _pads(where, value):
+    """Pads ``[[start_deg, end_deg], ...]``: start < end <= start + 360, no two overlapping."""
+    rule = "a list of pads [[start_deg, end_deg], ...] with start < end <= start + 360, not overlapping"
+    if not (isinstance(value, list) and value):
+        raise SchemaError(f"{where}: expected {rule}; got {value!r}")
+    pads = []
+    for pad in value:
+        if not (isinstance(pad, list) and len(pad) == 2):
+            raise SchemaError(f"{where}: expected {rule}; got {pad!r}")
+        a, b = (number()(where, v) for v in pad)
+        if not a < b <= a + 360.0:
+            raise SchemaError(f"{where}: expected {rule}; got {pad!r}")
+        pads.append((a, b))
+    ordered = sorted(((a % 360.0, a % 360.0 + b - a) for a, b in pads))
+    for (a1, b1), (a2, _) in zip(ordered, ordered[1:] + [(ordered[0][0] + 360.0, None)]):
+        if b1 > a2 + 1e-9:
+            raise SchemaError(f"{where}: expected {rule}; pads overlap after {a1:g} deg")
+    return tuple(pads)
+
+
+def _cavitation_models() -> tuple[str, ...]:
+    from ..bearings.journal import EQUILIBRIUM_CAVITATION
+
+    return tuple(EQUILIBRIUM_CAVITATION)
+
+
+_OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
+
+#: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
+JOURNAL = {
+    "kind": (anything, REQUIRED),
+    "title": (text, None),
+    "bearing": Table({
+        "diameter": (positive_number, REQUIRED), "length": (positive_number, REQUIRED),
+        "radial_clearance": (positive_number, REQUIRED), "pads": (_pads, None),
+        "grooves": Tables({"angle_deg": (number(), REQUIRED),
+                           "width_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), REQUIRED),
+                           "length_fraction": (number(_OPEN_UNIT), 0.8)}),
+        "supply_pressure": (nonnegative_number, 0.0)}, required=True),
+    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, REQUIRED),
+                        "load": (positive_number, REQUIRED), "load_direction_deg": (number(), -90.0)},
+                       required=True),
+    "solver": Table({"size": (number(Range(0.0, 1.0, lo_open=True)), 0.05),
+                     "min_size": (number(Range(0.0, 1.0, lo_open=True)), None),
+                     "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
+    "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
+                     "tables": (choices(TABLES), TABLES)}),
+}
+
+
+def journal_settings(data: dict, label: str) -> dict:
+    """All validated settings of a ``"journal"`` scene (SI, angles in degrees)."""
+    s = read_table(data, label, "", JOURNAL)
+    bearing, solver = s["bearing"], s["solver"]
+    _check_proportions(bearing, label)
+    _check_grooves(bearing, label)
+    if solver["min_size"] is not None and solver["min_size"] > solver["size"]:
+        raise SchemaError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
+                          f"got {solver['min_size']!r}")
+    return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
+            "operating": s["operating"], "solver": solver, "output": s["output"]}
+
+
+def _check_proportions(b: dict, label: str) -> None:
+    ratio = b["length"] / b["diameter"]
+    if not ratio <= 4.0:
+        raise SchemaError(f"{label}: [bearing] length: L/D must be in (0, 4]; got L/D = {ratio:.4g}")
+    if not b["radial_clearance"] <= b["diameter"] / 20:
+        raise SchemaError(f"{label}: [bearing] radial_clearance: must be in (0, diameter/20 = "
+                          f"{b['diameter'] / 20:g}] m (a thin film, c/R <= 0.1); got {b['radial_clearance']!r}")
+
+
+def _check_grooves(b: dict, label: str) -> None:
+    items = b["grooves"]
+    if items and b["pads"] is None:
+        raise SchemaError(f"{label}: [bearing] grooves: need pads = [[start_deg, end_deg], ...] "
+                          "(the full Raimondi-Boyd bearing has no grooves)")
+    if b["supply_pressure"] > 0 and not items:
+        raise SchemaError(f"{label}: [bearing] supply_pressure: needs [[bearing.grooves]] to feed; "
+                          f"must be 0 without grooves; got {b['supply_pressure']!r}")
+    for k, g in enumerate(items):
+        half = g["width_deg"] / 2
+        if not any(a + half < a + (g["angle_deg"] - a) % 360.0 < b_ - half for a, b_ in b["pads"]):
+            raise SchemaError(f"{label}: [bearing.grooves.{k}] angle_deg: the groove (width {g['width_deg']:g} deg) "
+                              f"must lie inside one of the pads {list(map(list, b['pads']))}; "
+                              f"got {g['angle_deg']!r}")
+
+
+# -- the run ------------------------------------------------------------------------------
+
+def _scale(s: dict):
+    from ..core.scales import Scale
+
+    b, op = s["bearing"], s["operating"]
+    return Scale(radius=b["diameter"] / 2, clearance=b["radial_clearance"], viscosity=op["viscosity"],
+                 speed=2 * math.pi * op["speed"] / 60)
+
+
+def _bearing(s: dict, scale, label: str):
+    from ..bearings.journal import Groove, JournalBearing
+
+    b = s["bearing"]
+    pads = None if b["pads"] is None else tuple((math.radians(p), math.radians(q)) for p, q in b["pads"])
+    grooves = tuple(Groove(math.radians(g["angle_deg"]), math.radians(g["width_deg"]), g["length_fraction"])
+                    for g in b["grooves"])
+    return build(label, "bearing", JournalBearing, length_ratio=b["length"] / b["diameter"], pads=pads,
+                  grooves=grooves, supply_pressure=scale.from_pressure(b["supply_pressure"]))
+
+
+def _load(s: dict, scale) -> np.ndarray:
+    """Applied load on the journal in the bearing frame [mu omega R^4/c^2]."""
+    theta = math.radians(s["operating"]["load_direction_deg"])
+    return scale.from_force(s["operating"]["load"]) * np.array([math.cos(theta), math.sin(theta)])
+
+
+def _solve(bearing, load, size, min_size, cavitation):
+    """Equilibrium and coefficients, timed."""
+    from ..bearings.journal import dynamic_coefficients, equilibrium
+
+    t0 = time.perf_counter()
+    eq = equilibrium(bearing, load, size=size, min_size=min_size, cavitation=cavitation)
+    t1 = time.perf_counter()
+    # finite-volume (JFO) solutions keep no Galerkin system to linearize: central differences instead
+    dc = dynamic_coefficients(eq, method="finite-difference" if cavitation == "jfo" else "linearized")
+    return eq, dc, t1 - t0, time.perf_counter() - t1
+
+
+def _fixed_frame(dc, force):
+    """The coefficients in the bearing frame of the file (``x`` horizontal, ``y`` up).
+
+    :func:`bearingfe.bearings.journal.dynamic_coefficients` turns its frame so that
+    the load points along ``-y``; this turns it back (the identity for a
+    gravity load), so that a load in any direction gives coefficients in the
+    fixed frame a rotor model uses.
+    """
+    direction = math.atan2(force[1], force[0])
+    c, s = math.cos(-math.pi / 2 - direction), math.sin(-math.pi / 2 - direction)
+    Q = np.array([[c, -s], [s, c]])
+    return dataclasses.replace(dc, K=Q.T @ dc.K @ Q, C=Q.T @ dc.C @ Q)
+
+
+def run_journal_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+                      base_dir: Path | None = None) -> dict:
+    """Equilibrium, dynamic coefficients, pictures and tables of a journal bearing scene.
+
+    Returns the summary written to ``summary.json`` (SI units; see the
+    module docstring for the files).
+    """
+    from ..io.writers import write_json
+
+    s = journal_settings(data, label)
+    scale = _scale(s)
+    bearing = _bearing(s, scale, label)
+    load = _load(s, scale)
+    solver, out = s["solver"], s["output"]
+    n_pics = len(out["pictures"]) * len(bearing.surfaces())
+    steps = 2 + int(solver["estimate_error"]) + n_pics
+    tick = progress or (lambda done, total, what: None)
+    tick(0, steps, "equilibrium and coefficients")
+    eq, dc, t_eq, t_dc = _solve(bearing, load, solver["size"], solver["min_size"], solver["cavitation"])
+    fine = None
+    if solver["estimate_error"]:
+        tick(1, steps, "error estimate (half the element size)")
+        half = None if solver["min_size"] is None else solver["min_size"] / 2
+        fine = _solve(bearing, load, solver["size"] / 2, half, solver["cavitation"])
+    summary = _summary(s, scale, bearing, eq, dc, {"equilibrium": t_eq, "coefficients": t_dc}, fine)
+    done = 1 + int(solver["estimate_error"])
+    t0 = time.perf_counter()
+    files = _tables(out["tables"], s, scale, eq, summary, out_dir)
+    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what))
+    summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
+    summary["files"] = files + ["summary.json"]
+    tick(steps - 1, steps, "summary")
+    write_json(summary, out_dir / "summary.json")
+    tick(steps, steps, "done")
+    return summary
+
+
+# -- results ---------------------------------------------------------------------------------
+
+def _film_results(eq, scale) -> dict:
+    """Films, pressures, friction and flows of the pads at the equilibrium, in SI."""
+    results = eq.state.results
+    flows = [{k: scale.to_flow(v) for k, v in r.flows.items()} for r in results]
+    side = sum(f["side"] for f in flows)
+    inlet = sum(f["inlet"] for f in flows)
+    # net flow into the film through the grooves and the leading edge of every pad (full bearing:
+    # Raimondi-Boyd's Q, the flow into the film at the line of largest film)
+    total = sum(f["inlet"] - f["arc_start"] for f in flows)
+    torque = scale.to_moment(sum(r.friction for r in results))
+    return {"min_film_m": scale.to_thickness(min(r.h_min for r in results)),
+            "max_pressure_Pa": scale.to_pressure(max(r.max_pressure for r in results)),
+            "friction_torque_Nm": torque, "friction_power_W": torque * scale.speed,
+            "side_flow_m3s": side, "total_flow_m3s": total, "inlet_flow_m3s": inlet, "pad_flows_m3s": flows}
+
+
+def _summary(s: dict, scale, bearing, eq, dc, seconds: dict, fine) -> dict:
+    b, op = s["bearing"], s["operating"]
+    W, L, D, c = op["load"], b["length"], b["diameter"], b["radial_clearance"]
+    N = op["speed"] / 60.0
+    film = _film_results(eq, scale)
+    dcf = _fixed_frame(dc, eq.force)
+    K, C = dcf.to_si(viscosity=op["viscosity"], speed=scale.speed, radius=scale.radius, clearance=c)
+    results = {"eccentricity": eq.eps, "attitude_deg": eq.attitude,
+               "position_m": [float(v) * c for v in eq.position],
+               **film,
+               "sommerfeld": op["viscosity"] * N * L * D / W * (scale.radius / c) ** 2,
+               "mean_pressure_Pa": W / (L * D), "load_nondim": float(np.hypot(*_load(s, scale))),
+               "force_residual": eq.residual}
+    if bearing.pads is None:
+        results["raimondi_boyd"] = {
+            "sommerfeld": results["sommerfeld"], "attitude_deg": eq.attitude,
+            "friction_variable": film["friction_torque_Nm"] / (W * c),           # (R/c) f = T/(W c)
+            "flow_variable": film["total_flow_m3s"] / (scale.radius * c * N * L),  # Q/(R c N L)
+            "side_flow_ratio": film["side_flow_m3s"] / film["total_flow_m3s"],     # Qs/Q
+            "max_pressure_ratio": W / (L * D) / film["max_pressure_Pa"]}            # P/p_max
+    coefficients = {
+        "frame": "ROSS: x horizontal, y up, the journal turning from +x to +y (the bearing frame of the file)",
+        "K_N_per_m": K, "C_Ns_per_m": C, "K_c_over_W": dcf.K, "C_c_omega_over_W": dcf.C,
+        "load_nondim": dc.load, "method": dc.method}
+    ross = dcf.to_ross_kwargs(viscosity=op["viscosity"], speed=scale.speed, radius=scale.radius, clearance=c)
+    pictures_frame = math.degrees(eq.state.rotation) % 360.0 if bearing.pads is None else 0.0
+    cost = {"nodes": sum(m.n_nodes for m in eq.meshes), "newton_iterations": eq.newton_iterations,
+            "active_set_iterations": [r.iterations for r in eq.state.results],
+            "seconds": dict(seconds)}
+    summary = {"kind": "journal", "title": s["title"], "bearing": _bearing_echo(b), "operating": dict(op),
+               "solver": dict(s["solver"]), "scales": _scales(scale),
+               "results": results, "coefficients": coefficients, "ross_bearing_element": ross,
+               "pictures_phi0_deg": pictures_frame, "cost": cost,
+               "error_estimate": None if fine is None else _error_estimate(eq, dcf, film, fine, scale)}
+    if fine is not None:
+        cost["seconds"]["error_estimate"] = fine[2] + fine[3]
+    summary["table"] = _table(results, K, C, summary["error_estimate"], cost)
+    return summary
+
+
+def _bearing_echo(b: dict) -> dict:
+    out = dict(b)
+    out["pads"] = None if b["pads"] is None else [list(p) for p in b["pads"]]
+    out["grooves"] = [dict(g) for g in b["grooves"]]
+    out["length_over_diameter"] = b["length"] / b["diameter"]
+    return out
+
+
+def _scales(scale) -> dict:
+    return {"pressure_Pa": scale.pressure, "force_N": scale.force, "flow_m3s": scale.flow,
+            "moment_Nm": scale.moment, "length_m": scale.radius, "film_m": scale.clearance,
+            "omega_rad_s": scale.speed}
+
+
+def _error_estimate(eq, dcf, film: dict, fine, scale) -> dict:
+    """Change of each result when the element size is halved (the summary keeps the coarser values)."""
+    eq_f, dc_f, *_ = fine
+    dcf_f = _fixed_frame(dc_f, eq_f.force)
+    film_f = _film_results(eq_f, scale)
+
+    def rel(a, b):
+        return abs(b - a) / abs(a)
+    return {"method": "same equilibrium and coefficients with half the element size; relative changes",
+            "nodes": sum(m.n_nodes for m in eq_f.meshes),
+            "eccentricity": rel(eq.eps, eq_f.eps), "attitude_deg": abs(eq_f.attitude - eq.attitude),
+            "min_film": rel(film["min_film_m"], film_f["min_film_m"]),
+            "max_pressure": rel(film["max_pressure_Pa"], film_f["max_pressure_Pa"]),
+            "friction_power": rel(film["friction_power_W"], film_f["friction_power_W"]),
+            "K": float(np.abs(dcf_f.K - dcf.K).max() / np.abs(dcf.K).max()),
+            "C": float(np.abs(dcf_f.C - dcf.C).max() / np.abs(dcf.C).max())}
+
+
+def _table(r: dict, K, C, err, cost) -> list:
+    rows = [("eccentricity ratio", r["eccentricity"], "-"), ("attitude angle", r["attitude_deg"], "deg"),
+            ("minimum film", r["min_film_m"] * 1e6, "um"), ("maximum pressure", r["max_pressure_Pa"] / 1e6, "MPa"),
+            ("Sommerfeld number", r["sommerfeld"], "-"), ("friction torque", r["friction_torque_Nm"], "N m"),
+            ("friction power", r["friction_power_W"], "W"), ("side flow", r["side_flow_m3s"] * 6e4, "l/min"),
+            ("total flow", r["total_flow_m3s"] * 6e4, "l/min")]
+    if r["inlet_flow_m3s"] != 0.0:  # grooves
+        rows.append(("groove (supply) flow", r["inlet_flow_m3s"] * 6e4, "l/min"))
+    rows += [(f"k{a}{b}", float(K[i, j]), "N/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
+    rows += [(f"c{a}{b}", float(C[i, j]), "N s/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
+    if err is not None:
+        rows += [("error estimate: eccentricity", err["eccentricity"], "-"), ("error estimate: K", err["K"], "-"),
+                 ("error estimate: C", err["C"], "-")]
+    rows += [("nodes", cost["nodes"], ""), ("Newton iterations", cost["newton_iterations"], ""),
+             ("seconds", sum(cost["seconds"].values()), "s")]
+    return [list(row) for row in rows]
+
+
+# -- files -------------------------------------------------------------------------------------
+
+def pressure_columns(eq, scale) -> dict[str, np.ndarray]:
+    """Every mesh node of every pad: ``pad``, ``phi_deg`` (bearing frame, [0, 360)), ``z_m`` (from the
+    mid-plane), ``pressure_Pa``, ``film_m`` and ``ruptured`` (1 where the film has ruptured)."""
+    cols = {k: [] for k in ("pad", "phi_deg", "z_m", "pressure_Pa", "film_m", "ruptured")}
+    for k, res in enumerate(eq.state.results):
+        nv = int(res.basis.mesh.nvertices)
+        phi, z = np.asarray(res.basis.mesh.p[:, :nv], float)
+        cav = np.zeros(nv) if res.cavitated is None else np.asarray(res.cavitated, float)[:nv]
+        cols["pad"].append(np.full(nv, k + 1.0))
+        cols["phi_deg"].append(np.degrees(phi + eq.state.rotation) % 360.0)
+        cols["z_m"].append(z * scale.radius)
+        cols["pressure_Pa"].append(scale.to_pressure(np.asarray(res.pressure, float)[:nv]))
+        cols["film_m"].append(scale.to_thickness(np.asarray(res.film.thickness(phi, z), float)))
+        cols["ruptured"].append(cav)
+    return {k: np.concatenate(v) for k, v in cols.items()}
+
+
+def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str]:
+    from ..io.writers import write_csv
+
+    files = []
+    if "pressure" in names:
+        cols = pressure_columns(eq, scale)
+        files.append(write_csv(cols, out_dir / "pressure_field.csv", fields=list(cols)).name)
+    if "coefficients" in names:
+        ross = summary["ross_bearing_element"]
+        cols = {k: np.asarray(ross[k], float) for k in ("frequency", "kxx", "kxy", "kyx", "kyy",
+                                                         "cxx", "cxy", "cyx", "cyy")}
+        files.append(write_csv(cols, out_dir / "coefficients.csv", fields=list(cols)).name)
+    return files
+
+
+def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable) -> list[str]:
+    from ..plot import fields
+
+    p_mpa = dict(scale=scale.to_pressure(1.0) / 1e6, unit="MPa")
+    h_um = dict(scale=scale.to_thickness(1.0) * 1e6, unit="um")
+    surfaces = bearing.surfaces()
+    files, k = [], 0
+    for j, (res, surface) in enumerate(zip(eq.state.results, surfaces)):
+        suffix = f"_pad{j + 1}" if len(surfaces) > 1 else ""
+        draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / f"pressure{suffix}.png",
+                                                            surface=surface, **p_mpa),
+                "wrapped": lambda: fields.pressure_picture(res, out_dir / f"pressure_wrapped{suffix}.png",
+                                                           view="wrapped", warp=out["warp"], surface=surface,
+                                                           **p_mpa),
+                "film": lambda: fields.film_picture(res, out_dir / f"film{suffix}.png", surface=surface, **h_um)}
+        for name in out["pictures"]:
+            tick(k, f"picture: {name}{suffix}")
+            files.append(draw[name]().name)
+            k += 1
+    return files
