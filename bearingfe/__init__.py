@@ -43,7 +43,8 @@ from .film.fd import FDResult, solve_reynolds_fd
 from .film.thickness import CosineFilm, Film
 from .geometry.surface import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
 from .core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available_solvers
-from .mechanisms.machines import (CrankMechanism, CrankSlider, Drive, Frame, Linkage, Material, MillDrive, Rotor,
+from .core.machine import Drive, Material
+from .mechanisms.machines import (CrankMechanism, CrankSlider, Frame, Linkage, MillDrive, Rotor,
                        RotorFrame, Section)
 from .mechanisms.files import LOADERS, load_mechanism
 from .geometry.geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError

@@ -255,7 +255,7 @@ def shoe_convergence(pump, size: float, body_sizes) -> list:
 def seated_block(pump, sizes) -> list:
     """Compliance energy ``int w`` under a uniform pressure of a flat block clamped on the pump's seat disc
     (and over its whole back), as the body mesh is refined: how fast a seated body converges."""
-    from bearingfe.mechanisms.machines import ShoeBody
+    from bearingfe.elastic.shoe import ShoeBody
     from bearingfe.elastic.shoe import shoe_compliance
 
     plain = bf.Surface(arc=pump.surface.arc, half_width=pump.surface.half_width)

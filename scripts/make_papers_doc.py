@@ -59,7 +59,8 @@ def _pct(x: float) -> str:
 
 def paper_000() -> str:
     from bearingfe import crank
-    from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider, Drive
+    from bearingfe.core.machine import Drive
+    from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider
     from bearingfe.mechanisms.files import load_mechanism
 
     mech = load_mechanism(ROOT / "mechanisms" / "snt32.toml")

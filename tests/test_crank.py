@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from bearingfe import crank
-from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider, Drive
+from bearingfe.core.machine import Drive
+from bearingfe.mechanisms.machines import CrankMechanism, CrankSlider
 
 PHI = np.linspace(0.0, 2 * np.pi, 721)
 

@@ -8,7 +8,8 @@ import pytest
 
 from bearingfe import efficiency as E
 from bearingfe.mechanisms.efficiency import Linkage
-from bearingfe.mechanisms.machines import Drive, MillDrive
+from bearingfe.core.machine import Drive
+from bearingfe.mechanisms.machines import MillDrive
 
 THETA = np.linspace(0.0, 2 * np.pi, 361)
 

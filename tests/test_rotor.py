@@ -8,7 +8,8 @@ import pytest
 from scipy.linalg import eigh, solve
 
 from bearingfe import rotor as R
-from bearingfe.mechanisms.machines import Frame, Material, Rotor
+from bearingfe.core.machine import Material
+from bearingfe.mechanisms.machines import Frame, Rotor
 from bearingfe.mechanisms.sections import ibeam, ibeam_names
 
 

@@ -17,7 +17,7 @@ import bearingfe as bf
 from conftest import ROOT
 from bearingfe import Circle, Material, Scale, Surface, mesh_surface, solve_reynolds
 from bearingfe.elastic.coupled import half_space, shoe_body
-from bearingfe.mechanisms.machines import ShoeBody
+from bearingfe.elastic.shoe import ShoeBody
 from bearingfe.reynolds import operators
 from bearingfe.core.schema import SchemaError
 from bearingfe.elastic.shoe import mesh_shoe, overlay, shoe_compliance

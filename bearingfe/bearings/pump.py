@@ -62,7 +62,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.surface import Surface
-from ..mechanisms.machines import Drive, Material, ShoeBody
+from ..core.machine import Drive, Material
+from ..elastic.shoe import ShoeBody
 from ..core.scales import Scale
 from ..core.schema import nonnegative, positive
 
@@ -302,7 +303,7 @@ class EccentricPump:
             object.__setattr__(self, "shoe_thickness", positive(f"{own}.shoe_thickness", self.shoe_thickness))
         if self.shoe_body is not None:
             if not isinstance(self.shoe_body, ShoeBody):
-                raise ValueError(f"{own}.shoe_body must be a bearingfe.mechanisms.machines.ShoeBody, got "
+                raise ValueError(f"{own}.shoe_body must be a bearingfe.elastic.shoe.ShoeBody, got "
                                  f"{type(self.shoe_body).__name__}")
             if self.shoe_thickness is None:
                 object.__setattr__(self, "shoe_thickness", self.shoe_body.thickness)

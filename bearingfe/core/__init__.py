@@ -7,6 +7,7 @@ module            what it does
 ``limits``        Size limits: guards against runaway work, checked before the work starts.
 ``checks``        Checks that keep answers honest: ranges of solver inputs and the mesh resolution of the thin film.
 ``scales``        Conversion between the non-dimensional Reynolds problem and SI units.
+``machine``       The drive and the materials every machine shares (SI, frozen, validated).
 ``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
 ================  ============================================================

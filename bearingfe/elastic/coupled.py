@@ -81,7 +81,7 @@ from ..film.thickness import Film
 from ..film.forms import load as load_form, weighted_laplace
 from ..core.limits import check_limit
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
-from ..mechanisms.machines import Material
+from ..core.machine import Material
 from ..geometry.meshing import SupportMesh
 from ..core.scales import Scale
 from ..film.superposition import operators, source_weights, superpose

@@ -1,6 +1,6 @@
 r"""The real shoe body: a 3-D gmsh mesh of the shoe, linear elasticity, condensed to the film dofs.
 
-The shoe (:class:`bearingfe.mechanisms.machines.ShoeBody`) lies behind its film
+The shoe (:class:`bearingfe.elastic.shoe.ShoeBody`) lies behind its film
 surface, the bore of radius ``R0`` over the arc ``psi in [a1, a2]`` and the
 width ``|z| <= half_width`` (:class:`bearingfe.Surface`). In units of ``R0``,
 with the eccentric's axis as the ``z`` axis and the plunger axis as ``y``,
@@ -50,6 +50,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Optional
 
 import numpy as np
 import scipy.sparse as sp
@@ -60,12 +61,85 @@ from skfem.helpers import ddot, sym_grad, trace
 
 from .coupled import Compliance, body_compliance, check_dense_size
 from ..geometry.geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
-from ..mechanisms.machines import Material, ShoeBody
+from ..core.machine import Material
+from ..core.schema import nonnegative, positive
 from ..geometry.meshing import SupportMesh
 from ..core.scales import Scale
 from ..film.superposition import operators
 
-__all__ = ["ShoeMesh", "mesh_shoe", "shoe_compliance", "condense", "overlay", "BODY_ORDERS"]
+__all__ = ["ShoeBody", "SHOE_BACKS", "SHOE_SEATS", "ShoeMesh", "mesh_shoe", "shoe_compliance", "condense", "overlay", "BODY_ORDERS"]
+
+#: Back faces of a shoe body: a plane across the plunger axis, or concentric with the bore.
+SHOE_BACKS = ("flat", "concentric")
+#: How the plunger holds the shoe at its seat (see :class:`ShoeBody`).
+SHOE_SEATS = ("clamped", "frictionless")
+
+
+@dataclass(frozen=True)
+class ShoeBody:
+    """A plunger shoe as an elastic body (the film surface is its bore: :class:`bearingfe.Surface`).
+
+    The shoe's length and width are those of its film surface (the arc and
+    the width of the bore); this adds what lies behind it.
+
+    Parameters
+    ----------
+    thickness : float
+        Depth of the body at the shoe centre, from the film to the back [m], > 0.
+    back : {"flat", "concentric"}
+        The back face: a plane across the plunger axis at ``thickness``
+        behind the bore's apex (a slipper block, thicker at its ends), or a
+        cylinder concentric with the bore (a shell of uniform thickness).
+    seat : {"clamped", "frictionless"}
+        How the plunger holds the shoe on the seat (a disc of
+        ``seat_radius`` about the plunger axis on the back): ``"clamped"``
+        fixes the seat (a shoe bonded or shrunk onto a rigid plunger head);
+        ``"frictionless"`` lets it slide across the plunger but not move
+        into it (a rigid flat or cylindrical seat without friction: the
+        displacement normal to the back vanishes on the seat, the sideways
+        displacement and the spin about the plunger axis vanish on average
+        over it; the reactions are the seat's contact pressure and a uniform
+        sideways traction).
+    seat_radius : float, optional
+        Radius of the seat disc [m], > 0 (:func:`bearingfe.elastic.shoe.mesh_shoe`
+        checks that it fits on the back); None: the whole back is the seat
+        (``"clamped"`` only).
+    lining : Material, optional
+        A bearing lining (e.g. bronze or white metal) of ``lining_thickness``
+        on the bore; the rest of the body (the backing) is the shoe's material.
+    lining_thickness : float
+        [m], >= 0 and < ``thickness``; > 0 exactly when ``lining`` is given.
+    """
+
+    thickness: float
+    back: str = "flat"
+    seat: str = "clamped"
+    seat_radius: Optional[float] = None
+    lining: Optional["Material"] = None
+    lining_thickness: float = 0.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "thickness", positive("thickness", self.thickness, "m"))
+        if self.back not in SHOE_BACKS:
+            raise ValueError(f"back must be one of {SHOE_BACKS}, got {self.back!r}")
+        if self.seat not in SHOE_SEATS:
+            raise ValueError(f"seat must be one of {SHOE_SEATS}, got {self.seat!r}")
+        if self.seat_radius is None:
+            if self.seat != "clamped":
+                raise ValueError("seat_radius must be given (> 0 m) for a 'frictionless' seat (the whole back "
+                                 "sliding freely would leave the shoe free to move)")
+        else:
+            object.__setattr__(self, "seat_radius", positive("seat_radius", self.seat_radius, "m"))
+        t = nonnegative("lining_thickness", self.lining_thickness, "m")
+        if t >= self.thickness:
+            raise ValueError(f"lining_thickness must be in [0, thickness = {self.thickness!r}) m, got {t!r}")
+        object.__setattr__(self, "lining_thickness", t)
+        if (self.lining is None) != (t == 0):
+            raise ValueError("lining and lining_thickness go together: a lining Material with lining_thickness "
+                             f"> 0 m, or neither; got lining={self.lining!r}, lining_thickness={t!r}")
+        if self.lining is not None and not isinstance(self.lining, Material):
+            raise ValueError(f"lining must be a bearingfe.Material, got {type(self.lining).__name__}")
+
 
 #: Polynomial orders of the body's tetrahedra.
 BODY_ORDERS = (1, 2)
@@ -192,7 +266,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
         gmsh failed or ran out of time.
     """
     if not isinstance(body, ShoeBody):
-        raise ValueError(f"body must be a bearingfe.mechanisms.machines.ShoeBody, got {type(body).__name__}")
+        raise ValueError(f"body must be a bearingfe.elastic.shoe.ShoeBody, got {type(body).__name__}")
     if not (isinstance(radius, (int, float)) and math.isfinite(radius) and radius > 0):
         raise ValueError(f"radius must be the eccentric radius R0 in m, > 0, got {radius!r}")
     a1, a2, hw, t, seat = _checked_geometry(surface, radius, body, margin, flat_film)

@@ -21,19 +21,9 @@ from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 from ..geometry.surface import Circle, Ellipse, Polygon, Rectangle, Slot, Surface
-from .machines import (
-    CrankMechanism,
-    CrankSlider,
-    Drive,
-    Linkage,
-    Material,
-    MillDrive,
-    Rotor,
-    RotorFrame,
-    SHOE_BACKS,
-    SHOE_SEATS,
-    ShoeBody,
-)
+from ..core.machine import Drive, Material
+from ..elastic.shoe import SHOE_BACKS, SHOE_SEATS, ShoeBody
+from .machines import CrankMechanism, CrankSlider, Linkage, MillDrive, Rotor, RotorFrame
 from ..core.schema import (REQUIRED, SchemaError, Table, Tables, anything, build, choice, integer, number, numbers,
                               pair, points, positive_number, read_table, read_toml, text, texts)
 from .sections import ibeam
@@ -66,7 +56,7 @@ SURFACE_MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), 210
                           "poisson_ratio": (number(), 0.3)})
 
 
-#: How the plunger holds the shoe body (``[shoe.seat]``, see :class:`bearingfe.mechanisms.machines.ShoeBody`).
+#: How the plunger holds the shoe body (``[shoe.seat]``, see :class:`bearingfe.elastic.shoe.ShoeBody`).
 SHOE_SEAT = Table({"kind": (choice(SHOE_SEATS), "clamped"), "radius": (number(), None)})
 #: A bearing lining on the shoe's bore (``[shoe.lining]``): its thickness [m] and material.
 SHOE_LINING = Table({"thickness": (number(), None), "name": (text, None), "youngs_modulus": (number(), None),

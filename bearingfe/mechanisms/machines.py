@@ -1,19 +1,16 @@
 """Shared parameter objects for the machine models (SI units, frozen, validated).
 
-Grouped by how long they live: a :class:`Drive` is the operating point, the
+Grouped by how long they live: a :class:`~bearingfe.core.machine.Drive` is the operating point, the
 linkage/rotor/section objects are the design, and the ``*Mechanism`` objects
 bundle what one TOML file in ``mechanisms/`` describes.
 
 ================================  ==========================================
 object                            what it holds
 ================================  ==========================================
-:class:`Drive`                    shaft speed (rad/s; ``Drive.from_rpm``)
 :class:`CrankSlider`              central crank-slider geometry and masses
 :class:`CrankMechanism`           crank-slider machine (pump): drive + linkage
 :class:`Linkage`                  crank-slider with joint friction (paper 003)
 :class:`MillDrive`                linkage + drive + stand load + idle zones
-:class:`Material`                 Young's modulus, density
-:class:`ShoeBody`                 a shoe as an elastic body: depth, back, seat, lining
 :class:`Section`                  beam cross-section (area, Ix, Iy, mass/m)
 :class:`Rotor`                    unbalanced rotor on a simply supported shaft
 :class:`Frame`                    plate mass + total lateral column stiffness
@@ -27,53 +24,19 @@ import math
 from dataclasses import dataclass, field
 from typing import Optional
 
+from ..core.machine import Drive, Material
 from ..core.schema import finite, nonnegative, positive
 
 __all__ = [
-    "Drive",
     "CrankSlider",
     "CrankMechanism",
     "Linkage",
     "MillDrive",
-    "Material",
-    "ShoeBody",
     "Section",
     "Rotor",
     "Frame",
     "RotorFrame",
 ]
-
-
-@dataclass(frozen=True)
-class Drive:
-    """Operating point: constant angular speed of the driving shaft.
-
-    Parameters
-    ----------
-    omega : float
-        Shaft angular speed [rad/s], > 0.
-    """
-
-    omega: float
-
-    def __post_init__(self) -> None:
-        positive("omega", self.omega, "rad/s")
-
-    @classmethod
-    def from_rpm(cls, rpm: float) -> "Drive":
-        """Drive from a speed in revolutions per minute (> 0)."""
-        positive("speed_rpm", rpm, "rpm")
-        return cls(omega=2.0 * math.pi * float(rpm) / 60.0)
-
-    @property
-    def rpm(self) -> float:
-        """Shaft speed [1/min]."""
-        return self.omega * 60.0 / (2.0 * math.pi)
-
-    @property
-    def period(self) -> float:
-        """Time of one revolution [s]."""
-        return 2.0 * math.pi / self.omega
 
 
 @dataclass(frozen=True)
@@ -270,107 +233,6 @@ class MillDrive:
         nonnegative("load", self.load, "N")
         if not 0.0 <= finite("idle_zone", self.idle_zone) < math.pi:
             raise ValueError(f"idle_zone must be in [0, pi) rad, got {self.idle_zone!r}")
-
-
-@dataclass(frozen=True)
-class Material:
-    """Elastic material.
-
-    Parameters
-    ----------
-    name : str
-        Label.
-    youngs_modulus : float
-        Young's modulus E [Pa], > 0.
-    density : float
-        Density [kg/m^3], >= 0 (0 if not needed).
-    poisson_ratio : float
-        Poisson's ratio nu [-], in (-1, 0.5); 0.3 (steel) by default.
-    """
-
-    name: str
-    youngs_modulus: float
-    density: float = 0.0
-    poisson_ratio: float = 0.3
-
-    def __post_init__(self) -> None:
-        positive("youngs_modulus", self.youngs_modulus, "Pa")
-        nonnegative("density", self.density, "kg/m^3")
-        nu = finite("poisson_ratio", self.poisson_ratio)
-        if not -1.0 < nu < 0.5:
-            raise ValueError(f"poisson_ratio must be in (-1, 0.5), got {self.poisson_ratio!r}")
-
-
-#: Back faces of a shoe body: a plane across the plunger axis, or concentric with the bore.
-SHOE_BACKS = ("flat", "concentric")
-#: How the plunger holds the shoe at its seat (see :class:`ShoeBody`).
-SHOE_SEATS = ("clamped", "frictionless")
-
-
-@dataclass(frozen=True)
-class ShoeBody:
-    """A plunger shoe as an elastic body (the film surface is its bore: :class:`bearingfe.Surface`).
-
-    The shoe's length and width are those of its film surface (the arc and
-    the width of the bore); this adds what lies behind it.
-
-    Parameters
-    ----------
-    thickness : float
-        Depth of the body at the shoe centre, from the film to the back [m], > 0.
-    back : {"flat", "concentric"}
-        The back face: a plane across the plunger axis at ``thickness``
-        behind the bore's apex (a slipper block, thicker at its ends), or a
-        cylinder concentric with the bore (a shell of uniform thickness).
-    seat : {"clamped", "frictionless"}
-        How the plunger holds the shoe on the seat (a disc of
-        ``seat_radius`` about the plunger axis on the back): ``"clamped"``
-        fixes the seat (a shoe bonded or shrunk onto a rigid plunger head);
-        ``"frictionless"`` lets it slide across the plunger but not move
-        into it (a rigid flat or cylindrical seat without friction: the
-        displacement normal to the back vanishes on the seat, the sideways
-        displacement and the spin about the plunger axis vanish on average
-        over it; the reactions are the seat's contact pressure and a uniform
-        sideways traction).
-    seat_radius : float, optional
-        Radius of the seat disc [m], > 0 (:func:`bearingfe.elastic.shoe.mesh_shoe`
-        checks that it fits on the back); None: the whole back is the seat
-        (``"clamped"`` only).
-    lining : Material, optional
-        A bearing lining (e.g. bronze or white metal) of ``lining_thickness``
-        on the bore; the rest of the body (the backing) is the shoe's material.
-    lining_thickness : float
-        [m], >= 0 and < ``thickness``; > 0 exactly when ``lining`` is given.
-    """
-
-    thickness: float
-    back: str = "flat"
-    seat: str = "clamped"
-    seat_radius: Optional[float] = None
-    lining: Optional["Material"] = None
-    lining_thickness: float = 0.0
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "thickness", positive("thickness", self.thickness, "m"))
-        if self.back not in SHOE_BACKS:
-            raise ValueError(f"back must be one of {SHOE_BACKS}, got {self.back!r}")
-        if self.seat not in SHOE_SEATS:
-            raise ValueError(f"seat must be one of {SHOE_SEATS}, got {self.seat!r}")
-        if self.seat_radius is None:
-            if self.seat != "clamped":
-                raise ValueError("seat_radius must be given (> 0 m) for a 'frictionless' seat (the whole back "
-                                 "sliding freely would leave the shoe free to move)")
-        else:
-            object.__setattr__(self, "seat_radius", positive("seat_radius", self.seat_radius, "m"))
-        t = nonnegative("lining_thickness", self.lining_thickness, "m")
-        if t >= self.thickness:
-            raise ValueError(f"lining_thickness must be in [0, thickness = {self.thickness!r}) m, got {t!r}")
-        object.__setattr__(self, "lining_thickness", t)
-        if (self.lining is None) != (t == 0):
-            raise ValueError("lining and lining_thickness go together: a lining Material with lining_thickness "
-                             f"> 0 m, or neither; got lining={self.lining!r}, lining_thickness={t!r}")
-        if self.lining is not None and not isinstance(self.lining, Material):
-            raise ValueError(f"lining must be a bearingfe.Material, got {type(self.lining).__name__}")
 
 
 @dataclass(frozen=True)

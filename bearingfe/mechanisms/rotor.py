@@ -25,7 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .machines import Frame, Material, Rotor, RotorFrame, Section
+from ..core.machine import Material
+from .machines import Frame, Rotor, RotorFrame, Section
 
 __all__ = [
     "shaft_stiffness",
