@@ -7,3 +7,11 @@ module            what it does
 ``pump``          The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
 ================  ============================================================
 """
+
+from __future__ import annotations
+
+from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, dynamic_coefficients
+from .pump import EccentricPump, PressureCycle
+
+__all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
+           "EccentricPump", "PressureCycle"]

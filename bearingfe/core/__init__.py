@@ -12,3 +12,15 @@ module            what it does
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
 ================  ============================================================
 """
+
+from __future__ import annotations
+
+from .limits import LimitError, check_limit
+from .checks import ResolutionWarning, check_resolution
+from .scales import Scale
+from .machine import Drive, Material
+from .parameters import Discretization, OperatingPoint
+from .linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
+
+__all__ = ["LimitError", "check_limit", "ResolutionWarning", "check_resolution", "Scale", "Drive", "Material",
+           "Discretization", "OperatingPoint", "DEFAULT_SOLVER", "LINEAR_SOLVERS"]

@@ -11,3 +11,15 @@ module            what it does
 ``finite_volume`` Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
 ================  ============================================================
 """
+
+from __future__ import annotations
+
+from .thickness import CosineFilm, Film, UniformFilm
+from .superposition import (SOURCES, CoercivityError, Operators, ReynoldsResult, Superposition, film_outputs, operators,
+                            source_weights, superpose)
+from .finite_volume import JFOError, solve_jfo
+from .fd import FDResult, solve_reynolds_fd
+
+__all__ = ["CosineFilm", "Film", "UniformFilm", "SOURCES", "CoercivityError", "Operators", "ReynoldsResult",
+           "Superposition", "film_outputs", "operators", "source_weights", "superpose", "JFOError", "solve_jfo",
+           "FDResult", "solve_reynolds_fd"]

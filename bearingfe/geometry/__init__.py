@@ -9,3 +9,13 @@ module            what it does
 ``meshing``       Meshing support surfaces with gmsh and reading meshes into scikit-fem.
 ================  ============================================================
 """
+
+from __future__ import annotations
+
+from .surface import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
+from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
+from .meshing import SupportMesh, grid_mesh, load_mesh, mesh_surface, refine_uniformly
+
+__all__ = ["Circle", "Ellipse", "Polygon", "Recess", "Rectangle", "Shape", "Slot", "Surface", "GeometryFileError",
+           "MeshSizeError", "UntrustedGeoError", "SupportMesh", "grid_mesh", "load_mesh", "mesh_surface",
+           "refine_uniformly"]
