@@ -4,7 +4,7 @@ The film flux (units of the flow scale ``omega R0^2 c`` per unit length)::
 
     q = -h^3/12 grad p + wedge h/2 e_phi,        div q + dh/dt = 0
 
-is what the Reynolds equation conserves (see ``bearingfe.film.superposition._flows``).
+is what the Reynolds equation conserves (see :mod:`bearingfe.film.reference`).
 A finite-element pressure ``p_h`` leaves two residuals: inside each element
 ``R_K = div q_h + dh/dt`` and across each interior edge the jump
 ``J_E = [q_h . n]`` of the normal flux. :func:`error_indicators` combines
@@ -47,12 +47,13 @@ from .film.thickness import Film
 from .geometry.surface import Surface
 from .core.checks import ResolutionWarning
 from .core.linalg import DEFAULT_SOLVER, get_linear_solver
+from .geometry.locate import cell_diameters
 from .geometry.meshing import SupportMesh, mesh_surface
 from .core.parameters import Discretization, OperatingPoint, takes
 from .film import forms
 from .film.forms import film_flux, mapping, pressure_from_unknown, unknown_scale
 from .reynolds import CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, solve_reynolds
-from .film.superposition import ruptured_elements
+from .film.flows import ruptured_elements
 
 __all__ = ["INDICATORS", "NORMS", "AdaptiveLevel", "AdaptiveResult", "AdaptivityError", "adapt",
            "error_indicators", "load_indicators", "size_field", "target_sizes"]
@@ -220,7 +221,7 @@ def load_indicators(result: ReynoldsResult) -> np.ndarray:
 def _ruptured(result: ReynoldsResult) -> np.ndarray:
     if result.cavitated is None or not np.any(result.cavitated):
         return np.zeros(result.basis.mesh.nelements, bool)
-    return ruptured_elements(result.basis, np.asarray(result.pressure), np.asarray(result.cavitated))
+    return ruptured_elements(result.basis.element_dofs, np.asarray(result.pressure), np.asarray(result.cavitated))
 
 
 def _dual_pressure(result: ReynoldsResult, g: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
@@ -266,7 +267,7 @@ class _Bases:
         self.element = element
         self.mesh = basis.mesh
         self.x = np.array(basis.global_coordinates())
-        self.diameters = _diameters(self.mesh)
+        self.diameters = cell_diameters(self.mesh)
         self.intorder = 2 * (2 if element == "P2" else 1) + 2
         self._dg = None
         self._sides = None
@@ -337,13 +338,6 @@ def _pressure_fields(f: _Field, basis, x: np.ndarray, lap_u):
     lap_h = np.asarray(film.laplacian(x[0], x[1]), float)
     lap_s = -1.5 * h**-2.5 * lap_h + 3.75 * h**-3.5 * (dh[0] ** 2 + dh[1] ** 2)
     return p, dp, lap_s * value + 2.0 * (ds[0] * grad[0] + ds[1] * grad[1]) + s * lap_u
-
-
-def _diameters(mesh) -> np.ndarray:
-    """Longest edge of each (vertex) triangle."""
-    p, t = mesh.p, mesh.t[:3]
-    edges = [np.linalg.norm(p[:, t[i]] - p[:, t[(i + 1) % 3]], axis=0) for i in range(3)]
-    return np.max(edges, axis=0)
 
 
 def _facet_lengths(mesh, facets: np.ndarray) -> np.ndarray:

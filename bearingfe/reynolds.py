@@ -45,8 +45,8 @@ from .film.finite_volume import solve_jfo
 from .core.linalg import DEFAULT_SOLVER, Factorize
 from .geometry.meshing import SupportMesh
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
-from .film.superposition import (SOURCES, CoercivityError, CondensedSystem, Operators,
-                            ReynoldsResult, Superposition, operators, source_weights, superpose)
+from .film import (SOURCES, CoercivityError, CondensedSystem, Operators, ReynoldsResult, Superposition, operators,
+                   source_weights, superpose)
 
 __all__ = [
     "ELEMENTS",

@@ -171,7 +171,7 @@ def verdict(out, summary) -> None:
         "everyday answer's `err` column is its own estimate there.\n")
     out("The side-flow ratio now agrees with the table to about 0.5 %: side leakage is counted from the "
         "full film only, with the ruptured zone's non-conserved Couette source removed from the boundary "
-        "fluxes (`bearingfe.film.superposition._flows`, `cavitated`). Counted in, it biased Qs/Q low by O(element "
+        "fluxes (`bearingfe.film.reference`, `cavitated`). Counted in, it biased Qs/Q low by O(element "
         "size) (1-5 % on these meshes), which was the unexplained gap of the first version of this page.\n")
 
 

@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import bearingfe as bf  # noqa: E402
 from bearingfe.core.linalg import factorize_splu_sym  # noqa: E402
-from bearingfe.film.superposition import film_outputs, source_weights  # noqa: E402
+from bearingfe.film import film_outputs, source_weights  # noqa: E402
 
 from benchmarks.common import DOCS, machine  # noqa: E402
 

@@ -43,7 +43,8 @@ def build(element: str, dofs: float, path: str) -> dict:
 
     import bearingfe as bf
     from bearingfe.film.forms import film_at
-    from bearingfe.film.superposition import operators, system_matrix, unit_sources
+    from bearingfe.film import operators
+    from bearingfe.film.reference import system_matrix, unit_sources
 
     vertices = dofs / (4.0 if element == "P2" else 1.0)
     size = math.sqrt(2 * AREA / (math.sqrt(3) * vertices))

@@ -16,7 +16,8 @@ import pytest
 
 import bearingfe as bf
 from bearingfe.film.forms import film_at
-from bearingfe.film.superposition import film_outputs, operators, system_matrix
+from bearingfe.film import film_outputs, operators
+from bearingfe.film.reference import system_matrix
 
 RTOL = 1e-10
 SURFACE = bf.Surface(arc=(-1.2, 1.2), half_width=0.6, inlets=(bf.Circle((0.1, 0.05), 0.2),))

@@ -19,9 +19,9 @@ from skfem.mapping import MappingAffine
 
 import bearingfe as bf
 from bearingfe.film import forms
-from bearingfe.film import superposition
+from bearingfe.film import mesh_operators as film_operators
 from bearingfe.film.forms import TolerantMapping, mapping, straight_edges
-from bearingfe.film.superposition import operators
+from bearingfe.film import operators
 
 RTOL = 1e-12
 RECTANGLE = bf.Surface(arc=(-0.6, 0.6), half_width=0.5,
@@ -72,7 +72,7 @@ def test_corner_fluxes_on_the_corner_facets_equal_those_on_all_facets(monkeypatc
     assert set(corners) == {"side", "arc_start", "arc_end"}
     assert sum(corners.values()) <= 8  # two facets at each of the outline's four corners
     near = bf.superpose(mesh, FILM, element=element, assembly=assembly).combine(**POINT)
-    monkeypatch.setattr(superposition, "_corner_facets", lambda m, basis, bnd, groups: {n: bnd[n] for n in groups})
+    monkeypatch.setattr(film_operators, "_corner_facets", lambda m, basis, bnd, groups: {n: bnd[n] for n in groups})
     everywhere_mesh = _mesh()
     assert sum(len(f) for f in operators(everywhere_mesh, element).facet_groups.values()) > 8
     everywhere = bf.superpose(everywhere_mesh, FILM, element=element, assembly=assembly).combine(**POINT)

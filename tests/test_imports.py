@@ -1,7 +1,9 @@
-"""The package's import graph: no cycles, no private names across modules (issue 15).
+"""The package's import graph: no cycles, no private names across modules.
 
 Read from the source with :mod:`ast`, so imports inside functions (lazy imports)
-count as much as the ones at the top of a module. A module is a file of
+count as much as the ones at the top of a module. Imports under
+``if TYPE_CHECKING:`` are not edges: they never run, they only name a type for
+the reader (a result module naming the film state that made it). A module is a file of
 ``bearingfe/`` (a package is its ``__init__.py``); ``from .x import name`` is an
 edge to ``x`` (or to ``x.name`` when that is a module). Dunder names such as
 ``__version__`` are not private.
@@ -30,7 +32,7 @@ def _imports(modules: dict[str, Path]):
     names: list[tuple[str, str, str]] = []
     for module, path in modules.items():
         package = module if path.name == "__init__.py" else module.rpartition(".")[0]
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        for node in _runtime_nodes(ast.parse(path.read_text(), str(path))):
             if isinstance(node, ast.ImportFrom):
                 if node.level:
                     base = package.split(".")[: len(package.split(".")) - node.level + 1]
@@ -47,6 +49,21 @@ def _imports(modules: dict[str, Path]):
             elif isinstance(node, ast.Import):
                 edges[module].update(a.name for a in node.names if a.name in modules)
     return edges, names
+
+
+def _type_checking(node: ast.AST) -> bool:
+    test = node.test if isinstance(node, ast.If) else None
+    return isinstance(test, ast.Name) and test.id == "TYPE_CHECKING" or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
+
+
+def _runtime_nodes(tree: ast.AST):
+    """Every node of ``tree`` except those under ``if TYPE_CHECKING:``."""
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        yield node
+        stack.extend(child for child in ast.iter_child_nodes(node) if not _type_checking(child))
 
 
 def _cycles(edges: dict[str, set[str]]) -> list[frozenset[str]]:
@@ -103,6 +120,9 @@ def test_the_checks_see_cycles_and_private_names():
     # the checks themselves on a small made-up graph: a -> b -> c -> a is one cycle, d is alone
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [frozenset("abc")]
     assert _private("_flows") and not _private("__version__") and not _private("flows")
+    # an import under `if TYPE_CHECKING:` is no edge, one beside it is
+    tree = ast.parse("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import a\nimport b\n")
+    assert [n.names[0].name for n in _runtime_nodes(tree) if isinstance(n, ast.Import)] == ["b"]
     # and on the package: the reynolds front door reaches the cavitation models, which must not import it back
     edges, _ = _imports(_modules())
     assert "bearingfe.cavitation.models" in edges["bearingfe.reynolds"]

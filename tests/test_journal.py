@@ -177,7 +177,7 @@ def test_film_graded_size():
 
 
 def test_side_flow_ratio_is_mesh_independent_and_matches_raimondi_boyd():
-    # The ruptured zone's Couette source is not side leakage (bearingfe.film.superposition._flows, ``cavitated``):
+    # The ruptured zone's Couette source is not side leakage (bearingfe.film.reference, ``cavitated``):
     # counted in, it biased Qs/Q low by O(size) (measured 0.472, 0.485, 0.492, 0.495 at size 0.1 .. 0.0125,
     # eps = 0.4). Raimondi & Boyd: Qs/Q = 0.497 (eps 0.4), 0.842 (eps 0.8) for L/D = 1.
     for eps, ref in ((0.4, 0.497), (0.8, 0.842)):

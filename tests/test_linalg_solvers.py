@@ -13,7 +13,8 @@ import scipy.sparse.linalg as spla
 import bearingfe as bf
 from bearingfe.core.linalg import LINEAR_SOLVERS, PatternFactorizer, available_solvers, get_linear_solver
 from bearingfe.film.forms import film_at
-from bearingfe.film.superposition import operators, system_matrix
+from bearingfe.film import operators
+from bearingfe.film.reference import system_matrix
 
 
 @pytest.fixture(scope="module")

@@ -62,10 +62,12 @@ from ..film.thickness import CosineFilm
 from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
+from ..geometry.locate import cell_diameters
 from ..geometry.meshing import SupportMesh, mesh_surface, refine_uniformly
 from ..core.parameters import Discretization, takes
 from ..film import forms
-from ..film.superposition import ELEMENTS, ReynoldsResult, operators, superpose
+from ..core.parameters import ELEMENTS
+from ..film import ReynoldsResult, operators, superpose
 
 __all__ = [
     "Groove",
@@ -371,14 +373,8 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
     bnd = {"arc_start": facets[np.abs(mid[0] - phis[0]) < tol], "arc_end": facets[np.abs(mid[0] - phis[1]) < tol],
            "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
     bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=float(_diameters(m).max()),
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=float(cell_diameters(m).max()),
                        source="structured")
-
-
-def _diameters(m: skfem.Mesh) -> np.ndarray:
-    """Longest edge of each triangle."""
-    p = m.p[:, m.t[:3]]
-    return np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
 
 
 def _front_elements(res: ReynoldsResult) -> np.ndarray:
@@ -941,13 +937,13 @@ def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State",
         res = state.results[0]
         m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
         front = _front_elements(res)
-        diameters = _diameters(m)
+        diameters = cell_diameters(m)
         if not front.any() or diameters[front].max() <= rupture_size * (1 + 1e-9):
             return mesh, state
         centres = m.p[:, m.t].mean(axis=1)[:, front].T
         reach = RUPTURE_REACH * diameters[front]
         for _ in range(RUPTURE_SPLITS):
-            d = _diameters(m)
+            d = cell_diameters(m)
             near = np.zeros(m.nelements, bool)
             for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
                 near[hits] = True

@@ -74,7 +74,7 @@ callable with the contract
     field (with a default) to :class:`ModelOptions`.
 
 It returns the :class:`~bearingfe.film.superposition.ReynoldsResult` built by
-:func:`~bearingfe.film.superposition.build_result` from its unknown field, the
+:func:`~bearingfe.film.result.build_result` from its unknown field, the
 model name, its iteration count and its ruptured dofs, so that loads,
 flows and friction are computed in one place for every model. A model that
 changes the film (e.g. an elastic one) calls an entry again on the
@@ -91,12 +91,13 @@ from typing import Callable, Mapping
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.spatial import cKDTree
 
 from ..film.finite_volume import solve_model_jfo
 from ..core.linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from ..core.parameters import OperatingPoint, takes
-from ..film.superposition import ReynoldsResult, Superposition, build_result, ruptured_elements, source_weights
+from ..film import ReynoldsResult, Superposition, build_result, source_weights
+from ..film.flows import ruptured_elements
+from ..geometry.locate import containing_cells
 
 __all__ = [
     "CavitationError",
@@ -336,29 +337,9 @@ def _transferred_mask(previous: ReynoldsResult, basis) -> np.ndarray:
     Swift-Stieber rupture sets. Dofs outside the previous mesh start full.
     """
     old = previous.basis
-    ruptured = ruptured_elements(old, np.asarray(previous.pressure), previous.cavitated)
-    cells = _containing_cells(old.mesh.p, old.mesh.t[:3], np.asarray(basis.doflocs))
+    ruptured = ruptured_elements(old.element_dofs, np.asarray(previous.pressure), previous.cavitated)
+    cells = containing_cells(old.mesh.p, old.mesh.t, np.asarray(basis.doflocs))
     return np.where(cells >= 0, ruptured[np.maximum(cells, 0)], False)
-
-
-def _containing_cells(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidates: int = 12) -> np.ndarray:
-    """Index of the triangle ``(p, t)`` containing each point (-1 if none among the nearest ones)."""
-    centroids = p[:, t].mean(axis=1)
-    k = min(candidates, t.shape[1])
-    _, near = cKDTree(centroids.T).query(points.T, k=k)
-    near = near.reshape(points.shape[1], k)
-    a, b, c = (p[:, t[i]] for i in range(3))
-    out = np.full(points.shape[1], -1)
-    for j in range(k):
-        e = near[:, j]
-        v0, v1, v2 = b[:, e] - a[:, e], c[:, e] - a[:, e], points - a[:, e]
-        det = v0[0] * v1[1] - v0[1] * v1[0]
-        l1 = (v2[0] * v1[1] - v2[1] * v1[0]) / det
-        l2 = (v0[0] * v2[1] - v0[1] * v2[0]) / det
-        tol = 1e-10
-        inside = (l1 >= -tol) & (l2 >= -tol) & (l1 + l2 <= 1 + tol) & (out < 0)
-        out[inside] = e[inside]
-    return out
 
 
 # -- the models and their table ------------------------------------------------------

@@ -84,7 +84,8 @@ from ..core.linalg import DEFAULT_SOLVER, dense_threads
 from ..core.machine import Material
 from ..geometry.meshing import SupportMesh
 from ..core.scales import Scale
-from ..film.superposition import operators, source_weights, superpose
+from ..film import operators, source_weights, superpose
+from ..geometry.locate import barycentric, nearest_cells, probe_matrices
 
 __all__ = [
     "Compliance",
@@ -395,44 +396,6 @@ def half_space(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1") ->
 
 # -- the deflected film ----------------------------------------------------------------------
 
-def _find_cells(p: np.ndarray, t: np.ndarray, x: np.ndarray, candidates: int = 8) -> np.ndarray:
-    """Straight triangle ``(p, t)`` containing each point, else the one with the nearest centroid."""
-    from scipy.spatial import cKDTree
-
-    centroids = p[:, t].mean(axis=1)
-    k = min(candidates, t.shape[1])
-    _, near = cKDTree(centroids.T).query(x.T, k=k)
-    near = near.reshape(x.shape[1], k)
-    out = near[:, 0].copy()
-    found = np.zeros(x.shape[1], bool)
-    a, b, c = (p[:, t[i]] for i in range(3))
-    for j in range(k):
-        e = near[:, j]
-        v0, v1, v2 = b[:, e] - a[:, e], c[:, e] - a[:, e], x - a[:, e]
-        det = v0[0] * v1[1] - v0[1] * v1[0]
-        l1 = (v2[0] * v1[1] - v2[1] * v1[0]) / det
-        l2 = (v0[0] * v2[1] - v0[1] * v2[0]) / det
-        inside = (l1 >= -1e-10) & (l2 >= -1e-10) & (l1 + l2 <= 1 + 1e-10) & ~found
-        out[inside] = e[inside]
-        found |= inside
-    return out
-
-
-def _probe_matrices(basis, x: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """Sparse maps from dofs to the value and the gradient of a field at the points ``x`` (2, n)."""
-    m = basis.mesh
-    cells = _find_cells(m.p, m.t[:3], x)
-    ref = basis.mapping.invF(x[:, :, None], tind=cells)
-    rows = np.tile(np.arange(x.shape[1]), basis.Nbfun)
-    cols = basis.element_dofs[:, cells].ravel()
-    out = []
-    fields = [basis.elem.gbasis(basis.mapping, ref, k, tind=cells)[0] for k in range(basis.Nbfun)]
-    for values in ([np.asarray(f)[:, 0] for f in fields], [f.grad[0][:, 0] for f in fields],
-                   [f.grad[1][:, 0] for f in fields]):
-        out.append(sp.coo_matrix((np.concatenate(values), (rows, cols)), shape=(x.shape[1], basis.N)).tocsr())
-    return tuple(out)
-
-
 @dataclass(frozen=True, eq=False)
 class _Evaluator:
     """Evaluation of nodal fields of one basis at point sets (cached per point set)."""
@@ -455,7 +418,7 @@ class _Evaluator:
                 self.cache.clear()
                 if kept is not None:
                     self.cache["quadrature"] = kept
-            self.cache[key] = _probe_matrices(self.basis, flat)
+            self.cache[key] = probe_matrices(self.basis, flat)
         shape = x.shape[1:]
         return tuple((P @ w).reshape(shape) for P in self.cache[key])
 
@@ -1256,12 +1219,8 @@ def body_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, opening: np
 def _film_face_probe(basis2, mesh: SupportMesh, pts: np.ndarray):
     """Film basis values at points of the film face; which points lie in the film, which in a pocket."""
     m = mesh.mesh
-    cells = _find_cells(m.p, m.t[:3], pts)
-    a, b, c = (m.p[:, m.t[i, cells]] for i in range(3))
-    v0, v1, v2 = b - a, c - a, pts - a
-    det = v0[0] * v1[1] - v0[1] * v1[0]
-    l1 = (v2[0] * v1[1] - v2[1] * v1[0]) / det
-    l2 = (v0[0] * v2[1] - v0[1] * v2[0]) / det
+    cells = nearest_cells(m.p, m.t, pts)
+    l1, l2 = barycentric(m.p, m.t, cells, pts)
     inside = (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
     # basis values from the barycentric coordinates of the straight triangles (exact on straight
     # meshes; on curved ones the film face is loaded as if the pocket edges were their chords)

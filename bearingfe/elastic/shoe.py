@@ -65,7 +65,7 @@ from ..core.machine import Material
 from ..core.schema import nonnegative, positive
 from ..geometry.meshing import SupportMesh
 from ..core.scales import Scale
-from ..film.superposition import operators
+from ..film import operators
 
 __all__ = ["ShoeBody", "SHOE_BACKS", "SHOE_SEATS", "ShoeMesh", "mesh_shoe", "shoe_compliance", "condense", "overlay", "BODY_ORDERS"]
 

@@ -6,7 +6,12 @@ module            what it does
 ``thickness``     Film-thickness models.
 ``forms``         The Reynolds equation's weak forms and pointwise formulas, written once.
 ``compiled``      Compiled film operator: the film-independent linear maps of a mesh and element, built once.
+``mesh_operators`` Everything about a mesh and an element that does not depend on the film, built once.
+``assembly``      How a film state's system is assembled: one interface, two implementations, one table.
+``reference``     The reference assembly: the film system, loads and flows by scikit-fem form assembly.
 ``superposition`` One film state of the finite-element Reynolds equation: operators, condensed system, results.
+``result``        The result of one film state and the one place that builds it.
+``flows``         Named film flows, written once for every discretization and every transient.
 ``fd``            Finite-difference reference solver of the Reynolds equation (paper 004's method).
 ``finite_volume`` Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
 ================  ============================================================
@@ -14,12 +19,14 @@ module            what it does
 
 from __future__ import annotations
 
-from .thickness import CosineFilm, Film, UniformFilm
-from .superposition import (SOURCES, CoercivityError, Operators, ReynoldsResult, Superposition, film_outputs, operators,
-                            source_weights, superpose)
+from .thickness import CosineFilm, Film, UniformFilm, smallest_film
+from .mesh_operators import Operators, operators
+from .assembly import ASSEMBLIES
+from .superposition import SOURCES, CoercivityError, CondensedSystem, Superposition, source_weights, superpose
+from .result import ReynoldsResult, build_result, film_outputs
 from .finite_volume import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 
-__all__ = ["CosineFilm", "Film", "UniformFilm", "SOURCES", "CoercivityError", "Operators", "ReynoldsResult",
-           "Superposition", "film_outputs", "operators", "source_weights", "superpose", "JFOError", "solve_jfo",
-           "FDResult", "solve_reynolds_fd"]
+__all__ = ["CosineFilm", "Film", "UniformFilm", "smallest_film", "Operators", "operators", "ASSEMBLIES", "SOURCES",
+           "CoercivityError", "CondensedSystem", "Superposition", "source_weights", "superpose", "ReynoldsResult",
+           "build_result", "film_outputs", "JFOError", "solve_jfo", "FDResult", "solve_reynolds_fd"]

@@ -40,7 +40,9 @@ import scipy.sparse.linalg as spla
 from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from .forms import film_at
+from .flows import named_flows, outflow, ruptured_elements
+from .forms import FilmAt, film_at, film_flux, shear, unknown_scale
+from ..core.linalg import Factorize, Solve, factorize_splu_sym
 
 __all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
 
@@ -252,6 +254,16 @@ class CompiledOperator:
         self.__dict__.update(state, _lock=threading.Lock())
 
     @property
+    def angles(self) -> tuple[np.ndarray, np.ndarray]:
+        """``cos phi`` and ``sin phi`` at the quadrature points (for :func:`bearingfe.film.forms.film_at`)."""
+        return self._get("angles", lambda: (np.cos(self.points[0]), np.sin(self.points[0])))
+
+    @property
+    def points(self) -> np.ndarray:
+        """The quadrature points shaped as the basis has them, ``(2, n_cells, n_points)``."""
+        return self.x.reshape(2, *np.shape(self._basis.dx))
+
+    @property
     def nnz(self) -> int:
         return int(self.indices.size)
 
@@ -405,9 +417,36 @@ class CompiledOperator:
         dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
         return p, dp
 
-    def outputs(self, u: np.ndarray, films: Sequence, h: np.ndarray, dh: np.ndarray, hdot: np.ndarray,
-                weights: np.ndarray, sliding: np.ndarray, pi: np.ndarray,
+    # -- the assembly interface (bearingfe.film.assembly) ---------------------------------
+
+    def film_at(self, film) -> FilmAt:
+        """The film's fields at the quadrature points (trigonometric values of the points computed once)."""
+        return film_at(film, self.points, self.angles)
+
+    def system(self, at: FilmAt, formulation: str) -> "CompiledSystem":
+        """The system of a film state in a formulation (values on the pattern: no sparse build)."""
+        return CompiledSystem(self, at, formulation)
+
+    def field_loads(self, at: FilmAt, formulation: str, u: np.ndarray) -> tuple[np.ndarray, float]:
+        """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field (pockets not included)."""
+        p = unknown_scale(at.h.ravel(), formulation) * (self.value @ u)
+        values = self.loads @ p
+        return values[:2].copy(), float(values[2])
+
+    def outputs(self, states: Sequence, u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
                 cavitated: np.ndarray | None = None) -> FilmFlows:
+        """Flows, mass balance and friction of ``S`` film states ``(film, at, formulation)`` at once."""
+        h = np.stack([at.h.ravel() for _, at, _ in states], axis=1)
+        dh = np.stack([np.stack([at.dh[0].ravel(), at.dh[1].ravel()]) for _, at, _ in states], axis=2)
+        shapes = np.stack([np.stack([at.shapes[0].ravel(), at.shapes[1].ravel()]) for _, at, _ in states], axis=2)
+        hdot = weights[1] * shapes[0] + weights[2] * shapes[1]
+        pi = np.array([formulation == "pi" for _, _, formulation in states])
+        return self.field_outputs(u, [film for film, _, _ in states], h, dh, hdot, weights, np.asarray(sliding, float),
+                                  pi, cavitated)
+
+    def field_outputs(self, u: np.ndarray, films: Sequence, h: np.ndarray, dh: np.ndarray, hdot: np.ndarray,
+                      weights: np.ndarray, sliding: np.ndarray, pi: np.ndarray,
+                      cavitated: np.ndarray | None = None) -> FilmFlows:
         """Flows, mass balance and friction of ``S`` film states at once.
 
         Parameters
@@ -425,45 +464,32 @@ class CompiledOperator:
         pi : ndarray of bool, shape (S,)
             Samples in the pi form (the others are direct).
         cavitated : ndarray of bool, shape (n_dofs, S), optional
-            Ruptured dofs (see :func:`bearingfe.film.superposition._flows`).
+            Ruptured dofs (see :mod:`bearingfe.film.reference`).
         """
         wedge = weights[0]
         _, dp = self.pressure(u, h, dh, pi)
-        c = -h**3 / 12.0
-        q0 = c * dp[0] + 0.5 * wedge * h
-        q1 = c * dp[1]
+        q0, q1 = film_flux(h, dp, wedge)
         dxc = self.dx[:, None]
         qx, qz, qh = q0 * dxc, q1 * dxc, hdot * dxc
         residual = self.group_maps[0] @ qx + self.group_maps[1] @ qz - self.group_maps[2] @ qh
         residual = residual + self._corner_terms(u, films, wedge, pi)
-        friction = np.sum((sliding / h + 0.5 * h * dp[0]) * dxc, axis=0)
+        friction = np.sum(shear(h, dp[0], sliding) * dxc, axis=0)
         squeeze = np.sum(qh, axis=0)
-        flows = self._named(residual, squeeze)
-        balance = flows["inlet"] - self._outflow(flows) - flows["squeeze"]
+        flows = named_flows(self.groups, residual, squeeze)
+        balance = flows["inlet"] - outflow(flows) - flows["squeeze"]
         if cavitated is not None:
             r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
             cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
             source = self._ruptured_source(u, cavitated, wedge, dh, hdot)
-            corrected = self._named(residual + self.group_maps[2] @ (source * dxc), squeeze)
+            corrected = named_flows(self.groups, residual + self.group_maps[2] @ (source * dxc), squeeze)
             corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])
-                                       - (self._outflow(corrected) - self._outflow(flows)))
+                                       - (outflow(corrected) - outflow(flows)))
             flows, balance = corrected, balance - cavitation
         return FilmFlows(flows=flows, mass_balance=balance, friction=friction)
 
-    def _named(self, residual: np.ndarray, squeeze: np.ndarray) -> dict[str, np.ndarray]:
-        flows = {name: residual[k] for k, name in enumerate(self.groups)}
-        flows["inlet"] = -flows["inlet"] if "inlet" in flows else np.zeros_like(squeeze)
-        flows["squeeze"] = squeeze
-        return flows
-
-    @staticmethod
-    def _outflow(flows: Mapping[str, np.ndarray]) -> np.ndarray:
-        return sum(v for k, v in flows.items() if k not in ("inlet", "squeeze", "cavitation"))
-
     def _ruptured_source(self, u, cavitated, wedge, dh, hdot) -> np.ndarray:
         """``wedge/2 dh/dphi + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
-        dofs = self._basis.element_dofs
-        ruptured = np.all(u[dofs] == 0.0, axis=0) & np.any(cavitated[dofs], axis=0)  # (n_cells, S)
+        ruptured = ruptured_elements(self._basis.element_dofs, u, cavitated)  # (n_cells, S)
         n_points = self._basis.dx.shape[1]
         mask = np.repeat(ruptured, n_points, axis=0)
         return np.where(mask, 0.5 * wedge * dh[0] + hdot, 0.0)
@@ -482,8 +508,8 @@ class CompiledOperator:
         p = s * value
         chain = np.where(pi, 1.5 * p / h, 0.0)
         dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
-        c = -h**3 / 12.0
-        qn = (c * dp0 + 0.5 * wedge * h) * normals[0][:, None] + c * dp1 * normals[1][:, None]
+        q0, q1 = film_flux(h, (dp0, dp1), wedge)
+        qn = q0 * normals[0][:, None] + q1 * normals[1][:, None]
         direct = {name: phi_ds @ qn[rows] for name, (rows, phi_ds) in parts.items()}  # (n_corner_dofs, S)
         weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
         shared = sum(np.where(weights_of[name][:, None] > 0, d, 0.0) for name, d in direct.items())
@@ -493,6 +519,55 @@ class CompiledOperator:
                 member = w > 0
                 out[k] = np.sum(direct[name][member] - w[member, None] * shared[member], axis=0)
         return out
+
+
+class CompiledSystem:
+    """One film state's system from the compiled maps: mat-vecs on the pattern, one numeric factorization
+    (see :class:`bearingfe.film.assembly.FilmSystem`)."""
+
+    def __init__(self, co: CompiledOperator, at: FilmAt, formulation: str) -> None:
+        self.co, self.at, self.formulation = co, at, formulation
+        self.h, self.D = at.h.ravel(), at.D.ravel()
+        self.data = co.matrix_data(formulation, self.h, self.D)
+        self._weights: np.ndarray | None = None
+
+    def full_matrix(self) -> sp.csr_matrix:
+        return self.co.matrix(self.data)
+
+    def condensed_matrix(self) -> sp.csr_matrix:
+        return self.co.condensed(self.data)
+
+    def _source_weights(self) -> np.ndarray:
+        """``E^T`` of the source densities ``dx s f_k`` (three columns) and of the load densities
+        ``s (cos phi, sin phi, 1) dx`` (three more; ``p = s u``): one sparse product serves the six."""
+        if self._weights is None:
+            at, co = self.at, self.co
+            s = unknown_scale(self.h, self.formulation)
+            sdx = s * co.dx
+            fields = np.empty((self.h.size, 6))
+            fields[:, 0] = 6.0 * sdx * at.dh[0].ravel()
+            fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
+            fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
+            fields[:, 3:] = (co.loads * s).T
+            self._weights = co.transposed_value @ fields
+        return self._weights
+
+    def rhs(self, lift: np.ndarray) -> np.ndarray:
+        co = self.co
+        weights = self._source_weights()
+        rhs = np.empty((co.interior.size, 4))
+        rhs[:, :3] = -weights[co.interior, :3]
+        rhs[:, 3] = -co.coupling_times(self.data, lift[co.inlet, 3]) if co.inlet.size else 0.0
+        return rhs
+
+    def factorize(self, factorize: Factorize) -> Solve:
+        if factorize is factorize_splu_sym:  # the ordering kept per mesh, or banded Cholesky
+            return self.co.factorize_condensed(self.data)
+        return factorize(self.condensed_matrix())
+
+    def unit_loads(self, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        values = self._source_weights()[:, 3:].T @ U
+        return values[:2].copy(), values[2].copy()
 
 
 def compile_operator(ops) -> CompiledOperator:

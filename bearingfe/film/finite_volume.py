@@ -63,7 +63,8 @@ from .thickness import Film
 from .forms import load, weighted_laplace
 from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..geometry.meshing import SupportMesh, periodic_pairs
-from .superposition import Operators, ReynoldsResult, operators
+from .mesh_operators import Operators, operators
+from .result import ReynoldsResult
 
 __all__ = ["JFOError", "solve_jfo", "solve_model_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES"]
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core.checks import MAX_GAMMA, check_angle
 
-__all__ = ["Film", "CosineFilm", "UniformFilm"]
+__all__ = ["Film", "CosineFilm", "UniformFilm", "smallest_film"]
 
 
 @runtime_checkable
@@ -159,3 +159,25 @@ class UniformFilm:
 
     def minimum(self, phi_range: tuple[float, float]) -> float:
         return self.h
+
+
+def smallest_film(film: Film, phi_range: tuple[float, float], values: np.ndarray | None = None,
+                  points: np.ndarray | None = None) -> float:
+    """Smallest film thickness over a surface [c], the one rule every solver uses.
+
+    The film's exact minimum over ``phi_range`` when it knows it
+    (:meth:`Film.minimum`); else the smallest of ``values`` (thicknesses already
+    evaluated, e.g. at the quadrature points) and of the film at ``points``
+    (shape ``(2, n)``, e.g. the dofs).
+    """
+    exact = film.minimum(phi_range) if hasattr(film, "minimum") else None
+    if exact is not None:
+        return float(exact)
+    candidates = []
+    if values is not None:
+        candidates.append(float(np.min(values)))
+    if points is not None:
+        candidates.append(float(np.min(film.thickness(points[0], points[1]))))
+    if not candidates:
+        raise ValueError("smallest_film: the film has no exact minimum; give values or points to search")
+    return min(candidates)

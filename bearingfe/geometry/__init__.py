@@ -6,6 +6,7 @@ module            what it does
 ``surface``       Support-surface geometry in unwrapped non-dimensional coordinates.
 ``geofiles``      Geometry files from users: ``.geo`` scripts checked and run apart, ``.msh`` read as data.
 ``gmsh_worker``   Child process in which gmsh meshes: one ``.geo`` script (:func:`bearingfe.geometry.geofiles.run_geo`
+``locate``        Points on a triangle mesh: the cell that holds a point, field values there, cell sizes.
 ``meshing``       Meshing support surfaces with gmsh and reading meshes into scikit-fem.
 ================  ============================================================
 """

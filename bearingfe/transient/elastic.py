@@ -76,7 +76,7 @@ import scipy.sparse as sp
 from ..elastic.coupled import Compliance, DeflectedFilm, ElasticError, balance_load, check_dense_size
 from ..film.thickness import CosineFilm
 from ..bearings.pump import EccentricPump
-from ..film.superposition import build_result, operators, source_weights, superpose
+from ..film import build_result, operators, source_weights, superpose
 from ..core.linalg import dense_threads
 from .quasi_static import IMPLICIT_INTEGRATORS, LiftOffError, Trajectory, balance_ratio, steady_state
 

@@ -26,7 +26,7 @@ from ..film.thickness import CosineFilm
 from ..film.finite_volume import solve_jfo
 from ..geometry.meshing import SupportMesh
 from ..bearings.pump import EccentricPump
-from ..film.superposition import ReynoldsResult
+from ..film import ReynoldsResult
 
 __all__ = ["JFORun", "jfo_run"]
 

@@ -56,7 +56,7 @@ from ..core.limits import check_limit
 from ..core.parameters import Discretization, takes
 from ..reynolds import CAVITATION, Superposition, superpose
 from ..film.finite_volume import solve_jfo
-from ..film.superposition import film_outputs, source_weights
+from ..film import film_outputs, source_weights
 from .jfo import jfo_run
 
 __all__ = [
@@ -632,7 +632,7 @@ def _postprocess(model: _Model, betas: np.ndarray, ys: np.ndarray) -> dict[str, 
     Each sample needs its own film state (a superposition: one numeric
     factorization) and its balancing rates; the flows and the friction of all
     the states solved without cavitation are then evaluated at once by the
-    compiled linear maps (:func:`bearingfe.film.superposition.film_outputs`), with
+    compiled linear maps (:func:`bearingfe.film.result.film_outputs`), with
     no per-sample form assembly. Cavitated states come with their result.
     """
     pump, sc = model.pump, model.pump.scale

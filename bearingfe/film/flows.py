@@ -1,0 +1,54 @@
+"""Named film flows, written once for every discretization and every transient.
+
+A film's flows are the boundary fluxes of ``q = -h^3/12 grad p + wedge h/2 e_phi``
+[omega R0^2 c], grouped by the boundary they leave through: ``side`` (z = +-a),
+``arc_start``, ``arc_end`` (or the whole ``outer`` outline when it is not a
+rectangle), ``inlet`` (out of the pockets into the film: the sign is turned),
+``squeeze`` (``int dh/dt``: the film volume's rate) and, under cavitation,
+``cavitation`` (what the full film hands to the ruptured zone). The balance
+``inlet = outflow + squeeze (+ cavitation)`` holds up to discretization error.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["named_flows", "outflow", "ruptured_elements", "NOT_OUTFLOWS"]
+
+#: Flow names that are not a boundary's outflow.
+NOT_OUTFLOWS = ("inlet", "squeeze", "cavitation")
+
+
+def named_flows(groups: Sequence[str], residual: np.ndarray, squeeze) -> dict[str, np.ndarray]:
+    """Flows by name from the nodal flux residual summed per boundary group.
+
+    Parameters
+    ----------
+    groups : sequence of str
+        The boundary groups in the order of ``residual``'s rows (``"inlet"`` among them
+        if the surface has pockets).
+    residual : ndarray, shape (n_groups, ...)
+        Outward flux through each group (for ``"inlet"``: into the pockets).
+    squeeze : float or ndarray
+        ``int dh/dt`` over the film (same trailing shape).
+    """
+    flows = {name: residual[k] for k, name in enumerate(groups)}
+    flows["inlet"] = -flows["inlet"] if "inlet" in flows else np.zeros_like(np.asarray(squeeze, float))
+    flows["squeeze"] = squeeze
+    return flows
+
+
+def outflow(flows: Mapping[str, np.ndarray]):
+    """Flow out through the boundary groups: everything but :data:`NOT_OUTFLOWS`."""
+    return sum(v for k, v in flows.items() if k not in NOT_OUTFLOWS)
+
+
+def ruptured_elements(element_dofs: np.ndarray, u: np.ndarray, cavitated: np.ndarray) -> np.ndarray:
+    """Elements with zero pressure at every dof and at least one ruptured dof.
+
+    ``element_dofs`` (n_local, n_cells) as a scikit-fem basis has them; ``u`` and
+    ``cavitated`` are per dof, with optional trailing sample axes.
+    """
+    return np.all(u[element_dofs] == 0.0, axis=0) & np.any(cavitated[element_dofs], axis=0)

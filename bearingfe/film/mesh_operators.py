@@ -1,0 +1,231 @@
+"""Everything about a mesh and an element that does not depend on the film, built once and cached on the mesh.
+
+:class:`Operators` (:func:`operators`) holds the basis, the Dirichlet and interior
+dofs, the boundary groups through which the flows leave, the pockets' moments and,
+built on first use, the assemblies of the film system (:mod:`bearingfe.film.assembly`).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Mapping
+
+import numpy as np
+import scipy.sparse as sp
+import skfem
+from skfem.quadrature import get_quadrature
+from skfem.refdom import RefLine
+
+from . import forms
+from .assembly import ASSEMBLIES, DEFAULT_ASSEMBLY, Assembly
+from .compiled import CompiledOperator
+from .forms import mapping
+from ..core.parameters import ELEMENTS
+from ..geometry.meshing import SupportMesh
+
+__all__ = ["Operators", "operators", "facet_basis", "quadrature_order"]
+
+
+@dataclass(frozen=True, eq=False)
+class Operators:
+    """Everything about a mesh and element that does not depend on the film.
+
+    Built once per ``(mesh, element)`` by :func:`operators` and cached on
+    the mesh object. ``laplace``, ``mass`` and ``facet_bases`` are built on
+    first use (the direct form needs no Laplacian, the mass matrix serves
+    only the rare eigenvalue check, the facet bases only the flows), which
+    keeps a first force-only solve on a small mesh cheap.
+    """
+
+    mesh: SupportMesh
+    element: str
+    basis: skfem.CellBasis
+    outer: np.ndarray
+    inlet: np.ndarray
+    interior: np.ndarray
+    flow_groups: Mapping[str, tuple[np.ndarray, np.ndarray]]
+    facet_groups: Mapping[str, np.ndarray]  # per outflow group, its facets at the corner dofs it shares
+    pocket_moments: np.ndarray  # (area, int cos phi, int sin phi) over the pockets
+    phi_range: tuple[float, float]
+    eigen_bound: float  # lower bound of the first Dirichlet eigenvalue
+    seconds: float
+
+    @property
+    def n_dofs(self) -> int:
+        return int(self.basis.N)
+
+    @property
+    def boundary(self) -> np.ndarray:
+        """Dirichlet dofs: the outline and the pocket contours."""
+        return self._get("boundary", lambda: np.union1d(self.outer, self.inlet))
+
+    @property
+    def x(self) -> np.ndarray:
+        """Quadrature-point coordinates, shape (2, n_elements, n_points)."""
+        return self._x
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_x", np.array(self.basis.global_coordinates()))
+        object.__setattr__(self, "_lazy", {})
+
+    def _get(self, name: str, build):
+        if name not in self._lazy:
+            self._lazy[name] = build()
+        return self._lazy[name]
+
+    @property
+    def laplace(self) -> sp.csr_matrix:
+        """Stiffness matrix ``int grad u . grad v``."""
+        return self._get("laplace", lambda: forms.laplace.assemble(self.basis).tocsr())
+
+    @property
+    def mass(self) -> sp.csr_matrix:
+        """Mass matrix ``int u v``."""
+        return self._get("mass", lambda: forms.mass.assemble(self.basis).tocsr())
+
+    @property
+    def compiled(self) -> CompiledOperator:
+        """The film-independent linear maps (:mod:`bearingfe.film.compiled`), built on first use."""
+        return self.assembly("compiled")
+
+    def assembly(self, name: str = DEFAULT_ASSEMBLY) -> "Assembly":
+        """The film-system assembly of :data:`bearingfe.film.assembly.ASSEMBLIES` by name, built on first use."""
+        return self._get(("assembly", name), lambda: ASSEMBLIES[name](self))
+
+    @property
+    def corner_basis(self) -> tuple[skfem.FacetBasis, Mapping[str, slice]]:
+        """One facet basis over the facets of all :attr:`facet_groups` (in their order) and, per
+        group, the slice of its facets in it (for the compiled corner fluxes)."""
+        def build():
+            names = list(self.facet_groups)
+            ends = np.cumsum([0] + [len(self.facet_groups[n]) for n in names])
+            facets = np.concatenate([self.facet_groups[n] for n in names])
+            fb = facet_basis(self.basis, facets, quadrature_order(self.element))
+            return fb, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
+        return self._get("corner_basis", build)
+
+    @property
+    def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
+        """Facet bases of the outflow groups that share corner dofs (for the flows)."""
+        return self._get("facet_bases", lambda: MappingProxyType({
+            n: facet_basis(self.basis, f, quadrature_order(self.element))
+            for n, f in self.facet_groups.items()}))
+
+
+def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
+    """Film-independent operators of a mesh (cached on the mesh).
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+    element : {"P1", "P2"}
+    """
+    if not isinstance(mesh, SupportMesh):
+        raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
+    if element not in ELEMENTS:
+        raise ValueError(f"element must be one of {list(ELEMENTS)}, got {element!r}")
+    key = ("operators", element)
+    if key not in mesh._cache:
+        mesh._cache[key] = _build_operators(mesh, element)
+    return mesh._cache[key]
+
+
+def quadrature_order(element: str) -> int:
+    """Quadrature order of the cell and facet integrals: ``2 k + 2`` for elements of degree ``k``."""
+    return 6 if element == "P2" else 4
+
+
+def _build_operators(mesh: SupportMesh, element: str) -> Operators:
+    start = time.perf_counter()
+    m = mesh.mesh
+    basis = skfem.Basis(m, ELEMENTS[element](), mapping=mapping(m), intorder=quadrature_order(element))
+    bnd = mesh.boundaries
+    if "outer" not in bnd:
+        raise ValueError("mesh has no boundary named 'outer'")
+    outer = basis.get_dofs(bnd["outer"]).all()
+    inlet = basis.get_dofs(bnd["inlet"]).all() if "inlet" in bnd else np.zeros(0, dtype=np.int64)
+    fixed = np.union1d(outer, inlet)
+    interior = np.setdiff1d(np.arange(basis.N), fixed)
+    names = [n for n in ("side", "arc_start", "arc_end") if n in bnd] or ["outer"]
+    groups = _flow_groups(basis, bnd, names)
+    facet_groups = _corner_facets(m, basis, bnd, groups) if len(names) > 1 else {}
+    if inlet.size:
+        groups["inlet"] = (inlet, np.ones(inlet.size))
+    xy = m.p
+    phi_range = (float(xy[0].min()), float(xy[0].max()))
+    lengths = np.ptp(xy, axis=1)
+    eigen_bound = float(np.pi**2 * np.sum(1.0 / lengths**2))
+    return Operators(
+        mesh=mesh, element=element, basis=basis,
+        outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
+        facet_groups=MappingProxyType(facet_groups),
+        pocket_moments=_pocket_moments(basis, bnd.get("inlet")),
+        phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
+
+
+def _flow_groups(basis, bnd, names) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Boundary dofs per outflow group; dofs shared by two groups (corners) count half to each."""
+    dofs = {n: basis.get_dofs(bnd[n]).all() for n in names}
+    count = np.zeros(basis.N)
+    for d in dofs.values():
+        count[d] += 1
+    return {n: (d, 1.0 / count[d]) for n, d in dofs.items()}
+
+
+def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
+    """Per outflow group, its facets next to the dofs it shares with another group (the corners
+    of the outline): where the direct facet fluxes that split a corner dof's flow are non-zero.
+
+    A vertex dof's basis function vanishes on the facets away from its vertex, so a group's
+    facets that do not touch a shared vertex add nothing to those fluxes. If a shared dof is not
+    a vertex dof, all the group's facets are kept."""
+    shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()] or [np.zeros(0, np.int64)]))
+    vertex_dofs = np.asarray(basis.nodal_dofs)
+    if vertex_dofs.shape[0] != 1 or not np.isin(shared, vertex_dofs[0]).all():
+        return {n: bnd[n] for n in groups}
+    at_shared = np.zeros(m.nvertices, dtype=bool)
+    owner = np.full(basis.N, -1, dtype=np.int64)
+    owner[vertex_dofs[0]] = np.arange(vertex_dofs.shape[1])
+    at_shared[owner[shared]] = True
+    out = {}
+    for n in groups:
+        f = np.asarray(bnd[n])
+        near = f[at_shared[m.facets[:, f]].any(axis=0)]
+        if near.size:  # a group without shared dofs needs no facet fluxes
+            out[n] = near
+    return out
+
+
+#: Gauss-Legendre rules on the reference facet by integration order, tabulated once (scikit-fem
+#: recomputes them for every facet basis; they are constants).
+_LINE_RULES = {k: get_quadrature(RefLine, k) for k in (4, 6, 8)}
+
+
+def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> skfem.FacetBasis:
+    """A facet basis of ``basis``'s element and map on ``facets`` (its dof numbering and a tabulated
+    quadrature rule: the same basis scikit-fem would build, without recomputing either)."""
+    if basis.mesh.brefdom is not RefLine or intorder not in _LINE_RULES:
+        return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                                intorder=intorder)
+    return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
+                            quadrature=_LINE_RULES[intorder])
+
+
+def _pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
+    """Area and first trigonometric moments of the pocket regions.
+
+    The pockets are holes in the mesh, so their integrals come from the
+    divergence theorem on the pocket contours: with n the film's outward
+    normal (pointing into the pocket),
+    ``int_P 1 = -oint phi n_phi``, ``int_P cos = -oint sin(phi) n_phi``,
+    ``int_P sin = oint cos(phi) n_phi``.
+    """
+    if inlet_facets is None or len(inlet_facets) == 0:
+        return np.zeros(3)
+    fb = facet_basis(basis, inlet_facets, 8)  # the integrands need only the points, normals and weights
+    phi = np.array(fb.global_coordinates())[0]
+    nphi = np.array(fb.normals)[0]
+    dx = fb.dx
+    return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])
