@@ -26,32 +26,41 @@ unit right sides (wedge, the two squeeze rates, inlet pressure):
 operating point, which is what the pump transient calls at each step.
 
 Where things live: the weak forms and the pressure, flux and shear formulas
-in :mod:`bearingfe.film.forms`; the per-mesh operators, the film state
-(:class:`Superposition` with its condensed system) and the one result
-builder in :mod:`bearingfe.film.superposition`; the cavitation models and their
-table in :mod:`bearingfe.cavitation.models`. This module is the front door:
-:func:`solve_reynolds` and the names above, re-exported.
+in :mod:`bearingfe.film.forms`; the film state (:class:`Superposition` with its
+condensed system) in :mod:`bearingfe.film.superposition` and its result in
+:mod:`bearingfe.film.result`; the cavitation models and their table in
+:mod:`bearingfe.cavitation`; the elastic coupling in :mod:`bearingfe.elastic`.
+
+This module is the front door. :func:`solve_reynolds` checks its inputs once,
+then chooses from two tables: :func:`discretization_for` picks the
+discretization a model needs on a mesh (:data:`DISCRETIZATIONS`: the Galerkin
+finite-element film state, or the finite-volume scheme of recessed, periodic
+and mass-conserving films), and :data:`PATHS` maps the support (``"rigid"`` or
+``"elastic"``) and that discretization to the function that solves it. Every
+path takes the same parameter objects and returns a ``ReynoldsResult``.
 """
 
 from __future__ import annotations
 
 import dataclasses
+from types import MappingProxyType
+from typing import Callable, Mapping
 
-from .cavitation.models import MODELS, ModelOptions, solve_model
+from .cavitation import CAVITATION, MODELS, ModelOptions, solve_model
 from .core.checks import check_operating_point, check_resolution
-from .elastic.coupled import Compliance, solve_elastic
-from .film.thickness import Film
-from .film.finite_volume import solve_jfo
 from .core.linalg import DEFAULT_SOLVER, Factorize
-from .geometry.meshing import SupportMesh
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
-from .film import (SOURCES, CoercivityError, CondensedSystem, Operators, ReynoldsResult, Superposition, operators,
-                   source_weights, superpose)
+from .elastic import Compliance, solve_elastic
+from .film import (SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult, Superposition,
+                   operators, solve_jfo, source_weights, superpose)
+from .geometry.meshing import SupportMesh
 
 __all__ = [
     "ELEMENTS",
     "FORMULATIONS",
     "CAVITATION",
+    "DISCRETIZATIONS",
+    "PATHS",
     "SOURCES",
     "Operators",
     "operators",
@@ -60,13 +69,78 @@ __all__ = [
     "superpose",
     "ReynoldsResult",
     "solve_reynolds",
+    "discretization_for",
     "CoercivityError",
     "Discretization",
     "OperatingPoint",
 ]
 
-#: Names of the cavitation models (the keys of :data:`bearingfe.cavitation.models.MODELS`).
-CAVITATION = tuple(MODELS)
+#: The discretizations a film is solved with.
+DISCRETIZATIONS = ("finite-element", "finite-volume")
+
+
+def discretization_for(mesh: SupportMesh, cavitation: str, cavitation_pressure: float = 0.0) -> str:
+    """The discretization of :data:`DISCRETIZATIONS` that solves ``cavitation`` on ``mesh``.
+
+    The Galerkin finite-element film state unless something asks for the
+    finite-volume scheme: a model that has only that scheme (JFO), a recessed or
+    periodic surface (``mesh.needs_finite_volumes``), or a non-zero cavity
+    pressure. A model without a finite-volume scheme is then refused, naming why.
+    """
+    model = MODELS[cavitation]
+    reasons = []
+    if not model.finite_element:
+        reasons.append(f"cavitation={cavitation!r} is solved by finite volumes only")
+    if isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes:
+        reasons.append("the surface has recesses (film steps) or is periodic")
+    if float(cavitation_pressure) != 0.0:
+        reasons.append(f"cavitation_pressure = {cavitation_pressure!r} is not 0")
+    if not reasons:
+        return "finite-element"
+    if not model.finite_volume or (float(cavitation_pressure) != 0.0 and not model.cavity_pressure):
+        able = [name for name, m in MODELS.items() if m.finite_volume and
+                (m.cavity_pressure or float(cavitation_pressure) == 0.0)]
+        raise ValueError(f"{'; '.join(reasons)}: that needs the finite-volume scheme, which solves cavitation "
+                         f"in {tuple(able)}, not {cavitation!r}")
+    return "finite-volume"
+
+
+def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
+                          options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
+    sup = superpose(mesh, film, formulation=discretization.formulation, element=discretization.element,
+                    solver=discretization.solver, on_indefinite=on_indefinite)
+    result = solve_model(sup, operating.weights, cavitation, options)
+    # the thin film's resolution (a smooth film's check: the finite-volume path's films may have steps)
+    unresolved = check_resolution(mesh, film, stacklevel=4)
+    return result if unresolved is None else dataclasses.replace(result, notes=(*result.notes, unresolved))
+
+
+def _rigid_finite_volume(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
+                         options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
+    return solve_jfo(mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
+                     inlet_pressure=operating.inlet_pressure, cavitation_pressure=options.cavitation_pressure,
+                     element=discretization.element, sliding=operating.sliding, warm_start=options.warm_start,
+                     cavitation=cavitation)
+
+
+def _elastic_finite_element(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
+                            options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
+    res = solve_elastic(mesh, film, compliance, wedge=operating.wedge, squeeze=operating.squeeze,
+                        inlet_pressure=operating.inlet_pressure, element=discretization.element,
+                        cavitation=cavitation, sliding=operating.sliding, solver=discretization.solver).result
+    if discretization.formulation != "direct":
+        note = "elastic support: the direct form was used (the deflected film is a nodal field)"
+        res = dataclasses.replace(res, notes=res.notes + (note,))
+    return res
+
+
+#: How a film is solved, by ``(support, discretization)``: ``solve(mesh, film, operating, discretization,
+#: cavitation, options, on_indefinite, compliance) -> ReynoldsResult``.
+PATHS: Mapping[tuple[str, str], Callable[..., ReynoldsResult]] = MappingProxyType({
+    ("rigid", "finite-element"): _rigid_finite_element,
+    ("rigid", "finite-volume"): _rigid_finite_volume,
+    ("elastic", "finite-element"): _elastic_finite_element,
+})
 
 
 @takes(OperatingPoint, Discretization)
@@ -94,7 +168,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
     cavitation : str
-        A model of :data:`bearingfe.cavitation.models.MODELS` (:data:`CAVITATION`):
+        A model of :data:`bearingfe.cavitation.MODELS` (:data:`CAVITATION`):
         ``"none"`` lets the pressure go negative (as in the source paper);
         ``"reynolds"``: Swift-Stieber ``p >= 0`` with a free boundary, solved
         as a complementarity problem; ``"gumbel"``: negative part discarded
@@ -151,32 +225,16 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    finite_volumes = isinstance(mesh, SupportMesh) and mesh.needs_finite_volumes
-    if cavitation == "jfo" or (finite_volumes and cavitation in ("none", "reynolds")) or (
-            cavitation == "reynolds" and float(cavitation_pressure) != 0.0):
-        if elastic is not None:
-            raise ValueError("elastic= is not supported with the finite-volume solver (cavitation='jfo', "
-                             "a non-zero cavitation_pressure, recessed or periodic surfaces)")
-        return solve_jfo(mesh, film, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
-                         cavitation_pressure=cavitation_pressure, element=element, sliding=sliding,
-                         warm_start=warm_start, cavitation=cavitation)
-    if float(cavitation_pressure) != 0.0:
-        raise ValueError(f"cavitation_pressure must be 0 with cavitation={cavitation!r}, got "
-                         f"{cavitation_pressure!r} (it applies to 'reynolds' and 'jfo')")
-    weights = source_weights(wedge, squeeze, inlet_pressure)
     check_operating_point(wedge, squeeze, inlet_pressure)
+    operating = OperatingPoint(wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure, sliding=sliding)
+    discretization = Discretization(element=element, formulation=formulation, solver=solver)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
-    if elastic is not None:
-        res = solve_elastic(mesh, film, elastic, wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure,
-                            element=element, cavitation=cavitation, sliding=sliding, solver=solver).result
-        if formulation != "direct":
-            note = "elastic support: the direct form was used (the deflected film is a nodal field)"
-            res = dataclasses.replace(res, notes=res.notes + (note,))
-        return res
-    sup = superpose(mesh, film, formulation=formulation, element=element, solver=solver,
-                    on_indefinite=on_indefinite)
-    result = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm_start,
-                                                                solver=solver))
-    unresolved = check_resolution(mesh, film, stacklevel=3)  # ResolutionWarning (bearingfe.core.checks)
-    return result if unresolved is None else dataclasses.replace(result, notes=(*result.notes, unresolved))
+    options = ModelOptions(sliding=sliding, warm_start=warm_start, solver=solver,
+                           cavitation_pressure=float(cavitation_pressure))
+    support = "rigid" if elastic is None else "elastic"
+    path = (support, discretization_for(mesh, cavitation, cavitation_pressure))
+    if path not in PATHS:
+        raise ValueError(f"elastic= is not supported with the {path[1]} solver (cavitation='jfo', a non-zero "
+                         "cavitation_pressure, recessed or periodic surfaces)")
+    return PATHS[path](mesh, film, operating, discretization, cavitation, options, on_indefinite, elastic)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from bearingfe import CosineFilm, Surface, mesh_surface, solve_reynolds, superpose
-from bearingfe.cavitation.models import (CavitationError, ObstacleProblem, obstacle_problem, rates_for_load,
+from bearingfe.cavitation import (CavitationError, ObstacleProblem, obstacle_problem, rates_for_load,
                                   solve_cavitating)
 from bearingfe.bearings.journal import short_bearing_force
 from bearingfe.geometry.meshing import refine_uniformly

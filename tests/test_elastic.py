@@ -16,7 +16,7 @@ import pytest
 from bearingfe import Circle, CosineFilm, Material, Scale, Surface, mesh_surface, solve_reynolds
 from bearingfe.elastic.coupled import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
                                rectangle_deflection, solve_elastic)
-from bearingfe.cavitation.models import MODELS
+from bearingfe.cavitation import MODELS
 from bearingfe.reynolds import operators
 
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)   # the shipped pump

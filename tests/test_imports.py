@@ -125,5 +125,6 @@ def test_the_checks_see_cycles_and_private_names():
     assert [n.names[0].name for n in _runtime_nodes(tree) if isinstance(n, ast.Import)] == ["b"]
     # and on the package: the reynolds front door reaches the cavitation models, which must not import it back
     edges, _ = _imports(_modules())
-    assert "bearingfe.cavitation.models" in edges["bearingfe.reynolds"]
-    assert "bearingfe.reynolds" not in edges["bearingfe.cavitation.models"]
+    assert "bearingfe.cavitation" in edges["bearingfe.reynolds"]
+    assert not any("bearingfe.reynolds" in targets for module, targets in edges.items()
+                   if module.startswith("bearingfe.cavitation"))

@@ -315,7 +315,7 @@ def test_oscillating_squeeze_against_moving_boundary_reference():
 
 def test_jfo_is_a_model_of_the_table():
     from bearingfe import superpose
-    from bearingfe.cavitation.models import MODELS, ModelOptions, solve_model
+    from bearingfe.cavitation import MODELS, ModelOptions, solve_model
     mesh = _pocket_mesh(0.1)
     film = CosineFilm(0.6, math.pi)
     assert "jfo" in MODELS

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.cavitation.models import rates_for_load, solve_cavitating
+from bearingfe.cavitation import rates_for_load, solve_cavitating
 from bearingfe.bearings.journal import JournalBearing, equilibrium, performance
 from bearingfe.core.parameters import Discretization, OperatingPoint
 

@@ -2,7 +2,7 @@
 
 Expected behaviour, from the model itself: with ``cavitation="reynolds"`` the
 rates at every stored state come from the complementarity solve
-(``bearingfe.cavitation.models.rates_for_load``), so the cavitated film force
+(``bearingfe.cavitation.rates_for_load``), so the cavitated film force
 balances the applied load (paper eq. 13-14) with ``p >= 0`` everywhere; where
 the film never ruptures the trajectory is the uncavitated one.
 """

@@ -57,7 +57,7 @@ import skfem
 from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
-from ..cavitation.models import obstacle_problem, solve_cavitating
+from ..cavitation import obstacle_problem, solve_cavitating
 from ..film.thickness import CosineFilm
 from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo

@@ -1,13 +1,28 @@
-"""Cavitation models and their table (``MODELS``).
+"""Cavitation models and their table (:data:`MODELS`): where and how a film ruptures.
 
-================  ============================================================
-module            what it does
-================  ============================================================
-``models``        Film rupture: the Reynolds (Swift-Stieber) and Gumbel cavitation conditions.
-================  ============================================================
+:data:`MODELS` maps a model name to a :class:`CavitationModel` (its solver on a
+finite-element film state, and whether the finite-volume scheme solves it too);
+:func:`bearingfe.solve_reynolds` consults it. The contract every entry meets is in
+:mod:`bearingfe.cavitation.models`.
+
+=================  ==============================================================
+module             what it does
+=================  ==============================================================
+``obstacle``       the obstacle problem on a condensed system (primal-dual active set)
+``swift_stieber``  ``p >= 0`` with a free boundary on a film state; warm and nested starts
+``jfo``            mass-conserving (JFO) cavitation as a table entry (finite volumes)
+``models``         the table :data:`MODELS`, its contract, the linear and Gumbel models
+``rates``          squeeze rates that balance a load under cavitation (Newton)
+=================  ==============================================================
 """
 
 from __future__ import annotations
-from .models import (CavitationError, MODELS, ModelOptions, ObstacleSolution, ObstacleProblem, FilmProblem, obstacle_problem, solve_model, solve_cavitating, rates_for_load, RatesForLoad)
 
-__all__ = ['CavitationError', 'MODELS', 'ModelOptions', 'ObstacleSolution', 'ObstacleProblem', 'FilmProblem', 'obstacle_problem', 'solve_model', 'solve_cavitating', 'rates_for_load', 'RatesForLoad']
+from .obstacle import CavitationError, ObstacleProblem, ObstacleSolution
+from .swift_stieber import FilmProblem, obstacle_problem
+from .models import CAVITATION, MODELS, CavitationModel, ModelOptions, solve_cavitating, solve_model
+from .rates import RatesForLoad, rates_for_load
+
+__all__ = ["CavitationError", "ObstacleProblem", "ObstacleSolution", "FilmProblem", "obstacle_problem", "CAVITATION",
+           "MODELS", "CavitationModel", "ModelOptions", "solve_cavitating", "solve_model", "RatesForLoad",
+           "rates_for_load"]

@@ -83,266 +83,22 @@ superposition of the new film.
 
 from __future__ import annotations
 
-import time
-import weakref
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Callable, Mapping
 
 import numpy as np
-import scipy.sparse as sp
 
-from ..film.finite_volume import solve_model_jfo
-from ..core.linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
+from .jfo import solve_model_jfo
+from .obstacle import MAX_ITERATIONS, TOLERANCE
+from .swift_stieber import solve_swift_stieber
+from ..core.linalg import DEFAULT_SOLVER, Factorize
 from ..core.parameters import OperatingPoint, takes
 from ..film import ReynoldsResult, Superposition, build_result, source_weights
-from ..film.flows import ruptured_elements
-from ..geometry.locate import containing_cells
 
-__all__ = [
-    "CavitationError",
-    "MODELS",
-    "ModelOptions",
-    "ObstacleSolution",
-    "ObstacleProblem",
-    "FilmProblem",
-    "obstacle_problem",
-    "solve_model",
-    "solve_cavitating",
-    "rates_for_load",
-    "RatesForLoad",
-]
+__all__ = ["ModelOptions", "ModelSolver", "CavitationModel", "MODELS", "CAVITATION", "solve_model", "solve_cavitating",
+           "solve_linear", "solve_gumbel"]
 
-#: Default relative tolerance on the sign tests of the active-set iteration.
-TOLERANCE = 1e-10
-#: Default cap on active-set iterations.
-MAX_ITERATIONS = 60
-
-
-class CavitationError(RuntimeError):
-    """The complementarity (cavitation) iteration did not converge."""
-
-
-@dataclass(frozen=True, eq=False)
-class ObstacleSolution:
-    """Solution of ``A u - b = lam, u >= 0, lam >= 0, u lam = 0``.
-
-    Attributes
-    ----------
-    u : ndarray
-        Unknowns on the condensed (interior) dofs.
-    multiplier : ndarray
-        ``lam = A u - b`` (zero on the full-film set).
-    active : ndarray of bool
-        Ruptured (cavitated) dofs, where ``u = 0``.
-    iterations : int
-        Active-set iterations (linear solves) used.
-    factorizations : int
-        New factorizations among them (the rest came from the cache).
-    """
-
-    u: np.ndarray
-    multiplier: np.ndarray
-    active: np.ndarray
-    iterations: int
-    factorizations: int
-
-    def complementarity(self) -> tuple[float, float, float]:
-        """``(min u, min lam, max |u lam|)``: the three conditions to check."""
-        return (float(self.u.min(initial=0.0)), float(self.multiplier.min(initial=0.0)),
-                float(np.abs(self.u * self.multiplier).max(initial=0.0)))
-
-
-class ObstacleProblem:
-    """The condensed obstacle problem ``A u >= b`` type LCP with factorization reuse.
-
-    Parameters
-    ----------
-    A : sparse matrix, shape (n, n)
-        Condensed system matrix (interior dofs).
-    factorize : callable
-        ``factorize(A_FF) -> solve`` (see :mod:`bearingfe.core.linalg`).
-    tol : float
-        Relative tolerance of the sign tests (scaled by ``max |u|`` and
-        ``max |b|``), guards against flipping nodes on round-off.
-    max_iterations : int
-        Cap on active-set iterations; beyond it :class:`CavitationError`.
-    cache_size : int
-        Number of factorizations (one per active set) kept.
-    """
-
-    def __init__(self, A: sp.spmatrix, factorize: Factorize, *, tol: float = TOLERANCE,
-                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4) -> None:
-        if not (0 < tol < 1e-2):
-            raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
-        if not (isinstance(max_iterations, int) and max_iterations >= 1):
-            raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
-        self.A = sp.csr_matrix(A)
-        self.n = self.A.shape[0]
-        self.factorize = factorize
-        self.tol = float(tol)
-        self.max_iterations = max_iterations
-        self._cache: dict[bytes, object] = {}
-        self._cache_size = int(cache_size)
-
-    def _solver(self, free: np.ndarray):
-        key = np.packbits(free).tobytes()
-        if key in self._cache:
-            return self._cache[key], 0
-        idx = np.flatnonzero(free)
-        solve = self.factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
-        if len(self._cache) >= self._cache_size:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[key] = solve
-        return solve, 1
-
-    def add_factorization(self, free: np.ndarray, solve) -> None:
-        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache."""
-        free = np.asarray(free, bool)
-        if free.shape != (self.n,):
-            raise ValueError(f"free must be a boolean mask of length {self.n}")
-        if len(self._cache) >= self._cache_size:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[np.packbits(free).tobytes()] = solve
-
-    def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
-        """Solve with ``u = 0`` on a given active set (the linearization on a
-        fixed rupture set); ``b`` may have several columns."""
-        free = ~np.asarray(active, bool)
-        solve, _ = self._solver(free)
-        b = np.asarray(b, float)
-        u = np.zeros_like(b)
-        if free.any():
-            u[free] = np.asarray(solve(b[free])).reshape(b[free].shape)
-        return u
-
-    def solve(self, b: np.ndarray, active: np.ndarray | None = None) -> ObstacleSolution:
-        """Primal-dual active-set iteration from an initial rupture set.
-
-        Parameters
-        ----------
-        b : ndarray, shape (n,)
-        active : ndarray of bool, optional
-            Warm start (e.g. the rupture set of a previous solution, or
-            where the unconstrained solution is negative); default empty.
-        """
-        b = np.asarray(b, float)
-        if b.shape != (self.n,) or not np.all(np.isfinite(b)):
-            raise ValueError(f"b must be a finite vector of length {self.n}")
-        active = np.zeros(self.n, bool) if active is None else np.asarray(active, bool).copy()
-        if active.shape != (self.n,):
-            raise ValueError(f"active must be a boolean mask of length {self.n}")
-        seen: set[bytes] = set()
-        factorizations = 0
-        scale_b = float(np.abs(b).max(initial=0.0))
-        for it in range(1, self.max_iterations + 1):
-            free = ~active
-            solve, new = self._solver(free)
-            factorizations += new
-            u = np.zeros(self.n)
-            if free.any():
-                u[free] = solve(b[free])
-            if not np.all(np.isfinite(u)):
-                raise CavitationError("the linear solve on the full-film set returned non-finite values "
-                                      "(singular operator: is the film region connected to a p = 0 edge?)")
-            lam = self.A @ u - b
-            lam[free] = 0.0
-            tol_u = self.tol * float(np.abs(u).max(initial=0.0))
-            tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
-            new_active = np.where(active, lam > -tol_l, u < -tol_u)
-            if np.array_equal(new_active, active):
-                return ObstacleSolution(u=u, multiplier=lam, active=active, iterations=it,
-                                        factorizations=factorizations)
-            seen.add(np.packbits(active).tobytes())
-            key = np.packbits(new_active).tobytes()
-            if key in seen:
-                raise CavitationError(
-                    f"cavitation active-set iteration cycles after {it} iterations "
-                    f"({int(new_active.sum())} ruptured dofs): the discrete operator is far from an "
-                    "M-matrix (try element='P1', formulation='direct' or a finer mesh)")
-            active = new_active
-        raise CavitationError(
-            f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
-            f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
-
-
-# -- the obstacle problem of a film state -------------------------------------------
-
-@dataclass(frozen=True, eq=False)
-class FilmProblem:
-    """The complementarity problem of a film state on its condensed system.
-
-    Attributes
-    ----------
-    problem : ObstacleProblem
-        On ``sup.system.matrix`` (no reassembly); its cache starts with the
-        superposition's own factorization of the full-film set.
-    interior, boundary : ndarray of int
-    rhs : ndarray, shape (n_interior, 4)
-        Unit right sides of the condensed system.
-    lift : ndarray, shape (n_dofs, 4)
-        Dirichlet data of the unit sources.
-    """
-
-    problem: ObstacleProblem
-    interior: np.ndarray
-    boundary: np.ndarray
-    rhs: np.ndarray
-    lift: np.ndarray
-
-
-_PROBLEMS: "weakref.WeakKeyDictionary[Superposition, FilmProblem]" = weakref.WeakKeyDictionary()
-
-
-def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,
-                     tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> FilmProblem:
-    """The condensed complementarity problem of a film state (cached per superposition)."""
-    cached = _PROBLEMS.get(sup)
-    if cached is not None and cached.problem.tol == tol and cached.problem.max_iterations == max_iterations:
-        return cached
-    system = sup.system
-    factorize = get_linear_solver(solver)
-    problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
-    if factorize is system.factorize:
-        problem.add_factorization(np.ones(problem.n, bool), system.solve)
-    fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
-                     lift=system.lift)
-    _PROBLEMS[sup] = fp
-    return fp
-
-
-def _warm_mask(fp: FilmProblem, sup: Superposition, wts: np.ndarray, warm_start) -> np.ndarray:
-    if warm_start is None:
-        return (sup.fields @ wts)[fp.interior] < 0.0
-    basis = sup.operators.basis
-    if isinstance(warm_start, ReynoldsResult) and warm_start.cavitated is not None \
-            and warm_start.basis is not basis and warm_start.basis.mesh is not basis.mesh:
-        return _transferred_mask(warm_start, basis)[fp.interior]
-    mask = warm_start.cavitated if isinstance(warm_start, ReynoldsResult) else warm_start
-    mask = np.asarray(mask, bool) if mask is not None else None
-    if mask is None or mask.shape != (sup.operators.n_dofs,):
-        raise ValueError("warm_start must be a cavitated ReynoldsResult (on any mesh of the same surface) "
-                         f"or a boolean mask of length {sup.operators.n_dofs}")
-    return mask[fp.interior]
-
-
-def _transferred_mask(previous: ReynoldsResult, basis) -> np.ndarray:
-    """Rupture set of ``previous`` carried to the dofs of ``basis`` (another mesh of the same surface).
-
-    A new dof is ruptured if it lies in an element of the previous mesh
-    whose pressure is zero throughout (a ruptured element). This is the
-    nested-iteration start that keeps the active-set count bounded under
-    refinement: the free boundary is then wrong by about one coarse element
-    instead of by the whole difference between the Gumbel and the
-    Swift-Stieber rupture sets. Dofs outside the previous mesh start full.
-    """
-    old = previous.basis
-    ruptured = ruptured_elements(old.element_dofs, np.asarray(previous.pressure), previous.cavitated)
-    cells = containing_cells(old.mesh.p, old.mesh.t, np.asarray(basis.doflocs))
-    return np.where(cells >= 0, ruptured[np.maximum(cells, 0)], False)
-
-
-# -- the models and their table ------------------------------------------------------
 
 @dataclass(frozen=True)
 class ModelOptions:
@@ -377,6 +133,35 @@ class ModelOptions:
 ModelSolver = Callable[[Superposition, np.ndarray, ModelOptions], ReynoldsResult]
 
 
+@dataclass(frozen=True)
+class CavitationModel:
+    """An entry of :data:`MODELS`: a model's solver on a finite-element film state, and what else it has.
+
+    Called like its solver, ``model(sup, weights, options)``.
+
+    Attributes
+    ----------
+    solve : ModelSolver
+        ``solve(sup, weights, options) -> ReynoldsResult`` on a Galerkin film state.
+    finite_element : bool
+        The solver works on the Galerkin film state (False: it only hands the film
+        to the finite-volume scheme).
+    finite_volume : bool
+        The finite-volume scheme of :mod:`bearingfe.film.finite_volume` solves it too,
+        which is how recessed and periodic surfaces are solved.
+    cavity_pressure : bool
+        It takes a non-zero cavity pressure (on the finite-volume scheme).
+    """
+
+    solve: ModelSolver
+    finite_element: bool = True
+    finite_volume: bool = False
+    cavity_pressure: bool = False
+
+    def __call__(self, sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
+        return self.solve(sup, weights, options)
+
+
 def solve_linear(sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
     """``"none"``: the superposition itself; the pressure may go negative (the source paper)."""
     return sup.combine(weights[0], weights[1:3], weights[3], options.sliding)
@@ -391,25 +176,15 @@ def solve_gumbel(sup: Superposition, weights: np.ndarray, options: ModelOptions)
     return build_result(sup, u, weights, options.sliding, cavitation="gumbel", cavitated=cavitated)
 
 
-def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: ModelOptions) -> ReynoldsResult:
-    """``"reynolds"``: ``p >= 0`` with a free boundary, by the primal-dual active-set method."""
-    t0 = time.perf_counter()
-    fp = obstacle_problem(sup, options.solver, tol=options.tol, max_iterations=options.max_iterations)
-    sol = fp.problem.solve(fp.rhs @ weights, _warm_mask(fp, sup, weights, options.warm_start))
-    cavitated = np.zeros(sup.operators.n_dofs, bool)
-    cavitated[fp.interior] = sol.active
-    cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
-    return build_result(sup, sup.system.full(sol.u, weights), weights, options.sliding, cavitation="reynolds",
-                        iterations=sol.iterations, cavitated=cavitated, extra_cost=cost)
-
-
-#: The cavitation models by name (read-only): ``name -> solve(sup, weights, options)``.
-MODELS: Mapping[str, ModelSolver] = MappingProxyType({
-    "none": solve_linear,
-    "reynolds": solve_swift_stieber,
-    "gumbel": solve_gumbel,
-    "jfo": solve_model_jfo,
+#: The cavitation models by name (read-only).
+MODELS: Mapping[str, CavitationModel] = MappingProxyType({
+    "none": CavitationModel(solve_linear, finite_volume=True),
+    "reynolds": CavitationModel(solve_swift_stieber, finite_volume=True, cavity_pressure=True),
+    "gumbel": CavitationModel(solve_gumbel),
+    "jfo": CavitationModel(solve_model_jfo, finite_element=False, finite_volume=True, cavity_pressure=True),
 })
+#: Names of the cavitation models (the keys of :data:`MODELS`).
+CAVITATION = tuple(MODELS)
 
 
 def solve_model(sup: Superposition, weights: np.ndarray, model: str = "none",
@@ -480,113 +255,3 @@ def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0),
 
 
 _CAVITATING = tuple(name for name in MODELS if name != "none")
-
-
-@dataclass(frozen=True, eq=False)
-class RatesForLoad:
-    """Squeeze rates that balance a load under cavitation.
-
-    Attributes
-    ----------
-    rates : ndarray, shape (2,)
-        ``(gamma_rate, phi0_rate)`` per radian of shaft turn.
-    result : ReynoldsResult
-        The cavitated solution at those rates.
-    newton_iterations : int
-    active_set_iterations : int
-        Total over the Newton steps.
-    residual : float
-        ``|force + load|`` at the answer.
-    """
-
-    rates: np.ndarray
-    result: ReynoldsResult
-    newton_iterations: int
-    active_set_iterations: int
-    residual: float
-
-
-@takes(OperatingPoint)
-def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure: float = 0.0, *,
-                   model: str = "reynolds", warm_start=None, tol: float = 1e-9, max_newton: int = 30,
-                   solver: str | Factorize = DEFAULT_SOLVER) -> RatesForLoad:
-    """Squeeze rates at which the cavitated film force balances a load (``force + load = 0``).
-
-    A Newton method on the two rates: the first guess is the superposition
-    answer (:meth:`Superposition.rates_for_load`, no cavitation); each step
-    solves the complementarity problem (warm-started from the last rupture
-    set) and takes the Jacobian from the two squeeze unit fields on that
-    rupture set, with the same factorization. The force is piecewise linear
-    in the rates, so the iteration ends in finitely many steps once the
-    rupture set settles; a backtracking line search guards the first steps.
-
-    Parameters
-    ----------
-    sup : Superposition
-    load : (float, float)
-        Applied load in the arc frame [mu omega R0^4 / c^2].
-    wedge, inlet_pressure : float
-        Or ``operating=`` an :class:`~bearingfe.core.parameters.OperatingPoint`
-        (its ``squeeze`` is what is solved for: leave it at zero).
-    model : {"reynolds", "gumbel"}
-    warm_start : optional
-        As in :func:`solve_cavitating`.
-    tol : float
-        Relative tolerance on ``|force + load|`` (scaled by ``|load|`` and the
-        wedge force).
-    max_newton : int
-        Cap; beyond it :class:`CavitationError`.
-    """
-    load = np.asarray(load, float)
-    if load.shape != (2,) or not np.all(np.isfinite(load)):
-        raise ValueError(f"load must be a finite pair, got {load!r}")
-    if model not in ("reynolds", "gumbel"):
-        raise ValueError(f"model must be 'reynolds' or 'gumbel', got {model!r}")
-    rates = np.asarray(sup.rates_for_load(load, wedge, inlet_pressure), float)
-    fp = obstacle_problem(sup, solver)
-    scale = max(float(np.linalg.norm(load)), float(np.linalg.norm(sup.forces[:, 0] * wedge)), 1e-300)
-
-    def evaluate(r, warm):
-        res = solve_cavitating(sup, wedge, r, inlet_pressure, model=model, warm_start=warm, solver=solver)
-        return res, res.force + load
-
-    res, R = evaluate(rates, warm_start)
-    total = res.iterations
-    for k in range(1, max_newton + 1):
-        if np.linalg.norm(R) <= tol * scale:
-            return RatesForLoad(rates=rates, result=res, newton_iterations=k - 1,
-                                active_set_iterations=total, residual=float(np.linalg.norm(R)))
-        J = _rate_jacobian(sup, fp, res, model)
-        try:
-            step = -np.linalg.solve(J, R)
-        except np.linalg.LinAlgError:
-            raise CavitationError("the squeeze Jacobian is singular under cavitation "
-                                  "(gamma = 0 leaves phi0_rate undetermined)") from None
-        t = 1.0
-        while True:
-            trial, Rt = evaluate(rates + t * step, res)
-            total += trial.iterations
-            if np.linalg.norm(Rt) < (1 - 1e-4 * t) * np.linalg.norm(R) or t < 1e-3:
-                break
-            t *= 0.5
-        rates, res, R = rates + t * step, trial, Rt
-    raise CavitationError(f"rates_for_load: Newton did not converge in {max_newton} steps "
-                          f"(|force + load| = {np.linalg.norm(R):.3g}, scale {scale:.3g})")
-
-
-def _rate_jacobian(sup: Superposition, fp: FilmProblem, res: ReynoldsResult, model: str) -> np.ndarray:
-    """d(force)/d(rates) on the current rupture set."""
-    if model == "gumbel":
-        keep = ~res.cavitated
-        J = np.zeros((2, 2))
-        for k in (1, 2):
-            J[:, k - 1] = sup.loads(np.where(keep, sup.fields[:, k], 0.0))[0]
-        return J
-    active = res.cavitated[fp.interior]
-    U = fp.problem.solve_fixed(fp.rhs[:, 1:3], active)
-    J = np.zeros((2, 2))
-    for k in range(2):
-        u = np.zeros(sup.operators.n_dofs)
-        u[fp.interior] = U[:, k]
-        J[:, k] = sup.loads(u)[0]
-    return J

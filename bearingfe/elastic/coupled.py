@@ -76,7 +76,7 @@ import skfem
 from skfem import BilinearForm
 
 from ..film.compiled import interpolation_maps
-from ..cavitation.models import MODELS, ModelOptions, rates_for_load, solve_model
+from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from ..film.thickness import Film
 from ..film.forms import load as load_form, weighted_laplace
 from ..core.limits import check_limit
@@ -981,7 +981,7 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
 
     Solves ``force(h_rigid + w, rates) + load = 0`` together with ``w = C p``:
     for each ``w`` the rates come from the superposition (or the cavitated
-    Newton of :func:`bearingfe.cavitation.models.rates_for_load`), and Newton on
+    Newton of :func:`bearingfe.cavitation.rates_for_load`), and Newton on
     ``w`` uses ``dp/dw`` with the rates moving to keep the force
     (:func:`pressure_sensitivity`). What the pump transient calls at each
     right-side evaluation, warm-started (``initial``, ``reuse``) from the last.

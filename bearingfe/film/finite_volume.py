@@ -66,7 +66,7 @@ from ..geometry.meshing import SupportMesh, periodic_pairs
 from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
-__all__ = ["JFOError", "solve_jfo", "solve_model_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES"]
+__all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
@@ -831,15 +831,3 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation=model,
         iterations=sol.iterations if model != "none" else 0, cavitated=cavitated if model != "none" else None,
         theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c)
-
-
-def solve_model_jfo(sup, weights: np.ndarray, options) -> ReynoldsResult:
-    """``"jfo"`` in :data:`bearingfe.cavitation.models.MODELS`: the film state ``sup`` (its mesh and film)
-    at the operating point ``weights = (wedge, gamma_rate, phi0_rate, inlet_pressure)``, with
-    ``options.cavitation_pressure``, ``sliding`` and ``warm_start``. The Galerkin system of ``sup`` is
-    not used: call :func:`solve_jfo` directly to avoid building it."""
-    max_iterations = max(int(options.max_iterations), MAX_ITERATIONS)
-    return solve_jfo(sup.operators.mesh, sup.film, wedge=float(weights[0]), squeeze=tuple(weights[1:3]),
-                     inlet_pressure=float(weights[3]), cavitation_pressure=options.cavitation_pressure,
-                     sliding=options.sliding, warm_start=options.warm_start,
-                     element=sup.operators.element, max_iterations=max_iterations)

@@ -73,7 +73,7 @@ DYNAMICS = ("squeeze", "quasi-static")
 
 
 def _cavitation_models() -> tuple[str, ...]:
-    from ..cavitation.models import MODELS
+    from ..cavitation import MODELS
 
     return tuple(MODELS)
 

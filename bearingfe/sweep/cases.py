@@ -126,7 +126,7 @@ class PumpCase:
     cavitation: str = "none"
 
     def __post_init__(self) -> None:
-        from ..cavitation.models import MODELS
+        from ..cavitation import MODELS
         from ..bearings.pump import EccentricPump
         from ..transient.quasi_static import STARTS
 

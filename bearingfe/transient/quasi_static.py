@@ -46,7 +46,7 @@ import numpy as np
 import scipy.integrate as si
 from scipy.optimize import root
 
-from ..cavitation.models import rates_for_load as cavitating_rates, solve_cavitating
+from ..cavitation import rates_for_load as cavitating_rates, solve_cavitating
 from ..elastic.coupled import Compliance, ElasticError, balance_load, solve_elastic
 from ..film.thickness import CosineFilm
 from ..geometry.meshing import SupportMesh, mesh_surface
@@ -705,7 +705,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         2x2 superposition system); ``"reynolds"`` (Swift-Stieber) and
         ``"gumbel"`` find the rates by a small Newton on the cavitated film
         force, warm-started from the previous rupture set
-        (:func:`bearingfe.cavitation.models.rates_for_load`); ``"jfo"``
+        (:func:`bearingfe.cavitation.rates_for_load`); ``"jfo"``
         (mass-conserving) carries the fill fraction over the cycle: fixed
         backward-Euler steps, ``points_per_revolution`` of them per turn
         (:mod:`bearingfe.transient.jfo`; ``method``, ``rtol``, ``atol`` and
