@@ -52,7 +52,7 @@ from .core.linalg import DEFAULT_SOLVER, Factorize
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 from .elastic import Compliance, solve_elastic
 from .film import (SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult, Superposition,
-                   operators, solve_jfo, source_weights, superpose)
+                   operators, solve_jfo, superpose)
 from .geometry.meshing import SupportMesh
 
 __all__ = [
@@ -196,7 +196,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         :mod:`bearingfe.film.finite_volume` (P1, direct form); ``"gumbel"`` needs 0.
     elastic : Compliance, optional
         Compliance of the support surfaces on this mesh and element
-        (:func:`bearingfe.elastic.coupled.half_space`): the film becomes
+        (:func:`bearingfe.elastic.half_space`): the film becomes
         ``h_rigid + C p`` and is solved with its pressure by Newton
         (:func:`bearingfe.elastic.coupled.solve_elastic`, direct form; the result's
         ``deflection``, ``max_deflection`` and ``elastic_iterations`` report it).

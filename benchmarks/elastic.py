@@ -29,8 +29,8 @@ from pathlib import Path
 import numpy as np
 
 import bearingfe as bf
-from bearingfe.elastic.coupled import (combined_modulus, half_space, influence_matrix, rectangle_deflection,
-                               shoe_body, solve_elastic)
+from bearingfe.elastic import (combined_modulus, half_space, influence_matrix, rectangle_deflection,
+                               block_compliance, solve_elastic)
 from bearingfe.transient.elastic import simulate_elastic
 from bearingfe.core.linalg import dense_threads
 from benchmarks.run_all import OtherLoad
@@ -188,7 +188,7 @@ def headline(pump, size: float) -> dict:
         C = half_space(mesh, p.scale, (p.shoe_material, p.eccentric_material), "P2")
         rigid = bf.simulate(p, mesh, 1.0, start="periodic", element="P2")
         elastic = simulate_elastic(p, C, 1.0, start="periodic")
-        B = shoe_body(mesh, p.scale, p.shoe_material, p.shoe_thickness, counterpart=p.eccentric_material,
+        B = block_compliance(mesh, p.scale, p.shoe_material, p.shoe_thickness, counterpart=p.eccentric_material,
                       element="P2")
         body = simulate_elastic(p, B, 1.0, start="periodic")
         kb = int(np.argmin(body.h_min))
@@ -408,9 +408,9 @@ On the shipped pump (steel shoe on a steel eccentric, E* = {lv['modulus_Pa'] / 1
 | pocket / plain | {hd['rigid_ratio']:.3f} | {hd['elastic_ratio']:.3f} | {hd['body_ratio']:.3f} |
 
 Smallest film over the revolution. "Half-space": both surfaces elastic half-spaces
-(`bearingfe.elastic.coupled.half_space`, the softest estimate). "Block": the shoe as a flat
+(`bearingfe.elastic.half_space`, the softest estimate). "Block": the shoe as a flat
 {hd['shoe_thickness_mm']:.0f} mm steel block clamped over its back (`[shoe] thickness` of the
-mechanism file; `bearingfe.elastic.coupled.shoe_body`, 3-D linear elasticity condensed to the film dofs)
+mechanism file; `bearingfe.elastic.block_compliance`, 3-D linear elasticity condensed to the film dofs)
 on the eccentric as a half-space.
 
 **The pocket's gain {verdict(hd['body_ratio'])} on the block** ({100 * (hd['body_ratio'] - 1):+.0f} % against
@@ -506,7 +506,7 @@ deflection): a truncation with a useful error bound keeps almost everything, and
 pay at these sizes; the transient's Jacobian is dense anyway, so an FFT or hierarchical apply would not
 make it cheaper. Dense is used up to the `compliance` limit of
 `bearingfe.core.limits` (4000 dofs: a 122 MB matrix, about 1 GB in the transient); beyond it `half_space`,
-`shoe_body`, `solve_elastic`, `balance_load` and `simulate_elastic` refuse with a `LimitError` that
+`block_compliance`, `solve_elastic`, `balance_load` and `simulate_elastic` refuse with a `LimitError` that
 names `BEARINGFE_MAX_COMPLIANCE` (raise it for one run if the memory is there).
 """
 

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from bearingfe import Circle, CosineFilm, Material, Scale, Surface, mesh_surface, solve_reynolds
-from bearingfe.elastic.coupled import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
+from bearingfe.elastic import (Compliance, ElasticError, combined_modulus, half_space, influence_matrix,
                                rectangle_deflection, solve_elastic)
 from bearingfe.cavitation import MODELS
 from bearingfe.reynolds import operators
@@ -201,7 +201,7 @@ def test_solve_reynolds_front_door_reports_the_deflection(pocket_mesh):
 
 def test_balance_load_balances_and_is_rigid_when_stiff(pocket_mesh):
     from bearingfe import superpose
-    from bearingfe.elastic.coupled import balance_load
+    from bearingfe.elastic import balance_load
 
     film, load, ps = CosineFilm(0.6, math.pi), np.array([-0.42, 0.0]), 1.08
     rigid = superpose(pocket_mesh, film, formulation="direct").rates_for_load(load, 0.98, ps)
@@ -243,7 +243,7 @@ def test_shoe_body_approaches_the_half_space_as_it_grows(plain_mesh):
     # width: the opening at the centre grows towards the single-body half-space value (Love) from below,
     # the gap shrinking with every doubling (measured 0.23 -> 0.15 -> 0.075 -> 0.035 of the half-space
     # value for depths 20 / 40 / 80 / 160 mm; the two shallow ones here keep the test fast)
-    from bearingfe.elastic.coupled import shoe_body
+    from bearingfe.elastic import block_compliance
 
     basis = operators(plain_mesh, "P1").basis
     k = int(np.argmin(basis.doflocs[0] ** 2 + basis.doflocs[1] ** 2))
@@ -251,15 +251,15 @@ def test_shoe_body_approaches_the_half_space_as_it_grows(plain_mesh):
     half = half_space(plain_mesh, SCALE, STEEL).deflection(ones)[k]
     gaps = []
     for depth, margin in ((0.01, 0.0), (0.02, 0.0), (0.04, 0.02)):
-        body = shoe_body(plain_mesh, SCALE, STEEL, depth, margin=margin, size=0.1)
+        body = block_compliance(plain_mesh, SCALE, STEEL, depth, margin=margin, size=0.1)
         assert body.model == "body" and body.matrix.shape == (basis.N, basis.N)
         gaps.append((half - body.deflection(ones)[k]) / half)
     assert 0 < gaps[2] < gaps[1] < gaps[0] < 1
     assert gaps[2] < 0.8 * gaps[1]
     # the eccentric as a half-space on top: the two compliances add
-    both = shoe_body(plain_mesh, SCALE, STEEL, 0.01, counterpart=STEEL, size=0.1)
-    alone = shoe_body(plain_mesh, SCALE, STEEL, 0.01, size=0.1)
+    both = block_compliance(plain_mesh, SCALE, STEEL, 0.01, counterpart=STEEL, size=0.1)
+    alone = block_compliance(plain_mesh, SCALE, STEEL, 0.01, size=0.1)
     np.testing.assert_allclose(both.matrix, alone.matrix + half_space(plain_mesh, SCALE, STEEL).matrix,
                                rtol=1e-12, atol=1e-15)
     with pytest.raises(ValueError, match="thickness"):
-        shoe_body(plain_mesh, SCALE, STEEL, 0.0)
+        block_compliance(plain_mesh, SCALE, STEEL, 0.0)

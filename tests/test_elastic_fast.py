@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.elastic.coupled import ChordBalance, ElasticError, balance_load, half_space
+from bearingfe.elastic import ChordBalance, ElasticError, balance_load, half_space
 
 PUMP = bf.load_mechanism("mechanisms/eccentric_pump.toml")
 

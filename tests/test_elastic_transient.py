@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import bearingfe as bf
-from bearingfe.elastic.coupled import half_space
+from bearingfe.elastic import half_space
 from bearingfe.transient.elastic import simulate_elastic
 
 PUMP = bf.load_mechanism("mechanisms/eccentric_pump.toml")

@@ -1,8 +1,8 @@
 """The real shoe body (bearingfe.elastic.shoe): gmsh tetrahedra, linear elasticity, compliance on the film dofs.
 
 Expected values: the flat block clamped at its back is the problem of the tensor-mesh model
-(bearingfe.elastic.coupled.shoe_body), which it must match within that model's own mesh error; a body growing
-in depth and width approaches the elastic half-space (Love's rectangle, bearingfe.elastic.coupled.half_space)
+(bearingfe.elastic.block_compliance), which it must match within that model's own mesh error; a body growing
+in depth and width approaches the elastic half-space (Love's rectangle, bearingfe.elastic.half_space)
 from below; reciprocity (``M C`` symmetric: the load and the read-out are adjoint) holds to round-off;
 a conforming displacement model is too stiff, so the compliance energy under uniform pressure grows
 under refinement towards its limit with shrinking steps (measured sequences quoted at each test).
@@ -16,7 +16,7 @@ import pytest
 import bearingfe as bf
 from conftest import ROOT
 from bearingfe import Circle, Material, Scale, Surface, mesh_surface, solve_reynolds
-from bearingfe.elastic.coupled import half_space, shoe_body
+from bearingfe.elastic import half_space, block_compliance
 from bearingfe.elastic.shoe import ShoeBody
 from bearingfe.reynolds import operators
 from bearingfe.core.schema import SchemaError
@@ -45,7 +45,7 @@ def test_clamped_block_matches_the_tensor_mesh_body(plain_mesh):
     # finer one: within 2.5 such steps (a first-order method's remaining error is about one step)
     ops = operators(plain_mesh, "P1")
     ones = np.ones(ops.basis.N)
-    coarse, fine = (shoe_body(plain_mesh, SCALE, STEEL, 0.015, size=h).deflection(ones) for h in (0.1, 0.05))
+    coarse, fine = (block_compliance(plain_mesh, SCALE, STEEL, 0.015, size=h).deflection(ones) for h in (0.1, 0.05))
     gmsh = shoe_compliance(plain_mesh, SCALE, STEEL, ShoeBody(0.015), flat_film=True)
     assert gmsh.model == "shoe" and gmsh.matrix.shape == (ops.basis.N, ops.basis.N)
     w = gmsh.deflection(ones)

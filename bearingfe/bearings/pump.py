@@ -253,7 +253,7 @@ class EccentricPump:
         default :data:`STEEL` (210 GPa, nu = 0.3, 7850 kg/m^3).
     shoe_thickness : float, optional
         Depth of the shoe body between the film and its seat on the plunger
-        [m], > 0 (for :func:`bearingfe.elastic.coupled.shoe_body`); None if not given.
+        [m], > 0 (for :func:`bearingfe.elastic.block_compliance`); None if not given.
     shoe_body : ShoeBody, optional
         The shoe as an elastic body (depth, back, seat on the plunger,
         lining) for :func:`bearingfe.elastic.shoe.shoe_compliance`; default a

@@ -1,15 +1,76 @@
-"""Elastic supports: compliances and the coupled (EHD) film.
+"""Elastic supports: compliances of the film surfaces (:data:`COMPLIANCES`) and the coupled (EHD) film.
 
-================  ============================================================
-module            what it does
-================  ============================================================
-``coupled``       Elastic support: compliance of the film surfaces and the coupled (EHD) film.
-``shoe``          The real shoe body: a 3-D gmsh mesh of the shoe, linear elasticity, condensed to the film dofs.
-================  ============================================================
+A compliance maps the film pressure to the film's opening on the film dofs
+(:class:`Compliance`); :data:`COMPLIANCES` tables the models that build one from
+the support's materials and body: the Boussinesq half-space, the shoe as a block
+clamped at its back, and the real shoe body meshed from the machine file. The
+coupled film (:func:`solve_elastic`, :func:`balance_load`) takes any of them.
+
+===============  ==================================================================
+module           what it does
+===============  ==================================================================
+``compliance``   the :class:`Compliance` every model builds; contact modulus; size guard
+``half_space``   two elastic half-spaces under the film, influence coefficients exact
+``block``        the shoe as a 3-D block held at its back; any body's openings as a compliance
+``shoe``         the real shoe body (gmsh tetrahedra, seat, lining) and its :class:`ShoeBody`
+``coupled``      the film opened by its own pressure: Newton, load balance, chord balance
+===============  ==================================================================
 """
 
 from __future__ import annotations
-from .coupled import (Compliance, DeflectedFilm, ElasticError, ElasticSolution, combined_modulus, half_space, shoe_body, body_compliance, rectangle_deflection, solve_elastic, balance_load, ElasticBalance, pressure_sensitivity, newton, check_dense_size, ChordBalance)
-from .shoe import (ShoeMesh, mesh_shoe, shoe_compliance, condense, overlay, BODY_ORDERS)
 
-__all__ = ['Compliance', 'DeflectedFilm', 'ElasticError', 'ElasticSolution', 'combined_modulus', 'half_space', 'shoe_body', 'body_compliance', 'rectangle_deflection', 'solve_elastic', 'balance_load', 'ElasticBalance', 'pressure_sensitivity', 'newton', 'check_dense_size', 'ChordBalance', 'ShoeMesh', 'mesh_shoe', 'shoe_compliance', 'condense', 'overlay', 'BODY_ORDERS']
+from types import MappingProxyType
+from typing import Callable, Mapping
+
+from .compliance import Compliance, ElasticError, check_dense_size, combined_modulus, contact_modulus
+from .half_space import half_space, influence_matrix, rectangle_deflection
+from .block import block_compliance, body_compliance
+from .shoe import BODY_ORDERS, SHOE_BACKS, SHOE_SEATS, ShoeBody, ShoeMesh, condense, mesh_shoe, overlay, shoe_compliance
+from .coupled import (ChordBalance, DeflectedFilm, ElasticBalance, ElasticSolution, balance_load, newton,
+                      pressure_sensitivity, solve_elastic)
+
+__all__ = ["COMPLIANCES", "NEEDS_BODY", "compliance_of", "Compliance", "ElasticError", "body_compliance", "check_dense_size",
+           "combined_modulus", "contact_modulus", "half_space", "influence_matrix", "rectangle_deflection",
+           "block_compliance", "BODY_ORDERS", "SHOE_BACKS", "SHOE_SEATS", "ShoeBody", "ShoeMesh", "condense",
+           "mesh_shoe", "overlay", "shoe_compliance", "ChordBalance", "DeflectedFilm", "ElasticBalance",
+           "ElasticSolution", "balance_load", "newton", "pressure_sensitivity", "solve_elastic"]
+
+
+def _half_space(mesh, scale, shoe, counterpart, body, element):
+    return half_space(mesh, scale, shoe if counterpart is None else (shoe, counterpart), element)
+
+
+def _block(mesh, scale, shoe, counterpart, body, element):
+    return block_compliance(mesh, scale, shoe, body.thickness, counterpart=counterpart, element=element)
+
+
+def _shoe(mesh, scale, shoe, counterpart, body, element):
+    return shoe_compliance(mesh, scale, shoe, body, counterpart=counterpart, element=element)
+
+
+#: Elastic support models by name: ``build(mesh, scale, shoe, counterpart, body, element) -> Compliance``
+#: with the shoe's :class:`~bearingfe.core.machine.Material`, the counterpart's (None: rigid) and the
+#: shoe's :class:`ShoeBody` (the block and the shoe need it; the half-space ignores it).
+COMPLIANCES: Mapping[str, Callable[..., Compliance]] = MappingProxyType({
+    "half-space": _half_space,
+    "block": _block,
+    "shoe": _shoe,
+})
+#: Models of :data:`COMPLIANCES` that need the shoe's body (its depth at least).
+NEEDS_BODY = ("block", "shoe")
+
+
+def compliance_of(model: str, mesh, scale, shoe, *, counterpart=None, body: ShoeBody | None = None,
+                  element: str = "P1") -> Compliance:
+    """The compliance of a support by the name of its model in :data:`COMPLIANCES`.
+
+    Raises
+    ------
+    ValueError
+        An unknown model, or a model of :data:`NEEDS_BODY` without ``body``.
+    """
+    if model not in COMPLIANCES:
+        raise ValueError(f"elastic model must be one of {tuple(COMPLIANCES)}, got {model!r}")
+    if model in NEEDS_BODY and body is None:
+        raise ValueError(f"elastic model {model!r} needs the shoe's body (its depth at least: a ShoeBody)")
+    return COMPLIANCES[model](mesh, scale, shoe, counterpart, body, element)

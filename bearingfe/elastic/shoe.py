@@ -35,7 +35,7 @@ normal condition leaves free are removed, so the body is not over-constrained
 both the displacement is relative to the plunger; the shoe's rigid motion is
 the film balance's (the eccentricity and attitude of the pump transient).
 The eccentric, if given, adds its half-space compliance
-(:func:`bearingfe.elastic.coupled.half_space`).
+(:func:`bearingfe.elastic.half_space`).
 
 Limits: the bore facets are chords of the cylinder (the geometry error is
 second order in the facet size), and a pocket edge crossing a facet is
@@ -59,7 +59,8 @@ import skfem
 from skfem import BilinearForm
 from skfem.helpers import ddot, sym_grad, trace
 
-from .coupled import Compliance, body_compliance, check_dense_size
+from .block import body_compliance
+from .compliance import Compliance, check_dense_size
 from ..geometry.geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
 from ..core.machine import Material
 from ..core.schema import nonnegative, positive
@@ -250,7 +251,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
         >= 0 (an unloaded rim of the bore).
     flat_film : bool
         A flat block under a flat film (``x = psi``, the film face ``y = 1``):
-        the geometry of :func:`bearingfe.elastic.coupled.shoe_body`, for comparison.
+        the geometry of :func:`bearingfe.elastic.block_compliance`, for comparison.
     timeout : float, optional
         Seconds gmsh may take (default :func:`bearingfe.geometry.geofiles.geo_timeout_limit`).
     max_elements : int, optional
@@ -574,7 +575,7 @@ def shoe_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, body: ShoeB
     ValueError
         A parameter out of range (named); see also :func:`mesh_shoe`.
     LimitError
-        More film dofs than the ``compliance`` limit (:func:`bearingfe.elastic.coupled.check_dense_size`).
+        More film dofs than the ``compliance`` limit (:func:`bearingfe.elastic.check_dense_size`).
     """
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")

@@ -68,7 +68,7 @@ def build_result(sup: "Superposition", u: np.ndarray, weights: np.ndarray, slidi
         Model wall times merged into ``cost``.
     """
     start = time.perf_counter()
-    ops, at = sup.operators, sup.at
+    ops = sup.operators
     wedge, inlet_pressure = float(weights[0]), float(weights[3])
     sliding = wedge if sliding is None else float(sliding)
     out = film_outputs([sup], u[:, None], np.asarray(weights, float)[:, None], np.array([sliding]),

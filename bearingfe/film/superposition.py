@@ -35,7 +35,7 @@ from .mesh_operators import Operators, operators
 from .result import ReynoldsResult, build_result
 from .thickness import Film, smallest_film
 from ..core.linalg import DEFAULT_SOLVER, Factorize, Solve, get_linear_solver
-from ..core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
+from ..core.parameters import FORMULATIONS, Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh
 
 __all__ = [

@@ -35,9 +35,9 @@ file): ``trajectory_pocket_elastic.csv``, ``trajectory_plain_elastic.csv``,
 opening in um), and the summary compares the smallest film rigid against
 elastic, with and without the pocket. ``deflection`` is drawn only then.
 ``model`` chooses the compliance: ``"half-space"`` (both surfaces elastic
-half-spaces, :func:`bearingfe.elastic.coupled.half_space`), ``"block"`` (a flat
+half-spaces, :func:`bearingfe.elastic.half_space`), ``"block"`` (a flat
 block of ``[shoe] thickness`` clamped over its back,
-:func:`bearingfe.elastic.coupled.shoe_body`; ``"body"`` is its old name) or
+:func:`bearingfe.elastic.block_compliance`; ``"body"`` is its old name) or
 ``"shoe"`` (the real shoe body of the mechanism file: bore, back, seat on
 the plunger, lining; gmsh tetrahedra, :func:`bearingfe.elastic.shoe.shoe_compliance`),
 the last two with the eccentric as a half-space.
@@ -185,20 +185,13 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
 
 
 def _compliance(pump, mesh, element: str, model: str):
-    from ..elastic.coupled import half_space, shoe_body
-    from ..elastic.shoe import shoe_compliance
+    from ..elastic import NEEDS_BODY, compliance_of
 
-    if model in ("block", "body", "shoe") and pump.shoe_thickness is None:
+    model = "block" if model == "body" else model  # "body" is the block's old name
+    if model in NEEDS_BODY and pump.shoe_body is None:
         raise ValueError(f"[elastic] model {model!r} needs the shoe's depth: [shoe] thickness in the mechanism file")
-    if model in ("block", "body"):
-        return shoe_body(mesh, pump.scale, pump.shoe_material, pump.shoe_thickness,
-                         counterpart=pump.eccentric_material, element=element)
-    if model == "shoe":
-        return shoe_compliance(mesh, pump.scale, pump.shoe_material, pump.shoe_body,
-                               counterpart=pump.eccentric_material, element=element)
-    if model != "half-space":  # the schema allows only ELASTIC_MODELS
-        raise ValueError(f"elastic model must be one of {ELASTIC_MODELS}, got {model!r}")
-    return half_space(mesh, pump.scale, (pump.shoe_material, pump.eccentric_material), element)
+    return compliance_of(model, mesh, pump.scale, pump.shoe_material, counterpart=pump.eccentric_material,
+                         body=pump.shoe_body, element=element)
 
 
 def _thinnest(pump, mesh, traj, run: dict, compliance=None) -> dict:
