@@ -117,17 +117,16 @@ def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization:
 
 def _rigid_finite_volume(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
                          options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
-    return solve_jfo(mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
-                     inlet_pressure=operating.inlet_pressure, cavitation_pressure=options.cavitation_pressure,
-                     element=discretization.element, sliding=operating.sliding, warm_start=options.warm_start,
+    # the scheme's own linear solver and the direct form (it says so in the result's notes)
+    return solve_jfo(mesh, film, operating=operating, element=discretization.element,
+                     cavitation_pressure=options.cavitation_pressure, warm_start=options.warm_start,
                      cavitation=cavitation)
 
 
 def _elastic_finite_element(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
                             options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
-    res = solve_elastic(mesh, film, compliance, wedge=operating.wedge, squeeze=operating.squeeze,
-                        inlet_pressure=operating.inlet_pressure, element=discretization.element,
-                        cavitation=cavitation, sliding=operating.sliding, solver=discretization.solver).result
+    res = solve_elastic(mesh, film, compliance, operating=operating, element=discretization.element,
+                        solver=discretization.solver, cavitation=cavitation).result
     if discretization.formulation != "direct":
         note = "elastic support: the direct form was used (the deflected film is a nodal field)"
         res = dataclasses.replace(res, notes=res.notes + (note,))

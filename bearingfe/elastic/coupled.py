@@ -32,6 +32,7 @@ from skfem import BilinearForm
 from .compliance import MAX_ITERATIONS, TOLERANCE, Compliance, ElasticError, check_dense_size
 from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
+from ..core.parameters import Discretization, OperatingPoint, takes
 from ..film import Film, operators, source_weights, superpose
 from ..film.compiled import interpolation_maps
 from ..film.forms import load as load_form, weighted_laplace
@@ -362,6 +363,7 @@ def _check_compliance(compliance: Compliance, mesh: SupportMesh, element: str) -
                          f"the solve uses {element!r}")
 
 
+@takes(OperatingPoint, Discretization)
 def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedge: float = 1.0,
                   squeeze=(0.0, 0.0), inlet_pressure: float = 0.0, element: str = "P1",
                   cavitation: str = "none", sliding: float | None = None, solver=DEFAULT_SOLVER,
@@ -372,7 +374,9 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     Parameters
     ----------
     mesh, film, wedge, squeeze, inlet_pressure, element, cavitation, sliding, solver
-        As in :func:`bearingfe.solve_reynolds` (the direct form is used).
+        As in :func:`bearingfe.solve_reynolds` (the direct form is used); the operating
+        point and the discretization may come as ``operating=`` and ``discretization=``
+        objects (:mod:`bearingfe.core.parameters`) instead.
     compliance : Compliance
         From :func:`half_space` on the same mesh and element.
     tol, max_iterations
@@ -608,6 +612,7 @@ class ChordBalance:
         return y, count, built, size
 
 
+@takes(OperatingPoint, Discretization)
 def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *, wedge: float = 1.0,
                  inlet_pressure: float = 0.0, element: str = "P1", cavitation: str = "none", solver=None,
                  initial: np.ndarray | None = None, reuse: dict | None = None, tol: float = TOLERANCE,

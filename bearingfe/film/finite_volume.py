@@ -62,6 +62,7 @@ import scipy.sparse as sp
 from .thickness import Film
 from .forms import load, weighted_laplace
 from ..core.linalg import Factorize, factorize_splu, get_linear_solver
+from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
@@ -688,6 +689,7 @@ def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | Non
     return mask[unk.rep]
 
 
+@takes(OperatingPoint, Discretization)
 def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
               inlet_pressure: float = 0.0, cavitation_pressure: float = 0.0, element: str = "P1",
               sliding: float | None = None, solver: str | Factorize = "splu", warm_start=None,
