@@ -40,7 +40,8 @@ from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solv
 from .film.finite_volume import JFOError, solve_jfo
 from .core.limits import LimitError
 from .film.fd import FDResult, solve_reynolds_fd
-from .film.thickness import CosineFilm, Film
+from .film.thickness import (CosineFilm, Film, ProfileFilm, StepFilm, SumFilm, TaperFilm, TaperLandFilm,
+                             UniformFilm)
 from .geometry.surface import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
 from .core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available_solvers
 from .core.machine import Drive, Material
@@ -75,7 +76,8 @@ __all__ = [
     "film_graded_size", "journal",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
-    "Circle", "CoercivityError", "CosineFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
+    "Circle", "CoercivityError", "CosineFilm", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm",
+    "TaperLandFilm", "UniformFilm", "CrankMechanism", "CrankSlider", "Drive", "Ellipse",
     "DEFAULT_SOLVER", "FDResult", "Film", "Frame", "LINEAR_SOLVERS", "PatternFactorizer", "available_solvers", "LOADERS", "Linkage", "Material", "MillDrive", "Polygon", "Recess",
     "Rectangle", "ReynoldsResult", "Rotor", "RotorFrame", "Scale", "Section", "Shape", "Slot", "Superposition",
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",

@@ -22,6 +22,26 @@ cavitation the force is ``(0, 4 pi a^3 gamma / (1 - gamma^2)^(3/2))``
 pressure at its ends is the same problem; the finite-width correction is
 ``O(a^2)``: measured 0.06 %, 0.22 %, 0.89 % below Ocvirk at a = 0.025, 0.05, 0.1
 (gamma = 0.5), hence the 0.5 % tolerance at a = 0.05.
+
+Sliders (films that vary along the sliding only, infinitely wide: the 1-D
+Reynolds equation, non-dimensional as the package solves it, ``(h^3 p')' = 6 h'``
+with ``p = 0`` at both ends of a pad of length ``L``):
+
+- any piecewise-constant film (:func:`stepped_slider`): the flux ``q`` is the same
+  everywhere, ``p' = 12 (h_i/2 - q)/h_i^3`` in each land, so ``q = sum(6 L_i/h_i^2) /
+  sum(12 L_i/h_i^3)`` and ``p`` is piecewise linear;
+- the inclined slider (:func:`inclined_slider_load`), ``h`` falling linearly from
+  ``h_in`` to ``h_out``, ``K = h_in/h_out - 1``: load coefficient ``W h_out^2/L^2 =
+  6/K^2 (ln(1 + K) - 2K/(2 + K))``, largest 0.16024 at ``K = 1.1887``;
+- the Rayleigh step (:func:`rayleigh_step_load`), inlet land ``h1`` over ``a``,
+  outlet land ``h2``: ``W h2^2/L^2 = 3 (H - 1)/(H^3/alpha + 1/(1 - alpha))`` with
+  ``H = h1/h2``, ``alpha = a/L``, largest 0.20627 at ``H = 1.8660``, ``alpha = 0.7182``
+  (Hamrock, Schmid & Jacobson, ch. 8-9). Of finite width ``B`` (p = 0 on the sides
+  too) it is a Fourier series in ``z``: in each land ``p`` is harmonic, continuous at
+  the step, where the flux jump ``h1^3 p1' - h2^3 p2' = 6 (h1 - h2)`` sets the
+  coefficients of ``p_step = sum P_n sin(k_n (z + B/2))`` over odd ``n``,
+  ``k_n = n pi/B``: ``P_n = 24 (h1 - h2)/(n pi k_n (h1^3 coth(k_n a) + h2^3
+  coth(k_n (L - a))))``, load ``sum P_n 2/k_n^2 (tanh(k_n a/2) + tanh(k_n (L - a)/2))``.
 """
 
 from __future__ import annotations
@@ -34,7 +54,8 @@ from typing import Callable, Mapping
 import numpy as np
 
 __all__ = ["Check", "CHECKS", "RAIMONDI_BOYD", "run_checks", "annular_pad", "short_bearing", "raimondi_boyd",
-           "PocketSlider", "SliderAnswer", "jfo_pocket_slider", "OscillatingSqueeze"]
+           "PocketSlider", "SliderAnswer", "jfo_pocket_slider", "OscillatingSqueeze", "stepped_slider",
+           "inclined_slider_load", "rayleigh_step_load", "film_steps"]
 
 #: ``L/D -> eps -> (S, attitude [deg], (R/c) f, Q/(R c N L), Qs/Q, P/p_max)``: Raimondi & Boyd
 #: (1958), ASLE Trans. 1, full 360-degree bearing, Swift-Stieber conditions, as reproduced in
@@ -175,6 +196,7 @@ class _StepFilm:
     start: float
     end: float
     ratio: float
+    smooth = False  # a step at each end of the band
 
     def thickness(self, phi, z):
         phi = np.asarray(phi, float)
@@ -410,11 +432,87 @@ class OscillatingSqueeze:
 
 
 #: Validation checks by name.
+# -- sliders: films with tapers and steps ------------------------------------------------
+
+def film_steps(lengths, films) -> tuple[float, np.ndarray, float]:
+    """The exact 1-D slider with a piecewise-constant film (see the module docstring).
+
+    Parameters
+    ----------
+    lengths, films : sequence of float
+        Length [-] and film [c] of each land, in the sliding direction.
+
+    Returns
+    -------
+    flow : float
+        ``q`` per unit width [omega R0^2 c / R0] (the Couette part ``h/2`` included).
+    pressures : ndarray
+        ``p`` at the land boundaries, the ends included (zero there).
+    load : float
+        ``int p dx`` per unit width.
+    """
+    L = np.asarray(lengths, float)
+    h = np.asarray(films, float)
+    if L.shape != h.shape or L.size < 1 or np.any(L <= 0) or np.any(h <= 0):
+        raise ValueError("lengths and films must be positive and of one length")
+    q = float(np.sum(6 * L / h**2) / np.sum(12 * L / h**3))
+    slopes = 12 * (h / 2 - q) / h**3
+    pressures = np.concatenate([[0.0], np.cumsum(slopes * L)])
+    load = float(np.sum(0.5 * (pressures[1:] + pressures[:-1]) * L))
+    return q, pressures, load
+
+
+def stepped_slider(*, h1: float, h2: float, a: float, length: float = 1.0) -> tuple[float, float]:
+    """``(flow, load)`` per unit width of the infinitely wide Rayleigh step (:func:`film_steps`)."""
+    q, _, load = film_steps([a, length - a], [h1, h2])
+    return q, load
+
+
+def inclined_slider_load(h_in: float, h_out: float, length: float = 1.0) -> float:
+    """Load per unit width of the infinitely wide inclined slider, ``h`` linear from ``h_in`` to ``h_out``."""
+    K = h_in / h_out - 1.0
+    return 6.0 / K**2 * (math.log1p(K) - 2 * K / (2 + K)) * length**2 / h_out**2
+
+
+def rayleigh_step_load(h1: float, h2: float, a: float, length: float = 1.0, width: float | None = None,
+                       terms: int = 4001) -> float:
+    """Load of the Rayleigh step: infinitely wide (``width=None``, per unit width) or of finite ``width``.
+
+    The finite width is the Fourier series of the module docstring, summed over
+    ``terms`` odd harmonics (the terms fall like ``n^-3``: 4001 leave a relative
+    tail below 1e-8).
+    """
+    if width is None:
+        return stepped_slider(h1=h1, h2=h2, a=a, length=length)[1]
+    n = np.arange(1, 2 * terms, 2, dtype=float)
+    k = n * math.pi / width
+    P = 24.0 * (h1 - h2) / (n * math.pi * k * (h1**3 / np.tanh(k * a) + h2**3 / np.tanh(k * (length - a))))
+    return float(np.sum(P * 2.0 / k**2 * (np.tanh(k * a / 2) + np.tanh(k * (length - a) / 2))))
+
+
+def rayleigh_step(quick: bool = False) -> list[Check]:
+    """The finite-width Rayleigh step on the Galerkin path (a step film, P2) against its Fourier series."""
+    from .film.thickness import ProfileFilm
+    from .geometry.meshing import grid_mesh
+    from .geometry.surface import Surface
+    from .reynolds import solve_reynolds
+
+    h1, h2, a, width = 1.866, 1.0, 0.7, 1.0
+    surface = Surface(arc=(0.0, 1.0), half_width=width / 2)
+    film = ProfileFilm(((0.0, h1), (a, h1), (a, h2), (1.0, h2)))
+    size = 0.05 if quick else 0.025
+    res = solve_reynolds(grid_mesh(surface, size), film, formulation="direct", element="P2")
+    exact = rayleigh_step_load(h1, h2, a, 1.0, width)
+    return [Check(f"Rayleigh step load W, B = L (P2, size {size:g})", "Fourier series of the step (module docstring)",
+                  res.integral, exact, 1e-5)]
+
+
 CHECKS: Mapping[str, Callable[[bool], list[Check]]] = MappingProxyType({
     "annular_pad": annular_pad,
     "short_bearing": short_bearing,
     "raimondi_boyd": raimondi_boyd,
     "jfo_pocket_slider": jfo_pocket_slider,
+    "rayleigh_step": rayleigh_step,
 })
 
 

@@ -131,9 +131,10 @@ def test_validate_prints_table(capsys):
     assert main(["validate", "--quick"]) == 0
     out = capsys.readouterr().out
     assert "annular pad load W" in out and "short bearing" in out and "Raimondi & Boyd" in out
-    assert "JFO pocket slider" in out
+    assert "JFO pocket slider" in out and "Rayleigh step load W" in out
     # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude) + 4 JFO pocket slider (load, flow, x_r, peak)
-    assert "13 of 13 passed" in out
+    # + 1 finite-width Rayleigh step
+    assert "14 of 14 passed" in out
     assert main(["validate", "--only", "nonsense"]) == 2
 
 

@@ -492,10 +492,12 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         h = np.asarray(sup.at.h, float).reshape(-1)
         hx, hy = -np.cos(phi), -np.sin(phi)
         p = res.pressure
-        # A(h) p = -int (6 dh/dphi + 12 dh/dt) v ; differentiate in x, y, xdot, ydot. dA/dx is the
-        # direct-form matrix of the coefficient 3 h^2 dh/dx, i.e. of the "film" cbrt(3 h^2 dh/dx)
+        # A(h) p = int 6 h dv/dphi - int 12 dh/dt v (the wedge in conservative form); differentiate in
+        # x, y, xdot, ydot. dA/dx is the direct-form matrix of the coefficient 3 h^2 dh/dx, i.e. of the
+        # "film" cbrt(3 h^2 dh/dx); the wedge source's derivative is -int 6 (dh/dx) dv/dphi
         dA_p = [co.matrix(co.matrix_data("direct", np.cbrt(3 * h**2 * c), None)) @ p for c in (hx, hy)]
-        sources = co.sources @ np.column_stack([6.0 * np.sin(phi), -6.0 * np.cos(phi), 12.0 * hx, 12.0 * hy])
+        sources = np.column_stack([co.phi_sources @ (-6.0 * hx), co.phi_sources @ (-6.0 * hy),
+                                   co.sources @ (12.0 * hx), co.sources @ (12.0 * hy)])
         fp = obstacle_problem(sup)
         rhs = -sources
         rhs[:, 0] -= dA_p[0][fp.interior]

@@ -268,15 +268,16 @@ def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int,
 
 @BilinearForm
 def _film_sensitivity(u, v, w):
-    # d/dh_j of int h^3 grad p . grad v_i + 6 wedge dh/dphi v_i, for h = ... + w_j phi_j
-    return 3.0 * w.h2 * u * (w.gp0 * v.grad[0] + w.gp1 * v.grad[1]) + 6.0 * w.wedge * u.grad[0] * v
+    # d/dh_j of int h^3 grad p . grad v_i - int 6 wedge h dv_i/dphi (the wedge in conservative form,
+    # bearingfe.film.forms.couette_source), for h = ... + w_j phi_j
+    return 3.0 * w.h2 * u * (w.gp0 * v.grad[0] + w.gp1 * v.grad[1]) - 6.0 * w.wedge * u * v.grad[0]
 
 
 def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
                          rates_balance: bool = False) -> np.ndarray:
     """``dp/dw``: change of the nodal pressure with the nodal film opening (direct form).
 
-    Linearization of ``int h^3 grad p . grad v + int (6 wedge dh/dphi + 12 dh/dt) v = 0``
+    Linearization of ``int h^3 grad p . grad v - int 6 wedge h dv/dphi + int 12 dh/dt v = 0``
     at the solution ``pressure`` on ``film`` (a :class:`DeflectedFilm`) with
     ``p`` held at its Dirichlet values and on the ruptured set, i.e.
     ``dp_F/dw = -A_FF^-1 B_F``. With ``rates_balance`` the squeeze rates move
@@ -520,7 +521,10 @@ class ChordBalance:
         self.E, self.Gp, self.Gz, self.dx = co.value, co.grad[0], co.grad[1], co.dx
         self.GpT, self.GzT = self.Gp.T.tocsr()[self.I], self.Gz.T.tocsr()[self.I]
         self.src = co.sources
-        self.src_grad = (self.src @ self.Gp).tocsr()
+        # the wedge source in conservative form, -int 6 wedge h dv/dphi (bearingfe.film.forms.couette_source):
+        # its points -> interior map, and its derivative in the nodal opening w (h = h_rigid + E w)
+        self.phi_src = co.phi_sources
+        self.phi_src_E = (self.phi_src @ self.E).tocsr()
         L = np.asarray(co.loads[:2] @ co.value)
         self.LI = L[:, self.I]
         self.L_in = L[:, self.inlet].sum(axis=1) + np.asarray(ops.pocket_moments[1:], float)
@@ -550,7 +554,7 @@ class ChordBalance:
             raise ElasticError(f"film closed: h_min = {min(h.min(), h_dofs.min()):.3g} c <= 0")
         gp, gz = self.Gp @ p, self.Gz @ p
         h3 = h**3 * self.dx
-        R = self.GpT @ (h3 * gp) + self.GzT @ (h3 * gz) + 6.0 * wedge * (self.src @ dh0 + self.src_grad @ w) + S @ r
+        R = self.GpT @ (h3 * gp) + self.GzT @ (h3 * gz) - 6.0 * wedge * (self.phi_src @ h) + S @ r
         G = self.LI @ pI + ps * self.L_in + load
         return np.concatenate([R, G]), (h, gp, gz, w)
 
@@ -558,7 +562,7 @@ class ChordBalance:
         h, gp, gz, _ = st
         n = self.I.size
         h2 = 3.0 * h**2 * self.dx
-        Bh = (self.GpT @ sp.diags(h2 * gp) + self.GzT @ sp.diags(h2 * gz)) @ self.E + 6.0 * wedge * self.src_grad
+        Bh = (self.GpT @ sp.diags(h2 * gp) + self.GzT @ sp.diags(h2 * gz)) @ self.E - 6.0 * wedge * self.phi_src_E
         J = np.zeros((n + 2, n + 2))
         J[:n, :n] = self.co.condensed(self.co.matrix_data("direct", h, None)).toarray() + Bh @ self.C_I
         J[:n, n:] = rigid[4]

@@ -19,7 +19,8 @@ module            what it does
 
 from __future__ import annotations
 
-from .thickness import CosineFilm, Film, UniformFilm, smallest_film
+from .thickness import (CosineFilm, Film, ProfileFilm, StepFilm, SumFilm, TaperFilm, TaperLandFilm, UniformFilm,
+                        is_smooth, smallest_film)
 from .mesh_operators import Operators, operators
 from .assembly import ASSEMBLIES
 from .superposition import SOURCES, CoercivityError, CondensedSystem, Superposition, source_weights, superpose
@@ -27,6 +28,7 @@ from .result import ReynoldsResult, build_result, film_outputs
 from .finite_volume import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 
-__all__ = ["CosineFilm", "Film", "UniformFilm", "smallest_film", "Operators", "operators", "ASSEMBLIES", "SOURCES",
+__all__ = ["CosineFilm", "Film", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm", "TaperLandFilm", "UniformFilm",
+           "is_smooth", "smallest_film", "Operators", "operators", "ASSEMBLIES", "SOURCES",
            "CoercivityError", "CondensedSystem", "Superposition", "source_weights", "superpose", "ReynoldsResult",
            "build_result", "film_outputs", "JFOError", "solve_jfo", "FDResult", "solve_reynolds_fd"]

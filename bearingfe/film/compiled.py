@@ -41,7 +41,7 @@ from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .flows import named_flows, outflow, ruptured_elements
-from .forms import FilmAt, film_at, film_flux, shear, unknown_scale
+from .forms import FilmAt, couette_source, film_at, film_flux, shear, unknown_scale
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
 
 __all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
@@ -293,6 +293,20 @@ class CompiledOperator:
         return self._get("value_t", lambda: self.value.T.tocsr())
 
     @property
+    def transposed_phi_gradient(self) -> sp.csr_matrix:
+        """``G_phi^T``: (weighted) point values -> their integrals against each basis function's ``d/dphi``."""
+        return self._get("grad_phi_t", lambda: self.grad[0].T.tocsr())
+
+    @property
+    def phi_sources(self) -> sp.csr_matrix:
+        """``(G_phi^T dx)[I]``: a density ``c`` at the points -> ``int c dv/dphi`` on the interior dofs."""
+        def build():
+            G = self.grad[0]
+            scaled = sp.csr_matrix((G.data * np.repeat(self.dx, np.diff(G.indptr)), G.indices, G.indptr), shape=G.shape)
+            return scaled.T.tocsr()[self.interior]
+        return self._get("phi_sources", build)
+
+    @property
     def laplace_data(self) -> np.ndarray:
         """Values of ``int grad u . grad v`` on the upper triangle of the pattern."""
         return self._get("laplace", lambda: self.stiffness_scatter @ np.ones(self.dx.size))
@@ -417,6 +431,37 @@ class CompiledOperator:
         dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
         return p, dp
 
+    def smoothness_defect(self, film, at: FilmAt) -> float:
+        """How far a film's reported derivatives are from its thickness: 0 for a smooth film (to quadrature
+        error, about 1e-7 and less on coarse meshes), of order 1 for a film with a step or a kink.
+
+        Two identities that hold for test functions ``v`` vanishing on the Dirichlet boundary, when ``h``
+        is smooth: the wedge source ``int 6 h^(-3/2) dh/dphi v`` equals its conservative form
+        (:func:`bearingfe.film.forms.couette_source`), which only sees ``h`` and so sees a step; and
+        ``int lap(h) v = -int grad h . grad v``, which a kink breaks (its Laplacian has a line mass).
+        Returned: the larger of the two residuals, each relative to the size of its terms (the same
+        integrals with absolute values). The pi form needs both identities.
+        """
+        h, (hx, hz) = at.h.ravel(), (at.dh[0].ravel(), at.dh[1].ravel())
+        lap = np.asarray(film.laplacian(*self.points), float).ravel() * np.ones_like(h)
+        dx = self.dx
+        c = couette_source(h, "pi")
+        pointwise = 6.0 * h**-1.5 * hx
+        absolute_value, absolute_phi, absolute_z = self._absolute_maps()
+        I = self.interior
+        wedge = (self.transposed_phi_gradient @ (dx * c) - self.transposed_value @ (dx * pointwise))[I]
+        wedge_size = (absolute_phi @ (dx * np.abs(c)) + absolute_value @ (dx * np.abs(pointwise)))[I]
+        laplace = (self.transposed_value @ (dx * lap) + self.transposed_phi_gradient @ (dx * hx)
+                   + self.grad[1].T @ (dx * hz))[I]
+        laplace_size = (absolute_value @ (dx * np.abs(lap)) + absolute_phi @ (dx * np.abs(hx))
+                        + absolute_z @ (dx * np.abs(hz)))[I]
+        tiny = 1e-300
+        return float(max(np.max(np.abs(wedge) / (wedge_size + tiny), initial=0.0),
+                         np.max(np.abs(laplace) / (laplace_size + tiny), initial=0.0)))
+
+    def _absolute_maps(self):
+        return self._get("absolute_maps", lambda: tuple(abs(m).T.tocsr() for m in (self.value, *self.grad)))
+
     # -- the assembly interface (bearingfe.film.assembly) ---------------------------------
 
     def film_at(self, film) -> FilmAt:
@@ -538,18 +583,20 @@ class CompiledSystem:
         return self.co.condensed(self.data)
 
     def _source_weights(self) -> np.ndarray:
-        """``E^T`` of the source densities ``dx s f_k`` (three columns) and of the load densities
-        ``s (cos phi, sin phi, 1) dx`` (three more; ``p = s u``): one sparse product serves the six."""
+        """The loads of the three unit sources (the wedge ``G_phi^T (dx c)`` with ``c`` its conservative
+        density, :func:`bearingfe.film.forms.couette_source`; the squeeze rates ``E^T (dx 12 s dh/dq_k)``)
+        and the load weights ``E^T (s (cos phi, sin phi, 1) dx)`` (``p = s u``)."""
         if self._weights is None:
             at, co = self.at, self.co
             s = unknown_scale(self.h, self.formulation)
             sdx = s * co.dx
             fields = np.empty((self.h.size, 6))
-            fields[:, 0] = 6.0 * sdx * at.dh[0].ravel()
+            fields[:, 0] = 0.0  # the wedge column is in divergence form: added below through G_phi^T
             fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
             fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
             fields[:, 3:] = (co.loads * s).T
             self._weights = co.transposed_value @ fields
+            self._weights[:, 0] = co.transposed_phi_gradient @ (co.dx * couette_source(self.h, self.formulation))
         return self._weights
 
     def rhs(self, lift: np.ndarray) -> np.ndarray:

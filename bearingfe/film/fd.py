@@ -57,6 +57,7 @@ import scipy.sparse.linalg as spla
 
 from ..core.checks import check_operating_point
 from .forms import film_flux
+from .thickness import is_smooth
 from ..geometry.surface import Surface
 from ..core.parameters import FORMULATIONS, Discretization, OperatingPoint, takes
 
@@ -245,7 +246,10 @@ def solve_reynolds_fd(
     wedge, inlet_pressure = _finite(wedge, "wedge"), _finite(inlet_pressure, "inlet_pressure")
     check_operating_point(wedge, squeeze, inlet_pressure)
 
-    f = _rhs(film, grid, wedge, rates)
+    if formulation == "pi" and not is_smooth(film):
+        raise ValueError("formulation='pi' needs a smooth film (the film has a kink or a step, whose Laplacian "
+                         "is no function): use formulation='direct', whose wedge term takes the step exactly")
+    f = _rhs(film, grid, wedge, rates) if formulation == "pi" else _conservative_rhs(film, grid, wedge, rates)
     if formulation == "pi":
         stencil = _pi_stencil(film, grid, f, inlet_pressure)
     else:
@@ -350,6 +354,20 @@ def _rhs(film, grid: _Grid, wedge: float, rates: tuple[float, ...]) -> np.ndarra
     """``f = 6 wedge dh/dphi + 12 dh/dt`` at the nodes."""
     dh_dphi, _ = film.gradient(grid.PHI, grid.Z)
     return 6.0 * wedge * dh_dphi + 12.0 * _dh_dt(film, grid, rates)
+
+
+def _conservative_rhs(film, grid: _Grid, wedge: float, rates: tuple[float, ...]) -> np.ndarray:
+    """``f`` of the direct scheme with the wedge term as a difference of the film between the half-points,
+    ``6 wedge (h(phi + dphi/2) - h(phi - dphi/2)) / dphi``: conservative, so a step of the film between two
+    nodes enters with its full jump (the nodal ``dh/dphi`` would miss it). At the grid's ends the one-sided
+    half-point is the node itself (those nodes hold fixed pressures anyway)."""
+    hx, _ = _face_h(film, grid)
+    h = film.thickness(grid.PHI, grid.Z) + 0.0 * grid.PHI
+    east = np.concatenate([hx, h[:, -1:]], axis=1)
+    west = np.concatenate([h[:, :1], hx], axis=1)
+    step = np.full(grid.phi.shape, grid.dphi)
+    step[0] = step[-1] = 0.5 * grid.dphi
+    return 6.0 * wedge * (east - west) / step[None, :] + 12.0 * _dh_dt(film, grid, rates)
 
 
 def _dh_dt(film, grid: _Grid, rates: tuple[float, ...]) -> np.ndarray:

@@ -14,7 +14,8 @@ pressure, flux and shear formulas from here (notation of
 - shear on the journal ``tau = sliding/h + h/2 dp/dphi`` [mu omega R0 / c]
   (:func:`shear`), whose integral is the friction force (and moment);
 - the substitution coefficient ``D = -3/(4 h^2) (2 h Lap h + |grad h|^2)``
-  (:func:`film_at`).
+  (:func:`film_at`);
+- the wedge source in conservative form (:func:`couette_source`).
 
 The weak forms are scikit-fem forms with their coefficients passed as
 fields (``w.c``, ``w.f`` at the quadrature points).
@@ -30,7 +31,8 @@ from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 from skfem.mapping import MappingAffine, MappingIsoparametric
 
-__all__ = ["laplace", "mass", "weighted_mass", "weighted_laplace", "load", "flux_residual", "FilmAt",
+__all__ = ["laplace", "mass", "weighted_mass", "weighted_laplace", "load", "gradient_load", "flux_residual",
+           "couette_source", "FilmAt",
            "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "shear", "TolerantMapping",
            "mapping", "straight_edges", "STRAIGHT_TOLERANCE"]
 
@@ -65,6 +67,12 @@ def weighted_laplace(u, v, w):
 def load(v, w):
     """``int f v``: a source, a normal flux on facets (``f = q . n``), or a lumped area (``f = 1``)."""
     return w.f * v
+
+
+@LinearForm
+def gradient_load(v, w):
+    """``int (f0 dv/dphi + f1 dv/dz)``: a source in divergence form, ``-int div(f) v`` integrated by parts."""
+    return w.f0 * v.grad[0] + w.f1 * v.grad[1]
 
 
 @LinearForm
@@ -137,6 +145,28 @@ def pressure_from_unknown(value, gradient, h, dh, formulation: str) -> tuple[np.
     p = s * value
     dp = np.array([s * gradient[k] - 1.5 * p / h * dh[k] for k in range(2)])
     return p, dp
+
+
+def couette_source(h, formulation: str):
+    """The wedge (Couette) source of the Reynolds equation in conservative form, per unit wedge.
+
+    The source ``6 wedge dh/dphi`` is tested in divergence form, integrated by parts
+    against test functions that vanish on the Dirichlet boundary:
+    ``int 6 dh/dphi v = -int 6 h dv/dphi``. So the load of the wedge column is
+    ``int c dv/dphi`` with ``c = -6 h`` in the direct form; in the pi form the
+    source is ``h^(-3/2) 6 dh/dphi = -12 d(h^(-1/2))/dphi``, so ``c = 12 h^(-1/2)``.
+    Only ``h`` enters, never its derivative: a film with a step (a Rayleigh step,
+    a pocket edge, a user film with a jump) contributes its jump exactly, where
+    ``dh/dphi`` at quadrature points would miss it.
+
+    The density is shifted by a constant (its value at the first point), which the
+    integral does not see (the derivatives of the test functions integrate to zero
+    over the film) and which makes the source of a uniform film vanish exactly,
+    not to round-off.
+    """
+    h = np.asarray(h, dtype=float)
+    c = -6.0 * h if formulation == "direct" else 12.0 * h**-0.5
+    return c - c.flat[0] if c.size else c
 
 
 def film_flux(h, dp, wedge: float) -> tuple[np.ndarray, np.ndarray]:

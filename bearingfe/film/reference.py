@@ -36,7 +36,7 @@ import skfem
 from . import forms
 from .compiled import FilmFlows
 from .flows import named_flows, outflow, ruptured_elements
-from .forms import FilmAt, film_at, film_flux, pressure_from_unknown, shear, unknown_scale
+from .forms import FilmAt, couette_source, film_at, film_flux, pressure_from_unknown, shear, unknown_scale
 from ..core.linalg import Factorize, Solve
 
 if TYPE_CHECKING:
@@ -55,11 +55,12 @@ def system_matrix(ops: "Operators", at: FilmAt, formulation: str) -> sp.csr_matr
 
 
 def unit_sources(ops: "Operators", at: FilmAt, formulation: str) -> np.ndarray:
-    """Load vectors ``int f_k v`` of the four unit sources (the inlet one is zero)."""
+    """Load vectors of the four unit sources (the inlet one is zero): the wedge in conservative
+    form (:func:`bearingfe.film.forms.couette_source`), the squeeze rates ``int 12 s dh/dq_k v``."""
     weight = unknown_scale(at.h, formulation)
     basis = ops.basis
     return np.column_stack([
-        forms.load.assemble(basis, f=weight * 6.0 * at.dh[0]),
+        forms.gradient_load.assemble(basis, f0=couette_source(at.h, formulation), f1=np.zeros_like(at.h)),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[0]),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[1]),
         np.zeros(basis.N),

@@ -33,7 +33,7 @@ from .assembly import ASSEMBLIES
 from .forms import FilmAt
 from .mesh_operators import Operators, operators
 from .result import ReynoldsResult, build_result
-from .thickness import Film, smallest_film
+from .thickness import Film, is_smooth, smallest_film
 from ..core.linalg import DEFAULT_SOLVER, Factorize, Solve, get_linear_solver
 from ..core.parameters import FORMULATIONS, Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh
@@ -295,6 +295,10 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
                          f"(film {film!r}): the shoe would touch the journal")
     notes: list[str] = []
     coercivity = math.nan
+    if formulation == "pi" and not _smooth_on(ops, film, at):
+        notes.append("the film has a kink or a step (no Laplacian as a function, which the pi form needs): "
+                     "the direct form div(h^3 grad p) was used, whose wedge source takes the step exactly")
+        formulation = "direct"
     system = assembler.system(at, formulation)
     if formulation == "pi":
         coercivity = _coercivity(ops, at, system.full_matrix)
@@ -329,6 +333,20 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
 
 
 _FILM_TYPES: set[type] = set()
+
+#: Largest :meth:`~bearingfe.film.compiled.CompiledOperator.smoothness_defect` of a film the pi form accepts:
+#: smooth films measure 1e-7 and below (quadrature error), a step or a kink about 1.
+SMOOTHNESS_LIMIT = 1e-4
+
+
+def _smooth_on(ops: Operators, film: Film, at: FilmAt) -> bool:
+    """Whether the pi form may take ``film``: a film that says whether it is smooth (a ``smooth`` attribute,
+    :func:`~bearingfe.film.thickness.is_smooth`: every model of the package does) is taken at its word; one that
+    does not (a user's film) is measured: its derivatives must agree with its thickness on this mesh, which a
+    step or a kink breaks."""
+    if hasattr(film, "smooth"):
+        return is_smooth(film)
+    return ops.compiled.smoothness_defect(film, at) <= SMOOTHNESS_LIMIT
 
 
 def _lift(ops: Operators, film: Film, formulation: str) -> np.ndarray:

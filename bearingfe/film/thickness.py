@@ -3,21 +3,41 @@
 A film gives the non-dimensional thickness ``h = H / c`` over the surface,
 its derivatives, and how it changes with its own state variables (for the
 squeeze term of the Reynolds equation). Any object with these methods works
-as a film (see :class:`Film`); :class:`CosineFilm` is the rigid eccentric
-journal against a circular bore.
+as a film (see :class:`Film`).
+
+The models shipped here:
+
+=====================  ===========================================================
+model                  the film
+=====================  ===========================================================
+:class:`CosineFilm`    the rigid eccentric journal in a circular bore
+:class:`UniformFilm`   parallel surfaces (a flat slider, a squeeze film)
+:class:`TaperFilm`     an inclined plane along any direction (the inclined slider)
+:class:`TaperLandFilm` a taper down to a flat land (the taper-land pad)
+:class:`ProfileFilm`   any piecewise-linear profile along a direction, steps allowed
+                       (a Rayleigh step, several lands and tapers)
+:class:`StepFilm`      a base film deepened by a constant over a region of any outline
+:class:`SumFilm`       a base film plus static additions (``film + other`` makes one)
+=====================  ===========================================================
+
+Films with a kink or a step (``smooth = False``) have no Laplacian as a
+function, which the substituted ``pi`` form needs: the solvers then use the
+direct form and say so. Their steps are exact in the direct form, because the
+wedge source is integrated by parts (:func:`bearingfe.film.forms.couette_source`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
+from typing import Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
 from ..core.checks import MAX_GAMMA, check_angle
 
-__all__ = ["Film", "CosineFilm", "UniformFilm", "smallest_film"]
+__all__ = ["Film", "CosineFilm", "UniformFilm", "TaperFilm", "TaperLandFilm", "ProfileFilm", "StepFilm", "SumFilm",
+           "is_smooth", "smallest_film"]
 
 
 @runtime_checkable
@@ -43,14 +63,31 @@ class Film(Protocol):
     def minimum(self, phi_range: tuple[float, float]) -> float | None:
         """Exact smallest ``h`` over ``phi_range`` if known, else None."""
 
-    # Optional, not part of the protocol: ``fields_from_angles(cos_phi, sin_phi)`` returning
+    # Optional, not part of the protocol: ``smooth`` (bool, default True): False for a film with a
+    # kink or a step, whose Laplacian is no function (see is_smooth). ``fields_from_angles(cos_phi, sin_phi)`` returning
     # ``(h, (dh/dphi, dh/dz), laplacian, shapes)`` at points whose angles' cosines and sines are
     # given (:meth:`CosineFilm.fields_from_angles`); :func:`bearingfe.film.forms.film_at` uses it when
     # the caller passes them, which spares the trigonometric calls of every film state.
 
 
+class _Addable:
+    """``film + other``: the :class:`SumFilm` of a base film and a static addition."""
+
+    smooth = True
+
+    def __add__(self, other) -> "SumFilm":
+        if not isinstance(other, Film):
+            return NotImplemented
+        return SumFilm(self, (other,))
+
+
+def is_smooth(film) -> bool:
+    """True if the film has a Laplacian as a function (no kink, no step): ``film.smooth``, default True."""
+    return bool(getattr(film, "smooth", True))
+
+
 @dataclass(frozen=True)
-class CosineFilm:
+class CosineFilm(_Addable):
     """Rigid journal in a circular bore: ``h = 1 + gamma cos(phi - phi0)``.
 
     Parameters
@@ -125,7 +162,7 @@ class CosineFilm:
 
 
 @dataclass(frozen=True)
-class UniformFilm:
+class UniformFilm(_Addable):
     """Parallel surfaces: ``h`` the same everywhere (a flat slider, or a squeeze film).
 
     Parameters
@@ -159,6 +196,338 @@ class UniformFilm:
 
     def minimum(self, phi_range: tuple[float, float]) -> float:
         return self.h
+
+
+
+def _zeros(phi, z) -> np.ndarray:
+    return 0.0 * np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+
+
+def _positive_film(name: str, value) -> float:
+    value = float(value)
+    if not (math.isfinite(value) and value > 0.0):
+        raise ValueError(f"{name} must be a finite film thickness > 0 [c], got {value!r}")
+    return value
+
+
+class _Profile(_Addable):
+    """A film that varies along one direction only: ``h = profile(s)``, ``s = (phi, z) . (cos a, sin a)``.
+
+    Subclasses give :meth:`knots` (abscissae ``s`` and thicknesses, piecewise linear
+    between them, constant beyond the ends unless :attr:`extend` is True) and
+    ``direction`` (the angle ``a`` [rad] of the direction in the ``(phi, z)`` plane,
+    0: along the sliding). The state variable is a uniform change of the film, so the
+    squeeze shapes are ``(1, 0)``: ``squeeze = (dh/dt, 0)``.
+    """
+
+    extend = False
+
+    def knots(self) -> tuple[np.ndarray, np.ndarray]:  # pragma: no cover - every subclass defines it
+        raise NotImplementedError
+
+    def _s(self, phi, z) -> np.ndarray:
+        a = float(self.direction)
+        return np.asarray(phi, float) * math.cos(a) + np.asarray(z, float) * math.sin(a)
+
+    def thickness(self, phi, z):
+        s, h = self.knots()
+        x = self._s(phi, z)
+        if self.extend:  # one straight segment, extended: an inclined plane
+            return h[0] + (h[1] - h[0]) * (x - s[0]) / (s[1] - s[0])
+        return _interpolate(x, s, h)
+
+    def _slope(self, x: np.ndarray) -> np.ndarray:
+        s, h = self.knots()
+        if self.extend:
+            return np.full(np.shape(x), (h[1] - h[0]) / (s[1] - s[0]))
+        out = np.zeros(np.shape(x))
+        for k in range(len(s) - 1):
+            if s[k + 1] > s[k]:
+                inside = (x > s[k]) & (x < s[k + 1])
+                out = np.where(inside, (h[k + 1] - h[k]) / (s[k + 1] - s[k]), out)
+        return out
+
+    def gradient(self, phi, z):
+        g = self._slope(self._s(phi, z)) + _zeros(phi, z)
+        a = float(self.direction)
+        return g * math.cos(a), g * math.sin(a)
+
+    def laplacian(self, phi, z):
+        return _zeros(phi, z)
+
+    def rate_shapes(self, phi, z):
+        zero = _zeros(phi, z)
+        return zero + 1.0, zero
+
+    def minimum(self, phi_range: tuple[float, float]) -> float | None:
+        """Exact when the profile runs along ``phi`` (``direction = 0``); None otherwise."""
+        if float(self.direction) != 0.0:
+            return None
+        s, h = self.knots()
+        lo, hi = phi_range
+        inside = (s > lo) & (s < hi)
+        ends = self.thickness(np.array([lo, hi]), np.zeros(2))
+        return float(min(np.min(ends), np.min(h[inside], initial=np.inf)))
+
+
+@dataclass(frozen=True)
+class TaperFilm(_Profile):
+    """An inclined plane: ``h_in`` at ``s = start`` falling linearly to ``h_out`` at ``s = end`` (the
+    inclined-slider pad), extended linearly beyond.
+
+    Parameters
+    ----------
+    h_in, h_out : float
+        Film at ``start`` and at ``end`` [c], > 0.
+    start, end : float
+        Abscissae along the direction [-] (``phi`` [rad] for ``direction = 0``), ``start != end``.
+    direction : float
+        Angle of the taper's direction in the ``(phi, z)`` plane [rad]; 0 runs along the sliding.
+
+    Notes
+    -----
+    The plane has no kink, so it is smooth (``laplacian = 0``). A plane that
+    reaches ``h <= 0`` on the surface is refused by the solvers.
+    """
+
+    h_in: float
+    h_out: float
+    start: float = 0.0
+    end: float = 1.0
+    direction: float = 0.0
+    extend = True
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "h_in", _positive_film("TaperFilm.h_in", self.h_in))
+        object.__setattr__(self, "h_out", _positive_film("TaperFilm.h_out", self.h_out))
+        _check_abscissae("TaperFilm", (self.start, self.end), strict=True)
+        object.__setattr__(self, "direction", check_angle(self.direction, "TaperFilm.direction"))
+
+    def knots(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.array([float(self.start), float(self.end)]), np.array([self.h_in, self.h_out])
+
+
+@dataclass(frozen=True)
+class TaperLandFilm(_Profile):
+    """A taper down to a flat land: ``h_land + depth`` at ``s = start``, falling linearly to ``h_land``
+    at ``s = land_start``, flat ``h_land`` beyond (and ``h_land + depth`` before ``start``).
+
+    Parameters
+    ----------
+    h_land : float
+        Film over the land [c], > 0.
+    depth : float
+        Extra film at the taper's leading edge [c], >= 0.
+    start, land_start : float
+        Abscissae along the direction where the taper begins and the land begins [-],
+        ``start < land_start``.
+    direction : float
+        Angle of the direction in the ``(phi, z)`` plane [rad]; 0 runs along the sliding.
+    """
+
+    h_land: float
+    depth: float
+    start: float = 0.0
+    land_start: float = 0.5
+    direction: float = 0.0
+    smooth = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "h_land", _positive_film("TaperLandFilm.h_land", self.h_land))
+        depth = float(self.depth)
+        if not (math.isfinite(depth) and depth >= 0.0):
+            raise ValueError(f"TaperLandFilm.depth must be a finite number >= 0 [c], got {self.depth!r}")
+        object.__setattr__(self, "depth", depth)
+        _check_abscissae("TaperLandFilm", (self.start, self.land_start), strict=True)
+        object.__setattr__(self, "direction", check_angle(self.direction, "TaperLandFilm.direction"))
+
+    def knots(self) -> tuple[np.ndarray, np.ndarray]:
+        return (np.array([float(self.start), float(self.land_start)]),
+                np.array([self.h_land + self.depth, self.h_land]))
+
+
+@dataclass(frozen=True)
+class ProfileFilm(_Profile):
+    """Any piecewise-linear film profile along one direction, steps allowed.
+
+    Parameters
+    ----------
+    points : sequence of (s, h)
+        Abscissae along the direction [-] (non-decreasing) and the film there [c] (> 0),
+        linear in between and constant beyond the ends. Two points at the same ``s``
+        make a step, e.g. the Rayleigh step ``((0, h1), (a, h1), (a, h2), (L, h2))``;
+        the film at the step itself takes the second value.
+    direction : float
+        Angle of the direction in the ``(phi, z)`` plane [rad]; 0 runs along the sliding
+        (a step line across the sliding), ``pi/2`` across it.
+    """
+
+    points: tuple
+    direction: float = 0.0
+
+    def __post_init__(self) -> None:
+        try:
+            pts = tuple((float(s), float(h)) for s, h in self.points)
+        except (TypeError, ValueError):
+            raise ValueError(f"ProfileFilm.points must be (s, h) pairs of numbers, got {self.points!r}") from None
+        if len(pts) < 2:
+            raise ValueError(f"ProfileFilm.points must have at least 2 points, got {len(pts)}")
+        _check_abscissae("ProfileFilm", [s for s, _ in pts], strict=False)
+        for s, h in pts:
+            _positive_film(f"ProfileFilm.points h at s = {s:g}", h)
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "direction", check_angle(self.direction, "ProfileFilm.direction"))
+
+    @property
+    def smooth(self) -> bool:
+        """One straight piece only (no kink, no step inside the profile)."""
+        return len(self.points) == 2 or all(self._slopes_equal())
+
+    def _slopes_equal(self):
+        s, h = self.knots()
+        slopes = [(h[k + 1] - h[k]) / (s[k + 1] - s[k]) if s[k + 1] > s[k] else math.inf for k in range(len(s) - 1)]
+        return [math.isclose(a, slopes[0], rel_tol=1e-12, abs_tol=1e-15) for a in slopes]
+
+    def knots(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.array([s for s, _ in self.points]), np.array([h for _, h in self.points])
+
+
+def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """Piecewise-linear ``h(x)`` through the knots ``(s, h)``, constant beyond the ends and right-continuous
+    at a step (two knots at one abscissa: the film at the step is the second one)."""
+    x = np.asarray(x, float)
+    k = np.clip(np.searchsorted(s, x, side="right") - 1, 0, len(s) - 2)
+    while True:  # a zero-length segment (a step) is never the one that holds x: move to the next
+        flat = s[k + 1] <= s[k]
+        if not np.any(flat & (k < len(s) - 2)):
+            break
+        k = np.where(flat & (k < len(s) - 2), k + 1, k)
+    span = s[k + 1] - s[k]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inner = h[k] + (h[k + 1] - h[k]) * (x - s[k]) / np.where(span > 0, span, 1.0)
+    return np.where(x < s[0], h[0], np.where(x >= s[-1], h[-1], inner))
+
+
+def _check_abscissae(owner: str, values: Sequence[float], strict: bool) -> None:
+    s = [float(v) for v in values]
+    if not all(math.isfinite(v) for v in s):
+        raise ValueError(f"{owner}: abscissae must be finite numbers, got {list(values)!r}")
+    ordered = all(b > a for a, b in zip(s, s[1:])) if strict else all(b >= a for a, b in zip(s, s[1:]))
+    if not ordered or (not strict and s[-1] <= s[0]):
+        rule = "strictly increasing" if strict else "non-decreasing, with a positive length"
+        raise ValueError(f"{owner}: abscissae must be {rule}, got {s!r}")
+
+
+@dataclass(frozen=True)
+class StepFilm(_Addable):
+    """A base film deepened by ``depth`` over a region of any outline (a step, a recess, a pocket).
+
+    ``h = base.h + depth`` inside ``region``, ``base.h`` outside. The region's edge
+    is a step of the film; a mesh whose element edges follow it integrates the step
+    exactly (elsewhere the step is integrated by quadrature points: first order).
+
+    Parameters
+    ----------
+    region : Shape
+        A closed region in the ``(phi, z)`` plane (:class:`bearingfe.Rectangle`,
+        :class:`bearingfe.Circle`, :class:`bearingfe.Polygon`, ...).
+    depth : float
+        Added film inside the region [c], finite; it may be negative (a raised pad)
+        as long as the film stays > 0.
+    base : Film
+        The film outside the region (its squeeze shapes are the step film's).
+    """
+
+    region: object
+    depth: float
+    base: Film
+    smooth = False
+
+    def __post_init__(self) -> None:
+        if not callable(getattr(self.region, "contains", None)):
+            raise ValueError(f"StepFilm.region must be a bearingfe shape (Circle, Rectangle, Polygon, ...), "
+                             f"got {type(self.region).__name__}")
+        depth = float(self.depth)
+        if not math.isfinite(depth):
+            raise ValueError(f"StepFilm.depth must be a finite number [c], got {self.depth!r}")
+        object.__setattr__(self, "depth", depth)
+        if not isinstance(self.base, Film):
+            raise ValueError(f"StepFilm.base must be a film (the bearingfe.Film protocol), got {type(self.base).__name__}")
+
+    def _inside(self, phi, z) -> np.ndarray:
+        phi, z = np.broadcast_arrays(np.asarray(phi, float), np.asarray(z, float))
+        return np.asarray(self.region.contains(phi.ravel(), z.ravel()), bool).reshape(phi.shape)
+
+    def thickness(self, phi, z):
+        return np.asarray(self.base.thickness(phi, z), float) + self.depth * self._inside(phi, z)
+
+    def gradient(self, phi, z):
+        return self.base.gradient(phi, z)
+
+    def laplacian(self, phi, z):
+        return self.base.laplacian(phi, z)
+
+    def rate_shapes(self, phi, z):
+        return self.base.rate_shapes(phi, z)
+
+    def minimum(self, phi_range: tuple[float, float]) -> float | None:
+        """The base film's minimum when the step only deepens it (``depth >= 0``); else None."""
+        if self.depth < 0:
+            return None
+        base = self.base.minimum(phi_range) if hasattr(self.base, "minimum") else None
+        return None if base is None else float(base)
+
+
+@dataclass(frozen=True)
+class SumFilm(_Addable):
+    """A base film plus static additions: ``h = base.h + sum(extra.h)``.
+
+    The squeeze shapes are the base film's (the additions are fixed geometry:
+    tapers, steps, lands machined into the surface). ``CosineFilm(0.5) +
+    TaperLandFilm(...)`` makes one.
+
+    Parameters
+    ----------
+    base : Film
+    extras : tuple of Film
+        Each adds its thickness, gradient and Laplacian.
+    """
+
+    base: Film
+    extras: tuple = ()
+
+    def __post_init__(self) -> None:
+        extras = tuple(self.extras)
+        for f in (self.base, *extras):
+            if not isinstance(f, Film):
+                raise ValueError(f"SumFilm terms must be films (the bearingfe.Film protocol), got {type(f).__name__}")
+        object.__setattr__(self, "extras", extras)
+
+    def __add__(self, other) -> "SumFilm":
+        if not isinstance(other, Film):
+            return NotImplemented
+        return SumFilm(self.base, (*self.extras, other))
+
+    @property
+    def smooth(self) -> bool:
+        return all(is_smooth(f) for f in (self.base, *self.extras))
+
+    def thickness(self, phi, z):
+        return sum((np.asarray(f.thickness(phi, z), float) for f in self.extras),
+                   np.asarray(self.base.thickness(phi, z), float))
+
+    def gradient(self, phi, z):
+        parts = [f.gradient(phi, z) for f in (self.base, *self.extras)]
+        return (sum(np.asarray(g[0], float) for g in parts), sum(np.asarray(g[1], float) for g in parts))
+
+    def laplacian(self, phi, z):
+        return sum(np.asarray(f.laplacian(phi, z), float) for f in (self.base, *self.extras))
+
+    def rate_shapes(self, phi, z):
+        return self.base.rate_shapes(phi, z)
+
+    def minimum(self, phi_range: tuple[float, float]) -> float | None:
+        return None
 
 
 def smallest_film(film: Film, phi_range: tuple[float, float], values: np.ndarray | None = None,
