@@ -107,21 +107,14 @@ def _elastic_squeeze(pump):
     mesh = transient.pump_mesh(pump, 0.3)
     C = _compliance(pump, mesh)
     traj = transient.simulate_elastic(pump, C, 0.1, start="steady")
-    return traj, _elastic_state(pump, C, traj, 10)
+    return traj, transient.state_result(pump, mesh, traj, 10, elastic=C)
 
 
 def _elastic_periodic(pump):
     mesh = transient.pump_mesh(pump, 0.3)
     C = _compliance(pump, mesh)
     traj = transient.simulate_elastic(pump, C, 1.0, start="periodic", points_per_revolution=72)
-    return traj, _elastic_state(pump, C, traj, 37)
-
-
-def _elastic_state(pump, compliance, traj, k):
-    """The film of a sample of the squeeze model, whose pressure is a state of the run."""
-    import bearingfe.transient.elastic as module
-
-    return module.state_result(pump, compliance, traj, k)
+    return traj, transient.state_result(pump, mesh, traj, 37, elastic=C)
 
 
 #: The pinned runs by name: ``pump -> (Trajectory, ReynoldsResult of one sample)``.
