@@ -15,7 +15,7 @@ module            what it does
 ``settings``      ``Integration``: the frozen integration settings, checked once; the integrators.
 ``trajectory``    ``Trajectory``, the result, and the one place that builds it.
 ``events``        Events as plain functions with ``terminal``/``direction``: the film rupture.
-``stepping``      The one stepping loop of every model: trial states checked, events located.
+``stepping``      The one stepping loop: closing trial steps retaken shorter, events located.
 ``periodic``      The periodic start: Newton shooting, fixed point, Anderson, one revolution.
 ``driver``        One transient of any model: start, periodic start, output run, samples.
 ``rigid``         The rigid film (2x2 superposition rates); steady state, balance ratio, mesh.

@@ -19,9 +19,9 @@ method                   what it gives
 =======================  ===================================================================
 
 A trial state that closes the film raises :class:`FilmClosed` (a
-:class:`TrialRejected`, as is a step the model's own solver cannot take).
-A trial state where no film carries the load raises :class:`NoEquilibrium`:
-the run stops there.
+:class:`TrialRejected`, as is a step the model's own solver cannot take):
+the loop rejects the trial step and retakes it shorter. A trial state where
+no film carries the load raises :class:`NoEquilibrium`: the run stops there.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ __all__ = ["Model", "TrialRejected", "FilmClosed", "NoEquilibrium", "wrapped"]
 
 
 class TrialRejected(Exception):
-    """A trial step the model cannot take (message: why)."""
+    """A trial step the model cannot take (message: why): the stepping loop retakes it shorter."""
 
 
 class FilmClosed(TrialRejected):

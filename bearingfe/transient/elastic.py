@@ -442,8 +442,8 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
     -------
     Trajectory
         With ``max_deflection`` and ``pressures``; ``status`` is
-        ``"ruptured"`` when the film reaches 2 % of the clearance or a
-        trial state of the integrator closes it.
+        ``"ruptured"`` when an accepted state's film reaches 2 % of the
+        clearance (a trial step that closes the film is retaken shorter).
         ``stats``: ``nfev``, ``jacobians``, ``factorizations`` (of the
         integrator's Newton matrix), ``steps``, ``seconds``.
 

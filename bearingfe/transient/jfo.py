@@ -15,8 +15,11 @@ others), one step to each output sample. At each step the rates
 by Newton's method with a forward-difference Jacobian (each evaluation one
 JFO solve, warm-started from the last cavity), so that the film's mass is
 conserved from step to step (``solve_jfo(..., dt=, previous=)``). A Newton
-trial whose film closes raises :class:`~bearingfe.transient.base.FilmClosed`;
-a step whose Newton does not converge :class:`~bearingfe.transient.base.TrialRejected`.
+trial whose film closes is halved (line search); a step whose Newton cannot
+avoid closing the film raises :class:`~bearingfe.transient.base.FilmClosed`,
+and the loop retakes it shorter (the steps then grow back to the samples), as
+it does a step whose Newton does not converge or meets a singular Jacobian
+(:class:`~bearingfe.transient.base.TrialRejected`).
 
 Between steps the state is the linear interpolant (the dense output of a
 first-order method); the film at an angle inside a step (where the rupture
@@ -207,29 +210,41 @@ class JFO(Model):
 
         r = np.asarray(state.rates, float)
         res, R = force(r, prev)
-        for k in range(1, self.max_newton + 1):
+        for k in range(self.max_newton + 1):
             if np.hypot(*R) <= self.tol * scale:
-                self.newton_iterations += k - 1
+                self.newton_iterations += k
                 accepted = JFOState(y + dbeta * r, r, res)
                 self.states[float(beta)] = accepted
                 return accepted
+            if k == self.max_newton:
+                break
             J = np.zeros((2, 2))
             for j in range(2):
                 h = 1e-6 * max(1.0, abs(r[j]))
                 d = np.zeros(2)
                 d[j] = h
                 J[:, j] = (force(r + d, res)[1] - R) / h
-            step = -np.linalg.solve(J, R)
+            try:
+                step = -np.linalg.solve(J, R)
+            except np.linalg.LinAlgError:
+                raise TrialRejected(f"JFO step to beta = {beta:.4f} rad: the Jacobian of the load balance in the "
+                                    f"rates is singular") from None
             r, res, R = self._line_search(force, r, step, res, R)
         raise TrialRejected(f"JFO step to beta = {beta:.4f} rad: Newton on the rates did not converge in "
                             f"{self.max_newton} iterations (|force + load| / |load| = {np.hypot(*R) / scale:.3g})")
 
     @staticmethod
     def _line_search(force, r, step, res, R):
-        """Backtracking on ``|force + load|``."""
+        """Backtracking on ``|force + load|``; a trial that closes the film counts as no decrease."""
         t = 1.0
         while True:
-            trial, Rt = force(r + t * step, res)
+            try:
+                trial, Rt = force(r + t * step, res)
+            except FilmClosed:
+                if t < 1e-3:
+                    raise
+                t *= 0.5
+                continue
             if np.hypot(*Rt) < (1 - 1e-4 * t) * np.hypot(*R) or t < 1e-3:
                 return r + t * step, trial, Rt
             t *= 0.5

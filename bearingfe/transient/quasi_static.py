@@ -208,6 +208,12 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
 
     Notes
     -----
+    A trial step of the integrator whose state closes the film is rejected
+    and retaken from the last accepted state, shorter
+    (:mod:`bearingfe.transient.stepping`); the run ends as ``"ruptured"`` only
+    where an accepted state's film reaches ``min_film`` (located on the
+    integrator's dense output).
+
     The defaults (P2 on a curved 0.2 R0 mesh, LSODA, ``rtol = 1e-5``) are
     the cheapest setting measured within 0.1 % of the converged smallest
     film on the shipped pump, periodic start included, that stays there on

@@ -24,7 +24,7 @@ from ..core.limits import check_limit
 from .periodic import PERIODIC_METHODS
 from .trajectory import Trajectory
 
-__all__ = ["Integration", "INTEGRATORS", "IMPLICIT_INTEGRATORS", "STARTS", "positive"]
+__all__ = ["Integration", "INTEGRATORS", "IMPLICIT_INTEGRATORS", "STARTS", "MIN_STEP", "positive"]
 
 #: Named starting states (besides a given ``(gamma, delta)`` or a trajectory to continue).
 STARTS = ("periodic", "steady")
@@ -36,6 +36,10 @@ INTEGRATORS: Mapping[str, type] = MappingProxyType({"Radau": si.Radau, "BDF": si
                                                    "RK23": si.RK23, "RK45": si.RK45})
 #: The implicit (or stiffness-switching) ones of :data:`INTEGRATORS`, for stiff systems.
 IMPLICIT_INTEGRATORS = ("Radau", "BDF", "LSODA")
+
+#: Default floor of a step [rad] retaken after its trial closed the film: below it the run stops as "stalled".
+MIN_STEP = 1e-9
+
 
 def positive(name: str, value) -> float:
     """``value`` as a float if it is a finite number > 0, else a ``ValueError`` naming ``name``."""
@@ -70,6 +74,12 @@ class Integration:
         ``1e-3 rtol``.
     max_step : float
         Largest step [rad], > 0.
+    min_step : float
+        Floor [rad], in (0, ``max_step``), of a step retaken shorter: a
+        trial step whose state closes the film (or that the model's own
+        solver rejects) is retaken from the last accepted state with half
+        the length (:mod:`bearingfe.transient.stepping`); below this floor
+        the run stops as ``"stalled"``.
     min_film : float
         Smallest film [c] (clearances), in (0, 1): an accepted state whose
         smallest film reaches it ends the run as ``"ruptured"``.
@@ -95,6 +105,7 @@ class Integration:
     rtol: float = 1e-5
     atol: float | None = None
     max_step: float = math.pi / 8
+    min_step: float = MIN_STEP
     min_film: float = 0.02
     points_per_revolution: int = 180
     periodic_method: str | None = None
@@ -113,13 +124,15 @@ class Integration:
             raise ValueError(f"beta0 must be a finite angle [rad], got {self.beta0!r}")
         if not (isinstance(self.method, str) and self.method in INTEGRATORS):
             raise ValueError(f"method must be one of {list(INTEGRATORS)}, got {self.method!r}")
-        for name in ("rtol", "max_step", "periodic_tol"):
+        for name in ("rtol", "max_step", "min_step", "periodic_tol"):
             set_(self, name, positive(name, getattr(self, name)))
         if self.atol is not None:
             set_(self, "atol", positive("atol", self.atol))
         if not self.rtol < 1:
             raise ValueError(f"rtol must be in (0, 1) (a relative tolerance of 1 or more allows 100 % error), "
                              f"got {self.rtol!r}")
+        if not self.min_step < self.max_step:
+            raise ValueError(f"min_step must be in (0, max_step = {self.max_step:g} rad), got {self.min_step!r}")
         if not (isinstance(self.min_film, (int, float)) and 0 < self.min_film < 1):
             raise ValueError(f"min_film must be in (0, 1) clearances, got {self.min_film!r}")
         set_(self, "points_per_revolution", _count("points_per_revolution", self.points_per_revolution, 8))

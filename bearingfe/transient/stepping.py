@@ -4,10 +4,15 @@
 a scipy :class:`~scipy.integrate.OdeSolver`) one accepted step at a time:
 
 * a trial state that closes the film (:class:`~bearingfe.transient.base.FilmClosed`
-  raised inside ``step()``) ends the run at the last accepted state as
-  ``"ruptured"`` (as the three drivers this loop replaces did); any other
-  trial step the model cannot take (:class:`~bearingfe.transient.base.TrialRejected`)
-  raises ``RuntimeError``;
+  raised inside ``step()``), or any trial step the model cannot take
+  (:class:`~bearingfe.transient.base.TrialRejected`: the JFO step's Newton
+  that does not converge) rejects the trial: the integrator is restarted
+  from the last accepted state with its first and largest step half as
+  long as the last step it accepted, halved again at every further
+  rejection; after :data:`CALM_STEPS` accepted steps without one it is
+  restarted with the settings' ``max_step`` again. Below the floor
+  ``min_step`` the run stops as ``"stalled"`` with the angle and the
+  reason in its message;
 * after each accepted step the film-rupture event
   (:func:`bearingfe.transient.events.film_rupture`) is evaluated; when it
   has happened its angle is located on the step's dense output and the
@@ -29,7 +34,10 @@ import numpy as np
 from .base import FilmClosed, NoEquilibrium, TrialRejected
 from .events import crossed, film_rupture, locate
 
-__all__ = ["Run", "integrate", "states_at"]
+__all__ = ["Run", "integrate", "states_at", "CALM_STEPS"]
+
+#: Accepted steps after a rejected trial before the integrator may take steps of ``max_step`` again.
+CALM_STEPS = 8
 
 
 @dataclass
@@ -53,6 +61,9 @@ class Run:
         Accepted steps.
     factorizations : int
         LU decompositions of the integrators' Newton matrices (implicit methods).
+    retakes : int
+        Rejected trial steps (their state closed the film, or the model's own
+        solver failed) taken again shorter.
     """
 
     segments: list = field(default_factory=list)
@@ -63,6 +74,7 @@ class Run:
     rupture_beta: float = math.nan
     steps: int = 0
     factorizations: int = 0
+    retakes: int = 0
 
     def stop(self, status: str, beta: float, y: np.ndarray, message: str) -> Run:
         """End the run at ``(beta, y)`` with ``status`` (not ``"completed"``)."""
@@ -73,6 +85,18 @@ class Run:
 
 def _degrees(beta: float) -> str:
     return f"beta = {beta:.4f} rad ({math.degrees(beta) % 360:.1f} deg)"
+
+
+def _shorter(stepper, retaken: float | None, settings) -> float:
+    """Length of the step to retake after a rejected trial [rad]: half the last step this integrator
+    accepted; if it accepted none, half the step it tried (``h_abs``, as scipy's integrators name the
+    next step; LSODA does not say), else half the previous retaken step, else half of ``max_step``."""
+    base = stepper.step_size
+    if base is None:
+        known = settings.max_step if retaken is None else retaken
+        tried = getattr(stepper, "h_abs", None)
+        base = known if tried is None else min(float(tried), known)
+    return 0.5 * float(base)
 
 
 def integrate(model, y0, angles: np.ndarray, settings) -> Run:
@@ -98,16 +122,26 @@ def integrate(model, y0, angles: np.ndarray, settings) -> Run:
                                                   f"{settings.min_film:.4g} c at {_degrees(beta0)}"))
         return run
     stepper = model.stepper(beta0, y0, angles, settings, None, None)
-    while stepper.status == "running":
+    retaken, calm = None, 0  # the last retaken step [rad] and the accepted steps since
+    while stepper is not None and stepper.status == "running":
         beta_old, y_old = float(stepper.t), np.array(stepper.y, float)
         try:
             note = stepper.step()
-        except FilmClosed:
-            run.stop("ruptured", beta_old, y_old, f"film closed (h <= 0) in a trial step after {_degrees(beta_old)}; "
-                                                  f"stopped at the last accepted state")
-            break
         except TrialRejected as exc:
-            raise RuntimeError(str(exc)) from None
+            retaken = _shorter(stepper, retaken, settings)
+            run.factorizations += int(stepper.nlu)
+            if retaken < settings.min_step:
+                why = "closed the film (h <= 0)" if isinstance(exc, FilmClosed) else f"was rejected ({exc})"
+                run.stop("stalled", beta_old, y_old,
+                         f"every trial step after {_degrees(beta_old)} down to the floor min_step = "
+                         f"{settings.min_step:g} rad {why}; stopped at the last accepted state "
+                         f"(smallest film {model.smallest_film(beta_old, y_old):.4g} c)")
+                stepper = None  # its factorizations are counted
+                break
+            run.retakes += 1
+            stepper = model.stepper(beta_old, y_old, angles, settings, retaken, retaken)
+            calm = 0
+            continue
         except NoEquilibrium as exc:
             run.stop("no-equilibrium", beta_old, y_old, f"{exc}; stopped at the last accepted state "
                                                        f"(beta = {beta_old:.4f} rad)")
@@ -128,10 +162,17 @@ def integrate(model, y0, angles: np.ndarray, settings) -> Run:
             break
         before = after
         run.segments.append((beta_old, beta, dense))
+        if retaken is not None:
+            calm += 1
+            if calm >= CALM_STEPS and stepper.status == "running":  # trouble passed: the full max_step again
+                run.factorizations += int(stepper.nlu)
+                stepper = model.stepper(beta, y, angles, settings, stepper.step_size, None)
+                retaken, calm = None, 0
     if run.status == "completed":
         run.end, run.y_end = float(stepper.t), np.asarray(stepper.y, float)
         run.message = f"completed {(run.end - beta0) / (2 * math.pi):.4g} revolutions"
-    run.factorizations += int(stepper.nlu)
+    if stepper is not None:
+        run.factorizations += int(stepper.nlu)
     model.end(run)
     return run
 

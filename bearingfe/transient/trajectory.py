@@ -54,15 +54,17 @@ class Trajectory:
     mass_balance : ndarray
         ``inlet - side - arc - squeeze`` [m^3/s].
     status : str
-        One of :data:`STATUSES`: ``"completed"``; ``"ruptured"`` (the
-        smallest film reached ``min_film``, located on the integrator's dense
-        output, or a trial state of the integrator closed the film);
-        ``"no-equilibrium"`` (on an elastic support, the coupled film found
-        no deflection that carries the load: the support is too soft for it
-        there, or the quasi-static model has no solution; the message says
-        where and why); or ``"stalled"`` (the integrator failed; the message
-        names the angle). A run that did not complete ends at its last
-        accepted state (a rupture: at the located angle).
+        One of :data:`STATUSES`: ``"completed"``; ``"ruptured"`` (an
+        accepted state's smallest film reached ``min_film``, located on the
+        integrator's dense output); ``"no-equilibrium"`` (on an elastic
+        support, the coupled film found no deflection that carries the load:
+        the support is too soft for it there, or the quasi-static model has
+        no solution; the message says where and why); or ``"stalled"`` (every
+        trial step from the last accepted state, down to the floor
+        ``min_step``, closed the film or was rejected by the model's own
+        solver, or the integrator itself failed; the message names the
+        angle and the reason). A run that did not complete ends at its
+        last accepted state (a rupture: at the located angle).
     message : str
     rupture_beta : float
         Shaft angle where a run that did not complete stopped [rad]; NaN if
