@@ -13,7 +13,7 @@ import numpy as np
 
 from ..bearings.pump import EccentricPump
 from ..cavitation import rates_for_load
-from ..core.linalg import DEFAULT_SOLVER
+from ..core import DEFAULT_SOLVER
 from ..film import Superposition
 from ..geometry import SupportMesh
 from .rigid import Rigid

@@ -72,7 +72,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from ..bearings.pump import EccentricPump
-from ..core.linalg import DEFAULT_SOLVER, dense_threads
+from ..core import DEFAULT_SOLVER
+from ..core.linalg import dense_threads
 from ..elastic import Compliance, ElasticError, balance_load, check_dense_size
 from ..film import CosineFilm, operators
 from .base import FilmClosed, Model, NoEquilibrium

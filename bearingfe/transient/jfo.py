@@ -37,7 +37,7 @@ import numpy as np
 from scipy.integrate import DenseOutput, OdeSolver
 
 from ..bearings.pump import EccentricPump
-from ..core.linalg import DEFAULT_SOLVER
+from ..core import DEFAULT_SOLVER
 from ..film import CosineFilm, ReynoldsResult, solve_jfo
 from ..geometry import SupportMesh
 from .base import FilmClosed, Model, TrialRejected

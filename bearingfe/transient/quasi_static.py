@@ -23,8 +23,8 @@ from types import MappingProxyType
 from typing import Mapping
 
 from ..bearings.pump import EccentricPump
-from ..core.linalg import DEFAULT_SOLVER
-from ..core.parameters import Discretization, takes
+from ..core import DEFAULT_SOLVER, Discretization
+from ..core.parameters import takes
 from ..elastic import Compliance
 from ..geometry import SupportMesh
 from ..reynolds import CAVITATION

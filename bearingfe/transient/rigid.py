@@ -34,8 +34,8 @@ import numpy as np
 from scipy.optimize import root
 
 from ..bearings.pump import EccentricPump
-from ..core.linalg import DEFAULT_SOLVER
-from ..core.parameters import Discretization, takes
+from ..core import DEFAULT_SOLVER, Discretization
+from ..core.parameters import takes
 from ..film import CosineFilm, Superposition, film_outputs, source_weights, superpose
 from ..geometry import SupportMesh, mesh_surface
 from .base import FilmClosed, Model

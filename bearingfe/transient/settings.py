@@ -20,7 +20,7 @@ from typing import Mapping
 import numpy as np
 import scipy.integrate as si
 
-from ..core.limits import check_limit
+from ..core import check_limit
 from .periodic import PERIODIC_METHODS
 from .trajectory import Trajectory
 
