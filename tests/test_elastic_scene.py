@@ -122,7 +122,7 @@ def test_pump_scene_on_the_real_shoe_body(tmp_path):
     # model = "shoe": the scene builds the machine file's shoe body (bearingfe.elastic.shoe) and runs the
     # squeeze model on it; the same run through the API gives the same smallest film (deterministic)
     import bearingfe as bf
-    from bearingfe.transient.elastic import simulate_elastic
+    from bearingfe.transient import simulate_elastic
     from bearingfe.elastic.shoe import shoe_compliance
 
     path = _scene(tmp_path, pictures='["trajectory"]', plain="false")

@@ -13,7 +13,7 @@ import pytest
 
 import bearingfe as bf
 from bearingfe.elastic import half_space
-from bearingfe.transient.elastic import simulate_elastic
+from bearingfe.transient import simulate_elastic
 
 PUMP = bf.load_mechanism("mechanisms/eccentric_pump.toml")
 
@@ -51,11 +51,11 @@ def test_bad_inputs_are_named(setup):
 
 
 def test_state_result_balances_the_load(setup):
-    from bearingfe.transient.elastic import state_result
+    from bearingfe.transient import state_result
 
     mesh, C = setup
     traj = simulate_elastic(PUMP, C, 0.02, start="steady", beta0=1.2, points_per_revolution=100)
-    res = state_result(PUMP, C, traj, traj.beta.size - 1)
+    res = state_result(PUMP, mesh, traj, traj.beta.size - 1, elastic=C)
     # film force + applied load = 0 up to the Baumgarte-stabilized drift (integrator tolerance)
     np.testing.assert_allclose(res.force, -traj.load[-1], atol=1e-4 * np.abs(traj.load[-1]).max())
     assert res.max_deflection * PUMP.clearance == pytest.approx(traj.max_deflection[-1], rel=1e-12)

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from bearingfe.cli import main
-from bearingfe.transient.quasi_static import state_result
+from bearingfe.transient import state_result
 from bearingfe.scenes import SceneError, load_scene
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -13,7 +13,7 @@ import pytest
 
 import bearingfe as bf
 from bearingfe.bearings.pump import PressureCycle
-from bearingfe.transient.quasi_static import LiftOffError, pump_mesh
+from bearingfe.transient import LiftOffError, pump_mesh
 
 SIZE = 0.15  # the shared pump meshes of conftest.py (pocket_mesh, plain_mesh) have this size
 
@@ -132,7 +132,7 @@ def test_missing_steady_state_is_reported_with_its_cause(pump):
     # (25 x 73 grid, P1) the smallest relative force residual is 0.05, at gamma = 0.94 -- no steady
     # state short of contact, so the error is physical, not the solver's. The message says so.
     from bearingfe.sweep import pocket_fraction, pocket_position
-    from bearingfe.transient.quasi_static import steady_state
+    from bearingfe.transient import steady_state
     upstream = dataclasses.replace(pump, surface=pocket_position(pocket_fraction(pump.surface, 0.12), 0.35))
     with pytest.raises(RuntimeError, match="no steady state.*cannot carry this load.*periodic"):
         steady_state(upstream, pump_mesh(upstream, SIZE), beta=math.pi / 2)

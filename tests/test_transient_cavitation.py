@@ -28,7 +28,7 @@ def test_cavitated_states_balance_the_load_with_nonnegative_pressure(pump):
     traj = bf.simulate(wide, mesh, 0.5, cavitation="reynolds", **run)
     plain = bf.simulate(wide, mesh, 0.5, cavitation="none", **run)
     assert traj.status == "completed"
-    model = bf.transient.quasi_static._Model(wide, mesh, "pi", "P1", "splu", "reynolds")
+    model = bf.transient.Cavitating(wide, mesh, cavitation="reynolds", element="P1", solver="splu")
     ruptured = 0
     for k in range(0, traj.beta.size, 6):
         rates, res = model.balance(traj.beta[k], np.array([traj.gamma[k], traj.delta[k]]))

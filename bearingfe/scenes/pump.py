@@ -79,7 +79,7 @@ def _cavitation_models() -> tuple[str, ...]:
 
 
 def _starts() -> tuple[str, ...]:
-    from ..transient.quasi_static import STARTS
+    from ..transient import STARTS
 
     return tuple(STARTS)
 
@@ -123,8 +123,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from ..geometry.surface import Surface
     from ..io.writers import write_csv, write_json, write_pvd
     from ..mechanisms.files import load_mechanism
-    from ..transient.elastic import simulate_elastic
-    from ..transient.quasi_static import pump_mesh, simulate, state_result
+    from ..transient import pump_mesh, simulate, simulate_elastic, state_result
 
     s = pump_settings(data, label, base_dir)
     check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
@@ -196,16 +195,11 @@ def _compliance(pump, mesh, element: str, model: str):
 
 def _thinnest(pump, mesh, traj, run: dict, compliance=None) -> dict:
     """The film state of a run at its thinnest film, re-solved, with its SI figures."""
-    from ..transient.quasi_static import state_result
-
-    from ..transient.elastic import state_result as pressure_state
+    from ..transient import state_result
 
     k = int(np.argmin(traj.h_min))
-    if traj.pressures is not None:  # the squeeze model: the pressure is a state of the run
-        res = pressure_state(pump, compliance, traj, k)
-    else:
-        res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"],
-                           elastic=compliance if traj.max_deflection is not None else None)
+    res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"],
+                       elastic=compliance if traj.max_deflection is not None else None)
     sc = pump.scale
     d = res.basis.doflocs
     h = np.asarray(res.film.thickness(d[0], d[1]))

@@ -128,7 +128,7 @@ class PumpCase:
     def __post_init__(self) -> None:
         from ..cavitation import MODELS
         from ..bearings.pump import EccentricPump
-        from ..transient.quasi_static import STARTS
+        from ..transient import STARTS
 
         if not isinstance(self.pump, EccentricPump):
             raise ValueError(f"PumpCase.pump must be a bearingfe.EccentricPump, got {type(self.pump).__name__}")
@@ -158,7 +158,7 @@ class PumpOutcome:
 
 def run_pump(case: PumpCase) -> PumpOutcome:
     """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
-    from ..transient.quasi_static import pump_mesh, simulate, state_result
+    from ..transient import pump_mesh, simulate, state_result
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
