@@ -9,7 +9,8 @@ import pytest
 import bearingfe
 from bearingfe.cli import main
 from bearingfe.geometry.meshing import load_mesh
-from bearingfe.scenes import SceneError, load_scene, reynolds_settings
+from bearingfe.scenes import SceneError, load_scene
+from bearingfe.scenes.reynolds import settings as reynolds_settings
 
 ROOT = Path(__file__).resolve().parents[1]
 

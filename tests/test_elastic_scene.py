@@ -87,7 +87,7 @@ def test_quasi_static_dynamics_with_cavitation(tmp_path):
 
 
 def test_deflection_picture_needs_the_elastic_run(tmp_path):
-    from bearingfe.scenes.pump import pump_settings
+    from bearingfe.scenes.pump import settings as pump_settings
 
     data, label = load_scene(_scene(tmp_path, enabled="false"))
     with pytest.raises(SceneError, match=r"\[output\] pictures: 'deflection' needs \[elastic\] enabled"):

@@ -20,7 +20,7 @@ import pytest
 
 from bearingfe.cli import main
 from bearingfe.bearings.journal import Groove, JournalBearing, dynamic_coefficients, equilibrium, performance
-from bearingfe.scenes.journal import journal_settings
+from bearingfe.scenes.journal import settings as journal_settings
 from bearingfe.scenes import SCENES, SceneError, load_scene
 
 ROOT = Path(__file__).resolve().parents[1]

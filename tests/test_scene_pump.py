@@ -79,7 +79,7 @@ def test_pump_scene_errors_name_the_field(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text('kind = "pump"\n[run]\nstart = "cold"\n')
     with pytest.raises(SceneError, match=r"\[run\] start: must be one of 'periodic', 'steady'"):
-        from bearingfe.scenes.pump import pump_settings
+        from bearingfe.scenes.pump import settings as pump_settings
         data, label = load_scene(bad)
         pump_settings(data, label, tmp_path)
     missing = tmp_path / "missing.toml"

@@ -12,9 +12,10 @@ from pathlib import Path
 import pytest
 
 from bearingfe.mechanisms.files import load_mechanism
-from bearingfe.scenes.journal import journal_settings
-from bearingfe.scenes.pump import pump_settings
-from bearingfe.scenes import SceneError, load_scene, reynolds_settings
+from bearingfe.scenes.journal import settings as journal_settings
+from bearingfe.scenes.pump import settings as pump_settings
+from bearingfe.scenes import SceneError, load_scene
+from bearingfe.scenes.reynolds import settings as reynolds_settings
 from bearingfe.core.schema import (REQUIRED, Range, SchemaError, Table, Tables, choice, finite, in_range, integer,
                               nonnegative, number, one_of, positive, read_table)
 from bearingfe.sweep import read_study
@@ -120,7 +121,7 @@ def test_pump_scene_errors(tmp_path, old, new, fragment):
 
 def test_pump_scene_cavitation_choices_come_from_the_solver():
     from bearingfe.reynolds import CAVITATION
-    from bearingfe.scenes.pump import PUMP
+    from bearingfe.scenes.pump import SPEC as PUMP
 
     check = PUMP["run"].spec["cavitation"][0]
     assert all(check("w", name) == name for name in CAVITATION)  # every model the solver has, no copy

@@ -76,7 +76,7 @@ import numpy as np
 from ..core.schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
                      flag, nonnegative_number, number, positive_number, read_table, text)
 
-__all__ = ["run_journal_scene", "journal_settings", "pressure_columns", "JOURNAL", "PICTURES", "TABLES"]
+__all__ = ["run", "settings", "pressure_columns", "SPEC", "PICTURES", "TABLES"]
 
 PICTURES = ("pressure", "wrapped", "film")
 TABLES = ("pressure", "coefficients")
@@ -113,7 +113,7 @@ def _cavitation_models() -> tuple[str, ...]:
 _OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
 
 #: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
-JOURNAL = {
+SPEC = {
     "kind": (anything, REQUIRED),
     "title": (text, None),
     "bearing": Table({
@@ -134,9 +134,9 @@ JOURNAL = {
 }
 
 
-def journal_settings(data: dict, label: str) -> dict:
+def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     """All validated settings of a ``"journal"`` scene (SI, angles in degrees)."""
-    s = read_table(data, label, "", JOURNAL)
+    s = read_table(data, label, "", SPEC)
     bearing, solver = s["bearing"], s["solver"]
     _check_proportions(bearing, label)
     _check_grooves(bearing, label)
@@ -225,7 +225,7 @@ def _fixed_frame(dc, force):
     return dataclasses.replace(dc, K=Q.T @ dc.K @ Q, C=Q.T @ dc.C @ Q)
 
 
-def run_journal_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                       base_dir: Path | None = None) -> dict:
     """Equilibrium, dynamic coefficients, pictures and tables of a journal bearing scene.
 
@@ -234,7 +234,7 @@ def run_journal_scene(data: dict, label: str, out_dir: Path, progress: Callable 
     """
     from ..io.writers import write_json
 
-    s = journal_settings(data, label)
+    s = settings(data, label)
     scale = _scale(s)
     bearing = _bearing(s, scale, label)
     load = _load(s, scale)

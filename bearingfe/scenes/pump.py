@@ -63,7 +63,7 @@ from ..core.parameters import ELEMENTS
 from ..core.schema import (NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
                      path_text, positive_number, read_table, text)
 
-__all__ = ["run_pump_scene", "pump_settings", "PUMP", "PICTURES"]
+__all__ = ["run", "settings", "SPEC", "PICTURES"]
 
 PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
 #: Support compliances of :mod:`bearingfe.elastic.coupled` by name.
@@ -85,7 +85,7 @@ def _starts() -> tuple[str, ...]:
 
 
 #: The ``"pump"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`).
-PUMP = {
+SPEC = {
     "kind": (anything, REQUIRED),
     "title": (text, None),
     "pump": Table({"mechanism": (path_text, "../mechanisms/eccentric_pump.toml"), "compare_plain": (flag, True)}),
@@ -99,9 +99,9 @@ PUMP = {
 }
 
 
-def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
+def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     """All validated settings of a ``"pump"`` scene."""
-    s = read_table(data, label, "", PUMP)
+    s = read_table(data, label, "", SPEC)
     path = Path(s["pump"]["mechanism"])
     if not path.is_absolute():
         path = (base_dir or Path.cwd()) / path
@@ -117,7 +117,7 @@ def pump_settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
             "elastic": s["elastic"]}
 
 
-def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
+def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                    base_dir: Path | None = None) -> dict:
     """Simulate the pump (and its plain-shoe twin, and both on an elastic support), draw and write the results."""
     from ..geometry.surface import Surface
@@ -125,7 +125,7 @@ def run_pump_scene(data: dict, label: str, out_dir: Path, progress: Callable | N
     from ..mechanisms.files import load_mechanism
     from ..transient import pump_mesh, simulate, simulate_elastic, state_result
 
-    s = pump_settings(data, label, base_dir)
+    s = settings(data, label, base_dir)
     check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
     check_limit("frames", s["run"]["frames"])
     pump = build(label, "pump", load_mechanism, path=s["mechanism"])
