@@ -3,7 +3,7 @@
 Fixtures (session-scoped: the objects are frozen parameter objects and meshes
 that no test mutates, so one copy serves every file):
 
-``root``           the repository root (``Path``)
+``root``           the repository root (``Path``; module-level code imports ``ROOT`` from ``tests/helpers.py``)
 ``pump``           the shipped eccentric pump, ``mechanisms/eccentric_pump.toml`` (10 % central pocket)
 ``plain_pump``     the same pump with the pocket removed (same arc and width)
 ``pocket_mesh``    ``pump_mesh(pump, 0.15)``: the coarse P1 shoe mesh (~90 nodes) of the pump tests
@@ -14,6 +14,8 @@ that no test mutates, so one copy serves every file):
 ``results_agree``  ``results_agree(a, b, rtol)``: two film results (pressure, loads, integrals,
                    friction, every flow and the mass balance) agree to ``rtol`` of each quantity's
                    largest value (the flows and mass balance: of the largest flow)
+``scene_file``     ``scene_file(kind, *layers, **overrides)``: writes a scene file built from the shipped
+                   scene of that kind into the test's ``tmp_path`` and returns its path (see :func:`scene_file`)
 
 Marker ``slow`` (registered in ``pyproject.toml``): a test that takes more
 than about 5 s on an idle 2-core machine (whole examples, README blocks, the
@@ -32,8 +34,8 @@ import pytest
 
 import bearingfe as bf
 from bearingfe.transient.quasi_static import pump_mesh
+from tests.helpers import ROOT, scene_data, toml_text
 
-ROOT = Path(__file__).resolve().parents[1]
 #: Element size [R0] of the shared pump meshes.
 PUMP_MESH_SIZE = 0.15
 
@@ -96,3 +98,34 @@ def _assert_results_agree(a, b, rtol: float) -> None:
 @pytest.fixture(scope="session")
 def results_agree():
     return _assert_results_agree
+
+
+@pytest.fixture
+def scene_file(tmp_path):
+    """``scene_file(kind, *layers, name=None, text=None, **overrides) -> Path``: a scene file in ``tmp_path``.
+
+    ``kind`` (``"reynolds"``, ``"pump"``, ``"journal"``) names the shipped scene the file starts from
+    (``scenes/default.toml``, ``scenes/pump.toml``, ``scenes/journal.toml``, read with ``tomllib``; the
+    pump's relative ``mechanism`` path made absolute). Each override is a top-level key of the scene:
+    a table merges into the shipped table (nested tables too), ``None`` removes a key, a dict with
+    integer keys edits the items of an array of tables by position, any other value replaces
+    (``scene_file("pump", run={"revolutions": 0.25}, output={"pictures": []})``;
+    :func:`tests.helpers.apply_overrides`). ``layers`` are dicts of such overrides applied first, in
+    order (a test file's small scene, then a parametrized row's change). ``text`` writes that text as
+    it is instead (no kind, no overrides), for a file that must not be a valid scene. ``name`` is the
+    file's path relative to ``tmp_path`` (default ``<kind>.toml``); its folder is created. Writing the
+    same name again replaces the file.
+    """
+
+    def write(kind: str | None = None, /, *layers, name: str | None = None, text: str | None = None,
+              **overrides) -> Path:
+        if text is None:
+            text = toml_text(scene_data(kind, *layers, **overrides))
+        elif kind is not None or layers or overrides:
+            raise TypeError("scene_file: text= is written as it is; give no kind and no overrides with it")
+        path = tmp_path / (name or f"{kind or 'scene'}.toml")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+        return path
+
+    return write

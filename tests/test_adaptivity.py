@@ -28,7 +28,7 @@ ARC = (0.1, 0.5)  # the film right of a pocket strip |phi| <= 0.1 that spans the
 
 def strip_mesh(size, order):
     """The film beside a pocket strip across the whole shoe width (the 1-D case of
-    tests/test_fd.py::test_pocket_strip_gives_linear_ramp without its end effects): the
+    tests/film/test_fd.py::test_pocket_strip_gives_linear_ramp without its end effects): the
     strip edge phi = 0.1 is the 'inlet', phi = 0.5 the 'outer' edge, and the shoe's
     sides z = +-0.5 are sealed (natural condition h^3 dp/dz = 0), so the pressure
     depends on phi only. An unstructured gmsh mesh, so that edges cross the ramp at

@@ -1,7 +1,6 @@
 """The command line through main([...]): run, mesh, validate, --version and scene-file errors."""
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -11,36 +10,11 @@ from bearingfe.cli import main
 from bearingfe.geometry.meshing import load_mesh
 from bearingfe.scenes import SceneError, load_scene
 from bearingfe.scenes.reynolds import settings as reynolds_settings
+from tests.helpers import ROOT
 
-ROOT = Path(__file__).resolve().parents[1]
-
-SMALL = """
-kind = "reynolds"
-title = "small"
-[surface]
-arc = [-0.5, 0.5]
-half_width = 0.4
-[[surface.inlets]]
-shape = "circle"
-center = [0.0, 0.0]
-radius = 0.16
-[film]
-gamma = 0.6
-phi0 = 0.3
-[operating]
-inlet_pressure = 2.0
-[solver]
-size = 0.1
-element = "P2"
-[output]
-pictures = ["pressure"]
-"""
-
-
-def _scene(tmp_path, text=SMALL, name="s.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
+#: The small scene of these tests (overrides of the shipped scenes/default.toml): a 0.1 P2 mesh, one picture.
+SMALL = dict(title="small", surface={"inlets": {0: {"radius": 0.16}}},
+             solver={"size": 0.1, "inlet_size": None, "linear_solver": None}, output={"pictures": ["pressure"]})
 
 
 def test_version(capsys):
@@ -48,9 +22,10 @@ def test_version(capsys):
     assert capsys.readouterr().out.strip() == f"bearingfe {bearingfe.__version__}"
 
 
-def test_run_writes_outputs_and_prints_table(tmp_path, capsys):
+def test_run_writes_outputs_and_prints_table(tmp_path, capsys, scene_file):
     out = tmp_path / "out"
-    assert main(["run", str(_scene(tmp_path)), "--out", str(out), "--no-progress"]) == 0
+    scene = scene_file("reynolds", SMALL)
+    assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
     text = capsys.readouterr().out
     assert "h_min" in text and "flow inlet" in text
     assert sorted(p.name for p in out.iterdir()) == [".bearingfe-manifest.json", "field.vtu", "pressure.png",
@@ -66,48 +41,48 @@ def test_run_writes_outputs_and_prints_table(tmp_path, capsys):
     img = mpimg.imread(out / "pressure.png")
     assert np.ptp(img[..., :3]) > 0.5
     # leftovers of the temporary directory: none
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "s.toml"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "reynolds.toml"]
     # running again replaces a previous output
-    assert main(["run", str(_scene(tmp_path)), "--out", str(out), "--no-progress"]) == 0
+    assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
 
 
-def test_run_refuses_foreign_directory(tmp_path, capsys):
+def test_run_refuses_foreign_directory(tmp_path, capsys, scene_file):
     out = tmp_path / "mine"
     out.mkdir()
     (out / "thesis.tex").write_text("precious")
-    assert main(["run", str(_scene(tmp_path)), "--out", str(out), "--no-progress"]) == 2
+    assert main(["run", str(scene_file("reynolds", SMALL)), "--out", str(out), "--no-progress"]) == 2
     assert "--force" in capsys.readouterr().err
     assert (out / "thesis.tex").read_text() == "precious"
 
 
 @pytest.mark.parametrize("change, message", [
-    (("element = \"P2\"", "element = \"P3\""), "[solver] element: must be one of 'P1', 'P2'; got 'P3'"),
-    (("gamma = 0.6", "gama = 0.6"), "[film] gama: unknown field; allowed: gamma, phi0"),
-    (("shape = \"circle\"", "shape = \"star\""), "[surface.inlets.0] shape: must be one of 'circle', 'ellipse'"),
-    (("radius = 0.16", "radius = 0.6"), "[surface] Surface.inlets[0] (Circle) is not inside"),
-    (("kind = \"reynolds\"", "kind = \"turbine\""), "kind: must be one of 'reynolds'"),
-    (("size = 0.1", "size = -1"), "[solver] size: must be > 0"),
-    (("pictures = [\"pressure\"]", "pictures = [\"movie\"]"), "[output] pictures: must be one of"),
-    (("[film]\ngamma = 0.6\nphi0 = 0.3\n", ""), "[film]: missing table"),
+    (dict(solver={"element": "P3"}), "[solver] element: must be one of 'P1', 'P2'; got 'P3'"),
+    (dict(film={"gamma": None, "gama": 0.6}), "[film] gama: unknown field; allowed: gamma, phi0"),
+    (dict(surface={"inlets": {0: {"shape": "star"}}}), "[surface.inlets.0] shape: must be one of 'circle', 'ellipse'"),
+    (dict(surface={"inlets": {0: {"radius": 0.6}}}), "[surface] Surface.inlets[0] (Circle) is not inside"),
+    (dict(kind="turbine"), "kind: must be one of 'reynolds'"),
+    (dict(solver={"size": -1}), "[solver] size: must be > 0"),
+    (dict(output={"pictures": ["movie"]}), "[output] pictures: must be one of"),
+    (dict(film=None), "[film]: missing table"),
 ])
-def test_scene_errors_name_field_and_allowed_values(tmp_path, capsys, change, message):
-    scene = _scene(tmp_path, SMALL.replace(*change))
+def test_scene_errors_name_field_and_allowed_values(tmp_path, capsys, scene_file, change, message):
+    scene = scene_file("reynolds", SMALL, change)
     out = tmp_path / "out"
     assert main(["run", str(scene), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
-    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"]
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["reynolds.toml"]
     with pytest.raises(SceneError):
         data, label = load_scene(scene)
         reynolds_settings(data, label)
 
 
-def test_failure_during_run_leaves_nothing(tmp_path, capsys):
+def test_failure_during_run_leaves_nothing(tmp_path, capsys, scene_file):
     # gamma = 2.5 makes h = 1 + 2.5 cos(phi - 3.14) negative on the arc: the solver refuses
-    scene = _scene(tmp_path, SMALL.replace("gamma = 0.6\nphi0 = 0.3", "gamma = 2.5\nphi0 = 3.14"))
+    scene = scene_file("reynolds", SMALL, film={"gamma": 2.5, "phi0": 3.14})
     assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
     assert "h_min" in capsys.readouterr().err
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.toml"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["reynolds.toml"]
 
 
 def test_default_scene_is_valid():

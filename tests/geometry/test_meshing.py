@@ -1,0 +1,264 @@
+"""gmsh meshing: named boundaries, curved edges, nesting, gmsh state, file input.
+
+Expected lengths and areas are those of the exact geometry (perimeters and
+areas of rectangles and circles); the tolerances are the chord error of a
+polygonal boundary, ``1 - sin(t)/t`` with ``t = size / (2 r)`` per edge.
+"""
+
+import math
+
+import gmsh
+import numpy as np
+import pytest
+import skfem
+
+from bearingfe import Circle, Rectangle, Surface, load_mesh, mesh_surface, refine_uniformly
+from bearingfe.geometry.meshing import SupportMesh
+from tests.helpers import ROOT
+
+MESHES = ROOT / "meshes"
+
+TWO_POCKETS = Surface(arc=(-0.5, 0.5), half_width=0.4,
+                      inlets=(Circle((-0.2, 0.0), 0.1), Rectangle((0.25, 0.05), (0.15, 0.2))))
+
+
+def facet_lengths(mesh: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
+    p, f = mesh.p, mesh.facets[:, facets]
+    return np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0)
+
+
+def film_area(sm: SupportMesh) -> float:
+    basis = skfem.Basis(sm.mesh, skfem.ElementTriP1(), intorder=4)
+    return float(basis.dx.sum())
+
+
+def test_named_boundaries_of_a_rectangle_with_two_pockets():
+    sm = mesh_surface(TWO_POCKETS, 0.05)
+    b = sm.boundaries
+    assert {"outer", "inlet", "inlet_0", "inlet_1", "arc_start", "arc_end", "side"} <= set(b)
+    m = sm.mesh
+    # straight edges are meshed exactly: lengths 2a = 0.8 and 2 x arc length 1.0
+    assert facet_lengths(m, b["arc_start"]).sum() == pytest.approx(0.8, rel=1e-12)
+    assert facet_lengths(m, b["arc_end"]).sum() == pytest.approx(0.8, rel=1e-12)
+    assert facet_lengths(m, b["side"]).sum() == pytest.approx(2.0, rel=1e-12)
+    assert facet_lengths(m, b["outer"]).sum() == pytest.approx(3.6, rel=1e-12)
+    # edges in the right places
+    x = m.p[:, m.facets[:, b["arc_start"]]]
+    assert np.allclose(x[0], -0.5)
+    x = m.p[:, m.facets[:, b["side"]]]
+    assert np.allclose(np.abs(x[1]), 0.4)
+    # pocket contours: inscribed polygon of the circle (chord error < 1e-2 at size/r = 0.5),
+    # rectangle perimeter exactly
+    assert facet_lengths(m, b["inlet_0"]).sum() == pytest.approx(2 * math.pi * 0.1, rel=1.1e-2)
+    assert facet_lengths(m, b["inlet_1"]).sum() == pytest.approx(0.7, rel=1e-12)
+    assert np.array_equal(np.sort(b["inlet"]), np.union1d(b["inlet_0"], b["inlet_1"]))
+    # all named facets are boundary facets; outer and inlet partition the boundary
+    boundary = m.boundary_facets()
+    assert np.array_equal(np.union1d(b["outer"], b["inlet"]), np.sort(boundary))
+    assert np.intersect1d(b["outer"], b["inlet"]).size == 0
+    # film area = outline - pockets; the pocket polygon is inscribed in the circle, so the film
+    # is larger by the chord deficit pi r^2 (1 - sin(2t)/(2t)) ~ pi r^2 (2t)^2/6 with
+    # t = size/(2r) = 0.25, i.e. at most 4.1 % of the circle
+    exact = 0.8 - math.pi * 0.01 - 0.03
+    assert exact < film_area(sm) < exact + 0.05 * math.pi * 0.01
+    assert sm.has_inlet and sm.geometry_order == 1 and sm.n_nodes == m.nvertices
+
+
+def test_non_rectangular_outline_has_only_outer_and_inlet():
+    sm = mesh_surface(Surface(outer=Circle((0, 0), 0.5), inlets=(Circle((0.1, 0), 0.1),)), 0.1)
+    assert set(sm.boundaries) == {"outer", "inlet", "inlet_0"}
+
+
+def test_order_two_puts_edge_midpoints_on_the_curves():
+    sm = mesh_surface(Surface(outer=Circle((0, 0), 0.5), inlets=(Circle((0.05, 0.0), 0.15),)), 0.1, order=2)
+    m = sm.mesh
+    assert isinstance(m, skfem.MeshTri2) and sm.geometry_order == 2
+    # the P2 dofs on a facet are its two ends and its midpoint node: all on the circle
+    basis = skfem.Basis(m, skfem.ElementTriP2())
+    for name, centre, r in (("outer", (0, 0), 0.5), ("inlet", (0.05, 0.0), 0.15)):
+        dofs = basis.get_dofs(sm.boundaries[name]).all()
+        x = basis.doflocs[:, dofs]
+        assert np.hypot(x[0] - centre[0], x[1] - centre[1]) == pytest.approx(r, abs=1e-9)
+    # curved (isoparametric) triangles reproduce the annulus area far better than chords:
+    # exact 0.25 pi - 0.0225 pi; straight chords miss ~ (2t)^2/6 of each circle (the outer and
+    # pocket deficits partly cancel: measured 6.7e-4 vs 2.8e-5 curved)
+    exact = math.pi * (0.25 - 0.0225)
+    curved = abs(film_area(sm) / exact - 1)
+    assert curved < 1e-4
+    assert abs(film_area(mesh_surface(sm.surface, 0.1)) / exact - 1) > 10 * curved
+
+
+def test_refine_gives_nested_meshes_with_new_nodes_on_the_curves():
+    surface = Surface(inlets=(Circle((0, 0), 0.2),))
+    coarse, fine = (mesh_surface(surface, 0.1, refine=k) for k in (0, 1))
+    assert fine.mesh.nelements == 4 * coarse.mesh.nelements
+    assert fine.size == pytest.approx(0.05)
+    # every coarse vertex is a fine vertex
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(fine.mesh.p.T).query(coarse.mesh.p.T)
+    assert d.max() < 1e-12
+    # new pocket nodes were snapped to the circle, not left on the chords
+    x = fine.mesh.p[:, np.unique(fine.mesh.facets[:, fine.boundaries["inlet"]])]
+    assert np.hypot(*x) == pytest.approx(0.2, abs=1e-9)
+
+
+def test_inlet_and_corner_sizes_grade_the_mesh():
+    sm = mesh_surface(TWO_POCKETS, 0.1, inlet_size=0.02, grading_distance=0.2)
+    edges = facet_lengths(sm.mesh, sm.boundaries["inlet"])
+    assert edges.max() < 0.02 * 1.5  # gmsh keeps edges within about its size field
+    assert facet_lengths(sm.mesh, sm.boundaries["side"]).max() > 0.06
+
+
+def test_size_function_refines_where_asked():
+    fine_left = lambda x, y: np.where(x < 0.0, 0.02, 0.1)  # noqa: E731
+    sm = mesh_surface(Surface(), 0.1, size_function=fine_left)
+    centroids = sm.mesh.p[:, sm.mesh.t].mean(axis=1)
+    left = np.count_nonzero(centroids[0] < -0.1)
+    right = np.count_nonzero(centroids[0] > 0.1)
+    assert left > 10 * right  # element density ~ (0.1/0.02)^2 = 25 times higher
+
+
+def test_refine_uniformly_on_straight_meshes_only():
+    sm = mesh_surface(Surface(), 0.2)
+    assert refine_uniformly(sm, 2).mesh.nelements == 16 * sm.mesh.nelements
+    with pytest.raises(ValueError, match="straight-sided"):
+        refine_uniformly(mesh_surface(Surface(), 0.2, order=2))
+
+
+# -- gmsh global state ---------------------------------------------------------
+
+def _signature(sm: SupportMesh):
+    return sm.mesh.p.copy(), sm.mesh.t.copy(), {k: v.copy() for k, v in sm.boundaries.items()}
+
+
+def test_meshing_repeatedly_in_one_process_gives_identical_meshes():
+    surface = Surface(inlets=(Circle((0.1, 0.0), 0.1),))
+    first = _signature(mesh_surface(surface, 0.1))
+    assert not gmsh.isInitialized()  # the session was closed
+    # other calls in between with different options, order, callback and geometry
+    mesh_surface(TWO_POCKETS, 0.05, inlet_size=0.01, corner_size=0.005, order=2, algorithm=5)
+    mesh_surface(Surface(), 0.1, size_function=lambda x, y: 0.03 + 0 * x)
+    load_mesh(MESHES / "plain_shoe.geo", size=0.3)
+    again = _signature(mesh_surface(surface, 0.1))
+    assert np.array_equal(first[0], again[0]) and np.array_equal(first[1], again[1])
+    assert first[2].keys() == again[2].keys()
+    assert all(np.array_equal(first[2][k], again[2][k]) for k in first[2])
+    assert not gmsh.isInitialized()
+
+
+def test_gmsh_is_finalized_after_an_error_inside_the_session():
+    def broken(x, y):
+        raise RuntimeError("size function failed")
+
+    with pytest.raises(ValueError, match="size_function failed"):
+        mesh_surface(Surface(), 0.1, size_function=broken)
+    assert not gmsh.isInitialized()
+    for bad in (0.0, -0.1, math.nan):  # never a silent clamp
+        with pytest.raises(ValueError, match="size_function"):
+            mesh_surface(Surface(), 0.1, size_function=lambda x, y, bad=bad: bad + 0 * x)
+    assert mesh_surface(Surface(), 0.25).n_nodes > 0
+
+
+def test_a_callers_gmsh_session_is_left_as_it_was():
+    # meshing inside a caller's own gmsh session: the session stays open, the caller's model and its
+    # entities stay current, the options this package sets come back, and the mesh is the same as
+    # from a private session
+    private = _signature(mesh_surface(Surface(inlets=(Circle((0.1, 0.0), 0.1),)), 0.1))
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("mine")
+        gmsh.model.occ.addPoint(0.3, 0.2, 0.0)
+        gmsh.model.occ.synchronize()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 7.0)
+        gmsh.option.setNumber("Mesh.Algorithm", 8)
+        nested = _signature(mesh_surface(Surface(inlets=(Circle((0.1, 0.0), 0.1),)), 0.1,
+                                         size_function=lambda x, y: 0.1 + 0 * x))
+        load_mesh(MESHES / "plain_shoe.geo", size=0.3)
+        assert gmsh.isInitialized()
+        assert gmsh.model.getCurrent() == "mine" and gmsh.model.list() == ["", "mine"]
+        assert gmsh.model.getEntities(0) == [(0, 1)]
+        assert gmsh.option.getNumber("Mesh.MeshSizeMax") == 7.0 and gmsh.option.getNumber("Mesh.Algorithm") == 8
+    finally:
+        gmsh.finalize()
+    assert np.array_equal(private[0], nested[0]) and np.array_equal(private[1], nested[1])
+
+
+# -- files ---------------------------------------------------------------------
+
+def test_load_mesh_geo_and_msh_agree(tmp_path):
+    geo = MESHES / "central_pocket_10pct.geo"
+    from_geo = load_mesh(geo, size=0.05)
+    # write the .msh with gmsh directly (an independent route to the file)
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.open(str(geo))
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 0.05)
+        gmsh.model.mesh.generate(2)
+        msh = tmp_path / "pocket.msh"
+        gmsh.write(str(msh))
+    finally:
+        gmsh.finalize()
+    from_msh = load_mesh(msh)
+    assert from_msh.source == str(msh)
+    for sm in (from_geo, from_msh):
+        assert {"outer", "inlet", "arc_start", "arc_end", "side"} <= set(sm.boundaries)
+        # outline 0.8 minus the pocket 0.08 (10 %) plus the chord deficit of the inscribed
+        # pocket polygon, < (2t)^2/6 = 1.7 % of 0.08 at t = 0.05/(2 * 0.1596)
+        assert 0.72 < film_area(sm) < 0.72 + 0.017 * 0.08
+    assert from_geo.n_nodes == from_msh.n_nodes
+    assert film_area(from_geo) == pytest.approx(film_area(from_msh), rel=1e-12)
+
+
+def test_load_mesh_geo_order_two():
+    sm = load_mesh(MESHES / "central_pocket_10pct.geo", size=0.1, order=2)
+    assert sm.geometry_order == 2
+    assert film_area(sm) == pytest.approx(0.72, rel=1e-4)  # curved edges; measured 2.4e-5
+
+
+def test_load_mesh_errors(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        load_mesh(tmp_path / "missing.msh")
+    wrong = tmp_path / "mesh.txt"
+    wrong.write_text("x")
+    with pytest.raises(ValueError, match=".geo or .msh"):
+        load_mesh(wrong)
+    nameless = tmp_path / "nameless.geo"
+    nameless.write_text('SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 1, 1};\n'
+                        'Physical Curve("edge") = {1, 2, 3, 4};\nPhysical Surface("film") = {1};\n')
+    with pytest.raises(ValueError, match="outer"):
+        load_mesh(nameless, size=0.5)
+    assert not gmsh.isInitialized()
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(size=0.0), "size"),
+    (dict(size=-0.1), "size"),
+    (dict(size=math.nan), "size"),
+    (dict(size=0.1, inlet_size=0.0), "inlet_size"),
+    (dict(size=0.1, corner_size=-1.0), "corner_size"),
+    (dict(size=0.1, grading_distance=math.inf), "grading_distance"),
+    (dict(size=0.1, order=3), "order"),
+    (dict(size=0.1, refine=-1), "refine"),
+    (dict(size=0.1, refine=1.5), "refine"),
+])
+def test_mesh_surface_rejects_bad_sizes_and_options(kwargs, words):
+    with pytest.raises(ValueError, match=words):
+        mesh_surface(TWO_POCKETS, **kwargs)
+
+
+def test_mesh_surface_needs_a_surface():
+    with pytest.raises(ValueError, match="surface"):
+        mesh_surface("shoe", 0.1)
+
+
+def test_size_function_requests_below_a_quarter_of_size_are_honoured():
+    # gmsh's MeshSizeMin used to raise them to size/4 without a word (a silent clamp): with a size
+    # function and no min_size there is no floor; an explicit min_size is one
+    m = mesh_surface(Surface(), 0.2, size_function=lambda x, y: 0.02 + 0 * x)
+    edges = m.mesh.p[:, m.mesh.facets[0]] - m.mesh.p[:, m.mesh.facets[1]]
+    assert np.median(np.hypot(*edges)) < 0.03  # requested 0.02; the old floor was 0.05
+    floored = mesh_surface(Surface(), 0.2, size_function=lambda x, y: 0.02 + 0 * x, min_size=0.05)
+    assert floored.n_nodes < m.n_nodes / 3

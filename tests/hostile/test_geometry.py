@@ -1,0 +1,564 @@
+"""Hostile geometry and solver inputs: refused with a named one-line error, nothing run or written.
+
+Every .geo below starts from the shipped plain shoe and adds one statement that
+reaches outside the geometry. A "marker" file is what the statement would
+create if it ran: the tests check it is NOT there. Meshes are small (size 0.2).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bearingfe import Circle, CosineFilm, Rectangle, Slot, Surface, load_mesh, mesh_surface
+from bearingfe.cli import main
+from bearingfe.geometry.geofiles import (DEFAULT_MAX_ELEMENTS, GeometryFileError, MeshSizeError, UntrustedGeoError,
+                                check_geo_script, max_elements_limit)
+from tests.helpers import ROOT
+
+PLAIN = (ROOT / "meshes" / "plain_shoe.geo").read_text()
+
+
+def _geo(tmp_path: Path, extra: str, name: str = "hostile.geo") -> Path:
+    path = tmp_path / name
+    path.write_text(PLAIN + "\n" + extra + "\n")
+    return path
+
+
+# -- .geo commands that reach outside: refused before anything runs ----------------------------
+
+HOSTILE = {
+    "SystemCall": ('SystemCall "touch {marker}";', "runs a shell command"),
+    "SystemCall Sprintf": ('SystemCall Sprintf("touch %s", "{marker}");', "runs a shell command"),
+    "NonBlockingSystemCall": ('NonBlockingSystemCall "touch {marker}";', "runs a shell command"),
+    "System (old alias)": ('System "touch {marker}";', "runs a shell command"),
+    "lower-case command": ('systemcall "touch {marker}";', "not a geometry command"),
+    "Save View": ('Save View[0] "{marker}";', "writes a file"),
+    "OnelabRun": ('OnelabRun("x", "touch {marker}");', "runs an external program"),
+    "Printf >": ('Printf("x") > "{marker}";', "writes to a file"),
+    "Printf >> in If": ('If (1)\n Printf("x %g", lc) >> "{marker}";\nEndIf', "writes to a file"),
+    "Save": ('Save "{marker}";', "writes a file"),
+    "Print": ('Print "{marker}";', "writes a file"),
+    "CreateDir": ('CreateDir "{marker}";', "creates a directory"),
+    "Include": ('Include "{marker}";', "includes another file"),
+    "Merge": ('Merge "{marker}";', "merges another file"),
+    "ShapeFromFile": ('v() = ShapeFromFile("{marker}");', "reads another file"),
+    "Exit": ("Exit;", "ends the program"),
+    "Abort": ("Abort;", "ends the program"),
+    "GetEnv": ('home = GetEnv("HOME");', "reads the environment"),
+    "GetValue": ('x = GetValue("size?", 0.1);', "keyboard"),
+    "Solver option": ('Solver.Executable0 = "touch {marker}";', "Solver. group"),
+    "General option": ("General.Terminal = 1;", "General. group"),
+    "text Mesh option": ('Mesh.Format = "{marker}";', "text value"),
+    "ExternalProcess field": ("Field[1] = ExternalProcess;", "runs an external program"),
+    "Plugin": ("Plugin(Crack).Run;", "plugin"),
+    "GetEnv in DefineConstant": ('DefineConstant[ h = GetEnv("HOME") ];', "text value in DefineConstant"),
+    "Exit in DefineConstant": ('DefineConstant[ h = {{Exit, Name "h"}} ];', "ends the program"),
+    "unknown in DefineConstant": ('DefineConstant[ h = {{1, Name "h", Min Frobnicate}} ];', "not a geometry command"),
+    "text DefineConstant": ('DefineConstant[ f = {{"{marker}", Name "x"}} ];', "text value in DefineConstant"),
+    "DefineConstant attribute": ('DefineConstant[ f = {{1, Name "f", Macro "{marker}"}} ];',
+                                 "not an accepted DefineConstant"),
+    "DefineConstant call": ('DefineConstant[ f = {{1, Name "a"}} SystemCall "touch {marker}" ];',
+                            "nothing may follow"),
+    "DefineString": ('DefineString[ f = {{"{marker}"}} ];', "onelab"),
+    "SetNumber": ('SetNumber("x", 1);', "onelab"),
+    "Sleep": ("Sleep 1000;", "waits"),
+    "unknown command": ("Frobnicate;", "not a geometry command"),
+}
+
+
+@pytest.mark.parametrize("label", sorted(HOSTILE))
+def test_hostile_geo_is_refused_and_nothing_runs(tmp_path, label):
+    statement, reason = HOSTILE[label]
+    marker = tmp_path / "marker"
+    geo = _geo(tmp_path, statement.format(marker=marker))
+    with pytest.raises(UntrustedGeoError, match=reason) as info:
+        load_mesh(geo, size=0.2)
+    message = str(info.value)
+    assert "hostile.geo line 2" in message and "trusted=True" in message and "--trust-geo" in message
+    assert not marker.exists()
+
+
+def test_cli_mesh_refuses_hostile_geo_in_one_line(tmp_path, capsys):
+    marker, out = tmp_path / "marker", tmp_path / "m.msh"
+    geo = _geo(tmp_path, f'SystemCall "touch {marker}";')
+    assert main(["mesh", str(geo), "--size", "0.2", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "SystemCall" in err and "--trust-geo" in err and "Traceback" not in err
+    assert not marker.exists() and not out.exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["hostile.geo"]  # no temporary file left behind
+
+
+def test_shipped_geo_files_pass_the_allow_list():
+    for geo in sorted((ROOT / "meshes").glob("*.geo")):
+        check_geo_script(geo.read_text(), geo.name)  # raises if refused
+
+
+def test_ordinary_geo_constructs_are_accepted():
+    text = PLAIN + """
+    Macro Grow
+      k += 1;
+    Return
+    k = 0;
+    For i In {1:3}
+      Call Grow;
+    EndFor
+    If (k == 3)
+      Printf("k = %g", k);
+    EndIf
+    pts[] = {};
+    pts[] += newp;
+    Mesh.ElementOrder = 1;
+    Geometry.Tolerance = 1e-9;
+    Field[1] = Distance;
+    Field[1].CurvesList = {1};
+    Rotate {{0, 0, 1}, {0, 0, 0}, Pi/2} { Duplicata { Curve{1}; } }
+    """
+    check_geo_script(text, "ok.geo")
+
+
+def test_numeric_define_constant_is_accepted_and_meshes_like_an_assignment(tmp_path):
+    # gmsh's onelab parameters with numbers only: the mesh equals the one of the plain assignment lc = 0.05
+    # (same script, same gmsh: node for node)
+    parametrised = PLAIN.replace("lc = 0.05;", 'DefineConstant[ lc = {0.05, Min 0.01, Max 0.2, Step 0.01, '
+                                 'Name "Parameters/element size", Units "-", Choices{0.05 = "fine", 0.1 = "coarse"}}, '
+                                 'unused = 2 * Pi ];')
+    assert parametrised != PLAIN
+    plain = load_mesh(_geo(tmp_path, "", "plain.geo"))
+    defined = load_mesh(_write(tmp_path / "defined.geo", parametrised))
+    assert defined.n_nodes == plain.n_nodes
+    np.testing.assert_allclose(defined.mesh.p, plain.mesh.p, atol=1e-12)
+
+
+def _write(path: Path, text: str) -> Path:
+    path.write_text(text)
+    return path
+
+
+def test_trusted_geo_runs_in_a_child_that_exit_cannot_end(tmp_path):
+    """``Exit;`` ends gmsh's process, not the caller: a named error, and this test keeps running."""
+    geo = _geo(tmp_path, "Exit;")
+    with pytest.raises(GeometryFileError, match="ended .* before it made a mesh"):
+        load_mesh(geo, size=0.2, trusted=True)
+
+
+def test_trusted_geo_may_write_files(tmp_path):
+    """The trust flag is the documented way to run a script that writes (here: a Printf to a file)."""
+    marker = tmp_path / "marker"
+    geo = _geo(tmp_path, f'Printf("written") > "{marker}";')
+    mesh = load_mesh(geo, size=0.2, trusted=True)
+    assert marker.read_text().strip() == "written" and "outer" in mesh.boundaries
+
+
+@pytest.mark.parametrize("trusted", [False, True])
+def test_geo_loop_that_does_not_end_hits_the_time_limit(tmp_path, trusted):
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    with pytest.raises(GeometryFileError, match=r"did not finish within 1 s.*timeout=.*--geo-timeout"):
+        load_mesh(geo, size=0.2, trusted=trusted, timeout=1)
+
+
+def test_geo_time_limit_from_the_environment(tmp_path, monkeypatch):
+    monkeypatch.setenv("BEARINGFE_GEO_TIMEOUT", "nonsense")
+    with pytest.raises(ValueError, match="BEARINGFE_GEO_TIMEOUT must be a number"):
+        load_mesh(ROOT / "meshes" / "plain_shoe.geo", size=0.2)
+
+
+def test_gmsh_error_is_a_one_line_error(tmp_path, capsys):
+    geo = _geo(tmp_path, "Curve Loop(7) = {1, 99};\nPlane Surface(7) = {7};")
+    with pytest.raises(GeometryFileError, match="gmsh failed"):
+        load_mesh(geo, size=0.2)
+    out = tmp_path / "m.msh"
+    assert main(["mesh", str(geo), "--size", "0.2", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "gmsh failed" in err and not out.exists()
+
+
+# -- .msh files are data -------------------------------------------------------------------------
+
+def test_msh_holding_a_geo_script_is_not_run(tmp_path):
+    marker = tmp_path / "marker"
+    fake = tmp_path / "x.msh"
+    fake.write_text(PLAIN + f'\nSystemCall "touch {marker}";\n')
+    with pytest.raises(GeometryFileError, match=r"x.msh is not a gmsh mesh file .*\$MeshFormat"):
+        load_mesh(fake)
+    assert not marker.exists()
+
+
+def test_truncated_msh_is_a_named_error(tmp_path):
+    good = tmp_path / "good.msh"
+    assert main(["mesh", str(ROOT / "meshes" / "plain_shoe.geo"), "--size", "0.3", "--out", str(good)]) == 0
+    bad = tmp_path / "bad.msh"
+    bad.write_text(good.read_text()[: len(good.read_text()) // 2])
+    with pytest.raises(GeometryFileError, match="bad.msh: not a readable gmsh mesh file"):
+        load_mesh(bad)
+
+
+def _msh_v2(path: Path, points, triangles, lines) -> Path:
+    """A minimal MSH 2.2 file: physical curve 1 'outer' (lines), surface 2 'film' (triangles)."""
+    rows = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "2", '1 1 "outer"', '2 2 "film"',
+            "$EndPhysicalNames", "$Nodes", str(len(points))]
+    rows += [f"{k + 1} {x} {y} 0" for k, (x, y) in enumerate(points)]
+    rows += ["$EndNodes", "$Elements", str(len(lines) + len(triangles))]
+    k = 0
+    for a, b in lines:
+        k += 1
+        rows.append(f"{k} 1 2 1 1 {a + 1} {b + 1}")
+    for a, b, c in triangles:
+        k += 1
+        rows.append(f"{k} 2 2 2 1 {a + 1} {b + 1} {c + 1}")
+    rows.append("$EndElements")
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+SQUARE = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)]
+FAN = [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+OUTLINE = [(0, 1), (1, 2), (2, 3), (3, 0)]
+
+
+def test_valid_msh_v2_reads(tmp_path):
+    mesh = load_mesh(_msh_v2(tmp_path / "ok.msh", SQUARE, FAN, OUTLINE))
+    assert mesh.n_elements == 4 and len(mesh.boundaries["outer"]) == 4
+    assert float(np.sum(mesh.mesh.p[0])) == pytest.approx(2.5)  # 0+1+1+0+0.5: all five nodes kept
+
+
+def test_duplicated_triangles_are_refused(tmp_path):
+    path = _msh_v2(tmp_path / "dup.msh", SQUARE, FAN + [(4, 2, 1)], OUTLINE)  # (1, 2, 4) again, reordered
+    with pytest.raises(GeometryFileError, match="dup.msh: 1 duplicated triangle"):
+        load_mesh(path)
+
+
+def test_degenerate_triangles_are_refused(tmp_path):
+    points = SQUARE + [(0.25, 0.25)]  # on the segment from node 0 to node 4
+    path = _msh_v2(tmp_path / "flat.msh", points, FAN + [(0, 5, 4)], OUTLINE)
+    with pytest.raises(GeometryFileError, match="flat.msh: 1 degenerate \\(zero-area\\) triangle"):
+        load_mesh(path)
+
+
+def test_overlapping_triangles_are_refused(tmp_path):
+    points = SQUARE + [(0.5, 0.2)]
+    path = _msh_v2(tmp_path / "fold.msh", points, FAN + [(0, 1, 5)], OUTLINE)  # lies on top of (0, 1, 4)
+    with pytest.raises(GeometryFileError, match="fold.msh: 1 inner edge.*same side"):
+        load_mesh(path)
+    points = SQUARE + [(0.5, 0.2), (0.5, 0.1)]
+    path = _msh_v2(tmp_path / "three.msh", points, FAN + [(0, 1, 5), (0, 1, 6)], OUTLINE)
+    with pytest.raises(GeometryFileError, match="three.msh: .*shared by more than two triangles"):
+        load_mesh(path)
+
+
+def test_msh_with_huge_element_count_is_refused(tmp_path):
+    path = _msh_v2(tmp_path / "ok.msh", SQUARE, FAN, OUTLINE)
+    with pytest.raises(MeshSizeError, match="max_elements = 3"):
+        load_mesh(path, max_elements=3)
+
+
+# -- element-count limit before meshing -------------------------------------------------------
+
+def test_geo_with_tiny_size_is_refused_before_meshing(tmp_path, capsys):
+    """``mesh --size 1e-4`` needs 0.8 / (sqrt(3)/4 * 1e-8) = 1.85e8 triangles on the 1 x 0.8 shoe."""
+    with pytest.raises(MeshSizeError, match=r"about 1.85e\+08 triangles, more than max_elements = 1000000"):
+        load_mesh(ROOT / "meshes" / "plain_shoe.geo", size=1e-4)
+    out = tmp_path / "m.msh"
+    assert main(["mesh", str(ROOT / "meshes" / "plain_shoe.geo"), "--size", "1e-4", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--max-elements" in err and "BEARINGFE_MAX_ELEMENTS" in err and err.count("\n") == 1
+
+
+def test_geo_with_tiny_point_sizes_is_refused_before_meshing(tmp_path):
+    """Sizes set on the points (no size option): 0.8 / (sqrt(3)/4 * 1e-8) triangles again."""
+    geo = tmp_path / "fine.geo"
+    geo.write_text(PLAIN.replace("lc = 0.05;", "lc = 1e-4;").replace("Mesh.MeshSizeMax = lc;", ""))
+    with pytest.raises(MeshSizeError, match=r"about 1.8\de\+08 triangles"):
+        load_mesh(geo)
+
+
+def test_element_limit_can_be_raised_or_lowered(tmp_path, monkeypatch):
+    geo = ROOT / "meshes" / "plain_shoe.geo"
+    with pytest.raises(MeshSizeError, match="max_elements = 100"):
+        load_mesh(geo, size=0.2, max_elements=100)  # 0.8 / (sqrt(3)/4 0.04) = 46 is the lower bound; gmsh > 100
+    monkeypatch.setenv("BEARINGFE_MAX_ELEMENTS", "50")
+    assert max_elements_limit() == 50
+    with pytest.raises(MeshSizeError, match="max_elements = 50"):
+        mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.1)  # 0.8 / (sqrt(3)/4 0.01) = 185
+    monkeypatch.setenv("BEARINGFE_MAX_ELEMENTS", "many")
+    with pytest.raises(ValueError, match="BEARINGFE_MAX_ELEMENTS must be a number > 0"):
+        max_elements_limit()
+    monkeypatch.delenv("BEARINGFE_MAX_ELEMENTS")
+    assert max_elements_limit() == DEFAULT_MAX_ELEMENTS
+
+
+def test_mesh_surface_with_tiny_size_is_refused_before_meshing():
+    with pytest.raises(MeshSizeError, match=r"size = 0.0001 would need about 1.8\de\+08 triangles"):
+        mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 1e-4)
+
+
+def test_mesh_surface_element_estimate_is_close():
+    """The estimate (film area / equilateral triangle of the size) against what gmsh makes: within 20 %."""
+    from bearingfe.geometry.meshing import _estimated_triangles  # noqa: PLC2701 - white-box check of the estimate
+
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)])
+    mesh = mesh_surface(surface, 0.05)
+    estimate = _estimated_triangles(surface, 0.05, 0.0125, 0.05, 0.2, None)
+    assert estimate == pytest.approx(mesh.n_elements, rel=0.2)
+
+
+# -- pockets too small to resolve ------------------------------------------------------------------
+
+def test_pocket_too_small_is_refused():
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Circle\) is 2e-09 across.*pocket size >= 0.0001"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 1e-9)])
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\)"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Rectangle((0.0, 0.0), (0.4, 1e-6))])
+    # the sliver that gave "KeyError (-1, -1)" (its contour edges were not edges of the triangles)
+    from bearingfe import Ellipse, Polygon
+
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Polygon\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Polygon(((0.0, 0.0), (0.3, 0.0), (0.15, 1e-8)))])
+    with pytest.raises(ValueError, match=r"Surface.inlets\[0\] \(Ellipse\) is .* across"):
+        Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Ellipse((0.0, 0.0), (0.3, 1e-8))])
+
+
+def test_scene_with_a_tiny_pocket_is_one_line(tmp_path, capsys, scene_file):
+    scene = scene_file("reynolds", title="tiny pocket", surface={"inlets": {0: {"radius": 1e-9}}}, film={"phi0": None},
+                       solver={"size": 0.2, "inlet_size": None, "element": None, "linear_solver": None},
+                       output={"pictures": []})
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "inlets[0] (Circle) is 2e-09 across" in err
+
+
+def test_small_pocket_is_resolved_by_the_mesh():
+    """A pocket of radius r at pressure 1 in a plain film: the inlet flow follows the radial
+    log law, flow ~ 1 / ln(R / r), so r = 1e-3 -> 1e-2 raises it by about ln(R/1e-3) / ln(R/1e-2)
+    (R ~ 0.4: 5.99 / 3.69 = 1.62). Before the pocket sizes capped the element size, both pockets
+    were a single node of the mesh and the flows differed by 3 %."""
+    from bearingfe import solve_reynolds
+
+    flows = []
+    for r in (1e-3, 1e-2):
+        surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), r)])
+        res = solve_reynolds(mesh_surface(surface, 0.1), CosineFilm(0.0), wedge=0.0, inlet_pressure=1.0)
+        flows.append(res.flows["inlet"])
+    assert flows[1] / flows[0] == pytest.approx(math.log(0.4 / 1e-3) / math.log(0.4 / 1e-2), rel=0.1)
+
+
+def test_thin_slot_pocket_meshes_with_named_boundaries():
+    """A slot 100 x thinner than the default size: the pocket contour stays an edge set of the mesh,
+    with edges no longer than the slot's hydraulic diameter 4 area / perimeter (about 2e-3)."""
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Slot((0.0, 0.0), 0.3, 1e-3)])
+    mesh = mesh_surface(surface, 0.1)
+    width = surface.inlet_widths()[0]
+    assert width == pytest.approx(2e-3, rel=0.01)
+    # contour length 0.6 + pi 1e-3; gmsh's edges come out up to ~1.25 x the size asked for
+    assert len(mesh.boundaries["inlet"]) >= 0.8 * 0.6 / width
+
+
+# -- solver inputs: silly numbers are refused with the parameter and its range --------------------
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(gamma=0.5, phi0=1e300), r"CosineFilm.phi0 must be an angle \[rad\] with \|CosineFilm.phi0\| <= 1e\+06"),
+    (dict(gamma=0.5, phi0=-1e20), r"CosineFilm.phi0 must be an angle"),
+    (dict(gamma=0.5, phi0=math.nan), r"CosineFilm.phi0 must be an angle"),
+    (dict(gamma=1e300), r"CosineFilm.gamma must be a number in \[0, 1000\]"),
+    (dict(gamma=-0.1), r"CosineFilm.gamma must be a number in \[0, 1000\]"),
+])
+def test_film_parameters_out_of_range(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        CosineFilm(**kwargs)
+
+
+def test_film_angle_at_the_limit_keeps_its_digits():
+    """At |phi0| = 1e6 rad (the limit) cos(phi - phi0) still agrees with the reduced angle to 1e-9:
+    the spacing of doubles near 1e6 is 1.2e-10."""
+    far = CosineFilm(0.5, 1e6)
+    near = CosineFilm(0.5, math.remainder(1e6, 2 * math.pi))
+    phi = np.linspace(-0.5, 0.5, 11)
+    assert np.allclose(far.thickness(phi, 0 * phi), near.thickness(phi, 0 * phi), rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("inlet_pressure", dict(inlet_pressure=1e308)),
+    ("inlet_pressure", dict(inlet_pressure=-1e13)),
+    ("wedge", dict(wedge=1e308)),
+    (r"squeeze\[0\]", dict(squeeze=(1e308, 0.0))),
+])
+def test_fd_operating_point_out_of_range(name, kwargs):
+    from bearingfe import solve_reynolds_fd
+
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)])
+    with pytest.raises(ValueError, match=rf"{name} must be a finite number with \|{name}\| <= 1e\+12"):
+        solve_reynolds_fd(surface, CosineFilm(0.5), (21, 17), **kwargs)
+
+
+def test_pump_rtol_out_of_range_is_named():
+    from bearingfe import load_mechanism, simulate
+
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    with pytest.raises(ValueError, match=r"rtol must be in \(0, 1\)"):
+        simulate(pump, revolutions=0.1, rtol=10)
+
+
+def test_pump_scene_with_rtol_10_is_one_line(tmp_path, capsys, scene_file):
+    """``rtol = 10`` in a pump scene once leaked the private ``_FilmClosed`` as a traceback."""
+    scene = scene_file("pump", run={"rtol": 10})  # the shipped scene, whatever rtol it uses, with rtol 10
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "rtol must be in (0, 1)" in err and "_FilmClosed" not in err
+
+
+def test_mesh_surface_algorithm_is_checked():
+    with pytest.raises(ValueError, match="algorithm must be one of gmsh's 2D algorithms"):
+        mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.2, algorithm=10)
+
+
+# -- the thin-film resolution check -------------------------------------------------------------
+
+def _one_triangle(points):
+    """A SupportMesh-like holder of a single straight triangle (only ``.mesh`` is read)."""
+    import skfem
+
+    class Holder:
+        mesh = skfem.MeshTri1(np.array(points, dtype=float).T, np.array([[0], [1], [2]]))
+
+    return Holder()
+
+
+def test_film_variation_closed_form():
+    """One triangle with vertices at phi = pi (thinnest point of h = 1 + gamma cos phi) and pi + s:
+    (h(pi + s) - h(pi)) / h(pi) = gamma (1 - cos s) / (1 - gamma), exactly (the corner at pi + s is the
+    thickest vertex)."""
+    from bearingfe.core.checks import film_variation
+
+    gamma, s = 0.99, 0.1
+    holder = _one_triangle([(math.pi, 0.0), (math.pi + s, 0.0), (math.pi, s)])
+    variation, h_min, size = film_variation(holder, CosineFilm(gamma))
+    assert variation == pytest.approx(gamma * (1 - math.cos(s)) / (1 - gamma), rel=1e-12)
+    assert h_min == pytest.approx(1 - gamma, rel=1e-12) and size == pytest.approx(s * math.sqrt(2), rel=1e-12)
+
+
+def test_resolution_check_warns_near_contact_only():
+    """gamma = 1 - 1e-6 on a 0.05 mesh: across an element at the thinnest film h grows by about
+    gamma s^2 / 2 / 1e-6 ~ 1e3 x h_min (limit 1). gamma = 0.5 on the same mesh changes by < 0.1."""
+    from bearingfe import ResolutionWarning, check_resolution
+
+    mesh = mesh_surface(Surface(arc=(2.0, 4.2), half_width=0.5), 0.05)
+    with pytest.warns(ResolutionWarning, match=r"thin film is not resolved: .* where h = 1e-06"):
+        message = check_resolution(mesh, CosineFilm(1 - 1e-6))
+    assert "film_graded_size" in message
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        assert check_resolution(mesh, CosineFilm(0.5)) is None
+
+
+def test_gmsh_child_dies_with_its_parent(tmp_path):
+    """A caller killed by SIGKILL (no chance to clean up) does not leave gmsh looping: the child
+    process asked the kernel to kill it with its parent (Linux PR_SET_PDEATHSIG)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    code = f"from bearingfe import load_mesh; load_mesh({str(geo)!r}, size=0.2, timeout=600)"
+    parent = subprocess.Popen([sys.executable, "-c", code], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    child = None
+    for _ in range(300):  # the child appears once bearingfe is imported (a few seconds at most)
+        text = children.read_text().split() if children.exists() else []
+        if text:
+            child = int(text[0])
+            break
+        time.sleep(0.05)
+    assert child is not None
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    parent.wait()
+    for _ in range(100):
+        if not Path(f"/proc/{child}").exists() or "Z" in Path(f"/proc/{child}/stat").read_text().split()[2]:
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(child, signal.SIGKILL)  # the child this test started (through its parent)
+        pytest.fail("the gmsh child outlived its killed parent")
+
+
+@pytest.mark.parametrize("name, kwargs", [
+    ("inlet_pressure", dict(inlet_pressure=1e308)),
+    ("wedge", dict(wedge=-1e300)),
+    (r"squeeze\[1\]", dict(squeeze=(0.0, 1e13))),
+])
+def test_solve_reynolds_operating_point_out_of_range(name, kwargs):
+    from bearingfe import solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4, inlets=[Circle((0.0, 0.0), 0.1)]), 0.2)
+    with pytest.raises(ValueError, match=rf"{name} must be a finite number with \|{name}\| <= 1e\+12"):
+        solve_reynolds(mesh, CosineFilm(0.5), **kwargs)
+
+
+def test_near_contact_solve_warns_and_notes():
+    """At gamma = 1 - 1e-6 the peak pressure changed 400 x with the mesh and nothing said so.
+    Now every solve_reynolds warns and records it in the result's notes; a resolved film (gamma = 0.5
+    on the same mesh: h changes by < 0.1 x h across any element) gets neither."""
+    import warnings
+
+    from bearingfe import ResolutionWarning, solve_reynolds
+
+    mesh = mesh_surface(Surface(arc=(2.0, 4.2), half_width=0.5), 0.1)
+    with pytest.warns(ResolutionWarning, match="thin film is not resolved") as record:
+        res = solve_reynolds(mesh, CosineFilm(1 - 1e-6), cavitation="reynolds")
+    assert record[0].filename == __file__  # the warning points at the caller's line
+    assert any("thin film is not resolved" in note for note in res.notes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        res = solve_reynolds(mesh, CosineFilm(0.5), cavitation="reynolds")
+    assert not any("not resolved" in note for note in res.notes)
+
+
+def test_command_hidden_behind_a_dot_is_refused():
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'Sleep' is used as a command"):
+        check_geo_script(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: .*text value"):
+        check_geo_script(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")
+
+
+def test_scene_with_tiny_mesh_size_is_one_line(tmp_path, capsys, scene_file):
+    """``size = 1e-4`` in a scene: 0.8 / (sqrt(3)/4 1e-8) = 1.85e8 triangles, refused before gmsh starts."""
+    scene = scene_file("reynolds", title="too fine", surface={"inlets": None}, film={"phi0": None},
+                       operating={"inlet_pressure": None},
+                       solver={"size": 1e-4, "inlet_size": None, "element": None, "linear_solver": None},
+                       output={"pictures": []})
+    assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "1.85e+08 triangles" in err and "BEARINGFE_MAX_ELEMENTS" in err
+
+
+def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
+    """``bearingfe mesh`` killed by SIGKILL while gmsh works (no chance to clean up): gmsh wrote into a
+    private temporary folder, so the --out folder holds only what was there before (the .geo)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    out = tmp_path / "m.msh"
+    parent = subprocess.Popen([sys.executable, "-m", "bearingfe.cli", "mesh", str(geo), "--size", "0.2",
+                               "--out", str(out), "--geo-timeout", "600"], cwd=ROOT)
+    children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
+    for _ in range(300):  # gmsh's child appears once bearingfe is imported (a few seconds at most)
+        if children.exists() and children.read_text().split():
+            break
+        time.sleep(0.05)
+    else:
+        parent.kill()
+        pytest.fail("the gmsh child never started")
+    time.sleep(1.0)  # let it reach gmsh's loop
+    parent.send_signal(signal.SIGKILL)
+    assert parent.wait() == -signal.SIGKILL
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hostile.geo"]
