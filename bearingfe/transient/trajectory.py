@@ -11,7 +11,7 @@ import numpy as np
 
 from ..bearings.pump import EccentricPump
 
-__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "make_trajectory"]
+__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "make_trajectory", "report_columns"]
 
 #: How a run ends (:attr:`Trajectory.status`).
 STATUSES = ("completed", "ruptured", "no-equilibrium", "stalled")
@@ -195,3 +195,25 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
         start=(float(start[0]), float(start[1])), periodic_iterations=int(periodic_iterations),
         periodic_residual=float(periodic_residual), element=element, stats=MappingProxyType(dict(stats)),
         max_deflection=columns.get("max_deflection"), pressures=columns.get("pressures"))
+
+
+def report_columns(traj: Trajectory, scale) -> dict[str, np.ndarray]:
+    """A trajectory's columns as a person reads them, each headed ``"name [unit]"``.
+
+    Angles in degrees, everything else SI (the load in N from ``scale``,
+    :class:`bearingfe.core.scales.Scale`); the solver's non-dimensional pocket
+    pressure and load are kept as extra columns named ``*_nondimensional [-]``.
+    """
+    cols = {"t [s]": traj.t, "beta [deg]": np.degrees(traj.beta), "gamma [-]": traj.gamma,
+            "delta [deg]": np.degrees(traj.delta), "gamma_rate [1/rad]": traj.gamma_rate,
+            "delta_rate [-]": traj.delta_rate, "wedge [-]": traj.wedge,
+            "chamber_pressure [Pa]": traj.chamber_pressure, "h_min [m]": traj.h_min,
+            "friction_moment [N m]": traj.friction_moment, "flow_inlet [m^3/s]": traj.flow_inlet,
+            "flow_side [m^3/s]": traj.flow_side, "flow_arc [m^3/s]": traj.flow_arc,
+            "flow_squeeze [m^3/s]": traj.flow_squeeze, "mass_balance [m^3/s]": traj.mass_balance,
+            "load_x [N]": scale.to_force(traj.load[:, 0]), "load_y [N]": scale.to_force(traj.load[:, 1])}
+    if traj.max_deflection is not None:
+        cols["max_deflection [m]"] = traj.max_deflection
+    cols.update({"inlet_pressure_nondimensional [-]": traj.inlet_pressure,
+                 "load_x_nondimensional [-]": traj.load[:, 0], "load_y_nondimensional [-]": traj.load[:, 1]})
+    return {k: np.asarray(v, dtype=float) for k, v in cols.items()}
