@@ -18,12 +18,12 @@ Nothing here touches pyplot's global state.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Sequence
 
 import numpy as np
 
-__all__ = ["FIELDS", "Panel", "sampled", "field_axes", "field_panels"]
+__all__ = ["FIELDS", "DISPLAY_TRIANGLES", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
 
 #: Field kind -> (symbol, colour map, pocket colour or None: the pockets carry the inlet pressure).
 FIELDS = {"pressure": ("p", "viridis", None), "film": ("h", "plasma", "lightgrey"),
@@ -35,7 +35,9 @@ class Panel:
     """One field map: ``kind`` of ``result`` shown as ``scale * value`` in ``unit``, titled ``title``.
 
     ``radius`` is the eccentric radius ``R0`` [m] (axes in deg and mm); ``surface`` gives the exact
-    pocket and outline curves.
+    pocket and outline curves; ``offset_deg`` is added to the angle (e.g. a pad's place in the
+    bearing frame); ``true_aspect``: draw arc length and width to the same scale (a full journal
+    bearing, far longer round than wide, reads better stretched: ``False``).
     """
 
     result: Any
@@ -45,16 +47,36 @@ class Panel:
     radius: float
     title: str = ""
     surface: Any = None
-    extra: dict = field(default_factory=dict)
+    offset_deg: float = 0.0
+    true_aspect: bool = True
 
 
-def sampled(result, values: np.ndarray | None = None, *, kind: str = "pressure", nrefs: int = 2):
+#: Display triangles aimed at: a P2 field is refined while its display mesh stays below this.
+DISPLAY_TRIANGLES = 20000
+
+
+def refinements(result) -> int:
+    """How often to split the triangles for display: 0 for P1 (linear: nothing to gain), for P2 as
+    often as keeps the display mesh under :data:`DISPLAY_TRIANGLES` (at least once)."""
+    basis = result.basis
+    if basis.N <= basis.mesh.nvertices:  # P1: one dof per vertex
+        return 0
+    nt, k = basis.mesh.t.shape[1], 1
+    while k < 3 and nt * 4 ** (k + 1) <= DISPLAY_TRIANGLES:
+        k += 1
+    return k
+
+
+def sampled(result, values: np.ndarray | None = None, *, kind: str = "pressure", nrefs: int | None = None):
     """Display points (2, n) ``(phi, z)`` [-], triangles (3, m) and field values (n,) [-] of a result.
+
+    ``nrefs``: splits of every triangle (default :func:`refinements`).
 
     ``values``: dofs of the result's basis (default: the pressure, or the deflection for
     ``kind="deflection"``); ``kind="film"``: the film thickness, evaluated exactly at the points.
     """
     basis = result.basis
+    nrefs = refinements(result) if nrefs is None else int(nrefs)
     if kind == "film":
         mesh, _ = basis.refinterp(np.zeros(basis.N), nrefs=nrefs)
         xy = np.asarray(mesh.p, dtype=float)
@@ -73,7 +95,7 @@ def _loops(result, surface) -> list[np.ndarray]:
     return loops(result, surface)
 
 
-def field_axes(ax, panel: Panel, *, nrefs: int = 2, colorbar: bool = True):
+def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = True):
     """Draw ``panel`` into ``ax``; returns the mappable (a ``TriMesh``/``PolyCollection``).
 
     The colour bar (``ax.figure.colorbar``) is labelled ``"<symbol> [<unit>]"``; the pockets are
@@ -88,7 +110,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int = 2, colorbar: bool = True):
     xy, t, v = sampled(panel.result, kind=panel.kind, nrefs=nrefs)
     v = v * panel.scale
     to_mm = panel.radius * 1e3
-    x, y = np.degrees(xy[0]), xy[1] * to_mm
+    x, y = np.degrees(xy[0]) + panel.offset_deg, xy[1] * to_mm
     tri = Triangulation(x, y, t.T)
     lo, hi = float(v.min()), float(v.max())
     inlet = float(getattr(panel.result, "inlet_pressure", 0.0)) * panel.scale
@@ -99,7 +121,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int = 2, colorbar: bool = True):
         hi = lo + (abs(lo) or 1.0) * 1e-6
     mappable = ax.tripcolor(tri, v, shading="gouraud", cmap=cmap, vmin=lo, vmax=hi, rasterized=True)
     for loop in loops:
-        px, py = np.degrees(loop[0]), loop[1] * to_mm
+        px, py = np.degrees(loop[0]) + panel.offset_deg, loop[1] * to_mm
         if pocket_color is None:
             ax.fill(px, py, color=mappable.cmap(mappable.norm(inlet)), zorder=2)
         else:
@@ -107,10 +129,21 @@ def field_axes(ax, panel: Panel, *, nrefs: int = 2, colorbar: bool = True):
         ax.plot(np.append(px, px[0]), np.append(py, py[0]), color="k", lw=1.0, zorder=3)
     if panel.surface is not None:
         out = panel.surface.outline.boundary(360)
-        ax.plot(np.degrees(np.append(out[0], out[0, 0])), np.append(out[1], out[1, 0]) * to_mm, color="k", lw=1.0)
-    if panel.kind == "pressure" and v.min() < 0.0 < v.max():
+        ax.plot(np.degrees(np.append(out[0], out[0, 0])) + panel.offset_deg, np.append(out[1], out[1, 0]) * to_mm,
+                color="k", lw=1.0)
+    ruptured = getattr(panel.result, "cavitated", None)
+    if panel.kind == "pressure" and ruptured is not None and np.size(ruptured) == panel.result.basis.N:
+        _, _, flag = sampled(panel.result, np.asarray(ruptured, dtype=float).ravel(), nrefs=nrefs)
+        if flag.min() < 0.5 < flag.max():
+            ax.tricontour(tri, flag, levels=[0.5], colors="red", linewidths=1.2)
+            ax.plot([], [], color="red", label="film rupture boundary")
+    elif panel.kind == "pressure" and v.min() < 0.0 < v.max():
         ax.tricontour(tri, v, levels=[0.0], colors="red", linewidths=1.2)
-    ax.set_aspect(1.0 / (panel.radius * np.pi / 180 * 1e3))  # 1 deg of arc is R0 pi/180 long
+        ax.plot([], [], color="red", label="p = 0")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="upper right", fontsize="small")
+    if panel.true_aspect:
+        ax.set_aspect(1.0 / (panel.radius * np.pi / 180 * 1e3))  # 1 deg of arc is R0 pi/180 long
     ax.set_xlabel("phi [deg]")
     ax.set_ylabel("z [mm]")
     if panel.title:
@@ -122,7 +155,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int = 2, colorbar: bool = True):
 
 
 def field_panels(panels: Sequence[Sequence[Panel | None]], path=None, *, title: str | None = None,
-                 nrefs: int = 2, panel_size=(5.2, 3.4)):
+                 nrefs: int | None = None, panel_size=(5.2, 3.4)):
     """A grid of field maps (rows of :class:`Panel`, ``None`` leaves a cell empty); saved if ``path``.
 
     Returns

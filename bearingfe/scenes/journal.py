@@ -15,7 +15,7 @@ Scene file::
     width_deg = 20.0                     # in (0, 180)
     length_fraction = 0.8                # groove length / L, in (0, 1)
     [operating]
-    speed = 3000.0                       # [rpm]
+    speed = 3000.0                       # [rpm]; or speed_rad_s = 314.16 [rad/s] (exactly one of the two)
     viscosity = 0.018                    # [Pa s]
     load = 10.0e3                        # [N]
     load_direction_deg = -90.0           # load on the journal: gravity (-y) by default
@@ -28,6 +28,11 @@ Scene file::
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                          # wrapped picture: radial push of the peak pressure [R]
     tables = ["pressure", "coefficients"]
+    [limits]                             # optional design limits, flagged in the summary (SI)
+    min_film = 15e-6                     # smallest film [m]
+    max_pressure = 10e6                  # peak pressure [Pa]
+    max_friction_power = 2000.0          # friction power [W]
+    max_leakage = 5e-5                   # total flow into the film [m^3/s]
 
 Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
 (up), the direction in which the journal turns. The runner finds the
@@ -57,10 +62,15 @@ repeated with half the element size and the relative changes are reported
 (``K``, ``C``: largest entry change over largest entry); the values reported
 are those of the given size.
 
-Pictures show the non-dimensional fields (``p = P c^2/(mu omega R^2)``,
-``h = H/c``); the full bearing is meshed and drawn in the frame of the line
-of largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
-bearing frame is in the summary.
+Pictures show the pressure in MPa and the film in um, titled with the
+eccentricity, attitude, peak pressure and smallest film: ``pressure.png`` and
+``film.png`` over the angle in the bearing frame [deg] and the axial position
+[mm], ``pressure_wrapped.png`` on the bearing's cylinder, the film rupture
+boundary in red. The full bearing is meshed in the frame of the line of
+largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
+bearing frame is in the summary. ``[limits]`` (optional, SI, ranges in
+:data:`bearingfe.core.schema.LIMITS`) are flagged in the summary: each
+``results.limits[name]`` has the value, the limit and ``ok``.
 """
 
 from __future__ import annotations
@@ -73,8 +83,8 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
-                     flag, nonnegative_number, number, positive_number, read_table, text)
+from ..core.schema import (LIMITS_TABLE, REQUIRED, Range, SchemaError, Table, Tables, anything, build, check_limits,
+                           choice, choices, flag, nonnegative_number, number, positive_number, read_table, text)
 
 __all__ = ["run", "settings", "pressure_columns", "SPEC", "PICTURES", "TABLES"]
 
@@ -123,7 +133,8 @@ SPEC = {
                            "width_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), REQUIRED),
                            "length_fraction": (number(_OPEN_UNIT), 0.8)}),
         "supply_pressure": (nonnegative_number, 0.0)}, required=True),
-    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, REQUIRED),
+    "operating": Table({"speed": (positive_number, None), "speed_rad_s": (positive_number, None),
+                        "viscosity": (positive_number, REQUIRED),
                         "load": (positive_number, REQUIRED), "load_direction_deg": (number(), -90.0)},
                        required=True),
     "solver": Table({"size": (number(Range(0.0, 1.0, lo_open=True)), 0.05),
@@ -131,20 +142,27 @@ SPEC = {
                      "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
                      "tables": (choices(TABLES), TABLES)}),
+    "limits": LIMITS_TABLE,
 }
 
 
 def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     """All validated settings of a ``"journal"`` scene (SI, angles in degrees)."""
     s = read_table(data, label, "", SPEC)
-    bearing, solver = s["bearing"], s["solver"]
+    bearing, solver, op = s["bearing"], s["solver"], s["operating"]
+    if (op["speed"] is None) == (op["speed_rad_s"] is None):
+        raise SchemaError(f"{label}: [operating] speed: give exactly one of speed [rpm] and speed_rad_s [rad/s]; "
+                          f"got speed = {op['speed']!r}, speed_rad_s = {op['speed_rad_s']!r}")
+    if op["speed"] is None:
+        op["speed"] = op["speed_rad_s"] * 60 / (2 * math.pi)  # the runner reads rpm
+    op["speed_rad_s"] = 2 * math.pi * op["speed"] / 60
     _check_proportions(bearing, label)
     _check_grooves(bearing, label)
     if solver["min_size"] is not None and solver["min_size"] > solver["size"]:
         raise SchemaError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
                           f"got {solver['min_size']!r}")
     return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
-            "operating": s["operating"], "solver": solver, "output": s["output"]}
+            "operating": op, "solver": solver, "output": s["output"], "limits": s["limits"]}
 
 
 def _check_proportions(b: dict, label: str) -> None:
@@ -179,7 +197,7 @@ def _scale(s: dict):
 
     b, op = s["bearing"], s["operating"]
     return Scale(radius=b["diameter"] / 2, clearance=b["radial_clearance"], viscosity=op["viscosity"],
-                 speed=2 * math.pi * op["speed"] / 60)
+                 speed=op["speed_rad_s"])
 
 
 def _bearing(s: dict, scale, label: str):
@@ -253,7 +271,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     done = 1 + int(solver["estimate_error"])
     t0 = time.perf_counter()
     files = _tables(out["tables"], s, scale, eq, summary, out_dir)
-    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what))
+    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what), s["title"])
     summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
     summary["files"] = files + ["summary.json"]
     tick(steps - 1, steps, "summary")
@@ -316,6 +334,12 @@ def _summary(s: dict, scale, bearing, eq, dc, seconds: dict, fine) -> dict:
                "error_estimate": None if fine is None else _error_estimate(eq, dcf, film, fine, scale)}
     if fine is not None:
         cost["seconds"]["error_estimate"] = fine[2] + fine[3]
+    verdicts = check_limits({"min_film": film["min_film_m"], "max_pressure": film["max_pressure_Pa"],
+                             "max_friction_power": film["friction_power_W"], "max_leakage": film["total_flow_m3s"]},
+                            s["limits"])
+    results["limits"] = verdicts
+    results["within_limits"] = all(v["ok"] for v in verdicts.values())
+    summary["limits"] = dict(s["limits"])
     summary["table"] = _table(results, K, C, summary["error_estimate"], cost)
     return summary
 
@@ -354,12 +378,14 @@ def _error_estimate(eq, dcf, film: dict, fine, scale) -> dict:
 
 def _table(r: dict, K, C, err, cost) -> list:
     rows = [("eccentricity ratio", r["eccentricity"], "-"), ("attitude angle", r["attitude_deg"], "deg"),
-            ("minimum film", r["min_film_m"] * 1e6, "um"), ("maximum pressure", r["max_pressure_Pa"] / 1e6, "MPa"),
+            ("minimum film", r["min_film_m"] * 1e6, "um"), ("peak pressure", r["max_pressure_Pa"], "Pa"),
             ("Sommerfeld number", r["sommerfeld"], "-"), ("friction torque", r["friction_torque_Nm"], "N m"),
             ("friction power", r["friction_power_W"], "W"), ("side flow", r["side_flow_m3s"] * 6e4, "l/min"),
             ("total flow", r["total_flow_m3s"] * 6e4, "l/min")]
     if r["inlet_flow_m3s"] != 0.0:  # grooves
         rows.append(("groove (supply) flow", r["inlet_flow_m3s"] * 6e4, "l/min"))
+    rows += [(f"limit {name}: {v['value']:.4g} {v['relation']} {v['limit']:.4g} {v['unit']}",
+              "ok" if v["ok"] else "VIOLATED", "") for name, v in r["limits"].items()]
     rows += [(f"k{a}{b}", float(K[i, j]), "N/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     rows += [(f"c{a}{b}", float(C[i, j]), "N s/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     if err is not None:
@@ -373,8 +399,9 @@ def _table(r: dict, K, C, err, cost) -> list:
 # -- files -------------------------------------------------------------------------------------
 
 def pressure_columns(eq, scale) -> dict[str, np.ndarray]:
-    """Every mesh node of every pad: ``pad``, ``phi_deg`` (bearing frame, [0, 360)), ``z_m`` (from the
-    mid-plane), ``pressure_Pa``, ``film_m`` and ``ruptured`` (1 where the film has ruptured)."""
+    """Every mesh node of every pad, headed ``"name [unit]"``: ``pad``, ``phi [deg]`` (bearing frame,
+    [0, 360)), ``z [m]`` (from the mid-plane), ``pressure [Pa]``, ``film [m]`` and ``ruptured [-]`` (1
+    where the film has ruptured)."""
     cols = {k: [] for k in ("pad", "phi_deg", "z_m", "pressure_Pa", "film_m", "ruptured")}
     for k, res in enumerate(eq.state.results):
         nv = int(res.basis.mesh.nvertices)
@@ -386,7 +413,9 @@ def pressure_columns(eq, scale) -> dict[str, np.ndarray]:
         cols["pressure_Pa"].append(scale.to_pressure(np.asarray(res.pressure, float)[:nv]))
         cols["film_m"].append(scale.to_thickness(np.asarray(res.film.thickness(phi, z), float)))
         cols["ruptured"].append(cav)
-    return {k: np.concatenate(v) for k, v in cols.items()}
+    headers = {"pad": "pad [-]", "phi_deg": "phi [deg]", "z_m": "z [m]", "pressure_Pa": "pressure [Pa]",
+               "film_m": "film [m]", "ruptured": "ruptured [-]"}
+    return {headers[k]: np.concatenate(v) for k, v in cols.items()}
 
 
 def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str]:
@@ -398,27 +427,39 @@ def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str
         files.append(write_csv(cols, out_dir / "pressure_field.csv", fields=list(cols)).name)
     if "coefficients" in names:
         ross = summary["ross_bearing_element"]
-        cols = {k: np.asarray(ross[k], float) for k in ("frequency", "kxx", "kxy", "kyx", "kyy",
-                                                         "cxx", "cxy", "cyx", "cyy")}
+        units = {"frequency": "rad/s", **{f"k{a}{b}": "N/m" for a in "xy" for b in "xy"},
+                 **{f"c{a}{b}": "N s/m" for a in "xy" for b in "xy"}}
+        cols = {f"{k} [{u}]": np.asarray(ross[k], float) for k, u in units.items()}
         files.append(write_csv(cols, out_dir / "coefficients.csv", fields=list(cols)).name)
     return files
 
 
-def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable) -> list[str]:
-    from ..plot import fields
+def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable, title: str = "") -> list[str]:
+    from ..plot import fields, maps
 
     p_mpa = dict(scale=scale.to_pressure(1.0) / 1e6, unit="MPa")
     h_um = dict(scale=scale.to_thickness(1.0) * 1e6, unit="um")
     surfaces = bearing.surfaces()
+    offset = float(np.degrees(eq.state.rotation))
     files, k = [], 0
     for j, (res, surface) in enumerate(zip(eq.state.results, surfaces)):
         suffix = f"_pad{j + 1}" if len(surfaces) > 1 else ""
-        draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / f"pressure{suffix}.png",
-                                                            surface=surface, **p_mpa),
+        where = f"pad {j + 1}: " if len(surfaces) > 1 else ""
+        heading = (f"{where}eccentricity {eq.eps:.3f}, attitude {eq.attitude:.1f} deg, "
+                   f"p_max = {scale.to_pressure(res.max_pressure) / 1e6:.3g} MPa, "
+                   f"h_min = {scale.to_thickness(res.h_min) * 1e6:.3g} um")
+
+        def field_map(kind, file, unit):
+            panel = maps.Panel(res, kind, *unit.values(), radius=scale.radius, title=heading, surface=surface,
+                               offset_deg=offset, true_aspect=False)
+            maps.field_panels([[panel]], out_dir / file, title=title, panel_size=(10.0, 3.6))
+            return out_dir / file
+
+        draw = {"pressure": lambda: field_map("pressure", f"pressure{suffix}.png", p_mpa),
                 "wrapped": lambda: fields.pressure_picture(res, out_dir / f"pressure_wrapped{suffix}.png",
                                                            view="wrapped", warp=out["warp"], surface=surface,
-                                                           **p_mpa),
-                "film": lambda: fields.film_picture(res, out_dir / f"film{suffix}.png", surface=surface, **h_um)}
+                                                           title=heading, **p_mpa),
+                "film": lambda: field_map("film", f"film{suffix}.png", h_um)}
         for name in out["pictures"]:
             tick(k, f"picture: {name}{suffix}")
             files.append(draw[name]().name)
