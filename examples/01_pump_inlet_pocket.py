@@ -22,7 +22,7 @@ Run::
     PYTHONPATH=. python examples/01_pump_inlet_pocket.py [out_dir] [--size 0.08] [--sweep]
 
 prints the ratio of smallest films, writes ``pump_inlet_pocket.csv`` and
-``pump_inlet_pocket.png`` into ``out_dir`` (default ``out/``), and checks
+``pump_inlet_pocket.png`` into ``out_dir`` (default ``examples/output/01_pump_inlet_pocket/``), and checks
 its own result: ratio > 1 and a closed mass balance.
 """
 
@@ -39,6 +39,8 @@ import numpy as np
 import bearingfe as bf
 
 ROOT = Path(__file__).resolve().parents[1]
+#: This example's own output folder (next to it, whatever the working directory).
+OUT = Path(__file__).resolve().parent / "output" / Path(__file__).stem
 
 
 def designs(pump: bf.EccentricPump) -> dict[str, bf.EccentricPump]:
@@ -113,8 +115,8 @@ def plot(runs: dict[str, bf.Trajectory], path: Path) -> None:
 def main(argv=None) -> float:
     quick = os.environ.get("BEARINGFE_QUICK") == "1"
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", default=os.environ.get("BEARINGFE_OUT", "out"),
-                        help="output folder (default out/, or $BEARINGFE_OUT)")
+    parser.add_argument("out", nargs="?", default=os.environ.get("BEARINGFE_OUT", str(OUT)),
+                        help="output folder (default examples/output/01_pump_inlet_pocket/, or $BEARINGFE_OUT)")
     parser.add_argument("--size", type=float, default=0.15 if quick else 0.08,
                         help="mesh size in R0 (default 0.08; 0.15 with BEARINGFE_QUICK=1)")
     parser.add_argument("--sweep", action="store_true", help="also sweep pocket place and size")

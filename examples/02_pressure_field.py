@@ -21,7 +21,7 @@ in the unwrapped plane (phi [rad], z = Z/R0), p = P c^2/(mu omega R0^2).
    pocket flow 3.705373 [omega R0^2 c].
 
 Set BEARINGFE_QUICK=1 for a coarse mesh and BEARINGFE_OUT for the output
-directory (default ``out/examples``).
+directory (default ``examples/output/02_pressure_field/``, next to this file).
 """
 
 import math
@@ -32,7 +32,7 @@ import bearingfe as bf
 from bearingfe.plot.fields import film_picture, pressure_picture
 
 QUICK = os.environ.get("BEARINGFE_QUICK") == "1"
-OUT = Path(os.environ.get("BEARINGFE_OUT", "out/examples"))
+OUT = Path(os.environ.get("BEARINGFE_OUT") or Path(__file__).resolve().parent / "output" / Path(__file__).stem)
 OUT.mkdir(parents=True, exist_ok=True)
 SIZE = 0.08 if QUICK else 0.02
 TOL = 5e-4 if QUICK else 1e-5  # relative; measured errors 1e-4 (quick) and 1e-6

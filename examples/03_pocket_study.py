@@ -20,7 +20,8 @@ arc edge (an off-centre pocket tilts the shoe), each recorded with its reason.
 
 ``BEARINGFE_QUICK=1`` runs a 2x2 grid on a coarse P1 mesh from the steady
 state (for the test suite).
-Run: ``PYTHONPATH=. python examples/03_pocket_study.py [OUT_DIR]``.
+Run: ``PYTHONPATH=. python examples/03_pocket_study.py [OUT_DIR]`` (default
+``examples/output/03_pocket_study/``).
 """
 
 from __future__ import annotations
@@ -56,7 +57,11 @@ def contour_figure(table, output: str, label: str):
     return fig
 
 
-def main(out_dir: str = "runs/pump_pocket_study") -> None:
+#: This example's own output folder (next to it, whatever the working directory).
+OUT = Path(__file__).resolve().parent / "output" / Path(__file__).stem
+
+
+def main(out_dir: str | Path = OUT) -> None:
     study = read_study(STUDY)
     changes, base = study.changes, study.base
     if os.environ.get("BEARINGFE_QUICK") == "1":
@@ -85,4 +90,4 @@ def main(out_dir: str = "runs/pump_pocket_study") -> None:
 
 
 if __name__ == "__main__":  # required: the sweep starts worker processes with "spawn"
-    main(os.environ.get("BEARINGFE_OUT") or (sys.argv[1] if len(sys.argv) == 2 else "runs/pump_pocket_study"))
+    main(os.environ.get("BEARINGFE_OUT") or (sys.argv[1] if len(sys.argv) == 2 else OUT))

@@ -113,10 +113,15 @@ def write_vtu(result, path: str | Path, scale=None, *, field_data: Mapping[str, 
     if path.suffix != ".vtu":
         raise ValueError(f"path must end in .vtu, got {path.name}")
     points, t, data = vtu_fields(result, scale)
-    extra = {k: np.array([float(v)]) for k, v in (field_data or {}).items()}
-    mesh = meshio.Mesh(points, [("triangle", t)], point_data=data, field_data=extra)
+    mesh = meshio.Mesh(points, [("triangle", t)], point_data=data)
     with atomic_path(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
+        if field_data:  # meshio's VTU writer leaves field data out: VTK's <FieldData>, one number each
+            arrays = "".join(f'<DataArray type="Float64" Name="{name}" NumberOfTuples="1" format="ascii">'
+                             f"{float(value)!r}</DataArray>\n" for name, value in field_data.items())
+            text = tmp.read_text()
+            tmp.write_text(text.replace("<UnstructuredGrid>", f"<UnstructuredGrid>\n<FieldData>\n{arrays}</FieldData>",
+                                        1))
     return path
 
 

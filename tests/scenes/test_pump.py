@@ -34,11 +34,11 @@ def test_pump_scene_writes_everything_consistent(tmp_path, capsys, scene_file):
     assert main(["run", str(scene_file("pump", COARSE)), "--out", str(out), "--no-progress"]) == 0
     names = {p.name for p in out.iterdir()}
     assert {"trajectory_pocket.csv", "trajectory_plain.csv", "trajectory.png", "orbit.png", "pressure.png",
-            "pressure.pvd", "summary.json"} <= names
+            "film.png", "summary.png", "pressure.pvd", "summary.json"} <= names
     summary = json.loads((out / "summary.json").read_text())
     res = summary["results"]
-    pocket = _min_column(out / "trajectory_pocket.csv", "h_min")
-    plain = _min_column(out / "trajectory_plain.csv", "h_min")
+    pocket = _min_column(out / "trajectory_pocket.csv", "h_min [m]")
+    plain = _min_column(out / "trajectory_plain.csv", "h_min [m]")
     assert res["pocket"]["smallest_film_m"] == pytest.approx(pocket, rel=1e-12)
     assert res["plain"]["smallest_film_m"] == pytest.approx(plain, rel=1e-12)
     assert res["film_ratio"] == pytest.approx(pocket / plain, rel=1e-12)
@@ -68,3 +68,111 @@ def test_pump_scene_errors_name_the_field(tmp_path, scene_file):
     missing = scene_file("pump", name="missing.toml", pump={"mechanism": "nowhere.toml"})
     assert main(["run", str(missing), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
     assert not (tmp_path / "o").exists()
+
+
+def _csv(path: Path) -> dict[str, np.ndarray]:
+    with open(path) as fh:
+        rows = list(csv.DictReader(fh))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+#: The shipped pump (mechanisms/eccentric_pump.toml): 1500 rpm = 50 pi rad/s; its force scale
+#: mu omega R0^4/c^2 = 0.03 * 50 pi * 0.05^4 / (20e-6)^2 = 73.63 kN.
+OMEGA = 50 * np.pi
+FORCE_SCALE = 0.03 * OMEGA * 0.05**4 / 20e-6**2
+
+
+@pytest.fixture(scope="module")
+def coarse_run(tmp_path_factory):
+    """The coarse scene with limits on either side of its figures, run once; its folder and summary."""
+    from tests.helpers import scene_data, toml_text
+
+    folder = tmp_path_factory.mktemp("pump")
+    scene = folder / "pump.toml"
+    scene.write_text(toml_text(scene_data("pump", COARSE, limits={"min_film": 10e-6, "max_pressure": 40e6,
+                                                                   "max_friction_power": 1.0,
+                                                                   "max_leakage": 1.0})))
+    out = folder / "out"
+    assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
+    return out, json.loads((out / "summary.json").read_text())
+
+
+def test_trajectory_csv_headers_carry_units_and_si_values(coarse_run):
+    out, summary = coarse_run
+    cols = _csv(out / "trajectory_pocket.csv")
+    assert all(name.endswith("]") and " [" in name for name in cols)  # "name [unit]" everywhere
+    assert {"t [s]", "beta [deg]", "delta [deg]", "h_min [m]", "chamber_pressure [Pa]", "friction_moment [N m]",
+            "flow_inlet [m^3/s]", "load_x [N]", "inlet_pressure_nondimensional [-]", "load_x_nondimensional [-]"
+            } <= set(cols)
+    # angles in degrees: a quarter turn from a steady start at beta = 0
+    assert cols["beta [deg]"][0] == pytest.approx(0.0, abs=1e-9) and cols["beta [deg]"][-1] == pytest.approx(90.0)
+    # t = beta / omega; load [N] = the non-dimensional load times the force scale
+    np.testing.assert_allclose(cols["t [s]"], np.radians(cols["beta [deg]"]) / OMEGA, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(cols["load_x [N]"], cols["load_x_nondimensional [-]"] * FORCE_SCALE, rtol=1e-12)
+
+
+def test_summary_gives_power_leakage_peak_pressure_and_limit_flags(coarse_run):
+    out, summary = coarse_run
+    rows = {q: (v, u) for q, v, u in summary["table"]}
+    for design in ("pocket", "plain"):
+        r = summary["results"][design]
+        cols = _csv(out / f"trajectory_{design}.csv")
+        # friction power = mean friction moment x shaft speed [W]; leakage = mean pocket inflow in l/min
+        assert r["mean_friction_power_W"] == pytest.approx(np.mean(cols["friction_moment [N m]"]) * OMEGA, rel=1e-12)
+        assert rows[f"{design}: mean friction power"] == (pytest.approx(r["mean_friction_power_W"]), "W")
+        assert rows[f"{design}: leakage (mean inflow from the pocket)"] == (
+            pytest.approx(np.mean(cols["flow_inlet [m^3/s]"]) * 6e4, rel=1e-12), "l/min")
+        # the peak pressure is at least that of each pictured state, and at least the chamber's at the
+        # most loaded state with a pocket (the pocket carries the chamber pressure)
+        peak = r["peak_pressure_Pa"]
+        assert rows[f"{design}: peak pressure"] == (pytest.approx(peak), "Pa")
+        assert peak >= max(r["loaded_state"]["peak_pressure_Pa"], r["thinnest_state"]["peak_pressure_Pa"])
+        assert r["loaded_state"]["load_N"] == pytest.approx(max(abs(cols["load_x [N]"])), rel=1e-12)
+        assert r["thinnest_state"]["film_m"] == pytest.approx(r["smallest_film_m"], rel=1e-3)
+        # limits: 10 um smallest film, 40 MPa, 1 W (violated: hundreds of W), 1 m^3/s
+        verdicts = r["limits"]
+        assert verdicts["min_film"]["ok"] == (r["smallest_film_m"] >= 10e-6)
+        assert verdicts["max_pressure"]["ok"] and verdicts["max_leakage"]["ok"]
+        assert not verdicts["max_friction_power"]["ok"] and r["within_limits"] is False
+        v = verdicts["max_friction_power"]
+        assert rows[f"{design}: limit max_friction_power: {v['value']:.4g} <= 1 W"] == ("VIOLATED", "")
+    pocket = summary["results"]["pocket"]
+    assert pocket["loaded_state"]["peak_pressure_Pa"] >= pocket["loaded_state"]["chamber_pressure_Pa"]
+
+
+def test_pictures_draw_both_designs(tmp_path, scene_file, monkeypatch):
+    """Every comparison picture holds both designs: lines per design, one field map per design and state."""
+    from bearingfe.plot import curves, maps
+
+    figures = {}
+
+    def keep(name, draw):
+        def wrapped(*args, **kwargs):
+            figures[name] = draw(*args, **kwargs)
+            return figures[name]
+        monkeypatch.setattr(curves if name in ("trajectory", "orbit") else maps, f"{name}_plot"
+                            if name in ("trajectory", "orbit") else "field_panels", wrapped)
+
+    keep("trajectory", curves.trajectory_plot)
+    keep("orbit", curves.orbit_plot)
+    panels = []
+    draw_panels = maps.field_panels
+    monkeypatch.setattr(maps, "field_panels", lambda rows, *a, **k: panels.append(draw_panels(rows, *a, **k))
+                        or panels[-1])
+    out = tmp_path / "out"
+    assert main(["run", str(scene_file("pump", COARSE)), "--out", str(out), "--no-progress"]) == 0
+    film = figures["trajectory"].axes[2]
+    assert [ln.get_label() for ln in film.lines if ln.get_marker() in ("None", "")] == ["pocket: h_min", "plain: h_min"]
+    assert len([ln for ln in film.lines if ln.get_marker() == "o"]) == 2  # the smallest film of each marked
+    assert len(figures["orbit"].axes[0].lines) == 1 + 2 * 3
+    summary = json.loads((out / "summary.json").read_text())
+    assert len(panels) == 2  # pressure.png, film.png
+    for fig in panels:
+        titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+        assert len(titles) == 4  # two designs x (most loaded, thinnest film)
+        for design in ("pocket", "plain"):
+            for key, what in (("loaded", "most loaded"), ("thinnest", "thinnest film")):
+                st = summary["results"][design][f"{key}_state"]
+                heading = (f"{design}, {what}: beta = {st['beta_deg']:.0f} deg\n"
+                           f"p_max = {st['peak_pressure_Pa'] / 1e6:.3g} MPa, h_min = {st['film_m'] * 1e6:.3g} um")
+                assert heading in titles
