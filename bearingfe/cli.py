@@ -128,14 +128,16 @@ def _sigterm_exits():
 def _sweep(args) -> int:
     """``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]``.
 
-    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
-    design) and ``DIR/cache/`` (per-case records: rerunning resumes). Exit
-    code 0 if every case succeeded, 1 if some failed (they are in the
-    table), 2 if the study file is invalid or no case succeeded.
+    Writes ``DIR/results.csv`` (the table, headers with units), ``DIR/best.json``
+    (the best design) and ``DIR/cache/`` (per-case records: rerunning resumes).
+    A case whose film closes is a result of the study: ``status`` "ruptured"
+    in the table, counted on the summary line. Exit code 0 if no case failed
+    for another reason, 1 if some did (they are in the table, ``status``
+    "failed"), 2 if the study file is invalid or no case completed.
     """
     from .io.writers import atomic_path, write_json
     from .io.outfolder import lock_folder
-    from .sweep import best_design, read_study, sweep
+    from .sweep import best_design, csv_headers, read_study, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
     out = Path(args.out)
@@ -155,10 +157,12 @@ def _sweep(args) -> int:
                 if cluster is not None:
                     cluster.close()
         with atomic_path(out / "results.csv") as tmp:
-            table.to_csv(tmp, index=False)
-        failed = int(table["error"].notna().sum())
-        print(f"{_printable(study.name)}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} "
-              f"from cache; table in {_printable(out / 'results.csv')}")
+            table.rename(columns=csv_headers(table.columns, study.run)).to_csv(tmp, index=False)
+        counts = table["status"].value_counts()
+        failed, ruptured = int(counts.get("failed", 0)), int(counts.get("ruptured", 0))
+        print(f"{_printable(study.name)}: {len(table)} cases: {int(counts.get('completed', 0))} completed, "
+              f"{ruptured} ruptured (the film closed: a result, status 'ruptured' in the table), {failed} failed; "
+              f"{int(table['cached'].sum())} from cache; table in {_printable(out / 'results.csv')}")
         best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
         write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
     changed = table.columns[:table.columns.get_loc("seconds")]
