@@ -30,7 +30,7 @@ import os
 import sys
 from pathlib import Path
 
-from bearingfe.sweep import apply_changes, best_design, read_study, sweep
+from bearingfe.sweep import apply_changes, best_design, csv_headers, read_study, sweep
 
 STUDY = Path(__file__).resolve().parents[1] / "studies" / "pump_pocket_study.toml"
 
@@ -70,7 +70,7 @@ def main(out_dir: str | Path = OUT) -> None:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     table = sweep(base, changes, study.outputs, run=study.run, cache=out / "cache", progress=True)
-    table.to_csv(out / "pocket_study.csv", index=False)
+    table.rename(columns=csv_headers(table.columns, study.run)).to_csv(out / "pocket_study.csv", index=False)
 
     best = best_design(table, study.objective, study.sense)
     ok = table["error"].isna()
@@ -80,6 +80,9 @@ def main(out_dir: str | Path = OUT) -> None:
     print(f"best design ({study.sense} {study.objective}): pocket fraction {best['pocket_fraction']:.0%}, "
           f"position s = {best['pocket_position']:.2f}: smallest film {best['h_min'] * 1e6:.2f} um "
           f"(plain shoe {plain * 1e6:.2f} um), pocket oil {best['flow_inlet'] * 6e4:.3f} l/min")
+    ruptured = int((table["status"] == "ruptured").sum())
+    print(f"{len(table)} cases: {ruptured} ruptured (the film closes: not viable designs), "
+          f"{int((table['status'] == 'failed').sum())} failed")
     fig = contour_figure(table, "h_min", "smallest film over the cycle [m]")
     fig.savefig(out / "pocket_study.png", dpi=120)
 

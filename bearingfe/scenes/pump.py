@@ -63,7 +63,7 @@ from ..core.parameters import ELEMENTS
 from ..core.schema import (LIMITS_TABLE, NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
                      path_text, positive_number, read_table, text)
 
-__all__ = ["run", "settings", "SPEC", "PICTURES"]
+__all__ = ["run", "settings", "simulate_design", "pocket_gain", "SPEC", "PICTURES"]
 
 PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection", "summary")
 #: Support compliances of :mod:`bearingfe.elastic.coupled` by name.
@@ -145,9 +145,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     done = 0
     for name, p in designs.items():
         tick(done, steps, f"simulating: {name}")
-        meshes[name] = pump_mesh(p, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
-        runs[name] = simulate(p, meshes[name], run["revolutions"], start=run["start"], rtol=run["rtol"],
-                              cavitation=run["cavitation"], element=run["element"])
+        meshes[name], runs[name] = simulate_design(p, run)
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
         done += 1
         if elastic:
@@ -186,6 +184,36 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+def simulate_design(pump, run: dict):
+    """The mesh and the rigid run of one design with a scene's ``[run]`` settings: the one computation behind
+    the scene's comparison, the documented pocket gain and the pump example.
+
+    Parameters
+    ----------
+    pump : EccentricPump
+    run : dict
+        ``mesh_size`` [R0], ``element``, ``revolutions``, ``start``, ``rtol`` and ``cavitation`` (as
+        ``settings(...)["run"]`` reads them from a scene file).
+
+    Returns
+    -------
+    (SupportMesh, Trajectory)
+    """
+    from ..transient import pump_mesh, simulate
+
+    mesh = pump_mesh(pump, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
+    return mesh, simulate(pump, mesh, run["revolutions"], start=run["start"], rtol=run["rtol"],
+                          cavitation=run["cavitation"], element=run["element"])
+
+
+def pocket_gain(pocket, plain) -> float:
+    """Relative gain of the smallest film over the cycle, ``pocket / plain - 1`` [-], of two completed runs."""
+    ratio, row = _film_ratio(pocket, plain, "")
+    if ratio is None:
+        raise ValueError(f"pocket gain {row[0]}")
+    return ratio - 1.0
 
 
 def _compliance(pump, mesh, element: str, model: str):

@@ -52,3 +52,22 @@ def test_run_main_passes_extra_arguments_to_the_command(tmp_path, args, passed):
     done = subprocess.run(["bash", str(script), *args], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == passed
+
+
+def test_one_pocket_gain_quoted_everywhere():
+    """The README quotes the pocket gain that docs/papers.md generates (scripts/make_papers_doc.py, with the
+    main scene's settings through bearingfe.scenes.pump.simulate_design; tests/docs/test_papers.py checks
+    the page is the generated one): the same number, and the same as docs/elastic.md's rigid ratio."""
+    papers = (ROOT / "docs" / "papers.md").read_text(encoding="utf-8")
+    generated = re.search(r"\*\*Pocket gain of the shipped pump: ([+-]\d+) %\*\* \(smallest film ratio "
+                          r"pocket/plain (\d\.\d+)\)", papers)
+    assert generated, "docs/papers.md has no generated headline"
+    gain, ratio = int(generated[1]), float(generated[2])
+    assert gain == round(100 * (ratio - 1))
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    quoted = re.findall(r"pocket\s+raises the smallest film by ([+-]\d+) %", readme)
+    assert quoted == [str(f"{gain:+d}")]
+    # no other gain of the shipped pump is quoted: every "+NN %" of the README is this one
+    assert set(re.findall(r"\+\d+ %", readme)) == {f"{gain:+d} %"}
+    elastic = (ROOT / "docs" / "elastic.md").read_text(encoding="utf-8")
+    assert f"| pocket / plain | {ratio:.3f} |" in elastic  # its rigid column: the same computation
