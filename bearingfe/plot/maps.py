@@ -34,7 +34,8 @@ FIELDS = {"pressure": ("p", "viridis", None), "film": ("h", "plasma", "lightgrey
 class Panel:
     """One field map: ``kind`` of ``result`` shown as ``scale * value`` in ``unit``, titled ``title``.
 
-    ``radius`` is the eccentric radius ``R0`` [m] (axes in deg and mm); ``surface`` gives the exact
+    ``radius`` is the eccentric radius ``R0`` [m] (axes in deg and mm; ``None``: a non-dimensional
+    result, ``z`` in units of ``R0``); ``surface`` gives the exact
     pocket and outline curves; ``offset_deg`` is added to the angle (e.g. a pad's place in the
     bearing frame); ``true_aspect``: draw arc length and width to the same scale (a full journal
     bearing, far longer round than wide, reads better stretched: ``False``).
@@ -44,7 +45,7 @@ class Panel:
     kind: str
     scale: float
     unit: str
-    radius: float
+    radius: float | None
     title: str = ""
     surface: Any = None
     offset_deg: float = 0.0
@@ -109,7 +110,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     symbol, cmap, pocket_color = FIELDS[panel.kind]
     xy, t, v = sampled(panel.result, kind=panel.kind, nrefs=nrefs)
     v = v * panel.scale
-    to_mm = panel.radius * 1e3
+    to_mm = 1.0 if panel.radius is None else panel.radius * 1e3
     x, y = np.degrees(xy[0]) + panel.offset_deg, xy[1] * to_mm
     tri = Triangulation(x, y, t.T)
     lo, hi = float(v.min()), float(v.max())
@@ -143,9 +144,9 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize="small")
     if panel.true_aspect:
-        ax.set_aspect(1.0 / (panel.radius * np.pi / 180 * 1e3))  # 1 deg of arc is R0 pi/180 long
+        ax.set_aspect(1.0 / (np.pi / 180 * to_mm))  # 1 deg of arc is R0 pi/180 long
     ax.set_xlabel("phi [deg]")
-    ax.set_ylabel("z [mm]")
+    ax.set_ylabel("z [R0]" if panel.radius is None else "z [mm]")
     if panel.title:
         ax.set_title(panel.title, fontsize="medium")
     if colorbar:
