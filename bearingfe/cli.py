@@ -53,7 +53,8 @@ def _parser() -> argparse.ArgumentParser:
 
     mesh = sub.add_parser("mesh", help="mesh a gmsh .geo file into a .msh 4.1 file")
     mesh.add_argument("geo", type=Path)
-    mesh.add_argument("--size", type=float, required=True, help="largest element size [-]")
+    mesh.add_argument("--size", type=float, required=True,
+                      help="largest element size, in the length unit of the .geo file (R0 for the shipped ones)")
     mesh.add_argument("--out", type=Path, required=True, help="target .msh file")
     mesh.add_argument("--order", type=int, choices=(1, 2), default=1, help="geometry order")
     mesh.add_argument("--trust-geo", action="store_true", help="run the script even if it uses commands "

@@ -19,14 +19,35 @@ Scene file::
     enabled = false                                  # also run every design on an elastic support
     model = "half-space"                             # half-space | block | shoe (see below)
     dynamics = "squeeze"                             # squeeze | quasi-static (see below)
+    [limits]                                         # optional design limits, flagged per design (SI)
+    min_film = 8e-6                                  # smallest film [m]
+    max_pressure = 35e6                              # peak pressure [Pa]
+    max_friction_power = 500.0                       # mean friction power [W]
+    max_leakage = 1e-6                               # mean inflow from the pocket [m^3/s]
     [output]
-    pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
+    pictures = ["trajectory", "orbit", "pressure", "film", "deflection", "summary"]
 
-Writes ``trajectory_pocket.csv`` and ``trajectory_plain.csv`` (SI units; see
-:meth:`bearingfe.Trajectory.columns`), ``trajectory.png``,
-``orbit.png``, ``pressure.png`` and ``film.png`` (the pocketed shoe at its
-thinnest film, in MPa and um, the shaft angle in the title),
-``pressure.pvd`` with its VTU frames over the cycle, and ``summary.json``.
+Every output is SI (angles in degrees); the solver's non-dimensional values
+are kept beside, named as such. Writes ``trajectory_pocket.csv`` and
+``trajectory_plain.csv`` (headers ``"name [unit]"``,
+:func:`bearingfe.transient.trajectory.report_columns`); ``trajectory.png`` and
+``orbit.png`` with both designs, the smallest film of each marked;
+``pressure.png`` and ``film.png``: every design at its most loaded state (the
+largest plunger force) and at its thinnest film, P2 fields sampled on a
+refined display mesh (:mod:`bearingfe.plot.maps`), each map titled with the
+design, the shaft angle, the peak pressure [MPa] and the smallest film [um];
+``summary.png``, one page for a report (the smallest film of both designs over
+the cycle, their pressure at the most loaded state, the figures and the
+limits' verdicts); ``pressure.pvd`` with its VTU frames over the cycle
+(pressure in Pa, film in m, on the unwrapped surface in metres; time in s,
+shaft angle in degrees as field data); and ``summary.json``. The printed
+table gives per design the smallest film [um] and where, the peak pressure
+[Pa] (the largest over the pictured states and :data:`PEAK_SAMPLES` more),
+the mean friction power [W] (mean friction moment times shaft speed, as a
+design study's ``friction_loss``), the leakage [l/min] (mean inflow from the
+pocket) and side leakage, and each set limit with ``ok`` or ``VIOLATED``
+(:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
+summary).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
 (materials ``[shoe.material]`` and ``[eccentric.material]`` of the mechanism

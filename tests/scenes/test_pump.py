@@ -7,7 +7,9 @@ the film ratio is their quotient, and a pictured state re-solved from the
 trajectory balances the applied load (paper eq. 13-14: film force + load = 0).
 """
 
+import contextlib
 import csv
+import io
 import json
 from pathlib import Path
 
@@ -29,13 +31,11 @@ def _min_column(path: Path, name: str) -> float:
         return min(float(row[name]) for row in csv.DictReader(fh))
 
 
-def test_pump_scene_writes_everything_consistent(tmp_path, capsys, scene_file):
-    out = tmp_path / "out"
-    assert main(["run", str(scene_file("pump", COARSE)), "--out", str(out), "--no-progress"]) == 0
+def test_pump_scene_writes_everything_consistent(coarse_run):
+    out, summary, printed, _ = coarse_run
     names = {p.name for p in out.iterdir()}
     assert {"trajectory_pocket.csv", "trajectory_plain.csv", "trajectory.png", "orbit.png", "pressure.png",
             "film.png", "summary.png", "pressure.pvd", "summary.json"} <= names
-    summary = json.loads((out / "summary.json").read_text())
     res = summary["results"]
     pocket = _min_column(out / "trajectory_pocket.csv", "h_min [m]")
     plain = _min_column(out / "trajectory_plain.csv", "h_min [m]")
@@ -44,7 +44,7 @@ def test_pump_scene_writes_everything_consistent(tmp_path, capsys, scene_file):
     assert res["film_ratio"] == pytest.approx(pocket / plain, rel=1e-12)
     assert res["pocket"]["status"] == "completed" and res["plain"]["status"] == "completed"
     assert 0.0 < res["pocket"]["balance_ratio"] < 1.0  # the shipped pocket is below hydrostatic balance
-    assert "smallest film ratio" in capsys.readouterr().out
+    assert "smallest film ratio" in printed
 
 
 def test_pictured_state_balances_the_load():
@@ -84,7 +84,11 @@ FORCE_SCALE = 0.03 * OMEGA * 0.05**4 / 20e-6**2
 
 @pytest.fixture(scope="module")
 def coarse_run(tmp_path_factory):
-    """The coarse scene with limits on either side of its figures, run once; its folder and summary."""
+    """The coarse scene with limits on either side of its figures, run once: its folder, summary, printed
+    text and the figures it drew (``trajectory``, ``orbit`` and the field grids, in order)."""
+    from unittest import mock
+
+    from bearingfe.plot import curves, maps
     from tests.helpers import scene_data, toml_text
 
     folder = tmp_path_factory.mktemp("pump")
@@ -93,12 +97,26 @@ def coarse_run(tmp_path_factory):
                                                                    "max_friction_power": 1.0,
                                                                    "max_leakage": 1.0})))
     out = folder / "out"
-    assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
-    return out, json.loads((out / "summary.json").read_text())
+    figures = {"fields": []}
+
+    def keep(name, draw):
+        def wrapped(*args, **kwargs):
+            fig = draw(*args, **kwargs)
+            figures[name].append(fig) if name == "fields" else figures.__setitem__(name, fig)
+            return fig
+        return wrapped
+
+    printed = io.StringIO()
+    with mock.patch.object(curves, "trajectory_plot", keep("trajectory", curves.trajectory_plot)), \
+            mock.patch.object(curves, "orbit_plot", keep("orbit", curves.orbit_plot)), \
+            mock.patch.object(maps, "field_panels", keep("fields", maps.field_panels)), \
+            contextlib.redirect_stdout(printed):
+        assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
+    return out, json.loads((out / "summary.json").read_text()), printed.getvalue(), figures
 
 
 def test_trajectory_csv_headers_carry_units_and_si_values(coarse_run):
-    out, summary = coarse_run
+    out, summary, _, _ = coarse_run
     cols = _csv(out / "trajectory_pocket.csv")
     assert all(name.endswith("]") and " [" in name for name in cols)  # "name [unit]" everywhere
     assert {"t [s]", "beta [deg]", "delta [deg]", "h_min [m]", "chamber_pressure [Pa]", "friction_moment [N m]",
@@ -112,7 +130,7 @@ def test_trajectory_csv_headers_carry_units_and_si_values(coarse_run):
 
 
 def test_summary_gives_power_leakage_peak_pressure_and_limit_flags(coarse_run):
-    out, summary = coarse_run
+    out, summary, _, _ = coarse_run
     rows = {q: (v, u) for q, v, u in summary["table"]}
     for design in ("pocket", "plain"):
         r = summary["results"][design]
@@ -140,36 +158,19 @@ def test_summary_gives_power_leakage_peak_pressure_and_limit_flags(coarse_run):
     assert pocket["loaded_state"]["peak_pressure_Pa"] >= pocket["loaded_state"]["chamber_pressure_Pa"]
 
 
-def test_pictures_draw_both_designs(tmp_path, scene_file, monkeypatch):
+def test_pictures_draw_both_designs(coarse_run):
     """Every comparison picture holds both designs: lines per design, one field map per design and state."""
-    from bearingfe.plot import curves, maps
-
-    figures = {}
-
-    def keep(name, draw):
-        def wrapped(*args, **kwargs):
-            figures[name] = draw(*args, **kwargs)
-            return figures[name]
-        monkeypatch.setattr(curves if name in ("trajectory", "orbit") else maps, f"{name}_plot"
-                            if name in ("trajectory", "orbit") else "field_panels", wrapped)
-
-    keep("trajectory", curves.trajectory_plot)
-    keep("orbit", curves.orbit_plot)
-    panels = []
-    draw_panels = maps.field_panels
-    monkeypatch.setattr(maps, "field_panels", lambda rows, *a, **k: panels.append(draw_panels(rows, *a, **k))
-                        or panels[-1])
-    out = tmp_path / "out"
-    assert main(["run", str(scene_file("pump", COARSE)), "--out", str(out), "--no-progress"]) == 0
+    _, summary, _, figures = coarse_run
     film = figures["trajectory"].axes[2]
     assert [ln.get_label() for ln in film.lines if ln.get_marker() in ("None", "")] == ["pocket: h_min", "plain: h_min"]
     assert len([ln for ln in film.lines if ln.get_marker() == "o"]) == 2  # the smallest film of each marked
     assert len(figures["orbit"].axes[0].lines) == 1 + 2 * 3
-    summary = json.loads((out / "summary.json").read_text())
+    panels = figures["fields"]
     assert len(panels) == 2  # pressure.png, film.png
-    for fig in panels:
+    for fig, unit in zip(panels, ("p [MPa]", "h [um]")):
         titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
         assert len(titles) == 4  # two designs x (most loaded, thinnest film)
+        assert [ax.get_ylabel() for ax in fig.axes if not ax.get_title()] == [unit] * 4  # the colour bars
         for design in ("pocket", "plain"):
             for key, what in (("loaded", "most loaded"), ("thinnest", "thinnest film")):
                 st = summary["results"][design][f"{key}_state"]
