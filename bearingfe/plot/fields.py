@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_patches", "pressure_picture", "film_picture",
+__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_loops", "pocket_patches", "pressure_picture",
+           "film_picture",
            "deflection_picture"]
 
 VIEWS = ("unwrapped", "wrapped")
@@ -135,7 +136,7 @@ def outline_lines(result, *, surface=None, boundary: str = "inlet", view: str = 
     return pv.PolyData(pts, lines=lines)
 
 
-def _loops(result, surface) -> list[np.ndarray]:
+def pocket_loops(result, surface=None) -> list[np.ndarray]:
     """Pocket contours as closed polylines (2, n) in ``(phi, z)``."""
     if surface is not None:
         return [shape.boundary(360) for shape in surface.inlets]
@@ -178,7 +179,7 @@ def pocket_patches(result, *, surface=None, view: str = "unwrapped", value: floa
     pv = _pyvista()
     _check_view(view)
     patches = []
-    for xy in _loops(result, surface):
+    for xy in pocket_loops(result, surface):
         n = xy.shape[1]
         flat = pv.PolyData(np.column_stack([xy[0], xy[1], np.zeros(n)]),
                            faces=np.hstack([[n], np.arange(n)])).triangulate()

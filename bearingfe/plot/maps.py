@@ -90,12 +90,6 @@ def sampled(result, values: np.ndarray | None = None, *, kind: str = "pressure",
     return np.asarray(mesh.p, dtype=float), np.asarray(mesh.t), np.asarray(z, dtype=float)
 
 
-def _loops(result, surface) -> list[np.ndarray]:
-    from .fields import _loops as loops
-
-    return loops(result, surface)
-
-
 def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = True):
     """Draw ``panel`` into ``ax``; returns the mappable (a ``TriMesh``/``PolyCollection``).
 
@@ -115,7 +109,9 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     tri = Triangulation(x, y, t.T)
     lo, hi = float(v.min()), float(v.max())
     inlet = float(getattr(panel.result, "inlet_pressure", 0.0)) * panel.scale
-    loops = _loops(panel.result, panel.surface)
+    from .fields import pocket_loops  # pure numpy: no pyvista import
+
+    loops = pocket_loops(panel.result, panel.surface)
     if pocket_color is None and loops:
         lo, hi = min(lo, inlet), max(hi, inlet)
     if hi <= lo:
