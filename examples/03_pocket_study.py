@@ -35,8 +35,9 @@ from bearingfe.sweep import apply_changes, best_design, csv_headers, read_study,
 STUDY = Path(__file__).resolve().parents[1] / "studies" / "pump_pocket_study.toml"
 
 
-def contour_figure(table, output: str, label: str):
-    """Filled contours of ``output`` over (pocket position, pocket fraction); failed cases blank."""
+def contour_figure(table, output: str, label: str, scale: float = 1.0):
+    """Filled contours of ``scale * output`` over (pocket position, pocket fraction); failed and ruptured
+    cases blank and marked, with a legend."""
     from matplotlib.figure import Figure
 
     grid = table.pivot_table(index="pocket_fraction", columns="pocket_position", values=output,
@@ -44,13 +45,18 @@ def contour_figure(table, output: str, label: str):
     fig = Figure(figsize=(6.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     x, y = grid.columns.to_numpy(float), 100 * grid.index.to_numpy(float)
-    filled = ax.contourf(x, y, grid.to_numpy(float), levels=12, cmap="viridis")
-    ax.contour(x, y, grid.to_numpy(float), levels=12, colors="k", linewidths=0.4)
-    fig.colorbar(filled, ax=ax, label=label)
-    ok = table["error"].isna()
-    ax.plot(table.loc[ok, "pocket_position"], 100 * table.loc[ok, "pocket_fraction"], "w.", ms=4)
-    ax.plot(table.loc[~ok, "pocket_position"], 100 * table.loc[~ok, "pocket_fraction"], "rx", ms=6,
-            label="failed")
+    z = scale * grid.to_numpy(float)
+    filled = ax.contourf(x, y, z, levels=12, cmap="viridis")
+    ax.contour(x, y, z, levels=12, colors="k", linewidths=0.4)
+    bar = fig.colorbar(filled, ax=ax, label=label)
+    bar.formatter.set_useOffset(False)  # absolute values on the bar, no "1e-5 + ..." offset
+    for status, marker, what in (("completed", "w.", "completed"), ("ruptured", "rx", "film ruptured"),
+                                 ("failed", "m+", "failed")):
+        rows = table["status"] == status
+        if rows.any():
+            ax.plot(table.loc[rows, "pocket_position"], 100 * table.loc[rows, "pocket_fraction"], marker, ms=6,
+                    label=what)
+    ax.legend(loc="upper right", fontsize="small", facecolor="0.85")
     ax.set_xlabel("pocket position along the arc, s [-]")
     ax.set_ylabel("pocket area fraction [%]")
     ax.set_title("pocket study")
@@ -83,7 +89,7 @@ def main(out_dir: str | Path = OUT) -> None:
     ruptured = int((table["status"] == "ruptured").sum())
     print(f"{len(table)} cases: {ruptured} ruptured (the film closes: not viable designs), "
           f"{int((table['status'] == 'failed').sum())} failed")
-    fig = contour_figure(table, "h_min", "smallest film over the cycle [m]")
+    fig = contour_figure(table, "h_min", "smallest film over the cycle [um]", scale=1e6)
     fig.savefig(out / "pocket_study.png", dpi=120)
 
     # the sanity bounds stated in the docstring
