@@ -285,3 +285,34 @@ def test_limits_schema_names_field_and_range(scene_file):
     data, label = load_scene(scene_file("journal", name="bad.toml", limits={"min_flim": 1e-6}))
     with pytest.raises(SceneError, match=r"\[limits\] min_flim: unknown field; allowed: min_film, max_pressure"):
         journal_settings(data, label)
+
+
+def test_pictures_are_titled_with_readable_axes_and_legends(tmp_path, monkeypatch):
+    """The unwrapped maps: a title with the operating point, phi in degrees, z in mm, tick labels that do
+    not overlap, the colour bar labelled with its unit, the red rupture boundary in the legend."""
+    from bearingfe.plot import maps
+
+    drawn = []
+    draw = maps.field_panels
+    monkeypatch.setattr(maps, "field_panels", lambda *a, **k: drawn.append(draw(*a, **k)) or drawn[-1])
+    s, out = _run_shipped(tmp_path, solver={"estimate_error": False},
+                          output={"pictures": ["pressure", "film"], "tables": []})
+    assert len(drawn) == 2
+    r = s["results"]
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    for fig, unit in zip(drawn, ("p [MPa]", "h [um]")):
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        field, bar = fig.axes
+        assert fig._suptitle.get_text() == s["title"]
+        assert field.get_title().startswith(f"eccentricity {r['eccentricity']:.3f}, attitude "
+                                            f"{r['attitude_deg']:.1f} deg")
+        assert (field.get_xlabel(), field.get_ylabel(), bar.get_ylabel()) == ("phi [deg]", "z [mm]", unit)
+        for axis in (field.yaxis, field.xaxis, bar.yaxis):
+            boxes = [t.get_window_extent() for t in axis.get_ticklabels() if t.get_visible() and t.get_text()]
+            assert len(boxes) >= 3 and not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+        # the colour bar with its labels and title lies inside the figure: nothing cut
+        assert bar.get_tightbbox(canvas.get_renderer()).x1 <= fig.bbox.x1
+    pressure = drawn[0].axes[0]
+    assert [t.get_text() for t in pressure.get_legend().get_texts()] == ["film rupture boundary"]

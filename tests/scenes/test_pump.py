@@ -88,6 +88,7 @@ def coarse_run(tmp_path_factory):
     text and the figures it drew (``trajectory``, ``orbit`` and the field grids, in order)."""
     from unittest import mock
 
+    import bearingfe.scenes.pump as pump_scene
     from bearingfe.plot import curves, maps
     from tests.helpers import scene_data, toml_text
 
@@ -110,6 +111,7 @@ def coarse_run(tmp_path_factory):
     with mock.patch.object(curves, "trajectory_plot", keep("trajectory", curves.trajectory_plot)), \
             mock.patch.object(curves, "orbit_plot", keep("orbit", curves.orbit_plot)), \
             mock.patch.object(maps, "field_panels", keep("fields", maps.field_panels)), \
+            mock.patch.object(pump_scene, "_summary_page", keep("summary", pump_scene._summary_page)), \
             contextlib.redirect_stdout(printed):
         assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
     return out, json.loads((out / "summary.json").read_text()), printed.getvalue(), figures
@@ -177,3 +179,27 @@ def test_pictures_draw_both_designs(coarse_run):
                 heading = (f"{design}, {what}: beta = {st['beta_deg']:.0f} deg\n"
                            f"p_max = {st['peak_pressure_Pa'] / 1e6:.3g} MPa, h_min = {st['film_m'] * 1e6:.3g} um")
                 assert heading in titles
+
+
+def test_summary_page_compares_the_designs_with_their_verdicts(coarse_run):
+    out, summary, _, figures = coarse_run
+    assert (out / "summary.png").stat().st_size > 20000
+    page = figures["summary"]
+    films, *rest = page.axes
+    assert [ln.get_label() for ln in films.lines] == [
+        "pocket", f"pocket: min {summary['results']['pocket']['smallest_film_m'] * 1e6:.3g} um at "
+                  f"{summary['results']['pocket']['thinnest_state']['beta_deg']:.0f} deg",
+        "plain", f"plain: min {summary['results']['plain']['smallest_film_m'] * 1e6:.3g} um at "
+                 f"{summary['results']['plain']['thinnest_state']['beta_deg']:.0f} deg",
+        "limit min_film"]
+    assert films.lines[-1].get_ydata()[0] == pytest.approx(10.0)  # the 10 um limit, drawn in um
+    maps = [ax for ax in rest if ax.get_title().startswith(("pocket, most loaded", "plain, most loaded"))]
+    assert len(maps) == 2
+    (table,) = [t for ax in rest for t in ax.tables]
+    cells = {(r, c): cell.get_text().get_text() for (r, c), cell in table.get_celld().items()}
+    rows = {cells[(r, 0)]: (cells[(r, 1)], cells[(r, 2)]) for r in range(1, 1 + max(r for r, _ in cells))}
+    assert [cells[(0, c)] for c in range(4)] == ["", "pocket", "plain", "unit"]
+    assert rows["mean friction power <= 1 W"] == ("VIOLATED", "VIOLATED")
+    assert rows["peak pressure <= 40 MPa"] == ("ok", "ok")
+    ok = {d: "ok" if summary["results"][d]["limits"]["min_film"]["ok"] else "VIOLATED" for d in ("pocket", "plain")}
+    assert rows["smallest film >= 10 um"] == (ok["pocket"], ok["plain"])
