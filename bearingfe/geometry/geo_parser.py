@@ -546,13 +546,13 @@ class _Reader:
         self.expect(".")
         option = self.word()
         full = f"{group.text}.{option.text}"
-        self.expect("=")
-        if self.tok.kind == "str":
-            raise self.refuse(self.tok, f"is a text value for the option {full} (only numbers are accepted)")
+        if self.at("=") and self.peek().kind == "str":
+            raise self.refuse(self.peek(), f"is a text value for the option {full} (only numbers are accepted)")
         full = _OPTION_ALIASES.get(full, full)
         if full not in OPTIONS:
             raise self.refuse(option, f"is not an accepted option (the numeric options accepted: "
                                       f"{', '.join(sorted(OPTIONS))})")
+        self.expect("=")
         value = self.expr()
         self.end()
         return ("option", group, full, value)
@@ -929,7 +929,9 @@ class _Runner:
 
     def _list(self, target: _Tok) -> list[float]:
         if target.text not in self.vars:
-            raise self.error(target, f"'{_show(target.text)}' is used before it is given a value")
+            raise UntrustedGeoError(
+                f"{self.name} line {target.line}: '{_show(target.text)}' is not a variable given a value above, nor "
+                f"a word of the geometry subset bearingfe reads (docs/geometry_files.md). {_TRUST}")
         return self.vars[target.text]
 
     def r_incr(self, target: _Tok, delta: float) -> None:
