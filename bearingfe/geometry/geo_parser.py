@@ -807,7 +807,7 @@ class _Reader:
             value = float(tok.text)
             if not math.isfinite(value):
                 raise self.error(tok, f"'{_show(tok.text)}' is not a finite number")
-            return ("num", value)
+            return ("num", value, tok)
         if self.at("("):
             self.next()
             inner = self.expr()
@@ -824,7 +824,7 @@ class _Reader:
             raise self.error(tok, f"expected a number, a variable or '(', found '{_show(tok.text)}'")
         self.next()
         if tok.text == "Pi":
-            return ("num", math.pi)
+            return ("num", math.pi, tok)
         if tok.text in _NEW:
             return ("new", tok, _NEW[tok.text])
         if tok.text in FUNCTIONS:
@@ -1213,12 +1213,14 @@ class _Runner:
 def _line(expr: tuple) -> int | str:
     """The line of an expression (its first token), for messages."""
     for part in expr[1:]:
-        if isinstance(part, _Tok):
-            return part.line
-        if isinstance(part, tuple) and part:
-            return _line(part)
-        if isinstance(part, list) and part and isinstance(part[0], tuple):
-            return _line(part[0])
+        parts = part if isinstance(part, list) else [part]
+        for piece in parts:
+            if isinstance(piece, _Tok):
+                return piece.line
+            if isinstance(piece, tuple) and piece:
+                line = _line(piece)
+                if line != "?":
+                    return line
     return "?"
 
 
