@@ -611,3 +611,271 @@ def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
     parent.send_signal(signal.SIGKILL)
     assert parent.wait() == -signal.SIGKILL
     assert sorted(p.name for p in tmp_path.iterdir()) == ["hostile.geo"]
+
+
+# -- untrusted .geo text: lexer corners, size, linear work, fuzz -------------------------------------
+
+def test_nul_in_a_comment_hides_no_command(tmp_path, capsys):
+    """The issue's reproduction: gmsh's lexer ends a // comment at NUL, so a command after it ran. bearingfe's
+    parser refuses control characters anywhere, comments included, naming the line; nothing runs."""
+    marker, out = tmp_path / "pwned", tmp_path / "o.msh"
+    evil = tmp_path / "evil.geo"
+    evil.write_bytes(b'// note\x00SystemCall "touch ' + str(marker).encode() + b'";\n' + PLAIN.encode())
+    assert main(["mesh", str(evil), "--size", "0.2", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "evil.geo line 1: control character U+0000" in err and "Traceback" not in err
+    with pytest.raises(GeometryFileError, match=r"evil.geo line 1: control character U\+0000"):
+        load_mesh(evil, size=0.2)
+    assert not marker.exists() and not out.exists()
+
+
+CORNERS = {  # where a checker's lexer could differ from gmsh's: each either refused or harmless comment/text
+    "carriage return in //": b"// note\rSystemCall \"touch {marker}\";\n",
+    "form feed in //": b"// note\x0cSystemCall \"touch {marker}\";\n",
+    "vertical tab in //": b"// note\x0bSystemCall \"touch {marker}\";\n",
+    "NUL in /* */": b"/* note\x00 */ SystemCall \"touch {marker}\";\n",
+    "backslash line end in //": b"// note \\\nSystemCall \"touch {marker}\";\n",
+    "1023-character string": b"Physical Curve(\"" + b"a" * 1023 + b"\") = {1}; SystemCall \"touch {marker}\";\n",
+    "string across a line": b"Printf(\"a\nSystemCall \"touch {marker}\";\n\");\n",
+    "DEL character": b"x = 1;\x7fSystemCall \"touch {marker}\";\n",
+    "UTF-8 line separator": "// note\u2028SystemCall \"touch {marker}\";\n".encode(),
+    "not UTF-8": b"// note \xff\xfe\nSystemCall \"touch {marker}\";\n",
+}
+
+
+@pytest.mark.parametrize("label", sorted(CORNERS))
+def test_lexer_corners_hide_no_command(tmp_path, label):
+    """The refusals name the line; the one file accepted (the command inside a comment, as its text says)
+    meshes the plain shoe. Either way the marker is never written."""
+    marker = tmp_path / "marker"
+    geo = tmp_path / "corner.geo"
+    geo.write_bytes(CORNERS[label].replace(b"{marker}", str(marker).encode()) + PLAIN.encode())
+    try:
+        mesh = load_mesh(geo, size=0.2)
+    except GeometryFileError as exc:
+        assert re.match(r"corner.geo line \d+: ", str(exc)), str(exc)
+    else:
+        assert label in ("carriage return in //", "form feed in //", "UTF-8 line separator") and mesh.n_nodes == 415
+    assert not marker.exists()
+
+
+def test_geo_file_size_is_capped(tmp_path):
+    """MAX_GEO_BYTES = 1e6: one byte more (a long comment) is refused before it is parsed."""
+    from bearingfe.geometry.geo_parser import MAX_GEO_BYTES
+
+    geo = tmp_path / "big.geo"
+    geo.write_text("//" + "x" * (MAX_GEO_BYTES - 2 - len(PLAIN) - 1) + "\n" + PLAIN)
+    assert geo.stat().st_size == MAX_GEO_BYTES
+    assert load_mesh(geo, size=0.3).n_nodes > 0  # exactly at the limit: read
+    geo.write_text("//" + "x" * (MAX_GEO_BYTES - 2 - len(PLAIN)) + "\n" + PLAIN)
+    with pytest.raises(GeometryFileError, match=r"big.geo is larger than the 1000000 bytes a .geo file may have "
+                                                 r"\(MAX_GEO_BYTES\)"):
+        load_mesh(geo, size=0.3)
+
+
+def _steps(text: str) -> tuple[int, str]:
+    """The parser's operation count for ``text`` and how the read ended."""
+    from bearingfe.geometry.geo_parser import Work
+
+    work = Work()
+    try:
+        parse_geo(text, "steps.geo", work=work)
+        outcome = "read"
+    except GeometryFileError as exc:
+        outcome = str(exc)
+    return work.steps, outcome
+
+
+def test_reading_x_paren_is_linear():
+    """The issue's quadratic case: 'x(' repeated 8,000 times took the allow-list 16 s. The parser lexes each
+    token once and refuses at nesting 40: its step count grows by exactly 2 per 'x(' (two tokens), so from
+    4,000 to 8,000 to 16,000 the differences double exactly (no term in n^2)."""
+    runs = [_steps("x(" * n) for n in (4000, 8000, 16000)]
+    assert all("nested more than 40 deep (MAX_NESTING)" in outcome for _, outcome in runs)
+    (s1, _), (s2, _), (s4, _) = runs
+    assert s2 - s1 == 2 * 4000 and s4 - s2 == 2 * 8000
+
+
+def test_reading_a_geometry_is_linear_in_its_size():
+    """k copies of a block (points, lines, a loop, expressions, a bounded loop) after the plain shoe: every copy
+    costs the same number of steps, so the differences between k = 50, 100, 200 double exactly."""
+    block = ("p = newp; Point(p) = {{0.1 + {k} * 1e-3, 0.2, 0, lc / 2}}; Point(p + 1) = {{0.1, 0.2 + Sqrt({k}) * 1e-3, 0}};\n"
+             "Line(newl) = {{p, p + 1}}; s = 0; For i In {{1:5}} s += i^2 % 3; EndFor\n"
+             "If (s > 3) x[] = {{1:4}}; ElseIf (s < 0) x[] = {{}}; Else x[] = {{}}; EndIf\n")
+    counts = []
+    for k in (50, 100, 200):
+        steps, outcome = _steps(PLAIN + "".join(block.format(k=j) for j in range(k)))
+        assert outcome == "read"
+        counts.append(steps)
+    assert counts[2] - counts[1] == 2 * (counts[1] - counts[0]) > 0
+
+
+def test_trusted_geo_runs_in_its_own_session_with_an_empty_environment(tmp_path, monkeypatch):
+    """--trust-geo keeps gmsh's interpreter, in a child that leads its own session (killed as a whole) and
+    gets none of the caller's environment (a variable set here is not there; shell built-ins only: no PATH)."""
+    monkeypatch.setenv("BEARINGFE_PROBE", "secret")
+    env, sid = tmp_path / "env.txt", tmp_path / "sid.txt"
+    geo = _geo(tmp_path, f'SystemCall "export -p > {env}; read -r a b c d e s rest < /proc/$$/stat; '
+                         f'echo $s > {sid}";')
+    load_mesh(geo, size=0.3, trusted=True)
+    exported = env.read_text()
+    assert "BEARINGFE_PROBE" not in exported and "HOME=" not in exported and "PYTHONPATH='" + str(ROOT) not in exported
+    assert int(sid.read_text()) != os.getsid(0)
+
+
+# the fuzz test: random bytes, token soups and mutated shipped files; every input is either read into the
+# geometry operations below or refused with a GeometryFileError, within the work budget, touching no file,
+# process or environment on the way
+
+#: Operation kinds of the gmsh model builder (bearingfe/geometry/geo_model.py, its module table).
+OPERATIONS = {"point", "line", "circle_arc", "circle", "ellipse_arc", "ellipse", "spline", "bspline", "curve_loop",
+              "plane_surface", "rotate", "translate", "dilate", "symmetry", "physical", "size", "option", "field",
+              "field_number", "field_numbers", "field_string", "background"}
+
+FUZZ_WORDS = (
+    "Point Line Circle Ellipse Spline BSpline Curve Loop Plane Surface Physical Characteristic Length MeshSize "
+    "Rotate Translate Dilate Symmetry Field Background Mesh Geometry SetFactory DefineConstant For In EndFor If "
+    "ElseIf Else EndIf Macro Function Return Call Printf Name Min Max Choices Pi newp newl news newreg Sqrt Cos "
+    "SystemCall System NonBlockingSystemCall OnelabRun Include Merge Save Print Exit Abort GetEnv GetValue Sleep "
+    "Plugin Delete CreateDir ShapeFromFile Sprintf StrCat Duplicata Rectangle ExternalProcess Structured "
+    "General Solver MeshSizeMax Algorithm Distance Threshold MathEval CurvesList InField lc x i p "
+    "( ) [ ] {{ }} , ; = += -= ++ -- . : ? ! ^ % # + - * / < > == && || // /* */ \\ \" ' "
+    "0 1 2 -1 0.5 1e9 1e-9 1e308 1e999 2147483648 .5 1.e3"
+).split()
+CONTROL = [chr(c) for c in range(32) if c not in (9, 10)] + ["\x7f", "\u2028", "\ufeff"]
+
+
+def _mutations(rng, count):
+    """``count`` shipped files, their comments removed, with a few edits: insert a word or character, delete or
+    repeat a span."""
+    shipped = [re.sub(r"//[^\n]*", "", p.read_text()) for p in sorted((ROOT / "meshes").glob("*.geo"))]
+    for _ in range(count):
+        text = rng.choice(shipped)
+        for _ in range(rng.randrange(1, 4)):
+            k = rng.randrange(len(text))
+            edit = rng.randrange(4)
+            if edit == 0:
+                text = text[:k] + " " + rng.choice(FUZZ_WORDS).replace("{{", "{") + " " + text[k:]
+            elif edit == 1:
+                text = text[:k] + rng.choice(CONTROL + list("(){}[];,=\"/*\n")) + text[k:]
+            elif edit == 2:
+                text = text[:k] + text[k + rng.randrange(1, 30):]
+            else:
+                text = text[:k] + text[k:k + rng.randrange(1, 60)] * rng.randrange(2, 6) + text[k:]
+        yield text
+
+
+def _fuzz_texts(rng):
+    for _ in range(300):  # random bytes, read as Latin-1: every byte value, NUL and controls included
+        yield bytes(rng.randrange(256) for _ in range(rng.randrange(1, 400))).decode("latin-1")
+    for _ in range(400):  # token soups, with control characters now and then
+        words = [rng.choice(FUZZ_WORDS if rng.random() < 0.97 else CONTROL) for _ in range(rng.randrange(1, 80))]
+        yield rng.choice(["", PLAIN + "\n"]) + " ".join(words).replace("{{", "{").replace("}}", "}")
+    yield from _mutations(rng, 500)
+    for n in (10, 39, 40, 41, 500, 2000):  # nesting of every kind, at and past MAX_NESTING = 40
+        yield "x = " + "(" * n + "1" + ")" * n + ";\n" + PLAIN
+        yield "x[] = " + "{" * n + "1" + "}" * n + ";\n" + PLAIN
+        yield "x = " + "-" * n + "1;\n" + PLAIN
+        yield "x = " + "2^" * n + "1;\n" + PLAIN
+        yield "x = " + "1 ? " * n + "1" + " : 0" * n + ";\n" + PLAIN
+        yield "For i In {1:1}\n" * n + "x = 1;\n" + "EndFor\n" * n + PLAIN
+        yield "If (1)\n" * n + "x = 1;\n" + "EndIf\n" * n + PLAIN
+        yield "x = Sqrt(" * n + "1" + ")" * n + ";\n" + PLAIN
+        yield "x = 1" + " + 1" * n + ";\n" + PLAIN  # a long flat sum: no nesting, read
+    for n in (1023, 1024, 5000, 20000):  # long strings, comments, names, numbers
+        yield f'Physical Curve("{"a" * n}") = {{1}};\n' + PLAIN
+        yield "// " + "x" * n + "\n" + PLAIN
+        yield "/* " + "*" * n + " */\n" + PLAIN
+        yield "/* " + "x" * n + "\n" + PLAIN
+        yield "a" * n + " = 1;\n" + PLAIN
+        yield "x = " + "9" * n + ";\n" + PLAIN
+        yield '"' * n + PLAIN
+    yield "Macro M\nCall M;\nReturn\nCall M;\n" + PLAIN  # a macro that calls itself
+    yield "For i In {1:1e12}\nEndFor\n" + PLAIN  # a loop of 1e12 passes
+    yield "x[] = {1:3e6};\n" + PLAIN  # a list of 3e6 values
+
+
+def _only_geometry(model) -> None:
+    """Every operation is one the builder knows, with plain numbers and short printable names only."""
+    from bearingfe.geometry.geo_parser import FIELD_KINDS, OPTIONS
+
+    def plain(value):
+        if isinstance(value, list):
+            return all(plain(v) for v in value)
+        if isinstance(value, str):
+            return value.isprintable() and len(value) <= 256 and '"' not in value
+        return isinstance(value, (int, float)) and math.isfinite(value)
+
+    assert model.factory in ("occ", "geo")
+    for op in model.ops:
+        assert op[0] in OPERATIONS and plain(op[1:]), op
+        if op[0] == "option":
+            assert op[1] in OPTIONS
+        if op[0] == "field":
+            assert op[2] in FIELD_KINDS
+        if op[0] == "field_string":
+            assert op[2] == "F"
+
+
+def test_fuzz_reads_geometry_or_refuses_by_name(monkeypatch):
+    """1,285 inputs from a fixed seed: each one is read into geometry operations (checked above) or
+    refused with a GeometryFileError, within MAX_GEO_STEPS; no other exception, and no file opened, process
+    started, environment read or exit on the way (those calls fail the test while the parser runs)."""
+    import builtins
+    import random
+    import subprocess
+    import sys
+
+    from bearingfe.geometry.geo_parser import MAX_GEO_STEPS, Work
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError(f"the parser reached outside: {args!r}")
+
+    rng = random.Random(20261128)
+    texts = list(_fuzz_texts(rng))
+    outcomes = {"read": 0, "refused": 0}
+    with monkeypatch.context() as m:
+        for target, name in ((builtins, "open"), (os, "open"), (os, "system"), (os, "getenv"), (os, "execv"),
+                             (os, "fork"), (subprocess, "Popen"), (sys, "exit"), (os, "_exit")):
+            m.setattr(target, name, forbidden)
+        for text in texts:
+            work = Work()
+            try:
+                model = parse_geo(text, "fuzz.geo", work=work)
+            except GeometryFileError as exc:
+                assert str(exc).startswith("fuzz.geo"), str(exc)
+                outcomes["refused"] += 1
+            else:
+                _only_geometry(model)
+                outcomes["read"] += 1
+            assert work.steps <= MAX_GEO_STEPS
+    assert len(texts) == 1285 and outcomes["read"] >= 30 and outcomes["refused"] > 1000, outcomes
+
+
+def test_fuzzed_files_that_read_mesh_or_fail_by_name(tmp_path):
+    """Some of the mutated files the parser reads, meshed for real: a mesh or a GeometryFileError (gmsh's own
+    error, the element limit), never another exception; a marker the hazards would write never appears."""
+    import random
+
+    from bearingfe.geometry.geofiles import MeshSizeError
+
+    shipped = {re.sub(r"//[^\n]*", "", p.read_text()) for p in (ROOT / "meshes").glob("*.geo")}
+    meshed = 0
+    for text in _mutations(random.Random(7), 2000):
+        if meshed == 4:
+            break
+        try:
+            parse_geo(text, "fuzz.geo")
+        except GeometryFileError:
+            continue
+        if text in shipped:
+            continue  # an edit that changed nothing
+        geo = tmp_path / f"fuzz{meshed}.geo"
+        geo.write_text(text)
+        meshed += 1
+        try:
+            load_mesh(geo, size=0.2, max_elements=20000)
+        except (GeometryFileError, MeshSizeError, ValueError) as exc:
+            assert "Traceback" not in str(exc)
+    assert meshed == 4
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"fuzz{k}.geo" for k in range(4)]
