@@ -284,7 +284,9 @@ class _Reader:
             if kind in ("num", "name") and len(value) > MAX_WORD:
                 raise self.error(tok, f"'{_show(value)}' is longer than {MAX_WORD} characters")
             out.append(tok)
-        self.work.tick(len(out) + 1)
+            if len(out) % 1024 == 0:  # the deadline holds while lexing too
+                self.work.tick(1024)
+        self.work.tick(len(out) % 1024 + 1)
         out.append(_Tok("end", "end of file", line))
         return out
 
@@ -867,7 +869,8 @@ class _Runner:
         self.factory: str | None = None
         self.tags: dict[str, set[int]] = {"point": set(), "curve": set(), "loop": set(), "surface": set(),
                                           "field": set()}
-        self.physicals: dict[tuple, list] = {}
+        self.top = dict.fromkeys(self.tags, 0)  # largest tag of each kind (newp & co. without a search)
+        self.physicals: dict[tuple, tuple[list, set]] = {}
         self.calls = 0
         self.depth = 0
 
@@ -1007,7 +1010,7 @@ class _Runner:
                 rest = values[3 + radii:]
                 angles = [0.0, 2 * math.pi] if not rest else [0.0, rest[0]] if len(rest) == 1 else rest
                 self.ops.append([kind, tag, *values[:3 + radii], *angles])
-                self.tags["point"].add(self._new("point"))  # OpenCASCADE gives the closed curve a vertex
+                self._add("point", self._new("point"))  # OpenCASCADE gives the closed curve a vertex
             else:
                 points = "{start, centre, end}" if kind == "circle" else "{start, centre, major-axis point, end}"
                 shape = "{x, y, z, radius[, angles]}" if kind == "circle" else "{x, y, z, r1, r2[, angles]}"
@@ -1025,7 +1028,11 @@ class _Runner:
             if n < 1:
                 raise self.error(tok, f"Plane Surface({tag}) needs at least one curve loop")
             self.ops.append(["plane_surface", tag, self.refs(values, "loop", tok, signed=True)])
+        self._add(store, tag)
+
+    def _add(self, store: str, tag: int) -> None:
         self.tags[store].add(tag)
+        self.top[store] = max(self.top[store], tag)
 
     def _need(self, tok: _Tok, values: list, low: int, high: int, what: str, form: str) -> None:
         if not low <= len(values) <= high:
@@ -1048,12 +1055,15 @@ class _Runner:
             raise self.error(tok, "a physical group name must be printable text")
         tag = -1 if number is None else self.tag(number, tok)
         key = (dim, label if label is not None else tag)
-        if key in self.physicals:
-            self.physicals[key][4].extend(t for t in tags if t not in self.physicals[key][4])
-            return
-        op = ["physical", dim, tag, label or "", tags]
-        self.physicals[key] = op
-        self.ops.append(op)
+        if key not in self.physicals:
+            op = ["physical", dim, tag, label or "", []]
+            self.physicals[key] = (op, set())
+            self.ops.append(op)
+        op, seen = self.physicals[key]
+        for t in tags:
+            if t not in seen:
+                seen.add(t)
+                op[4].append(t)
 
     def r_size(self, tok: _Tok, items: list, value: tuple) -> None:
         points = self.refs(self.items(items), "point", tok)
@@ -1088,7 +1098,7 @@ class _Runner:
 
     def r_field(self, tok: _Tok, tag_expr: tuple, kind: str) -> None:
         tag = self.tag(tag_expr, tok)
-        self.tags["field"].add(tag)
+        self._add("field", tag)
         self.ops.append(["field", tag, kind])
 
     def r_field_option(self, tok: _Tok, tag_expr: tuple, option: str, value: tuple) -> None:
@@ -1207,7 +1217,7 @@ class _Runner:
 
     def _new(self, kind: str) -> int:
         stores = ("point", "curve", "loop", "surface") if kind == "any" else (kind,)
-        return max((max(self.tags[s], default=0) for s in stores), default=0) + 1
+        return max(self.top[s] for s in stores) + 1
 
 
 def _line(expr: tuple) -> int | str:
