@@ -8,7 +8,7 @@ module            what it does
 ``geofiles``      Geometry files from users: ``.geo`` files read by bearingfe and meshed apart, ``.msh`` read as data.
 ``geo_parser``    Reader of the ``.geo`` subset bearingfe meshes from untrusted files: text in, geometry operations out.
 ``geo_model``     Building a gmsh model through the gmsh API from the operations of ``geo_parser`` (in the child).
-``gmsh_worker``   Child process in which gmsh meshes: one ``.geo`` file (built or, trusted, interpreted) or the shoe body.
+``gmsh_worker``   Child process in which gmsh meshes: a ``.geo`` file (built, or trusted: interpreted), the shoe body.
 ``locate``        Points on a triangle mesh: the cell that holds a point, field values there, cell sizes.
 ``meshing``       Meshing support surfaces with gmsh and reading meshes into scikit-fem.
 ================  ============================================================

@@ -10,7 +10,7 @@ __all__ = ["GeometryFileError", "UntrustedGeoError"]
 
 
 class GeometryFileError(ValueError):
-    """A geometry file cannot be used (not a mesh, outside the ``.geo`` subset, gmsh failed, ended or ran out of time)."""
+    """A geometry file cannot be used (not a mesh, not the ``.geo`` subset, gmsh failed, ended or ran out of time)."""
 
 
 class UntrustedGeoError(GeometryFileError):

@@ -39,7 +39,7 @@ from __future__ import annotations
 import math
 import re
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 from .errors import GeometryFileError, UntrustedGeoError
@@ -179,6 +179,8 @@ class Work:
         Seconds now [s] (``time.monotonic``).
     steps : int
         Steps counted so far.
+    name : str
+        The file's name, first in the messages (set by :func:`parse_geo`).
     """
 
     limit: int = MAX_GEO_STEPS
@@ -199,8 +201,9 @@ class Work:
         if self.deadline is not None and self.steps >= self._next_check:
             self._next_check = self.steps + 1024
             if self.clock() > self.deadline:
+                within = "the time limit" if self.seconds is None else f"{self.seconds:g} s"
                 raise GeometryFileError(
-                    f"{self.name}: reading the geometry did not finish within {self.seconds:g} s (a loop that "
+                    f"{self.name}: reading the geometry did not finish within {within} (a loop that "
                     f"does not end?); raise the limit with timeout= (load_mesh), --geo-timeout (bearingfe mesh) "
                     f"or the environment variable BEARINGFE_GEO_TIMEOUT")
 

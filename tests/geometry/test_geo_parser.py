@@ -8,7 +8,6 @@ same expressions (read back from gmsh's model). Error cases name the line and
 construct; the message texts are the package's.
 """
 
-import math
 
 import gmsh
 import numpy as np

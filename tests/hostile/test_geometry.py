@@ -184,7 +184,7 @@ def test_trusted_geo_loop_that_does_not_end_hits_the_time_limit(tmp_path):
 
 def test_untrusted_geo_loop_stops_at_the_work_budget(tmp_path):
     """3000 x 3000 passes of a statement are more than MAX_GEO_STEPS = 2e6 steps: refused while reading,
-    before gmsh starts (each pass counts at least one step, so the budget is reached in 2e6 / 3000 < 667 outer passes)."""
+    before gmsh starts (each pass counts at least one step: the budget is reached in 2e6 / 3000 < 667 outer passes)."""
     geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
     with pytest.raises(GeometryFileError, match=r"hostile.geo: reading the geometry takes more than 2000000 steps "
                                                  r"\(MAX_GEO_STEPS"):
@@ -699,7 +699,8 @@ def test_reading_x_paren_is_linear():
 def test_reading_a_geometry_is_linear_in_its_size():
     """k copies of a block (points, lines, a loop, expressions, a bounded loop) after the plain shoe: every copy
     costs the same number of steps, so the differences between k = 50, 100, 200 double exactly."""
-    block = ("p = newp; Point(p) = {{0.1 + {k} * 1e-3, 0.2, 0, lc / 2}}; Point(p + 1) = {{0.1, 0.2 + Sqrt({k}) * 1e-3, 0}};\n"
+    block = ("p = newp; Point(p) = {{0.1 + {k} * 1e-3, 0.2, 0, lc / 2}};\n"
+             "Point(p + 1) = {{0.1, 0.2 + Sqrt({k}) * 1e-3, 0}};\n"
              "Line(newl) = {{p, p + 1}}; s = 0; For i In {{1:5}} s += i^2 % 3; EndFor\n"
              "If (s > 3) x[] = {{1:4}}; ElseIf (s < 0) x[] = {{}}; Else x[] = {{}}; EndIf\n")
     counts = []
