@@ -388,6 +388,9 @@ class _Reader:
         return ("factory", tok, kinds[kind])
 
     def _entity(self, kind: str, tok: _Tok) -> tuple:
+        if self.at("{"):
+            raise self.refuse(tok, f"with {{...}} (a list of entities: In, embedding, Delete) is not in the subset; "
+                                   f"define entities with {tok.text}(tag) = {{...}}")
         self.expect("(")
         tag = self.expr()
         self.expect(")")

@@ -9,6 +9,8 @@ construct; the message texts are the package's.
 """
 
 
+import re
+
 import gmsh
 import numpy as np
 import pytest
@@ -20,8 +22,9 @@ from tests.helpers import ROOT
 
 MESHES = ROOT / "meshes"
 
-#: The built-in kernel with what the shipped files do not use: quarter ellipse arcs, a spline through points
-#: made by a macro in a loop, lists and ranges, DefineConstant, ?:, Translate, and a graded size field.
+#: The built-in kernel with what the shipped files do not use: quarter ellipse arcs, a spline and a B-spline
+#: through points made by a macro in a loop, lists and ranges, DefineConstant, ?:, Translate, and size fields
+#: (a graded distance, a MathEval formula, their minimum).
 BUILT_IN = """// built-in kernel
 SetFactory("Built-in");
 DefineConstant[ lc = {0.08, Min 0.01, Max 0.2, Name "Parameters/size"}, a = 0.4 ];
@@ -46,34 +49,42 @@ Ellipse(11) = {12, 10, 11, 13};
 Ellipse(12) = {13, 10, 11, 14};
 Ellipse(13) = {14, 10, 11, 11};
 Curve Loop(2) = {10:13};
-n = 6; r = 0.08;
+n = 6; r = 0.08; cy = 0;
 pts[] = {};
 Macro Ring
   For i In {0:n-1}
     p = newp;
-    Point(p) = {0.2 + r * Cos(2*Pi*i/n), r * Sin(2*Pi*i/n) * (i % 2 == 0 ? 1 : 0.8), 0, lc/2};
+    Point(p) = {0.2 + r * Cos(2*Pi*i/n), cy + r * Sin(2*Pi*i/n) * (i % 2 == 0 ? 1 : 0.8), 0, lc/2};
     pts[] += p;
   EndFor
 Return
 Call Ring;
 Spline(20) = {pts[], pts[0]};
 Curve Loop(3) = {20};
-Plane Surface(1) = {1, 2, 3};
+pts[] = {}; cy = -0.25;
+Call Ring;
+BSpline(21) = {pts[], pts[0]};
+Curve Loop(4) = {21};
+Plane Surface(1) = {1, 2, 3, 4};
 Translate {0.01, 0, 0} { Point{10:14}; Curve{10:13}; }
 Field[1] = Distance;
-Field[1].CurvesList = {10:13, 20};
+Field[1].CurvesList = {10:13, 20, 21};
 Field[2] = Threshold;
 Field[2].InField = 1;
 Field[2].SizeMin = lc / 3;
 Field[2].SizeMax = lc;
 Field[2].DistMin = 0.02;
 Field[2].DistMax = 0.2;
-Background Field = 2;
+Field[3] = MathEval;
+Field[3].F = "0.05 + 0.1 * x * x";
+Field[4] = Min;
+Field[4].FieldsList = {2, 3};
+Background Field = 4;
 Physical Curve("outer") = {1:4};
 Physical Curve("arc_start") = {4};
 Physical Curve("arc_end") = {2};
 Physical Curve("side") = {1, 3};
-Physical Curve("inlet") = {10:13, 20};
+Physical Curve("inlet") = {10:13, 20, 21};
 Physical Surface("film") = {1};
 """
 
@@ -139,7 +150,18 @@ def test_the_subset_meshes_as_with_gmsh_interpreter(tmp_path, text):
     path.write_text(text)
     ours, theirs = load_mesh(path), load_mesh(path, trusted=True)
     _same_mesh(ours, theirs)
-    assert {"outer", "side", "inlet"} <= set(ours.boundaries) and ours.n_nodes > 400  # 456 and 441 nodes
+    assert {"outer", "side", "inlet"} <= set(ours.boundaries) and ours.n_nodes > 400  # 657 and 441 nodes
+
+
+def test_the_builder_knows_every_operation_the_parser_makes():
+    """The two files above and the shipped slot (circle arcs) use every operation kind of the builder's table
+    (bearingfe/geometry/geo_model.py), so the equality tests above build each one."""
+    from bearingfe.geometry import geo_model
+
+    table = set(re.findall(r"^``([a-z_]+)``\s", geo_model.__doc__, flags=re.MULTILINE))
+    texts = (BUILT_IN, OPENCASCADE, (MESHES / "slot_pocket.geo").read_text())
+    made = {op[0] for text in texts for op in parse_geo(text, "all.geo").ops}
+    assert made == table and len(table) == 22
 
 
 EXPRESSIONS = ["2^3^2", "-2^2", "2^-1", "7 % 3", "-7 % 3", "1 + 2 * 3 - 4 / 8", "(1 < 2) + (2 <= 2) + (3 > 4)",
