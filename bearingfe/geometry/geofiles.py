@@ -274,11 +274,14 @@ def read_geo(path: str | Path, *, timeout: float | None = None, clock=time.monot
     UntrustedGeoError
         A construct outside the subset, named with file and line.
     GeometryFileError
-        Too large, not UTF-8 text, not valid ``.geo``, or beyond the work budget or the time limit.
+        Not a regular file, too large, not UTF-8 text, not valid ``.geo``, or beyond the work budget or the
+        time limit.
     """
     path = Path(path)
     seconds = geo_timeout_limit(timeout)
     deadline = clock() + seconds
+    if not path.is_file():  # a pipe or a device would be read without end
+        raise GeometryFileError(f"{path.name} is not a regular file")
     with open(path, "rb") as f:
         data = f.read(MAX_GEO_BYTES + 1)
     if len(data) > MAX_GEO_BYTES:

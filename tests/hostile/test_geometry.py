@@ -880,3 +880,13 @@ def test_fuzzed_files_that_read_mesh_or_fail_by_name(tmp_path):
             assert "Traceback" not in str(exc)
     assert meshed == 4
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"fuzz{k}.geo" for k in range(4)]
+
+
+def test_geo_that_is_not_a_regular_file_is_not_read(tmp_path):
+    """A named pipe called x.geo would block the reader for ever (no time limit covers a blocked open)."""
+    from bearingfe.geometry.geofiles import read_geo
+
+    pipe = tmp_path / "x.geo"
+    os.mkfifo(pipe)
+    with pytest.raises(GeometryFileError, match="x.geo is not a regular file"):
+        read_geo(pipe)
