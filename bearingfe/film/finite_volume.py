@@ -138,10 +138,13 @@ _GRIDS: "weakref.WeakKeyDictionary[SupportMesh, _GridFaces]" = weakref.WeakKeyDi
 def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     """Faces of the box cells of a tensor-grid mesh (``grid_mesh``, ``strip_mesh``).
 
+    The grid may have holes (the pockets of ``grid_mesh``, whole cells left out): a face between two
+    ``phi``-neighbours then spans only the halves of the two grid rows that lie in the mesh.
+
     Raises
     ------
     ValueError
-        If the mesh is not a tensor grid split into triangles.
+        If the mesh is not a tensor grid (possibly with whole cells left out) split into triangles.
     """
     if mesh in _GRIDS:
         return _GRIDS[mesh]
@@ -154,21 +157,35 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     grid = np.full((nx, ny), -1, dtype=np.int64)
     grid[kx, ky] = np.arange(p.shape[1])
     t = m.t[:3]
-    if (nx * ny != p.shape[1] or np.any(grid < 0) or np.any(np.ptp(kx[t], axis=0) != 1)
-            or np.any(np.ptp(ky[t], axis=0) != 1)):
+    cells = np.zeros((max(nx - 1, 1), max(ny - 1, 1)), np.int64)   # triangles per grid cell (2: in the mesh)
+    tri_ok = (np.ptp(kx[t], axis=0) == 1) & (np.ptp(ky[t], axis=0) == 1)
+    if np.all(tri_ok):
+        np.add.at(cells, (kx[t].min(axis=0), ky[t].min(axis=0)), 1)
+    if (nx < 2 or ny < 2 or np.unique(np.stack([kx, ky]), axis=1).shape[1] != p.shape[1] or not np.all(tri_ok)
+            or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
                          "nodes on the lines of a rectangular grid, each cell split into two triangles")
-    xs = np.array([p[0, grid[k, 0]] for k in range(nx)])
-    ys = np.array([p[1, grid[0, k]] for k in range(ny)])
+    xs = np.array([p[0, kx == k][0] for k in range(nx)])
+    ys = np.array([p[1, ky == k][0] for k in range(ny)])
+    inside = cells == 2
     ylo = np.concatenate([[ys[0]], 0.5 * (ys[:-1] + ys[1:])])
     yhi = np.concatenate([0.5 * (ys[:-1] + ys[1:]), [ys[-1]]])
     xlo = np.concatenate([[xs[0]], 0.5 * (xs[:-1] + xs[1:])])
     xhi = np.concatenate([0.5 * (xs[:-1] + xs[1:]), [xs[-1]]])
-    box = np.empty((4, p.shape[1]))
-    box[0, grid], box[1, grid] = xlo[:, None], xhi[:, None]
-    box[2, grid], box[3, grid] = ylo[None, :], yhi[None, :]
-    faces = _GridFaces(i=grid[:-1].ravel(), j=grid[1:].ravel(), box=box,
-                       x0=np.repeat(xs[:-1], ny), x1=np.repeat(xs[1:], ny), lo=np.tile(ylo, nx - 1), hi=np.tile(yhi, nx - 1))
+    box = np.full((4, p.shape[1]), np.nan)
+    box[0, grid[kx, ky]], box[1, grid[kx, ky]] = xlo[kx], xhi[kx]
+    box[2, grid[kx, ky]], box[3, grid[kx, ky]] = ylo[ky], yhi[ky]
+    # face between (k, l) and (k + 1, l): its lower half lies in the cell (k, l - 1), its upper half in (k, l)
+    below = np.zeros((nx - 1, ny), bool)
+    above = np.zeros((nx - 1, ny), bool)
+    below[:, 1:] = inside
+    above[:, :-1] = inside
+    lo = np.where(below, ylo[None, :], ys[None, :])
+    hi = np.where(above, yhi[None, :], ys[None, :])
+    keep = (below | above).ravel()
+    x0 = np.repeat(xs[:-1], ny)
+    faces = _GridFaces(i=grid[:-1].ravel()[keep], j=grid[1:].ravel()[keep], box=box,
+                       x0=x0[keep], x1=np.repeat(xs[1:], ny)[keep], lo=lo.ravel()[keep], hi=hi.ravel()[keep])
     _GRIDS[mesh] = faces
     return faces
 
