@@ -79,6 +79,18 @@ TOLERANCE = 1e-10
 COUETTE_FLUXES = ("auto", "median", "grid")
 
 
+#: Mesh sources whose median-dual Couette flux carries a front along ``phi`` without crosswind smearing
+#: (``strip_mesh``: one-dimensional films on a structured strip).
+ALIGNED_SOURCES = ("strip",)
+#: Note on a JFO result with a cavity solved by the median-dual flux of an unstructured mesh.
+UNSTRUCTURED_JFO_NOTE = (
+    "JFO with a cavity on an unstructured mesh: the median-dual upwind Couette flux smears the fill fraction "
+    "across the sliding direction, so loads and flows converge slowly (order about 1 or less; errors of "
+    "several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); for rectangular surfaces with "
+    "rectangular pockets use bearingfe.geometry.meshing.grid_mesh (couette='grid'), or check the answer on "
+    "a finer mesh")
+
+
 class JFOError(RuntimeError):
     """The JFO complementarity iteration did not converge (or theta left [0, 1])."""
 
@@ -841,6 +853,8 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
+    if model == "jfo" and system.faces is None and mesh.source not in ALIGNED_SOURCES and bool(np.any(emptied)):
+        notes += (UNSTRUCTURED_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
     return ReynoldsResult(
