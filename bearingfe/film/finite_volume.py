@@ -50,6 +50,7 @@ one or two linear solves. The equations and their derivation are in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 import weakref
@@ -74,9 +75,10 @@ MAX_ITERATIONS = 80
 #: Default relative tolerance of the sign tests (scaled by the largest |P| and 1 for theta).
 TOLERANCE = 1e-10
 #: Couette flux discretizations of :func:`solve_jfo` (``couette=``): ``"median"`` (median-dual segments,
-#: any straight P1 mesh), ``"grid"`` (box cells of a tensor grid, flux along the grid lines only) and
-#: ``"auto"`` (``"grid"`` on meshes of :func:`bearingfe.geometry.meshing.grid_mesh`, else ``"median"``).
-COUETTE_FLUXES = ("auto", "median", "grid")
+#: any straight P1 mesh, first-order upwind), ``"grid"`` (box cells of a tensor grid, flux along the grid
+#: lines only), ``"limited"`` (median-dual segments, second-order upwind with a Barth-Jespersen limiter)
+#: and ``"auto"`` (``"grid"`` on meshes of :func:`bearingfe.geometry.meshing.grid_mesh`, else ``"median"``).
+COUETTE_FLUXES = ("auto", "median", "grid", "limited")
 
 
 #: Mesh sources whose median-dual Couette flux carries a front along ``phi`` without crosswind smearing
@@ -86,9 +88,9 @@ ALIGNED_SOURCES = ("strip",)
 UNSTRUCTURED_JFO_NOTE = (
     "JFO with a cavity on an unstructured mesh: the median-dual upwind Couette flux smears the fill fraction "
     "across the sliding direction, so loads and flows converge slowly (order about 1 or less; errors of "
-    "several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); for rectangular surfaces with "
-    "rectangular pockets use bearingfe.geometry.meshing.grid_mesh (couette='grid'), or check the answer on "
-    "a finer mesh")
+    "several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); solve_jfo(..., couette='limited') "
+    "reduces the smearing, and for rectangular surfaces with rectangular pockets "
+    "bearingfe.geometry.meshing.grid_mesh (couette='grid') removes it; or check the answer on a finer mesh")
 
 
 class JFOError(RuntimeError):
@@ -200,6 +202,77 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
                        x0=x0[keep], x1=np.repeat(xs[1:], ny)[keep], lo=lo.ravel()[keep], hi=hi.ravel()[keep])
     _GRIDS[mesh] = faces
     return faces
+
+
+# -- limited linear reconstruction of theta on the median dual ------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class _Reconstruction:
+    """Second-order upwind values of theta on the median-dual segments: theta of the upwind node plus its
+    limited nodal gradient times the offset to the segment midpoint (Barth-Jespersen limiter: the value
+    stays within the range of theta over the node and its edge neighbours)."""
+
+    i: np.ndarray          # segment nodes (flux positive from i to j)
+    j: np.ndarray
+    up: np.ndarray         # upwind node of each segment
+    flux: np.ndarray       # wedge/2 h n_phi |segment| of each segment
+    offset: np.ndarray     # (2, n_segments) segment midpoint minus the upwind node
+    gradient: sp.csr_matrix   # (2 n_nodes, n_nodes): nodal theta -> area-weighted mean P1 gradient
+    edges: np.ndarray      # (2, n_edges) node pairs of the mesh edges
+
+
+def _reconstruction(mesh: SupportMesh, d: _Dual, flux: np.ndarray) -> _Reconstruction:
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    gx = np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det
+    gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
+    area = 0.5 * np.abs(det)
+    n = m.nvertices
+    node_area = np.bincount(t.ravel(), weights=np.tile(area, 3), minlength=n)
+    rows, cols, vx, vy = [], [], [], []
+    for a in range(3):
+        for b in range(3):
+            rows.append(t[a]), cols.append(t[b])
+            vx.append(area * gx[b] / node_area[t[a]]), vy.append(area * gy[b] / node_area[t[a]])
+    rows, cols = np.concatenate(rows), np.concatenate(cols)
+    G = sp.vstack([sp.csr_matrix((np.concatenate(vx), (rows, cols)), shape=(n, n)),
+                   sp.csr_matrix((np.concatenate(vy), (rows, cols)), shape=(n, n))]).tocsr()
+    up = np.where(flux > 0, d.i, d.j)
+    return _Reconstruction(i=d.i, j=d.j, up=up, flux=flux, offset=d.midpoint - p[:, up], gradient=G,
+                           edges=m.facets)
+
+
+def _limiter(rec: _Reconstruction, theta: np.ndarray) -> np.ndarray:
+    """Barth-Jespersen factor in [0, 1] per node: the reconstructed values on the node's outgoing segments
+    stay within the range of theta over the node and its edge neighbours."""
+    n = theta.size
+    g = (rec.gradient @ theta).reshape(2, n)
+    delta = g[0, rec.up] * rec.offset[0] + g[1, rec.up] * rec.offset[1]
+    a, b = rec.edges
+    hi, lo = theta.copy(), theta.copy()
+    np.maximum.at(hi, a, theta[b]), np.maximum.at(hi, b, theta[a])
+    np.minimum.at(lo, a, theta[b]), np.minimum.at(lo, b, theta[a])
+    room = np.where(delta > 0, hi[rec.up] - theta[rec.up], lo[rec.up] - theta[rec.up])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(np.abs(delta) > 1e-14, room / delta, np.inf)
+    alpha = np.ones(n)
+    np.minimum.at(alpha, rec.up, np.clip(ratio, 0.0, 1.0))
+    return alpha
+
+
+def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
+    """Outflow per cell of the reconstruction's increment over the first-order upwind flux, linear in
+    theta for the limiter ``alpha`` (per node): ``sum_s (+-) f_s alpha_up grad_up theta . offset_s``."""
+    n = alpha.size
+    G = rec.gradient
+    weight = rec.flux * alpha[rec.up]
+    R = (sp.diags(weight * rec.offset[0]) @ G[:n][rec.up] + sp.diags(weight * rec.offset[1]) @ G[n:][rec.up])
+    seg = np.arange(rec.up.size)
+    E = sp.csr_matrix((np.concatenate([np.ones(seg.size), -np.ones(seg.size)]),
+                       (np.concatenate([rec.i, rec.j]), np.concatenate([seg, seg]))), shape=(n, seg.size))
+    return (E @ R).tocsr()
 
 
 # -- film with recesses --------------------------------------------------------------
@@ -340,6 +413,7 @@ class _System:
     inv_h_q: np.ndarray    # 1/h at the quadrature points (for the shear)
     faces: _GridFaces | None = None       # grid flux: the box faces ...
     face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
+    reconstruction: _Reconstruction | None = None   # couette="limited": the second-order upwind values
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
@@ -352,6 +426,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     hdot_q = _rate(film, x[0], x[1], squeeze)
     h_q, inv_h_q, h3_q = _cell_means(mesh, film, x, h_q)
     K = weighted_laplace.assemble(basis, c=h3_q / 12.0).tocsr()
+    rec = None
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)
         fi, fj = g.i, g.j
@@ -361,6 +436,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         d = _dual(mesh)
         fi, fj = d.i, d.j
         f = 0.5 * wedge * _thickness(mesh, film, d.midpoint[0], d.midpoint[1]) * d.normal[0]
+        rec = _reconstruction(mesh, d, f) if couette == "limited" else None
     up = np.where(f > 0, fi, fj)
     n = basis.N
     C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
@@ -376,7 +452,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
     return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
-                   **grid)
+                   reconstruction=rec, **grid)
 
 
 # -- the complementarity solve ----------------------------------------------------------
@@ -545,6 +621,30 @@ def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, 
         seen.add(np.packbits(cav).tobytes())
         cav = new
     raise JFOError(f"Swift-Stieber active-set iteration did not converge in {max_iterations} iterations")
+
+
+#: Limiter updates of ``couette="limited"`` at most (each one active-set solve, warm-started).
+LIMITER_SWEEPS = 6
+
+
+def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, sol: _Solution,
+                   factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
+    """``couette="limited"``: from the first-order solution, the limiter of the last theta frozen and the
+    second-order flux solved implicitly (one linear complementarity problem, warm-started on the last
+    cavity), until the limiter stops changing or after :data:`LIMITER_SWEEPS` updates. The returned system
+    carries the flux of the final solution (its flows balance exactly)."""
+    free = np.zeros(ops.n_dofs, bool)
+    free[ops.interior] = True
+    rec, C1 = system.reconstruction, system.C
+    alpha = None
+    for _sweep in range(LIMITER_SWEEPS):
+        new = _limiter(rec, np.where(free, unk.S @ sol.theta, 1.0))
+        if alpha is not None and np.abs(new - alpha).max() <= 1e-12:
+            break
+        alpha = new
+        system = dataclasses.replace(system, C=(C1 + _limited_flux(rec, alpha)).tocsr())
+        sol = _active_set(system, unk, p_fixed, p_c, sol.cavity, factorize, tol, max_iterations)
+    return system, sol
 
 
 def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
@@ -773,8 +873,14 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         of a tensor-grid mesh (:func:`bearingfe.geometry.meshing.grid_mesh`,
         :func:`bearingfe.geometry.meshing.strip_mesh`), i.e. between ``phi``-neighbours
         only, with ``int h dz`` over each face exact across recess steps: no
-        crosswind smearing. ``"auto"``: ``"grid"`` on meshes of ``grid_mesh``,
-        else ``"median"``. See ``docs/jfo.md``.
+        crosswind smearing. ``"limited"``: the median-dual segments with
+        ``theta`` reconstructed linearly from the upwind node (its mean P1
+        gradient, Barth-Jespersen limited) at each segment midpoint: second
+        order where theta is smooth, much less sideways smearing on
+        unstructured meshes, a few times the cost (the limiter is lagged:
+        up to :data:`LIMITER_SWEEPS` warm-started solves). ``"auto"``:
+        ``"grid"`` on meshes of ``grid_mesh``, else ``"median"``. See
+        ``docs/jfo.md``.
 
     Returns
     -------
@@ -819,6 +925,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
         solve = _active_set if cavitation == "jfo" else _obstacle
         sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+        if system.reconstruction is not None and cavitation == "jfo":
+            system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
     free[ops.interior] = True
@@ -853,7 +961,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
-    if model == "jfo" and system.faces is None and mesh.source not in ALIGNED_SOURCES and bool(np.any(emptied)):
+    if model == "jfo" and system.faces is None and system.reconstruction is None and mesh.source not in ALIGNED_SOURCES and bool(np.any(emptied)):
         notes += (UNSTRUCTURED_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
