@@ -637,6 +637,8 @@ def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: fl
     free[ops.interior] = True
     rec, C1 = system.reconstruction, system.C
     alpha = None
+    if not np.any(sol.theta < 1.0):   # no cavity: theta = 1, nothing to reconstruct
+        return system, sol
     for _sweep in range(LIMITER_SWEEPS):
         new = _limiter(rec, np.where(free, unk.S @ sol.theta, 1.0))
         if alpha is not None and np.abs(new - alpha).max() <= 1e-12:

@@ -14,7 +14,7 @@ import pytest
 
 from benchmarks.jfo_gmsh import dimple, grooved_journal, pocket_pad, quantities
 from bearingfe import Circle, ProfileFilm, Rectangle, Surface, grid_mesh, mesh_surface, solve_reynolds
-from bearingfe.film.finite_volume import UNSTRUCTURED_JFO_NOTE
+from bearingfe.film.finite_volume import UNSTRUCTURED_JFO_NOTE, solve_jfo
 from bearingfe.film.mesh_operators import operators
 from bearingfe.geometry.meshing import periodic_pairs
 
@@ -128,3 +128,40 @@ def test_jfo_with_a_cavity_on_an_unstructured_mesh_carries_a_note():
     full = solve_reynolds(mesh_surface(case.surface, 0.1), ProfileFilm(((0.0, 2.0), (1.0, 1.0))),
                           cavitation="jfo", inlet_pressure=1.0)
     assert not np.any(full.theta < 1) and UNSTRUCTURED_JFO_NOTE not in full.notes
+
+
+# -- the limited second-order flux on gmsh meshes --------------------------------------------------------
+
+def _gmsh_errors(case, sizes, reference: dict[str, float], couette: str) -> dict[str, list[float]]:
+    options = {k: v for k, v in case.options.items() if k != "cavitation"}
+    rows = []
+    for s in sizes:
+        res = solve_jfo(mesh_surface(case.surface, s), case.film, couette=couette, **options)
+        assert abs(res.mass_balance) < 1e-12 and res.theta.min() >= 0.0 and res.theta.max() <= 1.0
+        rows.append(quantities(res))
+    return {k: [abs(q[k] / v - 1) for q in rows] for k, v in reference.items()}
+
+
+def test_limited_flux_on_a_gmsh_mesh_converges_at_first_order_with_pockets():
+    """Pocket pad on gmsh meshes (pocket contour on element edges) against the grid reference above:
+    errors of the limited flux fall at fitted order >= 0.9 and stay at most 0.75 x the first-order ones
+    (measured: inlet 0.64, 0.71, 0.54 and side 0.55, 0.44, 0.38 of them)."""
+    case = pocket_pad()
+    sizes = (0.05, 0.025, 0.0125)
+    limited = _gmsh_errors(case, sizes, POCKET_PAD, "limited")
+    median = _gmsh_errors(case, sizes, POCKET_PAD, "median")
+    for k in ("inlet", "side"):
+        e = limited[k]
+        assert np.polyfit(np.log2(sizes), np.log2(e), 1)[0] > 0.9, (k, e)   # error ~ size^order
+        assert all(a <= 0.75 * b for a, b in zip(e, median[k])), (k, e, median[k])
+    assert limited["side"][-1] < 0.02 and limited["load"][-1] < 1e-3
+
+
+def test_limited_flux_removes_most_of_the_groove_smearing_on_a_periodic_gmsh_mesh():
+    """Grooved periodic journal: the first-order flux is 45 % off in side flow at size 0.05, the limited
+    one 3.4 % (reference above, from the grid)."""
+    case = grooved_journal()
+    err = _gmsh_errors(case, (0.1, 0.05), GROOVED_JOURNAL, "limited")["side"]
+    assert math.log2(err[0] / err[1]) > 1.0 and err[1] < 0.05
+    median = _gmsh_errors(case, (0.05,), GROOVED_JOURNAL, "median")["side"]
+    assert median[0] > 0.3 and err[1] < median[0] / 5
