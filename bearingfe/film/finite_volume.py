@@ -26,7 +26,12 @@ Discretization (P1, vertex-centred finite volumes on the median dual mesh):
   instead pass through the faces of the nodes' box cells normal to ``phi``
   (``couette="grid"``): between ``phi``-neighbours only, so fronts along the
   sliding direction are not smeared sideways, with the film of each face
-  integrated exactly across recess contours that cut the cells;
+  integrated exactly across recess contours that cut the cells (rectangular
+  pockets are holes of the grid, their edges on grid lines);
+- on any mesh, ``couette="limited"`` takes theta at each median-dual segment
+  midpoint from a limited linear reconstruction around the upwind node
+  (second-order upwind, Barth-Jespersen limiter, lagged over a few solves),
+  which removes most of the first-order flux's crosswind smearing;
 - the storage ``int theta h`` is lumped on the dual cells
   (``H_i = int h phi_i``); the steady squeeze term is ``theta_i int dh/dt
   phi_i``, a time step backward Euler ``(theta H - theta_old H_old)/dt``.
@@ -963,7 +968,9 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
-    if model == "jfo" and system.faces is None and system.reconstruction is None and mesh.source not in ALIGNED_SOURCES and bool(np.any(emptied)):
+    first_order_unstructured = system.faces is None and system.reconstruction is None and (
+        mesh.source not in ALIGNED_SOURCES)
+    if model == "jfo" and first_order_unstructured and bool(np.any(emptied)):
         notes += (UNSTRUCTURED_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
