@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from benchmarks.jfo_gmsh import dimple, grooved_journal, pocket_pad, quantities
-from bearingfe import Circle, ProfileFilm, Rectangle, Surface, grid_mesh, mesh_surface, solve_reynolds
+from bearingfe import (Circle, ProfileFilm, Recess, Rectangle, Surface, UniformFilm, grid_mesh, mesh_surface,
+                       solve_reynolds)
 from bearingfe.film.finite_volume import UNSTRUCTURED_JFO_NOTE, solve_jfo
 from bearingfe.film.mesh_operators import operators
 from bearingfe.geometry.meshing import periodic_pairs
@@ -176,3 +177,16 @@ def test_limited_flux_puts_the_dimple_load_within_one_percent_on_a_gmsh_mesh():
     both = _gmsh_errors(dimple(), (0.01,), {"load": DIMPLE_LOAD, "friction": 0.90806175})
     assert both["limited"]["load"][0] < 0.01 and both["median"]["load"][0] > 0.03
     assert both["limited"]["friction"][0] < 2e-3
+
+
+def test_grid_with_a_pocket_and_a_cut_recess_conserves_mass():
+    """A rectangular pocket and a circular recess cutting the grid cells on one surface: the flows balance
+    the pocket inflow to round-off, and theta stays in [0, 1] with a cavity in the recess."""
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.2, 0.0), (0.1, 0.3))],
+                      recesses=[Recess(Circle((0.6, 0.05), 0.2), 1.0)])
+    res = solve_reynolds(grid_mesh(surface, 0.02), UniformFilm(1.0), cavitation="jfo", inlet_pressure=0.02,
+                         cavitation_pressure=-0.01)
+    outflow = sum(res.flows[k] for k in ("arc_start", "arc_end", "side"))
+    assert res.flows["inlet"] > 0 and res.flows["inlet"] == pytest.approx(outflow, rel=1e-10)
+    assert abs(res.mass_balance) < 1e-12 and 0.0 <= res.theta.min() < 0.9 and res.theta.max() <= 1.0
+    assert UNSTRUCTURED_JFO_NOTE not in res.notes
