@@ -73,7 +73,8 @@ from ..geometry.meshing import SupportMesh, periodic_pairs
 from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
-__all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES"]
+__all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
+           "UNSTRUCTURED_JFO_NOTE"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
