@@ -2,18 +2,19 @@
 
 Usage (from the repository root)::
 
-    PYTHONPATH=. nice python benchmarks/jfo_gmsh.py            # full run, ~2 min on an idle 2-core machine
+    PYTHONPATH=. nice python benchmarks/jfo_gmsh.py            # full run, ~3 min idle, ~5 on a loaded machine
     PYTHONPATH=. python benchmarks/jfo_gmsh.py --quick         # coarse meshes only (a check of the script)
 
-Three cases, each solved with ``cavitation="jfo"`` on
+Three cases, each solved with ``cavitation="jfo"`` (:data:`KINDS`) on
 
 - gmsh meshes (:func:`bearingfe.mesh_surface`, pocket and recess contours on element edges, the Couette
-  flux through the median-dual segments: ``couette="median"``) and
+  flux through the median-dual segments, first order: ``couette="median"``, the default there),
+- the same gmsh meshes with the limited second-order flux (``couette="limited"``), and
 - phi-aligned tensor grids (:func:`bearingfe.geometry.meshing.grid_mesh`, grid lines through the pocket
   edges, recess contours cut through the cells: ``couette="grid"``).
 
 The reference of each quantity is the Richardson extrapolation of the three finest grids (their fitted
-order is printed). The cases (:data:`CASES`) are also the tests' (``tests/film/test_jfo_gmsh.py``):
+order is printed). The cases (:data:`CASES`) are also the tests' (``tests/film/test_finite_volume_pockets.py``):
 
 - ``pocket_pad``: a square pad (1 x 1, edges at 0) with a square pocket (0.2 x 0.2, at 0) in the diverging
   half of a converging-diverging film (2 -> 1 -> 2 along phi), cavity at -0.02: the pocket feeds a streak
