@@ -74,7 +74,7 @@ from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
-           "UNSTRUCTURED_JFO_NOTE"]
+           "UNSTRUCTURED_JFO_NOTE", "TENSOR_SOURCES"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
@@ -83,7 +83,7 @@ TOLERANCE = 1e-10
 #: Couette flux discretizations of :func:`solve_jfo` (``couette=``): ``"median"`` (median-dual segments,
 #: any straight P1 mesh, first-order upwind), ``"grid"`` (box cells of a tensor grid, flux along the grid
 #: lines only), ``"limited"`` (median-dual segments, second-order upwind with a Barth-Jespersen limiter)
-#: and ``"auto"`` (``"grid"`` on meshes of :func:`bearingfe.geometry.meshing.grid_mesh`, else ``"median"``).
+#: and ``"auto"`` (``"grid"`` on tensor grids, :data:`TENSOR_SOURCES`, else ``"median"``).
 COUETTE_FLUXES = ("auto", "median", "grid", "limited")
 
 
@@ -826,6 +826,23 @@ def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | Non
     return mask[unk.rep]
 
 
+#: Mesh sources that are tensor grids aligned with ``phi`` when nothing refined them unevenly
+#: (:func:`bearingfe.bearings.journal.structured_journal_mesh`): ``couette="auto"`` takes the grid flux on
+#: them when their cells check out as a tensor grid.
+TENSOR_SOURCES = ("grid", "structured")
+
+
+def _auto_couette(mesh: SupportMesh) -> str:
+    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), else ``"median"``."""
+    if mesh.source not in TENSOR_SOURCES:
+        return "median"
+    try:
+        _grid_faces(mesh)
+    except ValueError:
+        return "median"
+    return "grid"
+
+
 @takes(OperatingPoint, Discretization)
 def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
               inlet_pressure: float = 0.0, cavitation_pressure: float = 0.0, element: str = "P1",
@@ -873,7 +890,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         is booked as ``flows["cavitation"]``) and ``"none"`` (no pressure
         bound). :func:`bearingfe.solve_reynolds` uses them for recessed and
         periodic surfaces.
-    couette : {"auto", "median", "grid"}
+    couette : {"auto", "median", "grid", "limited"}
         Discretization of the Couette flux ``wedge/2 theta h``. ``"median"``:
         through the median-dual segments of any straight P1 mesh (first-order
         upwinding smears fronts that run along ``phi`` sideways, by a width of
@@ -887,7 +904,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         order where theta is smooth, much less sideways smearing on
         unstructured meshes, a few times the cost (the limiter is lagged:
         up to :data:`LIMITER_SWEEPS` warm-started solves). ``"auto"``:
-        ``"grid"`` on meshes of ``grid_mesh``, else ``"median"``. See
+        ``"grid"`` on tensor-grid meshes (``grid_mesh``, the structured
+        journal mesh; :data:`TENSOR_SOURCES`), else ``"median"``. See
         ``docs/jfo.md``.
 
     Returns
@@ -916,7 +934,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     if couette not in COUETTE_FLUXES:
         raise ValueError(f"couette must be one of {COUETTE_FLUXES}, got {couette!r}")
     if couette == "auto":
-        couette = "grid" if mesh.source == "grid" else "median"
+        couette = _auto_couette(mesh)
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     ops = operators(mesh, "P1")
     p_c = float(cavitation_pressure)
