@@ -83,7 +83,8 @@ from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
 __all__ = ["SUPPLIES", "Supply", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
-           "PocketState", "SuppliedResult", "SupportStiffness", "pocket_names", "pocket_flows", "balance_pockets",
+           "PocketState", "SuppliedResult", "SupportStiffness", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
+           "balance_pockets",
            "solve_supplied", "supply_stiffness"]
 
 
