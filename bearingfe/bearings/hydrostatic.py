@@ -44,9 +44,9 @@ a cavitation solve on the film state whose pocket column carries the pockets
 at their current pressures (one factorization per pocket for the whole
 iteration). The finite-volume scheme (``"jfo"``, recessed or periodic surfaces,
 a cavity pressure) and the elastic support hold all pockets at one pressure:
-there a single supply (one pocket, or one restrictor feeding every pocket's
-contour) is solved by the same iteration on :func:`bearingfe.solve_reynolds`,
-and several different supplies are refused, naming why.
+there a surface with one pocket is balanced by the same iteration on
+:func:`bearingfe.solve_reynolds` (each evaluation one solve of that path), and
+a surface with several pockets is refused, naming why.
 
 The support's stiffness :func:`supply_stiffness` is ``-dW/dh`` at fixed supply
 along a one-parameter family of films (the pad lifting off: ``UniformFilm(h)``),
@@ -78,6 +78,7 @@ from ..cavitation import MODELS, ModelOptions, solve_model
 from ..core.parameters import Discretization, OperatingPoint
 from ..core.scales import Scale
 from ..core.schema import Range, finite, in_range, positive
+from ..elastic import Compliance
 from ..film import Film, ReynoldsResult, Superposition, film_outputs, superpose
 from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
@@ -547,7 +548,7 @@ class SuppliedResult:
 def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | Supply, scale: Scale, *,
                    operating: OperatingPoint = OperatingPoint(wedge=0.0),
                    discretization: Discretization = Discretization(), cavitation: str = "none",
-                   on_indefinite: str = "fallback") -> SuppliedResult:
+                   elastic: Compliance | None = None, on_indefinite: str = "fallback") -> SuppliedResult:
     """Solve a support whose pockets are fed through restrictors.
 
     Parameters
@@ -568,8 +569,11 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     cavitation : str
         A model of :data:`bearingfe.cavitation.MODELS`. ``"none"`` solves the pockets exactly by
         superposition; ``"reynolds"`` and ``"gumbel"`` iterate them with the film (Newton-Broyden);
-        a model or surface that needs the finite-volume scheme takes one supply only (see the module
-        docstring).
+        a model or surface that needs the finite-volume scheme takes a surface with one pocket (see the
+        module docstring).
+    elastic : Compliance, optional
+        An elastic support (:func:`bearingfe.half_space`): the one pocket of the surface is balanced on
+        the coupled film of :func:`bearingfe.solve_reynolds`.
 
     Returns
     -------
@@ -590,10 +594,11 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     if cavitation not in MODELS:
         raise ValueError(f"cavitation must be one of {tuple(MODELS)}, got {cavitation!r}")
     path = discretization_for(mesh, cavitation)
-    if path == "finite-element":
+    if path == "finite-element" and elastic is None:
         film_result, p, q = _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, on_indefinite)
     else:
-        film_result, p, q = _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation)
+        film_result, p, q = _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation,
+                                                      elastic)
     pockets = tuple(PocketState(name=n, kind=law.kind, pressure=scale.to_pressure(pk),
                                 restrictor_flow=scale.to_flow(law.flow(pk) if law.kind != "pressure" else qk),
                                 film_flow=scale.to_flow(qk),
@@ -677,37 +682,33 @@ def _listed(p: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:.6g}" for x in p) + ")"
 
 
-def _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation):
-    """One supply on the finite-volume scheme: every pocket at one pressure, balanced on
-    :func:`bearingfe.solve_reynolds`."""
-    distinct = {dataclasses.astuple(law) for law in laws}
-    if len(distinct) > 1:
-        raise ValueError("this film is solved by the finite-volume scheme, which holds every pocket at one "
-                         f"pressure (cavitation={cavitation!r}, a recessed or periodic surface): give one supply "
-                         "(the same for every pocket)")
-    n = len(laws)
-    law = laws[0]
-    # every pocket behind its own copy of the restrictor, all at one pressure: one pocket of n times the flow
-    total = Law(law.kind, law.supply, law.conductance * n)
+def _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation, elastic):
+    """One pocket balanced on :func:`bearingfe.solve_reynolds` (the finite-volume scheme, the elastic support)."""
+    if len(laws) > 1:
+        why = ("the elastic support" if elastic is not None else
+               f"the finite-volume scheme (cavitation={cavitation!r}, a recessed or periodic surface)")
+        raise ValueError(f"{why} holds every pocket at one pressure: restrictors are balanced there for a "
+                         f"surface with one pocket, this one has {len(laws)}")
     last: dict = {}
 
     def solve_at(p: float) -> ReynoldsResult:
         if last.get("p") != p:
             last.update(p=p, result=solve_reynolds(mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
                                                    inlet_pressure=p, sliding=operating.sliding,
-                                                   cavitation=cavitation, discretization=discretization))
+                                                   cavitation=cavitation, discretization=discretization,
+                                                   elastic=elastic))
         return last["result"]
 
     def film_flow(p):
         return np.array([solve_at(float(max(p[0], 0.0))).flows["inlet"]])
 
-    # the linear slope from two solves (the Jacobian's start; Broyden corrects it)
-    ref = max(total.supply if total.kind != "flow" else 1.0, 1e-12)
+    # the Jacobian's start: the slope of two solves (Broyden corrects it)
+    law = laws[0]
+    ref = law.supply if law.kind != "flow" else 1.0
     slope = (film_flow(np.array([ref]))[0] - film_flow(np.array([0.0]))[0]) / ref
-    p = balance_pockets([total], film_flow, np.array([[max(slope, 1e-300)]]))
+    p = balance_pockets(laws, film_flow, np.array([[max(slope, 1e-300)]]))
     res = solve_at(float(p[0]))
-    q_all = float(res.flows["inlet"])
-    return res, np.full(n, p[0]), np.full(n, q_all / n)
+    return res, p, np.array([float(res.flows["inlet"])])
 
 
 # -- stiffness -------------------------------------------------------------------------------------

@@ -304,3 +304,26 @@ def test_an_orifice_that_cannot_feed_the_film_is_an_error(pads):
 def test_the_wrong_number_of_supplies_is_named(twin):
     with pytest.raises(ValueError, match="one supply per pocket"):
         solve_supplied(twin, UniformFilm(1.0), [capillary_for(0.5)], SCALE)
+
+
+def test_an_elastic_pad_is_balanced_on_the_coupled_film(pads):
+    # rigid limit (E* = inf): the rigid answer to the coupled solver's tolerance; a soft pad opens the film
+    # under the recess pressure, lets more oil out and so settles at a lower recess pressure
+    from bearingfe import half_space
+    mesh = pads["P1"]
+    cap = capillary_for(0.5)
+    rigid = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1)
+    stiff = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1,
+                           elastic=half_space(mesh, SCALE, math.inf, "P1"))
+    assert stiff.pockets[0].pressure == pytest.approx(rigid.pockets[0].pressure, rel=1e-9)
+    soft = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1,
+                          elastic=half_space(mesh, SCALE, 2e9, "P1"))
+    pocket = soft.pockets[0]
+    assert soft.film.max_deflection > 0.05  # the film opens by more than 5 % of the clearance
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+    assert pocket.pressure < 0.99 * rigid.pockets[0].pressure
+
+
+def test_several_pockets_on_the_finite_volume_scheme_are_refused(twin):
+    with pytest.raises(ValueError, match="holds every pocket at one pressure"):
+        solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
