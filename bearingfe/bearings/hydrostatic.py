@@ -411,7 +411,7 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
 
     # start: each pocket at half its supply pressure (orifice s = sqrt(p_s / 2)), flows at a film estimate
     x = np.zeros(n)
-    scale = 1.0
+    scale = 1e-300  # the largest restrictor flow: the residual's unit
     for k in np.flatnonzero(free):
         law = laws[k]
         if law.kind == "orifice":
