@@ -109,8 +109,8 @@ class Law:
     supply : float
         Supply (or prescribed) pressure [mu omega R0^2 / c^2]; NaN for ``"flow"``.
     conductance : float
-        Capillary conductance [R0^2 c / (mu-scaled)] (flow per unit pressure drop), orifice
-        coefficient (flow per square root of the drop) or the constant flow [omega R0^2 c].
+        Flow per unit pressure drop (capillary), per square root of the drop (orifice), or the
+        flow itself (constant flow), flows in [omega R0^2 c] and pressures in [mu omega R0^2 / c^2].
     """
 
     kind: str
@@ -388,9 +388,8 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
     p_fixed = np.array([law.supply if law.kind == "pressure" else 0.0 for law in laws])
     free = np.array([law.kind != "pressure" for law in laws])
     orifice = np.array([law.kind == "orifice" for law in laws])
-    p = p_fixed.copy()
     if not free.any():
-        return p
+        return p_fixed
     G = np.asarray(conductance, float).reshape(n, n)
 
     def pressures(x: np.ndarray) -> np.ndarray:
@@ -422,33 +421,32 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
             x[k] = max(law.conductance / max(G[k, k], 1e-300), 0.0)
         scale = max(scale, abs(law.flow(0.0)) if law.kind != "flow" else law.conductance)
     idx = np.flatnonzero(free)
-    q = film_flow(pressures(x))
+    restrictor = np.array([laws[k].conductance if orifice[k] else
+                           (-laws[k].conductance if laws[k].kind == "capillary" else 0.0) for k in range(n)])
+    B = G.copy()  # dQ_film/dp: exact for a linear film, Broyden-updated otherwise
+    p = pressures(x)
+    q = film_flow(p)
     r = residual(x, q)
-    # Jacobian in x on the free pockets: d(inflow)/dx - G dp/dx
-    J = -G[np.ix_(idx, idx)] * dp_dx(x)[idx][None, :]
-    J += np.diag([laws[k].conductance if orifice[k] else (-laws[k].conductance if laws[k].kind == "capillary" else 0.0)
-                  for k in idx])
     for _ in range(max_iterations):
         if np.max(np.abs(r[idx])) <= tol * scale:
             break
-        dx = np.linalg.solve(J, -r[idx])
+        # Newton in x: d(inflow)/dx - B dp/dx (the chain rule through p(x) is exact for the orifice's s)
+        J = np.diag(restrictor[idx]) - B[np.ix_(idx, idx)] * dp_dx(x)[idx][None, :]
         x_new = x.copy()
-        x_new[idx] += dx
+        x_new[idx] += np.linalg.solve(J, -r[idx])
         x_new = _admissible(x_new, laws, orifice, free)
-        q_new = film_flow(pressures(x_new))
+        p_new = pressures(x_new)
+        q_new = film_flow(p_new)
         r_new = residual(x_new, q_new)
-        step, dr = (x_new - x)[idx], (r_new - r)[idx]
-        if np.dot(step, step) > 0:  # Broyden: J step = dr (no change for a linear film with exact J)
-            J += np.outer(dr - J @ step, step) / np.dot(step, step)
-        if np.allclose(x_new, x, rtol=0, atol=0) and np.max(np.abs(r_new[idx])) > tol * scale:
-            raise _no_solution(laws, pressures(x_new), r_new, idx)
-        x, q, r = x_new, q_new, r_new
+        dp, dq = p_new - p, q_new - q
+        if np.dot(dp, dp) > 0:  # Broyden: B dp = dq (no change for a linear film)
+            B += np.outer(dq - B @ dp, dp) / np.dot(dp, dp)
+        if np.array_equal(x_new, x) and np.max(np.abs(r_new[idx])) > tol * scale:
+            raise _no_solution(laws, p_new, r_new, idx)
+        x, p, q, r = x_new, p_new, q_new, r_new
     else:
         raise SupplyError(f"the pocket pressures did not converge in {max_iterations} iterations "
                           f"(largest flow imbalance {np.max(np.abs(r[idx])):.3g} [omega R0^2 c])")
-    p = pressures(x)
-    if np.any(p[free] < -tol * max(1.0, np.max(np.abs(p)))):
-        raise _no_solution(laws, p, r, idx)
     return p
 
 
