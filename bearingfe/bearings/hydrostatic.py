@@ -83,7 +83,7 @@ from ..film import Film, ReynoldsResult, Superposition, film_outputs, superpose
 from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
-__all__ = ["SUPPLIES", "Supply", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
+__all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
            "PocketState", "SuppliedResult", "SupportStiffness", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
            "balance_pockets",
            "solve_supplied", "supply_stiffness"]
@@ -252,6 +252,62 @@ class ConstantFlow(Supply):
 #: The supply kinds by name (read-only): ``kind -> class``.
 SUPPLIES: Mapping[str, type] = MappingProxyType({cls.kind: cls for cls in
                                                  (PrescribedPressure, Capillary, Orifice, ConstantFlow)})
+
+
+@dataclass(frozen=True)
+class Restrictor:
+    """A restrictor whose supply pressure is set elsewhere: the plunger's bore from the pump chamber.
+
+    :meth:`fed_from` makes the pocket's :class:`Supply` at a supply pressure (the chamber's at an
+    instant of the cycle). Each kind takes its own fields and no others.
+
+    Parameters
+    ----------
+    kind : str
+        ``"capillary"`` (``diameter``, ``length``) or ``"orifice"`` (``diameter``,
+        ``discharge_coefficient``, ``density``).
+    diameter : float
+        [m], > 0.
+    length : float, optional
+        Capillary length [m], >= diameter.
+    discharge_coefficient : float, optional
+        Orifice ``Cd`` [-], in (0, 1].
+    density : float, optional
+        Oil density for the orifice [kg/m^3], > 0.
+
+    Raises
+    ------
+    ValueError
+        The kind is not a restrictor, a field the kind needs is missing or one it does not take is
+        given, or a value is out of its range (the message of the :class:`Supply` it makes).
+    """
+
+    kind: str
+    diameter: float
+    length: float | None = None
+    discharge_coefficient: float | None = None
+    density: float | None = None
+
+    #: The fields of each kind.
+    FIELDS: ClassVar[Mapping[str, tuple[str, ...]]] = MappingProxyType({
+        "capillary": ("diameter", "length"), "orifice": ("diameter", "discharge_coefficient", "density")})
+
+    def __post_init__(self) -> None:
+        if self.kind not in self.FIELDS:
+            raise ValueError(f"Restrictor.kind must be one of {tuple(self.FIELDS)}, got {self.kind!r}")
+        for name in ("length", "discharge_coefficient", "density"):
+            needed = name in self.FIELDS[self.kind]
+            if needed and getattr(self, name) is None:
+                raise ValueError(f"Restrictor.{name} is required by kind = {self.kind!r}")
+            if not needed and getattr(self, name) is not None:
+                raise ValueError(f"Restrictor.{name} is not taken by kind = {self.kind!r} "
+                                 f"(it takes {', '.join(self.FIELDS[self.kind])})")
+        self.fed_from(1.0)  # the supply's own checks of the values
+
+    def fed_from(self, supply_pressure: float) -> Supply:
+        """The pocket's supply from a source at ``supply_pressure`` [Pa], > 0."""
+        fields = {name: getattr(self, name) for name in self.FIELDS[self.kind]}
+        return SUPPLIES[self.kind](supply_pressure=supply_pressure, **fields)
 
 
 # -- pockets of a mesh and their film flows ------------------------------------------------------

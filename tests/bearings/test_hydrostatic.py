@@ -24,10 +24,13 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe import (Circle, CosineFilm, Discretization, OperatingPoint, Scale, Surface, UniformFilm, mesh_surface,
-                       solve_reynolds)
-from bearingfe.bearings.hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError,
-                                            pocket_film, pocket_flows, pocket_names, solve_supplied, supply_stiffness)
+from bearingfe import (Circle, CosineFilm, Discretization, OperatingPoint, Scale, Surface, UniformFilm, load_mechanism,
+                       mesh_surface, solve_reynolds)
+from bearingfe.bearings.hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, Restrictor,
+                                            SupplyError, pocket_film, pocket_flows, pocket_names, solve_supplied,
+                                            supply_stiffness)
+from bearingfe.core.schema import SchemaError
+from tests.helpers import ROOT
 
 R, r = 0.4, 0.1
 SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.05, speed=100.0)  # pad 20 mm radius, film 20 um
@@ -327,3 +330,55 @@ def test_an_elastic_pad_is_balanced_on_the_coupled_film(pads):
 def test_several_pockets_on_the_finite_volume_scheme_are_refused(twin):
     with pytest.raises(ValueError, match="holds every pocket at one pressure"):
         solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
+
+
+# -- the pump's shoe fed from its chamber ([shoe.supply]) -----------------------------------------------
+
+def test_the_shipped_pump_keeps_its_prescribed_pocket():
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    assert pump.shoe_supply is None
+    assert pump.pocket_supply(32e6) == PrescribedPressure(32e6)
+
+
+def test_the_orifice_pump_feeds_its_pocket_through_the_plunger():
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump_orifice.toml")
+    assert pump.shoe_supply == Restrictor("orifice", 0.4e-3, discharge_coefficient=0.7, density=870.0)
+    assert pump.pocket_supply(32e6) == Orifice(diameter=0.4e-3, discharge_coefficient=0.7, density=870.0,
+                                               supply_pressure=32e6)
+    # at discharge, a film state of the cycle: the pocket settles below the chamber pressure
+    mesh = mesh_surface(pump.surface, 0.15, order=2)
+    res = solve_supplied(mesh, CosineFilm(0.6, 0.0), pump.pocket_supply(pump.cycle.discharge), pump.scale,
+                         operating=OperatingPoint(wedge=1.0), cavitation="reynolds", discretization=P2)
+    pocket = res.pockets[0]
+    assert 0.5 < pocket.ratio < 0.9
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+
+
+@pytest.mark.parametrize("make, fragment", [
+    (lambda: Restrictor("nozzle", 1e-3), "Restrictor.kind must be one of ('capillary', 'orifice')"),
+    (lambda: Restrictor("orifice", 1e-3, discharge_coefficient=0.7), "Restrictor.density is required"),
+    (lambda: Restrictor("capillary", 1e-3, length=0.02, density=870.0), "Restrictor.density is not taken"),
+    (lambda: Restrictor("capillary", -1e-3, length=0.02), "Capillary.diameter must be > 0 m"),
+])
+def test_a_bad_restrictor_is_named(make, fragment):
+    with pytest.raises(ValueError, match=fragment.replace("(", r"\(").replace(")", r"\)")):
+        make()
+
+
+@pytest.mark.parametrize("new, fragment", [
+    ('kind = "nozzle"', '[shoe.supply] kind: must be one of'),
+    ('kind = "orifice"\ndiameter = 0.4e-3\ndensity = 870.0', "[shoe.supply] Restrictor.discharge_coefficient is required"),
+    ('kind = "capillary"\nlength = 0.02', "[shoe.supply] diameter: missing (required by kind = 'capillary')"),
+    ('diameter = 0.4e-3', "[shoe.supply] diameter: not taken by kind = 'pressure'"),
+    ('kind = "orifice"\ndiameter = 0.4e-3\ndischarge_coefficient = 1.5\ndensity = 870.0',
+     "[shoe.supply] Orifice.discharge_coefficient must be in (0, 1]"),
+    ('kind = "capillary"\ndiameter = 0.4e-3\nlength = 0.02\nbore = 1', "[shoe.supply] bore: unknown field"),
+])
+def test_shoe_supply_errors_name_the_table(tmp_path, new, fragment):
+    text = (ROOT / "mechanisms" / "eccentric_pump.toml").read_text(encoding="utf-8")
+    old = "[shoe.seat]"
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, "[shoe.supply]\n" + new + "\n\n" + old), encoding="utf-8")
+    with pytest.raises(SchemaError) as info:
+        load_mechanism(path)
+    assert "bad.toml" in str(info.value) and fragment in str(info.value)
