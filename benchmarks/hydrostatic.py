@@ -156,13 +156,27 @@ The tests (`tests/bearings/test_hydrostatic.py`) hold P2 at size 0.05 to 2e-5 an
 stiffness to the finite difference's truncation (2e-6; 4e-6 at constant flow) against the formulas
 evaluated with the computed load and ratio.
 
+## The pump's shoe
+
+The machine file's `[shoe.supply]` table feeds the shoe pocket from the chamber through a restrictor in
+the plunger (`kind = "capillary"` with `diameter`, `length`; `kind = "orifice"` with `diameter`,
+`discharge_coefficient`, `density`; default `"pressure"`: the pocket at the chamber pressure, as the
+shipped `mechanisms/eccentric_pump.toml` keeps it). `mechanisms/eccentric_pump_orifice.toml` feeds it
+through a 0.4 mm orifice; `pump.pocket_supply(chamber_pressure)` is the pocket's supply for
+`bf.solve_supplied` at a state of the cycle.
+
 ## Not yet
 
-- The pocket volume's own rate equation in the pump transient, `V/K dp_r/dt = Q_restrictor - Q_film -
-  dV/dt` (with the oil's bulk modulus `K`), and the damping of the linearised transient: the steady
-  balance is what exists.
-- The machine file's `[shoe.supply]` table and a shipped pump fed through a plunger orifice.
-- Several pockets at different pressures on the finite-volume scheme or with the elastic support.
+- The pump transient with a fed pocket: the cycle (`bf.simulate`) still holds the pocket at the chamber
+  pressure. Next: the pocket pressure as a third state with its own rate equation `V/K dp_r/dt =
+  Q_restrictor - Q_film - dV/dt` (pocket volume `V`, the oil's bulk modulus `K`), whose flows are the
+  per-pocket flows of `bearingfe.bearings.hydrostatic` (the transient's squeeze rates enter `Q_film`
+  through the superposition's motion columns), then the damping of the linearised transient, and the pump
+  scene's report per design (pocket pressure over the cycle, restrictor/pocket/side leakage, friction and
+  pumping power).
+- Several pockets at different pressures on the finite-volume scheme (JFO, recessed or periodic
+  surfaces, e.g. a periodic multi-recess journal) or with the elastic support: those paths hold every
+  pocket at one pressure, and a surface with several pockets is refused there.
 """
 
 

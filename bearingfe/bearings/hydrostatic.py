@@ -362,8 +362,9 @@ class PocketFilm:
         p = np.asarray(pressures, float)
         fields = self.whole.fields.copy()
         fields[:, 3] = sum(pk * s.fields[:, 3] for pk, s in zip(p, self.pockets))
+        whole = self.whole.system
         system = dataclasses.replace(
-            self.whole.system,
+            whole, build_matrix=lambda: whole.matrix,  # the matrix does not depend on the pocket data: built once
             rhs=_column(self.whole.system.rhs, sum(pk * s.system.rhs[:, 3] for pk, s in zip(p, self.pockets))),
             lift=_column(self.whole.system.lift, sum(pk * s.system.lift[:, 3] for pk, s in zip(p, self.pockets))))
         forces = _column(self.whole.forces, sum(pk * s.forces[:, 3] for pk, s in zip(p, self.pockets)))
@@ -691,15 +692,16 @@ def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, o
     W[3, 1:] = 1.0
     flows = pocket_flows(pf, U, W)
     q0, G = flows[:, 0], flows[:, 1:]
-    options = ModelOptions(sliding=operating.sliding)
     weights = np.array([operating.wedge, *operating.squeeze, 1.0])
     last: dict = {}
 
     def solve_at(p: np.ndarray) -> ReynoldsResult:
-        key = tuple(np.round(np.asarray(p, float), 15))
+        key = tuple(np.asarray(p, float))
         if last.get("key") != key:
-            res = solve_model(pf.state(p), weights, cavitation, options)
-            last.update(key=key, result=res, p=np.array(p, float))
+            # each iterate warm-started from the previous one's rupture set
+            warm = last["result"].cavitated if "result" in last else None
+            options = ModelOptions(sliding=operating.sliding, warm_start=warm)
+            last.update(key=key, result=solve_model(pf.state(p), weights, cavitation, options))
         return last["result"]
 
     if cavitation == "none":

@@ -175,42 +175,47 @@ def test_the_stiffest_recess_ratio(pads, kind, optimum, betas):
 
 # -- every cavitation model -------------------------------------------------------------------------
 
+@pytest.mark.parametrize("element", ["P1", "P2"])
 @pytest.mark.parametrize("cavitation", ["none", "reynolds", "gumbel"])
-def test_every_finite_element_model_balances_the_pad(pads, cavitation):
+def test_every_finite_element_model_balances_the_pad(pads, cavitation, element):
     # no motion: the pressure is positive everywhere, so every model is the linear film
-    res = solve_supplied(pads["P2"], UniformFilm(1.0), orifice_for(0.6), SCALE, discretization=P2,
-                         cavitation=cavitation)
-    assert res.pockets[0].ratio == pytest.approx(0.6, rel=TOL["P2"])
+    res = solve_supplied(pads[element], UniformFilm(1.0), orifice_for(0.6), SCALE,
+                         discretization=P2 if element == "P2" else P1, cavitation=cavitation)
+    assert res.pockets[0].ratio == pytest.approx(0.6, rel=TOL[element])
     assert res.film.cavitation == cavitation
 
 
 def test_jfo_balances_the_pad_through_the_front_door():
-    # the finite-volume scheme (P1 on a straight-sided mesh) holds the one pocket at the balanced pressure
+    # the finite-volume scheme (P1 on a straight-sided mesh) holds the one pocket at the balanced pressure;
+    # without motion its film is the P1 Galerkin film (the same numbers: the ratio's error measured 3.0e-3,
+    # 1.3e-3, 5.2e-4 at sizes 0.08, 0.04, 0.02 with either)
     surface = Surface(outer=Circle((0.0, 0.0), R), inlets=(Circle((0.0, 0.0), r),))
     mesh = mesh_surface(surface, 0.04, inlet_size=0.04 / 3, order=1)
     res = solve_supplied(mesh, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
     pocket = res.pockets[0]
     assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
-    # the finite-volume flux on a P1 mesh of this size: 1 % of the closed form (a coarse mesh of that scheme)
-    assert pocket.ratio == pytest.approx(0.5, rel=1e-2)
+    assert pocket.ratio == pytest.approx(0.5, rel=TOL["P1"])
+    linear = solve_supplied(mesh, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1)
+    assert pocket.pressure == pytest.approx(linear.pockets[0].pressure, rel=1e-9)
     assert res.film.cavitation == "jfo"
 
 
-def test_a_wedge_under_swift_stieber_is_balanced_with_the_film():
+@pytest.mark.parametrize("cavitation", ["reynolds", "gumbel"])
+def test_a_wedge_under_cavitation_is_balanced_with_the_film(cavitation):
     # a tilted pad turning: the film ruptures where it diverges; the pocket pressure is iterated with the
     # cavitation solve until the orifice's flow equals the film's outflow from the pocket
     surface = Surface(arc=(-0.5, 0.5), half_width=0.3, inlets=(Circle((0.0, 0.0), 0.08),))
     mesh = mesh_surface(surface, 0.05, inlet_size=0.02, order=2)
     op = OperatingPoint(wedge=1.0)
     orf = Orifice(diameter=0.1e-3, discharge_coefficient=CD, density=RHO, supply_pressure=2e6)
-    res = solve_supplied(mesh, CosineFilm(0.8, 0.3), orf, SCALE, operating=op, cavitation="reynolds",
+    res = solve_supplied(mesh, CosineFilm(0.8, 0.3), orf, SCALE, operating=op, cavitation=cavitation,
                          discretization=P2)
     assert res.film.cavitated is not None and res.film.cavitated.any()
     pocket = res.pockets[0]
     assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
     # the film at that pocket pressure through the front door: the same answer
     p_nd = SCALE.from_pressure(pocket.pressure)
-    ref = solve_reynolds(mesh, CosineFilm(0.8, 0.3), wedge=1.0, inlet_pressure=p_nd, cavitation="reynolds",
+    ref = solve_reynolds(mesh, CosineFilm(0.8, 0.3), wedge=1.0, inlet_pressure=p_nd, cavitation=cavitation,
                          discretization=P2)
     assert SCALE.to_flow(ref.flows["inlet"]) == pytest.approx(pocket.film_flow, rel=1e-9)
     assert res.film.integral == pytest.approx(ref.integral, rel=1e-9)
@@ -286,13 +291,15 @@ def test_several_pockets_under_cavitation(twin):
     assert res.total_flow == pytest.approx(SCALE.to_flow(res.film.flows["inlet"]), rel=1e-9)
     # the pockets' film state under cavitation, both prescribed at one pressure: the front door's answer
     p = res.pockets[0].pressure
-    same = solve_supplied(twin, film, PrescribedPressure(p), SCALE, operating=op, cavitation="reynolds",
-                          discretization=P2)
-    ref = solve_reynolds(twin, film, wedge=1.0, inlet_pressure=SCALE.from_pressure(p), cavitation="reynolds",
-                         discretization=P2)
-    assert same.film.integral == pytest.approx(ref.integral, rel=1e-10)
-    np.testing.assert_allclose(same.film.force, ref.force, rtol=1e-10)
-    assert same.total_flow == pytest.approx(SCALE.to_flow(ref.flows["inlet"]), rel=1e-10)
+    for disc in (P2, Discretization(element="P2", formulation="pi")):
+        same = solve_supplied(twin, film, PrescribedPressure(p), SCALE, operating=op, cavitation="reynolds",
+                              discretization=disc)
+        ref = solve_reynolds(twin, film, wedge=1.0, inlet_pressure=SCALE.from_pressure(p), cavitation="reynolds",
+                             discretization=disc)
+        assert same.film.formulation == ref.formulation == disc.formulation
+        assert same.film.integral == pytest.approx(ref.integral, rel=1e-10)
+        np.testing.assert_allclose(same.film.force, ref.force, rtol=1e-10)
+        assert same.total_flow == pytest.approx(SCALE.to_flow(ref.flows["inlet"]), rel=1e-10)
 
 
 # -- what is refused -----------------------------------------------------------------------------------
