@@ -60,8 +60,8 @@ from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study
 from .core.checks import ResolutionWarning, check_resolution
 from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .bearings.pump import EccentricPump, PressureCycle
-from .bearings.hydrostatic import (Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError, solve_supplied,
-                                   supply_stiffness)
+from .bearings.hydrostatic import (Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError, pocket_transient,
+                                   solve_supplied, supply_stiffness)
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
 from .version import __version__
@@ -76,7 +76,7 @@ __all__ = [
     "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal",
-    "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SupplyError", "hydrostatic", "solve_supplied",
+    "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SupplyError", "hydrostatic", "pocket_transient", "solve_supplied",
     "supply_stiffness",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",

@@ -129,6 +129,12 @@ names the pocket. Under Swift-Stieber or Gumbel cavitation the same iteration ru
 periodic surfaces) and the elastic support hold all pockets at one pressure: a one-pocket surface is
 balanced there through `bf.solve_reynolds`, several pockets are refused.
 
+The oil in a pocket is compressible: `bf.pocket_transient` integrates each pocket's rate equation
+`V/K dp_r/dt = Q_restrictor - Q_film` at a fixed film (pocket volume `V`, bulk modulus `K`) and gives
+the time constants of its linearisation at the balance; a capillary-fed recess fills as
+`p_r = beta p_s (1 - exp(-t/tau))`, `tau = V / (K (Kc + G))` (`G` the film's conductance), which the
+tests check to the mesh error (2e-5, P2) and the integrator's (1e-7).
+
 The stiffness `-dW/dh` at fixed supply is a central difference of balanced supports along a family of
 films (`h +- 1e-3 c`): truncation `(n + 1)(n + 2)/6 (1e-3/h)^2` for `W ~ h^-n`.
 
@@ -168,12 +174,11 @@ through a 0.4 mm orifice; `pump.pocket_supply(chamber_pressure)` is the pocket's
 ## Not yet
 
 - The pump transient with a fed pocket: the cycle (`bf.simulate`) still holds the pocket at the chamber
-  pressure. Next: the pocket pressure as a third state with its own rate equation `V/K dp_r/dt =
-  Q_restrictor - Q_film - dV/dt` (pocket volume `V`, the oil's bulk modulus `K`), whose flows are the
-  per-pocket flows of `bearingfe.bearings.hydrostatic` (the transient's squeeze rates enter `Q_film`
-  through the superposition's motion columns), then the damping of the linearised transient, and the pump
-  scene's report per design (pocket pressure over the cycle, restrictor/pocket/side leakage, friction and
-  pumping power).
+  pressure. Next: the pocket pressure as a third state of the shoe with the rate equation above plus the
+  pocket's volume change, `V/K dp_r/dt = Q_restrictor - Q_film - dV/dt`, the film's squeeze rates entering
+  `Q_film` through the superposition's motion columns (`pocket_transient` has it at a fixed film), then
+  the damping of the linearised transient, and the pump scene's report per design (pocket pressure over
+  the cycle, restrictor/pocket/side leakage, friction and pumping power).
 - Several pockets at different pressures on the finite-volume scheme (JFO, recessed or periodic
   surfaces, e.g. a periodic multi-recess journal) or with the elastic support: those paths hold every
   pocket at one pressure, and a surface with several pockets is refused there.

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, dynamic_coefficients
 from .hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, SuppliedResult, SupplyError,
-                          solve_supplied, supply_stiffness)
+                          pocket_transient, solve_supplied, supply_stiffness)
 from .pump import EccentricPump, PressureCycle
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
            "EccentricPump", "PressureCycle", "SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure",
-           "SuppliedResult", "SupplyError", "solve_supplied", "supply_stiffness"]
+           "SuppliedResult", "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness"]

@@ -54,6 +54,13 @@ by a central finite difference of the balanced supports at ``h +- step``; its
 truncation error is ``O(step^2)`` (``step = 1e-3 c``: below 4e-6 relative on the
 closed forms of the tests).
 
+The oil in a pocket is compressible: :func:`pocket_transient` integrates each
+pocket's own rate equation ``V/K dp_r/dt = Q_restrictor - Q_film`` at a fixed
+film (volume ``V``, bulk modulus ``K``) and gives the time constants of its
+linearisation at the balance (``V / (K (Kc + G))`` for a capillary-fed pocket).
+The pump transient does not carry it yet: there the pocket is at the chamber
+pressure.
+
 Closed forms the tests check (circular pad of radius ``R`` with a central
 recess of radius ``r``, uniform film ``h``: Rowe, *Hydrostatic, Aerostatic and
 Hybrid Bearing Design* (2012), ch. 4-5; Hamrock, Schmid & Jacobson, ch. 6):
@@ -84,7 +91,7 @@ from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
 __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
-           "PocketState", "SuppliedResult", "SupportStiffness", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
+           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
            "balance_pockets",
            "solve_supplied", "supply_stiffness"]
 
@@ -126,6 +133,15 @@ class Law:
         if self.kind == "flow":
             return self.conductance
         return math.nan
+
+    def slope(self, p: float) -> float:
+        """``dQ/dp`` of the restrictor at pocket pressure ``p`` (``-inf`` at an orifice's supply pressure)."""
+        if self.kind == "capillary":
+            return -self.conductance
+        if self.kind == "orifice":
+            drop = self.supply - p
+            return -0.5 * self.conductance / math.sqrt(drop) if drop > 0 else -math.inf
+        return 0.0
 
 
 class Supply:
@@ -682,16 +698,7 @@ def _laws(names: Sequence[str], supplies, scale: Scale) -> list[Law]:
 def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, on_indefinite):
     """The finite-element film state with one unit field per pocket; the pockets balanced on it."""
     pf = pocket_film(mesh, film, discretization, on_indefinite)
-    n = len(laws)
-    motion = np.array([operating.wedge, *operating.squeeze, 0.0])
-    u0 = pf.whole.fields @ motion
-    # the film's linear response: q0 (motion, pockets at 0) and G (unit pocket pressures, no motion)
-    U = np.column_stack([u0] + [s.fields[:, 3] for s in pf.pockets])
-    W = np.zeros((4, n + 1))
-    W[:, 0] = motion
-    W[3, 1:] = 1.0
-    flows = pocket_flows(pf, U, W)
-    q0, G = flows[:, 0], flows[:, 1:]
+    q0, G = _linear_film(pf, operating)
     weights = np.array([operating.wedge, *operating.squeeze, 1.0])
     last: dict = {}
 
@@ -724,6 +731,19 @@ def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, o
     res = dataclasses.replace(res, inlet_pressure=float(np.max(p)),
                               notes=res.notes + (f"pockets fed through restrictors at {_listed(p)} [-]",))
     return res, p, q
+
+
+def _linear_film(pf: PocketFilm, operating: OperatingPoint) -> tuple[np.ndarray, np.ndarray]:
+    """The film's outflow from each pocket as ``q0 + G p`` [omega R0^2 c]: ``q0`` of the motion (pockets
+    at 0), ``G`` of the unit pocket pressures (no motion)."""
+    n = len(pf.pockets)
+    motion = np.array([operating.wedge, *operating.squeeze, 0.0])
+    U = np.column_stack([pf.whole.fields @ motion] + [s.fields[:, 3] for s in pf.pockets])
+    W = np.zeros((4, n + 1))
+    W[:, 0] = motion
+    W[3, 1:] = 1.0
+    flows = pocket_flows(pf, U, W)
+    return flows[:, 0], flows[:, 1:]
 
 
 def _unknown(sup: Superposition, res: ReynoldsResult) -> np.ndarray:
@@ -765,6 +785,99 @@ def _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavit
     p = balance_pockets(laws, film_flow, np.array([[max(slope, 1e-300)]]))
     res = solve_at(float(p[0]))
     return res, p, np.array([float(res.flows["inlet"])])
+
+
+# -- the pockets' compressibility ------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class PocketTransient:
+    """Pocket pressures after a change, at a fixed film, with the oil in each pocket compressible [SI].
+
+    Attributes
+    ----------
+    times : ndarray, shape (T,)
+        [s].
+    pressures : ndarray, shape (T, n)
+        Pocket pressures [Pa] (prescribed pockets constant).
+    balanced : SuppliedResult
+        The steady balance the pressures tend to.
+    time_constants : ndarray, shape (m,)
+        ``-1/lambda`` of the eigenvalues of the rate equation linearised at the balance, over the
+        fed pockets [s], largest first.
+    """
+
+    times: np.ndarray
+    pressures: np.ndarray
+    balanced: SuppliedResult
+    time_constants: np.ndarray
+
+
+def pocket_transient(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | Supply, scale: Scale, *,
+                     volumes: Sequence[float] | float, bulk_modulus: float, times: Sequence[float],
+                     initial: Sequence[float] | float = 0.0, operating: OperatingPoint = OperatingPoint(wedge=0.0),
+                     discretization: Discretization = Discretization()) -> PocketTransient:
+    """The pocket pressures' own rate equation at a fixed film: ``V/K dp_r/dt = Q_restrictor - Q_film``.
+
+    Each fed pocket of volume ``V`` (oil of bulk modulus ``K``) fills and empties through its
+    restrictor and the film; the film is the linear one of this state (no cavitation, rigid, fixed
+    thickness: the pocket volume does not change), so ``Q_film = q0 + G p`` as in
+    :func:`solve_supplied`, and the equation is integrated by scipy's Radau (relative tolerance 1e-10).
+    A capillary-fed pocket relaxes as ``exp(-t/tau)`` with ``tau = V / (K (Kc + G))``.
+
+    Parameters
+    ----------
+    mesh, film, supplies, scale, operating, discretization
+        As :func:`solve_supplied` (``cavitation="none"``).
+    volumes : float or sequence of float
+        Each pocket's oil volume [m^3], > 0 (one for all, or one per pocket).
+    bulk_modulus : float
+        The oil's bulk modulus ``K`` [Pa], > 0.
+    times : sequence of float
+        Output times [s], increasing from 0.
+    initial : float or sequence of float
+        Pocket pressures at ``t = 0`` [Pa] (prescribed pockets keep their pressure).
+    """
+    from scipy.integrate import solve_ivp
+
+    names = pocket_names(mesh)
+    laws = _laws(names, supplies, scale)
+    n = len(laws)
+    vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
+    for k, v in enumerate(vol):
+        positive(f"volumes[{k}]", v, "m^3")
+    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
+    t = np.asarray(times, float)
+    if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0) or not np.all(np.isfinite(t)):
+        raise ValueError(f"times must increase from 0 [s], got {times!r}")
+    balanced = solve_supplied(mesh, film, supplies, scale, operating=operating, discretization=discretization)
+    q0, G = _linear_film(pocket_film(mesh, film, discretization), operating)
+    free = np.array([law.kind != "pressure" for law in laws])
+    p_bal = np.array([scale.from_pressure(p) for p in balanced.pressures])
+    p0 = np.broadcast_to(np.asarray(initial, float), (n,)).copy() / scale.pressure
+    p0[~free] = p_bal[~free]
+    rate = bulk * scale.flow / (vol * scale.pressure)  # dp [-]/dt [s] per unit flow imbalance [-]
+
+    def rhs(_, x):
+        p = p_bal.copy()
+        p[free] = x
+        imbalance = np.array([law.flow(pk) for law, pk in zip(laws, p)]) - (q0 + G @ p)
+        return (rate * imbalance)[free]
+
+    def jacobian(_, x):
+        p = p_bal.copy()
+        p[free] = x
+        J = np.diag([law.slope(pk) for law, pk in zip(laws, p)]) - G
+        return (rate[:, None] * J)[np.ix_(free, free)]
+
+    sol = solve_ivp(rhs, (t[0], t[-1]), p0[free], method="Radau", t_eval=t, jac=jacobian, rtol=1e-10,
+                    atol=1e-12 * max(1.0, float(np.max(np.abs(p_bal)))))
+    if not sol.success:
+        raise SupplyError(f"the pocket pressures' rate equation could not be integrated: {sol.message}")
+    pressures = np.tile(p_bal, (t.size, 1))
+    pressures[:, free] = sol.y.T
+    lam = np.linalg.eigvals(jacobian(0.0, p_bal[free])) if free.any() else np.zeros(0)
+    return PocketTransient(times=t, pressures=pressures * scale.pressure, balanced=balanced,
+                           time_constants=np.sort(-1.0 / lam.real)[::-1])
 
 
 # -- stiffness -------------------------------------------------------------------------------------

@@ -389,3 +389,38 @@ def test_shoe_supply_errors_name_the_table(tmp_path, new, fragment):
     with pytest.raises(SchemaError) as info:
         load_mechanism(path)
     assert "bad.toml" in str(info.value) and fragment in str(info.value)
+
+
+# -- the pockets' compressibility --------------------------------------------------------------------------
+
+def test_a_capillary_recess_fills_with_its_closed_form_time_constant(pads):
+    # V/K dp/dt = Kc (p_s - p) - K h^3 p: p = p_inf (1 - exp(-t/tau)), tau = V / (K_oil (Kc + K h^3)),
+    # p_inf = beta p_s; with the capillary sized for beta = 0.5, Kc = K: tau = V / (2 K_oil K)
+    from bearingfe.bearings.hydrostatic import pocket_transient
+    volume, bulk = 2e-7, 1.5e9  # [m^3], [Pa]
+    tau = volume / (bulk * 2 * K)
+    times = np.linspace(0.0, 4 * tau, 9)
+    tr = pocket_transient(pads["P2"], UniformFilm(1.0), capillary_for(0.5), SCALE, volumes=volume,
+                          bulk_modulus=bulk, times=times, discretization=P2)
+    assert tr.time_constants[0] == pytest.approx(tau, rel=TOL["P2"])
+    # against the exponential with the computed balance and time constant: the integrator's error only
+    p_inf, tau_h = tr.balanced.pockets[0].pressure, tr.time_constants[0]
+    np.testing.assert_allclose(tr.pressures[:, 0], p_inf * (1 - np.exp(-times / tau_h)), rtol=1e-7, atol=1e-3)
+    # and against the closed form outright (the mesh's error of beta and of K)
+    np.testing.assert_allclose(tr.pressures[:, 0], 0.5 * PS * (1 - np.exp(-times / tau)), rtol=TOL["P2"],
+                               atol=1e-3)
+
+
+def test_an_orifice_recess_settles_at_its_balance(pads):
+    # nonlinear: no closed form of the path, but the end is the balance and the small-signal time constant is
+    # V / (K_oil (C/(2 sqrt(p_s - p_r)) + K h^3)) at the balance (linearised orifice law)
+    from bearingfe.bearings.hydrostatic import pocket_transient
+    volume, bulk = 2e-7, 1.5e9
+    orf = orifice_for(0.6)
+    c_si = CD * math.pi * orf.diameter**2 / 4 * math.sqrt(2 / RHO)
+    tau = volume / (bulk * (c_si / (2 * math.sqrt(0.4 * PS)) + K))
+    tr = pocket_transient(pads["P2"], UniformFilm(1.0), orf, SCALE, volumes=volume, bulk_modulus=bulk,
+                          times=np.linspace(0.0, 20 * tau, 5), initial=0.9 * PS, discretization=P2)
+    assert tr.time_constants[0] == pytest.approx(tau, rel=TOL["P2"])
+    assert tr.pressures[-1, 0] == pytest.approx(tr.balanced.pockets[0].pressure, rel=1e-7)
+    assert tr.pressures[0, 0] == 0.9 * PS
