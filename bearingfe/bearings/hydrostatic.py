@@ -82,6 +82,7 @@ from typing import Callable, ClassVar, Mapping, Sequence
 import numpy as np
 
 from ..cavitation import MODELS, ModelOptions, solve_model
+from ..core.checks import check_resolution
 from ..core.parameters import Discretization, OperatingPoint
 from ..core.scales import Scale
 from ..core.schema import Range, finite, in_range, positive
@@ -728,8 +729,9 @@ def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, o
         force, integral = pf.whole.loads(_unknown(pf.whole, res), 0.0)
         moments = pf.pocket_moments(p)
         res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
-    res = dataclasses.replace(res, inlet_pressure=float(np.max(p)),
-                              notes=res.notes + (f"pockets fed through restrictors at {_listed(p)} [-]",))
+    unresolved = check_resolution(mesh, film, stacklevel=4)  # as the front door's finite-element path does
+    notes = res.notes + ((unresolved,) if unresolved else ()) + (f"pockets fed through restrictors at {_listed(p)} [-]",)
+    res = dataclasses.replace(res, inlet_pressure=float(np.max(p)), notes=notes)
     return res, p, q
 
 
