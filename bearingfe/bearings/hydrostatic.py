@@ -9,14 +9,14 @@ what the film lets out::
 
 The supply kinds (:data:`SUPPLIES`, SI at the door, one per pocket):
 
-==================  ==========================================  ================================
-kind                law (SI)                                    parameters
-==================  ==========================================  ================================
-``"pressure"``      ``p_r = p``  (today's pockets)              pressure
-``"capillary"``     ``Q = pi d^4 (p_s - p_r) / (128 mu l)``     diameter, length, supply pressure
-``"orifice"``       ``Q = Cd pi d^2/4 sqrt(2 (p_s - p_r)/rho)``  diameter, Cd, density, supply pressure
-``"flow"``          ``Q = Q_0``                                 flow
-==================  ==========================================  ================================
+=================  =============================================  ========================================
+kind               law (SI)                                       parameters
+=================  =============================================  ========================================
+``"pressure"``     ``p_r = p``  (today's pockets)                 pressure
+``"capillary"``    ``Q = pi d^4 (p_s - p_r) / (128 mu l)``        diameter, length, supply pressure
+``"orifice"``      ``Q = Cd pi d^2/4 sqrt(2 (p_s - p_r)/rho)``    diameter, Cd, density, supply pressure
+``"flow"``         ``Q = Q_0``                                    flow
+=================  =============================================  ========================================
 
 The capillary is Hagen-Poiseuille's laminar law (viscosity ``mu`` of the
 operating point, :class:`bearingfe.Scale`); the orifice is the sharp-edged
@@ -59,7 +59,9 @@ pocket's own rate equation ``V/K dp_r/dt = Q_restrictor - Q_film`` at a fixed
 film (volume ``V``, bulk modulus ``K``) and gives the time constants of its
 linearisation at the balance (``V / (K (Kc + G))`` for a capillary-fed pocket).
 The pump transient does not carry it yet: there the pocket is at the chamber
-pressure.
+pressure. The pump's shoe pocket may be fed from the chamber through a
+:class:`Restrictor` in the plunger (``[shoe.supply]`` of the machine file;
+:meth:`bearingfe.EccentricPump.pocket_supply`).
 
 Closed forms the tests check (circular pad of radius ``R`` with a central
 recess of radius ``r``, uniform film ``h``: Rowe, *Hydrostatic, Aerostatic and
