@@ -122,9 +122,9 @@ film's outflow from that pocket:
 The film is linear in the pocket pressures without cavitation: one unit-pressure solution per pocket
 (the other pockets and the outline at 0) and the motion's solution give the film outflow of pocket `j`
 as `q0_j + sum_k G_jk p_k` (the consistent flux residual over each pocket's contour; `G` symmetric).
-Capillaries and constant flows are then a linear system, orifices a quadratic one in
-`s = sqrt(p_s - p_r)`, solved by Newton; no admissible solution (`0 <= p_r <= p_s`) is an error that
-names the pocket. Under Swift-Stieber or Gumbel cavitation the same iteration runs on the cavitated film
+Capillaries and constant flows are then a linear system, orifices a quadratic one in `s` with
+`p_r = p_s - s |s|` (`s < 0`: back-flow from a pocket pumped above its supply), solved by Newton; no
+solution with `p_r >= 0` is an error that names the pocket. Under Swift-Stieber or Gumbel cavitation the same iteration runs on the cavitated film
 (the linear `G` as the first Jacobian, Broyden updates). The finite-volume scheme (JFO, recessed and
 periodic surfaces) and the elastic support hold all pockets at one pressure: a one-pocket surface is
 balanced there through `bf.solve_reynolds`, several pockets are refused.

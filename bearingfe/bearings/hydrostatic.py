@@ -31,11 +31,12 @@ outflow of pocket ``j`` is ``Q_j = q0_j + sum_k G_jk p_k`` (``G`` the
 conductance matrix of the film, symmetric positive definite). The fluxes are
 the consistent nodal residuals of :mod:`bearingfe.film.flows`, summed over each
 pocket's contour. Capillaries and constant flows then make a linear system;
-orifices make it quadratic in ``s = sqrt(p_s - p_r)``, solved by Newton in that
-variable (the restrictor flow is linear in it and the Jacobian never blows up at
-``p_r = p_s``). Where the balance has no solution with ``0 <= p_r <= p_s`` (the
-motion draws more from a pocket than its orifice can feed at ``p_r = 0``, or
-pumps it above its supply pressure) :class:`SupplyError` says so.
+orifices make it quadratic in ``s`` with ``p_r = p_s - s |s|``, solved by Newton
+in that variable (the restrictor flow ``C s`` is linear in it, the Jacobian never
+blows up at ``p_r = p_s``, and ``s < 0`` is the back-flow of a pocket the motion
+pumps above its supply pressure). Where the balance has no solution with
+``p_r >= 0`` (the motion draws more from a pocket than its restrictor can feed
+at ``p_r = 0``) :class:`SupplyError` says so.
 
 Under cavitation (``"reynolds"``, ``"gumbel"``) the film's outflow is no longer
 linear in the pocket pressures: the same Newton iteration runs with the film's
@@ -131,8 +132,9 @@ class Law:
         """Flow through the restrictor into the pocket at pocket pressure ``p`` [omega R0^2 c]."""
         if self.kind == "capillary":
             return self.conductance * (self.supply - p)
-        if self.kind == "orifice":
-            return self.conductance * math.sqrt(max(self.supply - p, 0.0))
+        if self.kind == "orifice":  # back-flow through the orifice when the pocket is above the supply
+            drop = self.supply - p
+            return math.copysign(self.conductance * math.sqrt(abs(drop)), drop)
         if self.kind == "flow":
             return self.conductance
         return math.nan
@@ -142,7 +144,7 @@ class Law:
         if self.kind == "capillary":
             return -self.conductance
         if self.kind == "orifice":
-            drop = self.supply - p
+            drop = abs(self.supply - p)
             return -0.5 * self.conductance / math.sqrt(drop) if drop > 0 else -math.inf
         return 0.0
 
@@ -293,6 +295,12 @@ class Restrictor:
         Orifice ``Cd`` [-], in (0, 1].
     density : float, optional
         Oil density for the orifice [kg/m^3], > 0.
+    pocket_volume : float, optional
+        Oil volume of the pocket it feeds [m^3], > 0: with it the pump transient carries the pocket
+        pressure as a state (``V/K dp_r/dt = Q_restrictor - Q_film - dV/dt``); without it the pocket is
+        balanced at each instant (no volume).
+    bulk_modulus : float
+        The oil's bulk modulus ``K`` [Pa], > 0 (used with ``pocket_volume``).
 
     Raises
     ------
@@ -306,6 +314,8 @@ class Restrictor:
     length: float | None = None
     discharge_coefficient: float | None = None
     density: float | None = None
+    pocket_volume: float | None = None
+    bulk_modulus: float = 1.5e9
 
     #: The fields of each kind.
     FIELDS: ClassVar[Mapping[str, tuple[str, ...]]] = MappingProxyType({
@@ -314,7 +324,7 @@ class Restrictor:
     def __post_init__(self) -> None:
         if self.kind not in self.FIELDS:
             raise ValueError(f"Restrictor.kind must be one of {tuple(self.FIELDS)}, got {self.kind!r}")
-        for name in ("length", "discharge_coefficient", "density"):
+        for name in ("length", "discharge_coefficient", "density"):  # the kinds' own fields
             needed = name in self.FIELDS[self.kind]
             if needed and getattr(self, name) is None:
                 raise ValueError(f"Restrictor.{name} is required by kind = {self.kind!r}")
@@ -322,11 +332,19 @@ class Restrictor:
                 raise ValueError(f"Restrictor.{name} is not taken by kind = {self.kind!r} "
                                  f"(it takes {', '.join(self.FIELDS[self.kind])})")
         self.fed_from(1.0)  # the supply's own checks of the values
+        if self.pocket_volume is not None:
+            object.__setattr__(self, "pocket_volume", positive("Restrictor.pocket_volume", self.pocket_volume, "m^3"))
+        object.__setattr__(self, "bulk_modulus", positive("Restrictor.bulk_modulus", self.bulk_modulus, "Pa"))
 
     def fed_from(self, supply_pressure: float) -> Supply:
         """The pocket's supply from a source at ``supply_pressure`` [Pa], > 0."""
         fields = {name: getattr(self, name) for name in self.FIELDS[self.kind]}
         return SUPPLIES[self.kind](supply_pressure=supply_pressure, **fields)
+
+    def law_at(self, supply_pressure: float, scale: Scale) -> Law:
+        """The non-dimensional law from a source at ``supply_pressure`` [Pa], any finite value (a chamber
+        at 0 in suction: the flow runs back)."""
+        return dataclasses.replace(self.fed_from(1.0).law(scale), supply=scale.from_pressure(supply_pressure))
 
 
 # -- pockets of a mesh and their film flows ------------------------------------------------------
@@ -440,8 +458,9 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
                     *, tol: float = 1e-11, max_iterations: int = 60) -> np.ndarray:
     """Pocket pressures where every restrictor's flow equals the film's outflow [-].
 
-    Newton in the variables ``x = p`` (capillary, constant flow) and ``x = sqrt(p_s - p)``
-    (orifice); prescribed pockets are fixed. The Jacobian starts from the film's linear
+    Newton in the variables ``x = p`` (capillary, constant flow) and ``s`` with ``p = p_s - s |s|``
+    (orifice: its flow ``C s`` is linear in ``s``, negative when the pocket is above its supply and
+    the oil runs back); prescribed pockets are fixed. The Jacobian starts from the film's linear
     conductance (exact for a linear film: one step for capillaries and constant flows) and is
     updated by Broyden's rule when the film is not linear (cavitation).
 
@@ -457,7 +476,7 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
     Raises
     ------
     SupplyError
-        No solution with ``p >= 0`` (and ``p <= p_s`` at an orifice), or no convergence.
+        No solution with ``p >= 0``, or no convergence.
     """
     laws = list(laws)
     n = len(laws)
@@ -471,7 +490,7 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
     def pressures(x: np.ndarray) -> np.ndarray:
         q = p_fixed.copy()
         for k in np.flatnonzero(free):
-            q[k] = laws[k].supply - x[k] ** 2 if orifice[k] else x[k]
+            q[k] = laws[k].supply - x[k] * abs(x[k]) if orifice[k] else x[k]
         return q
 
     def residual(x: np.ndarray, q_film: np.ndarray) -> np.ndarray:
@@ -482,7 +501,7 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
         return r
 
     def dp_dx(x: np.ndarray) -> np.ndarray:
-        return np.where(orifice, -2.0 * x, 1.0)
+        return np.where(orifice, -2.0 * np.abs(x), 1.0)
 
     # start: each pocket at half its supply pressure (orifice s = sqrt(p_s / 2)), flows at a film estimate
     x = np.zeros(n)
@@ -527,11 +546,11 @@ def balance_pockets(laws: Sequence[Law], film_flow: Callable[[np.ndarray], np.nd
 
 
 def _admissible(x: np.ndarray, laws, orifice, free) -> np.ndarray:
-    """Clip an iterate into ``0 <= p <= p_s`` (orifice: ``0 <= s <= sqrt(p_s)``; ``p >= 0`` otherwise)."""
+    """Clip an iterate into ``p >= 0`` (orifice: ``s <= sqrt(p_s)``)."""
     out = x.copy()
     for k in np.flatnonzero(free):
         if orifice[k]:
-            out[k] = min(max(out[k], 0.0), math.sqrt(laws[k].supply))
+            out[k] = min(out[k], math.sqrt(max(laws[k].supply, 0.0)))
         else:
             out[k] = max(out[k], 0.0)
     return out
@@ -540,10 +559,9 @@ def _admissible(x: np.ndarray, laws, orifice, free) -> np.ndarray:
 def _no_solution(laws, p, r, idx) -> SupplyError:
     k = int(idx[np.argmax(np.abs(r[idx]))])
     law = laws[k]
-    why = ("the film draws more from it at p_r = 0 than the restrictor can feed, or pumps it above its supply "
-           "pressure" if law.kind != "flow" else "the film draws more from it at p_r = 0 than the supply feeds")
-    return SupplyError(f"pocket {k} ({law.kind}): no solution with 0 <= p_r"
-                       f"{' <= p_s' if law.kind in ('capillary', 'orifice') else ''}: {why} "
+    why = "the film draws more from it at p_r = 0 than the " + ("supply feeds" if law.kind == "flow" else
+                                                                 "restrictor can feed")
+    return SupplyError(f"pocket {k} ({law.kind}): no solution with p_r >= 0: {why} "
                        f"(flow imbalance {r[k]:.3g} [omega R0^2 c] at p_r = {p[k]:.4g} [-])")
 
 

@@ -67,7 +67,8 @@ SHOE_LINING = Table({"thickness": (number(), None), "name": (text, None), "young
 #: the default) or a restrictor in the plunger (:class:`bearingfe.bearings.hydrostatic.Restrictor`).
 SHOE_SUPPLY = Table({"kind": (choice(lambda: ("pressure", *_restrictor().FIELDS)), "pressure"), "diameter": (number(), None),
                      "length": (number(), None), "discharge_coefficient": (number(), None),
-                     "density": (number(), None)})
+                     "density": (number(), None), "pocket_volume": (number(), None),
+                     "bulk_modulus": (number(), None)})
 
 
 def _restrictor():
