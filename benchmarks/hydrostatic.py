@@ -166,19 +166,31 @@ evaluated with the computed load and ratio.
 
 The machine file's `[shoe.supply]` table feeds the shoe pocket from the chamber through a restrictor in
 the plunger (`kind = "capillary"` with `diameter`, `length`; `kind = "orifice"` with `diameter`,
-`discharge_coefficient`, `density`; default `"pressure"`: the pocket at the chamber pressure, as the
-shipped `mechanisms/eccentric_pump.toml` keeps it). `mechanisms/eccentric_pump_orifice.toml` feeds it
-through a 0.4 mm orifice; `pump.pocket_supply(chamber_pressure)` is the pocket's supply for
-`bf.solve_supplied` at a state of the cycle.
+`discharge_coefficient`, `density`; optional `pocket_volume` [m^3] and `bulk_modulus` [Pa, default
+1.5e9]; default `kind = "pressure"`: the pocket at the chamber pressure, as the shipped
+`mechanisms/eccentric_pump.toml` keeps it). `mechanisms/eccentric_pump_orifice.toml` feeds it through a
+0.1 mm orifice into a 2.4 cm^3 x 1 mm pocket; `pump.pocket_supply(chamber_pressure)` is the pocket's
+supply for `bf.solve_supplied` at a state of the cycle.
+
+`bf.simulate` runs such a pump with the `"fed"` model (`bearingfe.transient.fed`): the rigid film whose
+pocket is at its own pressure `p_r`, balanced at each instant (`Q_restrictor = Q_film + dV/dt`, `dV/dt`
+the squeeze over the pocket) or, with `pocket_volume`, carried as a third state with
+`V/K dp_r/dt = Q_restrictor - Q_film - dV/dt`; the orifice passes back-flow when the pocket is above the
+chamber. Its trajectory's `inlet_pressure` is `p_r`. Checked against its limits
+(`tests/transient/test_fed.py`): a 3 mm orifice is the prescribed pocket (smallest film 4.4e-5,
+pocket pressure 2.7e-6 relative), and the volume's effect vanishes like `V` (0.21, 0.011, 1.1e-3 on the
+smallest film for V = 2.4e-7, 2.4e-8, 2.4e-9 m^3). On the shipped orifice pump the compressed pocket
+lags the chamber at each discharge: its thinnest film over one revolution from the steady start is
+8.6 um against 9.6 um with the prescribed pocket (P2, mesh 0.2 R0, `bf.simulate` defaults).
 
 ## Not yet
 
-- The pump transient with a fed pocket: the cycle (`bf.simulate`) still holds the pocket at the chamber
-  pressure. Next: the pocket pressure as a third state of the shoe with the rate equation above plus the
-  pocket's volume change, `V/K dp_r/dt = Q_restrictor - Q_film - dV/dt`, the film's squeeze rates entering
-  `Q_film` through the superposition's motion columns (`pocket_transient` has it at a fixed film), then
-  the damping of the linearised transient, and the pump scene's report per design (pocket pressure over
-  the cycle, restrictor/pocket/side leakage, friction and pumping power).
+- The pump scene's report per design (pocket pressure over the cycle, restrictor/pocket/side leakage in
+  l/min, friction and pumping power per revolution): the trajectory has `inlet_pressure` (`p_r`) and the
+  film's flows (`flow_inlet` is the film's outflow from the pocket), not the restrictor's flow.
+- A fed pocket with cavitation or the elastic support in the transient (refused by name), the damping
+  of the linearised transient, and Newton shooting for the three-state model (its periodic start is
+  Anderson's).
 - Several pockets at different pressures on the finite-volume scheme (JFO, recessed or periodic
   surfaces, e.g. a periodic multi-recess journal) or with the elastic support: those paths hold every
   pocket at one pressure, and a surface with several pockets is refused there.

@@ -38,9 +38,10 @@ class Trajectory:
     wedge : ndarray
         ``1 - dphi2/dbeta`` [-].
     inlet_pressure : ndarray
-        Pocket (chamber) pressure, non-dimensional [-].
+        Pocket pressure, non-dimensional [-]: the chamber's, or the pocket's own when it is fed
+        through the plunger's restrictor (:mod:`bearingfe.transient.fed`).
     chamber_pressure : ndarray
-        The same in Pa.
+        The chamber pressure in Pa.
     load : ndarray, shape (n, 2)
         Applied load on the shoe in the shoe frame (as the solver's ``force``) [-].
     h_min : ndarray
