@@ -75,7 +75,7 @@ class Fed(Rigid):
 
     # -- the pocket ------------------------------------------------------------------------------------
 
-    def _unit_flux(self, sup: Superposition) -> np.ndarray:
+    def unit_flux(self, sup: Superposition) -> np.ndarray:
         """The film's outflow from the pockets of each unit field (4,) [omega R0^2 c]: linear in the sources."""
         got = self._flux.get(id(sup))
         if got is None or got[0] is not sup:
@@ -88,7 +88,7 @@ class Fed(Rigid):
     def _outflow(self, beta: float, y: np.ndarray, rates: np.ndarray, p: float) -> float:
         """``Q_film + dV/dt`` [omega R0^2 c] at pocket pressure ``p`` and squeeze rates ``rates``."""
         sup = self.superposition(y[0], y[1])
-        q_film = float(self._unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
+        q_film = float(self.unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
         _, mc, ms = sup.operators.pocket_moments  # int_pocket (1, cos phi, sin phi)
         c, s = math.cos(y[1]), math.sin(y[1])
         return q_film + rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc)

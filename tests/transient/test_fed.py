@@ -73,3 +73,14 @@ def test_the_orifice_drops_the_pocket_below_the_chamber(mesh):
 def test_a_fed_pocket_with_cavitation_is_refused(mesh):
     with pytest.raises(ValueError, match="feeds its pocket through a restrictor"):
         bf.simulate(ORIFICE, mesh, cavitation="reynolds")
+
+
+def test_the_pocket_outflow_is_the_films_inlet_flow(mesh):
+    # the model's linear pocket outflow (one flux per unit field) against the film result's inlet flow
+    # (bearingfe.film.result.build_result) at a state with wedge, squeeze and pocket pressure together
+    from bearingfe.transient.fed import Fed
+    model = Fed(ORIFICE, mesh, element="P2")
+    sup = model.superposition(0.5, 3.5)
+    weights = np.array([0.9, 0.03, -0.02, 0.8])
+    res = sup.combine(0.9, (0.03, -0.02), 0.8)
+    assert model.unit_flux(sup) @ weights == pytest.approx(res.flows["inlet"], rel=1e-12)
