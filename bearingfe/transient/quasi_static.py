@@ -143,6 +143,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         turn (:mod:`bearingfe.transient.jfo`; ``method``, ``rtol``, ``atol``
         and ``max_step`` do not apply; P1 only); its periodic start runs one
         revolution first and starts from its end (film history included).
+        A pump whose shoe pocket is fed through the plunger's restrictor
+        (``pump.shoe_supply``, ``[shoe.supply]``) runs the ``"fed"`` model
+        (:mod:`bearingfe.transient.fed`) and takes ``"none"`` only.
     method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
