@@ -50,6 +50,8 @@ def test_every_public_name_is_still_there(name):
     ("jfo", ("solve_jfo", "JFOError")),
     ("journal", ("JournalBearing", "equilibrium", "dynamic_coefficients", "performance")),
     ("pump", ("EccentricPump", "PressureCycle")),
+    ("hydrostatic", ("SUPPLIES", "Capillary", "Orifice", "ConstantFlow", "PrescribedPressure", "solve_supplied",
+                     "supply_stiffness", "SupplyError")),
     ("scenes", ("SCENES", "run_scene", "load_scene")),
 ])
 def test_the_modules_keep_their_main_names(module, names):
