@@ -168,7 +168,10 @@ def _sweep(args) -> int:
         best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
         write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
     changed = table.columns[:table.columns.get_loc("seconds")]
-    print(f"best ({study.sense} {study.objective}): " + ", ".join(_printable(f"{k}={best[k]}") for k in changed))
+    headers = csv_headers(list(changed), study.run)  # "name [unit]" where the unit is known
+    print(f"best ({study.sense} {study.objective}): "
+          + ", ".join(_printable(f"{headers.get(k, k)}={best[k]:.6g}" if isinstance(best[k], float)
+                                 else f"{headers.get(k, k)}={best[k]}") for k in changed))
     return 1 if failed else 0
 
 

@@ -94,6 +94,7 @@ def test_ruptured_cases_are_results_not_failures(tmp_path, capsys):
         assert main(argv) == 0
         out = capsys.readouterr().out
         assert "2 cases: 1 completed, 1 ruptured (the film closed" in out and "0 failed" in out
+        assert "best (max h_min): pump.viscosity [Pa s]=0.03, h_min [m]=" in out  # the best line with units
     with open(tmp_path / "out" / "results.csv") as fh:
         rows = list(csv.DictReader(fh))
     assert [r["status"] for r in rows] == ["completed", "ruptured"]
