@@ -145,7 +145,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     from ..geometry.surface import Surface
     from ..io.writers import write_csv, write_json, write_pvd
     from ..mechanisms.files import load_mechanism
-    from ..transient import pump_mesh, simulate, simulate_elastic, state_result
+    from ..transient import simulate, simulate_elastic, state_result
     from ..transient.trajectory import report_columns
 
     s = settings(data, label, base_dir)
