@@ -13,6 +13,7 @@ rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import tempfile
 import threading
@@ -27,7 +28,8 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
                        read_msh, run_geo)
 from .surface import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
+           "check_triangles",
            "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
@@ -56,12 +58,19 @@ class SupportMesh:
         Nominal element size [-] (longest requested edge).
     source : str
         Where the mesh came from (``"gmsh"`` or the file path).
+    refinement : callable or None
+        Makes this mesh refined once (every triangle split in four, new
+        boundary nodes on the exact outline), as the function that made it
+        would: set by :func:`mesh_surface`, :func:`strip_mesh` and
+        :func:`grid_mesh`; None for meshes read from files (see
+        :func:`refine_once`).
     """
 
     mesh: skfem.Mesh
     surface: Surface | None = None
     size: float = math.nan
     source: str = "gmsh"
+    refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
@@ -250,7 +259,11 @@ def mesh_surface(
         if type(exc) is Exception:  # gmsh's API raises a bare Exception carrying its last error
             raise RuntimeError(f"gmsh could not mesh the surface: {' '.join(str(exc).split())}") from None
         raise
-    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
+    again = functools.partial(mesh_surface, surface, size, inlet_size=inlet_size, corner_size=corner_size,
+                              grading_distance=grading_distance, size_function=size_function, min_size=min_size,
+                              order=order, refine=refine + 1, algorithm=algorithm, verbose=verbose,
+                              max_elements=max_elements)
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again)
 
 
 def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
@@ -331,6 +344,26 @@ def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
     if isinstance(m, skfem.MeshTri2):
         raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
     return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def refine_once(mesh: SupportMesh) -> SupportMesh:
+    """``mesh`` with every triangle split in four: the mesh of a once-refined comparison.
+
+    The function that made the mesh makes it again one level finer
+    (``mesh.refinement``): gmsh refines its own mesh, so new nodes on curved
+    outlines and pockets lie on them and curved (order-2) meshes stay curved;
+    strips and grids get twice the cells each way. A straight-sided mesh
+    without that record (read from a file) is split by
+    :func:`refine_uniformly`: its outline stays the polygon of the file.
+
+    Raises
+    ------
+    ValueError
+        For a curved (``MeshTri2``) mesh read from a file (no geometry to put new nodes on).
+    """
+    if mesh.refinement is not None:
+        return mesh.refinement()
+    return refine_uniformly(mesh)
 
 
 def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size: float, grading: float,
@@ -619,7 +652,8 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     tol = 1e-9 * length
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+    again = functools.partial(strip_mesh, 2 * n, length=length, width=width, rows=2 * rows)
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip", refinement=again)
 
 
 def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
@@ -680,8 +714,10 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
         bnd = {"outer": side, "side": side, "periodic_start": start, "periodic_end": end}
     else:
         bnd = {"outer": np.concatenate([start, end, side]), "arc_start": start, "arc_end": end, "side": side}
+    # half the cells' own lengths: the ceilings above (with their slack) give exactly twice the cells
+    again = functools.partial(grid_mesh, surface, (a2 - a1) / nx / 2, size_z=width / nz / 2, max_elements=max_elements)
     return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=max((a2 - a1) / nx, width / nz),
-                       source="grid")
+                       source="grid", refinement=again)
 
 
 def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:
