@@ -182,7 +182,10 @@ def section(out: Callable[[str], None]) -> list[tuple[Case, list[Level]]]:
         "outlines). `error`: relative error against the reference; `order`: observed from the previous "
         "level; `estimate`: the estimated relative error of that level; `eff`: estimate / true error "
         "(acceptance 0.5 to 2); `solve s`: the solve; `estimate s`: the refined solve the estimate costs. "
-        "The tests of these effectivities: `tests/film/test_estimate.py`.\n")
+        "The tests of these effectivities: `tests/film/test_estimate.py`. (The `err` column of the journal "
+        "tables above is another measure, `performance(estimate_error=True).error_estimate`: the load change "
+        "under one refinement, reported with the refined values, whose error it overstates by about "
+        "`2^k - 1 = 3`.)\n")
     for case in cases():
         levels = run(case)
         rows.append((case, levels))
