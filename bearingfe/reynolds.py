@@ -43,6 +43,7 @@ path takes the same parameter objects and returns a ``ReynoldsResult``.
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 import warnings
 from types import MappingProxyType
@@ -286,7 +287,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     if path not in PATHS:
         raise ValueError(f"elastic= is not supported with the {path[1]} solver (cavitation='jfo', a non-zero "
                          "cavitation_pressure, recessed or periodic surfaces)")
-    if not (isinstance(error_tolerance, (int, float)) and error_tolerance > 0 and error_tolerance < float("inf")):
+    if not (isinstance(error_tolerance, (int, float)) and math.isfinite(error_tolerance) and error_tolerance > 0):
         raise ValueError(f"error_tolerance must be a finite relative error > 0, got {error_tolerance!r}")
     if estimate_error and elastic is not None:
         raise ValueError("estimate_error=True is not available with elastic=: the compliance belongs to the mesh; "

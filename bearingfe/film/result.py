@@ -20,9 +20,9 @@ from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 import numpy as np
 import skfem
 
+from ..core.checks import ResolutionWarning
 from .compiled import FilmFlows
 from .estimate import ERROR_TOLERANCE, LoadError, load_error
-from ..core.checks import ResolutionWarning
 from .forms import unknown_scale
 from .thickness import Film
 from ..geometry.locate import probes
@@ -187,8 +187,9 @@ class ReynoldsResult:
     refined : callable or None
         ``refined(self) -> (fine, order, seconds)``: the same solve on the
         mesh refined once, the order of its load error
-        (:data:`bearingfe.film.estimate.LOAD_ORDERS`) and its wall time [s], set by :func:`bearingfe.solve_reynolds` (None where
-        there is none: elastic supports, results built by other doors).
+        (:data:`bearingfe.film.estimate.LOAD_ORDERS`) and its wall time [s];
+        set by :func:`bearingfe.solve_reynolds` (None where there is none:
+        elastic supports, results built by other doors).
     """
 
     basis: skfem.CellBasis
@@ -242,6 +243,8 @@ class ReynoldsResult:
         ValueError
             Where there is no refined solve (``refined`` is None).
         """
+        if not (math.isfinite(tolerance) and tolerance > 0):
+            raise ValueError(f"tolerance must be a finite relative error > 0, got {tolerance!r}")
         if "estimate" not in self._estimates:
             if self.load_error is not None:
                 self._estimates["estimate"] = self.load_error
@@ -252,8 +255,6 @@ class ReynoldsResult:
             else:
                 fine, order, seconds = self.refined(self)
                 self._estimates["estimate"] = load_error(self, fine, order=order, seconds=seconds)
-        if not (math.isfinite(tolerance) and tolerance > 0):
-            raise ValueError(f"tolerance must be a finite relative error > 0, got {tolerance!r}")
         estimate = dataclasses.replace(self._estimates["estimate"], tolerance=float(tolerance))
         if estimate.exceeded:
             warnings.warn(ResolutionWarning(estimate.note), stacklevel=2)

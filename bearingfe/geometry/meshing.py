@@ -15,6 +15,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
+import pickle
 import tempfile
 import threading
 from dataclasses import dataclass, field
@@ -72,6 +73,16 @@ class SupportMesh:
     source: str = "gmsh"
     refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __getstate__(self) -> dict:
+        # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
+        # in another process refine_once then splits its triangles
+        state = dict(self.__dict__)
+        try:
+            pickle.dumps(state["refinement"])
+        except (pickle.PicklingError, AttributeError, TypeError):
+            state["refinement"] = None
+        return state
 
     @property
     def boundaries(self) -> dict[str, np.ndarray]:
