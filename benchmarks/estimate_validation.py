@@ -185,7 +185,7 @@ def section(out: Callable[[str], None]) -> list[tuple[Case, list[Level]]]:
         "The tests of these effectivities: `tests/film/test_estimate.py`. (The `err` column of the journal "
         "tables above is another measure, `performance(estimate_error=True).error_estimate`: the load change "
         "under one refinement, reported with the refined values, whose error it overstates by about "
-        "`2^k - 1 = 3`.)\n")
+        "`2^k - 1 = 3`; its `load_error` is the estimate of those values: last table.)\n")
     for case in cases():
         levels = run(case)
         rows.append((case, levels))
@@ -200,6 +200,7 @@ def section(out: Callable[[str], None]) -> list[tuple[Case, list[Level]]]:
                 f"{_f(lv.estimate, '.3e')} | {_f(lv.effectivity, '.3f')} | {lv.solve_seconds:.3f} | "
                 f"{_f(lv.estimate_seconds, '.3f')} |")
         out("")
+    performance_rows(out)
     effs = [lv.effectivity for _, levels in rows for lv in levels if math.isfinite(lv.effectivity)]
     out(f"Effectivities over all cases and levels: {min(effs):.3f} to {max(effs):.3f}. Machine: "
         f"{platform.processor() or platform.machine()}, Python {platform.python_version()}.\n")
@@ -212,6 +213,30 @@ def section(out: Callable[[str], None]) -> list[tuple[Case, list[Level]]]:
         "resolve them.\n")
     out(END)
     return rows
+
+
+PERFORMANCE_HEADING = "### Journal chart answers: `performance(..., estimate_error=True)`"
+
+
+def performance_rows(out: Callable[[str], None]) -> None:
+    """The journal tables' everyday answer (refined once, reporting the refined values) and its two measures."""
+    from bearingfe.bearings.journal import performance
+
+    out(f"{PERFORMANCE_HEADING}\n")
+    out("The everyday answer of the journal tables above (default size, graded, refined once; the values "
+        "reported are the refined mesh's). `load_error`: the estimated error of those values (the change "
+        "scaled by `1 / (2^k - 1)`, `LoadError.refined_relative`); `error_estimate` (the tables' `err`): "
+        "the plain change. True error against the converged S.\n")
+    out("| L/D | eps | nodes | S | true error | load_error | eff | error_estimate | eff | s |")
+    out("|---|---|---|---|---|---|---|---|---|---|")
+    for (ld, eps), S in JOURNAL_S.items():
+        start = time.perf_counter()
+        p = performance(bf.JournalBearing(ld), eps, size=min(0.1, ld / 5), estimate_error=True)
+        seconds = time.perf_counter() - start
+        true = abs(S / p.sommerfeld - 1)  # the load is 2a / (pi S)
+        out(f"| {ld:g} | {eps:g} | {p.n_nodes} | {p.sommerfeld:.6g} | {true:.3e} | {p.load_error:.3e} | "
+            f"{p.load_error / true:.3f} | {p.error_estimate:.3e} | {p.error_estimate / true:.3f} | {seconds:.2f} |")
+    out("")
 
 
 def main() -> None:

@@ -20,7 +20,7 @@ load converges irregularly at the 1e-5 level, is the exception (0.19 and 1.23).
 The load is measured twice, as ``force = int p (cos phi, sin phi)`` (a
 journal's load) and as ``integral = int p`` (a pad's load);
 :class:`LoadError` estimates the error of both and its ``relative`` is the
-larger absolute error over the larger of ``|force|`` and ``|integral|``.
+larger of their relative errors.
 """
 
 from __future__ import annotations
@@ -70,8 +70,14 @@ class LoadError:
     integral_error : float
         ``|I_s - I|`` of ``integral`` (same units).
     relative : float
-        ``max(force_error, integral_error) / max(|force|, |integral|)`` [-]
-        (0 for a film without load and without change).
+        The larger of ``force_error / |force|`` and ``integral_error /
+        |integral|`` [-], each counted where its load measure is at least
+        :data:`NEGLIGIBLE` of the other (0 for a film without load and
+        without change).
+    refined_relative : float
+        The same for the refined solve's load (``1 / (2^k - 1)`` of the
+        change instead of ``1 / (1 - 2^-k)``): the error of a caller that
+        reports the refined values [-].
     order : float
         Order ``k`` used (:data:`LOAD_ORDERS`).
     extrapolated_force : ndarray, shape (2,)
@@ -89,6 +95,7 @@ class LoadError:
     force_error: float
     integral_error: float
     relative: float
+    refined_relative: float
     order: float
     extrapolated_force: np.ndarray = field(repr=False)
     extrapolated_integral: float
@@ -136,9 +143,21 @@ def load_error(coarse: "ReynoldsResult", fine: "ReynoldsResult", *, order: float
     i_c, i_f = float(coarse.integral), float(fine.integral)
     force_error = grow * float(np.linalg.norm(f_c - f_f))
     integral_error = grow * abs(i_c - i_f)
-    scale = max(float(np.linalg.norm(f_f)), abs(i_f))
-    error = max(force_error, integral_error)
-    relative = 0.0 if error == 0.0 else (error / scale if scale > 0 else math.inf)
-    return LoadError(force_error=force_error, integral_error=integral_error, relative=relative, order=float(order),
+    relative = _relative(((force_error, float(np.linalg.norm(f_f))), (integral_error, abs(i_f))))
+    return LoadError(force_error=force_error, integral_error=integral_error, relative=relative,
+                     refined_relative=relative * tail / grow, order=float(order),
                      extrapolated_force=f_f + tail * (f_f - f_c), extrapolated_integral=i_f + tail * (i_f - i_c),
                      fine_dofs=int(fine.basis.N), seconds=float(seconds), tolerance=float(tolerance))
+
+
+#: A load measure smaller than this fraction of the other is not compared to its own size (the ``int p`` of a
+#: full-Sommerfeld journal cancels to nearly 0, the force of a pad centred on ``phi = 0`` may too).
+NEGLIGIBLE = 1e-2
+
+
+def _relative(measures) -> float:
+    """The largest ``error / |value|`` over ``(error, |value|)`` pairs whose value is not negligible."""
+    largest = max(value for _, value in measures)
+    if largest == 0.0:
+        return 0.0 if all(error == 0.0 for error, _ in measures) else math.inf
+    return max(error / value for error, value in measures if value >= NEGLIGIBLE * largest)

@@ -53,3 +53,13 @@ def test_cheap_rows_match_a_fresh_run(name):
         assert row[4] == f"{level.error:.3e}"
     assert rows[0][7] == f"{levels[0].effectivity:.3f}"
     assert math.isfinite(levels[0].effectivity)
+
+
+def test_journal_chart_answers_estimate_their_refined_values():
+    body = _section().split(estimate_validation.PERFORMANCE_HEADING, 1)[1].split("\n\n", 2)[2]
+    rows = [[c.strip() for c in line.strip().strip("|").split("|")] for line in body.splitlines()
+            if re.match(r"\| [\d.]+ \| 0\.\d+ \|", line)]
+    assert len(rows) == len(estimate_validation.JOURNAL_S)
+    for row in rows:
+        assert 0.5 < float(row[6]) < 2.0, row  # load_error: in the band
+        assert float(row[8]) > 2.5, row  # error_estimate: the plain change, about 3 times the error
