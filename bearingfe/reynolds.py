@@ -244,8 +244,10 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         from converged (:mod:`bearingfe.film.estimate`): ``load_error`` of the
         result, and a note in ``notes`` (with a :class:`bearingfe.ResolutionWarning`)
         if its relative value exceeds ``error_tolerance``. It costs about 4
-        to 8 times the solve, so it is off by default; every rigid result
-        can still estimate it later, on demand, with
+        to 10 times the solve (the refined mesh has 4 times the unknowns;
+        more on tiny meshes, where gmsh's remeshing dominates), so it is
+        off by default; every rigid result can still estimate it later, on
+        demand, with
         :meth:`ReynoldsResult.estimate_load_error` (same numbers, same note
         as a warning). Not for elastic supports (their compliance belongs to the mesh).
     error_tolerance : float

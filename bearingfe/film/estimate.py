@@ -43,8 +43,8 @@ ERROR_TOLERANCE = 1e-2
 #: Order ``k`` of the load error by ``(discretization, element)`` (:data:`bearingfe.reynolds.DISCRETIZATIONS`):
 #: Galerkin P1 and P2 load errors fall like ``s^(2 deg)`` on smooth films and on steps on element edges,
 #: also with Swift-Stieber cavitation on P1 (measured 2.0 on the journals of docs/validation.md); the
-#: finite-volume scheme's load fell at order 1.8 to 2.7 on the JFO pocket slider (1 on unaligned gmsh meshes:
-#: the estimate is then 0.67 of the error). Others: 1 (the largest factor, 2). P2 with Swift-Stieber
+#: finite-volume scheme's load fell at order 1.8 to 2.7 on the JFO pocket slider (where it falls at order 1,
+#: as on the unaligned gmsh meshes of pocketed pads, the estimate would be 0.67 of the error). Others: 1 (the largest factor, 2). P2 with Swift-Stieber
 #: cavitation converges irregularly at the 1e-5 level (the free boundary crossing elements): there the
 #: estimate measured 0.19 and 1.23 of the error (docs/validation.md).
 LOAD_ORDERS: Mapping[tuple[str, str], float] = MappingProxyType({

@@ -225,7 +225,7 @@ class ReynoldsResult:
     def estimate_load_error(self, tolerance: float = ERROR_TOLERANCE) -> LoadError:
         """How far the load is from converged: the same solve on the mesh refined once (lazy).
 
-        The first call solves again on the once-refined mesh (about 4 to 8
+        The first call solves again on the once-refined mesh (about 4 to 10
         times this solve's cost; the estimate is kept, so later calls are
         free) and compares the loads (:func:`bearingfe.film.estimate.load_error`).
         If the estimated relative error exceeds ``tolerance`` a
