@@ -53,7 +53,7 @@ from .cavitation import CAVITATION, MODELS, ModelOptions, solve_model
 from .core.checks import ResolutionWarning, check_operating_point, check_resolution
 from .core.linalg import DEFAULT_SOLVER, Factorize
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
-from .elastic import Compliance, solve_elastic
+from .elastic import Compliance, compliance_on, solve_elastic
 from .film import (ERROR_TOLERANCE, SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult,
                    Superposition, load_order, operators, solve_jfo, superpose)
 from .geometry.meshing import SupportMesh, refine_once
@@ -167,16 +167,19 @@ class RefinedSolve:
     cavitation: str
     options: ModelOptions
     on_indefinite: str
+    elastic: Compliance | None = None
 
     def __call__(self, coarse: ReynoldsResult) -> tuple[ReynoldsResult, float, float]:
         start = time.perf_counter()
         fine_mesh = refine_once(self.mesh)
         warm = coarse if coarse.cavitated is not None else None
         options = dataclasses.replace(self.options, warm_start=warm)
+        # the support's compliance on the refined mesh (the half-space's: see bearingfe.elastic.REBUILDS)
+        elastic = None if self.elastic is None else compliance_on(self.elastic, fine_mesh)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ResolutionWarning)
             fine = PATHS[self.path](fine_mesh, self.film, self.operating, self.discretization, self.cavitation,
-                                   options, self.on_indefinite, None)
+                                   options, self.on_indefinite, elastic)
         return fine, load_order(self.path[1], self.discretization.element), time.perf_counter() - start
 
 
@@ -246,10 +249,12 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         if its relative value exceeds ``error_tolerance``. It costs about 4
         to 10 times the solve (the refined mesh has 4 times the unknowns;
         more on tiny meshes, where gmsh's remeshing dominates), so it is
-        off by default; every rigid result can still estimate it later, on
+        off by default; every result can still estimate it later, on
         demand, with
         :meth:`ReynoldsResult.estimate_load_error` (same numbers, same note
-        as a warning). Not for elastic supports (their compliance belongs to the mesh).
+        as a warning). With ``elastic=`` the compliance is built again on
+        the refined mesh, which the half-space can (:data:`bearingfe.elastic.REBUILDS`;
+        others raise ``ValueError``), and counts against the dense-size limit there.
     error_tolerance : float
         Relative load error above which the result gets the note [-], > 0.
     operating : OperatingPoint, optional
@@ -291,16 +296,11 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
                          "cavitation_pressure, recessed or periodic surfaces)")
     if not (isinstance(error_tolerance, (int, float)) and math.isfinite(error_tolerance) and error_tolerance > 0):
         raise ValueError(f"error_tolerance must be a finite relative error > 0, got {error_tolerance!r}")
-    if estimate_error and elastic is not None:
-        raise ValueError("estimate_error=True is not available with elastic=: the compliance belongs to the mesh; "
-                         "solve again on a finer mesh with its own compliance")
     result = PATHS[path](mesh, film, operating, discretization, cavitation, options, on_indefinite, elastic)
-    if elastic is not None:
-        return result
     # without the caller's warm start (the refined solve starts from this result): results made in a loop
     # from the previous one must not hold on to all of them
     refined = RefinedSolve(mesh, film, path, operating, discretization, cavitation,
-                           dataclasses.replace(options, warm_start=None), on_indefinite)
+                           dataclasses.replace(options, warm_start=None), on_indefinite, elastic)
     result = dataclasses.replace(result, refined=refined)
     if not estimate_error:
         return result

@@ -188,8 +188,8 @@ class ReynoldsResult:
         ``refined(self) -> (fine, order, seconds)``: the same solve on the
         mesh refined once, the order of its load error
         (:data:`bearingfe.film.estimate.LOAD_ORDERS`) and its wall time [s];
-        set by :func:`bearingfe.solve_reynolds` (None where there is none:
-        elastic supports, results built by other doors).
+        set by :func:`bearingfe.solve_reynolds` (None for results built by
+        other doors).
     """
 
     basis: skfem.CellBasis
@@ -249,8 +249,8 @@ class ReynoldsResult:
             if self.load_error is not None:
                 self._estimates["estimate"] = self.load_error
             elif self.refined is None:
-                raise ValueError("this result has no refined solve to compare with (elastic supports and "
-                                 "results not made by bearingfe.solve_reynolds): solve again on "
+                raise ValueError("this result has no refined solve to compare with (a result not made by "
+                                 "bearingfe.solve_reynolds): solve again on "
                                  "bearingfe.geometry.meshing.refine_once(mesh) and use film.estimate.load_error")
             else:
                 fine, order, seconds = self.refined(self)

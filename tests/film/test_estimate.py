@@ -8,7 +8,8 @@ reference; the acceptance band is 0.5 to 2. Expected values:
 * annular recess pad: ``W = pi p_s (r_o^2 - r_i^2) / (2 ln(r_o/r_i))`` (Hamrock, Schmid & Jacobson ch. 6);
 * JFO pocket slider: :class:`bearingfe.validation.PocketSlider`'s closed form (docs/jfo.md);
 * journal, L/D = 1, eps = 0.6, Swift-Stieber: S = 0.120941, the converged value of docs/validation.md
-  (FEM three levels and an independent finite-difference code, Richardson-extrapolated, agree to 1e-5).
+  (FEM three levels and an independent finite-difference code, Richardson-extrapolated, agree to 1e-5);
+* elastic (half-space) pump-like shoe: the converged force 0.4176956 of tests/elastic/test_coupled.py.
 
 The effectivities measured here (docs/validation.md, section "Error estimates") are stated at each
 case; the bounds are the acceptance band, not the measured values.
@@ -153,3 +154,29 @@ def test_journal_performance_reports_the_error_of_its_refined_values():
     assert BAND[0] < p.load_error / true < BAND[1]
     assert p.error_estimate / true > 2.5
     assert math.isnan(performance(bf.JournalBearing(0.5), 0.6, size=0.2).load_error)
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])  # measured 0.982 (P1), 0.884 (P2)
+def test_elastic_support(element):
+    # the pump-like EHD case of tests/elastic/test_coupled.py: steel on steel, 32 MPa pocket, gamma = 0.6,
+    # Swift-Stieber; its converged force along phi = 0 is 0.4176956 (curved P2 meshes 0.16 / 0.08 / 0.04,
+    # Richardson, reproduced to 8 digits by an Anderson-mixed fixed point). The half-space compliance is built
+    # again on the refined mesh.
+    import dataclasses
+
+    from bearingfe.elastic import half_space
+
+    scale = bf.Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08)
+    steel = bf.Material("steel", 210e9, poisson_ratio=0.3)
+    surface = bf.Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=[bf.Circle((0.0, 0.0), 0.1748)])
+    mesh = bf.mesh_surface(surface, 0.16, order=2 if element == "P2" else 1)
+    C = half_space(mesh, scale, (steel, steel), element)
+    kwargs = dict(inlet_pressure=scale.from_pressure(32e6), element=element, cavitation="reynolds", elastic=C)
+    res = bf.solve_reynolds(mesh, bf.CosineFilm(0.6, math.pi), estimate_error=True, error_tolerance=0.5, **kwargs)
+    estimate = abs(res.force[0] - res.load_error.extrapolated_force[0])  # Richardson's distance: the estimate
+    assert BAND[0] < estimate / abs(res.force[0] - 0.4176956) < BAND[1]
+    # a compliance that needs its body (block, shoe) cannot be rebuilt from itself: the estimate says so
+    block = dataclasses.replace(C, model="block")
+    plain = bf.solve_reynolds(mesh, bf.CosineFilm(0.6, math.pi), **dict(kwargs, elastic=block))
+    with pytest.raises(ValueError, match="the 'block' compliance cannot be built on another mesh"):
+        plain.estimate_load_error()
