@@ -14,8 +14,10 @@ needs is that both meshes are in the asymptotic range. Measured effectivities
 (estimate over the true error, from closed forms and converged references)
 are in ``docs/validation.md``: 0.92 to 1.01 on the smooth and stepped films
 (P1 and P2) and the Swift-Stieber journal (P1), 0.95 to 1.1 on the
-mass-conserving (JFO) pocket slider, 0.98 on an elastic (half-space) shoe; P2 with Swift-Stieber cavitation, whose
-load converges irregularly at the 1e-5 level, is the exception (0.19 and 1.23).
+mass-conserving (JFO) pocket slider, 0.98 on an elastic (half-space) shoe
+(P1; 0.88 with P2). P2 with Swift-Stieber cavitation on a rigid journal,
+whose load converges irregularly at the 1e-5 level, is the exception (0.19
+and 1.23).
 
 The load is measured twice, as ``force = int p (cos phi, sin phi)`` (a
 journal's load) and as ``integral = int p`` (a pad's load);
