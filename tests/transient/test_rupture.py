@@ -91,8 +91,8 @@ def test_quasi_static_elastic_run_reaches_the_real_rupture(downstream, method):
     traj = bf.simulate(downstream, mesh, start="periodic", method=method, elastic=C)
     # the event's film is the rigid film opened by the last deflection the integrator's stages found (a lagged
     # deflection); the sample at the located angle solves its own equilibrium, whose film is thicker by
-    # 0.26 % (LSODA) and 1.4 % (RK45) of the bound 4e-7 m: the bound to 2e-2. The angle is unaffected to
-    # 2e-3 deg (the film closes fast there)
+    # 0.26 % (LSODA) and 1.4 % (RK45) of the bound 4e-7 m: the bound to 2e-2. The film falls by 0.113 c per
+    # degree there, so the exact-deflection event would be 5e-4 deg (LSODA) and 2.5e-3 deg (RK45) later
     _ends_at_the_film_bound(traj, downstream, rel=2e-2)
     assert math.degrees(traj.rupture_beta) == pytest.approx(19.9151, abs=ANGLE_TOL)
 
