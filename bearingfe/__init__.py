@@ -20,6 +20,7 @@ module or package          what it does
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``bearings``               journal bearings; the pump and its plunger shoe
 ``validation``             closed-form and published-data checks
+``thermal``                lubricants (viscosity-temperature laws, ISO VG, density, specific heat); heat balance
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 ``mechanisms``             crank drives, efficiency, rotors on frames, machine files (``mechanisms/*.toml``)
 ``sweep``                  design studies in processes or on a Dask cluster
@@ -30,7 +31,7 @@ module or package          what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, elastic, io, scenes, transient, validation
+from . import adaptivity, cavitation, elastic, io, scenes, thermal, transient, validation
 from .bearings import journal, pump
 from .film import finite_volume as jfo
 from .mechanisms import crank, efficiency, rotor
@@ -60,6 +61,7 @@ from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study
 from .core.checks import ResolutionWarning, check_resolution
 from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .bearings.pump import EccentricPump, PressureCycle
+from .thermal import ConstantViscosity, Lubricant, VogelViscosity, WaltherViscosity
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
 from .version import __version__
@@ -83,4 +85,5 @@ __all__ = [
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "grid_mesh", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
+    "thermal", "ConstantViscosity", "Lubricant", "VogelViscosity", "WaltherViscosity",
 ]

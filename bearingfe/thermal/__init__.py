@@ -1,0 +1,20 @@
+"""Thermal models: the lubricant's properties over temperature and the bearing's heat balance.
+
+The Reynolds solvers of the package are isoviscous; this layer says which viscosity the film
+really has. Level 1: one effective temperature from the heat balance of the whole film,
+iterated to a fixed point with the isoviscous solver.
+
+================  ============================================================
+module            what it does
+================  ============================================================
+``lubricant``     viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
+================  ============================================================
+"""
+
+from __future__ import annotations
+
+from .lubricant import (ISO_VG, VISCOSITY_LAWS, ConstantViscosity, Lubricant, ViscosityLaw, VogelViscosity,
+                        WaltherViscosity, celsius, iso_vg, kelvin)
+
+__all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
+           "WaltherViscosity", "celsius", "iso_vg", "kelvin"]
