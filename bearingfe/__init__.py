@@ -61,7 +61,7 @@ from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study
 from .core.checks import ResolutionWarning, check_resolution
 from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .bearings.pump import EccentricPump, PressureCycle
-from .thermal import ConstantViscosity, Lubricant, VogelViscosity, WaltherViscosity
+from .thermal import ConstantViscosity, Lubricant, ThermalError, VogelViscosity, WaltherViscosity
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
 from .version import __version__
@@ -85,5 +85,5 @@ __all__ = [
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "grid_mesh", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
-    "thermal", "ConstantViscosity", "Lubricant", "VogelViscosity", "WaltherViscosity",
+    "thermal", "ConstantViscosity", "Lubricant", "ThermalError", "VogelViscosity", "WaltherViscosity",
 ]

@@ -8,6 +8,7 @@ iterated to a fixed point with the isoviscous solver.
 module            what it does
 ================  ============================================================
 ``lubricant``     viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
+``heat_balance``  level 1: the effective temperature of a journal bearing from its heat balance
 ================  ============================================================
 """
 
@@ -15,6 +16,9 @@ from __future__ import annotations
 
 from .lubricant import (ISO_VG, VISCOSITY_LAWS, ConstantViscosity, Lubricant, ViscosityLaw, VogelViscosity,
                         WaltherViscosity, celsius, iso_vg, kelvin)
+from .heat_balance import (EffectiveTemperature, FilmTemperatures, HeatBalance, JournalDuty, ThermalError,
+                           effective_temperature, film_temperatures)
 
 __all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
-           "WaltherViscosity", "celsius", "iso_vg", "kelvin"]
+           "WaltherViscosity", "celsius", "iso_vg", "kelvin", "EffectiveTemperature", "FilmTemperatures",
+           "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures"]
