@@ -47,7 +47,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from scipy.optimize import brentq
@@ -58,7 +58,7 @@ from ..core.schema import Range, finite, in_range, nonnegative, positive
 from .lubricant import Lubricant
 
 __all__ = ["HeatBalance", "JournalDuty", "FilmTemperatures", "EffectiveTemperature", "ThermalError",
-           "film_temperatures", "effective_temperature"]
+           "film_rise", "film_temperatures", "effective_temperature", "fixed_point"]
 
 _FRACTION = Range(0.0, 1.0)
 
@@ -185,6 +185,17 @@ class FilmTemperatures:
     conducted: float
 
 
+def film_rise(power, leading_flow, side_flow, heat_capacity: float, conducted_fraction: float):
+    """Temperature rise across the film ``dT = (1 - chi) P / (rho c_p (Q_s/2 + Q_t))`` [K].
+
+    ``P`` [W], ``Q`` and ``Q_s`` [m^3/s] (numbers or arrays; ``Q_t = max(Q - Q_s, 0)``), the
+    volumetric heat capacity ``rho c_p`` [J/(m^3 K)] and the conducted share ``chi`` [-].
+    """
+    trailing = np.maximum(np.asarray(leading_flow, float) - side_flow, 0.0)
+    return (1.0 - conducted_fraction) * np.asarray(power, float) / (heat_capacity * (0.5 * np.asarray(side_flow, float)
+                                                                                     + trailing))
+
+
 def film_temperatures(power: float, leading_flow: float, side_flow: float, density: float, specific_heat: float,
                       balance: HeatBalance) -> FilmTemperatures:
     """The level-1 balance of a film of friction power ``P`` [W] and flows ``Q``, ``Q_s`` [m^3/s].
@@ -208,7 +219,7 @@ def film_temperatures(power: float, leading_flow: float, side_flow: float, densi
     fresh = Qs + (1.0 - lam) * Qt
     if not fresh > 0:
         raise ThermalError("no fresh oil enters the film (no side flow and carry_over = 1): no heat balance")
-    rise = (1.0 - chi) * P / (rc * (0.5 * Qs + Qt))
+    rise = float(film_rise(P, Q, Qs, rc, chi))
     Ts = balance.supply_temperature
     inlet = Ts + lam * Qt * rise / fresh
     outlet, side = inlet + rise, inlet + 0.5 * rise
@@ -345,18 +356,47 @@ def effective_temperature(bearing: JournalBearing, duty: JournalDuty, lubricant:
         No fixed point below ``balance.max_temperature``, Brent's iteration did not converge in
         ``balance.max_iterations``, or an isoviscous equilibrium of the search failed.
     """
-    films: dict[float, _Film] = {}
-
     def film(t: float) -> _Film:
-        if t not in films:
-            films[t] = _solve_film(bearing, duty, lubricant, balance, t, equilibrium_options)
-        return films[t]
+        return _solve_film(bearing, duty, lubricant, balance, t, equilibrium_options)
+
+    root, residual, films = fixed_point(film, balance)
+    return _result(films[root], films[balance.supply_temperature], balance, len(films), residual, duty)
+
+
+def fixed_point(film: Callable[[float], Any], balance: HeatBalance) -> tuple[float, float, dict]:
+    """The effective temperature where ``film(T).heat.effective = T``, by Brent's method on a bracket.
+
+    Parameters
+    ----------
+    film : callable
+        ``T [K] -> state`` with ``state.heat`` a :class:`FilmTemperatures` (an isoviscous solve at the
+        viscosity of ``T``); called once per trial temperature.
+    balance : HeatBalance
+        Supply temperature (the bracket's lower end), tolerance, largest temperature and iterations.
+
+    Returns
+    -------
+    root : float
+        ``T_eff`` [K].
+    residual : float
+        ``|film(T_eff).heat.effective - T_eff|`` [K].
+    films : dict
+        Every state solved, by trial temperature (the supply temperature and the root among them).
+
+    Raises
+    ------
+    ThermalError
+        No sign change of ``g(T) = film(T).heat.effective - T`` up to ``max_temperature``, or no
+        convergence in ``max_iterations``.
+    """
+    films: dict[float, Any] = {}
 
     def g(t: float) -> float:
-        return film(t).heat.effective - t
+        if t not in films:
+            films[t] = film(t)
+        return films[t].heat.effective - t
 
     Ts = balance.supply_temperature
-    start = film(Ts)
     if g(Ts) <= balance.tolerance:
         root = Ts
     else:
@@ -374,8 +414,8 @@ def effective_temperature(bearing: JournalBearing, duty: JournalDuty, lubricant:
             if not report.converged:
                 raise ThermalError(f"Brent's iteration on the effective temperature did not converge in "
                                    f"{balance.max_iterations} iterations ({report.flag})")
-    end = film(root)
-    return _result(end, start, balance, len(films), abs(g(root)), duty)
+    residual = abs(g(root))
+    return root, residual, films
 
 
 def _result(end: _Film, start: _Film, balance: HeatBalance, evaluations: int, residual: float,
