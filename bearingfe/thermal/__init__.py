@@ -9,6 +9,7 @@ module            what it does
 ================  ============================================================
 ``lubricant``     viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
 ``heat_balance``  level 1: the effective temperature of a journal bearing from its heat balance
+``pump_cycle``    level 1 over the pump cycle: the plunger shoe's effective temperature
 ================  ============================================================
 """
 
@@ -18,7 +19,9 @@ from .lubricant import (ISO_VG, VISCOSITY_LAWS, ConstantViscosity, Lubricant, Vi
                         WaltherViscosity, celsius, iso_vg, kelvin)
 from .heat_balance import (EffectiveTemperature, FilmTemperatures, HeatBalance, JournalDuty, ThermalError,
                            effective_temperature, film_temperatures)
+from .pump_cycle import CycleTemperature, cycle_temperature
 
 __all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
            "WaltherViscosity", "celsius", "iso_vg", "kelvin", "EffectiveTemperature", "FilmTemperatures",
-           "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures"]
+           "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures",
+           "CycleTemperature", "cycle_temperature"]
