@@ -94,7 +94,7 @@ from typing import Callable
 import numpy as np
 
 from ..core.schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
-                     flag, nonnegative_number, number, numbers, positive_number, read_table, text)
+                     flag, nonnegative_number, number, positive_number, read_table, text)
 
 __all__ = ["run", "settings", "pressure_columns", "SPEC", "PICTURES", "TABLES"]
 
@@ -140,38 +140,11 @@ def _cavitation_models() -> tuple[str, ...]:
 _OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
 
 
-def _grades() -> tuple[str, ...]:
-    from ..thermal import ISO_VG
+def _oil_fields() -> dict:
+    from ..thermal.files import OIL
 
-    return tuple(ISO_VG)
+    return dict(OIL)
 
-
-#: What the ``kinematic_viscosity`` field of ``[oil]`` accepts.
-_POINTS_RULE = "two points [[temperature_degC, kinematic_viscosity_m2s], ...] of the Walther (ASTM D341) law"
-
-
-def _viscosity_points(where, value):
-    """Two ``[temperature_C, nu_m2s]`` pairs."""
-    if not (isinstance(value, list) and len(value) == 2):
-        raise SchemaError(f"{where}: expected {_POINTS_RULE}; got {value!r}")
-    return tuple(numbers(2, _POINTS_RULE)(where, v) for v in value)
-
-
-_viscosity_points.accepts = _POINTS_RULE
-
-#: The ``[oil]`` table: the lubricant (exactly one of ``grade``, ``kinematic_viscosity``, ``vogel``)
-#: and the heat balance.
-_OIL = {
-    "grade": (choice(_grades), None), "kinematic_viscosity_100C": (positive_number, None),
-    "kinematic_viscosity": (_viscosity_points, None),
-    "vogel": (numbers(3, "Vogel's [a_Pa_s, b_K, c_K] of mu = a exp(b/(T - c))"), None),
-    "density_15C": (number(Range(600.0, 1100.0)), 870.0),
-    "specific_heat": (number(Range(500.0, 5000.0)), None),
-    "supply_temperature_C": (number(Range(-50.0, 200.0)), None),
-    "carry_over": (number(Range(0.0, 1.0)), 0.0),
-    "conducted_fraction": (number(Range(0.0, 1.0, hi_open=True)), 0.0),
-    "effective_fraction": (number(Range(0.0, 1.0, lo_open=True)), 0.5),
-}
 
 #: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
@@ -192,7 +165,7 @@ SPEC = {
                      "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
                      "tables": (choices(TABLES), TABLES)}),
-    "oil": Table(_OIL),
+    "oil": Table(_oil_fields()),
 }
 
 
@@ -220,15 +193,9 @@ def _check_oil(op: dict, oil: dict | None, label: str) -> None:
     if op["viscosity"] is not None:
         raise SchemaError(f"{label}: [operating] viscosity: must be absent with an [oil] table (the heat "
                           f"balance finds the viscosity); got {op['viscosity']!r}")
-    given = [k for k in ("grade", "kinematic_viscosity", "vogel") if oil[k] is not None]
-    if len(given) != 1:
-        raise SchemaError(f"{label}: [oil]: give exactly one of grade (with kinematic_viscosity_100C), "
-                          f"kinematic_viscosity or vogel; got {given or 'none'}")
-    if (oil["grade"] is None) != (oil["kinematic_viscosity_100C"] is None):
-        raise SchemaError(f"{label}: [oil] kinematic_viscosity_100C: goes with grade (both or neither); "
-                          f"got {oil['kinematic_viscosity_100C']!r}")
-    if oil["supply_temperature_C"] is None:
-        raise SchemaError(f"{label}: [oil] supply_temperature_C: missing (required)")
+    from ..thermal.files import check_oil
+
+    check_oil(oil, label, "oil")
 
 
 def _check_proportions(b: dict, label: str) -> None:
@@ -361,32 +328,17 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 
 # -- the heat balance ----------------------------------------------------------------------
 
-def _lubricant(oil: dict, label: str):
-    """The :class:`bearingfe.thermal.Lubricant` of an ``[oil]`` table."""
-    from ..thermal import Lubricant, VogelViscosity, WaltherViscosity, iso_vg, kelvin
-
-    props = dict(density=oil["density_15C"], specific_heat=oil["specific_heat"])
-    if oil["grade"] is not None:
-        return build(label, "oil", iso_vg, oil["grade"], oil["kinematic_viscosity_100C"], **props)
-    if oil["kinematic_viscosity"] is not None:
-        (t1, n1), (t2, n2) = oil["kinematic_viscosity"]
-        law = build(label, "oil", WaltherViscosity.through, (kelvin(t1), n1), (kelvin(t2), n2))
-    else:
-        law = build(label, "oil", VogelViscosity, *oil["vogel"])
-    return build(label, "oil", Lubricant, law, name="oil", **props)
-
-
 def _thermal(s: dict, label: str):
     """The effective temperature of the scene's bearing (:func:`bearingfe.thermal.effective_temperature`)."""
-    from ..thermal import HeatBalance, JournalDuty, effective_temperature, kelvin
+    from ..thermal import JournalDuty, effective_temperature
+    from ..thermal.files import balance_of, lubricant_of
 
     b, op, oil, solver = s["bearing"], s["operating"], s["oil"], s["solver"]
     duty = build(label, "operating", JournalDuty, radius=b["diameter"] / 2, clearance=b["radial_clearance"],
                  speed=2 * math.pi * op["speed"] / 60, load=op["load"],
                  load_direction=math.radians(op["load_direction_deg"]), supply_pressure=b["supply_pressure"])
-    balance = build(label, "oil", HeatBalance, kelvin(oil["supply_temperature_C"]), carry_over=oil["carry_over"],
-                    conducted_fraction=oil["conducted_fraction"], effective_fraction=oil["effective_fraction"])
-    lubricant = _lubricant(oil, label)
+    balance = balance_of(oil, label, "oil")
+    lubricant = lubricant_of(oil, label, "oil")
     # the bearing at any viscosity: its supply pressure is made non-dimensional at each trial temperature
     scale = _scale({**s, "operating": {**op, "viscosity": lubricant.viscosity(balance.supply_temperature)}})
     bearing = _bearing(s, scale, label)

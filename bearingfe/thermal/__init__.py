@@ -10,6 +10,7 @@ module            what it does
 ``lubricant``     viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
 ``heat_balance``  level 1: the effective temperature of a journal bearing from its heat balance
 ``pump_cycle``    level 1 over the pump cycle: the plunger shoe's effective temperature
+``files``         the ``[oil]`` fields of scene files: their schema, the lubricant and balance they build
 ================  ============================================================
 """
 
