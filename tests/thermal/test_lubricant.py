@@ -4,6 +4,13 @@ Sources of the expected values:
 - Walther / ASTM D341: the law passes through its two fitting points (its definition), to round-off.
 - ISO VG 32 with 5.4 mm^2/s at 100 degC: 21.5 mm^2/s at 50 degC as read from the ASTM D341 chart
   (the comment of scenes/journal.toml); a chart reading to three digits allows +-0.5 %.
+- Published ASTM D341 worked examples (independent implementations of the same law):
+  olezol.com/viscosity-temperature-extrapolation-astm-d341, Example 1: SAE 140 gear oil, 404 and 28 mm^2/s
+  at 40 and 100 degC, gives 132.126 mm^2/s at 60 degC (printed to 1e-3, so 1e-5 relative); Example 2:
+  68 and 14.85 mm^2/s at 40 and 80 degC give 8.8 mm^2/s at 100 degC (printed to 0.1: +-0.05); the
+  "Viscosity vs Temperature Calculator" sheet (scribd.com/document/361017004): 32 and 5.4 mm^2/s at 40 and
+  100 degC give 8.5 mm^2/s at 80 degC (printed to 0.1: +-0.05; it takes T = t + 273, which moves the
+  answer by less than 0.05 %).
 - ISO 3448 grade mid-points (the standard's series 2.2 ... 3200 mm^2/s at 40 degC).
 - GOST 3900-85, table of average temperature corrections of the density of petroleum products
   (as reproduced at https://elarum.com/info/references/density/): the correction per kelvin of a
@@ -29,6 +36,16 @@ def test_walther_passes_through_its_two_points():
     # between and beyond them it falls monotonically
     values = [law.kinematic(kelvin(t)) for t in (20, 40, 60, 80, 100, 120)]
     assert all(a > b for a, b in zip(values, values[1:]))
+
+
+@pytest.mark.parametrize("first, second, at, expected, tolerance", [
+    ((40.0, 404.0), (100.0, 28.0), 60.0, 132.126, 132.126e-5),
+    ((40.0, 68.0), (80.0, 14.85), 100.0, 8.8, 0.05),
+    ((40.0, 32.0), (100.0, 5.4), 80.0, 8.5, 0.05),
+])
+def test_walther_against_published_d341_examples(first, second, at, expected, tolerance):
+    law = WaltherViscosity.through((kelvin(first[0]), first[1] * 1e-6), (kelvin(second[0]), second[1] * 1e-6))
+    assert law.kinematic(kelvin(at)) * 1e6 == pytest.approx(expected, abs=tolerance)
 
 
 def test_iso_vg_32_at_50_degc_against_the_d341_chart():
