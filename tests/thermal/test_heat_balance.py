@@ -16,6 +16,8 @@ Sources of the expected values:
   the package's own isoviscous solution replaces the table on the other side. That interpolation
   between rows 0.2 apart in eps costs about 1 % (a chart read by eye, a few %), so the two must agree
   to 2 % in the temperature rise and 0.02 in eps.
+- Shigley's worked example (problem 12-12 of the 8th edition's solutions manual), by hand with the charts:
+  the numbers and tolerances are stated above its test.
 """
 
 import math
@@ -181,3 +183,32 @@ def test_groove_supply_pressure_is_made_non_dimensional_at_the_effective_viscosi
     assert r.leading_flow == pytest.approx(scale.to_flow(eq.state.results[0].flows["inlet"]
                                                          - eq.state.results[0].flows["arc_start"]), rel=1e-12)
     assert r.convected_power + r.conducted_power == pytest.approx(r.friction_power, rel=1e-12)
+
+
+# Shigley's worked example: Budynas & Nisbett, Shigley's Mechanical Engineering Design, 8th ed., Instructor's
+# Solutions Manual, problem 12-12: d = 2.5 in, c = 0.002 in, l = 2.5 in, W = 1200 lbf, N = 1120 rev/min,
+# SAE 20 oil supplied at T_s = 110 degF. Its trial-and-error iteration (charts of Raimondi & Boyd, the SAE
+# curve fit of Seireg & Dandage, Shigley's Table 12-1: mu = 0.0136 exp(1271.6/(T_F + 95)) ureyn) ends at
+# T_f = 123.9 degF with mu = 4.53 ureyn, dT = 27.8 degF, h0/c = 0.482 and H = 0.124 Btu/s. Oil: Shigley's
+# rho = 0.0311 lbm/in^3, c_p = 0.42 Btu/(lbm degF). Tolerances: the solution stops its iteration at
+# +-0.2 degF and reads (R/c) f, Q/(R c N L), Qs/Q and h0/c off charts to two or three digits (a few %): 0.5 degF
+# on T_f, 1 % on mu, 3 % on dT, h0/c and H. Measured: 124.06 degF, 4.514 ureyn, 28.11 degF, 0.488, 0.1252 Btu/s.
+IN, LBF, REYN, BTU = 0.0254, 4.4482216152605, 6894.757293168, 1055.05585262
+
+
+def _fahrenheit(t_kelvin):
+    return (t_kelvin - 273.15) * 1.8 + 32.0
+
+
+def test_against_shigleys_worked_example_12_12():
+    from bearingfe.thermal import VogelViscosity
+    sae20 = VogelViscosity(a=0.0136e-6 * REYN, b=1271.6 / 1.8, c=273.15 - 127.0 / 1.8)   # T_F + 95 = 1.8 (T - c)
+    oil = Lubricant(sae20, density=0.0311 * 0.45359237 / IN**3, density_slope=0.0, specific_heat=0.42 * 4186.8)
+    duty = JournalDuty(radius=1.25 * IN, clearance=0.002 * IN, speed=2 * math.pi * 1120 / 60, load=1200 * LBF)
+    r = effective_temperature(JournalBearing(1.0), duty, oil, HeatBalance(kelvin((110.0 - 32) / 1.8), tolerance=1e-4),
+                              **FAST)
+    assert _fahrenheit(r.temperature) == pytest.approx(123.9, abs=0.5)
+    assert r.viscosity / REYN * 1e6 == pytest.approx(4.53, rel=0.01)
+    assert r.temperature_rise * 1.8 == pytest.approx(27.8, rel=0.03)
+    assert r.min_film / duty.clearance == pytest.approx(0.482, rel=0.03)
+    assert r.friction_power / BTU == pytest.approx(0.124, rel=0.03)
