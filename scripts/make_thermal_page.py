@@ -39,8 +39,6 @@ def _f(x: float, digits: int = 3) -> str:
 def pump_results() -> tuple[dict, float, float]:
     """``{(shoe, chi): CycleTemperature}`` for both shoes and every conducted share; the supply
     temperature [degC] and the machine file's viscosity [Pa s]."""
-    from scipy.optimize import brentq
-
     from bearingfe.geometry.surface import Surface
     from bearingfe.mechanisms.files import load_mechanism
     from bearingfe.thermal import HeatBalance, celsius, cycle_temperature, iso_vg
@@ -51,7 +49,7 @@ def pump_results() -> tuple[dict, float, float]:
     oil = iso_vg(PUMP_OIL[0], PUMP_OIL[1], density=PUMP_OIL[2])
     # the supply temperature at which the oil has the machine file's viscosity: the isothermal column is the
     # shipped (paper's) model itself
-    supply = brentq(lambda t: oil.viscosity(t) - pump.viscosity, 250.0, 450.0, xtol=1e-10)
+    supply = oil.temperature_at(pump.viscosity)
     plain = dataclasses.replace(pump, surface=Surface(arc=pump.surface.arc, half_width=pump.surface.half_width))
     order = 2 if scene["element"] == "P2" else 1
     out = {}

@@ -217,8 +217,6 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 
 def _thermal(s: dict, label: str, pump, designs: dict, meshes: dict) -> dict:
     """Every rigid design at its level-1 effective temperature (:func:`bearingfe.thermal.cycle_temperature`)."""
-    from scipy.optimize import brentq
-
     from ..thermal import celsius, cycle_temperature
     from ..thermal.files import balance_of, lubricant_of
 
@@ -226,7 +224,7 @@ def _thermal(s: dict, label: str, pump, designs: dict, meshes: dict) -> dict:
     oil = lubricant_of(th, label, "thermal")
     supply = None
     if th["supply_temperature_C"] is None:  # where the oil has the mechanism file's viscosity
-        supply = brentq(lambda t: oil.viscosity(t) - pump.viscosity, 200.0, 470.0, xtol=1e-9)
+        supply = build(label, "thermal", oil.temperature_at, pump.viscosity)
     balance = balance_of(th, label, "thermal", supply)
     out = {}
     for name, p in designs.items():

@@ -315,6 +315,24 @@ class Lubricant:
         """Kinematic viscosity [m^2/s] at ``T`` [K]."""
         return self.viscosity(temperature) / self.density_at(temperature)
 
+    def temperature_at(self, viscosity: float, low: float = 250.0, high: float = 473.15) -> float:
+        """The temperature [K] in ``[low, high]`` at which the oil has the dynamic ``viscosity`` [Pa s].
+
+        Raises
+        ------
+        ValueError
+            The viscosity is not reached between ``low`` and ``high`` (the message gives the range).
+        """
+        from scipy.optimize import brentq
+
+        mu = positive("viscosity", viscosity, "Pa s")
+        lo, hi = _temperature("low", low), _temperature("high", high)
+        ends = (self.viscosity(lo) - mu, self.viscosity(hi) - mu)
+        if ends[0] * ends[1] > 0:
+            raise ValueError(f"viscosity must be in [{self.viscosity(hi):.4g}, {self.viscosity(lo):.4g}] Pa s "
+                             f"(the oil {self.name!r} between {lo:g} and {hi:g} K), got {viscosity!r}")
+        return float(brentq(lambda t: self.viscosity(t) - mu, lo, hi, xtol=1e-10, rtol=1e-14))
+
 
 def iso_vg(grade: str, viscosity_100: float, **properties) -> Lubricant:
     """An oil of an ISO 3448 grade: Walther through the grade's 40 degC mid-point and ``viscosity_100``.

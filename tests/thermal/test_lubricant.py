@@ -96,6 +96,14 @@ def test_cragoe_specific_heat_in_si_reproduces_the_btu_form():
     assert Lubricant(ConstantViscosity(0.02), specific_heat=1760.0).specific_heat_at(kelvin(90.0)) == 1760.0
 
 
+def test_temperature_at_a_viscosity_inverts_the_law():
+    oil = iso_vg("VG 46", 6.8e-6, density=870.0)
+    t = oil.temperature_at(0.03)
+    assert oil.viscosity(t) == pytest.approx(0.03, rel=1e-10) and 310.0 < t < 330.0
+    with pytest.raises(ValueError, match="viscosity must be in"):
+        oil.temperature_at(10.0)
+
+
 def test_dynamic_viscosity_is_kinematic_times_density():
     oil = iso_vg("VG 46", 6.8e-6, density=870.0)
     t = kelvin(60.0)
