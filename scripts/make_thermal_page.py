@@ -56,8 +56,9 @@ def pump_results() -> tuple[dict, float, float]:
     for name, p in (("pocket", pump), ("plain", plain)):
         mesh = pump_mesh(p, scene["mesh_size"], order=order)
         for chi in CONDUCTED:
-            out[name, chi] = cycle_temperature(p, mesh, oil, HeatBalance(supply, conducted_fraction=chi, tolerance=1e-2),
-                                               start=scene["start"], rtol=scene["rtol"], element=scene["element"])
+            balance = HeatBalance(supply, conducted_fraction=chi, tolerance=1e-2)
+            out[name, chi] = cycle_temperature(p, mesh, oil, balance, start=scene["start"], rtol=scene["rtol"],
+                                               element=scene["element"])
     return out, celsius(supply), pump.viscosity
 
 
