@@ -20,6 +20,7 @@ module or package          what it does
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
 ``bearings``               journal bearings; pockets fed through restrictors; the pump and its plunger shoe
 ``validation``             closed-form and published-data checks
+``thermal``                lubricants (viscosity-temperature laws, ISO VG, density, specific heat); heat balance
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 ``mechanisms``             crank drives, efficiency, rotors on frames, machine files (``mechanisms/*.toml``)
 ``sweep``                  design studies in processes or on a Dask cluster
@@ -30,7 +31,7 @@ module or package          what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, elastic, io, scenes, transient, validation
+from . import adaptivity, cavitation, elastic, io, scenes, thermal, transient, validation
 from .bearings import hydrostatic, journal, pump
 from .film import finite_volume as jfo
 from .mechanisms import crank, efficiency, rotor
@@ -62,6 +63,7 @@ from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_
 from .bearings.pump import EccentricPump, PressureCycle
 from .bearings.hydrostatic import (Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError, pocket_transient,
                                    solve_supplied, supply_stiffness)
+from .thermal import ConstantViscosity, Lubricant, ThermalError, VogelViscosity, WaltherViscosity
 from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
 
 from .version import __version__
@@ -87,4 +89,5 @@ __all__ = [
     "GeometryFileError", "MeshSizeError", "UntrustedGeoError", "check_resolution",
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "grid_mesh", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
+    "thermal", "ConstantViscosity", "Lubricant", "ThermalError", "VogelViscosity", "WaltherViscosity",
 ]

@@ -13,7 +13,9 @@ rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
+import pickle
 import tempfile
 import threading
 from dataclasses import dataclass, field
@@ -27,7 +29,8 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
                        read_msh, run_geo)
 from .surface import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
+           "check_triangles",
            "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
@@ -56,13 +59,30 @@ class SupportMesh:
         Nominal element size [-] (longest requested edge).
     source : str
         Where the mesh came from (``"gmsh"`` or the file path).
+    refinement : callable or None
+        Makes this mesh refined once (every triangle split in four, new
+        boundary nodes on the exact outline), as the function that made it
+        would: set by :func:`mesh_surface`, :func:`strip_mesh` and
+        :func:`grid_mesh`; None for meshes read from files (see
+        :func:`refine_once`).
     """
 
     mesh: skfem.Mesh
     surface: Surface | None = None
     size: float = math.nan
     source: str = "gmsh"
+    refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __getstate__(self) -> dict:
+        # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
+        # in another process refine_once then splits its triangles
+        state = dict(self.__dict__)
+        try:
+            pickle.dumps(state["refinement"])
+        except (pickle.PicklingError, AttributeError, TypeError):
+            state["refinement"] = None
+        return state
 
     @property
     def boundaries(self) -> dict[str, np.ndarray]:
@@ -250,7 +270,11 @@ def mesh_surface(
         if type(exc) is Exception:  # gmsh's API raises a bare Exception carrying its last error
             raise RuntimeError(f"gmsh could not mesh the surface: {' '.join(str(exc).split())}") from None
         raise
-    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
+    again = functools.partial(mesh_surface, surface, size, inlet_size=inlet_size, corner_size=corner_size,
+                              grading_distance=grading_distance, size_function=size_function, min_size=min_size,
+                              order=order, refine=refine + 1, algorithm=algorithm, verbose=verbose,
+                              max_elements=max_elements)
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again)
 
 
 def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
@@ -332,6 +356,26 @@ def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
     if isinstance(m, skfem.MeshTri2):
         raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
     return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def refine_once(mesh: SupportMesh) -> SupportMesh:
+    """``mesh`` with every triangle split in four: the mesh of a once-refined comparison.
+
+    The function that made the mesh makes it again one level finer
+    (``mesh.refinement``): gmsh refines its own mesh, so new nodes on curved
+    outlines and pockets lie on them and curved (order-2) meshes stay curved;
+    strips and grids get twice the cells each way. A straight-sided mesh
+    without that record (read from a file) is split by
+    :func:`refine_uniformly`: its outline stays the polygon of the file.
+
+    Raises
+    ------
+    ValueError
+        For a curved (``MeshTri2``) mesh read from a file (no geometry to put new nodes on).
+    """
+    if mesh.refinement is not None:
+        return mesh.refinement()
+    return refine_uniformly(mesh)
 
 
 def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size: float, grading: float,
@@ -620,7 +664,8 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     tol = 1e-9 * length
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+    again = functools.partial(strip_mesh, 2 * n, length=length, width=width, rows=2 * rows)
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip", refinement=again)
 
 
 def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
@@ -678,6 +723,24 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
     zs = _grid_lines([-a, a] + [z for r in pockets for z in r[2:]], size_z)
     check_element_count(2.0 * (xs.size - 1) * (zs.size - 1), max_elements,
                         what=f"grid_mesh with size = {size:g}, size_z = {size_z:g}")
+    return _grid_on_lines(surface, xs, zs, tuple(pockets), max_elements)
+
+
+def _halved(lines: np.ndarray) -> np.ndarray:
+    """Grid coordinates with the midpoint of every interval added: each cell split in two."""
+    return np.sort(np.concatenate([lines, 0.5 * (lines[:-1] + lines[1:])]))
+
+
+def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tuple,
+                   max_elements: int | None) -> SupportMesh:
+    """The grid mesh of :func:`grid_mesh` on the grid lines ``xs`` (phi) and ``zs`` (z), pockets left out.
+
+    Its ``refinement`` is the same grid with every cell split in two along each axis (the pocket
+    edges stay on grid lines), for the once-refined load-error estimate.
+    """
+    check_element_count(2.0 * (xs.size - 1) * (zs.size - 1), max_elements, what="grid_mesh refined")
+    a1, a2 = surface.arc
+    a = surface.half_width
     m = skfem.MeshTri1.init_tensor(xs, zs)
     if pockets:
         m = _without_pockets(m, pockets)
@@ -694,8 +757,10 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
         edge = [facets[_on_rectangle(mid, r, tol)] for r in pockets]
         bnd["inlet"] = np.concatenate(edge)
         bnd.update({f"inlet_{k}": e for k, e in enumerate(edge)})
+    again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
     return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface,
-                       size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid")
+                       size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again)
+
 
 
 def _axis_rectangle(shape, k: int) -> tuple[float, float, float, float]:

@@ -24,6 +24,7 @@ A scene file of this kind::
     element = "P2"                     # P1 | P2
     formulation = "pi"                 # pi | direct
     linear_solver = "splu_sym"         # any key of bearingfe.core.linalg.LINEAR_SOLVERS
+    estimate_error = false             # also solve on the mesh refined once: the load's estimated error
     [output]
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                        # wrapped picture: radial push of the peak pressure [R0]
@@ -51,8 +52,8 @@ from typing import Callable
 
 from ..core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
 from ..core.parameters import ELEMENTS, FORMULATIONS
-from ..core.schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, nonnegative_number,
-                           number, pair, positive_number, read_table, text)
+from ..core.schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, flag,
+                           nonnegative_number, number, pair, positive_number, read_table, text)
 from ..mechanisms.files import SURFACE, surface_of
 
 __all__ = ["SPEC", "PICTURES", "settings", "run"]
@@ -71,7 +72,7 @@ SPEC = {
                         "inlet_pressure": (number(), 0.0)}),
     "solver": Table({"size": (positive_number, 0.05), "inlet_size": (positive_number, None),
                      "element": (choice(ELEMENTS), "P1"), "formulation": (choice(FORMULATIONS), "pi"),
-                     "linear_solver": (choice(LINEAR_SOLVERS), None)}),
+                     "linear_solver": (choice(LINEAR_SOLVERS), None), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15)}),
     "scale": Table({"radius": (positive_number, None), "clearance": (positive_number, None),
                     "viscosity": (positive_number, None), "speed_rpm": (positive_number, None),
@@ -136,7 +137,8 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(1, steps, "solving")
     res = solve_reynolds(mesh, film, wedge=op["wedge"], squeeze=op["squeeze"],
                          inlet_pressure=op["inlet_pressure"], formulation=solver["formulation"],
-                         element=solver["element"], solver=solver["linear_solver"])
+                         element=solver["element"], solver=solver["linear_solver"],
+                         estimate_error=solver["estimate_error"])
     files = []
     sc = s["scale"]
     p_unit = dict(scale=sc.pressure / 1e6, unit="MPa") if sc else {}
@@ -181,7 +183,9 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
         ("int p", res.integral, "mu w R0^4/c^2"), ("max p", res.max_pressure, "mu w R0^2/c^2"),
         ("h_min", res.h_min, "c"), ("friction", res.friction, "mu w R0^4/c"),
     ] + [(f"flow {k}", v, "w R0^2 c") for k, v in flows.items()] + [
-        ("mass balance", res.mass_balance, "w R0^2 c"), ("seconds", seconds, "s")]
+        ("mass balance", res.mass_balance, "w R0^2 c")] + (
+        [] if res.load_error is None else [("load error (estimated)", res.load_error.relative, "-")]) + [
+        ("seconds", seconds, "s")]
     return {
         "kind": "reynolds", "title": s["title"],
         "surface": {"arc": s["surface"].arc, "half_width": s["surface"].half_width,
@@ -190,7 +194,8 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
         "formulation_used": res.formulation, "notes": list(res.notes),
         "results": {"force": res.force, "integral": res.integral, "max_pressure": res.max_pressure,
                     "h_min": res.h_min, "friction": res.friction, "flows": flows,
-                    "mass_balance": res.mass_balance},
+                    "mass_balance": res.mass_balance,
+                    "load_error": None if res.load_error is None else res.load_error.relative},
         "table": [list(row) for row in table],
     }
 
@@ -209,7 +214,10 @@ def _si_summary(s: dict, mesh, res, seconds: float, sc) -> dict:
              ("smallest film", si["min_film_m"] * 1e6, "um"), ("friction moment", si["friction_moment_Nm"], "N m"),
              ("friction power", si["friction_power_W"], "W")]
     table += [(f"flow {k}", v * LITRES_PER_MINUTE, "l/min") for k, v in flows.items()]
-    table += [("mass balance", si["mass_balance_m3s"], "m^3/s"), ("seconds", seconds, "s")]
+    table += [("mass balance", si["mass_balance_m3s"], "m^3/s")]
+    if res.load_error is not None:
+        table.append(("load error (estimated)", res.load_error.relative, "-"))
+    table.append(("seconds", seconds, "s"))
     summary = _reynolds_summary({**s, "scale": None}, mesh, res, seconds)
     summary.update({"scale": {"radius_m": sc.radius, "clearance_m": sc.clearance, "viscosity_Pas": sc.viscosity,
                               "omega_rad_s": sc.speed, "pressure_Pa": sc.pressure, "force_N": sc.force},

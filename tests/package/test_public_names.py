@@ -53,6 +53,8 @@ def test_every_public_name_is_still_there(name):
     ("hydrostatic", ("SUPPLIES", "Capillary", "Orifice", "ConstantFlow", "PrescribedPressure", "solve_supplied",
                      "supply_stiffness", "SupplyError")),
     ("scenes", ("SCENES", "run_scene", "load_scene")),
+    ("thermal", ("Lubricant", "VISCOSITY_LAWS", "ISO_VG", "iso_vg", "WaltherViscosity", "VogelViscosity",
+                 "HeatBalance", "JournalDuty", "effective_temperature", "ThermalError")),
 ])
 def test_the_modules_keep_their_main_names(module, names):
     # the names the README, the examples and the docs reach through bf.<module>
