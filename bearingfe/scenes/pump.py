@@ -539,6 +539,8 @@ def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, p
         if f"plain{suffix}" in runs:
             ratio, row = _film_ratio(runs[f"pocket{suffix}"], runs[f"plain{suffix}"], suffix)
             table.append((f"smallest film ratio pocket/plain{what}", *row))
+            if ratio is not None:  # the pocket's gain as the README and docs/papers.md quote it
+                table.append((f"pocket gain (smallest film){what}", f"{100 * (ratio - 1):+.0f} %", ""))
             results[f"film_ratio{suffix}"] = ratio
     table.append(("seconds", seconds, "s"))
     return {"kind": "pump", "title": s["title"], "mechanism": str(s["mechanism"]), "run": s["run"],

@@ -45,6 +45,8 @@ def test_pump_scene_writes_everything_consistent(coarse_run):
     assert res["pocket"]["status"] == "completed" and res["plain"]["status"] == "completed"
     assert 0.0 < res["pocket"]["balance_ratio"] < 1.0  # the shipped pocket is below hydrostatic balance
     assert "smallest film ratio" in printed
+    rows = {q: v for q, v, _ in summary["table"]}
+    assert rows["pocket gain (smallest film)"] == f"{100 * (res['film_ratio'] - 1):+.0f} %"
 
 
 def test_pictured_state_balances_the_load():
