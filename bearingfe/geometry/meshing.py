@@ -28,6 +28,7 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
 from .surface import Surface
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+           "check_support_mesh",
            "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
@@ -63,6 +64,9 @@ class SupportMesh:
     size: float = math.nan
     source: str = "gmsh"
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        check_support_mesh(self.mesh, self.source)
 
     @property
     def boundaries(self) -> dict[str, np.ndarray]:
@@ -585,6 +589,68 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
         raise GeometryFileError(
             f"{name}: {folded} inner edge(s) with both triangles on the same side (folded or overlapping "
             f"triangles); a mesh must cover each point of the surface once")
+
+
+#: Boundaries where the pressure is fixed (Dirichlet): the outline and the pockets.
+DIRICHLET = ("outer", "inlet")
+
+
+def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh") -> None:
+    """Refuse a mesh no solver can use, whoever built it (a file, gmsh, the API).
+
+    Parameters
+    ----------
+    mesh : skfem.MeshTri1 or skfem.MeshTri2
+        Nodes in the flat ``(phi, z)`` plane [-], with a boundary named ``outer``.
+    name : str
+        For the messages.
+
+    Raises
+    ------
+    bearingfe.geometry.geofiles.GeometryFileError
+        Not a triangle mesh, coordinates not 2-D or not finite, degenerate,
+        duplicated or overlapping triangles (:func:`check_triangles`), no
+        boundary named ``outer``, or a piece of the mesh (a connected
+        component) that touches no Dirichlet boundary (``outer``, ``inlet``):
+        its pressure would be fixed by round-off only.
+    """
+    if not isinstance(mesh, (skfem.MeshTri1, skfem.MeshTri2)):
+        raise GeometryFileError(f"{name}: a support mesh must be a scikit-fem MeshTri1 or MeshTri2, "
+                                f"got {type(mesh).__name__}")
+    p = np.asarray(mesh.p)
+    if p.ndim != 2 or p.shape[0] != 2:
+        raise GeometryFileError(f"{name}: node coordinates must be 2-D (phi, z), got shape {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise GeometryFileError(f"{name}: node coordinates are not finite")
+    nv = int(mesh.nvertices)
+    t = np.asarray(mesh.t[:3], dtype=np.int64)
+    check_triangles(p[:, :nv], t, name)
+    boundaries = mesh.boundaries or {}
+    if "outer" not in boundaries:
+        raise GeometryFileError(f"{name}: no boundary named 'outer' (the outline, where the pressure is fixed)")
+    _check_components(mesh, t, nv, boundaries, name)
+
+
+def _check_components(mesh: skfem.Mesh, t: np.ndarray, nv: int, boundaries: dict, name: str) -> None:
+    """Every connected piece of the mesh must touch a Dirichlet boundary (:data:`DIRICHLET`)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rows = np.concatenate([t[0], t[1], t[2]])
+    cols = np.concatenate([t[1], t[2], t[0]])
+    graph = coo_matrix((np.ones(rows.size), (rows, cols)), shape=(nv, nv))
+    count, label = connected_components(graph, directed=False)
+    if count == 1:
+        return
+    facets = np.concatenate([np.asarray(boundaries[b], dtype=np.int64) for b in DIRICHLET if b in boundaries])
+    fixed = np.unique(label[np.asarray(mesh.facets)[:, facets].ravel()]) if facets.size else np.zeros(0, int)
+    free = np.setdiff1d(np.unique(label[np.unique(t)]), fixed)
+    if free.size:
+        k = int(np.flatnonzero(label == free[0])[0])
+        raise GeometryFileError(
+            f"{name}: {free.size} detached piece(s) of the mesh touch no boundary where the pressure is fixed "
+            f"({' or '.join(DIRICHLET)}), e.g. the one with the node at ({mesh.p[0, k]:.6g}, {mesh.p[1, k]:.6g}); "
+            f"their pressure would be set by round-off: remove them or name their outline")
 
 
 def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:
