@@ -28,7 +28,7 @@ import re
 import shutil
 import signal
 import sys
-import tempfile
+from .core.tempdirs import private_tempdir
 import threading
 import warnings
 from pathlib import Path
@@ -289,7 +289,7 @@ def _mesh(args) -> int:
     out.parent.mkdir(parents=True, exist_ok=True)
     # gmsh writes into a private temporary folder (the system's: a kill during meshing leaves nothing next to
     # --out); only the checked result is copied to a temporary name beside --out and renamed onto it
-    with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+    with private_tempdir("mesh") as work:
         made = Path(work) / out.name
         run_geo(geo, made, size=args.size, order=args.order, trusted=args.trust_geo, timeout=args.geo_timeout,
                 max_elements=args.max_elements)

@@ -62,6 +62,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.surface import Surface
+from ..core.checks import check_pressure_pa
 from ..core.machine import Drive, Material
 from ..elastic.shoe import ShoeBody
 from ..core.scales import Scale
@@ -186,8 +187,8 @@ class PressureCycle:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise ValueError(f"PressureCycle.{name} must be a finite number, got {v!r}")
             object.__setattr__(self, name, float(v))
-        if self.suction < 0:
-            raise ValueError(f"PressureCycle.suction must be >= 0 Pa, got {self.suction}")
+        for name in ("discharge", "suction"):
+            check_pressure_pa(getattr(self, name), f"PressureCycle.{name}")
         if self.discharge < self.suction:
             raise ValueError(f"PressureCycle.discharge must be >= suction ({self.suction} Pa), got {self.discharge}")
         for name in ("compression", "decompression"):

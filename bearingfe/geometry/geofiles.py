@@ -35,12 +35,12 @@ import re
 import signal
 import subprocess
 import sys
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..core.tempdirs import private_tempdir
 from ..core.limits import DEFAULT_LIMITS, LimitError, limit
 
 __all__ = [
@@ -678,7 +678,7 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
         except UnicodeDecodeError:
             raise GeometryFileError(f"{path.name} is not a text (UTF-8) .geo script") from None
         check_geo_script(text, path.name)
-    with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
+    with private_tempdir("geo") as work:
         request = dict(geo=str(path.resolve()), out=str(Path(out_msh).resolve()), size=size, order=int(order),
                        max_elements=limit)
         result = run_gmsh_worker(request, work, seconds, path.name,

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import contextlib
 import math
-import tempfile
 import threading
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,6 +25,7 @@ import skfem
 from .geofiles import (GeometryFileError, MeshData, check_element_count, estimate_triangles, max_elements_limit,
                        read_msh, run_geo)
 from .surface import Surface
+from ..core.tempdirs import private_tempdir
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
            "check_support_mesh",
@@ -124,6 +124,7 @@ def gmsh_session(verbose: bool = False) -> Iterator[object]:
     with _GMSH_LOCK:
         if not gmsh.isInitialized():
             gmsh.initialize(interruptible=False)
+            _reinstall_signal_handlers()
             try:
                 _quiet(gmsh, verbose)
                 yield gmsh
@@ -143,6 +144,27 @@ def gmsh_session(verbose: bool = False) -> Iterator[object]:
                 gmsh.model.setCurrent(current)
             for name, value in saved.items():
                 gmsh.option.setNumber(name, value)
+
+
+def _reinstall_signal_handlers() -> None:
+    """Put Python's handlers of SIGTERM, SIGINT and SIGHUP back at the C level.
+
+    ``gmsh.initialize()`` sets SIGTERM to its default action behind Python's
+    back, so a SIGTERM after meshing killed the process (exit 143) instead of
+    running the caller's handler (the command line's clean-up, exit 130).
+    Setting the handler Python already holds installs it again. Only the main
+    thread may set handlers (elsewhere there is nothing of Python's to restore).
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for name in ("SIGTERM", "SIGINT", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        handler = signal.getsignal(sig) if sig is not None else None
+        if handler is not None:
+            signal.signal(sig, handler)
 
 
 def _quiet(gmsh, verbose: bool) -> None:
@@ -316,7 +338,7 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
             size = _checked_size(size, "size")
         if order not in (1, 2):
             raise ValueError(f"order must be 1 or 2, got {order!r}")
-        with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+        with private_tempdir("mesh") as work:
             msh = Path(work) / "mesh.msh"
             run_geo(path, msh, size=size, order=order, trusted=trusted, timeout=timeout, max_elements=limit)
             data = read_msh(msh)

@@ -20,7 +20,7 @@ from typing import Mapping
 import numpy as np
 import scipy.integrate as si
 
-from ..core import check_limit
+from ..core import LimitError, check_limit
 from .periodic import PERIODIC_METHODS
 from .trajectory import Trajectory
 
@@ -136,6 +136,11 @@ class Integration:
         if not (isinstance(self.min_film, (int, float)) and 0 < self.min_film < 1):
             raise ValueError(f"min_film must be in (0, 1) clearances, got {self.min_film!r}")
         set_(self, "points_per_revolution", _count("points_per_revolution", self.points_per_revolution, 8))
+        try:
+            check_limit("samples", self.points_per_revolution * self.revolutions)
+        except LimitError as exc:
+            raise LimitError(f"points_per_revolution x revolutions = {self.points_per_revolution} x "
+                             f"{self.revolutions:g}: {exc}") from None
         if self.periodic_method is not None and self.periodic_method not in PERIODIC_METHODS:
             raise ValueError(f"periodic_method must be one of {tuple(PERIODIC_METHODS)}, got "
                              f"{self.periodic_method!r}")

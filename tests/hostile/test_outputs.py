@@ -483,7 +483,7 @@ def _umask() -> int:
 
 def test_limits_have_documented_defaults_and_an_environment_override(monkeypatch):
     assert dict(DEFAULT_LIMITS) == {"revolutions": 100, "frames": 1000, "cases": 10_000, "elements": 1_000_000,
-                                    "case_seconds": 3600, "compliance": 4000}
+                                    "case_seconds": 3600, "compliance": 4000, "samples": 100_000}
     with pytest.raises(LimitError, match=r"revolutions = 1e\+06 is above the limit of 100.*max_revolutions=.*"
                                          r"BEARINGFE_MAX_REVOLUTIONS"):
         check_limit("revolutions", 1e6, keyword="max_revolutions")
