@@ -431,3 +431,17 @@ def test_mesh_command_leaves_no_temporary_folder(tmp_path):
                   f"'--out', {str(tmp_path / 'm.msh')!r}]))\n", TMPDIR=str(tmp))
     assert run.returncode == 0, run.stderr
     assert list(tmp.iterdir()) == []
+
+
+def test_simulate_elastic_refuses_runaway_revolutions_before_work(shoe_mesh):
+    import bearingfe as bf
+    from bearingfe import half_space
+    from bearingfe.core.limits import LimitError
+    from bearingfe.transient import simulate_elastic
+
+    pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    C = half_space(shoe_mesh, pump.scale, 210e9)
+    with pytest.raises(LimitError, match="revolutions = 1e\\+06 is above the limit of 100"):
+        simulate_elastic(pump, C, revolutions=1e6)
+    with pytest.raises(LimitError, match="points_per_revolution x revolutions = 1000000 x 1: samples"):
+        simulate_elastic(pump, C, points_per_revolution=10**6)
