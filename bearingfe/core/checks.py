@@ -278,10 +278,14 @@ def note_resolution(result, mesh, film, *, stacklevel: int = 2):
 
     The one resolution check every solver path runs on its result
     (finite elements, finite volumes, elastic); ``result`` is a dataclass
-    with a ``notes`` tuple.
+    with a ``notes`` tuple. A film with steps or kinks (``film.smooth`` False,
+    :func:`bearingfe.film.thickness.is_smooth`) is not checked: its jumps are
+    not a thin film to resolve (the schemes take a step exactly).
     """
     import dataclasses
 
+    if not getattr(film, "smooth", True):
+        return result
     message = check_resolution(mesh, film, stacklevel=stacklevel + 1)
     if message is None or message in result.notes:
         return result

@@ -279,8 +279,9 @@ def _commit(out: Path, work: Path, old: dict[str, dict], keep: set[Path]) -> Non
             raise OutputFolderError(f"--out {out}: an output is named {rel!r} like the scene file, which is "
                                     f"never overwritten; keep the scene file elsewhere")
         if (target.exists() or target.is_symlink()) and rel not in old:
-            raise OutputFolderError(f"--out {out}: {rel} is there and was not written by bearingfe; it is never "
-                                    f"overwritten: move it away or choose another folder")
+            raise OutputFolderError(f"--out {out}: {rel} is there and was not written by bearingfe (or it was "
+                                    f"edited since, copied from another folder, or listed by the manifest of an "
+                                    f"older version); it is never overwritten: move it away or choose another folder")
         new[rel] = _entry(work / rel)  # os.replace keeps the inode: the entry holds for the moved file
     remove = {rel: entry for rel, entry in old.items() if rel not in new and (out / rel).resolve() not in keep}
     journal = {"work": work.name, "work_inode": work.stat().st_ino, "replace": sorted(new),
