@@ -57,10 +57,11 @@ def _parser() -> argparse.ArgumentParser:
     mesh.add_argument("--size", type=float, required=True, help="largest element size [-]")
     mesh.add_argument("--out", type=Path, required=True, help="target .msh file")
     mesh.add_argument("--order", type=int, choices=(1, 2), default=1, help="geometry order")
-    mesh.add_argument("--trust-geo", action="store_true", help="run the script even if it uses commands "
-                      "outside the geometry allow-list (shell, files, Include, Exit...); only for files you trust")
+    mesh.add_argument("--trust-geo", action="store_true", help="hand the script to gmsh's own interpreter, "
+                      "commands outside the geometry subset included (shell, files, Include, Exit...); only for "
+                      "files you trust")
     mesh.add_argument("--geo-timeout", type=float, default=None, metavar="SECONDS",
-                      help="time limit for gmsh (default 120 s or $BEARINGFE_GEO_TIMEOUT)")
+                      help="time limit for reading and meshing (default 120 s or $BEARINGFE_GEO_TIMEOUT)")
     mesh.add_argument("--max-elements", type=int, default=None, metavar="N",
                       help="largest number of triangles (default 1000000 or $BEARINGFE_MAX_ELEMENTS)")
 
@@ -270,9 +271,9 @@ def _fmt(value) -> str:
 # -- mesh -------------------------------------------------------------------------
 
 def _mesh(args) -> int:
-    """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the script is checked against the
-    geometry allow-list (unless ``--trust-geo``) and meshed by gmsh in a separate process with a
-    time limit; the element count is estimated first (bearingfe.geometry.geofiles)."""
+    """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the file is read by bearingfe's parser of
+    the geometry subset (gmsh's interpreter only with ``--trust-geo``) and meshed by gmsh in a separate
+    process with a time limit; the element count is estimated first (bearingfe.geometry.geofiles)."""
     from .geometry.geofiles import run_geo
     from .io.writers import atomic_path
     from .geometry.meshing import load_mesh

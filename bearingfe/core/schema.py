@@ -39,8 +39,8 @@ from typing import Any, Callable, Iterable, Mapping
 
 __all__ = [
     "NONNEGATIVE", "POSITIVE", "REQUIRED", "Range", "SchemaError", "Table", "Tables", "anything", "build", "choice",
-    "choices", "finite", "flag", "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers",
-    "one_of", "pair", "path_text", "points", "positive", "positive_number", "read_table", "read_toml", "text",
+    "FieldRow", "choices", "describe", "finite", "flag", "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers",
+    "one_of", "pair", "path_text", "points", "positive", "positive_number", "read_table", "read_toml", "reference_rows", "text",
     "texts",
 ]
 
@@ -148,8 +148,25 @@ def _listed(allowed: Iterable) -> str:
 Check = Callable[[str, Any], Any]
 
 
+def _accepting(description: str | Callable[[], str]) -> Callable[[Check], Check]:
+    """Attach ``description`` (what a field accepts, for the file-format reference) to a check."""
+    def attach(check: Check) -> Check:
+        check.accepts = description
+        return check
+    return attach
+
+
+def describe(check: Check) -> str:
+    """What a field check accepts, in words (``"a number > 0"``, ``"one of 'P1', 'P2'"``)."""
+    description = getattr(check, "accepts", None)
+    if description is None:
+        raise ValueError(f"field check {getattr(check, '__name__', check)!r} has no description")
+    return description() if callable(description) else description
+
+
 def number(allowed: Range | None = None) -> Check:
     """A finite number (TOML integer or float), optionally in a range; returns a float."""
+    @_accepting("a number" if allowed is None else f"a number {allowed}")
     def check(where: str, value):
         if not _is_number(value):
             raise SchemaError(f"{where}: expected a finite number; got {value!r}")
@@ -161,6 +178,7 @@ def number(allowed: Range | None = None) -> Check:
 
 def integer(allowed: Range | None = None) -> Check:
     """A TOML integer, optionally in a range."""
+    @_accepting("an integer" if allowed is None else f"an integer {allowed}")
     def check(where: str, value):
         if isinstance(value, bool) or not isinstance(value, int):
             raise SchemaError(f"{where}: expected an integer; got {value!r}")
@@ -172,6 +190,7 @@ def integer(allowed: Range | None = None) -> Check:
 
 def numbers(n: int, what: str) -> Check:
     """A list of ``n`` finite numbers; ``what`` describes it in the error (``"a pair [x, y]"``)."""
+    @_accepting(what)
     def check(where: str, value):
         if not (isinstance(value, list) and len(value) == n and all(_is_number(v) for v in value)):
             raise SchemaError(f"{where}: expected {what}; got {value!r}")
@@ -179,6 +198,7 @@ def numbers(n: int, what: str) -> Check:
     return check
 
 
+@_accepting("a list of at least 3 points [[x, y], ...]")
 def points(where: str, value) -> tuple:
     """At least 3 points ``[[x, y], ...]``."""
     if not (isinstance(value, list) and len(value) >= 3):
@@ -192,6 +212,7 @@ def _allowed(allowed) -> tuple:
 
 def choice(allowed: Iterable | Callable[[], Iterable]) -> Check:
     """One of ``allowed`` (or of ``allowed()``, read when the file is checked)."""
+    @_accepting(lambda: f"one of {_listed(_allowed(allowed))}")
     def check(where: str, value):
         names = _allowed(allowed)
         if not _hashable_in(value, names):
@@ -204,6 +225,7 @@ def choices(allowed: Iterable | Callable[[], Iterable], *, empty: bool = True) -
     """A list of values drawn from ``allowed`` (non-empty unless ``empty``); returns a tuple."""
     what = "a list" if empty else "a non-empty list"
 
+    @_accepting(lambda: f"{what} drawn from {_listed(_allowed(allowed))}")
     def check(where: str, value):
         if not isinstance(value, list) or not (empty or value):
             raise SchemaError(f"{where}: expected {what} drawn from {_listed(_allowed(allowed))}; got {value!r}")
@@ -211,6 +233,7 @@ def choices(allowed: Iterable | Callable[[], Iterable], *, empty: bool = True) -
     return check
 
 
+@_accepting("text")
 def text(where: str, value) -> str:
     """A string."""
     if not isinstance(value, str):
@@ -218,6 +241,7 @@ def text(where: str, value) -> str:
     return value
 
 
+@_accepting("a list of texts")
 def texts(where: str, value) -> tuple[str, ...]:
     """A list of strings."""
     if not (isinstance(value, list) and all(isinstance(v, str) for v in value)):
@@ -225,6 +249,7 @@ def texts(where: str, value) -> tuple[str, ...]:
     return tuple(value)
 
 
+@_accepting("a file path (text)")
 def path_text(where: str, value) -> str:
     """A non-empty string naming a file."""
     if not isinstance(value, str) or not value:
@@ -232,6 +257,7 @@ def path_text(where: str, value) -> str:
     return value
 
 
+@_accepting("true or false")
 def flag(where: str, value) -> bool:
     """``true`` or ``false``."""
     if not isinstance(value, bool):
@@ -239,6 +265,7 @@ def flag(where: str, value) -> bool:
     return value
 
 
+@_accepting("any value, checked by what reads it")
 def anything(where: str, value):
     """Any value (checked later, e.g. by a parameter object's constructor)."""
     return value
@@ -402,3 +429,62 @@ def read_toml(path: str | Path, what: str = "file") -> tuple[dict, str]:
     except RecursionError:
         raise SchemaError(f"{label}: arrays or tables nested too deeply to read (a {what} needs a few levels)") \
             from None
+
+
+# -- the file-format reference -------------------------------------------------------------
+
+@dataclass(frozen=True)
+class FieldRow:
+    """One field of a spec as the file-format reference lists it.
+
+    ``table`` is the dotted table name (``"run"``, ``"surface.inlets[shape = 'circle']"``; ``""`` for
+    a top-level field), ``accepts`` what the field's check accepts, ``default`` the default's TOML text
+    (``"required"`` for a field that must be given, ``"none"`` for an optional field without one).
+    """
+
+    table: str
+    field: str
+    accepts: str
+    default: str
+
+
+def _default_text(default: Any) -> str:
+    if default is REQUIRED:
+        return "required"
+    if default is None:
+        return "none"
+    if isinstance(default, bool):
+        return "true" if default else "false"
+    if isinstance(default, str):
+        return repr(default).replace("'", '"')
+    if isinstance(default, (tuple, list)):
+        return "[" + ", ".join(_default_text(d) for d in default) + "]"
+    return repr(default)
+
+
+def reference_rows(spec: Mapping[str, Any], section: str = "") -> list[FieldRow]:
+    """Every field of ``spec`` and of its sub-tables, in file order: the rows of the file-format reference.
+
+    A :class:`Table` contributes its fields under ``section.name``; a :class:`Tables` with a ``key``
+    one group of fields per variant (``name[key = 'variant']``) after the key itself.
+    """
+    rows: list[FieldRow] = []
+    for name, entry in spec.items():
+        sub = _sub(section, name)
+        if isinstance(entry, Table):
+            rows += reference_rows(entry.spec, sub)
+        elif isinstance(entry, Tables):
+            rows += _tables_rows(entry, sub)
+        else:
+            rows.append(FieldRow(section, name, describe(entry[0]), _default_text(entry[1])))
+    return rows
+
+
+def _tables_rows(entry: Tables, section: str) -> list[FieldRow]:
+    if entry.key is None:
+        return reference_rows(entry.spec, f"{section}[]")
+    variants = entry.variants() if callable(entry.variants) else entry.variants
+    rows = [FieldRow(f"{section}[]", entry.key, f"one of {_listed(variants)}", "required")]
+    for kind, spec in variants.items():
+        rows += reference_rows(spec, f"{section}[{entry.key} = {kind!r}]".replace("'", '"'))
+    return rows

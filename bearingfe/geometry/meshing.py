@@ -289,9 +289,10 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
 
     Geometry files are data unless the caller says otherwise
     (:mod:`bearingfe.geometry.geofiles`): a ``.msh`` file is parsed as data (meshio)
-    and must start with ``$MeshFormat``; a ``.geo`` script is checked
-    against an allow-list (no shell commands, file writes, includes,
-    merges, ``Exit``...) and parsed and meshed by gmsh in a separate
+    and must start with ``$MeshFormat``; a ``.geo`` file is read by
+    bearingfe's parser of the documented geometry subset (no shell
+    commands, file writes, includes, merges, ``Exit``...: those are refused
+    by name) and built and meshed through the gmsh API in a separate
     process with a time limit. Degenerate (zero-area) and duplicated
     triangles are refused.
 
@@ -304,11 +305,11 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
     order : {1, 2}
         For ``.geo``: geometry order of the generated mesh.
     trusted : bool
-        For ``.geo``: run the script even if it uses commands outside the
-        allow-list (only for files you wrote or trust). It still runs in a
-        separate process with the time limit.
+        For ``.geo``: hand the script to gmsh's own interpreter, every
+        command of gmsh's language included (only for files you wrote or
+        trust). It still runs in a separate process with the time limit.
     timeout : float, optional
-        For ``.geo``: seconds gmsh may take [s]; default
+        For ``.geo``: seconds reading and meshing may take [s]; default
         :data:`bearingfe.geometry.geofiles.DEFAULT_GEO_TIMEOUT` or the environment
         variable ``BEARINGFE_GEO_TIMEOUT``.
     max_elements : int, optional

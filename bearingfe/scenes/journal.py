@@ -84,9 +84,13 @@ TABLES = ("pressure", "coefficients")
 
 # -- the schema -------------------------------------------------------------------------
 
+#: What the ``pads`` field accepts (its error messages and the file-format reference).
+_PAD_RULE = "a list of pads [[start_deg, end_deg], ...] with start < end <= start + 360, not overlapping"
+
+
 def _pads(where, value):
     """Pads ``[[start_deg, end_deg], ...]``: start < end <= start + 360, no two overlapping."""
-    rule = "a list of pads [[start_deg, end_deg], ...] with start < end <= start + 360, not overlapping"
+    rule = _PAD_RULE
     if not (isinstance(value, list) and value):
         raise SchemaError(f"{where}: expected {rule}; got {value!r}")
     pads = []
@@ -102,6 +106,9 @@ def _pads(where, value):
         if b1 > a2 + 1e-9:
             raise SchemaError(f"{where}: expected {rule}; pads overlap after {a1:g} deg")
     return tuple(pads)
+
+
+_pads.accepts = _PAD_RULE
 
 
 def _cavitation_models() -> tuple[str, ...]:

@@ -57,6 +57,9 @@ def _settings(where: str, value) -> dict:
     return value
 
 
+_settings.accepts = "a table of field = value (the base object's fields)"
+
+
 #: The study file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`); the names in
 #: ``[base.set]``, ``[grid]`` and ``[[cases]]`` are checked against the base object and the change builders.
 STUDY = {

@@ -226,8 +226,10 @@ def test_load_mesh_errors(tmp_path):
     with pytest.raises(ValueError, match=".geo or .msh"):
         load_mesh(wrong)
     nameless = tmp_path / "nameless.geo"
-    nameless.write_text('SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 1, 1};\n'
-                        'Physical Curve("edge") = {1, 2, 3, 4};\nPhysical Surface("film") = {1};\n')
+    nameless.write_text('SetFactory("OpenCASCADE");\nFor k In {1:4}\n  Point(k) = {(k == 2 || k == 3), k > 2, 0};\n'
+                        'EndFor\nFor k In {1:4}\n  Line(k) = {k, k % 4 + 1};\nEndFor\nCurve Loop(1) = {1:4};\n'
+                        'Plane Surface(1) = {1};\nPhysical Curve("edge") = {1, 2, 3, 4};\n'
+                        'Physical Surface("film") = {1};\n')
     with pytest.raises(ValueError, match="outer"):
         load_mesh(nameless, size=0.5)
     assert not gmsh.isInitialized()
