@@ -393,10 +393,18 @@ def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size
     return max(sampled, estimate_triangles(surface.film_area, size))
 
 
+#: Range of element sizes [R0] (the surfaces are of order 1): beyond it the size estimates under- or overflow
+#: (1e-300 gave "float division by zero", 1e300 "Numerical result out of range"); sizes far inside it are
+#: refused by the element-count limit already.
+SIZE_RANGE = (1e-12, 1e6)
+
+
 def _checked_size(value: float, name: str) -> float:
+    """``float(value)`` if it is an element size in :data:`SIZE_RANGE` [R0], else a ValueError naming ``name``."""
     value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite element size > 0, got {value!r}")
+    if not (math.isfinite(value) and SIZE_RANGE[0] <= value <= SIZE_RANGE[1]):
+        raise ValueError(f"{name} must be a finite element size in [{SIZE_RANGE[0]:g}, {SIZE_RANGE[1]:g}] "
+                         f"(units of R0), got {value!r}")
     return value
 
 

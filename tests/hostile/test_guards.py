@@ -445,3 +445,12 @@ def test_simulate_elastic_refuses_runaway_revolutions_before_work(shoe_mesh):
         simulate_elastic(pump, C, revolutions=1e6)
     with pytest.raises(LimitError, match="points_per_revolution x revolutions = 1000000 x 1: samples"):
         simulate_elastic(pump, C, points_per_revolution=10**6)
+
+
+@pytest.mark.parametrize("size", [1e-300, 1e300])
+def test_element_size_far_out_of_scale_is_named(size):
+    # before: "float division by zero" (1e-300) and "(34, 'Numerical result out of range')" (1e300)
+    from bearingfe import Surface, mesh_surface
+
+    with pytest.raises(ValueError, match="size must be a finite element size in \\[1e-12, 1e\\+06\\]"):
+        mesh_surface(Surface(), size)
