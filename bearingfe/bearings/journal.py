@@ -127,7 +127,7 @@ class JournalBearing:
     Parameters
     ----------
     length_ratio : float
-        ``L/D`` [-], in (0, 4].
+        ``L/D`` [-], in [0.001, 4].
     pads : tuple of (float, float) or None
         ``None``: full 360-degree film starting at the line of largest film
         (Raimondi-Boyd). Otherwise arcs ``(start, end)`` [rad] in the
@@ -153,8 +153,9 @@ class JournalBearing:
     periodic: bool = False
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.length_ratio) and 0 < self.length_ratio <= 4):
-            raise ValueError(f"length_ratio (L/D) must be in (0, 4], got {self.length_ratio!r}")
+        if not (math.isfinite(self.length_ratio) and 1e-3 <= self.length_ratio <= 4):
+            raise ValueError(f"length_ratio (L/D) must be in [0.001, 4] (shorter films are the short-bearing limit; "
+                             f"1e-300 made a degenerate outline), got {self.length_ratio!r}")
         if self.pads is not None:
             pads = tuple((float(a), float(b)) for a, b in self.pads)
             for a, b in pads:
@@ -718,6 +719,11 @@ def _short_eps(load: float, a: float) -> float:
     def f(e):
         return np.hypot(*short_bearing_force(e, a)) - load
     if f(0.99) < 0:
+        capacity = load + f(EPS_MAX)
+        if load > 2.0 * capacity:  # the short bearing overestimates a finite one: this load needs eps > EPS_MAX
+            raise ValueError(f"load: magnitude {load:.3g} (non-dimensional) is more than twice what the short-bearing "
+                             f"estimate carries at eccentricity {EPS_MAX} ({capacity:.3g}): the film would close; "
+                             f"give a smaller load (or a larger speed, viscosity or bearing)")
         return 0.99
     if f(1e-9) >= 0:  # brentq would answer "f(a) and f(b) must have different signs"
         raise ValueError(f"load: magnitude {load:.3g} (non-dimensional) is below what the bearing carries at "

@@ -454,3 +454,29 @@ def test_element_size_far_out_of_scale_is_named(size):
 
     with pytest.raises(ValueError, match="size must be a finite element size in \\[1e-12, 1e\\+06\\]"):
         mesh_surface(Surface(), size)
+
+
+def test_scales_and_journal_proportions_out_of_range_are_named():
+    # before (the journal scene): c = 1e-300 m gave "float division by zero", D = 1e300 m errno 34,
+    # D = 1e15 m or L = 1e-300 m "Polygon.points has repeated (coincident) vertices"
+    from bearingfe.bearings.journal import JournalBearing
+    from bearingfe.core.scales import Scale
+
+    with pytest.raises(ValueError, match="Scale.clearance must be at least 1e-07 of the radius"):
+        Scale(radius=0.05, clearance=1e-300, viscosity=0.03, speed=100.0)
+    with pytest.raises(ValueError, match="Scale.clearance must be at least 1e-07 of the radius"):
+        Scale(radius=5e14, clearance=75e-6, viscosity=0.03, speed=100.0)
+    with pytest.raises(ValueError, match="give a pressure scale of inf, not a finite number > 0"):
+        Scale(radius=1e300, clearance=1e294, viscosity=0.03, speed=100.0)
+    with pytest.raises(ValueError, match="length_ratio \\(L/D\\) must be in \\[0.001, 4\\]"):
+        JournalBearing(1e-299)
+
+
+def test_journal_load_the_film_cannot_carry_is_named():
+    # before: "journal equilibrium: Newton did not converge in 40 steps"; the short bearing of L/D = 0.5
+    # carries 9.98e3 at eccentricity 0.995 (short_bearing_force), a finite one less
+    from bearingfe.bearings.journal import JournalBearing, equilibrium
+
+    with pytest.raises(ValueError, match="load: magnitude 1e\\+12 .* more than twice .* eccentricity 0.995 "
+                                         "\\(9.98e\\+03\\)"):
+        equilibrium(JournalBearing(0.5), (0.0, -1e12), size=0.3)
