@@ -480,3 +480,26 @@ def test_journal_load_the_film_cannot_carry_is_named():
     with pytest.raises(ValueError, match="load: magnitude 1e\\+12 .* more than twice .* eccentricity 0.995 "
                                          "\\(9.98e\\+03\\)"):
         equilibrium(JournalBearing(0.5), (0.0, -1e12), size=0.3)
+
+
+def test_pump_lengths_out_of_proportion_are_named(pump):
+    # before: eccentricity 1e-300 m, pivot_distance or plunger diameter 1e300 m answered with errno 34
+    import dataclasses
+
+    for field, value, words in [("eccentricity", 1e-300, "eccentricity must be 1e-06 to 100 times the radius"),
+                                ("pivot_distance", 1e300, "pivot_distance must be 1e-06 to 1e\\+12 times"),
+                                ("plunger_diameter", 1e300, "plunger_diameter must be 1e-06 to 1000 times")]:
+        with pytest.raises(ValueError, match=words):
+            dataclasses.replace(pump, **{field: value})
+
+
+def test_a_trial_state_beyond_the_thin_film_model_is_not_admissible(pump, pocket_mesh):
+    # before: a steady-state root finder that strayed to gamma = 1290 (viscosity 1e-9 Pa s) ended the run with
+    # "CosineFilm.gamma must be a number in [0, 1000]"; such a trial state is a closed film instead
+    from bearingfe.transient.base import FilmClosed
+    from bearingfe.transient.rigid import Rigid
+
+    model = Rigid(pump, pocket_mesh)
+    assert model.smallest_film(0.0, np.array([1290.0, 0.0])) == -math.inf
+    with pytest.raises(FilmClosed):
+        model.superposition(1290.0, 0.0)
