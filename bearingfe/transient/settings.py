@@ -49,6 +49,10 @@ def positive(name: str, value) -> float:
     return float(value)
 
 
+#: Shortest run [revolutions]: 1e-300 revolutions made an integration span lost in round-off that never ended.
+MIN_REVOLUTIONS = 1e-6
+
+
 @dataclass(frozen=True)
 class Integration:
     """Settings of one pump transient, shared by every film model.
@@ -118,6 +122,9 @@ class Integration:
         if isinstance(self.revolutions, bool) or not (isinstance(self.revolutions, (int, float))
                                                       and math.isfinite(self.revolutions) and self.revolutions > 0):
             raise ValueError(f"revolutions must be a finite number > 0, got {self.revolutions!r}")
+        if self.revolutions < MIN_REVOLUTIONS:  # a span lost in the start angle's round-off never ends
+            raise ValueError(f"revolutions must be a finite number > 0 and at least {MIN_REVOLUTIONS:g} (a shorter "
+                             f"run is a single state: use steady_state), got {self.revolutions!r}")
         check_limit("revolutions", self.revolutions, self.max_revolutions, "max_revolutions")
         set_(self, "start", _checked_start(self.start))
         if not (isinstance(self.beta0, (int, float)) and math.isfinite(self.beta0)):

@@ -503,3 +503,12 @@ def test_a_trial_state_beyond_the_thin_film_model_is_not_admissible(pump, pocket
     assert model.smallest_film(0.0, np.array([1290.0, 0.0])) == -math.inf
     with pytest.raises(FilmClosed):
         model.superposition(1290.0, 0.0)
+
+
+def test_a_run_shorter_than_round_off_is_refused():
+    # before: revolutions = 1e-300 (a span lost in the start angle's round-off) integrated for ever
+    from bearingfe.transient import Integration
+
+    with pytest.raises(ValueError, match="revolutions must be a finite number > 0 and at least 1e-06"):
+        Integration(revolutions=1e-300)
+    assert Integration(revolutions=1e-6).revolutions == 1e-6
