@@ -107,10 +107,10 @@ def test_validate_prints_table(capsys):
     assert main(["validate", "--quick"]) == 0
     out = capsys.readouterr().out
     assert "annular pad load W" in out and "short bearing" in out and "Raimondi & Boyd" in out
-    assert "JFO pocket slider" in out and "Rayleigh step load W" in out
+    assert "JFO pocket slider" in out and "Rayleigh step load W" in out and "orifice-fed pad stiffness" in out
     # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude) + 4 JFO pocket slider (load, flow, x_r, peak)
-    # + 1 finite-width Rayleigh step
-    assert "14 of 14 passed" in out
+    # + 1 finite-width Rayleigh step + 2 fed recess pads x (ratio, flow, stiffness)
+    assert "20 of 20 passed" in out
     assert main(["validate", "--only", "nonsense"]) == 2
 
 

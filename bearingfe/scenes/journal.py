@@ -16,7 +16,7 @@ Scene file::
     length_fraction = 0.8                # groove length / L, in (0, 1)
     [operating]
     speed = 3000.0                       # [rpm]
-    viscosity = 0.018                    # [Pa s]
+    viscosity = 0.018                    # [Pa s]; absent when [oil] is given
     load = 10.0e3                        # [N]
     load_direction_deg = -90.0           # load on the journal: gravity (-y) by default
     [solver]
@@ -28,6 +28,17 @@ Scene file::
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                          # wrapped picture: radial push of the peak pressure [R]
     tables = ["pressure", "coefficients"]
+    [oil]                                # optional: the viscosity from the heat balance instead
+    grade = "VG 32"                      # an ISO 3448 grade with its 100 degC viscosity, or
+    kinematic_viscosity_100C = 5.4e-6    # [m^2/s] (the oil's data sheet)
+    # kinematic_viscosity = [[40.0, 32e-6], [100.0, 5.4e-6]]   # Walther through [degC, m^2/s] pairs, or
+    # vogel = [a, b, c]                  # mu = a exp(b/(T - c)) [Pa s, K, K]
+    density_15C = 860.0                  # [kg/m^3]
+    specific_heat = 1900.0               # optional [J/(kg K)]; default Cragoe's correlation
+    supply_temperature_C = 40.0          # fresh oil [degC]
+    carry_over = 0.0                     # hot-oil carry-over, in [0, 1]
+    conducted_fraction = 0.0             # share of the friction power conducted away, in [0, 1)
+    effective_fraction = 0.5             # T_eff = T_in + k dT, k in (0, 1]
 
 Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
 (up), the direction in which the journal turns. The runner finds the
@@ -39,6 +50,15 @@ position, pressure [Pa], film [m], ruptured flag), ``coefficients.csv`` (the
 ROSS ``BearingElement`` columns, SI) and the pictures ``pressure.png``,
 ``pressure_wrapped.png``, ``film.png`` (one per pad, ``_pad<k>``, when there
 are several).
+
+With ``[oil]`` the film's viscosity is not given but found: the effective
+temperature of the level-1 heat balance
+(:func:`bearingfe.thermal.effective_temperature`: friction power against the
+heat carried by the side and trailing flows), and every result below is that
+of the effective viscosity; the summary's ``thermal`` table has the
+temperatures, the effective viscosity, the power loss and how far the
+isothermal answer at the supply temperature moved. With ``estimate_error``
+the half-size solve keeps that viscosity. Without ``[oil]`` nothing changes.
 
 The summary (SI, unit in each key): eccentricity, attitude angle (from the
 load line to the line of centres, in the direction of rotation), journal
@@ -119,6 +139,13 @@ def _cavitation_models() -> tuple[str, ...]:
 
 _OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
 
+
+def _oil_fields() -> dict:
+    from ..thermal.files import OIL
+
+    return dict(OIL)
+
+
 #: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
     "kind": (anything, REQUIRED),
@@ -130,7 +157,7 @@ SPEC = {
                            "width_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), REQUIRED),
                            "length_fraction": (number(_OPEN_UNIT), 0.8)}),
         "supply_pressure": (nonnegative_number, 0.0)}, required=True),
-    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, REQUIRED),
+    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, None),
                         "load": (positive_number, REQUIRED), "load_direction_deg": (number(), -90.0)},
                        required=True),
     "solver": Table({"size": (number(Range(0.0, 1.0, lo_open=True)), 0.05),
@@ -138,6 +165,7 @@ SPEC = {
                      "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
                      "tables": (choices(TABLES), TABLES)}),
+    "oil": Table(_oil_fields()),
 }
 
 
@@ -150,8 +178,24 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if solver["min_size"] is not None and solver["min_size"] > solver["size"]:
         raise SchemaError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
                           f"got {solver['min_size']!r}")
+    oil = s["oil"] if "oil" in data else None
+    _check_oil(s["operating"], oil, label)
     return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
-            "operating": s["operating"], "solver": solver, "output": s["output"]}
+            "operating": s["operating"], "solver": solver, "output": s["output"], "oil": oil}
+
+
+def _check_oil(op: dict, oil: dict | None, label: str) -> None:
+    """Either ``[operating] viscosity`` or ``[oil]``; in ``[oil]`` one lubricant and a supply temperature."""
+    if oil is None:
+        if op["viscosity"] is None:
+            raise SchemaError(f"{label}: [operating] viscosity: missing (required without an [oil] table)")
+        return
+    if op["viscosity"] is not None:
+        raise SchemaError(f"{label}: [operating] viscosity: must be absent with an [oil] table (the heat "
+                          f"balance finds the viscosity); got {op['viscosity']!r}")
+    from ..thermal.files import check_oil
+
+    check_oil(oil, label, "oil")
 
 
 def _check_proportions(b: dict, label: str) -> None:
@@ -206,12 +250,13 @@ def _load(s: dict, scale) -> np.ndarray:
     return scale.from_force(s["operating"]["load"]) * np.array([math.cos(theta), math.sin(theta)])
 
 
-def _solve(bearing, load, size, min_size, cavitation):
-    """Equilibrium and coefficients, timed."""
+def _solve(bearing, load, size, min_size, cavitation, eq=None):
+    """Equilibrium (unless given) and coefficients, timed."""
     from ..bearings.journal import dynamic_coefficients, equilibrium
 
     t0 = time.perf_counter()
-    eq = equilibrium(bearing, load, size=size, min_size=min_size, cavitation=cavitation)
+    if eq is None:
+        eq = equilibrium(bearing, load, size=size, min_size=min_size, cavitation=cavitation)
     t1 = time.perf_counter()
     # finite-volume (JFO) solutions keep no Galerkin system to linearize: central differences instead
     dc = dynamic_coefficients(eq, method="finite-difference" if cavitation == "jfo" else "linearized")
@@ -242,21 +287,33 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     from ..io.writers import write_json
 
     s = settings(data, label)
+    solver, out = s["solver"], s["output"]
+    tick = progress or (lambda done, total, what: None)
+    thermal, t_thermal = None, 0.0
+    if s["oil"] is not None:
+        tick(0, 1, "effective temperature (heat balance)")
+        t0 = time.perf_counter()
+        thermal = _thermal(s, label)
+        t_thermal = time.perf_counter() - t0
+        s = {**s, "operating": {**s["operating"], "viscosity": thermal.viscosity}}
     scale = _scale(s)
     bearing = _bearing(s, scale, label)
     load = _load(s, scale)
-    solver, out = s["solver"], s["output"]
     n_pics = len(out["pictures"]) * len(bearing.surfaces())
     steps = 2 + int(solver["estimate_error"]) + n_pics
-    tick = progress or (lambda done, total, what: None)
     tick(0, steps, "equilibrium and coefficients")
-    eq, dc, t_eq, t_dc = _solve(bearing, load, solver["size"], solver["min_size"], solver["cavitation"])
+    eq, dc, t_eq, t_dc = _solve(bearing, load, solver["size"], solver["min_size"], solver["cavitation"],
+                                None if thermal is None else thermal.equilibrium)
+    t_eq += t_thermal
     fine = None
     if solver["estimate_error"]:
         tick(1, steps, "error estimate (half the element size)")
         half = None if solver["min_size"] is None else solver["min_size"] / 2
         fine = _solve(bearing, load, solver["size"] / 2, half, solver["cavitation"])
     summary = _summary(s, scale, bearing, eq, dc, {"equilibrium": t_eq, "coefficients": t_dc}, fine)
+    if thermal is not None:
+        summary["thermal"] = _thermal_summary(thermal, s["oil"])
+        summary["table"][9:9] = _thermal_rows(summary["thermal"])
     done = 1 + int(solver["estimate_error"])
     t0 = time.perf_counter()
     files = _tables(out["tables"], s, scale, eq, summary, out_dir)
@@ -267,6 +324,59 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+# -- the heat balance ----------------------------------------------------------------------
+
+def _thermal(s: dict, label: str):
+    """The effective temperature of the scene's bearing (:func:`bearingfe.thermal.effective_temperature`)."""
+    from ..thermal import JournalDuty, effective_temperature
+    from ..thermal.files import balance_of, lubricant_of
+
+    b, op, oil, solver = s["bearing"], s["operating"], s["oil"], s["solver"]
+    duty = build(label, "operating", JournalDuty, radius=b["diameter"] / 2, clearance=b["radial_clearance"],
+                 speed=2 * math.pi * op["speed"] / 60, load=op["load"],
+                 load_direction=math.radians(op["load_direction_deg"]), supply_pressure=b["supply_pressure"])
+    balance = balance_of(oil, label, "oil")
+    lubricant = lubricant_of(oil, label, "oil")
+    # the bearing at any viscosity: its supply pressure is made non-dimensional at each trial temperature
+    scale = _scale({**s, "operating": {**op, "viscosity": lubricant.viscosity(balance.supply_temperature)}})
+    bearing = _bearing(s, scale, label)
+    return effective_temperature(bearing, duty, lubricant, balance, size=solver["size"],
+                                 min_size=solver["min_size"], cavitation=solver["cavitation"])
+
+
+def _thermal_summary(t, oil: dict) -> dict:
+    """The heat balance in the summary (SI; temperatures also in degC)."""
+    from ..thermal import celsius
+
+    def rel(new, old):
+        return (new - old) / old
+    return {
+        "model": "level 1: effective temperature from the heat balance of the whole film",
+        "effective_temperature_C": celsius(t.temperature), "supply_temperature_C": celsius(t.supply_temperature),
+        "inlet_temperature_C": celsius(t.inlet_temperature), "outlet_temperature_C": celsius(t.outlet_temperature),
+        "temperature_rise_K": t.temperature_rise, "effective_viscosity_Pa_s": t.viscosity,
+        "supply_viscosity_Pa_s": t.supply_viscosity, "density_kg_m3": t.density,
+        "specific_heat_J_kgK": t.specific_heat, "power_loss_W": t.friction_power,
+        "convected_power_W": t.convected_power, "conducted_power_W": t.conducted_power,
+        "leading_flow_m3s": t.leading_flow, "side_flow_m3s": t.side_flow, "supply_flow_m3s": t.supply_flow,
+        "carry_over": oil["carry_over"], "conducted_fraction": oil["conducted_fraction"],
+        "effective_fraction": oil["effective_fraction"],
+        "isothermal": {"at": "the supply temperature", "eccentricity": t.isothermal_eccentricity,
+                       "min_film_m": t.isothermal_min_film, "power_loss_W": t.isothermal_friction_power},
+        "moved": {"eccentricity": t.eccentricity - t.isothermal_eccentricity,
+                  "min_film": rel(t.min_film, t.isothermal_min_film),
+                  "power_loss": rel(t.friction_power, t.isothermal_friction_power)},
+        "evaluations": t.evaluations, "residual_K": t.residual, "oil": dict(oil)}
+
+
+def _thermal_rows(th: dict) -> list:
+    rows = [("effective temperature", th["effective_temperature_C"], "degC"),
+            ("temperature rise", th["temperature_rise_K"], "K"),
+            ("effective viscosity", th["effective_viscosity_Pa_s"] * 1e3, "mPa s"),
+            ("min film change from isothermal", th["moved"]["min_film"] * 100, "%")]
+    return [list(row) for row in rows]
 
 
 # -- results ---------------------------------------------------------------------------------

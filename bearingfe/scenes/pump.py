@@ -21,6 +21,11 @@ Scene file::
     dynamics = "squeeze"                             # squeeze | quasi-static (see below)
     [output]
     pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
+    [thermal]
+    enabled = false                                  # level-1 heat balance over the cycle (see below)
+    grade = "VG 46"                                  # the oil: the [oil] fields of the journal scene
+    kinematic_viscosity_100C = 6.8e-6
+    supply_temperature_C = 46.0                      # optional: default where the oil has the file's viscosity
 
 Writes ``trajectory_pocket.csv`` and ``trajectory_plain.csv`` (SI units; see
 :meth:`bearingfe.Trajectory.columns`), ``trajectory.png``,
@@ -41,6 +46,15 @@ block of ``[shoe] thickness`` clamped over its back,
 ``"shoe"`` (the real shoe body of the mechanism file: bore, back, seat on
 the plunger, lining; gmsh tetrahedra, :func:`bearingfe.elastic.shoe.shoe_compliance`),
 the last two with the eccentric as a half-space.
+With ``[thermal] enabled`` every rigid design is run again at the
+viscosity of its level-1 effective temperature
+(:func:`bearingfe.thermal.cycle_temperature`: the cycle-mean heat balance of
+the film, the fields of :data:`bearingfe.thermal.files.OIL`; without
+``supply_temperature_C`` the oil is fed at the temperature where it has the
+mechanism file's viscosity, so the isothermal run is the shipped model), and
+the summary's ``thermal`` table has, per design, the effective and peak film
+temperatures, the temperature rise over the cycle and the smallest film with
+and without the thermal model. Off by default (the paper's isothermal model).
 ``dynamics = "squeeze"`` (default) integrates the pressure as a state so that
 the rate of the deflection squeezes the film
 (:func:`bearingfe.transient.elastic.simulate_elastic`; cavitation "none"
@@ -84,6 +98,12 @@ def _starts() -> tuple[str, ...]:
     return tuple(STARTS)
 
 
+def _thermal_fields() -> dict:
+    from ..thermal.files import OIL
+
+    return {"enabled": (flag, False), **OIL}
+
+
 #: The ``"pump"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
     "kind": (anything, REQUIRED),
@@ -96,6 +116,7 @@ SPEC = {
     "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space"),
                       "dynamics": (choice(DYNAMICS), "squeeze")}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES)}),
+    "thermal": Table(_thermal_fields()),
 }
 
 
@@ -114,9 +135,13 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if s["elastic"]["enabled"] and s["elastic"]["dynamics"] == "squeeze" and s["run"]["cavitation"] != "none":
         raise SchemaError(f"{label}: [elastic] dynamics: 'squeeze' needs [run] cavitation = 'none' (the pressure "
                           f"is a state variable); got cavitation {s['run']['cavitation']!r}: use 'quasi-static'")
+    if s["thermal"]["enabled"]:
+        from ..thermal.files import check_oil
+
+        check_oil(s["thermal"], label, "thermal", need_supply=False)
     return {"title": label if s["title"] is None else s["title"], "mechanism": path,
             "compare_plain": s["pump"]["compare_plain"], "run": s["run"], "output": s["output"],
-            "elastic": s["elastic"]}
+            "elastic": s["elastic"], "thermal": s["thermal"]}
 
 
 def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
@@ -179,10 +204,41 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
         write_pvd(results, main.beta[frames], out_dir / "pressure.pvd")
         files.append("pressure.pvd")
     summary = _summary(s, runs, balance, meshes, time.perf_counter() - start, pump.scale, states)
+    if s["thermal"]["enabled"]:
+        tick(done, steps, "thermal: level-1 heat balance over the cycle")
+        summary["thermal"] = _thermal(s, label, pump, designs, meshes)
+        summary["table"][-1:-1] = [row for name, th in summary["thermal"].items() for row in (
+            (f"{name}: effective film temperature (level 1)", th["effective_temperature_C"], "degC"),
+            (f"{name}: temperature rise over the cycle", th["temperature_rise_K"], "K"),
+            (f"{name}: smallest film, level 1", th["smallest_film_m"] * 1e6, "um"))]
     summary["files"] = files + ["summary.json"]
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+def _thermal(s: dict, label: str, pump, designs: dict, meshes: dict) -> dict:
+    """Every rigid design at its level-1 effective temperature (:func:`bearingfe.thermal.cycle_temperature`)."""
+    from ..thermal import celsius, cycle_temperature
+    from ..thermal.files import balance_of, lubricant_of
+
+    th, run = s["thermal"], s["run"]
+    oil = lubricant_of(th, label, "thermal")
+    supply = None
+    if th["supply_temperature_C"] is None:  # where the oil has the mechanism file's viscosity
+        supply = build(label, "thermal", oil.temperature_at, pump.viscosity)
+    balance = balance_of(th, label, "thermal", supply)
+    out = {}
+    for name, p in designs.items():
+        r = cycle_temperature(p, meshes[name], oil, balance, revolutions=run["revolutions"], start=run["start"],
+                              rtol=run["rtol"], cavitation=run["cavitation"], element=run["element"])
+        out[name] = {"effective_temperature_C": celsius(r.temperature),
+                     "supply_temperature_C": celsius(r.supply_temperature),
+                     "temperature_rise_K": r.temperature_rise, "peak_temperature_C": celsius(r.peak_temperature),
+                     "effective_viscosity_Pa_s": r.viscosity, "supply_viscosity_Pa_s": r.supply_viscosity,
+                     "mean_power_W": r.friction_power, "smallest_film_m": r.smallest_film,
+                     "isothermal_smallest_film_m": r.isothermal_smallest_film, "evaluations": r.evaluations}
+    return out
 
 
 def _compliance(pump, mesh, element: str, model: str):

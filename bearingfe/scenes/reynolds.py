@@ -24,6 +24,7 @@ A scene file of this kind::
     element = "P2"                     # P1 | P2
     formulation = "pi"                 # pi | direct
     linear_solver = "splu_sym"         # any key of bearingfe.core.linalg.LINEAR_SOLVERS
+    estimate_error = false             # also solve on the mesh refined once: the load's estimated error
     [output]
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                        # wrapped picture: radial push of the peak pressure [R0]
@@ -37,8 +38,8 @@ from typing import Callable
 
 from ..core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
 from ..core.parameters import ELEMENTS, FORMULATIONS
-from ..core.schema import (REQUIRED, Table, anything, build, choice, choices, nonnegative_number, number, pair,
-                           positive_number, read_table, text)
+from ..core.schema import (REQUIRED, Table, anything, build, choice, choices, flag, nonnegative_number, number,
+                           pair, positive_number, read_table, text)
 from ..mechanisms.files import SURFACE, surface_of
 
 __all__ = ["SPEC", "PICTURES", "settings", "run"]
@@ -57,7 +58,7 @@ SPEC = {
                         "inlet_pressure": (number(), 0.0)}),
     "solver": Table({"size": (positive_number, 0.05), "inlet_size": (positive_number, None),
                      "element": (choice(ELEMENTS), "P1"), "formulation": (choice(FORMULATIONS), "pi"),
-                     "linear_solver": (choice(LINEAR_SOLVERS), None)}),
+                     "linear_solver": (choice(LINEAR_SOLVERS), None), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15)}),
 }
 
@@ -100,7 +101,8 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(1, steps, "solving")
     res = solve_reynolds(mesh, film, wedge=op["wedge"], squeeze=op["squeeze"],
                          inlet_pressure=op["inlet_pressure"], formulation=solver["formulation"],
-                         element=solver["element"], solver=solver["linear_solver"])
+                         element=solver["element"], solver=solver["linear_solver"],
+                         estimate_error=solver["estimate_error"])
     files = []
     draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / "pressure.png", surface=s["surface"]),
             "wrapped": lambda: fields.pressure_picture(res, out_dir / "pressure_wrapped.png", view="wrapped",
@@ -126,7 +128,9 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
         ("int p", res.integral, "mu w R0^4/c^2"), ("max p", res.max_pressure, "mu w R0^2/c^2"),
         ("h_min", res.h_min, "c"), ("friction", res.friction, "mu w R0^4/c"),
     ] + [(f"flow {k}", v, "w R0^2 c") for k, v in flows.items()] + [
-        ("mass balance", res.mass_balance, "w R0^2 c"), ("seconds", seconds, "s")]
+        ("mass balance", res.mass_balance, "w R0^2 c")] + (
+        [] if res.load_error is None else [("load error (estimated)", res.load_error.relative, "-")]) + [
+        ("seconds", seconds, "s")]
     return {
         "kind": "reynolds", "title": s["title"],
         "surface": {"arc": s["surface"].arc, "half_width": s["surface"].half_width,
@@ -135,6 +139,7 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
         "formulation_used": res.formulation, "notes": list(res.notes),
         "results": {"force": res.force, "integral": res.integral, "max_pressure": res.max_pressure,
                     "h_min": res.h_min, "friction": res.friction, "flows": flows,
-                    "mass_balance": res.mass_balance},
+                    "mass_balance": res.mass_balance,
+                    "load_error": None if res.load_error is None else res.load_error.relative},
         "table": [list(row) for row in table],
     }

@@ -38,9 +38,10 @@ class Trajectory:
     wedge : ndarray
         ``1 - dphi2/dbeta`` [-].
     inlet_pressure : ndarray
-        Pocket (chamber) pressure, non-dimensional [-].
+        Pocket pressure, non-dimensional [-]: the chamber's, or the pocket's own when it is fed
+        through the plunger's restrictor (:mod:`bearingfe.transient.fed`).
     chamber_pressure : ndarray
-        The same in Pa.
+        The chamber pressure in Pa.
     load : ndarray, shape (n, 2)
         Applied load on the shoe in the shoe frame (as the solver's ``force``) [-].
     h_min : ndarray
@@ -170,8 +171,9 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
         The model's states at the samples: ``(gamma [-], delta [rad], ...)``.
     columns : mapping
         The model's SI columns at the samples: every name of
-        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m] and
-        ``pressures`` (shape (n, n_dofs), non-dimensional).
+        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m],
+        ``pressures`` (shape (n, n_dofs), non-dimensional) and ``inlet_pressure``
+        (the pocket pressure [-] of a model that carries it; default the chamber's).
     status, message, rupture_beta
         How the run ended (:data:`STATUSES`; ``rupture_beta`` NaN if it completed).
     start : array_like
@@ -188,7 +190,9 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
     f = pump.load(betas)
     return Trajectory(
         t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=states[:, 0], delta=states[:, 1],
-        wedge=pump.wedge(betas), inlet_pressure=pump.inlet_pressure(betas),
+        wedge=pump.wedge(betas),
+        inlet_pressure=np.asarray(columns["inlet_pressure"], float) if "inlet_pressure" in columns
+        else pump.inlet_pressure(betas),
         chamber_pressure=pump.chamber_pressure(betas), load=np.column_stack([-f, np.zeros_like(f)]),
         **{name: np.asarray(columns[name], float) for name in SAMPLE_COLUMNS},
         status=status, message=message, rupture_beta=math.nan if status == "completed" else float(rupture_beta),
