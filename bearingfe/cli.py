@@ -15,7 +15,8 @@ traceback; warnings print as one-line notes. Text from input files (titles)
 is printed with control characters escaped. ``run`` writes into a hidden
 work folder inside ``DIR`` and moves the files into place only when
 everything is written; it replaces only the files of a previous run and
-locks ``DIR`` against a second run (:mod:`bearingfe.io.outfolder`).
+locks ``DIR`` against a second run (:mod:`bearingfe.io.outfolder`); ``sweep``
+follows the same rules.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ import re
 import shutil
 import signal
 import sys
-import tempfile
+from .core.tempdirs import private_tempdir
 import threading
 import warnings
 from pathlib import Path
@@ -72,6 +73,8 @@ def _parser() -> argparse.ArgumentParser:
     sweep.add_argument("study", type=Path, help="study file, e.g. studies/pocket_study.toml")
     sweep.add_argument("--out", type=Path, required=True, help="output directory (results, cache)")
     sweep.add_argument("--scheduler", default=None, help="Dask scheduler tcp://HOST:8786 or local[:N]")
+    sweep.add_argument("--force", action="store_true", help="write into DIR even if it holds files and no "
+                       "previous bearingfe output (those files are kept)")
     sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
 
@@ -128,26 +131,28 @@ def _sigterm_exits():
 
 
 def _sweep(args) -> int:
-    """``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]``.
+    """``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS] [--force]``.
 
     Writes ``DIR/results.csv`` (the table, headers with units), ``DIR/best.json``
     (the best design) and ``DIR/cache/`` (per-case records: rerunning resumes).
-    A case whose film closes is a result of the study: ``status`` "ruptured"
-    in the table, counted on the summary line. Exit code 0 if no case failed
-    for another reason, 1 if some did (they are in the table, ``status``
-    "failed"), 2 if the study file is invalid or no case completed.
+    ``DIR`` follows the rules of ``run --out`` (:mod:`bearingfe.io.outfolder`):
+    the table and the best design replace only a previous sweep's, a folder
+    with other files needs ``--force``; the cache folder is written as cases
+    finish (a killed sweep resumes). A case whose film closes is a result of
+    the study: ``status`` "ruptured" in the table, counted on the summary line.
+    Exit code 0 if no case failed for another reason, 1 if some did (they are
+    in the table, ``status`` "failed"), 2 if the study file is invalid or no
+    case completed.
     """
-    from .io.writers import atomic_path, write_json
-    from .io.outfolder import lock_folder
-    from .sweep import best_design, csv_headers, read_study, sweep
+    from .io.outfolder import output_folder
+    from .io.writers import write_json
+    from .sweep import CACHE_FILES, best_design, csv_headers, read_study, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
     out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise NotADirectoryError(f"--out {out}: exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
-    with lock_folder(out):  # a second sweep into the same folder fails at once
-        _remove_temporaries(out)
+    no_best = None
+    with output_folder(out, force=args.force, keep=[args.study], own={"cache": CACHE_FILES}) as work:
+        _remove_temporaries(out / "cache")
         client = _client_for(args.scheduler) if args.scheduler else None
         try:
             table = sweep(study.base, study.changes, study.outputs, run=study.run, client=client,
@@ -158,15 +163,20 @@ def _sweep(args) -> int:
                 client.close()
                 if cluster is not None:
                     cluster.close()
-        with atomic_path(out / "results.csv") as tmp:
-            table.rename(columns=csv_headers(table.columns, study.run)).to_csv(tmp, index=False)
-        counts = table["status"].value_counts()
-        failed, ruptured = int(counts.get("failed", 0)), int(counts.get("ruptured", 0))
-        print(f"{_printable(study.name)}: {len(table)} cases: {int(counts.get('completed', 0))} completed, "
-              f"{ruptured} ruptured (the film closed: a result, status 'ruptured' in the table), {failed} failed; "
-              f"{int(table['cached'].sum())} from cache; table in {_printable(out / 'results.csv')}")
-        best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
-        write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
+        table.rename(columns=csv_headers(table.columns, study.run)).to_csv(work / "results.csv", index=False)
+        try:
+            best = best_design(table, study.objective, study.sense)
+        except ValueError as exc:  # no case succeeded: the table is still written
+            no_best = exc
+        else:
+            write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, work / "best.json")
+    counts = table["status"].value_counts()
+    failed, ruptured = int(counts.get("failed", 0)), int(counts.get("ruptured", 0))
+    print(f"{_printable(study.name)}: {len(table)} cases: {int(counts.get('completed', 0))} completed, "
+          f"{ruptured} ruptured (the film closed: a result, status 'ruptured' in the table), {failed} failed; "
+          f"{int(table['cached'].sum())} from cache; table in {_printable(out / 'results.csv')}")
+    if no_best is not None:
+        raise no_best
     changed = table.columns[:table.columns.get_loc("seconds")]
     headers = csv_headers(list(changed), study.run)  # "name [unit]" where the unit is known
     print(f"best ({study.sense} {study.objective}): "
@@ -175,18 +185,15 @@ def _sweep(args) -> int:
     return 1 if failed else 0
 
 
-_TEMPORARIES = {".": re.compile(r"\.(results|best)\.[A-Za-z0-9_]{8}\.(csv|json)"),
-                "cache": re.compile(r"\.[0-9a-f]{24}\.json\.tmp")}
+def _remove_temporaries(cache: Path) -> None:
+    """Remove record temporaries a killed sweep left in its cache folder (names only the package makes)."""
+    if cache.is_dir() and not cache.is_symlink():
+        for path in cache.iterdir():
+            if _CACHE_TEMPORARY.fullmatch(path.name) and path.is_file() and not path.is_symlink():
+                path.unlink()
 
 
-def _remove_temporaries(out: Path) -> None:
-    """Remove temporary files a killed sweep left in ``out`` (names only the package's writers make)."""
-    for sub, pattern in _TEMPORARIES.items():
-        folder = out / sub
-        if folder.is_dir():
-            for path in folder.iterdir():
-                if pattern.fullmatch(path.name) and path.is_file() and not path.is_symlink():
-                    path.unlink()
+_CACHE_TEMPORARY = re.compile(r"\.[0-9a-f]{24}\.json\.tmp")
 
 
 def _client_for(scheduler: str):
@@ -291,7 +298,7 @@ def _mesh(args) -> int:
     out.parent.mkdir(parents=True, exist_ok=True)
     # gmsh writes into a private temporary folder (the system's: a kill during meshing leaves nothing next to
     # --out); only the checked result is copied to a temporary name beside --out and renamed onto it
-    with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+    with private_tempdir("mesh") as work:
         made = Path(work) / out.name
         run_geo(geo, made, size=args.size, order=args.order, trusted=args.trust_geo, timeout=args.geo_timeout,
                 max_elements=args.max_elements)

@@ -50,7 +50,7 @@ from types import MappingProxyType
 from typing import Callable, Mapping
 
 from .cavitation import CAVITATION, MODELS, ModelOptions, solve_model
-from .core.checks import ResolutionWarning, check_operating_point, check_resolution
+from .core.checks import ResolutionWarning, check_operating_point, note_resolution
 from .core.linalg import DEFAULT_SOLVER, Factorize
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 from .elastic import Compliance, compliance_on, solve_elastic
@@ -114,9 +114,7 @@ def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization:
     sup = superpose(mesh, film, formulation=discretization.formulation, element=discretization.element,
                     solver=discretization.solver, on_indefinite=on_indefinite)
     result = solve_model(sup, operating.weights, cavitation, options)
-    # the thin film's resolution (a smooth film's check: the finite-volume path's films may have steps)
-    unresolved = check_resolution(mesh, film, stacklevel=4)
-    return result if unresolved is None else dataclasses.replace(result, notes=(*result.notes, unresolved))
+    return note_resolution(result, mesh, film, stacklevel=4)  # each path notes its film's resolution
 
 
 def _rigid_finite_volume(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
@@ -277,12 +275,13 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     Raises
     ------
     ValueError
-        A bad argument, e.g. ``|inlet_pressure| > 1e12``
-        (:func:`bearingfe.core.checks.check_operating_point`).
+        A bad argument, e.g. ``|inlet_pressure| > 1e12`` or ``cavitation_pressure``
+        outside ``[-1e6, 0]`` (:func:`bearingfe.core.checks.check_operating_point`, which every
+        path calls, the finite-volume, elastic and finite-difference solvers too).
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    check_operating_point(wedge, squeeze, inlet_pressure)
+    check_operating_point(wedge, squeeze, inlet_pressure, cavitation_pressure)
     operating = OperatingPoint(wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure, sliding=sliding)
     discretization = Discretization(element=element, formulation=formulation, solver=solver)
     if inlet_pressure != 0.0 and not mesh.has_inlet:

@@ -446,6 +446,16 @@ squeezing the film) is no answer here: on the plain shoe its film closes just af
 centre, because without the squeeze of the returning surfaces nothing slows the spring-back.
 
 {_real_shoe_section(data)}
+## Range of validity
+
+The compliances are linear small-strain elasticity. Every elastic solve (`solve_reynolds(elastic=)`,
+`solve_elastic`) and every elastic transient (`simulate(elastic=)`, `simulate_elastic`) checks its
+answer (`bearingfe.core.checks.check_elastic`): a largest film pressure above 1 % of the contact
+modulus `E*` (the strain `p/E*`) or a deflection above 1 % of the radius `R0` is an
+`OutOfRangeError` naming both numbers, and a deflection above 10 clearances is noted (a warning and
+the result's `notes`, or the trajectory's message). A mistyped modulus (`E* = 1e6 Pa` on a steel shoe)
+used to give films thousands of clearances thick without a word.
+
 ## Validation
 
 Half-space deflection under a uniform {lv['pressure_Pa'] / 1e6:.0f} MPa on the 60 x 40 mm shoe against Love's closed form

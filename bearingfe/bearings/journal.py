@@ -127,7 +127,7 @@ class JournalBearing:
     Parameters
     ----------
     length_ratio : float
-        ``L/D`` [-], in (0, 4].
+        ``L/D`` [-], in [0.001, 4].
     pads : tuple of (float, float) or None
         ``None``: full 360-degree film starting at the line of largest film
         (Raimondi-Boyd). Otherwise arcs ``(start, end)`` [rad] in the
@@ -153,8 +153,9 @@ class JournalBearing:
     periodic: bool = False
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.length_ratio) and 0 < self.length_ratio <= 4):
-            raise ValueError(f"length_ratio (L/D) must be in (0, 4], got {self.length_ratio!r}")
+        if not (math.isfinite(self.length_ratio) and 1e-3 <= self.length_ratio <= 4):
+            raise ValueError(f"length_ratio (L/D) must be in [0.001, 4] (shorter films are the short-bearing limit; "
+                             f"1e-300 made a degenerate outline), got {self.length_ratio!r}")
         if self.pads is not None:
             pads = tuple((float(a), float(b)) for a, b in self.pads)
             for a, b in pads:
@@ -347,18 +348,22 @@ def structured_journal_mesh(bearing: JournalBearing, size: float, *, min_size: f
     min_size = default_min_size(size, eps) if min_size is None else float(min_size)
     if not (math.isfinite(min_size) and 0 < min_size <= size):
         raise ValueError(f"min_size must be in (0, size = {size}], got {min_size!r}")
-    phis = _graded_columns(2 * math.pi, size, min_size, eps)
     a = bearing.half_width
-    zs = np.linspace(-a, a, max(2, math.ceil(2 * a / size - 1e-9)) + 1)
+    rows = max(2, math.ceil(2 * a / size - 1e-9))
+    phis = _graded_columns(2 * math.pi, size, min_size, eps, rows)
+    zs = np.linspace(-a, a, rows + 1)
     return _named_rectangle(skfem.MeshTri1.init_tensor(phis, zs), bearing.surfaces()[0], (0.0, 2 * math.pi), a)
 
 
-def _graded_columns(length: float, size: float, min_size: float, eps: float) -> np.ndarray:
+def _graded_columns(length: float, size: float, min_size: float, eps: float, rows: int = 1) -> np.ndarray:
     """Column edges on ``[0, length]`` with widths about ``clip(size sqrt(1 + eps cos phi), min_size, size)``:
-    equidistribution of the width function (its inverse integrated on a fine grid, then split evenly)."""
+    equidistribution of the width function (its inverse integrated on a fine grid, then split evenly).
+    The ``2 columns rows`` triangles are checked against the element limit before any is made."""
     x = np.linspace(0.0, length, 4097)
     width = np.clip(size * np.sqrt(np.maximum(1.0 + eps * np.cos(x), 0.0)), min_size, size)
     count = np.concatenate([[0.0], np.cumsum(0.5 * (1 / width[1:] + 1 / width[:-1]) * np.diff(x))])
+    check_element_count(2.0 * count[-1] * rows, what=f"a structured journal mesh of size = {size:g}, "
+                                                     f"min_size = {min_size:g}")
     n = max(2, math.ceil(count[-1] - 1e-9))
     phis = np.interp(np.linspace(0.0, count[-1], n + 1), count, x)
     phis[0], phis[-1] = 0.0, length
@@ -725,7 +730,16 @@ def _short_eps(load: float, a: float) -> float:
     def f(e):
         return np.hypot(*short_bearing_force(e, a)) - load
     if f(0.99) < 0:
+        capacity = load + f(EPS_MAX)
+        if load > 2.0 * capacity:  # the short bearing overestimates a finite one: this load needs eps > EPS_MAX
+            raise ValueError(f"load: magnitude {load:.3g} (non-dimensional) is more than twice what the short-bearing "
+                             f"estimate carries at eccentricity {EPS_MAX} ({capacity:.3g}): the film would close; "
+                             f"give a smaller load (or a larger speed, viscosity or bearing)")
         return 0.99
+    if f(1e-9) >= 0:  # brentq would answer "f(a) and f(b) must have different signs"
+        raise ValueError(f"load: magnitude {load:.3g} (non-dimensional) is below what the bearing carries at "
+                         f"eccentricity 1e-9 ({load + f(1e-9):.3g}): the journal sits centred to round-off; "
+                         f"give a larger load")
     return float(brentq(f, 1e-9, 0.99))
 
 
@@ -881,6 +895,9 @@ def _check_structured(bearing: JournalBearing, structured, rupture_size, size, c
     if not (isinstance(rupture_size, (int, float)) and not isinstance(rupture_size, bool)
             and math.isfinite(rupture_size) and 0 < rupture_size <= size):
         raise ValueError(f"rupture_size must be in (0, size = {size}], got {rupture_size!r}")
+    # the refined band along the front (about the bearing's width 2a long): each level of element size d adds
+    # a band about 1.5 d wide of 2.31 / d^2 triangles per unit area, 7 a / d; the levels sum to about 14 a / d
+    check_element_count(14.0 * bearing.half_width / rupture_size, what=f"rupture_size = {rupture_size:g}")
 
 
 @dataclass(frozen=True)

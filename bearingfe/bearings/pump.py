@@ -62,6 +62,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..geometry.surface import Surface
+from ..core.checks import check_pressure_pa
 from ..core.machine import Drive, Material
 from ..elastic.shoe import ShoeBody
 from .hydrostatic import PrescribedPressure, Restrictor, Supply
@@ -187,8 +188,8 @@ class PressureCycle:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise ValueError(f"PressureCycle.{name} must be a finite number, got {v!r}")
             object.__setattr__(self, name, float(v))
-        if self.suction < 0:
-            raise ValueError(f"PressureCycle.suction must be >= 0 Pa, got {self.suction}")
+        for name in ("discharge", "suction"):
+            check_pressure_pa(getattr(self, name), f"PressureCycle.{name}")
         if self.discharge < self.suction:
             raise ValueError(f"PressureCycle.discharge must be >= suction ({self.suction} Pa), got {self.discharge}")
         for name in ("compression", "decompression"):
@@ -216,6 +217,11 @@ class PressureCycle:
 
 #: Structural steel: E = 210 GPa, nu = 0.3, 7850 kg/m^3 (the default of both film surfaces).
 STEEL = Material("steel", 210e9, density=7850.0, poisson_ratio=0.3)
+
+#: Lengths of :class:`EccentricPump` as multiples of its radius ``R0``: ``(smallest, largest)`` [-]. Outside,
+#: the kinematics (``(E2 / E)^2``, ``d^2``) leave floating point: 1e-300 or 1e300 m answered with errno 34.
+PROPORTIONS = {"eccentricity": (1e-6, 1e2), "pivot_distance": (1e-6, 1e12), "plunger_diameter": (1e-6, 1e3)}
+
 
 @dataclass(frozen=True)
 class EccentricPump:
@@ -291,6 +297,11 @@ class EccentricPump:
         for n in ("eccentricity", "pivot_distance", "radius", "clearance", "plunger_diameter", "viscosity"):
             object.__setattr__(self, n, positive(f"{own}.{n}", getattr(self, n)))
         object.__setattr__(self, "preload", nonnegative(f"{own}.preload", self.preload, "N"))
+        for n, (lo, hi) in PROPORTIONS.items():
+            ratio = getattr(self, n) / self.radius
+            if not lo <= ratio <= hi:
+                raise ValueError(f"{own}.{n} must be {lo:g} to {hi:g} times the radius ({self.radius:g} m), got "
+                                 f"{getattr(self, n)!r} m ({ratio:.3g} x radius; the kinematics leave floating point)")
         if self.pivot_distance <= self.eccentricity + self.radius:
             raise ValueError(f"{own}.pivot_distance must exceed eccentricity + radius "
                              f"({self.eccentricity + self.radius} m), got {self.pivot_distance}")

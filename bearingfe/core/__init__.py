@@ -10,6 +10,7 @@ module            what it does
 ``machine``       The drive and the materials every machine shares (SI, frozen, validated).
 ``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
+``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
 ================  ============================================================
 """
 

@@ -16,6 +16,8 @@ name              default    what                                           chec
 ``compliance``    4000       film dofs of a dense compliance (elastic        ``half_space``,
                              support): memory and time grow as n^2 and n^3   ``simulate_elastic``,
                                                                              the coupled solves
+``samples``       100000     output samples of one transient run             ``simulate``,
+                             (``points_per_revolution x revolutions``)       ``simulate_elastic``
 ================  =========  =============================================  ============================
 
 Raise a limit for one call with the function's keyword (``simulate(...,
@@ -37,7 +39,7 @@ __all__ = ["DEFAULT_LIMITS", "LimitError", "check_limit", "limit"]
 #: Default limits by name (see the module table).
 DEFAULT_LIMITS: Mapping[str, float] = MappingProxyType({
     "revolutions": 100, "frames": 1000, "cases": 10_000, "elements": 1_000_000, "case_seconds": 3600,
-    "compliance": 4000,
+    "compliance": 4000, "samples": 100_000,
 })
 
 

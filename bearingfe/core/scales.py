@@ -22,7 +22,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Scale"]
+__all__ = ["MIN_CLEARANCE_RATIO", "Scale"]
+
+#: Smallest clearance ratio ``c / R0`` [-]: below it the scales (``R0^2 / c^2``) leave the range of floating
+#: point (``c = 1e-300`` m gave "float division by zero", ``D = 1e15`` m degenerate film outlines).
+MIN_CLEARANCE_RATIO = 1e-7
 
 
 @dataclass(frozen=True)
@@ -54,6 +58,18 @@ class Scale:
             object.__setattr__(self, name, value)
         if self.clearance >= self.radius:
             raise ValueError(f"Scale.clearance must be smaller than radius ({self.radius} m), got {self.clearance}")
+        if not self.clearance >= MIN_CLEARANCE_RATIO * self.radius:
+            raise ValueError(f"Scale.clearance must be at least {MIN_CLEARANCE_RATIO:g} of the radius "
+                             f"({self.radius:g} m; real bearings have c/R of 1e-4 or more), got {self.clearance!r}")
+        for name in ("pressure", "force", "flow", "moment", "power"):
+            try:
+                value = getattr(self, name)
+            except (OverflowError, ZeroDivisionError):  # float ** overflows with an error, not to inf
+                value = math.inf
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"Scale: radius = {self.radius:g} m, clearance = {self.clearance:g} m, viscosity = "
+                                 f"{self.viscosity:g} Pa s and speed = {self.speed:g} rad/s give a {name} scale of "
+                                 f"{value!r}, not a finite number > 0: the inputs are out of scale")
 
     @property
     def pressure(self) -> float:

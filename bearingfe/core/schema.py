@@ -402,6 +402,10 @@ def build(label: str, section: str, factory: Callable, /, *args, **kwargs):
         raise SchemaError(f"{_where(label, section)} {exc}" if section else f"{label}: {exc}") from None
 
 
+#: Largest input (TOML) file read [bytes]: scene, mechanism and study files are a few kilobytes.
+MAX_TOML_BYTES = 1 << 20
+
+
 def read_toml(path: str | Path, what: str = "file") -> tuple[dict, str]:
     """Parse a TOML file; returns ``(data, label)`` with the file's name as label.
 
@@ -413,6 +417,9 @@ def read_toml(path: str | Path, what: str = "file") -> tuple[dict, str]:
     if not path.is_file():
         raise SchemaError(f"{what} not found: {path}")
     try:
+        if path.stat().st_size > MAX_TOML_BYTES:
+            raise SchemaError(f"{label}: the {what} is {path.stat().st_size} bytes, more than the "
+                              f"{MAX_TOML_BYTES} an input file of this package may have")
         return tomllib.loads(path.read_text(encoding="utf-8")), label
     except OSError as exc:
         raise SchemaError(f"cannot read {what} {path}: {exc}") from None
@@ -420,6 +427,9 @@ def read_toml(path: str | Path, what: str = "file") -> tuple[dict, str]:
         raise SchemaError(f"{label}: not valid TOML (not UTF-8 text): {exc}") from None
     except tomllib.TOMLDecodeError as exc:
         raise SchemaError(f"{label}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise SchemaError(f"{label}: arrays or tables nested too deeply to read (a {what} needs a few levels)") \
+            from None
 
 
 # -- design limits ([limits] of a scene) -----------------------------------------------

@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 import skfem
 
 from .compliance import Compliance, check_dense_size, combined_modulus
+from ..core.limits import LimitError, check_limit
 from .half_space import half_space
 from ..core.machine import Material
 from ..core.scales import Scale
@@ -89,7 +90,9 @@ def block_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, thickness:
     if not (math.isfinite(h) and h > 0):
         raise ValueError(f"size must be a finite element size > 0 [R0], got {size!r}")
     lo, hi = mesh.mesh.p.min(axis=1) - margin / scale.radius, mesh.mesh.p.max(axis=1) + margin / scale.radius
-    axes = [np.linspace(lo[k], hi[k], max(2, int(math.ceil((hi[k] - lo[k]) / h))) + 1) for k in range(2)]
+    counts = [max(2, int(math.ceil((hi[k] - lo[k]) / h))) for k in range(2)]
+    _check_body_size(counts, thickness / scale.radius, h, basis2.N)
+    axes = [np.linspace(lo[k], hi[k], counts[k] + 1) for k in range(2)]
     zs = _graded(thickness / scale.radius, 2 * h, h / 2)
     body = skfem.MeshTet.init_tensor(axes[0], axes[1], zs)
     lam, mu = lame_parameters(1.0, shoe.poisson_ratio)  # E = 1: displacements scale with 1/E
@@ -118,6 +121,26 @@ def block_compliance(mesh: SupportMesh, scale: Scale, shoe: Material, thickness:
     opening = -np.asarray(uz)[2 * n:3 * n] if uz.shape[0] == 3 * n else -np.asarray(uz)
     return body_compliance(mesh, scale, shoe, opening[:, :-1], opening[:, -1], model="body", element=element,
                            counterpart=counterpart, start=start)
+
+
+def _check_body_size(counts: list[int], depth: float, h: float, n_film: int) -> None:
+    """Refuse a block body too large to build, before any of it is made.
+
+    ``counts`` are its cells along phi and z, ``depth`` its thickness [R0]
+    (layers about ``2 h`` thick, :func:`_graded`), ``n_film`` the film dofs.
+    The body has 6 tetrahedra per cell (the ``elements`` limit of
+    :mod:`bearingfe.core.limits`) and a dense block of ``3 nodes x (n_film + 1)``
+    displacements (at most ``16 x compliance^2`` numbers: 2 GB at the default).
+    """
+    layers = depth / (2 * h) + 8  # the geometric start from h / 2 adds a few layers
+    cells = float(counts[0]) * float(counts[1]) * layers
+    try:
+        check_limit("elements", 6 * cells)
+        dense = 3.0 * (counts[0] + 1) * (counts[1] + 1) * (layers + 1) * (n_film + 1)
+        check_limit("compliance", math.sqrt(dense / 16.0))
+    except LimitError as exc:
+        raise LimitError(f"the block body ({counts[0]} x {counts[1]} x {layers:.3g} cells of size {h:.3g} R0, "
+                         f"thickness {depth:.3g} R0; {n_film} film dofs): {exc}") from None
 
 
 def _film_face_probe(basis2, mesh: SupportMesh, pts: np.ndarray):

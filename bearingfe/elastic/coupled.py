@@ -31,6 +31,7 @@ from skfem import BilinearForm
 
 from .compliance import MAX_ITERATIONS, TOLERANCE, Compliance, ElasticError, check_dense_size
 from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
+from ..core.checks import check_elastic, check_operating_point, note_resolution
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..film import Film, operators, source_weights, superpose
@@ -398,6 +399,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     _check_compliance(compliance, mesh, element)
     if cavitation not in MODELS:
         raise ValueError(f"cavitation must be one of {tuple(MODELS)}, got {cavitation!r}")
+    check_operating_point(wedge, squeeze, inlet_pressure)
     weights = source_weights(wedge, squeeze, inlet_pressure)
     ops = operators(mesh, element)
     basis = ops.basis
@@ -425,9 +427,19 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
     out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations)
     result = dataclasses.replace(out.payload, deflection=out.deflection, elastic_iterations=out.iterations)
+    result = _checked(result, out.deflection, compliance, mesh, film)
     return ElasticSolution(result=result, deflection=out.deflection, iterations=out.iterations,
                            residual=out.residual, max_deflection=float(out.deflection.max(initial=0.0)),
                            rigid_h_min=solve_rigid_h_min(film, basis), history=out.history)
+
+
+def _checked(result, deflection: np.ndarray, compliance: Compliance, mesh: SupportMesh, film: Film):
+    """The elastic result within linear elasticity (:func:`bearingfe.core.checks.check_elastic`), with
+    notes on a large deflection and on the rigid film's resolution."""
+    note = check_elastic(deflection, result.pressure, compliance.scale, compliance.modulus)
+    if note is not None:
+        result = dataclasses.replace(result, notes=(*result.notes, note))
+    return note_resolution(result, mesh, film, stacklevel=4)
 
 
 def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool = False) -> np.ndarray:

@@ -46,7 +46,6 @@ on the pocket's load, confined to that edge).
 from __future__ import annotations
 
 import math
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -63,6 +62,7 @@ from .block import body_compliance
 from .compliance import Compliance, check_dense_size
 from ..geometry.geofiles import GeometryFileError, check_element_count, geo_timeout_limit, run_gmsh_worker
 from ..core.machine import Material
+from ..core.tempdirs import private_tempdir
 from ..core.schema import nonnegative, positive
 from ..geometry.meshing import SupportMesh
 from ..core.scales import Scale
@@ -281,7 +281,7 @@ def mesh_shoe(surface, radius: float, body: ShoeBody, size: float, *, film_size:
     geometry = dict(a1=a1, a2=a2, half_width=hw, thickness=t, back=body.back, seat=seat,
                     lining=body.lining_thickness / radius, size=size, film_size=film_size, grading=grading,
                     face="plane" if flat_film else "bore")
-    with tempfile.TemporaryDirectory(prefix="bearingfe-shoe-") as work:
+    with private_tempdir("shoe") as work:
         out = Path(work) / "shoe.json"
         result = run_gmsh_worker(dict(task="shoe", out=str(out), geometry=geometry), work, seconds, "shoe body",
                                  slow="a very fine mesh?", how="timeout=", ended="gmsh stopped")

@@ -56,6 +56,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..core.checks import check_operating_point
+from ..core.limits import LimitError, check_limit
 from .forms import film_flux
 from .thickness import is_smooth
 from ..geometry.surface import Surface
@@ -327,6 +328,16 @@ def _make_grid(surface: Surface, n_phi: int, n_z: int) -> _Grid:
         raise ValueError(f"surface must be a bearingfe.Surface, got {type(surface).__name__}")
     if not surface.is_rectangular:
         raise ValueError("surface.outer must be None: the FD solver supports only the rectangular outline")
+    if surface.recesses:
+        raise ValueError("surface.recesses: the FD solver does not model recesses (film steps); solve with "
+                         "solve_reynolds (finite volumes) instead")
+    if surface.periodic:
+        raise ValueError("surface.periodic: the FD solver does not model a periodic seam (its arc ends are held "
+                         "at 0); solve with solve_reynolds (finite volumes) instead")
+    try:
+        check_limit("elements", n_phi * n_z)
+    except LimitError as exc:
+        raise LimitError(f"shape = ({n_phi}, {n_z}) of the FD grid: {exc}") from None
     (a1, a2), a = surface.arc, surface.half_width
     phi, z = np.linspace(a1, a2, n_phi), np.linspace(-a, a, n_z)
     pocket = surface.in_pocket(phi[None, :], z[:, None])

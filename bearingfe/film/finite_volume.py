@@ -67,6 +67,7 @@ import scipy.sparse as sp
 
 from .thickness import Film
 from .forms import load, weighted_laplace
+from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
@@ -783,6 +784,7 @@ def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitatio
     values = [float(wedge), *sq, float(inlet_pressure), float(cavitation_pressure)]
     if not np.all(np.isfinite(values)):
         raise ValueError(f"wedge, squeeze, inlet_pressure and cavitation_pressure must be finite, got {values}")
+    check_operating_point(wedge, sq, inlet_pressure, cavitation_pressure)
     if inlet_pressure != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
     if cavitation_pressure > min(0.0, inlet_pressure):
@@ -959,8 +961,10 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     p = np.where(free, unk.S @ sol.p, p_fixed)
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
-    return _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
-                   cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
+    result = _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
+                     cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
+    # a static solve notes its film's resolution (the smooth film: recess steps lie on element edges)
+    return result if dt is not None else note_resolution(result, mesh, film, stacklevel=3)
 
 
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,

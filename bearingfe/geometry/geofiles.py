@@ -37,13 +37,13 @@ import os
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..core.tempdirs import private_tempdir
 from ..core.limits import DEFAULT_LIMITS, LimitError, limit
 from .errors import GeometryFileError, UntrustedGeoError
 from .geo_parser import MAX_GEO_BYTES, GeoModel, Work, parse_geo
@@ -197,15 +197,11 @@ def read_msh(path: str | Path) -> MeshData:
         raise GeometryFileError(
             f"{path.name} is not a gmsh mesh file (it does not start with $MeshFormat); a .geo script must "
             f"be named .geo to be meshed (and it is checked before it runs)")
-    import meshio
-
-    try:
-        m = meshio.read(path, file_format="gmsh")
-    except Exception as exc:  # noqa: BLE001 - any parser failure is a bad file
-        raise GeometryFileError(f"{path.name}: not a readable gmsh mesh file ({_short(exc)})") from None
+    m = _meshio_read(path)
     points = np.asarray(m.points, dtype=float)
     if points.ndim != 2 or points.shape[0] == 0 or not np.all(np.isfinite(points)):
         raise GeometryFileError(f"{path.name}: node coordinates missing or not finite")
+    _check_planar(points, path.name)
     tri = [(k, c.data) for k, c in enumerate(m.cells) if c.type in ("triangle", "triangle6")]
     kinds = {m.cells[k].type for k, _ in tri}
     if not tri:
@@ -219,6 +215,42 @@ def read_msh(path: str | Path) -> MeshData:
         if arr.size and (arr.min() < 0 or arr.max() >= n):
             raise GeometryFileError(f"{path.name}: elements refer to nodes that do not exist")
     return MeshData(points=np.ascontiguousarray(points[:, :2].T), triangles=triangles, curves=curves)
+
+
+def _meshio_read(path: Path):
+    """meshio's gmsh reader, its failures (exceptions, ``sys.exit``, messages on the terminal) as one error.
+
+    meshio answers some malformed files with ``sys.exit(1)`` after printing;
+    that must not end the caller's process, and library code prints nothing.
+    """
+    import contextlib
+    import io
+
+    import meshio.gmsh
+
+    said = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
+            return meshio.gmsh.read(str(path))
+    except (Exception, SystemExit) as exc:  # noqa: BLE001 - any parser failure is a bad file
+        detail = _short(exc) if not isinstance(exc, SystemExit) else (_short(said.getvalue()) or "parse error")
+        raise GeometryFileError(f"{path.name}: not a readable gmsh mesh file ({detail})") from None
+
+
+def _check_planar(points: np.ndarray, name: str) -> None:
+    """Refuse nodes off the plane z = 0: a support surface is the flat ``(phi, z)`` plane.
+
+    ``points`` has shape (n, 2 or 3); the third coordinate may differ from 0
+    by round-off only (1e-9 of the mesh's extent).
+    """
+    if points.shape[1] < 3:
+        return
+    extent = max(1.0, float(np.ptp(points[:, :2])))
+    off = np.abs(points[:, 2])
+    if off.max() > 1e-9 * extent:
+        k = int(np.argmax(off))
+        raise GeometryFileError(f"{name}: node {k} lies off the plane (third coordinate {points[k, 2]:.6g}); "
+                                f"a support-surface mesh is flat, (phi, z) with the third coordinate 0")
 
 
 def _named_curves(m) -> dict:
@@ -341,7 +373,7 @@ def run_geo(path: str | Path, out_msh: str | Path, *, size: float | None = None,
     else:
         model = read_geo(path, timeout=seconds)
         request.update(model=model.ops, factory=model.factory)
-    with tempfile.TemporaryDirectory(prefix="bearingfe-geo-") as work:
+    with private_tempdir("geo") as work:
         result = run_gmsh_worker(request, work, seconds, path.name,
                                  slow="a loop that does not end, or a very fine mesh?",
                                  how="timeout= (load_mesh), --geo-timeout (bearingfe mesh)",

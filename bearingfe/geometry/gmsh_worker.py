@@ -90,6 +90,13 @@ def _polyline(coords) -> float:
     return sum(math.dist(a, b) for a, b in zip(pts, pts[1:]))
 
 
+def _failure(gmsh, exc: Exception) -> str:
+    """gmsh's last error message, else the exception's, else what the exception was: never empty."""
+    errors = [m for m in gmsh.logger.get() if m.startswith("Error")]
+    text = " ".join((errors[-1] if errors else str(exc)).split())[:300]
+    return text or f"{type(exc).__name__} without a message (no error was logged by gmsh)"
+
+
 def _geo_model() -> dict:
     """The namespace of ``geo_model.py`` beside this file (loaded by path: the child imports no package)."""
     import runpy
@@ -132,8 +139,7 @@ def _run(request: dict, result: dict) -> None:
         gmsh.option.setNumber("Mesh.SaveAll", 0)  # elements of physical groups only, names kept
         gmsh.write(request["out"])
     except Exception as exc:  # noqa: BLE001 - reported to the parent
-        errors = [m for m in gmsh.logger.get() if m.startswith("Error")]
-        result["error"] = " ".join((errors[-1] if errors else str(exc)).split())[:300]
+        result["error"] = _failure(gmsh, exc)
     finally:
         gmsh.finalize()
 
@@ -266,8 +272,7 @@ def _shoe(request: dict, result: dict) -> None:
         with open(request["out"], "w") as f:
             json.dump(mesh, f)
     except Exception as exc:  # noqa: BLE001 - reported to the parent
-        errors = [m for m in gmsh.logger.get() if m.startswith("Error")]
-        result["error"] = " ".join((errors[-1] if errors else str(exc)).split())[:300]
+        result["error"] = _failure(gmsh, exc)
     finally:
         gmsh.finalize()
 

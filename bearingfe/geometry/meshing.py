@@ -16,7 +16,6 @@ import contextlib
 import functools
 import math
 import pickle
-import tempfile
 import threading
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,9 +27,10 @@ import skfem
 from .geofiles import (GeometryFileError, MeshData, check_element_count, estimate_triangles, max_elements_limit,
                        read_msh, run_geo)
 from .surface import Surface
+from ..core.tempdirs import private_tempdir
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
-           "check_triangles",
+           "check_triangles", "check_support_mesh",
            "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
@@ -73,6 +73,9 @@ class SupportMesh:
     source: str = "gmsh"
     refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        check_support_mesh(self.mesh, self.source)
 
     def __getstate__(self) -> dict:
         # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
@@ -140,6 +143,7 @@ def gmsh_session(verbose: bool = False) -> Iterator[object]:
     with _GMSH_LOCK:
         if not gmsh.isInitialized():
             gmsh.initialize(interruptible=False)
+            _reinstall_signal_handlers()
             try:
                 _quiet(gmsh, verbose)
                 yield gmsh
@@ -159,6 +163,27 @@ def gmsh_session(verbose: bool = False) -> Iterator[object]:
                 gmsh.model.setCurrent(current)
             for name, value in saved.items():
                 gmsh.option.setNumber(name, value)
+
+
+def _reinstall_signal_handlers() -> None:
+    """Put Python's handlers of SIGTERM, SIGINT and SIGHUP back at the C level.
+
+    ``gmsh.initialize()`` sets SIGTERM to its default action behind Python's
+    back, so a SIGTERM after meshing killed the process (exit 143) instead of
+    running the caller's handler (the command line's clean-up, exit 130).
+    Setting the handler Python already holds installs it again. Only the main
+    thread may set handlers (elsewhere there is nothing of Python's to restore).
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return
+    for name in ("SIGTERM", "SIGINT", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        handler = signal.getsignal(sig) if sig is not None else None
+        if handler is not None:
+            signal.signal(sig, handler)
 
 
 def _quiet(gmsh, verbose: bool) -> None:
@@ -337,7 +362,7 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
             size = _checked_size(size, "size")
         if order not in (1, 2):
             raise ValueError(f"order must be 1 or 2, got {order!r}")
-        with tempfile.TemporaryDirectory(prefix="bearingfe-mesh-") as work:
+        with private_tempdir("mesh") as work:
             msh = Path(work) / "mesh.msh"
             run_geo(path, msh, size=size, order=order, trusted=trusted, timeout=timeout, max_elements=limit)
             data = read_msh(msh)
@@ -411,10 +436,18 @@ def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size
     return max(sampled, estimate_triangles(surface.film_area, size))
 
 
+#: Range of element sizes [R0] (the surfaces are of order 1): beyond it the size estimates under- or overflow
+#: (1e-300 gave "float division by zero", 1e300 "Numerical result out of range"); sizes far inside it are
+#: refused by the element-count limit already.
+SIZE_RANGE = (1e-12, 1e6)
+
+
 def _checked_size(value: float, name: str) -> float:
+    """``float(value)`` if it is an element size in :data:`SIZE_RANGE` [R0], else a ValueError naming ``name``."""
     value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite element size > 0, got {value!r}")
+    if not (math.isfinite(value) and SIZE_RANGE[0] <= value <= SIZE_RANGE[1]):
+        raise ValueError(f"{name} must be a finite element size in [{SIZE_RANGE[0]:g}, {SIZE_RANGE[1]:g}] "
+                         f"(units of R0), got {value!r}")
     return value
 
 
@@ -630,6 +663,68 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
         raise GeometryFileError(
             f"{name}: {folded} inner edge(s) with both triangles on the same side (folded or overlapping "
             f"triangles); a mesh must cover each point of the surface once")
+
+
+#: Boundaries where the pressure is fixed (Dirichlet): the outline and the pockets.
+DIRICHLET = ("outer", "inlet")
+
+
+def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh") -> None:
+    """Refuse a mesh no solver can use, whoever built it (a file, gmsh, the API).
+
+    Parameters
+    ----------
+    mesh : skfem.MeshTri1 or skfem.MeshTri2
+        Nodes in the flat ``(phi, z)`` plane [-], with a boundary named ``outer``.
+    name : str
+        For the messages.
+
+    Raises
+    ------
+    bearingfe.geometry.geofiles.GeometryFileError
+        Not a triangle mesh, coordinates not 2-D or not finite, degenerate,
+        duplicated or overlapping triangles (:func:`check_triangles`), no
+        boundary named ``outer``, or a piece of the mesh (a connected
+        component) that touches no Dirichlet boundary (``outer``, ``inlet``):
+        its pressure would be fixed by round-off only.
+    """
+    if not isinstance(mesh, (skfem.MeshTri1, skfem.MeshTri2)):
+        raise GeometryFileError(f"{name}: a support mesh must be a scikit-fem MeshTri1 or MeshTri2, "
+                                f"got {type(mesh).__name__}")
+    p = np.asarray(mesh.p)
+    if p.ndim != 2 or p.shape[0] != 2:
+        raise GeometryFileError(f"{name}: node coordinates must be 2-D (phi, z), got shape {p.shape}")
+    if not np.all(np.isfinite(p)):
+        raise GeometryFileError(f"{name}: node coordinates are not finite")
+    nv = int(mesh.nvertices)
+    t = np.asarray(mesh.t[:3], dtype=np.int64)
+    check_triangles(p[:, :nv], t, name)
+    boundaries = mesh.boundaries or {}
+    if "outer" not in boundaries:
+        raise GeometryFileError(f"{name}: no boundary named 'outer' (the outline, where the pressure is fixed)")
+    _check_components(mesh, t, nv, boundaries, name)
+
+
+def _check_components(mesh: skfem.Mesh, t: np.ndarray, nv: int, boundaries: dict, name: str) -> None:
+    """Every connected piece of the mesh must touch a Dirichlet boundary (:data:`DIRICHLET`)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rows = np.concatenate([t[0], t[1], t[2]])
+    cols = np.concatenate([t[1], t[2], t[0]])
+    graph = coo_matrix((np.ones(rows.size), (rows, cols)), shape=(nv, nv))
+    count, label = connected_components(graph, directed=False)
+    if count == 1:
+        return
+    facets = np.concatenate([np.asarray(boundaries[b], dtype=np.int64) for b in DIRICHLET if b in boundaries])
+    fixed = np.unique(label[np.asarray(mesh.facets)[:, facets].ravel()]) if facets.size else np.zeros(0, int)
+    free = np.setdiff1d(np.unique(label[np.unique(t)]), fixed)
+    if free.size:
+        k = int(np.flatnonzero(label == free[0])[0])
+        raise GeometryFileError(
+            f"{name}: {free.size} detached piece(s) of the mesh touch no boundary where the pressure is fixed "
+            f"({' or '.join(DIRICHLET)}), e.g. the one with the node at ({mesh.p[0, k]:.6g}, {mesh.p[1, k]:.6g}); "
+            f"their pressure would be set by round-off: remove them or name their outline")
 
 
 def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows: int = 2) -> SupportMesh:

@@ -20,6 +20,7 @@ from typing import Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
+from ..core.checks import check_depth
 from ..core.schema import positive
 
 __all__ = [
@@ -339,7 +340,8 @@ class Recess:
     shape : Shape
         The region in ``(phi, z)``, strictly inside the outline.
     depth : float
-        Extra film thickness inside [-] (units of the clearance c), > 0.
+        Extra film thickness inside [-] (units of the clearance c), in
+        ``(0, 1e3]`` (:data:`bearingfe.core.checks.MAX_DEPTH`).
     """
 
     shape: Shape
@@ -348,7 +350,7 @@ class Recess:
     def __post_init__(self) -> None:
         if not isinstance(self.shape, Shape):
             raise ValueError(f"Recess.shape must be a shape (Circle, Ellipse, Polygon, Slot), got {self.shape!r}")
-        object.__setattr__(self, "depth", positive("Recess.depth", self.depth))
+        object.__setattr__(self, "depth", check_depth(self.depth, "Recess.depth"))
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,7 @@ Scene file::
     title = "..."                        # optional
     [bearing]
     diameter = 0.100                     # D [m]
-    length = 0.050                       # L [m]; L/D in (0, 4]
+    length = 0.050                       # L [m]; L/D in [0.001, 4]
     radial_clearance = 75e-6             # c [m]; 0 < c <= D/20
     pads = [[-60.0, 300.0]]              # optional [deg]; absent: full 360 (Raimondi-Boyd)
     supply_pressure = 1.0e5              # [Pa] in the grooves (needs grooves)
@@ -218,8 +218,8 @@ def _check_oil(op: dict, oil: dict | None, label: str) -> None:
 
 def _check_proportions(b: dict, label: str) -> None:
     ratio = b["length"] / b["diameter"]
-    if not ratio <= 4.0:
-        raise SchemaError(f"{label}: [bearing] length: L/D must be in (0, 4]; got L/D = {ratio:.4g}")
+    if not 1e-3 <= ratio <= 4.0:
+        raise SchemaError(f"{label}: [bearing] length: L/D must be in [0.001, 4]; got L/D = {ratio:.4g}")
     if not b["radial_clearance"] <= b["diameter"] / 20:
         raise SchemaError(f"{label}: [bearing] radial_clearance: must be in (0, diameter/20 = "
                           f"{b['diameter'] / 20:g}] m (a thin film, c/R <= 0.1); got {b['radial_clearance']!r}")

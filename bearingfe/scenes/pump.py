@@ -148,6 +148,8 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     path = Path(s["pump"]["mechanism"])
     if not path.is_absolute():
         path = (base_dir or Path.cwd()) / path
+    if path.suffix != ".toml":
+        raise SchemaError(f"{label}: [pump] mechanism: must name a mechanism file (.toml), got {path.name!r}")
     if not path.is_file():
         raise SchemaError(f"{label}: [pump] mechanism: file not found: {path}")
     if "deflection" in data.get("output", {}).get("pictures", ()) and not s["elastic"]["enabled"]:

@@ -22,6 +22,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import threading
 import time
 import warnings
@@ -34,7 +35,7 @@ from .cases import RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
 
-__all__ = ["CacheWarning", "STATUSES", "best_design", "case_key", "case_status", "estimated_elements", "run_case",
+__all__ = ["CACHE_FILES", "CacheWarning", "STATUSES", "best_design", "case_key", "case_status", "estimated_elements", "run_case",
            "run_case_timed", "sweep"]
 
 #: A case's ``status`` in the table: it ran; its film closed (a result: the design does not carry
@@ -162,6 +163,11 @@ def _record(future, outputs) -> dict:
 
 
 # -- cache -------------------------------------------------------------------------
+
+#: Names of the files a sweep writes into its cache folder: ``KEY.json`` records and their ``.KEY.json.tmp``
+#: temporaries (``KEY`` is :func:`case_key`, 24 hexadecimal digits).
+CACHE_FILES = re.compile(r"[0-9a-f]{24}\.json|\.[0-9a-f]{24}\.json\.tmp")
+
 
 class CacheWarning(UserWarning):
     """A cache record was not used (damaged, edited, of another version or design): the case is recomputed."""

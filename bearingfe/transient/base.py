@@ -38,16 +38,20 @@ from .trajectory import Trajectory
 __all__ = ["Model", "TrialRejected", "FilmClosed", "NoEquilibrium", "wrapped"]
 
 
-class TrialRejected(Exception):
-    """A trial step the model cannot take (message: why): the stepping loop retakes it shorter."""
+class TrialRejected(RuntimeError):
+    """A trial step the model cannot take (message: why): the stepping loop retakes it shorter.
+
+    A RuntimeError, so that one escaping the loop is a failed run, not a traceback."""
 
 
 class FilmClosed(TrialRejected):
     """A trial state of the integrator has ``h <= 0`` somewhere on the surface (args: the state)."""
 
 
-class NoEquilibrium(Exception):
-    """No film state carries the load at a trial state (message: where and why)."""
+class NoEquilibrium(RuntimeError):
+    """No film state carries the load at a trial state (message: where and why).
+
+    A RuntimeError, so that one escaping the stepping loop is a failed run, not a traceback."""
 
 
 def wrapped(d: np.ndarray) -> np.ndarray:

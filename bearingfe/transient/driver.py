@@ -8,11 +8,14 @@ settings (:class:`bearingfe.transient.settings.Integration`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
+import warnings
 
 import numpy as np
 
+from ..core.checks import OutOfRangeWarning, check_elastic
 from .base import Model
 from .periodic import LOOSE_ATOL, LOOSE_RTOL, PERIODIC_METHODS
 from .settings import Integration
@@ -71,7 +74,23 @@ def run_transient(model: Model, settings: Integration, *, balance_ratio: float) 
     solver_seconds = model.solver_seconds()
     stats.update(solver_seconds=seconds if solver_seconds is None else solver_seconds, dofs=float(model.dofs),
                  balance_ratio=balance_ratio, postprocess_seconds=time.perf_counter() - clock - seconds)
-    return make_trajectory(model.pump, beta0, betas, states, columns, status=output.status,
+    traj = make_trajectory(model.pump, beta0, betas, states, columns, status=output.status,
                            message=output.message, rupture_beta=output.rupture_beta, start=y0,
                            periodic_iterations=iterations, periodic_residual=residual, element=model.element,
                            stats=stats)
+    return _checked_elastic(traj, getattr(model, "compliance", None))
+
+
+def _checked_elastic(traj: Trajectory, compliance) -> Trajectory:
+    """An elastic run within linear elasticity (:func:`bearingfe.core.checks.check_elastic`): its largest
+    opening and pressure over the samples; a note on a large opening is warned and added to the message."""
+    if compliance is None or traj.max_deflection is None:
+        return traj
+    scale = compliance.scale
+    opening = np.asarray(traj.max_deflection, float) / scale.clearance  # [m] -> [c]
+    pressure = np.zeros(0) if traj.pressures is None else np.asarray(traj.pressures, float)
+    note = check_elastic(opening, pressure, scale, compliance.modulus)
+    if note is None:
+        return traj
+    warnings.warn(OutOfRangeWarning(note), stacklevel=3)
+    return dataclasses.replace(traj, message=f"{traj.message}; {note}" if traj.message else note)

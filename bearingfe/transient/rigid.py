@@ -35,6 +35,7 @@ from scipy.optimize import root
 
 from ..bearings.pump import EccentricPump
 from ..core import DEFAULT_SOLVER, Discretization
+from ..core.checks import MAX_GAMMA
 from ..core.parameters import takes
 from ..film import CosineFilm, Superposition, film_outputs, source_weights, superpose
 from ..geometry import SupportMesh, mesh_surface
@@ -151,7 +152,11 @@ class Rigid(Model):
     # -- film states -------------------------------------------------------------------------------
 
     def smallest_film(self, beta: float, y: np.ndarray) -> float:
-        """Smallest rigid film over the arc [c] (``gamma < 0`` read as 0)."""
+        """Smallest rigid film over the arc [c] (``gamma < 0`` read as 0; ``-inf`` beyond the thin-film
+        model, ``gamma > MAX_GAMMA``: a trial state a root finder strays to is not admissible, rather than
+        an error about the film object)."""
+        if not y[0] <= MAX_GAMMA:
+            return -math.inf
         return CosineFilm(max(y[0], 0.0), y[1]).minimum(self.phi_range)
 
     def superposition(self, gamma: float, delta: float) -> Superposition:

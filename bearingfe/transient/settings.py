@@ -20,7 +20,7 @@ from typing import Mapping
 import numpy as np
 import scipy.integrate as si
 
-from ..core import check_limit
+from ..core import LimitError, check_limit
 from .periodic import PERIODIC_METHODS
 from .trajectory import Trajectory
 
@@ -47,6 +47,10 @@ def positive(name: str, value) -> float:
                                        and math.isfinite(value) and value > 0):
         raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
     return float(value)
+
+
+#: Shortest run [revolutions]: 1e-300 revolutions made an integration span lost in round-off that never ended.
+MIN_REVOLUTIONS = 1e-6
 
 
 @dataclass(frozen=True)
@@ -118,6 +122,9 @@ class Integration:
         if isinstance(self.revolutions, bool) or not (isinstance(self.revolutions, (int, float))
                                                       and math.isfinite(self.revolutions) and self.revolutions > 0):
             raise ValueError(f"revolutions must be a finite number > 0, got {self.revolutions!r}")
+        if self.revolutions < MIN_REVOLUTIONS:  # a span lost in the start angle's round-off never ends
+            raise ValueError(f"revolutions must be a finite number > 0 and at least {MIN_REVOLUTIONS:g} (a shorter "
+                             f"run is a single state: use steady_state), got {self.revolutions!r}")
         check_limit("revolutions", self.revolutions, self.max_revolutions, "max_revolutions")
         set_(self, "start", _checked_start(self.start))
         if not (isinstance(self.beta0, (int, float)) and math.isfinite(self.beta0)):
@@ -136,6 +143,11 @@ class Integration:
         if not (isinstance(self.min_film, (int, float)) and 0 < self.min_film < 1):
             raise ValueError(f"min_film must be in (0, 1) clearances, got {self.min_film!r}")
         set_(self, "points_per_revolution", _count("points_per_revolution", self.points_per_revolution, 8))
+        try:
+            check_limit("samples", self.points_per_revolution * self.revolutions)
+        except LimitError as exc:
+            raise LimitError(f"points_per_revolution x revolutions = {self.points_per_revolution} x "
+                             f"{self.revolutions:g}: {exc}") from None
         if self.periodic_method is not None and self.periodic_method not in PERIODIC_METHODS:
             raise ValueError(f"periodic_method must be one of {tuple(PERIODIC_METHODS)}, got "
                              f"{self.periodic_method!r}")

@@ -148,7 +148,8 @@ def integrate(model, y0, angles: np.ndarray, settings) -> Run:
             break
         if stepper.status == "failed":
             run.stop("stalled", beta_old, y_old, f"integrator {settings.method} failed at {_degrees(beta_old)}: "
-                                                 f"{note}; stopped at the last accepted state")
+                                                 f"{_integrator_failure(note, settings)}; stopped at the last "
+                                                 f"accepted state")
             break
         run.steps += 1
         dense = stepper.dense_output()
@@ -198,3 +199,12 @@ def states_at(run: Run, angles: np.ndarray, y0) -> tuple[np.ndarray, np.ndarray]
         start, stop, dense = run.segments[k]
         states[i] = dense(min(max(b, start), stop))
     return betas, states
+
+
+def _integrator_failure(note, settings) -> str:
+    """The integrator's failure in the user's terms (scipy's text kept in brackets)."""
+    what = " ".join(str(note or "").split()) or "no reason given"
+    return (f"it could not take a step that meets rtol = {settings.rtol:g} (scipy: {what}); the run's inputs may "
+            f"be extreme (pressures, speeds, a very soft support), or try another method "
+            f"(method='BDF' or 'Radau'), a smaller max_step or a looser rtol")
+

@@ -169,17 +169,26 @@ def test_interrupted_run_keeps_previous_outputs_and_leaves_no_work_folder(tmp_pa
     monkeypatch.setattr(bearingfe.scenes, "run_scene", interrupted)
     assert _run(scene, out) == 130
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
-    # a work folder left by a killed run (it carries the package's mark) is removed by the next run;
-    # a hidden folder of the user's with a similar name is not
+    # a work folder left by a killed run (its mark names its own inode) is removed by the next run;
+    # a hidden folder of the user's with a similar name is not, nor one copied from elsewhere (mark of
+    # another inode) or one whose mark is not the package's
     stale = out / ".bearingfe-work-killed"
     stale.mkdir()
-    (stale / ".bearingfe-work").write_text("")
+    (stale / ".bearingfe-work").write_text(json.dumps({"inode": stale.stat().st_ino}))
     (stale / "summary.json").write_text("half")
     users = out / ".bearingfe-work-mine"
     users.mkdir()
+    copied = out / ".bearingfe-work-copied"
+    copied.mkdir()
+    (copied / ".bearingfe-work").write_text(json.dumps({"inode": stale.stat().st_ino}))
+    (copied / "data.csv").write_text("someone's")
+    plain = out / ".bearingfe-work-plain"
+    plain.mkdir()
+    (plain / ".bearingfe-work").write_text("")
     monkeypatch.undo()
     assert _run(scene, out) == 0
     assert not stale.exists() and users.is_dir()
+    assert (copied / "data.csv").read_text() == "someone's" and (plain / ".bearingfe-work").is_file()
 
 
 def test_sigkill_during_the_move_into_place_is_finished_by_the_next_run(tmp_path):
@@ -451,15 +460,15 @@ def test_cli_sweep_notes_a_malformed_record_and_writes_results_atomically(tmp_pa
     assert main(argv) == 0
     record = next((out / "cache").glob("*.json"))
     record.write_text('{"outputs": ')
-    # temporaries of a killed sweep (names the package's writers make) and a user's look-alike
-    (out / ".results.k1ll3d_x.csv").write_text("torn")
+    # a record temporary of a killed sweep (a name the package's cache writer makes) and a user's file
     (out / "cache" / ".0123456789abcdef01234567.json.tmp").write_text("torn")
     (out / ".results.mine.csv").write_text("mine")
     capsys.readouterr()
     assert main(argv) == 0
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "note: cache record" in err and "Traceback" not in err
-    assert sorted(p.name for p in out.iterdir()) == [".results.mine.csv", "best.json", "cache", "results.csv"]
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, ".results.mine.csv", "best.json", "cache",
+                                                     "results.csv"]
     assert not [p for p in (out / "cache").iterdir() if p.name.startswith(".")]
     assert stat.S_IMODE((out / "results.csv").stat().st_mode) == 0o666 & ~_umask()
 
@@ -474,7 +483,7 @@ def _umask() -> int:
 
 def test_limits_have_documented_defaults_and_an_environment_override(monkeypatch):
     assert dict(DEFAULT_LIMITS) == {"revolutions": 100, "frames": 1000, "cases": 10_000, "elements": 1_000_000,
-                                    "case_seconds": 3600, "compliance": 4000}
+                                    "case_seconds": 3600, "compliance": 4000, "samples": 100_000}
     with pytest.raises(LimitError, match=r"revolutions = 1e\+06 is above the limit of 100.*max_revolutions=.*"
                                          r"BEARINGFE_MAX_REVOLUTIONS"):
         check_limit("revolutions", 1e6, keyword="max_revolutions")
@@ -668,3 +677,137 @@ def test_sigint_during_the_move_into_place_waits_for_its_end(tmp_path):
     assert run.returncode == 42, (run.returncode, run.stderr[-2000:])
     assert (out / "a.txt").read_text() == "new a" and (out / "b.txt").read_text() == "new b"
     assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "a.txt", "b.txt"]  # no journal, no work folder
+
+
+# -- sweep --out follows the rules of run --out; forged manifests and journals are not acted on --------
+
+@pytest.fixture(scope="module")
+def sweep_cache(tmp_path_factory) -> Path:
+    """The cache folder of one real CLI sweep of STUDY: later sweeps given a copy of it run no case."""
+    folder = tmp_path_factory.mktemp("sweep")
+    (folder / "study.toml").write_text(STUDY)
+    assert main(["sweep", str(folder / "study.toml"), "--out", str(folder / "out"), "--no-progress"]) == 0
+    return folder / "out" / "cache"
+
+
+def _cached_cli_sweep(tmp_path, sweep_cache, out, *extra) -> int:
+    """A CLI sweep of STUDY into ``out`` whose cases all come from a copy of ``sweep_cache`` (beside out)."""
+    import shutil
+
+    (tmp_path / "study.toml").write_text(STUDY)
+    cache = tmp_path / "cases"
+    if not cache.exists():
+        shutil.copytree(sweep_cache, cache)
+    out.mkdir(exist_ok=True)
+    if not (out / "cache").exists():
+        shutil.copytree(cache, out / "cache")
+    return main(["sweep", str(tmp_path / "study.toml"), "--out", str(out), "--no-progress", *extra])
+
+
+def test_sweep_out_never_overwrites_the_users_results(tmp_path, capsys, sweep_cache):
+    out = tmp_path / "out"
+    out.mkdir()
+    for name in ("results.csv", "best.json", "notes.txt"):
+        (out / name).write_text(f"my {name}")
+    # no manifest: a folder of someone's files needs --force
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out) == 2
+    _one_line_error(capsys, "not a bearingfe output", "--force")
+    # with --force the user's results.csv is still never overwritten
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out, "--force") == 2
+    capsys.readouterr()
+    assert {n: (out / n).read_text() for n in ("results.csv", "best.json", "notes.txt")} == \
+        {n: f"my {n}" for n in ("results.csv", "best.json", "notes.txt")}
+    (out / "results.csv").unlink()
+    (out / "best.json").unlink()
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out, "--force") == 0
+    assert set(read_manifest(out)) == {"results.csv", "best.json"}
+    assert (out / "notes.txt").read_text() == "my notes.txt"
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out) == 0  # its own previous output: no --force needed
+    assert json.loads((out / "best.json").read_text())["gamma"] == 0.3  # h_min = 1 - gamma is largest at 0.3
+
+
+def test_killed_first_sweep_resumes_without_force(tmp_path, capsys, sweep_cache):
+    # a sweep killed before its table leaves only cache records (names the package makes): not foreign
+    out = tmp_path / "out"
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out) == 0
+    assert "2 cases: 2 completed, 0 ruptured" in (text := capsys.readouterr().out) and "0 failed; 2 from cache" in text
+    # a cache folder holding a user's file is foreign; a link in its place is refused even with --force
+    other = tmp_path / "other"
+    other.mkdir()
+    import shutil
+    shutil.copytree(sweep_cache, other / "cache")
+    (other / "cache" / "notes.txt").write_text("mine")
+    assert _cached_cli_sweep(tmp_path, sweep_cache, other) == 2
+    _one_line_error(capsys, "cache", "--force")
+    linked = tmp_path / "linked"
+    linked.mkdir()
+    (linked / "cache").symlink_to(sweep_cache)
+    assert _cached_cli_sweep(tmp_path, sweep_cache, linked, "--force") == 2
+    _one_line_error(capsys, "cache is there and is not a folder bearingfe made")
+
+
+def test_study_file_inside_the_sweep_folder_is_kept(tmp_path, capsys, sweep_cache):
+    out = tmp_path / "out"
+    assert _cached_cli_sweep(tmp_path, sweep_cache, out) == 0
+    (out / "study.toml").write_text(STUDY)
+    assert main(["sweep", str(out / "study.toml"), "--out", str(out), "--no-progress"]) == 0
+    assert (out / "study.toml").read_text() == STUDY
+
+
+def test_copied_output_folder_is_not_the_packages(tmp_path, capsys, scene_file):
+    # a folder copied from someone else: same names, same hashes, other files (inodes): nothing of it is
+    # replaced or removed, and outputs named like its files are an error, never an overwrite
+    import shutil
+
+    scene = scene_file("reynolds", TINY, output={"pictures": ["pressure"]})
+    assert _run(scene, tmp_path / "theirs") == 0
+    shutil.copytree(tmp_path / "theirs", tmp_path / "mine")
+    mine = tmp_path / "mine"
+    assert read_manifest(mine) == {}
+    before = {p.name: p.read_bytes() for p in mine.iterdir()}
+    capsys.readouterr()
+    assert _run(scene_file("reynolds", TINY), mine) == 2  # would replace summary.json, remove pressure.png
+    _one_line_error(capsys, "not written by bearingfe")
+    assert {p.name: p.read_bytes() for p in mine.iterdir()} == before
+
+
+def test_forged_manifest_cannot_delete_a_users_file(tmp_path):
+    out = tmp_path / "out"
+    with output_folder(out) as work:
+        (work / "a.txt").write_text("a")
+    (out / "thesis.tex").write_text("precious")
+    data = json.loads((out / MANIFEST).read_text())
+    thesis = (out / "thesis.tex")
+    right_hash = {"sha256": hashlib.sha256(b"precious").hexdigest(), "size": 8}
+    data["files"]["thesis.tex"] = dict(right_hash, inode=thesis.stat().st_ino + 1)  # another file's inode
+    data["files"]["old.tex"] = hashlib.sha256(b"precious").hexdigest()  # the format of older manifests
+    (out / MANIFEST).write_text(json.dumps(data))
+    assert set(read_manifest(out)) == {"a.txt"}
+    with output_folder(out) as work:
+        (work / "a.txt").write_text("a2")  # thesis.tex is not rewritten: a manifest entry would remove it
+    assert thesis.read_text() == "precious" and (out / "a.txt").read_text() == "a2"
+
+
+def test_forged_journal_is_refused_not_acted_on(tmp_path):
+    # a journal and a marked work folder copied into the folder (unpacked from an archive) would move
+    # their files over the user's and remove the listed ones: refused, nothing changes
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "thesis.tex").write_text("precious")
+    work = out / ".bearingfe-work-forged"
+    work.mkdir()
+    (work / ".bearingfe-work").write_text(json.dumps({"inode": 1}))
+    (work / "thesis.tex").write_text("overwritten")
+    sha = hashlib.sha256(b"precious").hexdigest()
+    journal = {"work": work.name, "work_inode": 1, "replace": ["thesis.tex"], "old": {},
+               "remove": {"thesis.tex": {"sha256": sha, "size": 8, "inode": (out / "thesis.tex").stat().st_ino}},
+               "manifest": {}}
+    (out / ".bearingfe-commit.json").write_text(json.dumps(journal))
+    before = sorted(str(p.relative_to(out)) for p in out.rglob("*"))
+    for bad in (journal, "not json", {"work": "../x"}):
+        (out / ".bearingfe-commit.json").write_text(bad if isinstance(bad, str) else json.dumps(bad))
+        with pytest.raises(OutputFolderError, match="does not match an unfinished run of bearingfe"):
+            with output_folder(out, force=True):
+                pass
+        assert (out / "thesis.tex").read_text() == "precious"
+        assert sorted(str(p.relative_to(out)) for p in out.rglob("*")) == before

@@ -158,7 +158,7 @@ def _grooved(**groove):
     (dict(bearing={"radial_clearance": -75e-6}), r"\[bearing\] radial_clearance: must be > 0"),
     (dict(bearing={"radial_clearance": 0.006}),
      r"\[bearing\] radial_clearance: must be in \(0, diameter/20 = 0.005\]"),
-    (dict(bearing={"length": 0.5}), r"\[bearing\] length: L/D must be in \(0, 4\]; got L/D = 5"),
+    (dict(bearing={"length": 0.5}), r"\[bearing\] length: L/D must be in \[0.001, 4\]; got L/D = 5"),
     (dict(bearing={"diameter": None}), r"\[bearing\] diameter: missing \(required\)"),
     (dict(operating={"viscosity": None, "viscosty": 0.018}),
      r"\[operating\] viscosty: unknown field; allowed: speed, speed_rad_s, viscosity"),
