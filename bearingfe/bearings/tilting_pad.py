@@ -1,0 +1,662 @@
+r"""Tilting-pad journal bearings: equilibrium of the shaft and the pads, and Lund's pad-assembly reduction.
+
+Coordinates and scales are those of :mod:`bearingfe.bearings.journal` with the pad
+clearance ``C_p`` as the clearance ``c``: ``h = H/C_p``, ``p = P C_p^2/(mu omega R^2)``,
+forces in ``mu omega R^4/C_p^2``. The bearing frame is ROSS's (``x`` horizontal,
+``y`` vertical, the static load on the journal along ``-y``); the journal turns
+towards ``+phi``.
+
+Pad ``i`` (pivot angle ``theta_i``, arc ``(theta_i - f beta, theta_i + (1 - f) beta)``
+with ``f`` the pivot offset and ``beta`` the arc) turns on a rocker pivot by ``delta_i``;
+its film is
+
+``h = 1 - m cos(phi - theta_i) - x cos(phi) - y sin(phi) - q_i sin(phi - theta_i)``
+
+with ``m = 1 - C_b/C_p`` the preload and ``q_i = R_piv delta_i / C_p`` the pad
+rotation as the film change it makes at a quarter turn from the pivot (the film
+changes linearly with the rotation, first order). That is a journal at the
+effective position ``(x, y) + m n_i + q_i t_i`` (``n_i = (cos theta_i, sin theta_i)``,
+``t_i = (-sin theta_i, cos theta_i)``) in a bore of clearance ``C_p``, so every pad
+film is solved and linearized by :func:`bearingfe.bearings.journal.position_state`
+and :func:`~bearingfe.bearings.journal.force_derivatives` on the pad meshes of
+:func:`~bearingfe.bearings.journal.journal_mesh`.
+
+The generalized force of the pad rotation is ``Q_i = int p dh/dq_i = -F_i . t_i``
+(``F_i`` the pad's film force on the pad): a pad with no moment about its pivot
+carries its load through the pivot. The equilibrium solves ``sum F_i = W`` and
+``F_i . t_i = 0`` for ``(x, y, q_1 .. q_n)`` by Newton's method with the
+linearized Jacobian ``sum_i T_i^T (dF_i/dx') T_i`` (``T_i = dx'_i/du``). The
+pad's own friction moment (a pivot below the pad surface) is neglected, as in
+Lund's and Someya's analyses.
+
+Dynamic coefficients over the shaft and pad degrees of freedom, and the 2x2
+coefficients of the journal at whirl frequency ``Omega`` (Lund 1964): with the
+impedance ``Z(nu) = K + i nu C - nu^2 M`` (``nu = Omega/omega``, ``M`` the pad
+mass parameter on the pad rows), ``Z_red = Z_jj - Z_jp Z_pp^-1 Z_pj``,
+``K(Omega) = Re Z_red``, ``C(Omega) = Im Z_red / nu``. The non-dimensional pad
+mass is ``M = (I_p / R_piv^2) C_p^3 omega / (mu R^4)`` (:meth:`TiltingPadBearing.pad_mass`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import skfem
+
+from ..geometry.meshing import SupportMesh, refine_uniformly
+from ..geometry.surface import Surface
+from .journal import (EQUILIBRIUM_CAVITATION, DynamicCoefficients, JournalBearing, force_derivatives,
+                      journal_mesh, position_state)
+
+__all__ = [
+    "TiltingPadGeometry",
+    "TiltingPadBearing",
+    "TiltingPadEquilibrium",
+    "PadAssemblyCoefficients",
+    "TiltingPadConvergenceError",
+    "tilting_pad_meshes",
+    "tilting_pad_equilibrium",
+    "pad_assembly_coefficients",
+    "reduced_coefficients",
+]
+
+#: Smallest film thickness [C_p] a Newton step may bring a pad to (it is cut back before).
+H_FLOOR = 0.01
+
+
+class TiltingPadConvergenceError(RuntimeError):
+    """Newton's method found no equilibrium of the shaft and the pads."""
+
+
+# -- parameters ---------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class TiltingPadGeometry:
+    """Non-dimensional geometry of a tilting-pad journal bearing (the solvers' currency).
+
+    Parameters
+    ----------
+    length_ratio : float
+        ``L/D`` [-], in (0, 4].
+    n_pads : int
+        Number of pads, 2 to 12.
+    arc : float
+        Angular extent of each pad [rad], ``n_pads * arc < 2 pi``.
+    offset : float
+        Pivot position from the leading edge as a fraction of the arc [-], in (0, 1) (0.5: centred).
+    preload : float
+        ``m = 1 - C_b/C_p`` [-], in [0, 1).
+    load_on_pad : bool
+        ``True``: a pivot on the ``-y`` axis (load on pad); ``False``: the ``-y`` axis half way between
+        two pivots (load between pads).
+    """
+
+    length_ratio: float
+    n_pads: int = 4
+    arc: float = math.radians(80.0)
+    offset: float = 0.5
+    preload: float = 0.0
+    load_on_pad: bool = False
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.length_ratio) and 0 < self.length_ratio <= 4):
+            raise ValueError(f"length_ratio (L/D) must be in (0, 4], got {self.length_ratio!r}")
+        if isinstance(self.n_pads, bool) or not isinstance(self.n_pads, (int, np.integer)) or not 2 <= self.n_pads <= 12:
+            raise ValueError(f"n_pads must be an integer in [2, 12], got {self.n_pads!r}")
+        if not (math.isfinite(self.arc) and 0 < self.arc and self.n_pads * self.arc < 2 * math.pi):
+            raise ValueError(f"arc must be > 0 rad with n_pads * arc < 2 pi, got {self.arc!r}")
+        if not (math.isfinite(self.offset) and 0 < self.offset < 1):
+            raise ValueError(f"offset must be in (0, 1), got {self.offset!r}")
+        if not (math.isfinite(self.preload) and 0 <= self.preload < 1):
+            raise ValueError(f"preload must be in [0, 1), got {self.preload!r}")
+        if not isinstance(self.load_on_pad, bool):
+            raise ValueError(f"load_on_pad must be True or False, got {self.load_on_pad!r}")
+        object.__setattr__(self, "n_pads", int(self.n_pads))
+
+    @property
+    def pivots(self) -> np.ndarray:
+        """Pivot angles [rad], shape (n_pads,), the first one at or after ``-pi/2``."""
+        pitch = 2 * math.pi / self.n_pads
+        first = -math.pi / 2 + (0.0 if self.load_on_pad else pitch / 2)
+        return first + pitch * np.arange(self.n_pads)
+
+    @property
+    def arcs(self) -> tuple[tuple[float, float], ...]:
+        """Pad arcs ``(leading edge, trailing edge)`` [rad] (the journal turns towards ``+phi``)."""
+        return tuple((float(t - self.offset * self.arc), float(t + (1 - self.offset) * self.arc))
+                     for t in self.pivots)
+
+    @property
+    def fixed_pads(self) -> JournalBearing:
+        """The fixed-pad bearing of the same pad surfaces (the pads' meshes and film solves)."""
+        return JournalBearing(self.length_ratio, pads=self.arcs)
+
+    def normals(self) -> tuple[np.ndarray, np.ndarray]:
+        """Unit vectors along (``n``) and across (``t``, towards ``+phi``) each pivot line, shape (n_pads, 2)."""
+        th = self.pivots
+        return np.column_stack([np.cos(th), np.sin(th)]), np.column_stack([-np.sin(th), np.cos(th)])
+
+
+@dataclass(frozen=True)
+class TiltingPadBearing:
+    """A tilting-pad journal bearing in SI units.
+
+    Parameters
+    ----------
+    radius : float
+        Journal radius ``R`` [m].
+    length : float
+        Pad length ``L`` [m], ``L/D`` in (0, 4].
+    pad_clearance : float
+        Machined pad clearance ``C_p`` [m], ``< R/100``.
+    n_pads, offset, preload, load_on_pad
+        As :class:`TiltingPadGeometry`.
+    arc : float
+        Pad arc [rad].
+    pad_inertia : float
+        Moment of inertia of a pad about its pivot [kg m^2], >= 0.
+    pad_thickness : float
+        Radial distance from the pad surface to the rocker line [m], >= 0 (``R_piv = R + t``).
+    """
+
+    radius: float
+    length: float
+    pad_clearance: float
+    n_pads: int = 4
+    arc: float = math.radians(80.0)
+    offset: float = 0.5
+    preload: float = 0.0
+    load_on_pad: bool = False
+    pad_inertia: float = 0.0
+    pad_thickness: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("radius", "length", "pad_clearance"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"{name} must be a finite number > 0 [m], got {v!r}")
+        if not self.pad_clearance < self.radius / 100:
+            raise ValueError(f"pad_clearance must be below radius/100 (a thin film), got {self.pad_clearance!r} m "
+                             f"for radius {self.radius!r} m")
+        for name in ("pad_inertia", "pad_thickness"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+        self.geometry  # checks the rest
+
+    @property
+    def geometry(self) -> TiltingPadGeometry:
+        """The non-dimensional geometry."""
+        return TiltingPadGeometry(self.length / (2 * self.radius), self.n_pads, self.arc, self.offset,
+                                  self.preload, self.load_on_pad)
+
+    def force_scale(self, viscosity: float, speed: float) -> float:
+        """``mu omega R^4 / C_p^2`` [N] for ``mu`` [Pa s] and ``omega`` [rad/s]."""
+        _check_positive(viscosity=viscosity, speed=speed)
+        return viscosity * speed * self.radius**4 / self.pad_clearance**2
+
+    def pad_mass(self, viscosity: float, speed: float) -> float:
+        """Non-dimensional pad mass ``(I_p/R_piv^2) C_p^3 omega / (mu R^4)`` [-]."""
+        _check_positive(viscosity=viscosity, speed=speed)
+        r_pivot = self.radius + self.pad_thickness
+        return self.pad_inertia / r_pivot**2 * self.pad_clearance**3 * speed / (viscosity * self.radius**4)
+
+
+def _check_positive(**values: float) -> None:
+    for name, v in values.items():
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+
+
+# -- films -------------------------------------------------------------------------------------
+
+def tilting_pad_meshes(geometry: TiltingPadGeometry, size: float, *, refine: int = 0) -> tuple[SupportMesh, ...]:
+    """Meshes of the pads: one uniform mesh of the first pad (element size ``size`` [-], by
+    :func:`~bearingfe.bearings.journal.journal_mesh`, cached), split ``refine`` times
+    (:func:`~bearingfe.geometry.meshing.refine_uniformly`: nested meshes for convergence studies), and
+    turned to every other pad, so that all pads have the same discretization and the discrete bearing
+    keeps the bearing's symmetry."""
+    if not (isinstance(size, (int, float)) and math.isfinite(size) and 0 < size <= 1):
+        raise ValueError(f"size must be in (0, 1], got {size!r}")
+    if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 4:
+        raise ValueError(f"refine must be an integer in [0, 4], got {refine!r}")
+    arcs = geometry.arcs
+    (first,) = journal_mesh(JournalBearing(geometry.length_ratio, pads=arcs[:1]), float(size), min_size=float(size))
+    if refine:
+        first = refine_uniformly(first, refine)
+    out = [first]
+    for start, end in arcs[1:]:
+        m = first.mesh
+        p = m.p + np.array([[start - arcs[0][0]], [0.0]])
+        mesh = skfem.MeshTri1(p, m.t).with_boundaries(dict(m.boundaries))
+        surface = Surface(arc=(start, end), half_width=geometry.length_ratio)
+        out.append(SupportMesh(mesh=mesh, surface=surface, size=first.size, source=first.source))
+    return tuple(out)
+
+
+def _effective(geometry: TiltingPadGeometry, xy: np.ndarray, tilts: np.ndarray, velocity=None,
+               tilt_rates=None) -> tuple[np.ndarray, np.ndarray]:
+    """Effective journal positions (and velocities) of the pads, shape (n_pads, 2)."""
+    n, t = geometry.normals()
+    pos = np.asarray(xy, float)[None, :] + geometry.preload * n + np.asarray(tilts, float)[:, None] * t
+    vel = np.zeros_like(pos)
+    if velocity is not None:
+        vel = np.asarray(velocity, float)[None, :] + np.asarray(tilt_rates, float)[:, None] * t
+    return pos, vel
+
+
+def _pad_h_min(arc: tuple[float, float], pos: np.ndarray) -> float:
+    """Smallest ``1 - x' cos(phi) - y' sin(phi)`` over the arc."""
+    a, b = arc
+    angles = [a, b]
+    peak = math.atan2(pos[1], pos[0])
+    peak = a + (peak - a) % (2 * math.pi)
+    if peak <= b:
+        angles.append(peak)
+    return float(min(1 - pos[0] * math.cos(p) - pos[1] * math.sin(p) for p in angles))
+
+
+def _h_min(geometry: TiltingPadGeometry, xy, tilts) -> float:
+    pos, _ = _effective(geometry, xy, tilts)
+    return min(_pad_h_min(arc, p) for arc, p in zip(geometry.arcs, pos))
+
+
+@dataclass(frozen=True, eq=False)
+class _Pads:
+    """Solutions of every pad at one shaft position and set of pad rotations."""
+
+    states: tuple             # one journal state per pad (None for an idle pad)
+    forces: np.ndarray        # (n, 2) film force on each pad
+    kinds: np.ndarray         # (n,) ACTIVE, IDLE or CONCENTRIC
+
+    @property
+    def idle(self) -> np.ndarray:
+        """Pads that carry no load (idle or concentric)."""
+        return self.kinds != ACTIVE
+
+
+#: Kinds of pad: carrying load; unloaded (the shaft farther from the pivot than the preload puts it);
+#: concentric (exactly at the preload's distance: a uniform film, no pressure, an empty rupture set).
+ACTIVE, IDLE, CONCENTRIC = 0, 1, 2
+
+#: ``|s_i|`` below this (``s_i = x . n_i + m`` [C_p]) makes a pad concentric.
+CONCENTRIC_BAND = 1e-6
+
+
+def _kinds(geometry: TiltingPadGeometry, xy, cavitation: str) -> np.ndarray:
+    """The kind of each pad at shaft position ``xy``.
+
+    With cavitation a pad whose pivot the shaft is no nearer than the preload puts it
+    (``s_i = x . n_i + m < 0``) carries no load: it turns until its film diverges everywhere (its
+    pressure vanishes as it turns) and its coefficients are zero. At ``s_i = 0`` the film of the
+    aligned pad is uniform: no pressure and no rupture, so its coefficients are those of the full film
+    (the load-on-pad bearing without preload has its two side pads there). Without cavitation every
+    pad carries pressure."""
+    if cavitation == "none":
+        return np.full(geometry.n_pads, ACTIVE)
+    n, _ = geometry.normals()
+    s = n @ np.asarray(xy, float) + geometry.preload
+    return np.where(s > CONCENTRIC_BAND, ACTIVE, np.where(s < -CONCENTRIC_BAND, IDLE, CONCENTRIC))
+
+
+def _idle_tilts(geometry: TiltingPadGeometry, xy) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation of each pad at which its film stops converging at the trailing edge and diverges
+    elsewhere, ``q* = s tan(gamma) - x . t`` (``gamma`` the pivot-to-trailing-edge angle), and its
+    gradient in ``(x, y)``, shape (n_pads, 2): the limit an unloaded pad turns to."""
+    n, t = geometry.normals()
+    gamma = (1 - geometry.offset) * geometry.arc
+    xy = np.asarray(xy, float)
+    s = n @ xy + geometry.preload
+    return s * math.tan(gamma) - t @ xy, math.tan(gamma) * n - t
+
+
+def _solve_pads(geometry: TiltingPadGeometry, meshes, xy, tilts, cavitation: str, element: str,
+                warm: "_Pads | None" = None, velocity=None, tilt_rates=None) -> _Pads:
+    bearing = geometry.fixed_pads
+    pos, vel = _effective(geometry, xy, tilts, velocity, tilt_rates)
+    kinds = _kinds(geometry, xy, cavitation)
+    states, forces = [], np.zeros((geometry.n_pads, 2))
+    for i, mesh in enumerate(meshes):
+        if kinds[i] == IDLE:
+            states.append(None)
+        elif kinds[i] == CONCENTRIC:  # the uniform film, linearized on its empty rupture set
+            states.append(position_state(bearing, (mesh,), 0.0, 0.0, "none", element=element))
+        else:
+            start = warm.states[i] if warm is not None and warm.kinds[i] == ACTIVE else None
+            state = position_state(bearing, (mesh,), pos[i, 0], pos[i, 1], cavitation, velocity=vel[i],
+                                   warm_start=start, element=element)
+            states.append(state)
+            forces[i] = state.force
+    return _Pads(states=tuple(states), forces=forces, kinds=kinds)
+
+
+def _pad_derivatives(geometry, meshes, pads: _Pads, i: int, xy, tilts, cavitation: str, element: str,
+                     step: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
+    """``dF_i/dx'`` and ``dF_i/dx'dot`` of pad ``i`` (linearized; finite-volume films by central differences)."""
+    state = pads.states[i]
+    if all(s is not None for s in state.sups):
+        return force_derivatives(state)
+    bearing = geometry.fixed_pads
+    pos, _ = _effective(geometry, xy, tilts)
+    D, E = np.zeros((2, 2)), np.zeros((2, 2))
+
+    def force(at, vel=(0.0, 0.0)):
+        return position_state(bearing, (meshes[i],), at[0], at[1], cavitation, velocity=vel, warm_start=state,
+                              element=element).force
+    for j in range(2):
+        d = np.zeros(2)
+        d[j] = step
+        D[:, j] = (force(pos[i] + d) - force(pos[i] - d)) / (2 * step)
+        E[:, j] = (force(pos[i], d) - force(pos[i], -d)) / (2 * step)
+    return D, E
+
+
+# -- equilibrium --------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class TiltingPadEquilibrium:
+    """Static equilibrium of the shaft and the pads under a load.
+
+    Attributes
+    ----------
+    eps : float
+        Shaft eccentricity ``e/C_p`` [-].
+    attitude : float
+        Angle from the load line to the line of centres [deg].
+    position : ndarray, shape (2,)
+        Shaft centre [C_p], bearing frame.
+    tilts : ndarray, shape (n_pads,)
+        Pad rotations ``q_i = R_piv delta_i / C_p`` [-] (positive: towards ``+phi``).
+    force : ndarray, shape (2,)
+        Film force on the pads (= the applied load on the journal) [mu omega R^4/C_p^2].
+    pad_forces : ndarray, shape (n_pads, 2)
+        Film force on each pad.
+    idle : ndarray of bool, shape (n_pads,)
+        Unloaded pads (the shaft no nearer their pivot than the preload puts it): no pressure, turned
+        to where their film stops converging, zero coefficients.
+    newton_iterations : int
+    residual : float
+        Largest force or pad-moment imbalance over ``|load|``.
+    locked : bool
+        Pads held at their given rotations (a fixed-pad bearing).
+    """
+
+    eps: float
+    attitude: float
+    position: np.ndarray
+    tilts: np.ndarray
+    force: np.ndarray
+    pad_forces: np.ndarray
+    idle: np.ndarray
+    newton_iterations: int
+    residual: float
+    locked: bool = False
+    geometry: TiltingPadGeometry | None = field(repr=False, compare=False, default=None)
+    meshes: tuple = field(repr=False, compare=False, default=())
+    cavitation: str = "reynolds"
+    element: str = "P1"
+    pads: _Pads | None = field(repr=False, compare=False, default=None)
+
+    @property
+    def sommerfeld(self) -> float:
+        """``S = (R/C_p)^2 mu N L D / W`` [-]."""
+        return 2 * self.geometry.length_ratio / (math.pi * float(np.hypot(*self.force)))
+
+
+def _aligned(geometry: TiltingPadGeometry, xy) -> np.ndarray:
+    """Pad rotations that keep each pad concentric with the shaft's tangential motion (``x' . t = 0``)."""
+    _, t = geometry.normals()
+    return -(t @ np.asarray(xy, float))
+
+
+def _system(geometry, meshes, pads: _Pads, xy, tilts, load, cavitation, element, locked):
+    """Residual and Jacobian of the unknowns ``(x, y, q_1..q_n)`` (locked: ``(x, y)`` only)."""
+    n_pads = geometry.n_pads
+    _, t = geometry.normals()
+    w = float(np.hypot(*load))
+    n = 2 if locked else 2 + n_pads
+    r = np.zeros(n)
+    J = np.zeros((n, n))
+    r[:2] = (pads.forces.sum(axis=0) - load) / w
+    free, grad = _idle_tilts(geometry, xy)
+    for i in range(n_pads):
+        if pads.idle[i]:
+            if not locked:  # an unloaded pad turns to where its film stops converging
+                r[2 + i] = tilts[i] - free[i]
+                J[2 + i, 2 + i] = 1.0
+                J[2 + i, :2] = -grad[i]
+            continue
+        D, _ = _pad_derivatives(geometry, meshes, pads, i, xy, tilts, cavitation, element)
+        J[:2, :2] += D / w
+        if not locked and not abs(t[i] @ D @ t[i]) > 1e-12 * max(float(np.abs(D).max()), w):
+            # the pad turned into its unloaded (fully ruptured) range: pull it back to aligned
+            r[2 + i] = tilts[i] + t[i] @ np.asarray(xy, float)
+            J[2 + i, 2 + i] = 1.0
+            J[2 + i, :2] = t[i]
+            continue
+        if not locked:
+            r[2 + i] = pads.forces[i] @ t[i] / w
+            J[:2, 2 + i] = D @ t[i] / w
+            J[2 + i, :2] = t[i] @ D / w
+            J[2 + i, 2 + i] = t[i] @ D @ t[i] / w
+    return r, J
+
+
+def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float = 0.05,
+                            cavitation: str = "reynolds", element: str = "P1", tol: float = 1e-8,
+                            max_newton: int = 60, start: TiltingPadEquilibrium | None = None,
+                            locked_tilts=None, meshes=None) -> TiltingPadEquilibrium:
+    """Shaft position and pad rotations that carry a load, by Newton's method.
+
+    Parameters
+    ----------
+    geometry : TiltingPadGeometry
+    load : (float, float)
+        Applied load on the journal, bearing frame [mu omega R^4/C_p^2].
+    size : float
+        Element size of the pad meshes [-] (:func:`tilting_pad_meshes`).
+    cavitation : {"reynolds", "none", "jfo"}
+        Film model of every pad (``"jfo"``: finite volumes, derivatives by central differences).
+    element : {"P1", "P2"}
+    tol : float
+        On the largest force and pad-moment imbalance over ``|load|``.
+    max_newton : int
+    start : TiltingPadEquilibrium, optional
+        Warm start: its position, rotations and rupture sets (another load or speed of the same
+        bearing and meshes). Cold start otherwise: the shaft at ``eps = 0.5`` along the load, each pad
+        aligned with it.
+    locked_tilts : sequence of float, optional
+        Hold the pads at these rotations and balance the force only (a fixed-pad bearing;
+        all zeros with no preload is :class:`~bearingfe.bearings.journal.JournalBearing` with ``pads=arcs``).
+    meshes : tuple of SupportMesh, optional
+        The pad meshes (default :func:`tilting_pad_meshes` at ``size``).
+
+    Raises
+    ------
+    TiltingPadConvergenceError
+        If Newton does not reach ``tol`` in ``max_newton`` steps, or its steps cannot lower the imbalance.
+    """
+    load = np.asarray(load, float)
+    if load.shape != (2,) or not np.all(np.isfinite(load)) or not np.hypot(*load) > 0:
+        raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
+    if cavitation not in EQUILIBRIUM_CAVITATION:
+        raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
+    if not (0 < tol < 1e-2):
+        raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
+    meshes = tilting_pad_meshes(geometry, size) if meshes is None else tuple(meshes)
+    if len(meshes) != geometry.n_pads:
+        raise ValueError(f"need one mesh per pad ({geometry.n_pads}), got {len(meshes)}")
+    locked = locked_tilts is not None
+    w = float(np.hypot(*load))
+    if start is not None:
+        xy, tilts, warm = np.array(start.position, float), np.array(start.tilts, float), start.pads
+    else:
+        xy = 0.5 * load / w
+        tilts = np.where(_kinds(geometry, xy, cavitation) == IDLE, _idle_tilts(geometry, xy)[0],
+                         _aligned(geometry, xy))
+        warm = None
+    if locked:
+        tilts = np.asarray(locked_tilts, float)
+        if tilts.shape != (geometry.n_pads,) or not np.all(np.isfinite(tilts)):
+            raise ValueError(f"locked_tilts must be {geometry.n_pads} finite numbers, got {locked_tilts!r}")
+    if _h_min(geometry, xy, tilts) <= H_FLOOR:
+        raise ValueError("the start puts a pad on the shaft (h <= 0.01): start from another equilibrium")
+    pads = _solve_pads(geometry, meshes, xy, tilts, cavitation, element, warm)
+    r, J = _system(geometry, meshes, pads, xy, tilts, load, cavitation, element, locked)
+    res = float(np.max(np.abs(r)))
+    for k in range(max_newton + 1):
+        if res <= tol:
+            return _result(geometry, meshes, pads, xy, tilts, load, k, res, locked, cavitation, element)
+        if k == max_newton:
+            break
+        try:
+            step = -np.linalg.solve(J, r)
+        except np.linalg.LinAlgError:
+            step = -np.linalg.lstsq(J, r, rcond=None)[0]
+        # cap the shaft's step at 0.3 C_p and the pads' at 0.5 C_p, then halve until every film stays open
+        # and the imbalance falls
+        scale = min(1.0, 0.3 / max(float(np.hypot(*step[:2])), 1e-300),
+                    0.5 / max(float(np.max(np.abs(step[2:]), initial=0.0)), 1e-300))
+        s = scale
+        for _ in range(30):
+            new_xy = xy + s * step[:2]
+            new_tilts = tilts if locked else tilts + s * step[2:]
+            if _h_min(geometry, new_xy, new_tilts) > max(H_FLOOR, 0.25 * _h_min(geometry, xy, tilts)):
+                new_pads = _solve_pads(geometry, meshes, new_xy, new_tilts, cavitation, element, pads)
+                new_r, new_J = _system(geometry, meshes, new_pads, new_xy, new_tilts, load, cavitation, element,
+                                       locked)
+                new_res = float(np.max(np.abs(new_r)))
+                if new_res < res or s < 1e-3:
+                    break
+            s *= 0.5
+        else:
+            raise TiltingPadConvergenceError(
+                f"tilting-pad equilibrium: no Newton step keeps the films open (imbalance {res:.3g} of the load); "
+                "the load may be beyond what the pads carry")
+        xy, tilts, pads, r, J, res = new_xy, new_tilts, new_pads, new_r, new_J, new_res
+    raise TiltingPadConvergenceError(
+        f"tilting-pad equilibrium: Newton did not converge in {max_newton} steps (largest force or moment "
+        f"imbalance {res:.3g} of the load)")
+
+
+def _result(geometry, meshes, pads: _Pads, xy, tilts, load, k, res, locked, cavitation, element):
+    F = pads.forces.sum(axis=0)
+    theta_load = math.atan2(load[1], load[0])
+    att = (math.atan2(xy[1], xy[0]) - theta_load + math.pi) % (2 * math.pi) - math.pi
+    return TiltingPadEquilibrium(eps=float(np.hypot(*xy)), attitude=math.degrees(abs(att)), position=np.array(xy),
+                                 tilts=np.array(tilts), force=F, pad_forces=pads.forces.copy(),
+                                 idle=pads.idle.copy(), newton_iterations=k, residual=res, locked=locked,
+                                 geometry=geometry, meshes=tuple(meshes), cavitation=cavitation, element=element,
+                                 pads=pads)
+
+
+# -- coefficients -----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class PadAssemblyCoefficients:
+    """Stiffness and damping over the shaft and pad degrees of freedom at an equilibrium.
+
+    The degrees of freedom are ``(x, y, q_1, .., q_n)`` [C_p]; ``K = -d f/d u`` and
+    ``C = -d f/d udot`` with ``f`` the film's generalized forces on the shaft and on the pads.
+
+    Attributes
+    ----------
+    K, C : ndarray, shape (n_pads + 2, n_pads + 2)
+        Non-dimensional ``K C_p / W`` and ``C C_p omega / W``.
+    load : float
+        ``|W|`` [mu omega R^4 / C_p^2].
+    eps, attitude : float
+        Of the equilibrium [-], [deg].
+    active : ndarray of bool, shape (n_pads,)
+        Pads with coefficients (unloaded pads have zero rows and drop out of the reduction; concentric
+        pads stay in).
+    """
+
+    K: np.ndarray
+    C: np.ndarray
+    load: float
+    eps: float
+    attitude: float
+    active: np.ndarray
+
+    def reduced(self, frequency_ratio: float = 1.0, pad_mass: float = 0.0) -> DynamicCoefficients:
+        """The journal's 2x2 ``K(Omega)``, ``C(Omega)`` by the pad-assembly reduction (see :func:`reduced_coefficients`)."""
+        return reduced_coefficients(self, frequency_ratio, pad_mass)
+
+    def locked(self) -> DynamicCoefficients:
+        """The pads held still (infinite pad inertia): the shaft block of ``K`` and ``C``."""
+        return DynamicCoefficients(K=self.K[:2, :2].copy(), C=self.C[:2, :2].copy(), load=self.load, eps=self.eps,
+                                   attitude=self.attitude, method="tilting-pad, pads locked")
+
+
+def pad_assembly_coefficients(eq: TiltingPadEquilibrium) -> PadAssemblyCoefficients:
+    """The full coefficients over the shaft and pad degrees of freedom at an equilibrium.
+
+    ``K = sum_i T_i^T (dF_i/dx') T_i`` and ``C = sum_i T_i^T (dF_i/dx'dot) T_i`` with ``T_i`` the map
+    from ``(x, y, q_1..q_n)`` to pad ``i``'s effective journal position ``x'_i``; the pad derivatives
+    are linearized on each pad's rupture set (``"jfo"``: central differences).
+    """
+    geometry = eq.geometry
+    if geometry is None or eq.pads is None:
+        raise ValueError("the equilibrium carries no solution (build it with tilting_pad_equilibrium())")
+    n_pads = geometry.n_pads
+    _, t = geometry.normals()
+    n = n_pads + 2
+    K, C = np.zeros((n, n)), np.zeros((n, n))
+    for i in range(n_pads):
+        if eq.pads.kinds[i] == IDLE:
+            continue
+        D, E = _pad_derivatives(geometry, eq.meshes, eq.pads, i, eq.position, eq.tilts, eq.cavitation, eq.element)
+        T = np.zeros((2, n))
+        T[:, :2] = np.eye(2)
+        T[:, 2 + i] = t[i]
+        K += T.T @ D @ T
+        C += T.T @ E @ T
+    w = float(np.hypot(*eq.force))
+    diagonal = np.abs(np.diag(K)[2:]) + np.abs(np.diag(C)[2:])
+    active = (eq.pads.kinds != IDLE) & (diagonal > 1e-12 * max(float(np.abs(K[:2, :2]).max()), 1e-300))
+    return PadAssemblyCoefficients(K=K / w, C=C / w, load=w, eps=eq.eps, attitude=eq.attitude, active=active)
+
+
+def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float = 1.0,
+                         pad_mass: float = 0.0) -> DynamicCoefficients:
+    """The journal's 2x2 stiffness and damping at whirl frequency ``Omega`` (Lund's pad-assembly reduction).
+
+    ``Z(nu) = K + i nu C - nu^2 M`` over ``(x, y, q_1..q_n)``, ``M`` the pad mass on the pad rows;
+    ``Z_red = Z_jj - Z_jp Z_pp^-1 Z_pj``, ``K(Omega) = Re Z_red``, ``C(Omega) = Im Z_red / nu`` (at
+    ``nu = 0`` its limit, the derivative of ``Im Z_red``).
+
+    Parameters
+    ----------
+    full : PadAssemblyCoefficients
+    frequency_ratio : float
+        ``nu = Omega/omega`` [-], >= 0 (1: synchronous whirl).
+    pad_mass : float
+        Non-dimensional pad mass ``M`` of every pad, :meth:`TiltingPadBearing.pad_mass` [-], >= 0
+        (divided here by the load, as ``K`` and ``C`` are).
+    """
+    nu = float(frequency_ratio)
+    if not (math.isfinite(nu) and nu >= 0):
+        raise ValueError(f"frequency_ratio must be >= 0, got {frequency_ratio!r}")
+    if not (math.isfinite(pad_mass) and pad_mass >= 0):
+        raise ValueError(f"pad_mass must be >= 0, got {pad_mass!r}")
+    keep = np.concatenate([[True, True], np.asarray(full.active, bool)])
+    K, C = full.K[np.ix_(keep, keep)], full.C[np.ix_(keep, keep)]
+    j, p = slice(0, 2), slice(2, K.shape[0])
+    if nu == 0:
+        Kpp_inv_Kpj = np.linalg.solve(K[p, p], K[p, j]) if K.shape[0] > 2 else np.zeros((0, 2))
+        Kred = K[j, j] - K[j, p] @ Kpp_inv_Kpj
+        X = np.linalg.solve(K[p, p], C[p, j]) if K.shape[0] > 2 else np.zeros((0, 2))
+        Y = np.linalg.solve(K[p, p].T, K[j, p].T).T if K.shape[0] > 2 else np.zeros((2, 0))
+        Cred = C[j, j] - C[j, p] @ Kpp_inv_Kpj - K[j, p] @ X + Y @ C[p, p] @ Kpp_inv_Kpj
+        method = "tilting-pad reduction, Omega = 0"
+    else:
+        Z = K + 1j * nu * C
+        Z[p, p] -= nu**2 * pad_mass / full.load * np.eye(K.shape[0] - 2)
+        Zred = Z[j, j] - Z[j, p] @ np.linalg.solve(Z[p, p], Z[p, j]) if K.shape[0] > 2 else Z[j, j]
+        Kred, Cred = Zred.real, Zred.imag / nu
+        method = f"tilting-pad reduction, Omega/omega = {nu:g}"
+    return DynamicCoefficients(K=np.array(Kred), C=np.array(Cred), load=full.load, eps=full.eps,
+                               attitude=full.attitude, method=method)
