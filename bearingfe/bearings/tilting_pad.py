@@ -56,11 +56,16 @@ __all__ = [
     "TiltingPadEquilibrium",
     "PadAssemblyCoefficients",
     "TiltingPadConvergenceError",
+    "TILTING_PAD_CAVITATION",
     "tilting_pad_meshes",
     "tilting_pad_equilibrium",
     "pad_assembly_coefficients",
     "reduced_coefficients",
 ]
+
+#: Cavitation models of free (tilting) pads; locked pads take every model of
+#: :data:`~bearingfe.bearings.journal.EQUILIBRIUM_CAVITATION`.
+TILTING_PAD_CAVITATION = ("reynolds", "jfo")
 
 #: Smallest film thickness [C_p] a Newton step may bring a pad to (it is cut back before).
 H_FLOOR = 0.01
@@ -213,24 +218,23 @@ def _check_positive(**values: float) -> None:
 # -- films -------------------------------------------------------------------------------------
 
 def tilting_pad_meshes(geometry: TiltingPadGeometry, size: float, *, refine: int = 0) -> tuple[SupportMesh, ...]:
-    """Meshes of the pads: one uniform mesh of the first pad (element size ``size`` [-], by
+    """Meshes of the pads: one uniform mesh of a pad on the arc ``(0, arc)`` (element size ``size`` [-], by
     :func:`~bearingfe.bearings.journal.journal_mesh`, cached), split ``refine`` times
     (:func:`~bearingfe.geometry.meshing.refine_uniformly`: nested meshes for convergence studies), and
-    turned to every other pad, so that all pads have the same discretization and the discrete bearing
-    keeps the bearing's symmetry."""
+    turned to every pad: all pads, and every orientation of the bearing, share one discretization, so
+    the discrete bearing keeps the bearing's symmetries."""
     if not (isinstance(size, (int, float)) and math.isfinite(size) and 0 < size <= 1):
         raise ValueError(f"size must be in (0, 1], got {size!r}")
     if isinstance(refine, bool) or not isinstance(refine, int) or not 0 <= refine <= 4:
         raise ValueError(f"refine must be an integer in [0, 4], got {refine!r}")
-    arcs = geometry.arcs
-    (first,) = journal_mesh(JournalBearing(geometry.length_ratio, pads=arcs[:1]), float(size), min_size=float(size))
+    pad = JournalBearing(geometry.length_ratio, pads=((0.0, geometry.arc),))
+    (first,) = journal_mesh(pad, float(size), min_size=float(size))
     if refine:
         first = refine_uniformly(first, refine)
-    out = [first]
-    for start, end in arcs[1:]:
-        m = first.mesh
-        p = m.p + np.array([[start - arcs[0][0]], [0.0]])
-        mesh = skfem.MeshTri1(p, m.t).with_boundaries(dict(m.boundaries))
+    out = []
+    m = first.mesh
+    for start, end in geometry.arcs:
+        mesh = skfem.MeshTri1(m.p + np.array([[start], [0.0]]), m.t).with_boundaries(dict(m.boundaries))
         surface = Surface(arc=(start, end), half_width=geometry.length_ratio)
         out.append(SupportMesh(mesh=mesh, surface=surface, size=first.size, source=first.source))
     return tuple(out)
@@ -312,45 +316,35 @@ def _idle_tilts(geometry: TiltingPadGeometry, xy) -> tuple[np.ndarray, np.ndarra
     return s * math.tan(gamma) - t @ xy, math.tan(gamma) * n - t
 
 
-def _solve_pads(geometry: TiltingPadGeometry, meshes, xy, tilts, cavitation: str, element: str,
-                warm: "_Pads | None" = None, velocity=None, tilt_rates=None) -> _Pads:
-    bearing = geometry.fixed_pads
-    pos, vel = _effective(geometry, xy, tilts, velocity, tilt_rates)
-    kinds = _kinds(geometry, xy, cavitation)
-    states, forces = [], np.zeros((geometry.n_pads, 2))
-    for i, mesh in enumerate(meshes):
-        if kinds[i] == IDLE:
-            states.append(None)
-        elif kinds[i] == CONCENTRIC:  # the uniform film, linearized on its empty rupture set
-            states.append(position_state(bearing, (mesh,), 0.0, 0.0, "none", element=element))
-        else:
-            start = warm.states[i] if warm is not None and warm.kinds[i] == ACTIVE else None
-            state = position_state(bearing, (mesh,), pos[i, 0], pos[i, 1], cavitation, velocity=vel[i],
-                                   warm_start=start, element=element)
-            states.append(state)
-            forces[i] = state.force
-    return _Pads(states=tuple(states), forces=forces, kinds=kinds)
+def _pad_state(geometry: TiltingPadGeometry, mesh, i: int, xy, q: float, cavitation: str, element: str,
+               warm=None, velocity=(0.0, 0.0), rate: float = 0.0):
+    """Pad ``i``'s film with the shaft at ``xy`` moving at ``velocity`` and the pad at rotation ``q`` turning at
+    ``rate`` (a journal at the pad's effective position)."""
+    n, t = geometry.normals()
+    pos = np.asarray(xy, float) + geometry.preload * n[i] + q * t[i]
+    vel = np.asarray(velocity, float) + rate * t[i]
+    return position_state(geometry.fixed_pads, (mesh,), pos[0], pos[1], cavitation, velocity=vel,
+                          warm_start=warm, element=element)
 
 
-def _pad_derivatives(geometry, meshes, pads: _Pads, i: int, xy, tilts, cavitation: str, element: str,
-                     step: float = 1e-6) -> tuple[np.ndarray, np.ndarray]:
-    """``dF_i/dx'`` and ``dF_i/dx'dot`` of pad ``i`` (linearized; finite-volume films by central differences)."""
-    state = pads.states[i]
-    if all(s is not None for s in state.sups):
+def _pad_derivatives(geometry: TiltingPadGeometry, mesh, i: int, state, xy, q: float, cavitation: str,
+                     element: str, damping: bool = True, step: float = 1e-6) -> tuple[np.ndarray, np.ndarray | None]:
+    """``dF_i/dx'`` and ``dF_i/dx'dot`` of pad ``i`` (linearized; finite-volume films by central differences
+    warm-started from ``state``; ``damping=False`` skips the second)."""
+    if all(sup is not None for sup in state.sups):
         return force_derivatives(state)
-    bearing = geometry.fixed_pads
-    pos, _ = _effective(geometry, xy, tilts)
     D, E = np.zeros((2, 2)), np.zeros((2, 2))
 
     def force(at, vel=(0.0, 0.0)):
-        return position_state(bearing, (meshes[i],), at[0], at[1], cavitation, velocity=vel, warm_start=state,
-                              element=element).force
+        return _pad_state(geometry, mesh, i, np.asarray(xy, float) + at, q, cavitation, element, warm=state,
+                          velocity=vel).force
     for j in range(2):
         d = np.zeros(2)
         d[j] = step
-        D[:, j] = (force(pos[i] + d) - force(pos[i] - d)) / (2 * step)
-        E[:, j] = (force(pos[i], d) - force(pos[i], -d)) / (2 * step)
-    return D, E
+        D[:, j] = (force(d) - force(-d)) / (2 * step)
+        if damping:
+            E[:, j] = (force(np.zeros(2), d) - force(np.zeros(2), -d)) / (2 * step)
+    return D, (E if damping else None)
 
 
 # -- equilibrium --------------------------------------------------------------------------------
@@ -411,37 +405,97 @@ def _aligned(geometry: TiltingPadGeometry, xy) -> np.ndarray:
     return -(t @ np.asarray(xy, float))
 
 
-def _system(geometry, meshes, pads: _Pads, xy, tilts, load, cavitation, element, locked):
-    """Residual and Jacobian of the unknowns ``(x, y, q_1..q_n)`` (locked: ``(x, y)`` only)."""
-    n_pads = geometry.n_pads
+def _balance_pad(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: float, cavitation: str,
+                 element: str, warm, tol: float, max_steps: int = 60):
+    """Rotation of loaded pad ``i`` at which its moment about the pivot vanishes: ``(q, state, dF/dx')``.
+
+    The pad's moment ``r(q) = F_i . t_i`` is zero on the unloaded range (rotations at which its film
+    diverges everywhere, up to ``q_lo``), negative just above it (pressure near the trailing edge turns
+    the pad further) and positive once the pad carries its load ahead of the pivot: the loaded
+    rotation is the root where ``r`` changes from negative to positive. Newton's steps on ``r`` (slope
+    ``t_i . D t_i`` from the linearization) are kept inside the bracket of that change, bisected when
+    they leave it; rotations that close the film count as ``r > 0``.
+    """
+    n, t = geometry.normals()
+    xy = np.asarray(xy, float)
+    s = float(n[i] @ xy) + geometry.preload
+    lead = geometry.offset * geometry.arc
+    lo = -float(t[i] @ xy) - s * math.tan(lead) if lead < math.pi / 2 else -math.inf
+    hi = math.inf
+    q = q0 if q0 > lo else -float(t[i] @ xy)  # aligned lies above the unloaded range
+    jump = 0.05
+    for _ in range(max_steps):
+        pos = xy + geometry.preload * n[i] + q * t[i]
+        if _pad_h_min(geometry.arcs[i], pos) <= H_FLOOR:
+            hi, r, d = q, 1.0, math.nan
+        else:
+            state = _pad_state(geometry, mesh, i, xy, q, cavitation, element, warm=warm)
+            warm = state
+            D, _ = _pad_derivatives(geometry, mesh, i, state, xy, q, cavitation, element, damping=False)
+            r, d = float(state.force @ t[i]) / w, float(t[i] @ D @ t[i]) / w
+            if abs(r) <= tol:
+                return q, state, D
+            if r > 0:
+                hi = q
+            else:
+                lo = q
+        new = q - r / d if d > 0 else math.nan
+        if not lo < new < hi:
+            if math.isfinite(lo) and math.isfinite(hi):
+                new = 0.5 * (lo + hi)
+            else:
+                new = q + (jump if r < 0 else -jump)
+                jump *= 2
+        if hi - lo <= 1e-13 * max(1.0, abs(q)):
+            break
+        q = new
+    raise TiltingPadConvergenceError(
+        f"tilting-pad equilibrium: no rotation of pad {i} balances its moment about the pivot "
+        f"(shaft at {xy.round(6).tolist()}, moment {r:.3g} of the load)")
+
+
+def _balance(geometry: TiltingPadGeometry, meshes, xy, tilts, w: float, cavitation: str, element: str,
+             warm: "_Pads | None", tol: float, locked: bool) -> tuple[_Pads, np.ndarray, list]:
+    """Every pad at shaft position ``xy``: loaded pads turned to zero moment (locked: held), unloaded ones
+    where their film stops converging, concentric ones aligned. Returns the pads, their rotations and
+    each loaded pad's ``dF/dx'`` (None for the others)."""
+    kinds = np.full(geometry.n_pads, ACTIVE) if locked else _kinds(geometry, xy, cavitation)
+    free, _ = _idle_tilts(geometry, xy)
+    tilts = np.array(tilts, float)
+    states, forces, derivatives = [], np.zeros((geometry.n_pads, 2)), []
+    for i, mesh in enumerate(meshes):
+        if kinds[i] != ACTIVE:
+            tilts[i] = free[i]  # the same as aligned when concentric
+            # a concentric pad: the uniform film, linearized on its empty rupture set
+            states.append(None if kinds[i] == IDLE else position_state(geometry.fixed_pads, (mesh,), 0.0, 0.0,
+                                                                      "none", element=element))
+            derivatives.append(None)
+            continue
+        start = warm.states[i] if warm is not None and warm.kinds[i] == ACTIVE else None
+        if locked:
+            state = _pad_state(geometry, mesh, i, xy, tilts[i], cavitation, element, warm=start)
+            D, _ = _pad_derivatives(geometry, mesh, i, state, xy, tilts[i], cavitation, element, damping=False)
+        else:
+            tilts[i], state, D = _balance_pad(geometry, mesh, i, xy, tilts[i], w, cavitation, element, start, tol)
+        states.append(state)
+        forces[i] = state.force
+        derivatives.append(D)
+    return _Pads(states=tuple(states), forces=forces, kinds=kinds), tilts, derivatives
+
+
+def _shaft_stiffness(geometry: TiltingPadGeometry, derivatives: list, locked: bool) -> np.ndarray:
+    """``dW/dx`` of the shaft with every loaded pad re-balanced (locked: held):
+    ``sum_i D_i - (D_i t_i)(t_i^T D_i) / (t_i^T D_i t_i)``."""
     _, t = geometry.normals()
-    w = float(np.hypot(*load))
-    n = 2 if locked else 2 + n_pads
-    r = np.zeros(n)
-    J = np.zeros((n, n))
-    r[:2] = (pads.forces.sum(axis=0) - load) / w
-    free, grad = _idle_tilts(geometry, xy)
-    for i in range(n_pads):
-        if pads.idle[i]:
-            if not locked:  # an unloaded pad turns to where its film stops converging
-                r[2 + i] = tilts[i] - free[i]
-                J[2 + i, 2 + i] = 1.0
-                J[2 + i, :2] = -grad[i]
+    K = np.zeros((2, 2))
+    for i, D in enumerate(derivatives):
+        if D is None:
             continue
-        D, _ = _pad_derivatives(geometry, meshes, pads, i, xy, tilts, cavitation, element)
-        J[:2, :2] += D / w
-        if not locked and not abs(t[i] @ D @ t[i]) > 1e-12 * max(float(np.abs(D).max()), w):
-            # the pad turned into its unloaded (fully ruptured) range: pull it back to aligned
-            r[2 + i] = tilts[i] + t[i] @ np.asarray(xy, float)
-            J[2 + i, 2 + i] = 1.0
-            J[2 + i, :2] = t[i]
-            continue
-        if not locked:
-            r[2 + i] = pads.forces[i] @ t[i] / w
-            J[:2, 2 + i] = D @ t[i] / w
-            J[2 + i, :2] = t[i] @ D / w
-            J[2 + i, 2 + i] = t[i] @ D @ t[i] / w
-    return r, J
+        K += D
+        d = float(t[i] @ D @ t[i])
+        if not locked and abs(d) > 1e-12 * float(np.abs(D).max()):
+            K -= np.outer(D @ t[i], t[i] @ D) / d
+    return K
 
 
 def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float = 0.05,
@@ -457,8 +511,9 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
         Applied load on the journal, bearing frame [mu omega R^4/C_p^2].
     size : float
         Element size of the pad meshes [-] (:func:`tilting_pad_meshes`).
-    cavitation : {"reynolds", "none", "jfo"}
-        Film model of every pad (``"jfo"``: finite volumes, derivatives by central differences).
+    cavitation : {"reynolds", "jfo"}
+        Film model of every pad: Swift-Stieber, or mass-conserving (finite volumes, derivatives by
+        central differences); locked pads also take ``"none"``.
     element : {"P1", "P2"}
     tol : float
         On the largest force and pad-moment imbalance over ``|load|``.
@@ -481,64 +536,70 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
     load = np.asarray(load, float)
     if load.shape != (2,) or not np.all(np.isfinite(load)) or not np.hypot(*load) > 0:
         raise ValueError(f"load must be a finite non-zero pair, got {load!r}")
-    if cavitation not in EQUILIBRIUM_CAVITATION:
-        raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
+    locked = locked_tilts is not None
+    allowed = EQUILIBRIUM_CAVITATION if locked else TILTING_PAD_CAVITATION
+    if cavitation not in allowed:
+        raise ValueError(f"cavitation must be one of {allowed} (without cavitation an unloaded pad's film "
+                         f"pulls it shut: it has no moment balance), got {cavitation!r}")
     if not (0 < tol < 1e-2):
         raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
     meshes = tilting_pad_meshes(geometry, size) if meshes is None else tuple(meshes)
     if len(meshes) != geometry.n_pads:
         raise ValueError(f"need one mesh per pad ({geometry.n_pads}), got {len(meshes)}")
-    locked = locked_tilts is not None
     w = float(np.hypot(*load))
     if start is not None:
         xy, tilts, warm = np.array(start.position, float), np.array(start.tilts, float), start.pads
     else:
-        xy = 0.5 * load / w
-        tilts = np.where(_kinds(geometry, xy, cavitation) == IDLE, _idle_tilts(geometry, xy)[0],
-                         _aligned(geometry, xy))
-        warm = None
+        xy, warm = 0.5 * load / w, None
+        tilts = _aligned(geometry, xy)
     if locked:
         tilts = np.asarray(locked_tilts, float)
         if tilts.shape != (geometry.n_pads,) or not np.all(np.isfinite(tilts)):
             raise ValueError(f"locked_tilts must be {geometry.n_pads} finite numbers, got {locked_tilts!r}")
-    if _h_min(geometry, xy, tilts) <= H_FLOOR:
-        raise ValueError("the start puts a pad on the shaft (h <= 0.01): start from another equilibrium")
-    pads = _solve_pads(geometry, meshes, xy, tilts, cavitation, element, warm)
-    r, J = _system(geometry, meshes, pads, xy, tilts, load, cavitation, element, locked)
-    res = float(np.max(np.abs(r)))
+        if start is None and not _h_min(geometry, xy, tilts) > H_FLOOR:
+            xy = np.zeros(2)
+    def state_at(at, rotations, previous, imbalance=1.0):
+        # inexact Newton: the pads' moments to a hundredth of the force imbalance, at least to tol / 10
+        inner = max(0.1 * tol, 1e-2 * imbalance)
+        pads, rotations, derivatives = _balance(geometry, meshes, at, rotations, w, cavitation, element, previous,
+                                                inner, locked)
+        return pads, rotations, derivatives, float(np.max(np.abs(pads.forces.sum(axis=0) - load))) / w
+
+    def open_films(at, rotations) -> bool:
+        if locked:
+            return _h_min(geometry, at, rotations) > H_FLOOR
+        n, _ = geometry.normals()
+        return float(np.max(n @ at)) + geometry.preload < 1 - H_FLOOR
+
+    if not open_films(xy, tilts):
+        raise ValueError("the start puts a pad on the shaft: start from another equilibrium")
+    pads, tilts, derivatives, res = state_at(xy, tilts, warm)
     for k in range(max_newton + 1):
         if res <= tol:
             return _result(geometry, meshes, pads, xy, tilts, load, k, res, locked, cavitation, element)
         if k == max_newton:
             break
-        try:
-            step = -np.linalg.solve(J, r)
-        except np.linalg.LinAlgError:
-            step = -np.linalg.lstsq(J, r, rcond=None)[0]
-        # cap the shaft's step at 0.3 C_p and the pads' at 0.5 C_p, then halve until every film stays open
-        # and the imbalance falls
-        scale = min(1.0, 0.3 / max(float(np.hypot(*step[:2])), 1e-300),
-                    0.5 / max(float(np.max(np.abs(step[2:]), initial=0.0)), 1e-300))
-        s = scale
+        K = _shaft_stiffness(geometry, derivatives, locked) / w
+        R = (pads.forces.sum(axis=0) - load) / w
+        step = -np.linalg.lstsq(K, R, rcond=1e-12)[0]
+        # at most 0.3 C_p per step, halved until every film stays open and the imbalance falls
+        t_step = min(1.0, 0.3 / max(float(np.hypot(*step)), 1e-300))
         for _ in range(30):
-            new_xy = xy + s * step[:2]
-            new_tilts = tilts if locked else tilts + s * step[2:]
-            if _h_min(geometry, new_xy, new_tilts) > max(H_FLOOR, 0.25 * _h_min(geometry, xy, tilts)):
-                new_pads = _solve_pads(geometry, meshes, new_xy, new_tilts, cavitation, element, pads)
-                new_r, new_J = _system(geometry, meshes, new_pads, new_xy, new_tilts, load, cavitation, element,
-                                       locked)
-                new_res = float(np.max(np.abs(new_r)))
-                if new_res < res or s < 1e-3:
+            new_xy = xy + t_step * step
+            if open_films(new_xy, tilts):
+                new = state_at(new_xy, tilts, pads, res)
+                if new[3] < res or t_step < 1e-3:
                     break
-            s *= 0.5
+            t_step *= 0.5
         else:
             raise TiltingPadConvergenceError(
                 f"tilting-pad equilibrium: no Newton step keeps the films open (imbalance {res:.3g} of the load); "
                 "the load may be beyond what the pads carry")
-        xy, tilts, pads, r, J, res = new_xy, new_tilts, new_pads, new_r, new_J, new_res
+        xy = new_xy
+        pads, tilts, derivatives, res = new
     raise TiltingPadConvergenceError(
-        f"tilting-pad equilibrium: Newton did not converge in {max_newton} steps (largest force or moment "
-        f"imbalance {res:.3g} of the load)")
+        f"tilting-pad equilibrium: Newton did not converge in {max_newton} steps (force imbalance {res:.3g} "
+        f"of the load)")
 
 
 def _result(geometry, meshes, pads: _Pads, xy, tilts, load, k, res, locked, cavitation, element):
@@ -608,7 +669,9 @@ def pad_assembly_coefficients(eq: TiltingPadEquilibrium) -> PadAssemblyCoefficie
     for i in range(n_pads):
         if eq.pads.kinds[i] == IDLE:
             continue
-        D, E = _pad_derivatives(geometry, eq.meshes, eq.pads, i, eq.position, eq.tilts, eq.cavitation, eq.element)
+        state = eq.pads.states[i]
+        D, E = _pad_derivatives(geometry, eq.meshes[i], i, state, eq.position, eq.tilts[i],
+                                eq.cavitation if eq.pads.kinds[i] == ACTIVE else "none", eq.element)
         T = np.zeros((2, n))
         T[:, :2] = np.eye(2)
         T[:, 2 + i] = t[i]
@@ -646,6 +709,9 @@ def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float =
     K, C = full.K[np.ix_(keep, keep)], full.C[np.ix_(keep, keep)]
     j, p = slice(0, 2), slice(2, K.shape[0])
     if nu == 0:
+        if K.shape[0] > 2 and not np.linalg.cond(K[p, p]) < 1e12:
+            raise ValueError("a pad has no tilt stiffness (a concentric pad without pressure): the static "
+                             "reduction is undefined; use frequency_ratio > 0")
         Kpp_inv_Kpj = np.linalg.solve(K[p, p], K[p, j]) if K.shape[0] > 2 else np.zeros((0, 2))
         Kred = K[j, j] - K[j, p] @ Kpp_inv_Kpj
         X = np.linalg.solve(K[p, p], C[p, j]) if K.shape[0] > 2 else np.zeros((0, 2))
