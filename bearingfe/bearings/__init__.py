@@ -1,10 +1,11 @@
-"""The bearings built on the film solver: journal bearings and the pump's plunger shoe.
+"""The bearings built on the film solver: journal bearings (fixed and tilting pads) and the pump's plunger shoe.
 
 ================  ============================================================
 module            what it does
 ================  ============================================================
 ``journal``       Journal bearings with the same Reynolds machinery: performance, equilibrium, dynamic coefficients.
 ``pump``          The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
+``tilting_pad``   Tilting-pad journal bearings: equilibrium of the shaft and the pads, and Lund's pad-assembly reduction.
 ================  ============================================================
 """
 
@@ -12,6 +13,9 @@ from __future__ import annotations
 
 from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, dynamic_coefficients
 from .pump import EccentricPump, PressureCycle
+from .tilting_pad import (PadAssemblyCoefficients, TiltingPadBearing, TiltingPadEquilibrium, TiltingPadGeometry,
+                          pad_assembly_coefficients, tilting_pad_equilibrium)
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
-           "EccentricPump", "PressureCycle"]
+           "EccentricPump", "PressureCycle", "PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium",
+           "TiltingPadGeometry", "pad_assembly_coefficients", "tilting_pad_equilibrium"]

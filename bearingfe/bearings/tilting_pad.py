@@ -24,10 +24,16 @@ and :func:`~bearingfe.bearings.journal.force_derivatives` on the pad meshes of
 The generalized force of the pad rotation is ``Q_i = int p dh/dq_i = -F_i . t_i``
 (``F_i`` the pad's film force on the pad): a pad with no moment about its pivot
 carries its load through the pivot. The equilibrium solves ``sum F_i = W`` and
-``F_i . t_i = 0`` for ``(x, y, q_1 .. q_n)`` by Newton's method with the
-linearized Jacobian ``sum_i T_i^T (dF_i/dx') T_i`` (``T_i = dx'_i/du``). The
-pad's own friction moment (a pivot below the pad surface) is neglected, as in
-Lund's and Someya's analyses.
+``F_i . t_i = 0`` for ``(x, y, q_1 .. q_n)``: Newton's method on the shaft
+position with the linearized stiffness of the shaft with re-balanced pads
+(``sum_i D_i - (D_i t_i)(t_i^T D_i)/(t_i^T D_i t_i)``, ``D_i = dF_i/dx'``), each
+step first turning every loaded pad to zero moment by a bracketed Newton
+iteration on its rotation (slope ``t_i^T D_i t_i``). A pad the shaft is no nearer
+than the preload puts it (``x . n_i + m <= 0``) carries nothing: its film
+diverges everywhere, its coefficients are zero. The pad's own friction moment
+(a pivot below the pad surface) is neglected, as in Lund's and Someya's analyses.
+The full coefficients are ``sum_i T_i^T D_i T_i`` (and the same of
+``dF_i/dx'dot``) with ``T_i = dx'_i/du`` over ``u = (x, y, q_1 .. q_n)``.
 
 Dynamic coefficients over the shaft and pad degrees of freedom, and the 2x2
 coefficients of the journal at whirl frequency ``Omega`` (Lund 1964): with the
@@ -90,7 +96,8 @@ class TiltingPadGeometry:
     arc : float
         Angular extent of each pad [rad], ``n_pads * arc < 2 pi``.
     offset : float
-        Pivot position from the leading edge as a fraction of the arc [-], in (0, 1) (0.5: centred).
+        Pivot position from the leading edge as a fraction of the arc [-], in (0, 1) (0.5: centred);
+        both pad edges within 90 degrees of the pivot.
     preload : float
         ``m = 1 - C_b/C_p`` [-], in [0, 1).
     load_on_pad : bool
@@ -114,6 +121,9 @@ class TiltingPadGeometry:
             raise ValueError(f"arc must be > 0 rad with n_pads * arc < 2 pi, got {self.arc!r}")
         if not (math.isfinite(self.offset) and 0 < self.offset < 1):
             raise ValueError(f"offset must be in (0, 1), got {self.offset!r}")
+        if not max(self.offset, 1 - self.offset) * self.arc < math.pi / 2:
+            raise ValueError("each pad edge must lie within 90 degrees of the pivot (offset x arc and "
+                             f"(1 - offset) x arc < pi/2), got arc {self.arc!r} rad, offset {self.offset!r}")
         if not (math.isfinite(self.preload) and 0 <= self.preload < 1):
             raise ValueError(f"preload must be in [0, 1), got {self.preload!r}")
         if not isinstance(self.load_on_pad, bool):
@@ -371,8 +381,9 @@ class TiltingPadEquilibrium:
         Unloaded pads (the shaft no nearer their pivot than the preload puts it): no pressure, turned
         to where their film stops converging, zero coefficients.
     newton_iterations : int
+        Newton steps of the shaft (each turns every loaded pad to zero moment first).
     residual : float
-        Largest force or pad-moment imbalance over ``|load|``.
+        Force imbalance over ``|load|`` (each pad's moment is balanced to a tenth of ``tol`` of its force).
     locked : bool
         Pads held at their given rotations (a fixed-pad bearing).
     """
@@ -407,7 +418,8 @@ def _aligned(geometry: TiltingPadGeometry, xy) -> np.ndarray:
 
 def _balance_pad(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: float, cavitation: str,
                  element: str, warm, tol: float, max_steps: int = 60):
-    """Rotation of loaded pad ``i`` at which its moment about the pivot vanishes: ``(q, state, dF/dx')``.
+    """Rotation of loaded pad ``i`` at which its moment about the pivot vanishes: ``(q, state, dF/dx')``;
+    the moment (as a force at the pad surface) to ``tol`` of the pad's force.
 
     The pad's moment ``r(q) = F_i . t_i`` is zero on the unloaded range (rotations at which its film
     diverges everywhere, up to ``q_lo``), negative just above it (pressure near the trailing edge turns
@@ -433,7 +445,8 @@ def _balance_pad(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: f
             warm = state
             D, _ = _pad_derivatives(geometry, mesh, i, state, xy, q, cavitation, element, damping=False)
             r, d = float(state.force @ t[i]) / w, float(t[i] @ D @ t[i]) / w
-            if abs(r) <= tol:
+            # relative to the pad's own force: near the unloaded range force and moment vanish together
+            if abs(r) <= tol * float(np.hypot(*state.force)) / w or abs(r) <= 1e-2 * tol:
                 return q, state, D
             if r > 0:
                 hi = q
@@ -516,7 +529,8 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
         central differences); locked pads also take ``"none"``.
     element : {"P1", "P2"}
     tol : float
-        On the largest force and pad-moment imbalance over ``|load|``.
+        On the force imbalance over ``|load|``; each pad's moment about its pivot (as a force at the pad's
+        surface) to ``tol / 10`` of the pad's force.
     max_newton : int
     start : TiltingPadEquilibrium, optional
         Warm start: its position, rotations and rupture sets (another load or speed of the same
@@ -558,11 +572,9 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
             raise ValueError(f"locked_tilts must be {geometry.n_pads} finite numbers, got {locked_tilts!r}")
         if start is None and not _h_min(geometry, xy, tilts) > H_FLOOR:
             xy = np.zeros(2)
-    def state_at(at, rotations, previous, imbalance=1.0):
-        # inexact Newton: the pads' moments to a hundredth of the force imbalance, at least to tol / 10
-        inner = max(0.1 * tol, 1e-2 * imbalance)
+    def state_at(at, rotations, previous):
         pads, rotations, derivatives = _balance(geometry, meshes, at, rotations, w, cavitation, element, previous,
-                                                inner, locked)
+                                                0.1 * tol, locked)
         return pads, rotations, derivatives, float(np.max(np.abs(pads.forces.sum(axis=0) - load))) / w
 
     def open_films(at, rotations) -> bool:
@@ -587,7 +599,7 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
         for _ in range(30):
             new_xy = xy + t_step * step
             if open_films(new_xy, tilts):
-                new = state_at(new_xy, tilts, pads, res)
+                new = state_at(new_xy, tilts, pads)
                 if new[3] < res or t_step < 1e-3:
                     break
             t_step *= 0.5

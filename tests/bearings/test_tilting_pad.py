@@ -5,7 +5,7 @@ bearing, L/D = 0.5, zero preload, as transcribed in the task that asked for this
 three significant digits). The transcription gives no pad arc or pivot position; the assumed ones
 are the databook's and ISO 31657-3's four-pad bearing: 80-degree pads, centred pivots (offset 0.5),
 Reynolds (Swift-Stieber) film rupture, rigid pivots, massless pads, synchronous coefficients, the
-databook's x along the load (the package's -y). docs/validation.md has the comparison and where the
+databook's x along the load (the package's -y). docs/tilting_pad_validation.md has the comparison and where the
 package and the table differ.
 
 Independent references of the other tests: the fixed-pad bearing of
@@ -250,7 +250,7 @@ SOMEYA_ROWS = {(False, 0.5): dict(S=0.756, K=1.94, B=3.33), (False, 0.8): dict(S
 def test_someya_four_pads_load_between_pads(eps, tol_S, tol_K, tol_B):
     # size 0.025 (converged to 0.1 %, see the convergence test). The table's three digits would allow
     # 0.07 to 0.3 %; the package and the table differ by 0.3 % (S), 1.5 % (K), 2.4 % (B) at eps 0.5 and
-    # by 1.8 %, 5.5 %, 1.7 % at eps 0.8 (docs/validation.md): the tolerances are those differences
+    # by 1.8 %, 5.5 %, 1.7 % at eps 0.8 (docs/tilting_pad_validation.md): the tolerances are those differences
     # rounded up, the table's own discretization (1980s finite differences) and its assumed geometry
     ref = SOMEYA_ROWS[(False, eps)]
     eq = _at_eps(SOMEYA, eps, tilting_pad_meshes(SOMEYA, 0.1, refine=2))
@@ -267,7 +267,7 @@ def test_someya_four_pads_load_on_pad():
     # the stiffness and damping along the load agree within 5.4 % and 7.7 %; the side pads, exactly
     # unloaded (a uniform film), give no stiffness (table 0.0132, i.e. zero to its precision relative to
     # Kxx) and the damping of their full film, 14 % below the table's. The table's S = 0.316 is not
-    # reproduced (the package gives 0.517): see the next test and docs/validation.md
+    # reproduced (the package gives 0.517): see the next test and docs/tilting_pad_validation.md
     ref = SOMEYA_ROWS[(True, 0.5)]
     g = TiltingPadGeometry(0.5, n_pads=4, arc=math.radians(80), offset=0.5, load_on_pad=True)
     eq = _at_eps(g, 0.5, tilting_pad_meshes(g, 0.1, refine=2))

@@ -50,6 +50,8 @@ def test_every_public_name_is_still_there(name):
     ("jfo", ("solve_jfo", "JFOError")),
     ("journal", ("JournalBearing", "equilibrium", "dynamic_coefficients", "performance")),
     ("pump", ("EccentricPump", "PressureCycle")),
+    ("tilting_pad", ("TiltingPadBearing", "TiltingPadGeometry", "tilting_pad_equilibrium", "pad_assembly_coefficients",
+                     "reduced_coefficients")),
     ("scenes", ("SCENES", "run_scene", "load_scene")),
 ])
 def test_the_modules_keep_their_main_names(module, names):
