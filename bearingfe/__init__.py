@@ -18,7 +18,7 @@ module or package          what it does
 ``elastic``                elastic supports (half-space, block, shoe body) and the coupled film
 ``reynolds``               ``solve_reynolds``: the front door of the Reynolds solvers
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``bearings``               journal bearings (fixed and tilting pads); the pump and its plunger shoe
+``bearings``               journal bearings (fixed and tilting pads), rotor stability; the pump and its plunger shoe
 ``validation``             closed-form and published-data checks
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
 ``mechanisms``             crank drives, efficiency, rotors on frames, machine files (``mechanisms/*.toml``)
@@ -31,7 +31,7 @@ module or package          what it does
 """
 
 from . import adaptivity, cavitation, elastic, io, scenes, transient, validation
-from .bearings import journal, pump, tilting_pad
+from .bearings import journal, pump, stability, tilting_pad
 from .film import finite_volume as jfo
 from .mechanisms import crank, efficiency, rotor
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
@@ -74,7 +74,7 @@ __all__ = [
     "validation",
     "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
-    "film_graded_size", "journal", "TiltingPadBearing", "TiltingPadGeometry", "tilting_pad",
+    "film_graded_size", "journal", "TiltingPadBearing", "TiltingPadGeometry", "tilting_pad", "stability",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
     "Circle", "CoercivityError", "CosineFilm", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm",

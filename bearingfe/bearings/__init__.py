@@ -4,6 +4,7 @@
 module            what it does
 ================  ============================================================
 ``journal``       Journal bearings with the same Reynolds machinery: performance, equilibrium, dynamic coefficients.
+``stability``     Stability of a rigid symmetric rotor on two identical bearings: damped eigenvalues, log decrement, Lund's threshold.
 ``pump``          The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
 ``tilting_pad``   Tilting-pad journal bearings: equilibrium of the shaft and the pads, and Lund's pad-assembly reduction.
 ================  ============================================================
@@ -13,9 +14,11 @@ from __future__ import annotations
 
 from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, dynamic_coefficients
 from .pump import EccentricPump, PressureCycle
+from .stability import RotorModes, log_decrement_map, lund_threshold, rotor_modes, threshold_speed
 from .tilting_pad import (PadAssemblyCoefficients, TiltingPadBearing, TiltingPadEquilibrium, TiltingPadGeometry,
                           pad_assembly_coefficients, tilting_pad_equilibrium)
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
            "EccentricPump", "PressureCycle", "PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium",
-           "TiltingPadGeometry", "pad_assembly_coefficients", "tilting_pad_equilibrium"]
+           "TiltingPadGeometry", "pad_assembly_coefficients", "tilting_pad_equilibrium", "RotorModes",
+           "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"]

@@ -50,6 +50,7 @@ def test_every_public_name_is_still_there(name):
     ("jfo", ("solve_jfo", "JFOError")),
     ("journal", ("JournalBearing", "equilibrium", "dynamic_coefficients", "performance")),
     ("pump", ("EccentricPump", "PressureCycle")),
+    ("stability", ("rotor_modes", "lund_threshold", "log_decrement_map", "threshold_speed")),
     ("tilting_pad", ("TiltingPadBearing", "TiltingPadGeometry", "tilting_pad_equilibrium", "pad_assembly_coefficients",
                      "reduced_coefficients")),
     ("scenes", ("SCENES", "run_scene", "load_scene")),
