@@ -16,9 +16,9 @@ from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, d
 from .pump import EccentricPump, PressureCycle
 from .stability import RotorModes, log_decrement_map, lund_threshold, rotor_modes, threshold_speed
 from .tilting_pad import (PadAssemblyCoefficients, TiltingPadBearing, TiltingPadEquilibrium, TiltingPadGeometry,
-                          pad_assembly_coefficients, tilting_pad_equilibrium)
+                          pad_assembly_coefficients, ross_table, tilting_pad_equilibrium)
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
            "EccentricPump", "PressureCycle", "PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium",
-           "TiltingPadGeometry", "pad_assembly_coefficients", "tilting_pad_equilibrium", "RotorModes",
+           "TiltingPadGeometry", "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium", "RotorModes",
            "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"]

@@ -67,6 +67,7 @@ __all__ = [
     "tilting_pad_equilibrium",
     "pad_assembly_coefficients",
     "reduced_coefficients",
+    "ross_table",
 ]
 
 #: Cavitation models of free (tilting) pads; locked pads take every model of
@@ -738,3 +739,59 @@ def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float =
         method = f"tilting-pad reduction, Omega/omega = {nu:g}"
     return DynamicCoefficients(K=np.array(Kred), C=np.array(Cred), load=full.load, eps=full.eps,
                                attitude=full.attitude, method=method)
+
+
+# -- coefficient tables ---------------------------------------------------------------------------
+
+def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds, frequencies, *,
+               size: float = 0.05, cavitation: str = "reynolds", element: str = "P1") -> dict:
+    """Reduced coefficients over (rotor speed, whirl frequency) as ROSS 3 ``BearingElement`` keywords.
+
+    At each speed the equilibrium under the load (warm-started from the previous speed) gives the full
+    coefficients, reduced at every whirl frequency with the pads' mass at that speed
+    (:meth:`TiltingPadBearing.pad_mass`).
+
+    Parameters
+    ----------
+    bearing : TiltingPadBearing
+    load : float
+        Static load on the journal [N], > 0, along ``-y`` (gravity).
+    viscosity : float
+        [Pa s], > 0.
+    speeds, frequencies : sequence of float
+        Rotor speeds and whirl frequencies [rad/s], > 0, increasing.
+    size, cavitation, element
+        As :func:`tilting_pad_equilibrium`.
+
+    Returns
+    -------
+    dict
+        ``speed`` and ``frequency`` (lists [rad/s]), and ``kxx, kxy, kyx, kyy`` [N/m], ``cxx, cxy, cyx, cyy``
+        [N s/m] as nested lists of shape ``(len(speed), len(frequency))``: pass as
+        ``ross.BearingElement(n=..., **table)`` (ROSS is not imported).
+    """
+    _check_positive(load=load, viscosity=viscosity)
+    speeds, frequencies = np.asarray(speeds, float), np.asarray(frequencies, float)
+    for name, v in (("speeds", speeds), ("frequencies", frequencies)):
+        if v.ndim != 1 or not v.size or not np.all(np.isfinite(v) & (v > 0)) or not np.all(np.diff(v) > 0):
+            raise ValueError(f"{name} must be positive, finite and increasing, got {v!r}")
+    geometry = bearing.geometry
+    meshes = tilting_pad_meshes(geometry, size)
+    table = {f"{k}{a}{b}": np.zeros((speeds.size, frequencies.size)) for k in "kc" for a in "xy" for b in "xy"}
+    eq = None
+    for i, speed in enumerate(speeds):
+        w = load / bearing.force_scale(viscosity, speed)
+        eq = tilting_pad_equilibrium(geometry, (0.0, -w), meshes=meshes, start=eq, cavitation=cavitation,
+                                     element=element)
+        full = pad_assembly_coefficients(eq)
+        mass = bearing.pad_mass(viscosity, speed)
+        for j, frequency in enumerate(frequencies):
+            K, C = full.reduced(frequency / speed, pad_mass=mass).to_si(
+                viscosity=viscosity, speed=speed, radius=bearing.radius, clearance=bearing.pad_clearance)
+            for a, ia in (("x", 0), ("y", 1)):
+                for b, ib in (("x", 0), ("y", 1)):
+                    table[f"k{a}{b}"][i, j] = K[ia, ib]
+                    table[f"c{a}{b}"][i, j] = C[ia, ib]
+    out = {"speed": speeds.tolist(), "frequency": frequencies.tolist()}
+    out.update({k: v.tolist() for k, v in table.items()})
+    return out

@@ -312,3 +312,31 @@ def test_mesh_convergence_of_the_coefficients_is_second_order():
     order = np.log2(d[0] / d[1])
     assert np.all((order > 1.7) & (order < 2.3)), order
     assert np.all(d[1] / values[2] < 3e-3)  # the finest step changes them by less than 0.3 %
+
+
+# -- ROSS tables ----------------------------------------------------------------------------------
+
+def test_ross_table_over_speed_and_whirl_frequency():
+    # SI: the table's entries are the reduced coefficients at (speed, frequency) in N/m and N s/m, the
+    # synchronous ones the default reduction; every entry comes from the equilibrium at its own speed
+    bearing = TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=75e-6, n_pads=5, arc=math.radians(60),
+                                preload=0.2, pad_inertia=1e-4, pad_thickness=0.01)
+    load, mu = 2000.0, 0.02
+    speeds, frequencies = [300.0, 600.0], [150.0, 300.0, 600.0]
+    from bearingfe.bearings.tilting_pad import ross_table
+    table = ross_table(bearing, load, mu, speeds, frequencies, size=0.1)
+    assert table["speed"] == speeds and table["frequency"] == frequencies
+    assert np.shape(table["kxx"]) == (2, 3) and np.shape(table["cyx"]) == (2, 3)
+    g = bearing.geometry
+    speed = 600.0
+    eq = tilting_pad_equilibrium(g, (0.0, -load / bearing.force_scale(mu, speed)),
+                                 meshes=tilting_pad_meshes(g, 0.1))
+    red = pad_assembly_coefficients(eq).reduced(1.0, pad_mass=bearing.pad_mass(mu, speed))
+    K, C = red.to_si(viscosity=mu, speed=speed, radius=0.05, clearance=75e-6)
+    assert table["kyy"][1][2] == pytest.approx(K[1, 1], rel=1e-6)
+    assert table["cxx"][1][2] == pytest.approx(C[0, 0], rel=1e-6)
+    assert table["kxy"][1][2] == pytest.approx(K[0, 1], rel=1e-6, abs=1e-6 * abs(K[1, 1]))
+    # dimensions: K = K c/W * W / c
+    assert K[1, 1] == pytest.approx(red.K[1, 1] * load / 75e-6)
+    with pytest.raises(ValueError):
+        ross_table(bearing, load, mu, [600.0, 300.0], frequencies)
