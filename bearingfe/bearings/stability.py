@@ -61,22 +61,22 @@ def rotor_modes(coefficients: DynamicCoefficients | PadAssemblyCoefficients, mas
         ``(m/2) c omega^2 / W`` [-], > 0.
     pad_mass : float
         Tilting pads only: each pad's non-dimensional mass
-        (:meth:`~bearingfe.bearings.tilting_pad.TiltingPadBearing.pad_mass`), >= 0; zero-mass pads
-        follow the shaft without lag (their rows are constraints).
+        (:meth:`~bearingfe.bearings.tilting_pad.TiltingPadBearing.pad_mass`), >= 0, on the rotation rows;
+        zero-mass pads (and pivot deflections) follow the shaft without lag (their rows are constraints).
     """
     if not (math.isfinite(mass_parameter) and mass_parameter > 0):
         raise ValueError(f"mass_parameter must be > 0, got {mass_parameter!r}")
     if not (math.isfinite(pad_mass) and pad_mass >= 0):
         raise ValueError(f"pad_mass must be >= 0, got {pad_mass!r}")
-    K, C = np.asarray(coefficients.K, float), np.asarray(coefficients.C, float)
-    masses = np.full(K.shape[0], 0.0)
-    masses[:2] = mass_parameter
     if isinstance(coefficients, PadAssemblyCoefficients):
-        keep = np.concatenate([[True, True], np.asarray(coefficients.active, bool)])
-        K, C, masses = K[np.ix_(keep, keep)], C[np.ix_(keep, keep)], masses[keep]
-        masses[2:] = pad_mass / coefficients.load
+        K, C, rotations = coefficients.system()
+        masses = np.where(rotations, pad_mass / coefficients.load, 0.0)
     elif pad_mass:
         raise ValueError("pad_mass is for tilting pads (PadAssemblyCoefficients)")
+    else:
+        K, C = np.asarray(coefficients.K, float), np.asarray(coefficients.C, float)
+        masses = np.zeros(K.shape[0])
+    masses[:2] = mass_parameter
     n = K.shape[0]
     # first order: [u, v]' with v = u'; B [u, v]' = A [u, v]; massless pad rows are constraints
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])

@@ -35,6 +35,11 @@ diverges everywhere, its coefficients are zero. The pad's own friction moment
 The full coefficients are ``sum_i T_i^T D_i T_i`` (and the same of
 ``dF_i/dx'dot``) with ``T_i = dx'_i/du`` over ``u = (x, y, q_1 .. q_n)``.
 
+Flexible pivots (radial stiffness ``k``): pad ``i`` also moves out along its
+pivot line by ``xi_i``, so its effective position is ``x + (m - xi_i) n_i + q_i t_i``,
+and ``k xi_i = F_i . n_i`` at equilibrium (a Newton iteration per pad around the
+moment balance); ``xi_i`` joins the degrees of freedom (massless), the spring on its row.
+
 Dynamic coefficients over the shaft and pad degrees of freedom, and the 2x2
 coefficients of the journal at whirl frequency ``Omega`` (Lund 1964): with the
 impedance ``Z(nu) = K + i nu C - nu^2 M`` (``nu = Omega/omega``, ``M`` the pad
@@ -175,6 +180,8 @@ class TiltingPadBearing:
         Moment of inertia of a pad about its pivot [kg m^2], >= 0.
     pad_thickness : float
         Radial distance from the pad surface to the rocker line [m], >= 0 (``R_piv = R + t``).
+    pivot_stiffness : float
+        Radial stiffness of each pivot [N/m], > 0 (``inf``: rigid).
     """
 
     radius: float
@@ -187,6 +194,7 @@ class TiltingPadBearing:
     load_on_pad: bool = False
     pad_inertia: float = 0.0
     pad_thickness: float = 0.0
+    pivot_stiffness: float = math.inf
 
     def __post_init__(self) -> None:
         for name in ("radius", "length", "pad_clearance"):
@@ -200,6 +208,9 @@ class TiltingPadBearing:
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {v!r}")
+        if not (isinstance(self.pivot_stiffness, (int, float)) and self.pivot_stiffness > 0
+                and not math.isnan(self.pivot_stiffness)):
+            raise ValueError(f"pivot_stiffness must be > 0 [N/m] (inf: rigid), got {self.pivot_stiffness!r}")
         self.geometry  # checks the rest
 
     @property
@@ -212,6 +223,10 @@ class TiltingPadBearing:
         """``mu omega R^4 / C_p^2`` [N] for ``mu`` [Pa s] and ``omega`` [rad/s]."""
         _check_positive(viscosity=viscosity, speed=speed)
         return viscosity * speed * self.radius**4 / self.pad_clearance**2
+
+    def pivot_stiffness_parameter(self, viscosity: float, speed: float) -> float:
+        """Non-dimensional pivot stiffness ``k C_p^3 / (mu omega R^4)`` [-] (``inf`` for rigid pivots)."""
+        return self.pivot_stiffness * self.pad_clearance / self.force_scale(viscosity, speed)
 
     def pad_mass(self, viscosity: float, speed: float) -> float:
         """Non-dimensional pad mass ``(I_p/R_piv^2) C_p^3 omega / (mu R^4)`` [-]."""
@@ -285,6 +300,7 @@ class _Pads:
     states: tuple             # one journal state per pad (None for an idle pad)
     forces: np.ndarray        # (n, 2) film force on each pad
     kinds: np.ndarray         # (n,) ACTIVE, IDLE or CONCENTRIC
+    deflections: np.ndarray   # (n,) outward pivot deflections [C_p]
 
     @property
     def idle(self) -> np.ndarray:
@@ -387,6 +403,10 @@ class TiltingPadEquilibrium:
         Force imbalance over ``|load|`` (each pad's moment is balanced to a tenth of ``tol`` of its force).
     locked : bool
         Pads held at their given rotations (a fixed-pad bearing).
+    deflections : ndarray, shape (n_pads,)
+        Outward deflection of each pivot [C_p] (zero on rigid pivots).
+    pivot_stiffness : float
+        Of the equilibrium [-] (``inf``: rigid).
     """
 
     eps: float
@@ -399,6 +419,8 @@ class TiltingPadEquilibrium:
     newton_iterations: int
     residual: float
     locked: bool = False
+    deflections: np.ndarray | None = None
+    pivot_stiffness: float = math.inf
     geometry: TiltingPadGeometry | None = field(repr=False, compare=False, default=None)
     meshes: tuple = field(repr=False, compare=False, default=())
     cavitation: str = "reynolds"
@@ -469,53 +491,82 @@ def _balance_pad(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: f
 
 
 def _balance(geometry: TiltingPadGeometry, meshes, xy, tilts, w: float, cavitation: str, element: str,
-             warm: "_Pads | None", tol: float, locked: bool) -> tuple[_Pads, np.ndarray, list]:
-    """Every pad at shaft position ``xy``: loaded pads turned to zero moment (locked: held), unloaded ones
+             warm: "_Pads | None", tol: float, locked: bool, pivot_stiffness: float = math.inf
+             ) -> tuple[_Pads, np.ndarray, list]:
+    """Every pad at shaft position ``xy``: loaded pads turned to zero moment (locked: held) and, on
+    flexible pivots, pushed out until the pivot spring carries the film's radial force; unloaded ones
     where their film stops converging, concentric ones aligned. Returns the pads, their rotations and
-    each loaded pad's ``dF/dx'`` (None for the others)."""
+    each pad's condensed shaft stiffness (None for pads without load)."""
+    n, t = geometry.normals()
+    xy = np.asarray(xy, float)
+    tilts = np.array(tilts, float)
+    deflections = np.zeros(geometry.n_pads)
     kinds = np.full(geometry.n_pads, ACTIVE) if locked else _kinds(geometry, xy, cavitation)
     free, _ = _idle_tilts(geometry, xy)
-    tilts = np.array(tilts, float)
-    states, forces, derivatives = [], np.zeros((geometry.n_pads, 2)), []
+    states, forces, stiffness = [], np.zeros((geometry.n_pads, 2)), []
     for i, mesh in enumerate(meshes):
         if kinds[i] != ACTIVE:
             tilts[i] = free[i]  # the same as aligned when concentric
             # a concentric pad: the uniform film, linearized on its empty rupture set
             states.append(None if kinds[i] == IDLE else position_state(geometry.fixed_pads, (mesh,), 0.0, 0.0,
                                                                       "none", element=element))
-            derivatives.append(None)
+            stiffness.append(None)
             continue
         start = warm.states[i] if warm is not None and warm.kinds[i] == ACTIVE else None
         if locked:
             state = _pad_state(geometry, mesh, i, xy, tilts[i], cavitation, element, warm=start)
             D, _ = _pad_derivatives(geometry, mesh, i, state, xy, tilts[i], cavitation, element, damping=False)
+            stiffness.append(D)
         else:
-            tilts[i], state, D = _balance_pad(geometry, mesh, i, xy, tilts[i], w, cavitation, element, start, tol)
+            xi = 0.0 if warm is None or not math.isfinite(pivot_stiffness) else float(warm.deflections[i])
+            s0 = float(n[i] @ xy) + geometry.preload
+            xi = min(xi, 0.5 * s0)
+            for _ in range(60):
+                # the pad on a pivot deflected outward by xi sees the shaft at xy - xi n
+                tilts[i], state, D = _balance_pad(geometry, mesh, i, xy - xi * n[i], tilts[i], w, cavitation,
+                                                  element, start, tol)
+                start = state
+                K = _condensed(D, t[i], n[i], pivot_stiffness, deflected=False)
+                if not math.isfinite(pivot_stiffness):
+                    break
+                # the film's radial force against the spring: Newton with the film's condensed radial stiffness
+                excess = float(state.force @ n[i]) - pivot_stiffness * xi
+                if abs(excess) <= tol * float(np.hypot(*state.force)) or abs(excess) <= 1e-2 * tol * w:
+                    break
+                xi = min(xi + excess / (float(n[i] @ K @ n[i]) + pivot_stiffness), 0.5 * (xi + s0))
+            else:
+                raise TiltingPadConvergenceError(f"tilting-pad equilibrium: the pivot of pad {i} found no deflection "
+                                                 "that carries its film force")
+            deflections[i] = xi
+            stiffness.append(_condensed(D, t[i], n[i], pivot_stiffness, deflected=True))
         states.append(state)
         forces[i] = state.force
-        derivatives.append(D)
-    return _Pads(states=tuple(states), forces=forces, kinds=kinds), tilts, derivatives
+    return _Pads(states=tuple(states), forces=forces, kinds=kinds, deflections=deflections), tilts, stiffness
 
 
-def _shaft_stiffness(geometry: TiltingPadGeometry, derivatives: list, locked: bool) -> np.ndarray:
-    """``dW/dx`` of the shaft with every loaded pad re-balanced (locked: held):
-    ``sum_i D_i - (D_i t_i)(t_i^T D_i) / (t_i^T D_i t_i)``."""
-    _, t = geometry.normals()
-    K = np.zeros((2, 2))
-    for i, D in enumerate(derivatives):
-        if D is None:
-            continue
-        K += D
-        d = float(t[i] @ D @ t[i])
-        if not locked and abs(d) > 1e-12 * float(np.abs(D).max()):
-            K -= np.outer(D @ t[i], t[i] @ D) / d
+def _condensed(D: np.ndarray, t: np.ndarray, n: np.ndarray, pivot_stiffness: float, deflected: bool) -> np.ndarray:
+    """A loaded pad's stiffness seen by the shaft: ``D = dF/dx'`` with the pad re-balanced about its pivot
+    (``D - (D t)(t^T D)/(t^T D t)``) and, ``deflected`` on a pivot spring ``k``, in series with it along
+    the pivot line (``K - (K n)(n^T K)/(n^T K n + k)``)."""
+    K = D.copy()
+    d = float(t @ D @ t)
+    if abs(d) > 1e-12 * float(np.abs(D).max()):
+        K = K - np.outer(D @ t, t @ D) / d
+    if deflected and math.isfinite(pivot_stiffness):
+        K = K - np.outer(K @ n, n @ K) / (float(n @ K @ n) + pivot_stiffness)
     return K
+
+
+def _shaft_stiffness(stiffness: list) -> np.ndarray:
+    """``dW/dx`` of the shaft: the sum of the pads' condensed stiffnesses (locked pads: their ``D``)."""
+    return sum((K for K in stiffness if K is not None), np.zeros((2, 2)))
 
 
 def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float = 0.05,
                             cavitation: str = "reynolds", element: str = "P1", tol: float = 1e-8,
                             max_newton: int = 60, start: TiltingPadEquilibrium | None = None,
-                            locked_tilts=None, meshes=None) -> TiltingPadEquilibrium:
+                            locked_tilts=None, meshes=None, pivot_stiffness: float = math.inf
+                            ) -> TiltingPadEquilibrium:
     """Shaft position and pad rotations that carry a load, by Newton's method.
 
     Parameters
@@ -542,6 +593,10 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
         all zeros with no preload is :class:`~bearingfe.bearings.journal.JournalBearing` with ``pads=arcs``).
     meshes : tuple of SupportMesh, optional
         The pad meshes (default :func:`tilting_pad_meshes` at ``size``).
+    pivot_stiffness : float
+        Radial stiffness of every pivot, ``k C_p^3 / (mu omega R^4)`` [-]
+        (:meth:`TiltingPadBearing.pivot_stiffness_parameter`), > 0; ``inf``: rigid pivots. A flexible
+        pivot lets its pad move out along the pivot line until the spring carries the film's radial force.
 
     Raises
     ------
@@ -558,6 +613,10 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
                          f"pulls it shut: it has no moment balance), got {cavitation!r}")
     if not (0 < tol < 1e-2):
         raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
+    if not (isinstance(pivot_stiffness, (int, float)) and pivot_stiffness > 0 and not math.isnan(pivot_stiffness)):
+        raise ValueError(f"pivot_stiffness must be > 0 (inf: rigid), got {pivot_stiffness!r}")
+    if locked_tilts is not None and math.isfinite(pivot_stiffness):
+        raise ValueError("locked pads have no pivot to deflect: give pivot_stiffness=inf")
     meshes = tilting_pad_meshes(geometry, size) if meshes is None else tuple(meshes)
     if len(meshes) != geometry.n_pads:
         raise ValueError(f"need one mesh per pad ({geometry.n_pads}), got {len(meshes)}")
@@ -575,7 +634,7 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
             xy = np.zeros(2)
     def state_at(at, rotations, previous):
         pads, rotations, derivatives = _balance(geometry, meshes, at, rotations, w, cavitation, element, previous,
-                                                0.1 * tol, locked)
+                                                0.1 * tol, locked, pivot_stiffness)
         return pads, rotations, derivatives, float(np.max(np.abs(pads.forces.sum(axis=0) - load))) / w
 
     def open_films(at, rotations) -> bool:
@@ -589,10 +648,11 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
     pads, tilts, derivatives, res = state_at(xy, tilts, warm)
     for k in range(max_newton + 1):
         if res <= tol:
-            return _result(geometry, meshes, pads, xy, tilts, load, k, res, locked, cavitation, element)
+            return _result(geometry, meshes, pads, xy, tilts, load, k, res, locked, cavitation, element,
+                           pivot_stiffness)
         if k == max_newton:
             break
-        K = _shaft_stiffness(geometry, derivatives, locked) / w
+        K = _shaft_stiffness(derivatives) / w
         R = (pads.forces.sum(axis=0) - load) / w
         step = -np.linalg.lstsq(K, R, rcond=1e-12)[0]
         # at most 0.3 C_p per step, halved until every film stays open and the imbalance falls
@@ -615,13 +675,14 @@ def tilting_pad_equilibrium(geometry: TiltingPadGeometry, load, *, size: float =
         f"of the load)")
 
 
-def _result(geometry, meshes, pads: _Pads, xy, tilts, load, k, res, locked, cavitation, element):
+def _result(geometry, meshes, pads: _Pads, xy, tilts, load, k, res, locked, cavitation, element, pivot_stiffness):
     F = pads.forces.sum(axis=0)
     theta_load = math.atan2(load[1], load[0])
     att = (math.atan2(xy[1], xy[0]) - theta_load + math.pi) % (2 * math.pi) - math.pi
     return TiltingPadEquilibrium(eps=float(np.hypot(*xy)), attitude=math.degrees(abs(att)), position=np.array(xy),
                                  tilts=np.array(tilts), force=F, pad_forces=pads.forces.copy(),
                                  idle=pads.idle.copy(), newton_iterations=k, residual=res, locked=locked,
+                                 deflections=pads.deflections.copy(), pivot_stiffness=float(pivot_stiffness),
                                  geometry=geometry, meshes=tuple(meshes), cavitation=cavitation, element=element,
                                  pads=pads)
 
@@ -632,12 +693,13 @@ def _result(geometry, meshes, pads: _Pads, xy, tilts, load, k, res, locked, cavi
 class PadAssemblyCoefficients:
     """Stiffness and damping over the shaft and pad degrees of freedom at an equilibrium.
 
-    The degrees of freedom are ``(x, y, q_1, .., q_n)`` [C_p]; ``K = -d f/d u`` and
-    ``C = -d f/d udot`` with ``f`` the film's generalized forces on the shaft and on the pads.
+    The degrees of freedom are ``(x, y, q_1, .., q_n)`` [C_p] and, on flexible pivots, the outward pivot
+    deflections ``(xi_1, .., xi_n)``; ``K = -d f/d u`` and ``C = -d f/d udot`` with ``f`` the film's
+    generalized forces on the shaft and on the pads (and the pivot springs on their rows).
 
     Attributes
     ----------
-    K, C : ndarray, shape (n_pads + 2, n_pads + 2)
+    K, C : ndarray, shape (n_pads + 2, n_pads + 2) or (2 n_pads + 2, 2 n_pads + 2)
         Non-dimensional ``K C_p / W`` and ``C C_p omega / W``.
     load : float
         ``|W|`` [mu omega R^4 / C_p^2].
@@ -646,6 +708,8 @@ class PadAssemblyCoefficients:
     active : ndarray of bool, shape (n_pads,)
         Pads with coefficients (unloaded pads have zero rows and drop out of the reduction; concentric
         pads stay in).
+    pivots : bool
+        Whether the pivot deflections are degrees of freedom (flexible pivots).
     """
 
     K: np.ndarray
@@ -654,6 +718,16 @@ class PadAssemblyCoefficients:
     eps: float
     attitude: float
     active: np.ndarray
+    pivots: bool = False
+
+    def system(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``K``, ``C`` of the shaft and the active pads' freedoms, and which of those are pad rotations
+        (the rows that carry the pads' inertia)."""
+        active = np.asarray(self.active, bool)
+        keep = np.concatenate([[True, True], active, active if self.pivots else []]).astype(bool)
+        rotations = np.concatenate([[False, False], np.ones(active.size, bool),
+                                    np.zeros(active.size if self.pivots else 0, bool)])
+        return self.K[np.ix_(keep, keep)], self.C[np.ix_(keep, keep)], rotations[keep]
 
     def reduced(self, frequency_ratio: float = 1.0, pad_mass: float = 0.0) -> DynamicCoefficients:
         """The journal's 2x2 ``K(Omega)``, ``C(Omega)`` by the pad-assembly reduction (see :func:`reduced_coefficients`)."""
@@ -669,38 +743,46 @@ def pad_assembly_coefficients(eq: TiltingPadEquilibrium) -> PadAssemblyCoefficie
     """The full coefficients over the shaft and pad degrees of freedom at an equilibrium.
 
     ``K = sum_i T_i^T (dF_i/dx') T_i`` and ``C = sum_i T_i^T (dF_i/dx'dot) T_i`` with ``T_i`` the map
-    from ``(x, y, q_1..q_n)`` to pad ``i``'s effective journal position ``x'_i``; the pad derivatives
-    are linearized on each pad's rupture set (``"jfo"``: central differences).
+    from ``(x, y, q_1..q_n[, xi_1..xi_n])`` to pad ``i``'s effective journal position
+    ``x'_i = x + (m - xi_i) n_i + q_i t_i``, plus the pivot stiffness on the ``xi`` rows; the pad
+    derivatives are linearized on each pad's rupture set (``"jfo"``: central differences).
     """
     geometry = eq.geometry
     if geometry is None or eq.pads is None:
         raise ValueError("the equilibrium carries no solution (build it with tilting_pad_equilibrium())")
     n_pads = geometry.n_pads
-    _, t = geometry.normals()
-    n = n_pads + 2
+    normal, t = geometry.normals()
+    pivots = math.isfinite(eq.pivot_stiffness)
+    n = n_pads + 2 + (n_pads if pivots else 0)
     K, C = np.zeros((n, n)), np.zeros((n, n))
+    deflections = np.zeros(n_pads) if eq.deflections is None else eq.deflections
     for i in range(n_pads):
         if eq.pads.kinds[i] == IDLE:
             continue
         state = eq.pads.states[i]
-        D, E = _pad_derivatives(geometry, eq.meshes[i], i, state, eq.position, eq.tilts[i],
-                                eq.cavitation if eq.pads.kinds[i] == ACTIVE else "none", eq.element)
+        D, E = _pad_derivatives(geometry, eq.meshes[i], i, state, eq.position - deflections[i] * normal[i],
+                                eq.tilts[i], eq.cavitation if eq.pads.kinds[i] == ACTIVE else "none", eq.element)
         T = np.zeros((2, n))
         T[:, :2] = np.eye(2)
         T[:, 2 + i] = t[i]
+        if pivots:
+            T[:, 2 + n_pads + i] = -normal[i]
+            K[2 + n_pads + i, 2 + n_pads + i] += eq.pivot_stiffness
         K += T.T @ D @ T
         C += T.T @ E @ T
     w = float(np.hypot(*eq.force))
-    diagonal = np.abs(np.diag(K)[2:]) + np.abs(np.diag(C)[2:])
+    diagonal = np.abs(np.diag(K)[2:2 + n_pads]) + np.abs(np.diag(C)[2:2 + n_pads])
     active = (eq.pads.kinds != IDLE) & (diagonal > 1e-12 * max(float(np.abs(K[:2, :2]).max()), 1e-300))
-    return PadAssemblyCoefficients(K=K / w, C=C / w, load=w, eps=eq.eps, attitude=eq.attitude, active=active)
+    return PadAssemblyCoefficients(K=K / w, C=C / w, load=w, eps=eq.eps, attitude=eq.attitude, active=active,
+                                   pivots=pivots)
 
 
 def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float = 1.0,
                          pad_mass: float = 0.0) -> DynamicCoefficients:
     """The journal's 2x2 stiffness and damping at whirl frequency ``Omega`` (Lund's pad-assembly reduction).
 
-    ``Z(nu) = K + i nu C - nu^2 M`` over ``(x, y, q_1..q_n)``, ``M`` the pad mass on the pad rows;
+    ``Z(nu) = K + i nu C - nu^2 M`` over ``(x, y, q_1..q_n[, xi_1..xi_n])``, ``M`` the pad mass on the
+    rotation rows (the pivot deflections are massless);
     ``Z_red = Z_jj - Z_jp Z_pp^-1 Z_pj``, ``K(Omega) = Re Z_red``, ``C(Omega) = Im Z_red / nu`` (at
     ``nu = 0`` its limit, the derivative of ``Im Z_red``).
 
@@ -718,8 +800,7 @@ def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float =
         raise ValueError(f"frequency_ratio must be >= 0, got {frequency_ratio!r}")
     if not (math.isfinite(pad_mass) and pad_mass >= 0):
         raise ValueError(f"pad_mass must be >= 0, got {pad_mass!r}")
-    keep = np.concatenate([[True, True], np.asarray(full.active, bool)])
-    K, C = full.K[np.ix_(keep, keep)], full.C[np.ix_(keep, keep)]
+    K, C, rotations = full.system()
     j, p = slice(0, 2), slice(2, K.shape[0])
     if nu == 0:
         if K.shape[0] > 2 and not np.linalg.cond(K[p, p]) < 1e12:
@@ -733,7 +814,7 @@ def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float =
         method = "tilting-pad reduction, Omega = 0"
     else:
         Z = K + 1j * nu * C
-        Z[p, p] -= nu**2 * pad_mass / full.load * np.eye(K.shape[0] - 2)
+        Z[p, p] -= nu**2 * pad_mass / full.load * np.diag(rotations[2:].astype(float))
         Zred = Z[j, j] - Z[j, p] @ np.linalg.solve(Z[p, p], Z[p, j]) if K.shape[0] > 2 else Z[j, j]
         Kred, Cred = Zred.real, Zred.imag / nu
         method = f"tilting-pad reduction, Omega/omega = {nu:g}"
@@ -747,9 +828,9 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
                size: float = 0.05, cavitation: str = "reynolds", element: str = "P1") -> dict:
     """Reduced coefficients over (rotor speed, whirl frequency) as ROSS 3 ``BearingElement`` keywords.
 
-    At each speed the equilibrium under the load (warm-started from the previous speed) gives the full
-    coefficients, reduced at every whirl frequency with the pads' mass at that speed
-    (:meth:`TiltingPadBearing.pad_mass`).
+    At each speed the equilibrium under the load (warm-started from the previous speed, on the bearing's
+    pivots) gives the full coefficients, reduced at every whirl frequency with the pads' mass at that
+    speed (:meth:`TiltingPadBearing.pad_mass`).
 
     Parameters
     ----------
@@ -782,7 +863,8 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
     for i, speed in enumerate(speeds):
         w = load / bearing.force_scale(viscosity, speed)
         eq = tilting_pad_equilibrium(geometry, (0.0, -w), meshes=meshes, start=eq, cavitation=cavitation,
-                                     element=element)
+                                     element=element,
+                                     pivot_stiffness=bearing.pivot_stiffness_parameter(viscosity, speed))
         full = pad_assembly_coefficients(eq)
         mass = bearing.pad_mass(viscosity, speed)
         for j, frequency in enumerate(frequencies):

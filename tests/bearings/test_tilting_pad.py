@@ -76,6 +76,11 @@ def test_si_bearing_gives_the_nondimensional_currency():
         TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=1e-3)  # not a thin film
     with pytest.raises(ValueError):
         TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=75e-6, pad_inertia=-1.0)
+    flexible = TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=75e-6, pivot_stiffness=5e8)
+    assert flexible.pivot_stiffness_parameter(mu, omega) == pytest.approx(5e8 * 75e-6**3 / (mu * omega * 0.05**4))
+    assert b.pivot_stiffness_parameter(mu, omega) == math.inf
+    with pytest.raises(ValueError):
+        TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=75e-6, pivot_stiffness=0.0)
 
 
 def test_meshes_are_one_pad_turned():
@@ -233,8 +238,9 @@ def test_frequency_dependence_is_lunds_pad_reduction(mass):
         np.testing.assert_allclose(red.C, C, atol=1e-10 * np.abs(C).max())
     # Omega -> 0 is continuous, and very heavy pads do not follow the shaft: the locked coefficients
     slow = full.reduced(1e-4)
-    np.testing.assert_allclose(slow.C, full.reduced(0.0).C, rtol=1e-6)
-    np.testing.assert_allclose(full.reduced(1.0, pad_mass=1e9).K, full.locked().K, rtol=1e-6, atol=1e-8)
+    np.testing.assert_allclose(slow.C, full.reduced(0.0).C, atol=1e-6 * np.abs(slow.C).max())
+    locked = full.locked().K
+    np.testing.assert_allclose(full.reduced(1.0, pad_mass=1e9).K, locked, atol=1e-6 * np.abs(locked).max())
 
 
 # -- Someya's tables ------------------------------------------------------------------------------
@@ -340,3 +346,41 @@ def test_ross_table_over_speed_and_whirl_frequency():
     assert K[1, 1] == pytest.approx(red.K[1, 1] * load / 75e-6)
     with pytest.raises(ValueError):
         ross_table(bearing, load, mu, [600.0, 300.0], frequencies)
+
+
+# -- flexible pivots ------------------------------------------------------------------------------
+
+def test_flexible_pivot_moves_the_shaft_by_the_pad_load_over_its_stiffness():
+    # load on pad without preload: the bottom pad alone carries W; on a pivot of stiffness k it moves out
+    # by W/k with the same film, so the shaft sits W/k lower with the loaded pad's rotation unchanged
+    g = TiltingPadGeometry(0.5, n_pads=4, arc=math.radians(80), load_on_pad=True)
+    meshes = tilting_pad_meshes(g, 0.1)
+    w, k = 0.6, 3.0
+    rigid = tilting_pad_equilibrium(g, (0.0, -w), meshes=meshes)
+    flexible = tilting_pad_equilibrium(g, (0.0, -w), meshes=meshes, pivot_stiffness=k)
+    np.testing.assert_allclose(flexible.position, rigid.position + np.array([0.0, -w / k]), atol=1e-8)
+    assert flexible.tilts[0] == pytest.approx(rigid.tilts[0], abs=1e-7)  # (the unloaded pads follow the shaft)
+    np.testing.assert_allclose(flexible.pad_forces, rigid.pad_forces, atol=1e-8)
+    assert flexible.deflections[0] == pytest.approx(w / k, rel=1e-7)
+    stiff = tilting_pad_equilibrium(g, (0.0, -w), meshes=meshes, pivot_stiffness=1e9)
+    np.testing.assert_allclose(stiff.position, rigid.position, atol=1e-8)
+
+
+def test_flexible_pivots_are_springs_in_series_with_the_pads():
+    # load between pads: both loaded pads carry the same film, so the reduced impedance of the bearing is
+    # isotropic, z I on rigid pivots, and each pad's pivot spring k in series with it: z k / (z + k), at
+    # any whirl frequency (massless pads and pivots)
+    meshes = tilting_pad_meshes(SOMEYA, 0.1)
+    w, k = 0.5, 2.0
+    rigid = pad_assembly_coefficients(tilting_pad_equilibrium(SOMEYA, (0.0, -w), meshes=meshes))
+    flexible = pad_assembly_coefficients(tilting_pad_equilibrium(SOMEYA, (0.0, -w), meshes=meshes,
+                                                                 pivot_stiffness=k))
+    assert flexible.K.shape == (10, 10) and flexible.pivots
+    for nu in (0.0, 0.5, 1.0, 2.0):
+        r, f = rigid.reduced(nu), flexible.reduced(nu)
+        z = complex(r.K[0, 0], nu * r.C[0, 0]) * w  # the pads' impedance along one pivot line, not normalized
+        # two pads, each along its own pivot line with the whole z (their n n^T sum to the identity)
+        series = z * k / (z + k) / w
+        assert f.K[0, 0] == pytest.approx(series.real, rel=1e-6)
+        assert nu == 0 or f.C[0, 0] == pytest.approx(series.imag / nu, rel=1e-6)
+        assert abs(f.K[0, 1]) <= 1e-7 * abs(f.K[0, 0])
