@@ -53,13 +53,15 @@ def _parser() -> argparse.ArgumentParser:
 
     mesh = sub.add_parser("mesh", help="mesh a gmsh .geo file into a .msh 4.1 file")
     mesh.add_argument("geo", type=Path)
-    mesh.add_argument("--size", type=float, required=True, help="largest element size [-]")
+    mesh.add_argument("--size", type=float, required=True,
+                      help="largest element size, in the length unit of the .geo file (R0 for the shipped ones)")
     mesh.add_argument("--out", type=Path, required=True, help="target .msh file")
     mesh.add_argument("--order", type=int, choices=(1, 2), default=1, help="geometry order")
-    mesh.add_argument("--trust-geo", action="store_true", help="run the script even if it uses commands "
-                      "outside the geometry allow-list (shell, files, Include, Exit...); only for files you trust")
+    mesh.add_argument("--trust-geo", action="store_true", help="hand the script to gmsh's own interpreter, "
+                      "commands outside the geometry subset included (shell, files, Include, Exit...); only for "
+                      "files you trust")
     mesh.add_argument("--geo-timeout", type=float, default=None, metavar="SECONDS",
-                      help="time limit for gmsh (default 120 s or $BEARINGFE_GEO_TIMEOUT)")
+                      help="time limit for reading and meshing (default 120 s or $BEARINGFE_GEO_TIMEOUT)")
     mesh.add_argument("--max-elements", type=int, default=None, metavar="N",
                       help="largest number of triangles (default 1000000 or $BEARINGFE_MAX_ELEMENTS)")
 
@@ -128,14 +130,16 @@ def _sigterm_exits():
 def _sweep(args) -> int:
     """``bearingfe sweep STUDY.toml --out DIR [--scheduler ADDRESS]``.
 
-    Writes ``DIR/results.csv`` (the table), ``DIR/best.json`` (the best
-    design) and ``DIR/cache/`` (per-case records: rerunning resumes). Exit
-    code 0 if every case succeeded, 1 if some failed (they are in the
-    table), 2 if the study file is invalid or no case succeeded.
+    Writes ``DIR/results.csv`` (the table, headers with units), ``DIR/best.json``
+    (the best design) and ``DIR/cache/`` (per-case records: rerunning resumes).
+    A case whose film closes is a result of the study: ``status`` "ruptured"
+    in the table, counted on the summary line. Exit code 0 if no case failed
+    for another reason, 1 if some did (they are in the table, ``status``
+    "failed"), 2 if the study file is invalid or no case completed.
     """
     from .io.writers import atomic_path, write_json
     from .io.outfolder import lock_folder
-    from .sweep import best_design, read_study, sweep
+    from .sweep import best_design, csv_headers, read_study, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
     out = Path(args.out)
@@ -155,14 +159,19 @@ def _sweep(args) -> int:
                 if cluster is not None:
                     cluster.close()
         with atomic_path(out / "results.csv") as tmp:
-            table.to_csv(tmp, index=False)
-        failed = int(table["error"].notna().sum())
-        print(f"{_printable(study.name)}: {len(table)} cases, {failed} failed, {int(table['cached'].sum())} "
-              f"from cache; table in {_printable(out / 'results.csv')}")
+            table.rename(columns=csv_headers(table.columns, study.run)).to_csv(tmp, index=False)
+        counts = table["status"].value_counts()
+        failed, ruptured = int(counts.get("failed", 0)), int(counts.get("ruptured", 0))
+        print(f"{_printable(study.name)}: {len(table)} cases: {int(counts.get('completed', 0))} completed, "
+              f"{ruptured} ruptured (the film closed: a result, status 'ruptured' in the table), {failed} failed; "
+              f"{int(table['cached'].sum())} from cache; table in {_printable(out / 'results.csv')}")
         best = best_design(table, study.objective, study.sense)  # ValueError if no case succeeded
         write_json({k: (v.item() if hasattr(v, "item") else v) for k, v in best.items()}, out / "best.json")
     changed = table.columns[:table.columns.get_loc("seconds")]
-    print(f"best ({study.sense} {study.objective}): " + ", ".join(_printable(f"{k}={best[k]}") for k in changed))
+    headers = csv_headers(list(changed), study.run)  # "name [unit]" where the unit is known
+    print(f"best ({study.sense} {study.objective}): "
+          + ", ".join(_printable(f"{headers.get(k, k)}={best[k]:.6g}" if isinstance(best[k], float)
+                                 else f"{headers.get(k, k)}={best[k]}") for k in changed))
     return 1 if failed else 0
 
 
@@ -263,9 +272,9 @@ def _fmt(value) -> str:
 # -- mesh -------------------------------------------------------------------------
 
 def _mesh(args) -> int:
-    """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the script is checked against the
-    geometry allow-list (unless ``--trust-geo``) and meshed by gmsh in a separate process with a
-    time limit; the element count is estimated first (bearingfe.geometry.geofiles)."""
+    """``bearingfe mesh FILE.geo --size S --out FILE.msh``: the file is read by bearingfe's parser of
+    the geometry subset (gmsh's interpreter only with ``--trust-geo``) and meshed by gmsh in a separate
+    process with a time limit; the element count is estimated first (bearingfe.geometry.geofiles)."""
     from .geometry.geofiles import run_geo
     from .io.writers import atomic_path
     from .geometry.meshing import load_mesh

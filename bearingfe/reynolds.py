@@ -43,17 +43,20 @@ path takes the same parameter objects and returns a ``ReynoldsResult``.
 from __future__ import annotations
 
 import dataclasses
+import math
+import time
+import warnings
 from types import MappingProxyType
 from typing import Callable, Mapping
 
 from .cavitation import CAVITATION, MODELS, ModelOptions, solve_model
-from .core.checks import check_operating_point, check_resolution
+from .core.checks import ResolutionWarning, check_operating_point, check_resolution
 from .core.linalg import DEFAULT_SOLVER, Factorize
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
-from .elastic import Compliance, solve_elastic
-from .film import (SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult, Superposition,
-                   operators, solve_jfo, superpose)
-from .geometry.meshing import SupportMesh
+from .elastic import Compliance, compliance_on, solve_elastic
+from .film import (ERROR_TOLERANCE, SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult,
+                   Superposition, load_order, operators, solve_jfo, superpose)
+from .geometry.meshing import SupportMesh, refine_once
 
 __all__ = [
     "ELEMENTS",
@@ -69,6 +72,7 @@ __all__ = [
     "superpose",
     "ReynoldsResult",
     "solve_reynolds",
+    "RefinedSolve",
     "discretization_for",
     "CoercivityError",
     "Discretization",
@@ -142,13 +146,51 @@ PATHS: Mapping[tuple[str, str], Callable[..., ReynoldsResult]] = MappingProxyTyp
 })
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class RefinedSolve:
+    """The solve of a result again on its mesh refined once (a result's ``refined``).
+
+    Calling it with the coarse result meshes the refinement
+    (:func:`bearingfe.geometry.meshing.refine_once`), solves the same path
+    there, started from the coarse rupture set where there is one (nested
+    iteration), and returns ``(fine, order, seconds)``: the fine result, the
+    order of the load error of the path (:func:`bearingfe.film.estimate.load_order`)
+    and the wall time [s]. The fine mesh's own resolution warnings are not
+    issued (the coarse solve has issued its own).
+    """
+
+    mesh: SupportMesh
+    film: Film
+    path: tuple[str, str]
+    operating: OperatingPoint
+    discretization: Discretization
+    cavitation: str
+    options: ModelOptions
+    on_indefinite: str
+    elastic: Compliance | None = None
+
+    def __call__(self, coarse: ReynoldsResult) -> tuple[ReynoldsResult, float, float]:
+        start = time.perf_counter()
+        fine_mesh = refine_once(self.mesh)
+        warm = coarse if coarse.cavitated is not None else None
+        options = dataclasses.replace(self.options, warm_start=warm)
+        # the support's compliance on the refined mesh (the half-space's: see bearingfe.elastic.REBUILDS)
+        elastic = None if self.elastic is None else compliance_on(self.elastic, fine_mesh)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ResolutionWarning)
+            fine = PATHS[self.path](fine_mesh, self.film, self.operating, self.discretization, self.cavitation,
+                                   options, self.on_indefinite, elastic)
+        return fine, load_order(self.path[1], self.discretization.element), time.perf_counter() - start
+
+
 @takes(OperatingPoint, Discretization)
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
                    inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
                    warm_start=None, cavitation_pressure: float = 0.0,
-                   elastic: Compliance | None = None) -> ReynoldsResult:
+                   elastic: Compliance | None = None, estimate_error: bool = False,
+                   error_tolerance: float = ERROR_TOLERANCE) -> ReynoldsResult:
     """Solve the Reynolds equation on a meshed support surface.
 
     Parameters
@@ -200,6 +242,21 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         (:func:`bearingfe.elastic.coupled.solve_elastic`, direct form; the result's
         ``deflection``, ``max_deflection`` and ``elastic_iterations`` report it).
         Raises :class:`bearingfe.elastic.coupled.ElasticError` if it does not converge.
+    estimate_error : bool
+        Also solve on the mesh refined once and estimate how far the load is
+        from converged (:mod:`bearingfe.film.estimate`): ``load_error`` of the
+        result, and a note in ``notes`` (with a :class:`bearingfe.ResolutionWarning`)
+        if its relative value exceeds ``error_tolerance``. It costs about 4
+        to 10 times the solve (the refined mesh has 4 times the unknowns;
+        more on tiny meshes, where gmsh's remeshing dominates), so it is
+        off by default; every result can still estimate it later, on
+        demand, with
+        :meth:`ReynoldsResult.estimate_load_error` (same numbers, same note
+        as a warning). With ``elastic=`` the compliance is built again on
+        the refined mesh, which the half-space can (:data:`bearingfe.elastic.REBUILDS`;
+        others raise ``ValueError``), and counts against the dense-size limit there.
+    error_tolerance : float
+        Relative load error above which the result gets the note [-], > 0.
     operating : OperatingPoint, optional
         ``wedge``, ``squeeze``, ``inlet_pressure`` and ``sliding`` in one
         object (:class:`bearingfe.core.parameters.OperatingPoint`) instead of the
@@ -214,7 +271,8 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         If the mesh does not resolve the film where it is thinnest
         (:func:`bearingfe.core.checks.check_resolution`), a
         :class:`bearingfe.ResolutionWarning` is issued and its message
-        added to ``notes``.
+        added to ``notes``; the same for a load error estimate above
+        ``error_tolerance``.
 
     Raises
     ------
@@ -236,4 +294,21 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     if path not in PATHS:
         raise ValueError(f"elastic= is not supported with the {path[1]} solver (cavitation='jfo', a non-zero "
                          "cavitation_pressure, recessed or periodic surfaces)")
-    return PATHS[path](mesh, film, operating, discretization, cavitation, options, on_indefinite, elastic)
+    if not (isinstance(error_tolerance, (int, float)) and math.isfinite(error_tolerance) and error_tolerance > 0):
+        raise ValueError(f"error_tolerance must be a finite relative error > 0, got {error_tolerance!r}")
+    result = PATHS[path](mesh, film, operating, discretization, cavitation, options, on_indefinite, elastic)
+    # without the caller's warm start (the refined solve starts from this result): results made in a loop
+    # from the previous one must not hold on to all of them
+    refined = RefinedSolve(mesh, film, path, operating, discretization, cavitation,
+                           dataclasses.replace(options, warm_start=None), on_indefinite, elastic)
+    result = dataclasses.replace(result, refined=refined)
+    if not estimate_error:
+        return result
+    with warnings.catch_warnings():  # issued below, at the caller's line
+        warnings.simplefilter("ignore", ResolutionWarning)
+        estimate = result.estimate_load_error(error_tolerance)
+    if estimate.note is None:
+        return dataclasses.replace(result, load_error=estimate)
+    warnings.warn(ResolutionWarning(estimate.note), stacklevel=3)
+    notes = (*result.notes, estimate.note)
+    return dataclasses.replace(result, load_error=estimate, notes=notes)

@@ -21,7 +21,7 @@ in the unwrapped plane (phi [rad], z = Z/R0), p = P c^2/(mu omega R0^2).
    pocket flow 3.705373 [omega R0^2 c].
 
 Set BEARINGFE_QUICK=1 for a coarse mesh and BEARINGFE_OUT for the output
-directory (default ``out/examples``).
+directory (default ``examples/output/02_pressure_field/``, next to this file).
 """
 
 import math
@@ -29,10 +29,11 @@ import os
 from pathlib import Path
 
 import bearingfe as bf
-from bearingfe.plot.fields import film_picture, pressure_picture
+from bearingfe.plot.fields import pressure_picture
+from bearingfe.plot.maps import Panel, field_panels
 
 QUICK = os.environ.get("BEARINGFE_QUICK") == "1"
-OUT = Path(os.environ.get("BEARINGFE_OUT", "out/examples"))
+OUT = Path(os.environ.get("BEARINGFE_OUT") or Path(__file__).resolve().parent / "output" / Path(__file__).stem)
 OUT.mkdir(parents=True, exist_ok=True)
 SIZE = 0.08 if QUICK else 0.02
 TOL = 5e-4 if QUICK else 1e-5  # relative; measured errors 1e-4 (quick) and 1e-6
@@ -57,7 +58,13 @@ assert abs(res.force[0] - 0.5836022) < TOL * 0.5836022
 assert abs(res.integral - 0.5954357) < TOL * 0.5954357
 assert abs(res.flows["inlet"] - 3.705373) < TOL * 3.705373
 
-for path in (pressure_picture(res, OUT / "02_pressure.png", surface=shoe),
-             pressure_picture(res, OUT / "02_pressure_wrapped.png", view="wrapped", warp=0.15, surface=shoe),
-             film_picture(res, OUT / "02_film.png", surface=shoe)):
-    print("wrote", path)
+# maps over phi [deg] and z [R0] (non-dimensional: no scales here; the scenes' [scale] gives SI), the P2
+# field sampled on a refined display mesh; the wrapped view on the shoe's cylinder
+title = f"shoe, gamma = 0.6, p_s = {p_s:g}: p_max = {res.max_pressure:.3g} [mu omega R0^2/c^2]"
+field_panels([[Panel(res, "pressure", 1.0, "mu omega R0^2/c^2", radius=None, title=title, surface=shoe)]],
+             OUT / "02_pressure.png")
+field_panels([[Panel(res, "film", 1.0, "c", radius=None, title=f"shoe, gamma = 0.6: h_min = {res.h_min:.3f} c",
+                     surface=shoe)]], OUT / "02_film.png")
+pressure_picture(res, OUT / "02_pressure_wrapped.png", view="wrapped", warp=0.15, surface=shoe, title=title)
+for name in ("02_pressure.png", "02_pressure_wrapped.png", "02_film.png"):
+    print("wrote", OUT / name)

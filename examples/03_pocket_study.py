@@ -20,7 +20,8 @@ arc edge (an off-centre pocket tilts the shoe), each recorded with its reason.
 
 ``BEARINGFE_QUICK=1`` runs a 2x2 grid on a coarse P1 mesh from the steady
 state (for the test suite).
-Run: ``PYTHONPATH=. python examples/03_pocket_study.py [OUT_DIR]``.
+Run: ``PYTHONPATH=. python examples/03_pocket_study.py [OUT_DIR]`` (default
+``examples/output/03_pocket_study/``).
 """
 
 from __future__ import annotations
@@ -29,13 +30,14 @@ import os
 import sys
 from pathlib import Path
 
-from bearingfe.sweep import apply_changes, best_design, read_study, sweep
+from bearingfe.sweep import apply_changes, best_design, csv_headers, read_study, sweep
 
 STUDY = Path(__file__).resolve().parents[1] / "studies" / "pump_pocket_study.toml"
 
 
-def contour_figure(table, output: str, label: str):
-    """Filled contours of ``output`` over (pocket position, pocket fraction); failed cases blank."""
+def contour_figure(table, output: str, label: str, scale: float = 1.0):
+    """Filled contours of ``scale * output`` over (pocket position, pocket fraction); failed and ruptured
+    cases blank and marked, with a legend."""
     from matplotlib.figure import Figure
 
     grid = table.pivot_table(index="pocket_fraction", columns="pocket_position", values=output,
@@ -43,20 +45,29 @@ def contour_figure(table, output: str, label: str):
     fig = Figure(figsize=(6.0, 4.5), layout="constrained")
     ax = fig.add_subplot()
     x, y = grid.columns.to_numpy(float), 100 * grid.index.to_numpy(float)
-    filled = ax.contourf(x, y, grid.to_numpy(float), levels=12, cmap="viridis")
-    ax.contour(x, y, grid.to_numpy(float), levels=12, colors="k", linewidths=0.4)
-    fig.colorbar(filled, ax=ax, label=label)
-    ok = table["error"].isna()
-    ax.plot(table.loc[ok, "pocket_position"], 100 * table.loc[ok, "pocket_fraction"], "w.", ms=4)
-    ax.plot(table.loc[~ok, "pocket_position"], 100 * table.loc[~ok, "pocket_fraction"], "rx", ms=6,
-            label="failed")
+    z = scale * grid.to_numpy(float)
+    filled = ax.contourf(x, y, z, levels=12, cmap="viridis")
+    ax.contour(x, y, z, levels=12, colors="k", linewidths=0.4)
+    bar = fig.colorbar(filled, ax=ax, label=label)
+    bar.formatter.set_useOffset(False)  # absolute values on the bar, no "1e-5 + ..." offset
+    for status, marker, what in (("completed", "w.", "completed"), ("ruptured", "rx", "film ruptured"),
+                                 ("failed", "m+", "failed")):
+        rows = table["status"] == status
+        if rows.any():
+            ax.plot(table.loc[rows, "pocket_position"], 100 * table.loc[rows, "pocket_fraction"], marker, ms=6,
+                    label=what)
+    ax.legend(loc="upper right", fontsize="small", facecolor="0.85")
     ax.set_xlabel("pocket position along the arc, s [-]")
     ax.set_ylabel("pocket area fraction [%]")
     ax.set_title("pocket study")
     return fig
 
 
-def main(out_dir: str = "runs/pump_pocket_study") -> None:
+#: This example's own output folder (next to it, whatever the working directory).
+OUT = Path(__file__).resolve().parent / "output" / Path(__file__).stem
+
+
+def main(out_dir: str | Path = OUT) -> None:
     study = read_study(STUDY)
     changes, base = study.changes, study.base
     if os.environ.get("BEARINGFE_QUICK") == "1":
@@ -65,7 +76,7 @@ def main(out_dir: str = "runs/pump_pocket_study") -> None:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     table = sweep(base, changes, study.outputs, run=study.run, cache=out / "cache", progress=True)
-    table.to_csv(out / "pocket_study.csv", index=False)
+    table.rename(columns=csv_headers(table.columns, study.run)).to_csv(out / "pocket_study.csv", index=False)
 
     best = best_design(table, study.objective, study.sense)
     ok = table["error"].isna()
@@ -75,7 +86,10 @@ def main(out_dir: str = "runs/pump_pocket_study") -> None:
     print(f"best design ({study.sense} {study.objective}): pocket fraction {best['pocket_fraction']:.0%}, "
           f"position s = {best['pocket_position']:.2f}: smallest film {best['h_min'] * 1e6:.2f} um "
           f"(plain shoe {plain * 1e6:.2f} um), pocket oil {best['flow_inlet'] * 6e4:.3f} l/min")
-    fig = contour_figure(table, "h_min", "smallest film over the cycle [m]")
+    ruptured = int((table["status"] == "ruptured").sum())
+    print(f"{len(table)} cases: {ruptured} ruptured (the film closes: not viable designs), "
+          f"{int((table['status'] == 'failed').sum())} failed")
+    fig = contour_figure(table, "h_min", "smallest film over the cycle [um]", scale=1e6)
     fig.savefig(out / "pocket_study.png", dpi=120)
 
     # the sanity bounds stated in the docstring
@@ -85,4 +99,4 @@ def main(out_dir: str = "runs/pump_pocket_study") -> None:
 
 
 if __name__ == "__main__":  # required: the sweep starts worker processes with "spawn"
-    main(os.environ.get("BEARINGFE_OUT") or (sys.argv[1] if len(sys.argv) == 2 else "runs/pump_pocket_study"))
+    main(os.environ.get("BEARINGFE_OUT") or (sys.argv[1] if len(sys.argv) == 2 else OUT))

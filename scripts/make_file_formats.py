@@ -31,8 +31,10 @@ table or field, a missing required one, or a value outside what the field accept
 names the file, the table and the field with what is allowed, e.g.
 `pump.toml: [run] element: must be one of 'P1', 'P2'; got 'P3'`. Numbers in machine files are SI
 (m, Pa, Pa s, kg, N, rad/s; fields ending in `_deg` are degrees, `speed_rpm` revolutions per minute);
-scene files of kind `reynolds` are non-dimensional (lengths in R0, pressures in mu omega R0^2/c^2);
-the `journal` scene is SI. Ranges checked by the parameter objects the fields build (for example a
+scene files of kind `reynolds` are non-dimensional (lengths in R0, pressures in mu omega R0^2/c^2;
+an optional `[scale]` gives the scales, in SI, and makes every output SI); the `journal` scene is SI,
+its speed in rpm (`speed`) or rad/s (`speed_rad_s`); the optional `[limits]` of the `pump` and
+`journal` scenes are SI (see *Design limits* below). Ranges checked by the parameter objects the fields build (for example a
 positive clearance) are reported the same way when the file is read.
 
 In the tables below, `table` is the TOML table a field belongs to (`run` is `[run]`,
@@ -53,7 +55,7 @@ def _rows_table(rows) -> list[str]:
 
 def page() -> str:
     """The whole page, as the committed ``docs/file_formats.md`` must read."""
-    from bearingfe.core.schema import reference_rows
+    from bearingfe.core.schema import LIMITS, reference_rows
     from bearingfe.mechanisms.files import SPECS
     from bearingfe.scenes import SCENES
     from bearingfe.sweep.studies import STUDY
@@ -63,6 +65,11 @@ def page() -> str:
     for kind, runner in SCENES.items():
         spec = importlib.import_module(runner.__module__).SPEC
         lines += [f"### Scene kind `{kind}`", "", *_rows_table(reference_rows(spec)), ""]
+    lines += ["## Design limits (`[limits]` of the `pump` and `journal` scenes)", "",
+              "Each limit is optional (unset: not checked); the summary flags every design `ok` or `VIOLATED`.", "",
+              "| field | bounds | unit | a design passes if its value is | accepts |", "|---|---|---|---|---|",
+              *[f"| `{name}` | {limit.quantity} | {limit.unit} | {limit.relation} the limit | a number {limit.allowed} |"
+                for name, limit in LIMITS.items()], ""]
     lines += ["## Machine files (`mechanisms/*.toml`, `bearingfe.load_mechanism`)", "",
               "The top-level `kind` chooses the machine; each kind reads its own tables.", ""]
     for kind, spec in SPECS.items():

@@ -2,15 +2,16 @@
 
 Every number the page attributes to the package is computed here from the
 package and the shipped mechanism files; the papers' numbers and our
-readings of them are the text around them. ``tests/test_papers_doc.py``
+readings of them are the text around them. ``tests/docs/test_papers.py``
 regenerates the page and fails when the committed one differs, so edit this
 script, never the page. Run (about half a minute; the pump runs dominate)::
 
     PYTHONPATH=. python scripts/make_papers_doc.py            # writes docs/papers.md
     PYTHONPATH=. python scripts/make_papers_doc.py --check    # exit 1 if the page is stale
 
-The pump transients run on a coarse mesh (``PUMP_MESH`` R0) so that the test
-stays fast; the page says so where it quotes them.
+The pump transients run with the main scene's ``[run]`` settings
+(``scenes/pump.toml``) through the scene's own ``simulate_design``: the page's
+pocket gain is the scene's.
 """
 
 from __future__ import annotations
@@ -25,13 +26,20 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "papers.md"
-#: Element size [R0] of the pump meshes (P1, straight-sided): coarse, so the page regenerates in seconds.
-PUMP_MESH = 0.15
-#: Integrator tolerance and output sampling of every pump run (as examples/01_pump_inlet_pocket.py).
-PUMP_RTOL = 1e-6
-PUMP_POINTS = 180
-#: Periodic start: fixed-point iteration until the state repeats to this (gamma, delta) tolerance.
-PUMP_PERIODIC_TOL = 1e-4
+#: The main scene: every pump run of paper 004's section uses its ``[run]`` settings (mesh, element,
+#: tolerance, start), through the scene's own :func:`bearingfe.scenes.pump.simulate_design`, so the
+#: headline gain here is the one ``bearingfe run scenes/pump.toml`` prints, the README quotes and
+#: ``examples/01_pump_inlet_pocket.py`` computes.
+MAIN_SCENE = ROOT / "scenes" / "pump.toml"
+
+
+def main_scene_run() -> dict:
+    """The ``[run]`` settings of the main scene, as the scene reads them."""
+    from bearingfe.scenes import load_scene
+    from bearingfe.scenes.pump import settings
+
+    data, label = load_scene(MAIN_SCENE)
+    return settings(data, label, MAIN_SCENE.parent)["run"]
 
 
 def _f(x: float, digits: int = 3) -> str:
@@ -463,20 +471,24 @@ def paper_003() -> str:
 
 def _pump_runs():
     import bearingfe as bf
+    from bearingfe.scenes.pump import simulate_design
 
     pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
     s = pump.surface
+    settings = main_scene_run()
 
     def plain(p):
         return dataclasses.replace(p, surface=bf.Surface(arc=s.arc, half_width=s.half_width))
 
-    def run(p, start="periodic"):
-        mesh = bf.transient.pump_mesh(p, PUMP_MESH)
+    def mesh_of(p):
+        return bf.transient.pump_mesh(p, settings["mesh_size"], order=2 if settings["element"] == "P2" else 1)
+
+    def run(p, start=None):
+        mesh = mesh_of(p)
         ratio = bf.balance_ratio(p, mesh)
         if ratio >= 1.0:
             return ratio, None, mesh
-        tr = bf.simulate(p, mesh, 1.0, start=start, rtol=PUMP_RTOL, points_per_revolution=PUMP_POINTS,
-                         periodic_tol=PUMP_PERIODIC_TOL)
+        mesh, tr = simulate_design(p, {**settings, "start": settings["start"] if start is None else start})
         return ratio, tr, mesh
 
     variants = {
@@ -485,7 +497,7 @@ def _pump_runs():
         "plunger d = 36 mm": dataclasses.replace(pump, plunger_diameter=0.036),
         "clearance doubled (c = 40 um)": dataclasses.replace(pump, clearance=2 * pump.clearance),
     }
-    out = {"pump": pump, "variants": {}}
+    out = {"pump": pump, "variants": {}, "settings": settings}
     for name, p in variants.items():
         out["variants"][name] = (run(plain(p)), run(p))
     r10 = math.sqrt(0.10 * s.area / math.pi)
@@ -496,9 +508,9 @@ def _pump_runs():
     out["places"] = {name: run(dataclasses.replace(pump, surface=bf.Surface(
         arc=s.arc, half_width=s.half_width, inlets=(bf.Circle(c, rad),)))) for name, (c, rad) in places.items()}
     # the paper's start gamma = phi0 = 0 (delta = phi0 - phi2 - pi = pi at beta = 0), and just off it
-    mesh = bf.transient.pump_mesh(plain(pump), PUMP_MESH)
+    mesh = mesh_of(plain(pump))
     try:
-        bf.simulate(plain(pump), mesh, 1.0, start=(0.0, math.pi))
+        bf.simulate(plain(pump), mesh, 1.0, start=(0.0, math.pi), element=settings["element"])
         out["zero_start"] = "accepted"
     except (RuntimeError, ValueError) as exc:
         out["zero_start"] = f"{type(exc).__name__}: {exc}"
@@ -517,8 +529,11 @@ def _flow_signs(tr, pump):
 
 
 def paper_004() -> str:
+    from bearingfe.scenes.pump import pocket_gain
+
     runs = _pump_runs()
     pump = runs["pump"]
+    run = runs["settings"]
     var = runs["variants"]
     shipped = var["shipped (d = 35 mm, c = 20 um)"]
     n_nodes = shipped[1][2].n_nodes
@@ -547,7 +562,7 @@ def paper_004() -> str:
     all_neg = all(v[3] < 0 for v in signs.values())
     sign_rows = [f"| {name} | {v[0] * 6e4:.2g} ... {v[1] * 6e4:.2g} | {v[2] * 6e4:.2g} ... {v[3] * 6e4:.2g} |"
                  for name, v in signs.items()]
-    d_ship, d34, d36, c40 = (var[k][1][1].smallest_film / var[k][0][1].smallest_film - 1 for k in var)
+    d_ship, d34, d36, c40 = (pocket_gain(var[k][1][1], var[k][0][1]) for k in var)
 
     lines = [
         "## Paper 004 (plunger support of an eccentric pump)",
@@ -567,7 +582,7 @@ def paper_004() -> str:
         "**What reproduces in bearingfe.** The whole chain: `bearingfe.bearings.pump` (kinematics `phi2`, `lam`, their "
         "rates, the chamber-pressure cycle), `bearingfe.transient.quasi_static.simulate` (eq. 13-14 with an adaptive scipy "
         "integrator, one mesh and one factorization per state, a periodic or steady start, events for a "
-        "closing film) and `examples/01_pump_inlet_pocket.py`. Frames, signs and the fixed-frame equation are "
+        "closing film), the main scene `scenes/pump.toml` and `examples/01_pump_inlet_pocket.py`. Frames, signs and the fixed-frame equation are "
         "in `docs/formulations.md` (the paper's N1..N3 are unreadable in the OCR copy); `tests/test_pump.py` "
         "checks the kinematics against finite differences of positions of material points.",
         "",
@@ -578,13 +593,17 @@ def paper_004() -> str:
         "shape and place are not given either. Plunger inertia is neglected as in the paper; cavitation is "
         "not in the paper (`cavitation=\"none\"`, the default, is the paper's model).",
         "",
-        f"**Computed here** on P1 meshes of size {PUMP_MESH} R0 ({n_nodes} nodes with the pocket), one periodic "
-        f"revolution (LSODA, rtol {PUMP_RTOL:g}, {PUMP_POINTS} samples per turn), smallest film = the smallest "
-        "`h_min` over the turn. The mesh is coarse so that `tests/test_papers_doc.py` can regenerate this page "
-        "in seconds; the percentages move by a few points on finer meshes "
-        "(`examples/01_pump_inlet_pocket.py --size 0.08 --sweep`).",
+        f"**Computed here** with the settings of the main scene `scenes/pump.toml` ({run['element']} on curved "
+        f"meshes of size {run['mesh_size']:g} R0, {n_nodes} nodes with the pocket; {run['start']} start, rtol "
+        f"{run['rtol']:g}; the scene's comment and `docs/benchmarks_pump.md` put its smallest film within "
+        "0.01 % of a converged run), through the scene's own `simulate_design`: smallest film = the smallest "
+        "`h_min` over the turn.",
         "",
         "### The headline: the paper's ~+40 % against ours",
+        "",
+        f"**Pocket gain of the shipped pump: {_pct(d_ship)}** (smallest film ratio pocket/plain "
+        f"{1 + d_ship:.4f}): the number `bearingfe run scenes/pump.toml` prints, the README quotes and "
+        "`examples/01_pump_inlet_pocket.py` computes.",
         "",
         "| pump | balance ratio (pocket) | smallest film, plain [um] | smallest film, 10 % central pocket [um] "
         "| gain | mass balance (pocket run, relative) |",
@@ -669,7 +688,7 @@ def paper_004() -> str:
 HEADER = """# The source papers' printed numbers against bearingfe
 
 Generated by `PYTHONPATH=. python scripts/make_papers_doc.py`; do not edit by hand
-(`tests/test_papers_doc.py` regenerates it and fails when it differs).
+(`tests/docs/test_papers.py` regenerates it and fails when it differs).
 
 Each printed number of the four source papers is recomputed from the paper's own
 data with the package. Every table keeps three things apart: **the paper's number**

@@ -27,7 +27,7 @@ def test_run_writes_outputs_and_prints_table(tmp_path, capsys, scene_file):
     scene = scene_file("reynolds", SMALL)
     assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
     text = capsys.readouterr().out
-    assert "h_min" in text and "flow inlet" in text
+    assert "smallest film" in text and "flow inlet" in text and "l/min" in text
     assert sorted(p.name for p in out.iterdir()) == [".bearingfe-manifest.json", "field.vtu", "pressure.png",
                                                      "summary.json"]  # the manifest lists the three files
     summary = json.loads((out / "summary.json").read_text())
@@ -36,6 +36,23 @@ def test_run_writes_outputs_and_prints_table(tmp_path, capsys, scene_file):
     # pocket flow: converged reference 3.71433 (same problem, P2 on a size-0.01 curved mesh);
     # the size-0.1 scene mesh gives 3.71514, within 0.05 %
     assert summary["results"]["flows"]["inlet"] == pytest.approx(3.71433, rel=5e-4)
+    # the shipped [scale] (R0 = 50 mm, c = 20 um, mu = 0.03 Pa s, 1500 rpm = 50 pi rad/s) gives SI: film in c,
+    # flow in omega R0^2 c, pressure in mu omega R0^2 / c^2
+    si, res = summary["results_si"], summary["results"]
+    omega = 50 * np.pi
+    assert summary["scale"]["omega_rad_s"] == pytest.approx(omega, rel=1e-15)
+    assert si["min_film_m"] == pytest.approx(res["h_min"] * 20e-6, rel=1e-14)
+    assert si["flows_m3s"]["inlet"] == pytest.approx(res["flows"]["inlet"] * omega * 0.05**2 * 20e-6, rel=1e-14)
+    assert si["peak_pressure_Pa"] == pytest.approx(res["max_pressure"] * 0.03 * omega * 0.05**2 / 20e-6**2,
+                                                   rel=1e-14)
+    rows = {q: (v, u) for q, v, u in summary["table"]}
+    assert rows["flow inlet"] == (pytest.approx(si["flows_m3s"]["inlet"] * 6e4), "l/min")
+    assert rows["peak pressure"] == (pytest.approx(si["peak_pressure_Pa"]), "Pa")
+    import meshio
+
+    vtu = meshio.read(out / "field.vtu")
+    assert {"pressure_Pa", "film_thickness_m", "pressure_nondimensional"} <= set(vtu.point_data)
+    assert np.abs(vtu.points[:, 1]).max() == pytest.approx(0.4 * 0.05)  # z in m: the half width 0.4 R0
     import matplotlib.image as mpimg
 
     img = mpimg.imread(out / "pressure.png")
@@ -44,6 +61,33 @@ def test_run_writes_outputs_and_prints_table(tmp_path, capsys, scene_file):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "reynolds.toml"]
     # running again replaces a previous output
     assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
+
+
+def test_scene_without_scale_reports_non_dimensional_values_named_as_such(tmp_path, capsys, scene_file):
+    out = tmp_path / "out"
+    assert main(["run", str(scene_file("reynolds", SMALL, scale=None, output={"pictures": []})), "--out", str(out),
+                 "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert "results_si" not in summary and summary["results"]["h_min"] == pytest.approx(1 + 0.6 * np.cos(0.8))
+    rows = {q: u for q, _, u in summary["table"]}
+    assert rows["h_min"] == "c" and rows["max p"] == "mu w R0^2/c^2"  # the scales as units
+    import meshio
+
+    assert set(meshio.read(out / "field.vtu").point_data) == {"pressure_nondimensional",
+                                                              "film_thickness_nondimensional"}
+
+
+@pytest.mark.parametrize("scale, message", [
+    ({"omega": 100.0}, r"\[scale\] speed_rpm/omega: give exactly one"),
+    ({"speed_rpm": None}, r"\[scale\] speed_rpm/omega: give exactly one"),
+    ({"clearance": None}, r"\[scale\] clearance: missing \(required with \[scale\]\)"),
+    ({"clearance": 0.1}, r"\[scale\] Scale.clearance must be smaller than radius"),
+    ({"speed_rpm": -1.0}, r"\[scale\] speed_rpm: must be > 0"),
+])
+def test_scale_errors_name_the_field(scene_file, scale, message):
+    data, label = load_scene(scene_file("reynolds", SMALL, name="bad.toml", scale=scale))
+    with pytest.raises(SceneError, match=r"^bad\.toml: " + message):
+        reynolds_settings(data, label)
 
 
 def test_run_refuses_foreign_directory(tmp_path, capsys, scene_file):
@@ -107,10 +151,10 @@ def test_validate_prints_table(capsys):
     assert main(["validate", "--quick"]) == 0
     out = capsys.readouterr().out
     assert "annular pad load W" in out and "short bearing" in out and "Raimondi & Boyd" in out
-    assert "JFO pocket slider" in out and "Rayleigh step load W" in out
+    assert "JFO pocket slider" in out and "Rayleigh step load W" in out and "orifice-fed pad stiffness" in out
     # 2 annular pad + 1 Ocvirk + 3 journal rows x (S, attitude) + 4 JFO pocket slider (load, flow, x_r, peak)
-    # + 1 finite-width Rayleigh step
-    assert "14 of 14 passed" in out
+    # + 1 finite-width Rayleigh step + 2 fed recess pads x (ratio, flow, stiffness)
+    assert "20 of 20 passed" in out
     assert main(["validate", "--only", "nonsense"]) == 2
 
 

@@ -64,6 +64,7 @@ import numpy as np
 from ..geometry.surface import Surface
 from ..core.machine import Drive, Material
 from ..elastic.shoe import ShoeBody
+from .hydrostatic import PrescribedPressure, Restrictor, Supply
 from ..core.scales import Scale
 from ..core.schema import nonnegative, positive
 
@@ -259,6 +260,12 @@ class EccentricPump:
         lining) for :func:`bearingfe.elastic.shoe.shoe_compliance`; default a
         flat-backed body clamped over its whole back when ``shoe_thickness``
         is given. Its thickness is ``shoe_thickness`` (given either way).
+    shoe_supply : Restrictor, optional
+        How the pocket is fed from the chamber: a capillary or an orifice in the plunger
+        (:class:`bearingfe.bearings.hydrostatic.Restrictor`); None: the pocket is at the chamber
+        pressure (an infinitely stiff supply). :meth:`pocket_supply` gives the pocket's supply at a
+        chamber pressure for :func:`bearingfe.solve_supplied` (the steady balance; the cycle's
+        transient still holds the pocket at the chamber pressure).
     """
 
     eccentricity: float
@@ -276,6 +283,7 @@ class EccentricPump:
     eccentric_material: Material = STEEL
     shoe_thickness: float | None = None
     shoe_body: ShoeBody | None = None
+    shoe_supply: Restrictor | None = None
     _scale: Scale = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -312,6 +320,9 @@ class EccentricPump:
                                  f"shoe_body.thickness ({self.shoe_body.thickness} m)")
         elif self.shoe_thickness is not None:
             object.__setattr__(self, "shoe_body", ShoeBody(self.shoe_thickness))
+        if self.shoe_supply is not None and not isinstance(self.shoe_supply, Restrictor):
+            raise ValueError(f"{own}.shoe_supply must be a bearingfe.bearings.hydrostatic.Restrictor or None, got "
+                             f"{type(self.shoe_supply).__name__}")
         for n in ("shoe_material", "eccentric_material"):
             if not isinstance(getattr(self, n), Material):
                 raise ValueError(f"{own}.{n} must be a bearingfe.Material, got {type(getattr(self, n)).__name__}")
@@ -324,6 +335,13 @@ class EccentricPump:
     def scale(self) -> Scale:
         """Non-dimensional <-> SI scales of the shoe film."""
         return self._scale
+
+    def pocket_supply(self, chamber_pressure: float) -> Supply:
+        """The shoe pocket's supply at a chamber pressure [Pa]: the chamber pressure itself, or the
+        plunger's restrictor fed from it (:attr:`shoe_supply`)."""
+        if self.shoe_supply is None:
+            return PrescribedPressure(chamber_pressure)
+        return self.shoe_supply.fed_from(chamber_pressure)
 
     @property
     def e2(self) -> float:

@@ -38,9 +38,10 @@ from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
 __all__ = [
-    "NONNEGATIVE", "POSITIVE", "REQUIRED", "Range", "SchemaError", "Table", "Tables", "anything", "build", "choice",
-    "FieldRow", "choices", "describe", "finite", "flag", "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers",
-    "one_of", "pair", "path_text", "points", "positive", "positive_number", "read_table", "read_toml", "reference_rows", "text",
+    "FieldRow", "LIMITS", "LIMITS_TABLE", "Limit", "NONNEGATIVE", "POSITIVE", "REQUIRED", "Range", "SchemaError",
+    "Table", "Tables", "anything", "build", "check_limits", "choice", "choices", "describe", "finite", "flag",
+    "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers", "one_of", "pair", "path_text",
+    "points", "positive", "positive_number", "read_table", "read_toml", "reference_rows", "text",
     "texts",
 ]
 
@@ -419,6 +420,58 @@ def read_toml(path: str | Path, what: str = "file") -> tuple[dict, str]:
         raise SchemaError(f"{label}: not valid TOML (not UTF-8 text): {exc}") from None
     except tomllib.TOMLDecodeError as exc:
         raise SchemaError(f"{label}: not valid TOML: {exc}") from None
+
+
+# -- design limits ([limits] of a scene) -----------------------------------------------
+
+@dataclass(frozen=True)
+class Limit:
+    """A design limit a scene may set: the ``quantity`` it bounds, its SI ``unit``, the ``relation`` a
+    design must satisfy (``">="``: at least the limit; ``"<="``: at most) and the ``allowed`` range."""
+
+    quantity: str
+    unit: str
+    relation: str
+    allowed: Range = POSITIVE
+
+
+#: The ``[limits]`` table of the pump and journal scenes: every field optional (unset: not checked).
+LIMITS = {
+    "min_film": Limit("smallest film", "m", ">="),
+    "max_pressure": Limit("peak pressure", "Pa", "<="),
+    "max_friction_power": Limit("mean friction power", "W", "<="),
+    "max_leakage": Limit("leakage (mean flow drawn from the supply)", "m^3/s", "<="),
+}
+
+#: The spec of the ``[limits]`` table (see :data:`LIMITS` for the units).
+LIMITS_TABLE = Table({name: (number(limit.allowed), None) for name, limit in LIMITS.items()})
+
+
+def check_limits(values: Mapping[str, float], limits: Mapping[str, float | None]) -> dict[str, dict]:
+    """Each set limit against the design's value of its quantity.
+
+    Parameters
+    ----------
+    values : mapping
+        ``{limit name: value [SI unit of the limit]}`` (names of :data:`LIMITS`).
+    limits : mapping
+        ``{limit name: limit or None}`` as read from ``[limits]`` (``None``: not set, not checked).
+
+    Returns
+    -------
+    dict
+        ``{name: {"quantity", "value", "limit", "unit", "relation", "ok"}}`` for every set limit.
+    """
+    out = {}
+    for name, limit in limits.items():
+        if limit is None:
+            continue
+        spec = LIMITS[name]
+        value = float(values[name])
+        ok = value >= limit if spec.relation == ">=" else value <= limit
+        out[name] = {"quantity": spec.quantity, "value": value, "limit": float(limit), "unit": spec.unit,
+                     "relation": spec.relation, "ok": bool(ok)}
+    return out
 
 
 # -- the file-format reference -------------------------------------------------------------

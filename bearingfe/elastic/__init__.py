@@ -29,7 +29,7 @@ from .shoe import BODY_ORDERS, SHOE_BACKS, SHOE_SEATS, ShoeBody, ShoeMesh, conde
 from .coupled import (ChordBalance, DeflectedFilm, ElasticBalance, ElasticSolution, balance_load, newton,
                       pressure_sensitivity, solve_elastic)
 
-__all__ = ["COMPLIANCES", "NEEDS_BODY", "compliance_of", "Compliance", "ElasticError", "body_compliance", "check_dense_size",
+__all__ = ["COMPLIANCES", "NEEDS_BODY", "REBUILDS", "compliance_of", "compliance_on", "Compliance", "ElasticError", "body_compliance", "check_dense_size",
            "combined_modulus", "contact_modulus", "half_space", "influence_matrix", "rectangle_deflection",
            "block_compliance", "BODY_ORDERS", "SHOE_BACKS", "SHOE_SEATS", "ShoeBody", "ShoeMesh", "condense",
            "mesh_shoe", "overlay", "shoe_compliance", "ChordBalance", "DeflectedFilm", "ElasticBalance",
@@ -58,6 +58,29 @@ COMPLIANCES: Mapping[str, Callable[..., Compliance]] = MappingProxyType({
 })
 #: Models of :data:`COMPLIANCES` that need the shoe's body (its depth at least).
 NEEDS_BODY = ("block", "shoe")
+
+
+#: Models whose compliance can be built again on another mesh of the same surface from the compliance
+#: itself (its contact modulus, scale and element): ``rebuild(compliance, mesh) -> Compliance``. The block
+#: and the shoe need their bodies, which a compliance does not keep.
+REBUILDS: Mapping[str, Callable[[Compliance, object], Compliance]] = MappingProxyType({
+    "half-space": lambda c, mesh: half_space(mesh, c.scale, c.modulus, c.element),
+})
+
+
+def compliance_on(compliance: Compliance, mesh) -> Compliance:
+    """The same support's compliance on another mesh of the surface (e.g. the mesh refined once).
+
+    Raises
+    ------
+    ValueError
+        For a model not in :data:`REBUILDS`, naming the ones that are; or
+        (from the model) beyond the dense-size limit.
+    """
+    if compliance.model not in REBUILDS:
+        raise ValueError(f"the {compliance.model!r} compliance cannot be built on another mesh from itself (it needs "
+                         f"the support's body); models that can: {tuple(REBUILDS)}")
+    return REBUILDS[compliance.model](compliance, mesh)
 
 
 def compliance_of(model: str, mesh, scale, shoe, *, counterpart=None, body: ShoeBody | None = None,

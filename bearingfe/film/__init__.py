@@ -11,6 +11,7 @@ module            what it does
 ``reference``     The reference assembly: the film system, loads and flows by scikit-fem form assembly.
 ``superposition`` One film state of the finite-element Reynolds equation: operators, condensed system, results.
 ``result``        The result of one film state and the one place that builds it.
+``estimate``      How far a solve's load is from converged: the once-refined comparison (Richardson).
 ``flows``         Named film flows, written once for every discretization and every transient.
 ``fd``            Finite-difference reference solver of the Reynolds equation (paper 004's method).
 ``finite_volume`` Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
@@ -25,10 +26,11 @@ from .mesh_operators import Operators, operators
 from .assembly import ASSEMBLIES
 from .superposition import SOURCES, CoercivityError, CondensedSystem, Superposition, source_weights, superpose
 from .result import ReynoldsResult, build_result, film_outputs
+from .estimate import ERROR_TOLERANCE, LOAD_ORDERS, LoadError, load_error, load_order
 from .finite_volume import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 
 __all__ = ["CosineFilm", "Film", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm", "TaperLandFilm", "UniformFilm",
            "is_smooth", "smallest_film", "Operators", "operators", "ASSEMBLIES", "SOURCES",
            "CoercivityError", "CondensedSystem", "Superposition", "source_weights", "superpose", "ReynoldsResult",
-           "build_result", "film_outputs", "JFOError", "solve_jfo", "FDResult", "solve_reynolds_fd"]
+           "build_result", "film_outputs", "ERROR_TOLERANCE", "LOAD_ORDERS", "LoadError", "load_error", "load_order", "JFOError", "solve_jfo", "FDResult", "solve_reynolds_fd"]

@@ -9,15 +9,20 @@ does the same for many states of one mesh at once (a trajectory).
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time
+import warnings
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy as np
 import skfem
 
+from ..core.checks import ResolutionWarning
 from .compiled import FilmFlows
+from .estimate import ERROR_TOLERANCE, LoadError, load_error
 from .forms import unknown_scale
 from .thickness import Film
 from ..geometry.locate import probes
@@ -175,6 +180,16 @@ class ReynoldsResult:
         the deflected film); None on rigid surfaces (:mod:`bearingfe.elastic.coupled`).
     elastic_iterations : int
         Reynolds solves of the coupled elastic (EHD) Newton iteration (0: rigid).
+    load_error : LoadError or None
+        The load's estimated error (:mod:`bearingfe.film.estimate`) if the
+        solve was asked for it (``solve_reynolds(..., estimate_error=True)``);
+        otherwise :meth:`estimate_load_error` computes it on demand.
+    refined : callable or None
+        ``refined(self) -> (fine, order, seconds)``: the same solve on the
+        mesh refined once, the order of its load error
+        (:data:`bearingfe.film.estimate.LOAD_ORDERS`) and its wall time [s];
+        set by :func:`bearingfe.solve_reynolds` (None for results built by
+        other doors).
     """
 
     basis: skfem.CellBasis
@@ -202,6 +217,48 @@ class ReynoldsResult:
     cavitation_pressure: float = 0.0
     deflection: np.ndarray | None = None
     elastic_iterations: int = 0
+    load_error: LoadError | None = None
+    refined: Callable[["ReynoldsResult"], tuple["ReynoldsResult", float, float]] | None = dataclasses.field(
+        default=None, repr=False)
+    _estimates: dict = dataclasses.field(default_factory=dict, init=False, repr=False)
+
+    def estimate_load_error(self, tolerance: float = ERROR_TOLERANCE) -> LoadError:
+        """How far the load is from converged: the same solve on the mesh refined once (lazy).
+
+        The first call solves again on the once-refined mesh (about 4 to 10
+        times this solve's cost; the estimate is kept, so later calls are
+        free) and compares the loads (:func:`bearingfe.film.estimate.load_error`).
+        If the estimated relative error exceeds ``tolerance`` a
+        :class:`bearingfe.ResolutionWarning` is issued with the
+        :attr:`LoadError.note`; ``solve_reynolds(..., estimate_error=True)``
+        also puts it in ``notes``.
+
+        Parameters
+        ----------
+        tolerance : float
+            Relative load error above which the estimate warns [-], > 0.
+
+        Raises
+        ------
+        ValueError
+            Where there is no refined solve (``refined`` is None).
+        """
+        if not (math.isfinite(tolerance) and tolerance > 0):
+            raise ValueError(f"tolerance must be a finite relative error > 0, got {tolerance!r}")
+        if "estimate" not in self._estimates:
+            if self.load_error is not None:
+                self._estimates["estimate"] = self.load_error
+            elif self.refined is None:
+                raise ValueError("this result has no refined solve to compare with (a result not made by "
+                                 "bearingfe.solve_reynolds): solve again on "
+                                 "bearingfe.geometry.meshing.refine_once(mesh) and use film.estimate.load_error")
+            else:
+                fine, order, seconds = self.refined(self)
+                self._estimates["estimate"] = load_error(self, fine, order=order, seconds=seconds)
+        estimate = dataclasses.replace(self._estimates["estimate"], tolerance=float(tolerance))
+        if estimate.exceeded:
+            warnings.warn(ResolutionWarning(estimate.note), stacklevel=2)
+        return estimate
 
     @property
     def max_deflection(self) -> float:

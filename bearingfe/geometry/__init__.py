@@ -4,8 +4,11 @@
 module            what it does
 ================  ============================================================
 ``surface``       Support-surface geometry in unwrapped non-dimensional coordinates.
-``geofiles``      Geometry files from users: ``.geo`` scripts checked and run apart, ``.msh`` read as data.
-``gmsh_worker``   Child process in which gmsh meshes: one ``.geo`` script (:func:`bearingfe.geometry.geofiles.run_geo`
+``errors``        Errors of geometry files: a file that cannot be used, a ``.geo`` construct refused as untrusted.
+``geofiles``      Geometry files from users: ``.geo`` files read by bearingfe and meshed apart, ``.msh`` read as data.
+``geo_parser``    Reader of the ``.geo`` subset bearingfe meshes from untrusted files: text in, geometry operations out.
+``geo_model``     Building a gmsh model through the gmsh API from the operations of ``geo_parser`` (in the child).
+``gmsh_worker``   Child process in which gmsh meshes: a ``.geo`` file (built, or trusted: interpreted), the shoe body.
 ``locate``        Points on a triangle mesh: the cell that holds a point, field values there, cell sizes.
 ``meshing``       Meshing support surfaces with gmsh and reading meshes into scikit-fem.
 ================  ============================================================
@@ -14,7 +17,8 @@ module            what it does
 from __future__ import annotations
 
 from .surface import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
-from .geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
+from .errors import GeometryFileError, UntrustedGeoError
+from .geofiles import MeshSizeError
 from .meshing import SupportMesh, grid_mesh, load_mesh, mesh_surface, refine_uniformly
 
 __all__ = ["Circle", "Ellipse", "Polygon", "Recess", "Rectangle", "Shape", "Slot", "Surface", "GeometryFileError",

@@ -1,5 +1,9 @@
-"""Child process in which gmsh meshes: one ``.geo`` script (:func:`bearingfe.geometry.geofiles.run_geo`) or the shoe
+"""Child process in which gmsh meshes: one ``.geo`` file (:func:`bearingfe.geometry.geofiles.run_geo`) or the shoe
 body from its dimensions (``task = "shoe"``, :func:`bearingfe.elastic.shoe.mesh_shoe`).
+
+An untrusted ``.geo`` file arrives already read by :mod:`bearingfe.geometry.geo_parser` as operations
+(``model``), built through the gmsh API by :mod:`bearingfe.geometry.geo_model`; only a trusted one (``geo``,
+a path) is opened by gmsh's script interpreter.
 
 Run as a file (``runpy.run_path``) with the request file as its argument; it
 imports only gmsh and the standard library, so a script that loops, crashes
@@ -86,6 +90,13 @@ def _polyline(coords) -> float:
     return sum(math.dist(a, b) for a, b in zip(pts, pts[1:]))
 
 
+def _geo_model() -> dict:
+    """The namespace of ``geo_model.py`` beside this file (loaded by path: the child imports no package)."""
+    import runpy
+
+    return runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "geo_model.py"))
+
+
 def _run(request: dict, result: dict) -> None:
     import gmsh
 
@@ -93,7 +104,11 @@ def _run(request: dict, result: dict) -> None:
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.logger.start()
     try:
-        gmsh.open(request["geo"])
+        if "model" in request:  # an untrusted file, read by bearingfe: built through the API, never interpreted
+            gmsh.model.add("geo")
+            _geo_model()["build"](gmsh, request["factory"], request["model"])
+        else:  # a trusted script: gmsh's own interpreter
+            gmsh.open(request["geo"])
         if request.get("size") is not None:
             gmsh.option.setNumber("Mesh.MeshSizeMax", float(request["size"]))
         if not gmsh.model.getPhysicalGroups(1):

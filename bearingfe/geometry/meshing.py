@@ -13,7 +13,9 @@ rectangular outline also ``arc_start`` (phi = alpha1), ``arc_end``
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
+import pickle
 import tempfile
 import threading
 from dataclasses import dataclass, field
@@ -27,7 +29,8 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
                        read_msh, run_geo)
 from .surface import Surface
 
-__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "mesh_from_data", "check_triangles",
+__all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
+           "check_triangles",
            "strip_mesh", "grid_mesh", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
@@ -56,13 +59,30 @@ class SupportMesh:
         Nominal element size [-] (longest requested edge).
     source : str
         Where the mesh came from (``"gmsh"`` or the file path).
+    refinement : callable or None
+        Makes this mesh refined once (every triangle split in four, new
+        boundary nodes on the exact outline), as the function that made it
+        would: set by :func:`mesh_surface`, :func:`strip_mesh` and
+        :func:`grid_mesh`; None for meshes read from files (see
+        :func:`refine_once`).
     """
 
     mesh: skfem.Mesh
     surface: Surface | None = None
     size: float = math.nan
     source: str = "gmsh"
+    refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __getstate__(self) -> dict:
+        # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
+        # in another process refine_once then splits its triangles
+        state = dict(self.__dict__)
+        try:
+            pickle.dumps(state["refinement"])
+        except (pickle.PicklingError, AttributeError, TypeError):
+            state["refinement"] = None
+        return state
 
     @property
     def boundaries(self) -> dict[str, np.ndarray]:
@@ -250,7 +270,11 @@ def mesh_surface(
         if type(exc) is Exception:  # gmsh's API raises a bare Exception carrying its last error
             raise RuntimeError(f"gmsh could not mesh the surface: {' '.join(str(exc).split())}") from None
         raise
-    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh")
+    again = functools.partial(mesh_surface, surface, size, inlet_size=inlet_size, corner_size=corner_size,
+                              grading_distance=grading_distance, size_function=size_function, min_size=min_size,
+                              order=order, refine=refine + 1, algorithm=algorithm, verbose=verbose,
+                              max_elements=max_elements)
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again)
 
 
 def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
@@ -263,9 +287,10 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
 
     Geometry files are data unless the caller says otherwise
     (:mod:`bearingfe.geometry.geofiles`): a ``.msh`` file is parsed as data (meshio)
-    and must start with ``$MeshFormat``; a ``.geo`` script is checked
-    against an allow-list (no shell commands, file writes, includes,
-    merges, ``Exit``...) and parsed and meshed by gmsh in a separate
+    and must start with ``$MeshFormat``; a ``.geo`` file is read by
+    bearingfe's parser of the documented geometry subset (no shell
+    commands, file writes, includes, merges, ``Exit``...: those are refused
+    by name) and built and meshed through the gmsh API in a separate
     process with a time limit. Degenerate (zero-area) and duplicated
     triangles are refused.
 
@@ -278,11 +303,11 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
     order : {1, 2}
         For ``.geo``: geometry order of the generated mesh.
     trusted : bool
-        For ``.geo``: run the script even if it uses commands outside the
-        allow-list (only for files you wrote or trust). It still runs in a
-        separate process with the time limit.
+        For ``.geo``: hand the script to gmsh's own interpreter, every
+        command of gmsh's language included (only for files you wrote or
+        trust). It still runs in a separate process with the time limit.
     timeout : float, optional
-        For ``.geo``: seconds gmsh may take [s]; default
+        For ``.geo``: seconds reading and meshing may take [s]; default
         :data:`bearingfe.geometry.geofiles.DEFAULT_GEO_TIMEOUT` or the environment
         variable ``BEARINGFE_GEO_TIMEOUT``.
     max_elements : int, optional
@@ -331,6 +356,26 @@ def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
     if isinstance(m, skfem.MeshTri2):
         raise ValueError("refine_uniformly works on straight-sided meshes; remesh with refine= for curved ones")
     return SupportMesh(mesh=m.refined(times), surface=mesh.surface, size=mesh.size / 2**times, source=mesh.source)
+
+
+def refine_once(mesh: SupportMesh) -> SupportMesh:
+    """``mesh`` with every triangle split in four: the mesh of a once-refined comparison.
+
+    The function that made the mesh makes it again one level finer
+    (``mesh.refinement``): gmsh refines its own mesh, so new nodes on curved
+    outlines and pockets lie on them and curved (order-2) meshes stay curved;
+    strips and grids get twice the cells each way. A straight-sided mesh
+    without that record (read from a file) is split by
+    :func:`refine_uniformly`: its outline stays the polygon of the file.
+
+    Raises
+    ------
+    ValueError
+        For a curved (``MeshTri2``) mesh read from a file (no geometry to put new nodes on).
+    """
+    if mesh.refinement is not None:
+        return mesh.refinement()
+    return refine_uniformly(mesh)
 
 
 def _estimated_triangles(surface: Surface, size: float, floor: float, inlet_size: float, grading: float,
@@ -619,21 +664,26 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     tol = 1e-9 * length
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip")
+    again = functools.partial(strip_mesh, 2 * n, length=length, width=width, rows=2 * rows)
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=None, size=length / n, source="strip", refinement=again)
 
 
 def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
               max_elements: int | None = None) -> SupportMesh:
     """A structured mesh of a rectangular surface, aligned with the sliding direction ``phi``.
 
-    Uniform cells of at most ``size`` along ``phi`` and ``size_z`` along
-    ``z``, each split into two triangles (``skfem.MeshTri1.init_tensor``).
-    Recess contours are NOT on element edges: the film is integrated exactly
-    over the cells and faces they cut (see ``couette="grid"`` in
-    :func:`bearingfe.film.finite_volume.solve_jfo`, where the mass-conserving solver
-    carries the Couette flux along the grid lines, free of crosswind
-    smearing). Boundaries are named as by :func:`mesh_surface`:
-    ``arc_start``, ``arc_end``, ``side`` and ``outer``, or on a periodic
+    Cells of at most ``size`` along ``phi`` and ``size_z`` along ``z``, each
+    split into two triangles. The grid lines pass through the edges of the
+    pockets, which must be rectangles aligned with the axes (axial grooves,
+    hydrostatic recesses fed at their pressure): between consecutive pocket
+    edges the lines are uniform, and the cells inside a pocket are left out
+    (a hole, as in :func:`mesh_surface`). Recess contours are NOT on element
+    edges: the film is integrated exactly over the cells and faces they cut
+    (see ``couette="grid"`` in :func:`bearingfe.film.finite_volume.solve_jfo`,
+    where the mass-conserving solver carries the Couette flux along the grid
+    lines, free of crosswind smearing). Boundaries are named as by
+    :func:`mesh_surface`: ``arc_start``, ``arc_end``, ``side``, ``outer`` and
+    ``inlet``, ``inlet_0``, ... on the pocket contours, or on a periodic
     surface ``side`` = ``outer`` and the seam ``periodic_start`` /
     ``periodic_end``. Meshing takes milliseconds (no gmsh). Recesses should be
     wider than a cell: a contour is located exactly along each cell face
@@ -642,8 +692,9 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
     Parameters
     ----------
     surface : Surface
-        Default rectangular outline, no pockets (a pocket's contour must lie
-        on element edges to carry its pressure: use :func:`mesh_surface`).
+        Default rectangular outline; pockets (``inlets``) axis-aligned
+        rectangles (their contours must lie on element edges to carry their
+        pressure; other pocket shapes: use :func:`mesh_surface`).
     size : float
         Largest cell length along ``phi`` [-], > 0.
     size_z : float, optional
@@ -661,27 +712,106 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
     if not surface.is_rectangular:
         raise ValueError("grid_mesh needs the default rectangular outline (Surface(outer=None)); "
                          "use mesh_surface for other outlines")
-    if surface.inlets:
-        raise ValueError("grid_mesh cannot carry pockets (Surface.inlets): their contours must lie on "
-                         "element edges; use mesh_surface")
+    pockets = [_axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets)]
     size = _checked_size(size, "size")
     size_z = size if size_z is None else _checked_size(size_z, "size_z")
     a1, a2 = surface.arc
-    width = 2 * surface.half_width
-    nx, nz = max(2, math.ceil((a2 - a1) / size - 1e-9)), max(1, math.ceil(width / size_z - 1e-9))
-    check_element_count(2.0 * nx * nz, max_elements, what=f"grid_mesh with size = {size:g}, size_z = {size_z:g}")
-    m = skfem.MeshTri1.init_tensor(np.linspace(a1, a2, nx + 1), np.linspace(-width / 2, width / 2, nz + 1))
+    a = surface.half_width
+    xs = _grid_lines([a1, a2] + [x for r in pockets for x in r[:2]], size)
+    if xs.size < 3:   # at least two cells along phi
+        xs = np.linspace(a1, a2, 3)
+    zs = _grid_lines([-a, a] + [z for r in pockets for z in r[2:]], size_z)
+    check_element_count(2.0 * (xs.size - 1) * (zs.size - 1), max_elements,
+                        what=f"grid_mesh with size = {size:g}, size_z = {size_z:g}")
+    return _grid_on_lines(surface, xs, zs, tuple(pockets), max_elements)
+
+
+def _halved(lines: np.ndarray) -> np.ndarray:
+    """Grid coordinates with the midpoint of every interval added: each cell split in two."""
+    return np.sort(np.concatenate([lines, 0.5 * (lines[:-1] + lines[1:])]))
+
+
+def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tuple,
+                   max_elements: int | None) -> SupportMesh:
+    """The grid mesh of :func:`grid_mesh` on the grid lines ``xs`` (phi) and ``zs`` (z), pockets left out.
+
+    Its ``refinement`` is the same grid with every cell split in two along each axis (the pocket
+    edges stay on grid lines), for the once-refined load-error estimate.
+    """
+    check_element_count(2.0 * (xs.size - 1) * (zs.size - 1), max_elements, what="grid_mesh refined")
+    a1, a2 = surface.arc
+    a = surface.half_width
+    m = skfem.MeshTri1.init_tensor(xs, zs)
+    if pockets:
+        m = _without_pockets(m, pockets)
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
-    tol = 1e-9 * max(a2 - a1, width)
+    tol = 1e-9 * max(a2 - a1, 2 * a)
     start, end = facets[np.abs(mid[0] - a1) < tol], facets[np.abs(mid[0] - a2) < tol]
-    side = facets[np.abs(np.abs(mid[1]) - width / 2) < tol]
+    side = facets[np.abs(np.abs(mid[1]) - a) < tol]
     if surface.periodic:
         bnd = {"outer": side, "side": side, "periodic_start": start, "periodic_end": end}
     else:
         bnd = {"outer": np.concatenate([start, end, side]), "arc_start": start, "arc_end": end, "side": side}
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=max((a2 - a1) / nx, width / nz),
-                       source="grid")
+    if pockets:
+        edge = [facets[_on_rectangle(mid, r, tol)] for r in pockets]
+        bnd["inlet"] = np.concatenate(edge)
+        bnd.update({f"inlet_{k}": e for k, e in enumerate(edge)})
+    again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface,
+                       size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again)
+
+
+
+def _axis_rectangle(shape, k: int) -> tuple[float, float, float, float]:
+    """``(phi_lo, phi_hi, z_lo, z_hi)`` of a pocket that is an axis-aligned rectangle.
+
+    Raises
+    ------
+    ValueError
+        For any other pocket shape (its contour would not lie on grid lines).
+    """
+    xy = shape.boundary()
+    lo, hi = xy.min(axis=1), xy.max(axis=1)
+    scale = float(np.max(hi - lo))
+    on_edge = np.minimum(np.abs(xy - lo[:, None]), np.abs(xy - hi[:, None])).min(axis=0)
+    box = float(np.prod(hi - lo))
+    if np.any(on_edge > 1e-9 * scale) or abs(shape.area - box) > 1e-9 * box:
+        raise ValueError(f"grid_mesh takes pockets that are rectangles aligned with phi and z only "
+                         f"(Surface.inlets[{k}] is {type(shape).__name__} {shape!r}): their edges lie on grid "
+                         "lines; use mesh_surface for other pocket shapes")
+    return float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])
+
+
+def _grid_lines(breaks: list[float], size: float) -> np.ndarray:
+    """Grid coordinates through every break point, uniform between consecutive ones, spacing <= ``size``."""
+    b = np.unique(np.asarray(breaks, float))
+    span = b[-1] - b[0]
+    b = b[np.concatenate([[True], np.diff(b) > 1e-9 * span])]
+    pieces = [np.linspace(x0, x1, max(1, math.ceil((x1 - x0) / size - 1e-9)) + 1)[:-1] for x0, x1 in zip(b[:-1], b[1:])]
+    return np.concatenate(pieces + [b[-1:]])
+
+
+def _without_pockets(m: skfem.MeshTri1, pockets: list) -> skfem.MeshTri1:
+    """The tensor mesh with the triangles inside the pockets removed (and their orphaned nodes)."""
+    g = m.p[:, m.t].mean(axis=1)
+    inside = np.zeros(m.t.shape[1], bool)
+    for x0, x1, z0, z1 in pockets:
+        inside |= (g[0] > x0) & (g[0] < x1) & (g[1] > z0) & (g[1] < z1)
+    t = m.t[:, ~inside]
+    used = np.unique(t)
+    index = np.full(m.p.shape[1], -1, dtype=np.int64)
+    index[used] = np.arange(used.size)
+    return skfem.MeshTri1(np.ascontiguousarray(m.p[:, used]), np.ascontiguousarray(index[t]))
+
+
+def _on_rectangle(mid: np.ndarray, rect: tuple[float, float, float, float], tol: float) -> np.ndarray:
+    """Mask of the facet midpoints on the contour of the rectangle ``(phi_lo, phi_hi, z_lo, z_hi)``."""
+    x0, x1, z0, z1 = rect
+    in_x = (mid[0] > x0 - tol) & (mid[0] < x1 + tol)
+    in_z = (mid[1] > z0 - tol) & (mid[1] < z1 + tol)
+    return ((in_x & ((np.abs(mid[1] - z0) < tol) | (np.abs(mid[1] - z1) < tol)))
+            | (in_z & ((np.abs(mid[0] - x0) < tol) | (np.abs(mid[0] - x1) < tol))))
 
 
 def periodic_pairs(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray]:

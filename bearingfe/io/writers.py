@@ -22,7 +22,7 @@ import numpy as np
 
 from ..core.limits import check_limit
 
-__all__ = ["atomic_path", "umask", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
+__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
 
 #: Trajectory columns written by :func:`write_csv` when present, in this order.
 CSV_FIELDS = ("beta", "gamma", "delta", "phi0", "h_min", "friction_moment", "flow_inlet", "flow_side",
@@ -60,28 +60,48 @@ def umask() -> int:
     return mask
 
 
-def _mesh_arrays(result):
+def vtu_fields(result, scale=None) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """Points (n, 3), triangles (m, 3) and point data of a result's VTU file.
+
+    With ``scale`` (:class:`bearingfe.core.scales.Scale`) the points are the
+    unwrapped surface in metres ``(R0 phi, R0 z, 0)`` and the fields SI:
+    ``pressure_Pa``, ``film_thickness_m`` (and ``deflection_m`` on an elastic
+    support), the solver's values kept as ``pressure_nondimensional``,
+    ``film_thickness_nondimensional`` (``deflection_nondimensional``). Without
+    it only the non-dimensional fields, on the points ``(phi, z, 0)`` [R0].
+    P2 results give their vertex values.
+    """
     m = result.basis.mesh
     nv = int(m.nvertices)
     t = np.asarray(m.t[:3]).T
     xy = np.asarray(m.p[:, :nv], dtype=float)
-    points = np.column_stack([xy[0], xy[1], np.zeros(nv)])
-    pressure = np.asarray(result.pressure, dtype=float)[:nv]
-    h = np.asarray(result.film.thickness(xy[0], xy[1]), dtype=float)
-    return points, t, pressure, h
+    nd = {"pressure": np.asarray(result.pressure, dtype=float)[:nv],
+          "film_thickness": np.asarray(result.film.thickness(xy[0], xy[1]), dtype=float)}
+    deflection = getattr(result, "deflection", None)
+    if deflection is not None:
+        nd["deflection"] = np.asarray(deflection, dtype=float)[:nv]
+    data = {f"{k}_nondimensional": v for k, v in nd.items()}
+    if scale is None:
+        return np.column_stack([xy[0], xy[1], np.zeros(nv)]), t, data
+    si = {"pressure_Pa": nd["pressure"] * scale.pressure, "film_thickness_m": nd["film_thickness"] * scale.clearance}
+    if "deflection" in nd:
+        si["deflection_m"] = nd["deflection"] * scale.clearance
+    points = np.column_stack([xy[0] * scale.radius, xy[1] * scale.radius, np.zeros(nv)])
+    return points, t, {**si, **data}
 
 
-def write_vtu(result, path: str | Path) -> Path:
-    """Write a result's mesh with point data ``pressure`` and ``film_thickness`` as VTU.
-
-    Points are ``(phi, z, 0)`` in the unwrapped plane; P2 results write their
-    vertex values.
+def write_vtu(result, path: str | Path, scale=None, *, field_data: Mapping[str, float] | None = None) -> Path:
+    """Write a result's mesh and fields as VTU (see :func:`vtu_fields` for the arrays and units).
 
     Parameters
     ----------
     result : ReynoldsResult
     path : str or Path
         Target ``.vtu`` file.
+    scale : Scale, optional
+        Write SI fields on a mesh in metres besides the non-dimensional ones.
+    field_data : mapping, optional
+        Named numbers of the whole frame (e.g. ``shaft_angle_deg``), written as VTK field data.
 
     Returns
     -------
@@ -92,15 +112,21 @@ def write_vtu(result, path: str | Path) -> Path:
     path = Path(path)
     if path.suffix != ".vtu":
         raise ValueError(f"path must end in .vtu, got {path.name}")
-    points, t, pressure, h = _mesh_arrays(result)
-    mesh = meshio.Mesh(points, [("triangle", t)], point_data={"pressure": pressure, "film_thickness": h})
+    points, t, data = vtu_fields(result, scale)
+    mesh = meshio.Mesh(points, [("triangle", t)], point_data=data)
     with atomic_path(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
+        if field_data:  # meshio's VTU writer leaves field data out: VTK's <FieldData>, one number each
+            arrays = "".join(f'<DataArray type="Float64" Name="{name}" NumberOfTuples="1" format="ascii">'
+                             f"{float(value)!r}</DataArray>\n" for name, value in field_data.items())
+            text = tmp.read_text()
+            tmp.write_text(text.replace("<UnstructuredGrid>", f"<UnstructuredGrid>\n<FieldData>\n{arrays}</FieldData>",
+                                        1))
     return path
 
 
 def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Path, *,
-              max_frames: int | None = None) -> Path:
+              max_frames: int | None = None, scale=None, angles: Sequence[float] | None = None) -> Path:
     """Write a ParaView time series (``.pvd``) referencing one VTU per time.
 
     Parameters
@@ -109,12 +135,16 @@ def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Pa
         Either results (each written as ``<stem>_<k>.vtu`` next to ``path``)
         or paths of existing ``.vtu`` files.
     times : sequence of float
-        Time value of each entry (e.g. shaft angle [rad]), strictly increasing.
+        Time value of each entry (e.g. the time from the start [s]), strictly increasing.
     path : str or Path
         Target ``.pvd`` file.
     max_frames : int, optional
         Most entries accepted; default the ``frames`` limit of
         :mod:`bearingfe.core.limits` (1000).
+    scale : Scale, optional
+        Results are written with SI fields (:func:`write_vtu`).
+    angles : sequence of float, optional
+        Shaft angle of each entry [deg], written into its VTU as field data ``shaft_angle_deg``.
 
     Returns
     -------
@@ -132,6 +162,9 @@ def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Pa
         raise ValueError(f"times must have one value per entry ({len(items)}), got {times.size}")
     if not (np.all(np.isfinite(times)) and np.all(np.diff(times) > 0)):
         raise ValueError("times must be finite and strictly increasing")
+    angles = None if angles is None else np.asarray(angles, dtype=float).ravel()
+    if angles is not None and angles.size != len(items):
+        raise ValueError(f"angles must have one value per entry ({len(items)}), got {angles.size}")
     files = []
     for k, item in enumerate(items):
         if isinstance(item, (str, Path)):
@@ -139,7 +172,10 @@ def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Pa
             if not f.is_file():
                 raise FileNotFoundError(f"VTU file not found: {f}")
         else:
-            f = write_vtu(item, path.with_name(f"{path.stem}_{k:04d}.vtu"))
+            extra = {"time_s": times[k]} if scale is not None else {}
+            if angles is not None:
+                extra["shaft_angle_deg"] = angles[k]
+            f = write_vtu(item, path.with_name(f"{path.stem}_{k:04d}.vtu"), scale, field_data=extra)
         files.append(os.path.relpath(f.resolve(), path.parent.resolve()))
     root = ET.Element("VTKFile", type="Collection", version="0.1", byte_order="LittleEndian")
     coll = ET.SubElement(root, "Collection")

@@ -63,6 +63,33 @@ SHOE_LINING = Table({"thickness": (number(), None), "name": (text, None), "young
                      "density": (number(), 0.0), "poisson_ratio": (number(), 0.3)})
 
 
+#: How the shoe pocket is fed from the chamber (``[shoe.supply]``): ``"pressure"`` (the chamber pressure,
+#: the default) or a restrictor in the plunger (:class:`bearingfe.bearings.hydrostatic.Restrictor`).
+SHOE_SUPPLY = Table({"kind": (choice(lambda: ("pressure", *_restrictor().FIELDS)), "pressure"), "diameter": (number(), None),
+                     "length": (number(), None), "discharge_coefficient": (number(), None),
+                     "density": (number(), None), "pocket_volume": (number(), None),
+                     "bulk_modulus": (number(), None)})
+
+
+def _restrictor():
+    from ..bearings.hydrostatic import Restrictor  # the bearings import the solver: read when a file is
+
+    return Restrictor
+
+
+def shoe_supply_of(t: dict, label: str):
+    """The restrictor of a ``[shoe.supply]`` table read against :data:`SHOE_SUPPLY` (None: the chamber pressure)."""
+    given = {k: v for k, v in t.items() if k != "kind" and v is not None}
+    if t["kind"] == "pressure":
+        if given:
+            raise SchemaError(f"{label}: [shoe.supply] {next(iter(given))}: not taken by kind = 'pressure' "
+                              f"(the pocket at the chamber pressure); give kind = 'capillary' or 'orifice'")
+        return None
+    if "diameter" not in given:
+        raise SchemaError(f"{label}: [shoe.supply] diameter: missing (required by kind = {t['kind']!r})")
+    return build(label, "shoe.supply", _restrictor(), kind=t["kind"], **given)
+
+
 def shoe_body_of(sh: dict, label: str) -> ShoeBody | None:
     """The shoe body of a ``[shoe]`` table (``thickness``, ``back``, ``[shoe.seat]``, ``[shoe.lining]``)."""
     seat, lining = sh["seat"], sh["lining"]
@@ -158,7 +185,8 @@ SPECS: Mapping[str, dict] = MappingProxyType({
                             "radius": (number(), REQUIRED), "material": SURFACE_MATERIAL}, required=True),
         "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED),
                        "thickness": (number(), None), "back": (choice(SHOE_BACKS), "flat"),
-                       "material": SURFACE_MATERIAL, "seat": SHOE_SEAT, "lining": SHOE_LINING}, required=True),
+                       "material": SURFACE_MATERIAL, "seat": SHOE_SEAT, "lining": SHOE_LINING,
+                       "supply": SHOE_SUPPLY}, required=True),
         "plunger": Table({"diameter": (number(), REQUIRED), "preload": (number(), 0.0)}, required=True),
         "cycle": Table({"discharge": (number(), REQUIRED), "suction": (number(), REQUIRED),
                         "compression_deg": (number(), 20.0), "decompression_deg": (number(), 20.0)},
@@ -224,7 +252,7 @@ def _eccentric_pump(d: dict, label: str):
                  viscosity=sh["viscosity"], plunger_diameter=pl["diameter"], preload=pl["preload"],
                  drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label),
                  shoe_material=material_of(sh["material"], "shoe.material", label), shoe_thickness=sh["thickness"],
-                 shoe_body=shoe_body_of(sh, label),
+                 shoe_body=shoe_body_of(sh, label), shoe_supply=shoe_supply_of(sh["supply"], label),
                  eccentric_material=material_of(e["material"], "eccentric.material", label))
 
 

@@ -5,6 +5,7 @@ module          what it draws
 ==============  ==============================================================
 ``fields``      pressure and film fields on the surface (pyvista, off-screen)
 ``curves``      trajectories, orbits and other curves (matplotlib)
+``maps``        field maps side by side, P2 fields on a refined display mesh (matplotlib)
 ``mechanisms``  the crank and rotor models' curves (matplotlib)
 ==============  ==============================================================
 """

@@ -1,23 +1,44 @@
 """Line plots of a shoe's trajectory over the pump cycle (matplotlib object API).
 
-The functions take any trajectory-like object with equal-length arrays
-``beta`` (shaft angle [rad]), ``gamma`` (eccentricity [-]), ``delta``
-(attitude angle of the line of centres in the shoe frame [rad]), ``h_min``
-[m], ``friction_moment`` [N m], ``flow_inlet`` and ``flow_side`` [m^3/s]
-(the SI arrays of :class:`bearingfe.Trajectory`; films are drawn in um and
-flows in cm^3/s). They build a :class:`matplotlib.figure.Figure`
-directly (no pyplot state), save it if ``path`` is given, and return it.
-The mechanism plots live in :mod:`bearingfe.plot.mechanisms`.
+The functions take one trajectory-like object, or a mapping ``{design name:
+trajectory}`` to draw several designs on the same axes (one colour per
+design, the smallest film of each marked). A trajectory has equal-length
+arrays ``beta`` (shaft angle [rad]), ``gamma`` (eccentricity [-]),
+``delta`` (attitude angle of the line of centres in the shoe frame [rad]),
+``h_min`` [m], ``friction_moment`` [N m], ``flow_inlet`` and ``flow_side``
+[m^3/s] (the SI arrays of :class:`bearingfe.Trajectory`); angles are drawn
+in degrees, films in um and flows in l/min. The functions build a
+:class:`matplotlib.figure.Figure` directly (no pyplot state), save it if
+``path`` is given, and return it. The mechanism plots live in
+:mod:`bearingfe.plot.mechanisms`.
 """
 
 from __future__ import annotations
 
+import textwrap
+from typing import Mapping
+
 import numpy as np
 
-__all__ = ["TRAJECTORY_FIELDS", "trajectory_plot", "orbit_plot"]
+__all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot"]
 
 #: Attributes a trajectory must have, in the order they are checked.
 TRAJECTORY_FIELDS = ("beta", "gamma", "delta", "h_min", "friction_moment", "flow_inlet", "flow_side")
+
+#: Colours of the designs, in the order they are given.
+DESIGN_COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink")
+
+#: m^3/s -> l/min.
+LITRES_PER_MINUTE = 6e4
+
+
+def designs_of(trajs) -> dict:
+    """``{name: trajectory}``: a mapping as given, a single trajectory as ``{"": traj}``."""
+    if isinstance(trajs, Mapping):
+        if not trajs:
+            raise ValueError("no trajectory to draw: the mapping of designs is empty")
+        return dict(trajs)
+    return {"": trajs}
 
 
 def _arrays(traj, names=TRAJECTORY_FIELDS) -> dict[str, np.ndarray]:
@@ -41,13 +62,17 @@ def _save(fig, path):
     return fig
 
 
-def trajectory_plot(traj, path=None, *, title: str | None = None):
-    """Eccentricity, attitude, minimum film, friction moment and flows against shaft angle.
+def _label(design: str, what: str) -> str:
+    return f"{design}: {what}" if design else what
+
+
+def trajectory_plot(trajs, path=None, *, title: str | None = None):
+    """Eccentricity, attitude, smallest film, friction moment and flows against shaft angle.
 
     Parameters
     ----------
-    traj : Trajectory-like
-        See the module docstring for the attributes used.
+    trajs : Trajectory-like or mapping of them
+        One trajectory, or ``{design name: trajectory}`` drawn together (see the module docstring).
     path : str or Path, optional
         Save the figure here (format from the suffix).
     title : str, optional
@@ -55,42 +80,47 @@ def trajectory_plot(traj, path=None, *, title: str | None = None):
     Returns
     -------
     matplotlib.figure.Figure
+        Five axes; on each, one line per design (the flow panel: inlet solid, side dashed), and on
+        the film panel one ``"o"`` marker per design at its smallest film.
     """
     from matplotlib.figure import Figure
 
-    d = _arrays(traj)
-    deg = np.degrees(d["beta"])
-    fig = Figure(figsize=(7.5, 9.0), layout="constrained")
+    designs = {name: _arrays(t) for name, t in designs_of(trajs).items()}
+    fig = Figure(figsize=(7.5, 9.5), layout="constrained")
     axes = fig.subplots(5, 1, sharex=True)
-    panels = [
-        (axes[0], [("gamma", d["gamma"])], "gamma [-]"),
-        (axes[1], [("delta", np.degrees(d["delta"]))], "attitude delta [deg]"),
-        (axes[2], [("h_min", 1e6 * d["h_min"])], "smallest film [um]"),
-        (axes[3], [("friction", d["friction_moment"])], "friction moment\n[N m]"),
-        (axes[4], [("inlet", 1e6 * d["flow_inlet"]), ("side", 1e6 * d["flow_side"])], "flow [cm^3/s]"),
-    ]
-    for ax, curves, label in panels:
-        for name, y in curves:
-            ax.plot(deg, y, label=name)
+    for (design, d), color in zip(designs.items(), DESIGN_COLORS):
+        deg = np.degrees(d["beta"])
+        axes[0].plot(deg, d["gamma"], color=color, label=_label(design, "gamma"))
+        axes[1].plot(deg, np.degrees(d["delta"]), color=color, label=_label(design, "delta"))
+        axes[2].plot(deg, 1e6 * d["h_min"], color=color, label=_label(design, "h_min"))
+        axes[3].plot(deg, d["friction_moment"], color=color, label=_label(design, "friction"))
+        axes[4].plot(deg, LITRES_PER_MINUTE * d["flow_inlet"], color=color, label=_label(design, "pocket inflow"))
+        axes[4].plot(deg, LITRES_PER_MINUTE * d["flow_side"], "--", color=color, label=_label(design, "side flow"))
+        i = int(np.argmin(d["h_min"]))
+        axes[2].plot(deg[i], 1e6 * d["h_min"][i], "o", color=color, markeredgecolor="k",
+                     label=_label(design, f"min {1e6 * d['h_min'][i]:.3g} um at {deg[i]:.0f} deg"))
+    labels = ("eccentricity gamma [-]", "attitude delta [deg]", "smallest film [um]", "friction moment\n[N m]",
+              "flow [l/min]")
+    for ax, label in zip(axes, labels):
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    axes[2].axhline(0.0, color="k", lw=0.8)
-    i = int(np.argmin(d["h_min"]))
-    axes[2].plot(deg[i], 1e6 * d["h_min"][i], "o", color="tab:red",
-                 label=f"min {1e6 * d['h_min'][i]:.3g} um at {deg[i]:.0f} deg")
-    axes[2].legend(loc="best", fontsize="small")
-    axes[4].legend(loc="best", fontsize="small")
+    axes[2].set_ylim(bottom=0.0)
+    for ax in (axes[2], axes[4]) if len(designs) == 1 else axes:
+        ax.legend(loc="best", fontsize="small")
     axes[-1].set_xlabel("shaft angle beta [deg]")
+    axes[-1].set_xticks(np.arange(0, 361, 45))
     if title:
-        axes[0].set_title(title)
+        fig.suptitle(textwrap.fill(title, 80))
     return _save(fig, path)
 
 
-def orbit_plot(traj, path=None, *, title: str | None = None):
+def orbit_plot(trajs, path=None, *, title: str | None = None):
     """Orbit of the shoe-bore centre relative to the eccentric: ``gamma (cos delta, sin delta)``.
 
-    The unit circle (``gamma = 1``, contact of a full bearing) is drawn for
-    scale; on a partial arc the orbit may cross it without contact.
+    One line per design, its start (square) and its smallest film (star) marked; the unit circle
+    (``gamma = 1``, contact of a full bearing) is drawn for scale (on a partial arc the orbit may
+    cross it without contact). The lines are ``ax.lines``: the circle first, then per design the
+    orbit, the start and the smallest-film marker.
 
     Returns
     -------
@@ -98,21 +128,26 @@ def orbit_plot(traj, path=None, *, title: str | None = None):
     """
     from matplotlib.figure import Figure
 
-    d = _arrays(traj, ("beta", "gamma", "delta"))
-    x, y = d["gamma"] * np.cos(d["delta"]), d["gamma"] * np.sin(d["delta"])
-    fig = Figure(figsize=(5.5, 5.5), layout="constrained")
+    fig = Figure(figsize=(6.0, 7.2), layout="constrained")
     ax = fig.subplots()
     t = np.linspace(0, 2 * np.pi, 361)
     ax.plot(np.cos(t), np.sin(t), "--", color="0.5", lw=0.8, label="gamma = 1")
-    points = ax.scatter(x, y, c=np.degrees(d["beta"]), s=8, cmap="viridis", zorder=3)
-    ax.plot(x, y, color="0.3", lw=0.8)
-    ax.plot(x[0], y[0], "s", color="k", label="start")
-    fig.colorbar(points, ax=ax, label="shaft angle beta [deg]", shrink=0.8)
+    for (design, traj), color in zip(designs_of(trajs).items(), DESIGN_COLORS):
+        d = _arrays(traj, ("beta", "gamma", "delta", "h_min"))
+        x, y = d["gamma"] * np.cos(d["delta"]), d["gamma"] * np.sin(d["delta"])
+        ax.plot(x, y, color=color, lw=1.2, label=_label(design, "orbit"))
+        ax.plot(x[0], y[0], "s", color=color, markeredgecolor="k",
+                label=_label(design, f"start, beta = {np.degrees(d['beta'][0]) % 360:.0f} deg"))
+        i = int(np.argmin(d["h_min"]))
+        ax.plot(x[i], y[i], "*", ms=12, color=color, markeredgecolor="k",
+                label=_label(design, f"smallest film {1e6 * d['h_min'][i]:.3g} um at "
+                                     f"{np.degrees(d['beta'][i]) % 360:.0f} deg"))
     ax.set_aspect("equal")
     ax.set_xlabel("gamma cos(delta) [-]")
     ax.set_ylabel("gamma sin(delta) [-]")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="upper right", fontsize="small")
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize="small")
+    ax.set_title("orbit of the shoe-bore centre", fontsize="medium")
     if title:
-        ax.set_title(title)
+        fig.suptitle(textwrap.fill(title, 60))
     return _save(fig, path)

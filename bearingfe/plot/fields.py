@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_patches", "pressure_picture", "film_picture",
+__all__ = ["VIEWS", "field_grid", "outline_lines", "pocket_loops", "pocket_patches", "pressure_picture",
+           "film_picture",
            "deflection_picture"]
 
 VIEWS = ("unwrapped", "wrapped")
@@ -135,7 +136,7 @@ def outline_lines(result, *, surface=None, boundary: str = "inlet", view: str = 
     return pv.PolyData(pts, lines=lines)
 
 
-def _loops(result, surface) -> list[np.ndarray]:
+def pocket_loops(result, surface=None) -> list[np.ndarray]:
     """Pocket contours as closed polylines (2, n) in ``(phi, z)``."""
     if surface is not None:
         return [shape.boundary(360) for shape in surface.inlets]
@@ -178,7 +179,7 @@ def pocket_patches(result, *, surface=None, view: str = "unwrapped", value: floa
     pv = _pyvista()
     _check_view(view)
     patches = []
-    for xy in _loops(result, surface):
+    for xy in pocket_loops(result, surface):
         n = xy.shape[1]
         flat = pv.PolyData(np.column_stack([xy[0], xy[1], np.zeros(n)]),
                            faces=np.hstack([[n], np.arange(n)])).triangulate()
@@ -245,8 +246,9 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
     pl = pv.Plotter(off_screen=True, window_size=list(window_size))
     try:
         pl.set_background("white")
-        bar = dict(title=title, color="black", vertical=True, position_x=0.88, position_y=0.1,
-                   height=0.8, width=0.06)
+        # labels "%.3g" (no cut "127."), the bar clear of the right edge
+        bar = dict(title=title, color="black", vertical=True, position_x=0.84, position_y=0.1,
+                   height=0.75, width=0.05, fmt="%.3g", n_labels=5, title_font_size=16, label_font_size=14)
         shading = dict(smooth_shading=True, ambient=0.35) if view == "wrapped" else dict(lighting=False)
         pl.add_mesh(grid, scalars=name, cmap=cmap, clim=clim, scalar_bar_args=bar, **shading)
         if heading:
@@ -256,14 +258,22 @@ def _render(path, view, grid, name, title, cmap, overlays, window_size, pockets=
                 pl.add_mesh(pockets, scalars=name, cmap=cmap, clim=clim, show_scalar_bar=False, **shading)
             else:
                 pl.add_mesh(pockets, color=pocket_color, **shading)
-        for mesh, color, width in overlays:
+        legend = []
+        for overlay in overlays:
+            mesh, color, width = overlay[:3]
             if mesh is not None:
                 pl.add_mesh(mesh, color=color, line_width=width)
+                if len(overlay) > 3:
+                    legend.append([overlay[3], color])
+        if legend:  # the coloured curves say what they are
+            pl.add_legend(legend, bcolor="white", size=(0.3, 0.06 * len(legend)), loc="lower left", face="-")
         if view == "unwrapped":
             pl.view_xy()
             pl.enable_parallel_projection()
-            pl.show_bounds(grid=False, location="outer", xtitle="phi [rad]", ytitle="z [-]",
-                           color="black", show_zaxis=False, font_size=12)
+            bounds = grid.bounds
+            ratio = (bounds[3] - bounds[2]) / max(bounds[1] - bounds[0], 1e-12)
+            pl.show_bounds(grid=False, location="outer", xtitle="phi [rad]", ytitle="z [R0]", color="black",
+                           show_zaxis=False, font_size=12, n_ylabels=3 if ratio < 0.35 else 5, fmt="%.2g")
             pl.reset_camera()
             pl.camera.zoom(1.05)
         else:
@@ -338,7 +348,8 @@ def pressure_picture(result, path, *, surface=None, view: str = "unwrapped", war
         if zero is not None and view == "wrapped":
             pts = np.asarray(zero.points)
             zero.points = _embed(pts[:, 0], pts[:, 1], view, 2e-3)
-        overlays.append((zero, "red", 3))
+        label = "film rupture boundary" if getattr(result, "cavitated", None) is not None else "p = 0"
+        overlays.append((zero, "red", 3, label))
     return _render(path, view, grid, "p", f"p [{unit}]", cmap, overlays, window_size, pockets, heading=title)
 
 

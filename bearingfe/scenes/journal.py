@@ -15,8 +15,8 @@ Scene file::
     width_deg = 20.0                     # in (0, 180)
     length_fraction = 0.8                # groove length / L, in (0, 1)
     [operating]
-    speed = 3000.0                       # [rpm]
-    viscosity = 0.018                    # [Pa s]
+    speed = 3000.0                       # [rpm]; or speed_rad_s = 314.16 [rad/s] (exactly one of the two)
+    viscosity = 0.018                    # [Pa s]; absent when [oil] is given
     load = 10.0e3                        # [N]
     load_direction_deg = -90.0           # load on the journal: gravity (-y) by default
     [solver]
@@ -28,6 +28,22 @@ Scene file::
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                          # wrapped picture: radial push of the peak pressure [R]
     tables = ["pressure", "coefficients"]
+    [limits]                             # optional design limits, flagged in the summary (SI)
+    min_film = 15e-6                     # smallest film [m]
+    max_pressure = 10e6                  # peak pressure [Pa]
+    max_friction_power = 2000.0          # friction power [W]
+    max_leakage = 5e-5                   # total flow into the film [m^3/s]
+    [oil]                                # optional: the viscosity from the heat balance instead
+    grade = "VG 32"                      # an ISO 3448 grade with its 100 degC viscosity, or
+    kinematic_viscosity_100C = 5.4e-6    # [m^2/s] (the oil's data sheet)
+    # kinematic_viscosity = [[40.0, 32e-6], [100.0, 5.4e-6]]   # Walther through [degC, m^2/s] pairs, or
+    # vogel = [a, b, c]                  # mu = a exp(b/(T - c)) [Pa s, K, K]
+    density_15C = 860.0                  # [kg/m^3]
+    specific_heat = 1900.0               # optional [J/(kg K)]; default Cragoe's correlation
+    supply_temperature_C = 40.0          # fresh oil [degC]
+    carry_over = 0.0                     # hot-oil carry-over, in [0, 1]
+    conducted_fraction = 0.0             # share of the friction power conducted away, in [0, 1)
+    effective_fraction = 0.5             # T_eff = T_in + k dT, k in (0, 1]
 
 Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
 (up), the direction in which the journal turns. The runner finds the
@@ -39,6 +55,15 @@ position, pressure [Pa], film [m], ruptured flag), ``coefficients.csv`` (the
 ROSS ``BearingElement`` columns, SI) and the pictures ``pressure.png``,
 ``pressure_wrapped.png``, ``film.png`` (one per pad, ``_pad<k>``, when there
 are several).
+
+With ``[oil]`` the film's viscosity is not given but found: the effective
+temperature of the level-1 heat balance
+(:func:`bearingfe.thermal.effective_temperature`: friction power against the
+heat carried by the side and trailing flows), and every result below is that
+of the effective viscosity; the summary's ``thermal`` table has the
+temperatures, the effective viscosity, the power loss and how far the
+isothermal answer at the supply temperature moved. With ``estimate_error``
+the half-size solve keeps that viscosity. Without ``[oil]`` nothing changes.
 
 The summary (SI, unit in each key): eccentricity, attitude angle (from the
 load line to the line of centres, in the direction of rotation), journal
@@ -57,10 +82,15 @@ repeated with half the element size and the relative changes are reported
 (``K``, ``C``: largest entry change over largest entry); the values reported
 are those of the given size.
 
-Pictures show the non-dimensional fields (``p = P c^2/(mu omega R^2)``,
-``h = H/c``); the full bearing is meshed and drawn in the frame of the line
-of largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
-bearing frame is in the summary.
+Pictures show the pressure in MPa and the film in um, titled with the
+eccentricity, attitude, peak pressure and smallest film: ``pressure.png`` and
+``film.png`` over the angle in the bearing frame [deg] and the axial position
+[mm], ``pressure_wrapped.png`` on the bearing's cylinder, the film rupture
+boundary in red. The full bearing is meshed in the frame of the line of
+largest film (``phi = 0`` there, as in Raimondi-Boyd), whose angle in the
+bearing frame is in the summary. ``[limits]`` (optional, SI, ranges in
+:data:`bearingfe.core.schema.LIMITS`) are flagged in the summary: each
+``results.limits[name]`` has the value, the limit and ``ok``.
 """
 
 from __future__ import annotations
@@ -73,8 +103,8 @@ from typing import Callable
 
 import numpy as np
 
-from ..core.schema import (REQUIRED, Range, SchemaError, Table, Tables, anything, build, choice, choices,
-                     flag, nonnegative_number, number, positive_number, read_table, text)
+from ..core.schema import (LIMITS_TABLE, REQUIRED, Range, SchemaError, Table, Tables, anything, build, check_limits,
+                           choice, choices, flag, nonnegative_number, number, positive_number, read_table, text)
 
 __all__ = ["run", "settings", "pressure_columns", "SPEC", "PICTURES", "TABLES"]
 
@@ -119,6 +149,13 @@ def _cavitation_models() -> tuple[str, ...]:
 
 _OPEN_UNIT = Range(0.0, 1.0, lo_open=True, hi_open=True)
 
+
+def _oil_fields() -> dict:
+    from ..thermal.files import OIL
+
+    return dict(OIL)
+
+
 #: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
     "kind": (anything, REQUIRED),
@@ -130,7 +167,8 @@ SPEC = {
                            "width_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), REQUIRED),
                            "length_fraction": (number(_OPEN_UNIT), 0.8)}),
         "supply_pressure": (nonnegative_number, 0.0)}, required=True),
-    "operating": Table({"speed": (positive_number, REQUIRED), "viscosity": (positive_number, REQUIRED),
+    "operating": Table({"speed": (positive_number, None), "speed_rad_s": (positive_number, None),
+                        "viscosity": (positive_number, None),
                         "load": (positive_number, REQUIRED), "load_direction_deg": (number(), -90.0)},
                        required=True),
     "solver": Table({"size": (number(Range(0.0, 1.0, lo_open=True)), 0.05),
@@ -138,20 +176,44 @@ SPEC = {
                      "cavitation": (choice(_cavitation_models), "reynolds"), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15),
                      "tables": (choices(TABLES), TABLES)}),
+    "limits": LIMITS_TABLE,
+    "oil": Table(_oil_fields()),
 }
 
 
 def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     """All validated settings of a ``"journal"`` scene (SI, angles in degrees)."""
     s = read_table(data, label, "", SPEC)
-    bearing, solver = s["bearing"], s["solver"]
+    bearing, solver, op = s["bearing"], s["solver"], s["operating"]
+    if (op["speed"] is None) == (op["speed_rad_s"] is None):
+        raise SchemaError(f"{label}: [operating] speed: give exactly one of speed [rpm] and speed_rad_s [rad/s]; "
+                          f"got speed = {op['speed']!r}, speed_rad_s = {op['speed_rad_s']!r}")
+    if op["speed"] is None:
+        op["speed"] = op["speed_rad_s"] * 60 / (2 * math.pi)  # the runner reads rpm
+    op["speed_rad_s"] = 2 * math.pi * op["speed"] / 60
     _check_proportions(bearing, label)
     _check_grooves(bearing, label)
     if solver["min_size"] is not None and solver["min_size"] > solver["size"]:
         raise SchemaError(f"{label}: [solver] min_size: must be in (0, size = {solver['size']:g}]; "
                           f"got {solver['min_size']!r}")
+    oil = s["oil"] if "oil" in data else None
+    _check_oil(s["operating"], oil, label)
     return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
-            "operating": s["operating"], "solver": solver, "output": s["output"]}
+            "operating": op, "solver": solver, "output": s["output"], "limits": s["limits"], "oil": oil}
+
+
+def _check_oil(op: dict, oil: dict | None, label: str) -> None:
+    """Either ``[operating] viscosity`` or ``[oil]``; in ``[oil]`` one lubricant and a supply temperature."""
+    if oil is None:
+        if op["viscosity"] is None:
+            raise SchemaError(f"{label}: [operating] viscosity: missing (required without an [oil] table)")
+        return
+    if op["viscosity"] is not None:
+        raise SchemaError(f"{label}: [operating] viscosity: must be absent with an [oil] table (the heat "
+                          f"balance finds the viscosity); got {op['viscosity']!r}")
+    from ..thermal.files import check_oil
+
+    check_oil(oil, label, "oil")
 
 
 def _check_proportions(b: dict, label: str) -> None:
@@ -186,7 +248,7 @@ def _scale(s: dict):
 
     b, op = s["bearing"], s["operating"]
     return Scale(radius=b["diameter"] / 2, clearance=b["radial_clearance"], viscosity=op["viscosity"],
-                 speed=2 * math.pi * op["speed"] / 60)
+                 speed=op["speed_rad_s"])
 
 
 def _bearing(s: dict, scale, label: str):
@@ -206,12 +268,13 @@ def _load(s: dict, scale) -> np.ndarray:
     return scale.from_force(s["operating"]["load"]) * np.array([math.cos(theta), math.sin(theta)])
 
 
-def _solve(bearing, load, size, min_size, cavitation):
-    """Equilibrium and coefficients, timed."""
+def _solve(bearing, load, size, min_size, cavitation, eq=None):
+    """Equilibrium (unless given) and coefficients, timed."""
     from ..bearings.journal import dynamic_coefficients, equilibrium
 
     t0 = time.perf_counter()
-    eq = equilibrium(bearing, load, size=size, min_size=min_size, cavitation=cavitation)
+    if eq is None:
+        eq = equilibrium(bearing, load, size=size, min_size=min_size, cavitation=cavitation)
     t1 = time.perf_counter()
     # finite-volume (JFO) solutions keep no Galerkin system to linearize: central differences instead
     dc = dynamic_coefficients(eq, method="finite-difference" if cavitation == "jfo" else "linearized")
@@ -242,31 +305,96 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     from ..io.writers import write_json
 
     s = settings(data, label)
+    solver, out = s["solver"], s["output"]
+    tick = progress or (lambda done, total, what: None)
+    thermal, t_thermal = None, 0.0
+    if s["oil"] is not None:
+        tick(0, 1, "effective temperature (heat balance)")
+        t0 = time.perf_counter()
+        thermal = _thermal(s, label)
+        t_thermal = time.perf_counter() - t0
+        s = {**s, "operating": {**s["operating"], "viscosity": thermal.viscosity}}
     scale = _scale(s)
     bearing = _bearing(s, scale, label)
     load = _load(s, scale)
-    solver, out = s["solver"], s["output"]
     n_pics = len(out["pictures"]) * len(bearing.surfaces())
     steps = 2 + int(solver["estimate_error"]) + n_pics
-    tick = progress or (lambda done, total, what: None)
     tick(0, steps, "equilibrium and coefficients")
-    eq, dc, t_eq, t_dc = _solve(bearing, load, solver["size"], solver["min_size"], solver["cavitation"])
+    eq, dc, t_eq, t_dc = _solve(bearing, load, solver["size"], solver["min_size"], solver["cavitation"],
+                                None if thermal is None else thermal.equilibrium)
+    t_eq += t_thermal
     fine = None
     if solver["estimate_error"]:
         tick(1, steps, "error estimate (half the element size)")
         half = None if solver["min_size"] is None else solver["min_size"] / 2
         fine = _solve(bearing, load, solver["size"] / 2, half, solver["cavitation"])
     summary = _summary(s, scale, bearing, eq, dc, {"equilibrium": t_eq, "coefficients": t_dc}, fine)
+    if thermal is not None:
+        summary["thermal"] = _thermal_summary(thermal, s["oil"])
+        summary["table"][9:9] = _thermal_rows(summary["thermal"])
     done = 1 + int(solver["estimate_error"])
     t0 = time.perf_counter()
     files = _tables(out["tables"], s, scale, eq, summary, out_dir)
-    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what))
+    files += _pictures(out, bearing, eq, scale, out_dir, lambda k, what: tick(done + k, steps, what), s["title"])
     summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
     summary["files"] = files + ["summary.json"]
     tick(steps - 1, steps, "summary")
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+# -- the heat balance ----------------------------------------------------------------------
+
+def _thermal(s: dict, label: str):
+    """The effective temperature of the scene's bearing (:func:`bearingfe.thermal.effective_temperature`)."""
+    from ..thermal import JournalDuty, effective_temperature
+    from ..thermal.files import balance_of, lubricant_of
+
+    b, op, oil, solver = s["bearing"], s["operating"], s["oil"], s["solver"]
+    duty = build(label, "operating", JournalDuty, radius=b["diameter"] / 2, clearance=b["radial_clearance"],
+                 speed=2 * math.pi * op["speed"] / 60, load=op["load"],
+                 load_direction=math.radians(op["load_direction_deg"]), supply_pressure=b["supply_pressure"])
+    balance = balance_of(oil, label, "oil")
+    lubricant = lubricant_of(oil, label, "oil")
+    # the bearing at any viscosity: its supply pressure is made non-dimensional at each trial temperature
+    scale = _scale({**s, "operating": {**op, "viscosity": lubricant.viscosity(balance.supply_temperature)}})
+    bearing = _bearing(s, scale, label)
+    return effective_temperature(bearing, duty, lubricant, balance, size=solver["size"],
+                                 min_size=solver["min_size"], cavitation=solver["cavitation"])
+
+
+def _thermal_summary(t, oil: dict) -> dict:
+    """The heat balance in the summary (SI; temperatures also in degC)."""
+    from ..thermal import celsius
+
+    def rel(new, old):
+        return (new - old) / old
+    return {
+        "model": "level 1: effective temperature from the heat balance of the whole film",
+        "effective_temperature_C": celsius(t.temperature), "supply_temperature_C": celsius(t.supply_temperature),
+        "inlet_temperature_C": celsius(t.inlet_temperature), "outlet_temperature_C": celsius(t.outlet_temperature),
+        "temperature_rise_K": t.temperature_rise, "effective_viscosity_Pa_s": t.viscosity,
+        "supply_viscosity_Pa_s": t.supply_viscosity, "density_kg_m3": t.density,
+        "specific_heat_J_kgK": t.specific_heat, "power_loss_W": t.friction_power,
+        "convected_power_W": t.convected_power, "conducted_power_W": t.conducted_power,
+        "leading_flow_m3s": t.leading_flow, "side_flow_m3s": t.side_flow, "supply_flow_m3s": t.supply_flow,
+        "carry_over": oil["carry_over"], "conducted_fraction": oil["conducted_fraction"],
+        "effective_fraction": oil["effective_fraction"],
+        "isothermal": {"at": "the supply temperature", "eccentricity": t.isothermal_eccentricity,
+                       "min_film_m": t.isothermal_min_film, "power_loss_W": t.isothermal_friction_power},
+        "moved": {"eccentricity": t.eccentricity - t.isothermal_eccentricity,
+                  "min_film": rel(t.min_film, t.isothermal_min_film),
+                  "power_loss": rel(t.friction_power, t.isothermal_friction_power)},
+        "evaluations": t.evaluations, "residual_K": t.residual, "oil": dict(oil)}
+
+
+def _thermal_rows(th: dict) -> list:
+    rows = [("effective temperature", th["effective_temperature_C"], "degC"),
+            ("temperature rise", th["temperature_rise_K"], "K"),
+            ("effective viscosity", th["effective_viscosity_Pa_s"] * 1e3, "mPa s"),
+            ("min film change from isothermal", th["moved"]["min_film"] * 100, "%")]
+    return [list(row) for row in rows]
 
 
 # -- results ---------------------------------------------------------------------------------
@@ -323,6 +451,12 @@ def _summary(s: dict, scale, bearing, eq, dc, seconds: dict, fine) -> dict:
                "error_estimate": None if fine is None else _error_estimate(eq, dcf, film, fine, scale)}
     if fine is not None:
         cost["seconds"]["error_estimate"] = fine[2] + fine[3]
+    verdicts = check_limits({"min_film": film["min_film_m"], "max_pressure": film["max_pressure_Pa"],
+                             "max_friction_power": film["friction_power_W"], "max_leakage": film["total_flow_m3s"]},
+                            s["limits"])
+    results["limits"] = verdicts
+    results["within_limits"] = all(v["ok"] for v in verdicts.values())
+    summary["limits"] = dict(s["limits"])
     summary["table"] = _table(results, K, C, summary["error_estimate"], cost)
     return summary
 
@@ -361,12 +495,14 @@ def _error_estimate(eq, dcf, film: dict, fine, scale) -> dict:
 
 def _table(r: dict, K, C, err, cost) -> list:
     rows = [("eccentricity ratio", r["eccentricity"], "-"), ("attitude angle", r["attitude_deg"], "deg"),
-            ("minimum film", r["min_film_m"] * 1e6, "um"), ("maximum pressure", r["max_pressure_Pa"] / 1e6, "MPa"),
+            ("minimum film", r["min_film_m"] * 1e6, "um"), ("peak pressure", r["max_pressure_Pa"], "Pa"),
             ("Sommerfeld number", r["sommerfeld"], "-"), ("friction torque", r["friction_torque_Nm"], "N m"),
             ("friction power", r["friction_power_W"], "W"), ("side flow", r["side_flow_m3s"] * 6e4, "l/min"),
             ("total flow", r["total_flow_m3s"] * 6e4, "l/min")]
     if r["inlet_flow_m3s"] != 0.0:  # grooves
         rows.append(("groove (supply) flow", r["inlet_flow_m3s"] * 6e4, "l/min"))
+    rows += [(f"limit {name}: {v['value']:.4g} {v['relation']} {v['limit']:.4g} {v['unit']}",
+              "ok" if v["ok"] else "VIOLATED", "") for name, v in r["limits"].items()]
     rows += [(f"k{a}{b}", float(K[i, j]), "N/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     rows += [(f"c{a}{b}", float(C[i, j]), "N s/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
     if err is not None:
@@ -380,8 +516,9 @@ def _table(r: dict, K, C, err, cost) -> list:
 # -- files -------------------------------------------------------------------------------------
 
 def pressure_columns(eq, scale) -> dict[str, np.ndarray]:
-    """Every mesh node of every pad: ``pad``, ``phi_deg`` (bearing frame, [0, 360)), ``z_m`` (from the
-    mid-plane), ``pressure_Pa``, ``film_m`` and ``ruptured`` (1 where the film has ruptured)."""
+    """Every mesh node of every pad, headed ``"name [unit]"``: ``pad``, ``phi [deg]`` (bearing frame,
+    [0, 360)), ``z [m]`` (from the mid-plane), ``pressure [Pa]``, ``film [m]`` and ``ruptured [-]`` (1
+    where the film has ruptured)."""
     cols = {k: [] for k in ("pad", "phi_deg", "z_m", "pressure_Pa", "film_m", "ruptured")}
     for k, res in enumerate(eq.state.results):
         nv = int(res.basis.mesh.nvertices)
@@ -393,7 +530,9 @@ def pressure_columns(eq, scale) -> dict[str, np.ndarray]:
         cols["pressure_Pa"].append(scale.to_pressure(np.asarray(res.pressure, float)[:nv]))
         cols["film_m"].append(scale.to_thickness(np.asarray(res.film.thickness(phi, z), float)))
         cols["ruptured"].append(cav)
-    return {k: np.concatenate(v) for k, v in cols.items()}
+    headers = {"pad": "pad [-]", "phi_deg": "phi [deg]", "z_m": "z [m]", "pressure_Pa": "pressure [Pa]",
+               "film_m": "film [m]", "ruptured": "ruptured [-]"}
+    return {headers[k]: np.concatenate(v) for k, v in cols.items()}
 
 
 def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str]:
@@ -405,27 +544,39 @@ def _tables(names, s: dict, scale, eq, summary: dict, out_dir: Path) -> list[str
         files.append(write_csv(cols, out_dir / "pressure_field.csv", fields=list(cols)).name)
     if "coefficients" in names:
         ross = summary["ross_bearing_element"]
-        cols = {k: np.asarray(ross[k], float) for k in ("frequency", "kxx", "kxy", "kyx", "kyy",
-                                                         "cxx", "cxy", "cyx", "cyy")}
+        units = {"frequency": "rad/s", **{f"k{a}{b}": "N/m" for a in "xy" for b in "xy"},
+                 **{f"c{a}{b}": "N s/m" for a in "xy" for b in "xy"}}
+        cols = {f"{k} [{u}]": np.asarray(ross[k], float) for k, u in units.items()}
         files.append(write_csv(cols, out_dir / "coefficients.csv", fields=list(cols)).name)
     return files
 
 
-def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable) -> list[str]:
-    from ..plot import fields
+def _pictures(out: dict, bearing, eq, scale, out_dir: Path, tick: Callable, title: str = "") -> list[str]:
+    from ..plot import fields, maps
 
     p_mpa = dict(scale=scale.to_pressure(1.0) / 1e6, unit="MPa")
     h_um = dict(scale=scale.to_thickness(1.0) * 1e6, unit="um")
     surfaces = bearing.surfaces()
+    offset = float(np.degrees(eq.state.rotation))
     files, k = [], 0
     for j, (res, surface) in enumerate(zip(eq.state.results, surfaces)):
         suffix = f"_pad{j + 1}" if len(surfaces) > 1 else ""
-        draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / f"pressure{suffix}.png",
-                                                            surface=surface, **p_mpa),
+        where = f"pad {j + 1}: " if len(surfaces) > 1 else ""
+        heading = (f"{where}eccentricity {eq.eps:.3f}, attitude {eq.attitude:.1f} deg, "
+                   f"p_max = {scale.to_pressure(res.max_pressure) / 1e6:.3g} MPa, "
+                   f"h_min = {scale.to_thickness(res.h_min) * 1e6:.3g} um")
+
+        def field_map(kind, file, unit):
+            panel = maps.Panel(res, kind, *unit.values(), radius=scale.radius, title=heading, surface=surface,
+                               offset_deg=offset, true_aspect=False)
+            maps.field_panels([[panel]], out_dir / file, title=title, panel_size=(10.0, 3.6))
+            return out_dir / file
+
+        draw = {"pressure": lambda: field_map("pressure", f"pressure{suffix}.png", p_mpa),
                 "wrapped": lambda: fields.pressure_picture(res, out_dir / f"pressure_wrapped{suffix}.png",
                                                            view="wrapped", warp=out["warp"], surface=surface,
-                                                           **p_mpa),
-                "film": lambda: fields.film_picture(res, out_dir / f"film{suffix}.png", surface=surface, **h_um)}
+                                                           title=heading, **p_mpa),
+                "film": lambda: field_map("film", f"film{suffix}.png", h_um)}
         for name in out["pictures"]:
             tick(k, f"picture: {name}{suffix}")
             files.append(draw[name]().name)

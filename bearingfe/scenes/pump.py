@@ -19,14 +19,40 @@ Scene file::
     enabled = false                                  # also run every design on an elastic support
     model = "half-space"                             # half-space | block | shoe (see below)
     dynamics = "squeeze"                             # squeeze | quasi-static (see below)
+    [limits]                                         # optional design limits, flagged per design (SI)
+    min_film = 8e-6                                  # smallest film [m]
+    max_pressure = 35e6                              # peak pressure [Pa]
+    max_friction_power = 500.0                       # mean friction power [W]
+    max_leakage = 1e-6                               # mean inflow from the pocket [m^3/s]
     [output]
-    pictures = ["trajectory", "orbit", "pressure", "film", "deflection"]
+    pictures = ["trajectory", "orbit", "pressure", "film", "deflection", "summary"]
+    [thermal]
+    enabled = false                                  # level-1 heat balance over the cycle (see below)
+    grade = "VG 46"                                  # the oil: the [oil] fields of the journal scene
+    kinematic_viscosity_100C = 6.8e-6
+    supply_temperature_C = 46.0                      # optional: default where the oil has the file's viscosity
 
-Writes ``trajectory_pocket.csv`` and ``trajectory_plain.csv`` (SI units; see
-:meth:`bearingfe.Trajectory.columns`), ``trajectory.png``,
-``orbit.png``, ``pressure.png`` and ``film.png`` (the pocketed shoe at its
-thinnest film, in MPa and um, the shaft angle in the title),
-``pressure.pvd`` with its VTU frames over the cycle, and ``summary.json``.
+Every output is SI (angles in degrees); the solver's non-dimensional values
+are kept beside, named as such. Writes ``trajectory_pocket.csv`` and
+``trajectory_plain.csv`` (headers ``"name [unit]"``,
+:func:`bearingfe.transient.trajectory.report_columns`); ``trajectory.png`` and
+``orbit.png`` with both designs, the smallest film of each marked;
+``pressure.png`` and ``film.png``: every design at its most loaded state (the
+largest plunger force) and at its thinnest film, P2 fields sampled on a
+refined display mesh (:mod:`bearingfe.plot.maps`), each map titled with the
+design, the shaft angle, the peak pressure [MPa] and the smallest film [um];
+``summary.png``, one page for a report (the smallest film of both designs over
+the cycle, their pressure at the most loaded state, the figures and the
+limits' verdicts); ``pressure.pvd`` with its VTU frames over the cycle
+(pressure in Pa, film in m, on the unwrapped surface in metres; time in s,
+shaft angle in degrees as field data); and ``summary.json``. The printed
+table gives per design the smallest film [um] and where, the peak pressure
+[Pa] (the largest over the pictured states and :data:`PEAK_SAMPLES` more),
+the mean friction power [W] (mean friction moment times shaft speed, as a
+design study's ``friction_loss``), the leakage [l/min] (mean inflow from the
+pocket) and side leakage, and each set limit with ``ok`` or ``VIOLATED``
+(:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
+summary).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
 (materials ``[shoe.material]`` and ``[eccentric.material]`` of the mechanism
@@ -41,6 +67,15 @@ block of ``[shoe] thickness`` clamped over its back,
 ``"shoe"`` (the real shoe body of the mechanism file: bore, back, seat on
 the plunger, lining; gmsh tetrahedra, :func:`bearingfe.elastic.shoe.shoe_compliance`),
 the last two with the eccentric as a half-space.
+With ``[thermal] enabled`` every rigid design is run again at the
+viscosity of its level-1 effective temperature
+(:func:`bearingfe.thermal.cycle_temperature`: the cycle-mean heat balance of
+the film, the fields of :data:`bearingfe.thermal.files.OIL`; without
+``supply_temperature_C`` the oil is fed at the temperature where it has the
+mechanism file's viscosity, so the isothermal run is the shipped model), and
+the summary's ``thermal`` table has, per design, the effective and peak film
+temperatures, the temperature rise over the cycle and the smallest film with
+and without the thermal model. Off by default (the paper's isothermal model).
 ``dynamics = "squeeze"`` (default) integrates the pressure as a state so that
 the rate of the deflection squeezes the film
 (:func:`bearingfe.transient.elastic.simulate_elastic`; cavitation "none"
@@ -60,12 +95,12 @@ import numpy as np
 
 from ..core.limits import check_limit
 from ..core.parameters import ELEMENTS
-from ..core.schema import (NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
+from ..core.schema import (LIMITS_TABLE, NONNEGATIVE, REQUIRED, SchemaError, Table, anything, build, choice, choices, flag, integer,
                      path_text, positive_number, read_table, text)
 
-__all__ = ["run", "settings", "SPEC", "PICTURES"]
+__all__ = ["run", "settings", "simulate_design", "pocket_gain", "SPEC", "PICTURES"]
 
-PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection")
+PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection", "summary")
 #: Support compliances of :mod:`bearingfe.elastic.coupled` by name.
 ELASTIC_MODELS = ("half-space", "block", "shoe", "body")
 #: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
@@ -84,6 +119,12 @@ def _starts() -> tuple[str, ...]:
     return tuple(STARTS)
 
 
+def _thermal_fields() -> dict:
+    from ..thermal.files import OIL
+
+    return {"enabled": (flag, False), **OIL}
+
+
 #: The ``"pump"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
     "kind": (anything, REQUIRED),
@@ -95,7 +136,9 @@ SPEC = {
                   "element": (choice(ELEMENTS), "P2")}),
     "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space"),
                       "dynamics": (choice(DYNAMICS), "squeeze")}),
+    "limits": LIMITS_TABLE,
     "output": Table({"pictures": (choices(PICTURES), PICTURES)}),
+    "thermal": Table(_thermal_fields()),
 }
 
 
@@ -112,9 +155,13 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if s["elastic"]["enabled"] and s["elastic"]["dynamics"] == "squeeze" and s["run"]["cavitation"] != "none":
         raise SchemaError(f"{label}: [elastic] dynamics: 'squeeze' needs [run] cavitation = 'none' (the pressure "
                           f"is a state variable); got cavitation {s['run']['cavitation']!r}: use 'quasi-static'")
+    if s["thermal"]["enabled"]:
+        from ..thermal.files import check_oil
+
+        check_oil(s["thermal"], label, "thermal", need_supply=False)
     return {"title": label if s["title"] is None else s["title"], "mechanism": path,
             "compare_plain": s["pump"]["compare_plain"], "run": s["run"], "output": s["output"],
-            "elastic": s["elastic"]}
+            "elastic": s["elastic"], "limits": s["limits"], "thermal": s["thermal"]}
 
 
 def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
@@ -123,7 +170,8 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     from ..geometry.surface import Surface
     from ..io.writers import write_csv, write_json, write_pvd
     from ..mechanisms.files import load_mechanism
-    from ..transient import pump_mesh, simulate, simulate_elastic, state_result
+    from ..transient import simulate, simulate_elastic, state_result
+    from ..transient.trajectory import report_columns
 
     s = settings(data, label, base_dir)
     check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
@@ -143,9 +191,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     done = 0
     for name, p in designs.items():
         tick(done, steps, f"simulating: {name}")
-        meshes[name] = pump_mesh(p, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
-        runs[name] = simulate(p, meshes[name], run["revolutions"], start=run["start"], rtol=run["rtol"],
-                              cavitation=run["cavitation"], element=run["element"])
+        meshes[name], runs[name] = simulate_design(p, run)
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
         done += 1
         if elastic:
@@ -162,25 +208,89 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(done, steps, "files")
     files = []
     for name, traj in runs.items():
-        cols = traj.columns()
+        cols = report_columns(traj, pump.scale)
         files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
-    states = {name: _thinnest(pump, meshes["pocket"], runs[name], run, compliances.get("pocket"))
-              for name in (("pocket", "pocket_elastic") if elastic else ("pocket",))}
+    pumps = {name: designs[name.removesuffix("_elastic")] for name in runs}
+    states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
+                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
+              for name, traj in runs.items()}
     for j, name in enumerate(pictures):
         tick(done + 1 + j, steps, f"picture: {name}")
-        files += _draw(name, pump, runs, states, s["title"], out_dir)
+        files += _draw(name, pumps, runs, states, s, out_dir)
     if run["frames"] > 0:
         main = runs["pocket"]
         frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
         results = [state_result(pump, meshes["pocket"], main, k, run["cavitation"], run["element"])
                    for k in frames]
-        write_pvd(results, main.beta[frames], out_dir / "pressure.pvd")
+        write_pvd(results, main.t[frames], out_dir / "pressure.pvd", scale=pump.scale,
+                  angles=np.degrees(main.beta[frames]))
         files.append("pressure.pvd")
-    summary = _summary(s, runs, balance, meshes, time.perf_counter() - start, pump.scale, states)
+    summary = _summary(s, runs, balance, meshes, time.perf_counter() - start, pumps, states)
+    if s["thermal"]["enabled"]:
+        tick(done, steps, "thermal: level-1 heat balance over the cycle")
+        summary["thermal"] = _thermal(s, label, pump, designs, meshes)
+        summary["table"][-1:-1] = [row for name, th in summary["thermal"].items() for row in (
+            (f"{name}: effective film temperature (level 1)", th["effective_temperature_C"], "degC"),
+            (f"{name}: temperature rise over the cycle", th["temperature_rise_K"], "K"),
+            (f"{name}: smallest film, level 1", th["smallest_film_m"] * 1e6, "um"))]
     summary["files"] = files + ["summary.json"]
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+def simulate_design(pump, run: dict):
+    """The mesh and the rigid run of one design with a scene's ``[run]`` settings: the one computation behind
+    the scene's comparison, the documented pocket gain and the pump example.
+
+    Parameters
+    ----------
+    pump : EccentricPump
+    run : dict
+        ``mesh_size`` [R0], ``element``, ``revolutions``, ``start``, ``rtol`` and ``cavitation`` (as
+        ``settings(...)["run"]`` reads them from a scene file).
+
+    Returns
+    -------
+    (SupportMesh, Trajectory)
+    """
+    from ..transient import pump_mesh, simulate
+
+    mesh = pump_mesh(pump, run["mesh_size"], order=2 if run["element"] == "P2" else 1)
+    return mesh, simulate(pump, mesh, run["revolutions"], start=run["start"], rtol=run["rtol"],
+                          cavitation=run["cavitation"], element=run["element"])
+
+
+def pocket_gain(pocket, plain) -> float:
+    """Relative gain of the smallest film over the cycle, ``pocket / plain - 1`` [-], of two completed runs."""
+    ratio, row = _film_ratio(pocket, plain, "")
+    if ratio is None:
+        raise ValueError(f"pocket gain {row[0]}")
+    return ratio - 1.0
+
+
+def _thermal(s: dict, label: str, pump, designs: dict, meshes: dict) -> dict:
+    """Every rigid design at its level-1 effective temperature (:func:`bearingfe.thermal.cycle_temperature`)."""
+    from ..thermal import celsius, cycle_temperature
+    from ..thermal.files import balance_of, lubricant_of
+
+    th, run = s["thermal"], s["run"]
+    oil = lubricant_of(th, label, "thermal")
+    supply = None
+    if th["supply_temperature_C"] is None:  # where the oil has the mechanism file's viscosity
+        supply = build(label, "thermal", oil.temperature_at, pump.viscosity)
+    balance = balance_of(th, label, "thermal", supply)
+    out = {}
+    for name, p in designs.items():
+        r = cycle_temperature(p, meshes[name], oil, balance, revolutions=run["revolutions"], start=run["start"],
+                              rtol=run["rtol"], cavitation=run["cavitation"], element=run["element"])
+        out[name] = {"effective_temperature_C": celsius(r.temperature),
+                     "supply_temperature_C": celsius(r.supply_temperature),
+                     "temperature_rise_K": r.temperature_rise, "peak_temperature_C": celsius(r.peak_temperature),
+                     "effective_viscosity_Pa_s": r.viscosity, "supply_viscosity_Pa_s": r.supply_viscosity,
+                     "mean_power_W": r.friction_power, "smallest_film_m": r.smallest_film,
+                     "isothermal_smallest_film_m": r.isothermal_smallest_film, "evaluations": r.evaluations}
+    return out
 
 
 def _compliance(pump, mesh, element: str, model: str):
@@ -193,53 +303,177 @@ def _compliance(pump, mesh, element: str, model: str):
                          body=pump.shoe_body, element=element)
 
 
-def _thinnest(pump, mesh, traj, run: dict, compliance=None) -> dict:
-    """The film state of a run at its thinnest film, re-solved, with its SI figures."""
+#: Pictured states of every run: key -> what it is.
+STATES = {"loaded": "most loaded", "thinnest": "thinnest film"}
+
+#: States spread over the cycle (besides the pictured ones) whose largest pressure is the run's peak
+#: pressure (as a design study's ``peak_pressure``, :class:`bearingfe.sweep.cases.PumpOutcome`).
+PEAK_SAMPLES = 12
+
+
+def _states(pump, mesh, traj, run: dict, compliance=None) -> dict:
+    """The pictured film states of a run (most loaded: the largest plunger force; thinnest film), re-solved,
+    with their SI figures, and the run's peak pressure over them and :data:`PEAK_SAMPLES` more."""
     from ..transient import state_result
 
-    k = int(np.argmin(traj.h_min))
-    res = state_result(pump, mesh, traj, k, run["cavitation"], run["element"],
-                       elastic=compliance if traj.max_deflection is not None else None)
+    elastic = compliance if traj.max_deflection is not None else None
+
+    def solve(k):
+        return state_result(pump, mesh, traj, int(k), run["cavitation"], run["element"], elastic=elastic)
+
     sc = pump.scale
-    d = res.basis.doflocs
-    h = np.asarray(res.film.thickness(d[0], d[1]))
-    at = int(np.argmin(h))
-    on_edge = bool(np.isin(at, res.basis.get_dofs().all()))  # a boundary: the pressure there is prescribed
-    return {"result": res, "beta_deg": float(np.degrees(traj.beta[k]) % 360.0),
-            "film_um": sc.to_thickness(res.h_min) * 1e6,
-            "pressure_at_thinnest_MPa": sc.to_pressure(float(res.pressure[at])) / 1e6,
-            "thinnest_on_edge": on_edge,
-            "peak_pressure_MPa": sc.to_pressure(res.max_pressure) / 1e6,
-            "deflection_um": sc.to_thickness(res.max_deflection) * 1e6}
+    out = {}
+    for key, k in (("loaded", int(np.argmax(np.abs(traj.load[:, 0])))), ("thinnest", int(np.argmin(traj.h_min)))):
+        res = solve(k)
+        d = res.basis.doflocs
+        at = int(np.argmin(np.asarray(res.film.thickness(d[0], d[1]))))
+        out[key] = {"result": res, "sample": k, "beta_deg": float(np.degrees(traj.beta[k]) % 360.0),
+                    "load_N": float(sc.to_force(abs(traj.load[k, 0]))),
+                    "chamber_pressure_Pa": float(traj.chamber_pressure[k]),
+                    "film_m": float(sc.to_thickness(res.h_min)),
+                    "pressure_at_thinnest_Pa": float(sc.to_pressure(float(res.pressure[at]))),
+                    "thinnest_on_edge": bool(np.isin(at, res.basis.get_dofs().all())),  # prescribed pressure
+                    "peak_pressure_Pa": float(sc.to_pressure(res.max_pressure)),
+                    "deflection_m": float(sc.to_thickness(res.max_deflection))}
+    spread = np.unique(np.linspace(0, traj.beta.size - 1, PEAK_SAMPLES).astype(int))
+    peaks = [st["peak_pressure_Pa"] for st in out.values()]
+    peaks += [sc.to_pressure(solve(k).max_pressure) for k in spread if k not in {st["sample"] for st in out.values()}]
+    out["peak_pressure_Pa"] = float(max(peaks))
+    out["peak_states"] = len(peaks)
+    return out
 
 
-def _draw(name: str, pump, runs: dict, states: dict, title: str, out_dir: Path) -> list[str]:
-    """One picture kind: the trajectory curves, or fields of the thinnest state (rigid and elastic)."""
-    from ..plot import curves, fields
+def _heading(design: str, key: str, st: dict) -> str:
+    return (f"{design}, {STATES[key]}: beta = {st['beta_deg']:.0f} deg\n"
+            f"p_max = {st['peak_pressure_Pa'] / 1e6:.3g} MPa, h_min = {st['film_m'] * 1e6:.3g} um")
 
-    main = runs["pocket"]
+
+def _panels(kind: str, names: list[str], pumps: dict, states: dict) -> list[list]:
+    """Rows: the pictured states (most loaded, thinnest film); columns: the designs ``names``."""
+    from ..plot.maps import Panel
+
+    sc = next(iter(pumps.values())).scale
+    unit = {"pressure": (sc.pressure / 1e6, "MPa"), "film": (sc.clearance * 1e6, "um"),
+            "deflection": (sc.clearance * 1e6, "um")}[kind]
+    return [[Panel(states[n][key]["result"], kind, *unit, radius=sc.radius, title=_heading(n, key, states[n][key]),
+                   surface=pumps[n].surface) for n in names] for key in STATES]
+
+
+def _draw(name: str, pumps: dict, runs: dict, states: dict, s: dict, out_dir: Path) -> list[str]:
+    """One picture kind: every design's curves, fields of every design at its pictured states (rigid, and
+    elastic when run), or the one-page summary."""
+    from ..plot import curves, maps
+
+    title = s["title"]
+    rigid = [n for n in runs if not n.endswith("_elastic")]
+    elastic = [n for n in runs if n.endswith("_elastic")]
     if name == "trajectory":
-        curves.trajectory_plot(main, out_dir / "trajectory.png", title=title)
+        curves.trajectory_plot({n: runs[n] for n in runs}, out_dir / "trajectory.png", title=title)
         return ["trajectory.png"]
     if name == "orbit":
-        curves.orbit_plot(main, out_dir / "orbit.png")
+        curves.orbit_plot({n: runs[n] for n in runs}, out_dir / "orbit.png", title=title)
         return ["orbit.png"]
-    sc = pump.scale
-    units = {"pressure": dict(scale=sc.to_pressure(1.0) / 1e6, unit="MPa"),
-             "film": dict(scale=sc.to_thickness(1.0) * 1e6, unit="um"),
-             "deflection": dict(scale=sc.to_thickness(1.0) * 1e6, unit="um")}[name]
-    draw = {"pressure": fields.pressure_picture, "film": fields.film_picture,
-            "deflection": fields.deflection_picture}[name]
+    if name == "summary":
+        _summary_page(pumps, runs, states, s, out_dir / "summary.png")
+        return ["summary.png"]
     written = []
-    for key, state in states.items():
-        if name == "deflection" and key != "pocket_elastic":
+    groups = [(elastic, "")] if name == "deflection" else [(rigid, ""), (elastic, "_elastic")]
+    for names, suffix in groups:
+        if not names:
             continue
-        support = "elastic" if key.endswith("elastic") else "rigid"
-        heading = f"thinnest film ({support}): beta = {state['beta_deg']:.1f} deg, h_min = {state['film_um']:.2f} um"
-        file = "deflection.png" if name == "deflection" else f"{name}{'_elastic' if key != 'pocket' else ''}.png"
-        draw(state["result"], out_dir / file, surface=pump.surface, title=heading, **units)
+        file = f"{name}{suffix}.png"
+        what = {"pressure": "film pressure", "film": "film thickness", "deflection": "film opening by the support"}
+        support = "elastic support" if names[0].endswith("_elastic") else "rigid support"
+        maps.field_panels(_panels(name, names, pumps, states), out_dir / file,
+                          title=f"{title}: {what[name]} ({support})")
         written.append(file)
     return written
+
+
+def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
+    """One page for a report: the smallest film over the cycle of every design, the pressure of each
+    rigid design at its most loaded state, and the table of figures with the limits' verdicts."""
+    from matplotlib.figure import Figure
+
+    from ..plot import maps
+    from ..plot.curves import DESIGN_COLORS
+
+    rigid = [n for n in runs if not n.endswith("_elastic")]
+    fig = Figure(figsize=(8.27, 11.69), layout="constrained")  # A4 portrait
+    grid = fig.add_gridspec(3, len(rigid), height_ratios=[1.0, 0.95, 0.9])
+    ax = fig.add_subplot(grid[0, :])
+    for (n, traj), color in zip(runs.items(), DESIGN_COLORS):
+        deg = np.degrees(traj.beta)
+        ax.plot(deg, traj.h_min * 1e6, color=color, label=n)
+        i = int(np.argmin(traj.h_min))
+        ax.plot(deg[i], traj.h_min[i] * 1e6, "o", color=color, markeredgecolor="k",
+                label=f"{n}: min {traj.h_min[i] * 1e6:.3g} um at {deg[i] % 360:.0f} deg")
+    if s["limits"]["min_film"] is not None:
+        ax.axhline(s["limits"]["min_film"] * 1e6, color="red", ls=":", label="limit min_film")
+    ax.set_ylim(bottom=0.0)
+    ax.set_xticks(np.arange(0, 361, 45))
+    ax.set_xlabel("shaft angle beta [deg]")
+    ax.set_ylabel("smallest film [um]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    ax.set_title("smallest film over the cycle")
+    for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
+        maps.field_axes(fig.add_subplot(grid[1, j]), panel)
+    table = fig.add_subplot(grid[2, :])
+    table.axis("off")
+    names = list(runs)
+    cells = table.table(cellText=_comparison(runs, pumps, states, s["limits"]), colLabels=["", *names, "unit"],
+                        loc="upper center", cellLoc="center",
+                        colWidths=[0.4] + [0.5 / (len(names) + 1)] * len(names) + [0.1])
+    cells.auto_set_font_size(False)
+    cells.set_fontsize(9)
+    cells.scale(1.0, 1.4)
+    for (row, col), cell in cells.get_celld().items():
+        if col == 0:
+            cell.set_text_props(ha="left")
+        if cell.get_text().get_text() == "VIOLATED":
+            cell.set_text_props(color="red", weight="bold")
+    if "plain" in runs:
+        ratio, row = _film_ratio(runs["pocket"], runs["plain"], "")
+        gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
+        table.set_title(f"smallest film pocket/plain: {gain}", fontsize="medium")
+    fig.suptitle(s["title"])
+    fig.savefig(path, dpi=100)
+    return fig
+
+
+def _comparison(runs: dict, pumps: dict, states: dict, limits: dict) -> list[list[str]]:
+    """Rows ``[quantity, value of each run..., unit]`` of the summary page."""
+    from ..core.schema import LIMITS, check_limits
+
+    figures = {n: _design_figures(traj, pumps[n], states[n]) for n, traj in runs.items()}
+    verdicts = {n: check_limits(f, limits) for n, f in figures.items()}
+    rows = [("smallest film", lambda n: f"{figures[n]['min_film'] * 1e6:.3g}", "um"),
+            ("  at shaft angle", lambda n: f"{states[n]['thinnest']['beta_deg']:.0f}", "deg"),
+            ("peak pressure", lambda n: f"{figures[n]['max_pressure'] / 1e6:.3g}", "MPa"),
+            ("mean friction power", lambda n: f"{figures[n]['max_friction_power']:.3g}", "W"),
+            ("leakage (inflow from the pocket)", lambda n: f"{figures[n]['max_leakage'] * LITRES_PER_MINUTE:.3g}",
+             "l/min"),
+            ("side leakage", lambda n: f"{np.mean(runs[n].flow_side) * LITRES_PER_MINUTE:.3g}", "l/min"),
+            ("status", lambda n: runs[n].status, "")]
+    for limit, value in limits.items():
+        if value is not None:
+            spec = LIMITS[limit]
+            shown, unit = {"m": (value * 1e6, "um"), "Pa": (value / 1e6, "MPa")}.get(spec.unit, (value, spec.unit))
+            rows.append((f"{spec.quantity} {spec.relation} {shown:.4g} {unit}",
+                         lambda n, limit=limit: "ok" if verdicts[n][limit]["ok"] else "VIOLATED", ""))
+    return [[q, *(f(n) for n in runs), u] for q, f, u in rows]
+
+
+#: m^3/s -> l/min.
+LITRES_PER_MINUTE = 6e4
+
+
+def _design_figures(traj, pump, states: dict) -> dict:
+    """What the limits of :data:`bearingfe.core.schema.LIMITS` are checked against, SI, by limit name."""
+    return {"min_film": traj.smallest_film, "max_pressure": states["peak_pressure_Pa"],
+            "max_friction_power": float(np.mean(traj.friction_moment)) * pump.drive.omega,
+            "max_leakage": float(np.mean(traj.flow_inlet))}
 
 
 def _film_ratio(pocket, plain, suffix: str) -> tuple[float | None, tuple]:
@@ -252,38 +486,62 @@ def _film_ratio(pocket, plain, suffix: str) -> tuple[float | None, tuple]:
     return None, ("not computed: " + ", ".join(f"{n} {st}" for n, st in statuses.items()), "")
 
 
-def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, scale, states: dict) -> dict:
+def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, pumps: dict, states: dict) -> dict:
+    from ..core.schema import check_limits
+
     table = []
     results = {}
     for name, traj in runs.items():
         design = name.removesuffix("_elastic")
+        figures = _design_figures(traj, pumps[name], states[name])
+        verdicts = check_limits(figures, s["limits"])
+        thin = states[name]["thinnest"]
         table += [(f"{name}: smallest film", traj.smallest_film * 1e6, "um"),
-                  (f"{name}: balance ratio", balance[design], "-"),
+                  (f"{name}: smallest film at beta", thin["beta_deg"], "deg"),
+                  (f"{name}: peak pressure", figures["max_pressure"], "Pa"),
                   (f"{name}: mean friction moment", float(np.mean(traj.friction_moment)), "N m"),
+                  (f"{name}: mean friction power", figures["max_friction_power"], "W"),
+                  (f"{name}: leakage (mean inflow from the pocket)", figures["max_leakage"] * LITRES_PER_MINUTE,
+                   "l/min"),
+                  (f"{name}: side leakage (mean)", float(np.mean(traj.flow_side)) * LITRES_PER_MINUTE, "l/min"),
+                  (f"{name}: balance ratio", balance[design], "-"),
                   (f"{name}: mass balance (relative)", traj.mass_balance_relative, "-"),
                   (f"{name}: status", traj.status, "")]
+        for limit, v in verdicts.items():
+            table.append((f"{name}: limit {limit}: {v['value']:.4g} {v['relation']} {v['limit']:.4g} {v['unit']}",
+                          "ok" if v["ok"] else "VIOLATED", ""))
         results[name] = {"smallest_film_m": traj.smallest_film, "balance_ratio": balance[design],
                          "status": traj.status, "message": traj.message, "nodes": meshes[design].n_nodes,
                          "mean_friction_moment_Nm": float(np.mean(traj.friction_moment)),
-                         "mean_inlet_flow_m3s": float(np.mean(traj.flow_inlet)),
+                         "mean_friction_power_W": figures["max_friction_power"],
+                         "mean_inlet_flow_m3s": figures["max_leakage"],
+                         "mean_side_flow_m3s": float(np.mean(traj.flow_side)),
+                         "peak_pressure_Pa": figures["max_pressure"],
+                         "peak_pressure_states": states[name]["peak_states"],
                          "mass_balance_relative": traj.mass_balance_relative,
-                         "periodic_iterations": traj.periodic_iterations}
+                         "periodic_iterations": traj.periodic_iterations,
+                         "limits": verdicts, "within_limits": all(v["ok"] for v in verdicts.values())}
         if traj.max_deflection is not None:
             largest = float(np.max(traj.max_deflection))
             table.append((f"{name}: largest deflection", largest * 1e6, "um"))
             results[name]["largest_deflection_m"] = largest
-    for key, st in states.items():
-        table += [(f"{key}: thinnest film at beta", st["beta_deg"], "deg"),
-                  (f"{key}: pressure at the thinnest film"
-                   + (" (on a boundary of the film: its prescribed pressure)" if st["thinnest_on_edge"] else ""),
-                   st["pressure_at_thinnest_MPa"], "MPa"),
-                  (f"{key}: peak pressure at that state", st["peak_pressure_MPa"], "MPa")]
-        results[key]["thinnest_state"] = {k: v for k, v in st.items() if k != "result"}
+        for key in STATES:
+            st = states[name][key]
+            results[name][f"{key}_state"] = {k: v for k, v in st.items() if k != "result"}
+        loaded = states[name]["loaded"]
+        table.append((f"{name}: most loaded state at beta ({loaded['load_N'] / 1e3:.4g} kN)", loaded["beta_deg"],
+                      "deg"))
+        if name == "pocket":
+            table.append((f"{name}: pressure at the thinnest film"
+                          + (" (on a boundary of the film: its prescribed pressure)" if thin["thinnest_on_edge"]
+                             else ""), thin["pressure_at_thinnest_Pa"], "Pa"))
     for suffix, what in (("", ""), ("_elastic", ", elastic support")):
         if f"plain{suffix}" in runs:
             ratio, row = _film_ratio(runs[f"pocket{suffix}"], runs[f"plain{suffix}"], suffix)
             table.append((f"smallest film ratio pocket/plain{what}", *row))
+            if ratio is not None:  # the pocket's gain as the README and docs/papers.md quote it
+                table.append((f"pocket gain (smallest film){what}", f"{100 * (ratio - 1):+.0f} %", ""))
             results[f"film_ratio{suffix}"] = ratio
     table.append(("seconds", seconds, "s"))
     return {"kind": "pump", "title": s["title"], "mechanism": str(s["mechanism"]), "run": s["run"],
-            "elastic": s["elastic"], "results": results, "table": table}
+            "elastic": s["elastic"], "limits": s["limits"], "results": results, "table": table}

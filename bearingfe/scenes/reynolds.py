@@ -24,9 +24,24 @@ A scene file of this kind::
     element = "P2"                     # P1 | P2
     formulation = "pi"                 # pi | direct
     linear_solver = "splu_sym"         # any key of bearingfe.core.linalg.LINEAR_SOLVERS
+    estimate_error = false             # also solve on the mesh refined once: the load's estimated error
     [output]
     pictures = ["pressure", "wrapped", "film"]
     warp = 0.15                        # wrapped picture: radial push of the peak pressure [R0]
+    [scale]                            # optional: report in SI
+    radius = 0.05                      # R0 [m]
+    clearance = 20e-6                  # c [m], < radius
+    viscosity = 0.03                   # mu [Pa s]
+    speed_rpm = 1500.0                 # or omega = 157.08 [rad/s]: exactly one
+
+The inputs are non-dimensional (lengths in R0, films in c, pressures in
+``mu omega R0^2 / c^2``). Without ``[scale]`` the outputs are too, named as
+such (``field.vtu``: ``pressure_nondimensional``...; the table's units are
+the scales). With ``[scale]`` (:class:`bearingfe.core.scales.Scale`) every
+output is SI besides: the table in N, Pa, m, N m, W, m^3/s and l/min,
+``results_si`` in the summary, ``field.vtu`` in Pa and m on the surface in
+metres (:func:`bearingfe.io.writers.write_vtu`), the pictures in MPa and um
+over ``phi`` [deg] and ``z`` [mm].
 """
 
 from __future__ import annotations
@@ -37,8 +52,8 @@ from typing import Callable
 
 from ..core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
 from ..core.parameters import ELEMENTS, FORMULATIONS
-from ..core.schema import (REQUIRED, Table, anything, build, choice, choices, nonnegative_number, number, pair,
-                           positive_number, read_table, text)
+from ..core.schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, flag,
+                           nonnegative_number, number, pair, positive_number, read_table, text)
 from ..mechanisms.files import SURFACE, surface_of
 
 __all__ = ["SPEC", "PICTURES", "settings", "run"]
@@ -57,9 +72,15 @@ SPEC = {
                         "inlet_pressure": (number(), 0.0)}),
     "solver": Table({"size": (positive_number, 0.05), "inlet_size": (positive_number, None),
                      "element": (choice(ELEMENTS), "P1"), "formulation": (choice(FORMULATIONS), "pi"),
-                     "linear_solver": (choice(LINEAR_SOLVERS), None)}),
+                     "linear_solver": (choice(LINEAR_SOLVERS), None), "estimate_error": (flag, False)}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES), "warp": (nonnegative_number, 0.15)}),
+    "scale": Table({"radius": (positive_number, None), "clearance": (positive_number, None),
+                    "viscosity": (positive_number, None), "speed_rpm": (positive_number, None),
+                    "omega": (positive_number, None)}),
 }
+
+#: m^3/s -> l/min.
+LITRES_PER_MINUTE = 6e4
 
 
 def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
@@ -69,8 +90,24 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if s["solver"]["linear_solver"] is None:
         s["solver"]["linear_solver"] = DEFAULT_SOLVER
     s["surface"] = surface_of(s["surface"], label)
+    s["scale"] = _scale_of(s["scale"], label) if "scale" in data else None
     del s["kind"]
     return s
+
+
+def _scale_of(t: dict, label: str):
+    """The :class:`Scale` of a ``[scale]`` table: all of radius, clearance, viscosity, and one speed."""
+    from ..core.machine import Drive
+    from ..core.scales import Scale
+
+    for name in ("radius", "clearance", "viscosity"):
+        if t[name] is None:
+            raise SchemaError(f"{label}: [scale] {name}: missing (required with [scale])")
+    if (t["speed_rpm"] is None) == (t["omega"] is None):
+        raise SchemaError(f"{label}: [scale] speed_rpm/omega: give exactly one (speed_rpm [rpm] or omega [rad/s])")
+    omega = Drive.from_rpm(t["speed_rpm"]).omega if t["speed_rpm"] is not None else t["omega"]
+    return build(label, "scale", Scale, radius=t["radius"], clearance=t["clearance"], viscosity=t["viscosity"],
+                 speed=omega)
 
 
 def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
@@ -100,17 +137,34 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(1, steps, "solving")
     res = solve_reynolds(mesh, film, wedge=op["wedge"], squeeze=op["squeeze"],
                          inlet_pressure=op["inlet_pressure"], formulation=solver["formulation"],
-                         element=solver["element"], solver=solver["linear_solver"])
+                         element=solver["element"], solver=solver["linear_solver"],
+                         estimate_error=solver["estimate_error"])
     files = []
-    draw = {"pressure": lambda: fields.pressure_picture(res, out_dir / "pressure.png", surface=s["surface"]),
+    sc = s["scale"]
+    p_unit = dict(scale=sc.pressure / 1e6, unit="MPa") if sc else {}
+    h_unit = dict(scale=sc.clearance * 1e6, unit="um") if sc else {}
+    heading = (f"{s['title']}: gamma = {s['film']['gamma']:g}, p_max = "
+               + (f"{sc.to_pressure(res.max_pressure) / 1e6:.3g} MPa" if sc else f"{res.max_pressure:.3g} [-]"))
+
+    def field_map(kind, file, unit):
+        from ..plot import maps
+
+        scale, shown = (unit["scale"], unit["unit"]) if unit else (1.0, "-")
+        panel = maps.Panel(res, kind, scale, shown, radius=sc.radius if sc else None, title=heading,
+                           surface=s["surface"])
+        maps.field_panels([[panel]], out_dir / file, panel_size=(8.0, 5.0))
+        return out_dir / file
+
+    draw = {"pressure": lambda: field_map("pressure", "pressure.png", p_unit),
             "wrapped": lambda: fields.pressure_picture(res, out_dir / "pressure_wrapped.png", view="wrapped",
-                                                       warp=out["warp"], surface=s["surface"]),
-            "film": lambda: fields.film_picture(res, out_dir / "film.png", surface=s["surface"])}
+                                                       warp=out["warp"], surface=s["surface"], title=heading,
+                                                       **p_unit),
+            "film": lambda: field_map("film", "film.png", h_unit)}
     for k, name in enumerate(pictures):
         tick(2 + k, steps, f"picture: {name}")
         files.append(draw[name]().name)
     tick(steps - 1, steps, "files")
-    files.append(write_vtu(res, out_dir / "field.vtu").name)
+    files.append(write_vtu(res, out_dir / "field.vtu", sc).name)
     summary = _reynolds_summary(s, mesh, res, time.perf_counter() - start)
     summary["files"] = files + ["summary.json"]
     write_json(summary, out_dir / "summary.json")
@@ -120,13 +174,18 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 
 def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
     flows = dict(res.flows)
+    sc = s["scale"]
+    if sc is not None:
+        return _si_summary(s, mesh, res, seconds, sc)
     table = [
         ("nodes", mesh.n_nodes, ""), ("dofs", int(res.basis.N), ""),
         ("force (cos phi)", res.force[0], "mu w R0^4/c^2"), ("force (sin phi)", res.force[1], "mu w R0^4/c^2"),
         ("int p", res.integral, "mu w R0^4/c^2"), ("max p", res.max_pressure, "mu w R0^2/c^2"),
         ("h_min", res.h_min, "c"), ("friction", res.friction, "mu w R0^4/c"),
     ] + [(f"flow {k}", v, "w R0^2 c") for k, v in flows.items()] + [
-        ("mass balance", res.mass_balance, "w R0^2 c"), ("seconds", seconds, "s")]
+        ("mass balance", res.mass_balance, "w R0^2 c")] + (
+        [] if res.load_error is None else [("load error (estimated)", res.load_error.relative, "-")]) + [
+        ("seconds", seconds, "s")]
     return {
         "kind": "reynolds", "title": s["title"],
         "surface": {"arc": s["surface"].arc, "half_width": s["surface"].half_width,
@@ -135,6 +194,32 @@ def _reynolds_summary(s: dict, mesh, res, seconds: float) -> dict:
         "formulation_used": res.formulation, "notes": list(res.notes),
         "results": {"force": res.force, "integral": res.integral, "max_pressure": res.max_pressure,
                     "h_min": res.h_min, "friction": res.friction, "flows": flows,
-                    "mass_balance": res.mass_balance},
+                    "mass_balance": res.mass_balance,
+                    "load_error": None if res.load_error is None else res.load_error.relative},
         "table": [list(row) for row in table],
     }
+
+
+def _si_summary(s: dict, mesh, res, seconds: float, sc) -> dict:
+    """The summary with ``[scale]``: the table in SI, ``results_si`` besides the non-dimensional ``results``."""
+    flows = {k: sc.to_flow(v) for k, v in res.flows.items()}
+    si = {"force_N": [sc.to_force(f) for f in res.force], "load_N": sc.to_force(float(abs(complex(*res.force)))),
+          "peak_pressure_Pa": sc.to_pressure(res.max_pressure), "min_film_m": sc.to_thickness(res.h_min),
+          "friction_moment_Nm": sc.to_moment(res.friction),
+          "friction_power_W": sc.to_moment(res.friction) * res.wedge * sc.speed,
+          "flows_m3s": flows, "mass_balance_m3s": sc.to_flow(res.mass_balance)}
+    table = [("nodes", mesh.n_nodes, ""), ("dofs", int(res.basis.N), ""),
+             ("force (cos phi)", si["force_N"][0], "N"), ("force (sin phi)", si["force_N"][1], "N"),
+             ("load", si["load_N"], "N"), ("peak pressure", si["peak_pressure_Pa"], "Pa"),
+             ("smallest film", si["min_film_m"] * 1e6, "um"), ("friction moment", si["friction_moment_Nm"], "N m"),
+             ("friction power", si["friction_power_W"], "W")]
+    table += [(f"flow {k}", v * LITRES_PER_MINUTE, "l/min") for k, v in flows.items()]
+    table += [("mass balance", si["mass_balance_m3s"], "m^3/s")]
+    if res.load_error is not None:
+        table.append(("load error (estimated)", res.load_error.relative, "-"))
+    table.append(("seconds", seconds, "s"))
+    summary = _reynolds_summary({**s, "scale": None}, mesh, res, seconds)
+    summary.update({"scale": {"radius_m": sc.radius, "clearance_m": sc.clearance, "viscosity_Pas": sc.viscosity,
+                              "omega_rad_s": sc.speed, "pressure_Pa": sc.pressure, "force_N": sc.force},
+                    "results_si": si, "table": [list(row) for row in table]})
+    return summary

@@ -37,15 +37,15 @@ public path (cache keys name this package's functions by it, too).
 from __future__ import annotations
 
 # Names outside __all__ (POCKET_SHAPES, get_field, centroid, ...) are re-exported as the one module had them.
-from .cases import BASES, RUNS, PumpCase, PumpOutcome, ShoeCase, run_pump, run_shoe
+from .cases import BASES, RUNS, FilmRuptured, PumpCase, PumpOutcome, ShoeCase, run_pump, run_shoe
 from .changes import (CHANGES, POCKET_SHAPES, apply_changes, centroid, check_change_name, expand_cases, get_field,
                       pocket_fraction, pocket_position, pocket_shape, set_field)
-from .execute import CacheWarning, best_design, case_key, estimated_elements, run_case, sweep
-from .outputs import OUTPUTS, STANDARD_OUTPUTS
+from .execute import CacheWarning, best_design, case_key, case_status, estimated_elements, run_case, sweep
+from .outputs import OUTPUT_UNITS, OUTPUTS, STANDARD_OUTPUTS, csv_headers
 from .studies import Study, read_study
 
 __all__ = [
-    "CacheWarning", "estimated_elements",
+    "CacheWarning", "estimated_elements", "FilmRuptured", "case_status", "csv_headers", "OUTPUT_UNITS",
     "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
     "case_key", "expand_cases", "read_study", "run_case", "run_pump", "run_shoe", "set_field", "sweep",
 ]

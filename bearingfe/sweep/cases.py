@@ -20,7 +20,13 @@ from ..geometry.surface import Circle, Surface
 from ..core.parameters import ELEMENTS
 from ..core.schema import one_of
 
-__all__ = ["BASES", "RUNS", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "run_shoe"]
+__all__ = ["BASES", "RUNS", "FilmRuptured", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "run_shoe"]
+
+
+class FilmRuptured(RuntimeError):
+    """The film of a case closed over the cycle (the run's status ``"ruptured"``): a result of the study,
+    the design does not carry its load, not a failure of the program; the table's ``status`` says
+    ``"ruptured"``."""
 
 
 # -- a cheap static case (built on the core) ----------------------------------
@@ -157,12 +163,15 @@ class PumpOutcome:
 
 
 def run_pump(case: PumpCase) -> PumpOutcome:
-    """Simulate one revolution of ``case.pump`` (raises if the film closes or the shoe lifts off)."""
+    """Simulate one revolution of ``case.pump``; :class:`FilmRuptured` if the film closes, ``RuntimeError``
+    if the run stops for another reason, ``LiftOffError`` if the shoe lifts off."""
     from ..transient import pump_mesh, simulate, state_result
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
     traj = simulate(pump, mesh, 1.0, start=case.start, element=case.element, cavitation=case.cavitation)
+    if traj.status == "ruptured":
+        raise FilmRuptured(traj.message)
     if traj.status != "completed":
         raise RuntimeError(traj.message)
     frames = np.unique(np.linspace(0, traj.beta.size - 1, 12).astype(int))

@@ -34,7 +34,19 @@ from .cases import RUNS
 from .changes import apply_changes, check_change_name, expand_cases
 from .outputs import OUTPUTS, STANDARD_OUTPUTS
 
-__all__ = ["CacheWarning", "best_design", "case_key", "estimated_elements", "run_case", "run_case_timed", "sweep"]
+__all__ = ["CacheWarning", "STATUSES", "best_design", "case_key", "case_status", "estimated_elements", "run_case",
+           "run_case_timed", "sweep"]
+
+#: A case's ``status`` in the table: it ran; its film closed (a result: the design does not carry
+#: its load, :class:`bearingfe.sweep.cases.FilmRuptured`); it failed for another reason (``error``).
+STATUSES = ("completed", "ruptured", "failed")
+
+
+def case_status(error: str | None) -> str:
+    """The :data:`STATUSES` entry of a case from its recorded ``error`` (``"<exception type>: <message>"``)."""
+    if error is None:
+        return "completed"
+    return "ruptured" if error.startswith("FilmRuptured:") else "failed"
 
 
 # -- one case -----------------------------------------------------------------------
@@ -299,8 +311,8 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
     -------
     pandas.DataFrame
         One row per case in input order: the change names, the outputs,
-        ``seconds`` (run time of the case), ``error`` (None or the message),
-        ``cached`` (True if read from the cache) and ``key``.
+        ``seconds`` (run time of the case), ``status`` (:data:`STATUSES`),
+        ``error`` (None or the message), ``cached`` (True if read from the cache) and ``key``.
     """
     import pandas as pd
 
@@ -363,8 +375,9 @@ def sweep(base, changes, outputs: Sequence = STANDARD_OUTPUTS, *, run="shoe", cl
     for case, key in zip(cases, keys):
         record = records[key]
         rows.append({**{n: case.get(n) for n in names}, **record["outputs"], "seconds": record["seconds"],
-                     "error": record["error"], "cached": cached[key], "key": key})
-    columns = names + [_output_name(o) for o in outputs] + ["seconds", "error", "cached", "key"]
+                     "status": case_status(record["error"]), "error": record["error"], "cached": cached[key],
+                     "key": key})
+    columns = names + [_output_name(o) for o in outputs] + ["seconds", "status", "error", "cached", "key"]
     table = pd.DataFrame(rows, columns=columns)
     table["error"] = table["error"].astype(object).where(table["error"].notna(), None)
     return table

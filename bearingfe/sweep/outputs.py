@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-__all__ = ["OUTPUTS", "STANDARD_OUTPUTS"]
+__all__ = ["OUTPUTS", "OUTPUT_UNITS", "STANDARD_OUTPUTS", "csv_headers"]
 
 
 def _h_min(result) -> float:
@@ -61,3 +61,25 @@ OUTPUTS: dict[str, Callable[[Any], float]] = {
 
 #: The outputs of the issue: smallest film, peak pressure, inlet flow, friction loss.
 STANDARD_OUTPUTS = ("h_min", "peak_pressure", "flow_inlet", "friction_loss")
+
+
+#: Units of the outputs by run: a pump run reduces SI arrays, a shoe run non-dimensional results.
+OUTPUT_UNITS: dict[str, dict[str, str]] = {
+    "pump": {"h_min": "m", "peak_pressure": "Pa", "flow_inlet": "m^3/s", "friction_loss": "W", "load": "N",
+             "balance_ratio": "-"},
+    "shoe": {"h_min": "-", "peak_pressure": "-", "flow_inlet": "-", "friction_loss": "-", "load": "-",
+             "balance_ratio": "-"},
+}
+
+#: Units of the change builders' values (:data:`bearingfe.sweep.changes.CHANGES`) and the table's own columns.
+COLUMN_UNITS = {"pocket_fraction": "-", "pocket_position": "-", "seconds": "s",
+                "pump.viscosity": "Pa s", "pump.clearance": "m", "pump.radius": "m"}
+
+
+def csv_headers(columns, run) -> dict[str, str]:
+    """``{column: "column [unit]"}`` for the columns of a sweep table whose unit is known (the outputs of the
+    run ``"pump"`` (SI) or ``"shoe"`` (non-dimensional, ``[-]``), the change builders and ``seconds``); text
+    columns (``status``, ``error``, ``key``...), a dotted-path change and a run given as a function keep
+    their names."""
+    units = {**(OUTPUT_UNITS.get(run, {}) if isinstance(run, str) else {}), **COLUMN_UNITS}
+    return {c: f"{c} [{units[c]}]" for c in columns if c in units}

@@ -11,6 +11,7 @@ key of :data:`MODELS`      model                                                
 ``"rigid"``                rigid film, the pressure may go negative (the paper's)     ``cavitation="none"``
 ``"cavitating"``           rigid film, Swift-Stieber or Gumbel rupture                ``"reynolds"``, ``"gumbel"``
 ``"jfo"``                  rigid film, mass-conserving rupture (history carried)      ``"jfo"`` (P1)
+``"fed"``                  rigid film, pocket fed through the plunger's restrictor    ``pump.shoe_supply`` given
 ``"quasi-static elastic"`` elastic support, deflection following the pressure         ``elastic=...``
 ``"elastic"``              elastic support with the squeeze of the deflection         :func:`~bearingfe.transient.elastic.simulate_elastic`
 =========================  =========================================================  ==========================
@@ -32,6 +33,7 @@ from .base import Model
 from .cavitating import Cavitating
 from .driver import run_transient
 from .elastic import ElasticSqueeze, QuasiStaticElastic
+from .fed import Fed
 from .jfo import JFO
 from .rigid import Rigid, balance_ratio, pump_mesh, steady_state
 from .settings import Integration
@@ -42,10 +44,16 @@ __all__ = ["simulate", "MODELS", "film_model", "pump_mesh", "steady_state", "bal
 #: The film models of the pump transient by name (:class:`bearingfe.transient.base.Model`).
 MODELS: Mapping[str, type[Model]] = MappingProxyType({"rigid": Rigid, "cavitating": Cavitating, "jfo": JFO,
                                                       "quasi-static elastic": QuasiStaticElastic,
-                                                      "elastic": ElasticSqueeze})
+                                                      "elastic": ElasticSqueeze, "fed": Fed})
 
 
-def _model_name(cavitation: str, elastic: Compliance | None) -> str:
+def _model_name(cavitation: str, elastic: Compliance | None, pump: EccentricPump | None = None) -> str:
+    if pump is not None and pump.shoe_supply is not None:
+        if cavitation != "none" or elastic is not None:
+            raise ValueError(f"{pump.name!r} feeds its pocket through a restrictor ([shoe.supply]): the fed model "
+                             f"runs on the rigid film with cavitation='none', not cavitation={cavitation!r}"
+                             f"{' with elastic=' if elastic is not None else ''}")
+        return "fed"
     if elastic is not None:
         if cavitation == "jfo":
             raise ValueError("elastic: the JFO model runs on a rigid film; cavitation='jfo' does not take elastic=")
@@ -56,7 +64,7 @@ def _model_name(cavitation: str, elastic: Compliance | None) -> str:
 def film_model(pump: EccentricPump, mesh: SupportMesh, *, cavitation: str, elastic: Compliance | None,
                formulation: str, element: str, solver: str) -> Model:
     """The model of :data:`MODELS` that :func:`simulate`'s ``cavitation`` and ``elastic`` choose."""
-    name = _model_name(cavitation, elastic)
+    name = _model_name(cavitation, elastic, pump)
     if name == "quasi-static elastic":
         return QuasiStaticElastic(pump, elastic, cavitation=cavitation, formulation=formulation, solver=solver)
     if name == "cavitating":
@@ -135,6 +143,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         turn (:mod:`bearingfe.transient.jfo`; ``method``, ``rtol``, ``atol``
         and ``max_step`` do not apply; P1 only); its periodic start runs one
         revolution first and starts from its end (film history included).
+        A pump whose shoe pocket is fed through the plunger's restrictor
+        (``pump.shoe_supply``, ``[shoe.supply]``) runs the ``"fed"`` model
+        (:mod:`bearingfe.transient.fed`) and takes ``"none"`` only.
     method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
@@ -239,7 +250,7 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
     mesh, element = _mesh_and_element(pump, mesh, mesh_size, element, elastic)
-    MODELS[_model_name(cavitation, elastic)].check(settings)
+    MODELS[_model_name(cavitation, elastic, pump)].check(settings)
     ratio = balance_ratio(pump, mesh, formulation=formulation, element=element)
     if ratio >= 1.0:
         raise LiftOffError(f"{pump.name!r}: the pockets' hydrostatic lift is {ratio:.3f} x the plunger force "

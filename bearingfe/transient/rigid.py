@@ -179,10 +179,14 @@ class Rigid(Model):
         pump = self.pump
         try:
             return self.balancing_rates(sup, pump.load_vector(beta), float(pump.wedge(beta)),
-                                        float(pump.inlet_pressure(beta)))
+                                        self.pocket_pressure(beta, y))
         except np.linalg.LinAlgError as exc:
             raise RuntimeError(f"equilibrium rates undefined at beta = {beta:.4f} rad, gamma = {y[0]:.4g}: "
                                f"{exc}") from None
+
+    def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
+        """The pockets' pressure [-] at a state: the chamber's (a model that feeds them carries its own)."""
+        return float(self.pump.inlet_pressure(beta))
 
     def balancing_rates(self, sup: Superposition, load: np.ndarray, wedge: float, inlet_pressure: float):
         """``(rates, None)``: the 2x2 superposition system (the film result is linear in the sources)."""
@@ -308,7 +312,7 @@ class Rigid(Model):
             for k, v in more.items():
                 extra.setdefault(k, np.empty(n))[i] = v
             if res is None:
-                weights = source_weights(float(pump.wedge(b)), rates[i], float(pump.inlet_pressure(b)))
+                weights = source_weights(float(pump.wedge(b)), rates[i], self.pocket_pressure(b, y))
                 sup.check_inlet(weights[3])
                 linear.append((i, sup, weights))
                 continue

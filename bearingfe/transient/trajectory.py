@@ -11,7 +11,7 @@ import numpy as np
 
 from ..bearings.pump import EccentricPump
 
-__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "make_trajectory"]
+__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "make_trajectory", "report_columns"]
 
 #: How a run ends (:attr:`Trajectory.status`).
 STATUSES = ("completed", "ruptured", "no-equilibrium", "stalled")
@@ -38,9 +38,10 @@ class Trajectory:
     wedge : ndarray
         ``1 - dphi2/dbeta`` [-].
     inlet_pressure : ndarray
-        Pocket (chamber) pressure, non-dimensional [-].
+        Pocket pressure, non-dimensional [-]: the chamber's, or the pocket's own when it is fed
+        through the plunger's restrictor (:mod:`bearingfe.transient.fed`).
     chamber_pressure : ndarray
-        The same in Pa.
+        The chamber pressure in Pa.
     load : ndarray, shape (n, 2)
         Applied load on the shoe in the shoe frame (as the solver's ``force``) [-].
     h_min : ndarray
@@ -170,8 +171,9 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
         The model's states at the samples: ``(gamma [-], delta [rad], ...)``.
     columns : mapping
         The model's SI columns at the samples: every name of
-        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m] and
-        ``pressures`` (shape (n, n_dofs), non-dimensional).
+        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m],
+        ``pressures`` (shape (n, n_dofs), non-dimensional) and ``inlet_pressure``
+        (the pocket pressure [-] of a model that carries it; default the chamber's).
     status, message, rupture_beta
         How the run ended (:data:`STATUSES`; ``rupture_beta`` NaN if it completed).
     start : array_like
@@ -188,10 +190,34 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
     f = pump.load(betas)
     return Trajectory(
         t=(betas - beta0) / pump.drive.omega, beta=betas, gamma=states[:, 0], delta=states[:, 1],
-        wedge=pump.wedge(betas), inlet_pressure=pump.inlet_pressure(betas),
+        wedge=pump.wedge(betas),
+        inlet_pressure=np.asarray(columns["inlet_pressure"], float) if "inlet_pressure" in columns
+        else pump.inlet_pressure(betas),
         chamber_pressure=pump.chamber_pressure(betas), load=np.column_stack([-f, np.zeros_like(f)]),
         **{name: np.asarray(columns[name], float) for name in SAMPLE_COLUMNS},
         status=status, message=message, rupture_beta=math.nan if status == "completed" else float(rupture_beta),
         start=(float(start[0]), float(start[1])), periodic_iterations=int(periodic_iterations),
         periodic_residual=float(periodic_residual), element=element, stats=MappingProxyType(dict(stats)),
         max_deflection=columns.get("max_deflection"), pressures=columns.get("pressures"))
+
+
+def report_columns(traj: Trajectory, scale) -> dict[str, np.ndarray]:
+    """A trajectory's columns as a person reads them, each headed ``"name [unit]"``.
+
+    Angles in degrees, everything else SI (the load in N from ``scale``,
+    :class:`bearingfe.core.scales.Scale`); the solver's non-dimensional pocket
+    pressure and load are kept as extra columns named ``*_nondimensional [-]``.
+    """
+    cols = {"t [s]": traj.t, "beta [deg]": np.degrees(traj.beta), "gamma [-]": traj.gamma,
+            "delta [deg]": np.degrees(traj.delta), "gamma_rate [1/rad]": traj.gamma_rate,
+            "delta_rate [-]": traj.delta_rate, "wedge [-]": traj.wedge,
+            "chamber_pressure [Pa]": traj.chamber_pressure, "h_min [m]": traj.h_min,
+            "friction_moment [N m]": traj.friction_moment, "flow_inlet [m^3/s]": traj.flow_inlet,
+            "flow_side [m^3/s]": traj.flow_side, "flow_arc [m^3/s]": traj.flow_arc,
+            "flow_squeeze [m^3/s]": traj.flow_squeeze, "mass_balance [m^3/s]": traj.mass_balance,
+            "load_x [N]": scale.to_force(traj.load[:, 0]), "load_y [N]": scale.to_force(traj.load[:, 1])}
+    if traj.max_deflection is not None:
+        cols["max_deflection [m]"] = traj.max_deflection
+    cols.update({"inlet_pressure_nondimensional [-]": traj.inlet_pressure,
+                 "load_x_nondimensional [-]": traj.load[:, 0], "load_y_nondimensional [-]": traj.load[:, 1]})
+    return {k: np.asarray(v, dtype=float) for k, v in cols.items()}

@@ -56,7 +56,7 @@ def _scene_error(path, settings) -> str:
     (dict(solver={"size": None, "sise": 0.1}),
      "bad.toml: [solver] sise: unknown field; allowed: size, inlet_size, element"),
     (dict(film=None, flim={"gamma": 0.6}),
-     "bad.toml: flim: unknown table or field; allowed: kind, title, surface, film, operating, solver, output "
+     "bad.toml: flim: unknown table or field; allowed: kind, title, surface, film, operating, solver, output, scale "
      "(and bad.toml: [film]: missing table (required): a misspelling?)"),
     (dict(surface={"half_width": [0.4]}), "bad.toml: [surface] half_width: expected a finite number; got [0.4]"),
     (dict(surface={"arc": [-0.5]}), "bad.toml: [surface] arc: expected a pair of numbers [x, y]; got [-0.5]"),
@@ -75,7 +75,7 @@ def test_reynolds_scene_errors(scene_file, change, fragment):
     (dict(run={"start": "cold"}), "bad.toml: [run] start: must be one of 'periodic', 'steady'"),
     (dict(pump={"compare_plain": 1}), "bad.toml: [pump] compare_plain: expected true or false; got 1"),
     (dict(run=None, runs={"revolutions": 1.0}),
-     "bad.toml: runs: unknown table or field; allowed: kind, title, pump, run, elastic, output"),
+     "bad.toml: runs: unknown table or field; allowed: kind, title, pump, run, elastic, limits, output"),
 ])
 def test_pump_scene_errors(tmp_path, scene_file, change, fragment):
     path = scene_file("pump", change, name="bad.toml")
@@ -99,7 +99,8 @@ def test_pump_scene_cavitation_choices_come_from_the_solver():
      "bad.toml: [bearing.grooves.0] width_deg: missing (required)"),
     (dict(bearing={"pads": [[0.0, 180.0]], "grooves": 3}),
      "bad.toml: [bearing] grooves: expected an array of tables [[bearing.grooves]]; got 3"),
-    (dict(operating={"speed": None}), "bad.toml: [operating] speed: missing (required)"),
+    (dict(operating={"speed": None}), "bad.toml: [operating] speed: give exactly one of speed [rpm] and "
+                                      "speed_rad_s [rad/s]; got speed = None, speed_rad_s = None"),
 ])
 def test_journal_scene_errors(scene_file, change, fragment):
     assert fragment in _scene_error(scene_file("journal", change, name="bad.toml"), journal_settings)
@@ -223,3 +224,24 @@ def test_old_field_reader_still_works_and_names_its_replacement():
         assert field({"rod": 2}, "crank", "rod", "m.toml") == 2.0
     with pytest.warns(DeprecationWarning), pytest.raises(SchemaError, match=r"^m.toml: \[crank\] rod: missing"):
         field({}, "crank", "rod", "m.toml")
+
+
+def test_limits_table_and_verdicts():
+    from bearingfe.core.schema import LIMITS, LIMITS_TABLE, SchemaError, check_limits, read_table
+
+    # every limit has its SI unit and is optional: an empty [limits] checks nothing
+    assert {n: (l.unit, l.relation) for n, l in LIMITS.items()} == {
+        "min_film": ("m", ">="), "max_pressure": ("Pa", "<="), "max_friction_power": ("W", "<="),
+        "max_leakage": ("m^3/s", "<=")}
+    empty = read_table({}, "s.toml", "limits", LIMITS_TABLE.spec)
+    assert empty == dict.fromkeys(LIMITS) and check_limits({}, empty) == {}
+    with pytest.raises(SchemaError, match=r"^s\.toml: \[limits\] max_pressure: must be > 0; got 0"):
+        read_table({"max_pressure": 0}, "s.toml", "limits", LIMITS_TABLE.spec)
+    # a film of 9.9 um against 8 um (kept), a peak of 32 MPa against 30 MPa (exceeded); equality passes
+    values = {"min_film": 9.9e-6, "max_pressure": 32e6, "max_friction_power": 280.0, "max_leakage": 5e-7}
+    verdicts = check_limits(values, {"min_film": 8e-6, "max_pressure": 30e6, "max_friction_power": 280.0,
+                                     "max_leakage": None})
+    assert {k: v["ok"] for k, v in verdicts.items()} == {"min_film": True, "max_pressure": False,
+                                                        "max_friction_power": True}
+    assert verdicts["max_pressure"] == {"quantity": "peak pressure", "value": 32e6, "limit": 30e6, "unit": "Pa",
+                                        "relation": "<=", "ok": False}

@@ -12,7 +12,9 @@ import numpy as np
 import pytest
 import skfem
 
+import bearingfe as bf
 from bearingfe import Circle, Rectangle, Surface, load_mesh, mesh_surface, refine_uniformly
+from bearingfe.geometry.meshing import refine_once
 from bearingfe.geometry.meshing import SupportMesh
 from tests.helpers import ROOT
 
@@ -226,8 +228,10 @@ def test_load_mesh_errors(tmp_path):
     with pytest.raises(ValueError, match=".geo or .msh"):
         load_mesh(wrong)
     nameless = tmp_path / "nameless.geo"
-    nameless.write_text('SetFactory("OpenCASCADE");\nRectangle(1) = {0, 0, 0, 1, 1};\n'
-                        'Physical Curve("edge") = {1, 2, 3, 4};\nPhysical Surface("film") = {1};\n')
+    nameless.write_text('SetFactory("OpenCASCADE");\nFor k In {1:4}\n  Point(k) = {(k == 2 || k == 3), k > 2, 0};\n'
+                        'EndFor\nFor k In {1:4}\n  Line(k) = {k, k % 4 + 1};\nEndFor\nCurve Loop(1) = {1:4};\n'
+                        'Plane Surface(1) = {1};\nPhysical Curve("edge") = {1, 2, 3, 4};\n'
+                        'Physical Surface("film") = {1};\n')
     with pytest.raises(ValueError, match="outer"):
         load_mesh(nameless, size=0.5)
     assert not gmsh.isInitialized()
@@ -262,3 +266,26 @@ def test_size_function_requests_below_a_quarter_of_size_are_honoured():
     assert np.median(np.hypot(*edges)) < 0.03  # requested 0.02; the old floor was 0.05
     floored = mesh_surface(Surface(), 0.2, size_function=lambda x, y: 0.02 + 0 * x, min_size=0.05)
     assert floored.n_nodes < m.n_nodes / 3
+
+
+def test_refining_a_grid_with_a_pocket_splits_every_cell_and_keeps_the_pocket_edges():
+    """refine_once of a grid with an axis-aligned pocket: every cell split in two each way (4x the
+    triangles, exactly), the film area and the pocket contour's length unchanged (exact: both are
+    unions of grid cells and grid edges)."""
+    surface = bf.Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    coarse = bf.grid_mesh(surface, 0.07)
+    fine = refine_once(coarse)
+    assert fine.mesh.t.shape[1] == 4 * coarse.mesh.t.shape[1]
+
+    def area(m):
+        p = m.mesh.p[:, m.mesh.t]
+        return 0.5 * np.abs((p[0, 1] - p[0, 0]) * (p[1, 2] - p[1, 0]) - (p[0, 2] - p[0, 0]) * (p[1, 1] - p[1, 0])).sum()
+
+    def inlet_length(m):
+        f = m.mesh.facets[:, m.mesh.boundaries["inlet"]]
+        return np.linalg.norm(m.mesh.p[:, f[0]] - m.mesh.p[:, f[1]], axis=0).sum()
+
+    assert area(fine) == pytest.approx(1.0 - 0.2 * 0.3, rel=1e-12)
+    assert inlet_length(coarse) == pytest.approx(2 * (0.2 + 0.3), rel=1e-12)
+    assert inlet_length(fine) == pytest.approx(2 * (0.2 + 0.3), rel=1e-12)
+    assert fine.refinement is not None

@@ -2,13 +2,17 @@
 
 Every .geo below starts from the shipped plain shoe and adds one statement that
 reaches outside the geometry. A "marker" file is what the statement would
-create if it ran: the tests check it is NOT there. Meshes are small (size 0.2).
+create if it ran: the tests check it is NOT there. Untrusted, bearingfe's own
+parser reads the file (gmsh's interpreter never sees it) and refuses the
+statement by name; the fuzz test feeds it random and mutated files. Meshes are
+small (size 0.2).
 """
 
 from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -17,7 +21,8 @@ import pytest
 from bearingfe import Circle, CosineFilm, Rectangle, Slot, Surface, load_mesh, mesh_surface
 from bearingfe.cli import main
 from bearingfe.geometry.geofiles import (DEFAULT_MAX_ELEMENTS, GeometryFileError, MeshSizeError, UntrustedGeoError,
-                                check_geo_script, max_elements_limit)
+                                max_elements_limit)
+from bearingfe.geometry.geo_parser import parse_geo
 from tests.helpers import ROOT
 
 PLAIN = (ROOT / "meshes" / "plain_shoe.geo").read_text()
@@ -56,9 +61,10 @@ HOSTILE = {
     "text Mesh option": ('Mesh.Format = "{marker}";', "text value"),
     "ExternalProcess field": ("Field[1] = ExternalProcess;", "runs an external program"),
     "Plugin": ("Plugin(Crack).Run;", "plugin"),
-    "GetEnv in DefineConstant": ('DefineConstant[ h = GetEnv("HOME") ];', "text value in DefineConstant"),
+    "GetEnv in DefineConstant": ('DefineConstant[ h = GetEnv("HOME") ];', "reads the environment"),
     "Exit in DefineConstant": ('DefineConstant[ h = {{Exit, Name "h"}} ];', "ends the program"),
-    "unknown in DefineConstant": ('DefineConstant[ h = {{1, Name "h", Min Frobnicate}} ];', "not a geometry command"),
+    "unknown in DefineConstant": ('DefineConstant[ h = {{1, Name "h", Min Frobnicate}} ];',
+                                  "not a variable given a value above"),
     "text DefineConstant": ('DefineConstant[ f = {{"{marker}", Name "x"}} ];', "text value in DefineConstant"),
     "DefineConstant attribute": ('DefineConstant[ f = {{1, Name "f", Macro "{marker}"}} ];',
                                  "not an accepted DefineConstant"),
@@ -68,6 +74,14 @@ HOSTILE = {
     "SetNumber": ('SetNumber("x", 1);', "onelab"),
     "Sleep": ("Sleep 1000;", "waits"),
     "unknown command": ("Frobnicate;", "not a geometry command"),
+    "unknown function": ('x = StrCat("a", "b");', "not a geometry command"),
+    "unknown variable": ("Point(99) = {{Frobnicate, 0, 0}};", "not a variable given a value above"),
+    "Duplicata": ("Rotate {{{{0, 0, 1}}, {{0, 0, 0}}, Pi/2}} {{ Duplicata {{ Curve{{1}}; }} }}", "Duplicata"),
+    "other shapes": ("Rectangle(2) = {{0, 0, 0, 1, 1}};", "not a geometry command"),
+    "other options": ("Mesh.SaveAll = 1;", "not an accepted option"),
+    "text field option": ('Field[1] = Box;\nField[1].VIn = "{marker}";', "text value"),
+    "Physical Volume": ('Physical Volume("v") = {{1}};', "not a physical group of a 2-D geometry"),
+    "SetFactory after geometry": ('SetFactory("Built-in");', "SetFactory' after geometry"),
 }
 
 
@@ -79,7 +93,8 @@ def test_hostile_geo_is_refused_and_nothing_runs(tmp_path, label):
     with pytest.raises(UntrustedGeoError, match=reason) as info:
         load_mesh(geo, size=0.2)
     message = str(info.value)
-    assert "hostile.geo line 2" in message and "trusted=True" in message and "--trust-geo" in message
+    # the statement is on line 26 (27 for the two-line ones): the plain shoe has 24 lines, then a blank one
+    assert re.search(r"hostile.geo line 2[67]: ", message) and "trusted=True" in message and "--trust-geo" in message
     assert not marker.exists()
 
 
@@ -93,9 +108,12 @@ def test_cli_mesh_refuses_hostile_geo_in_one_line(tmp_path, capsys):
     assert [p.name for p in tmp_path.iterdir()] == ["hostile.geo"]  # no temporary file left behind
 
 
-def test_shipped_geo_files_pass_the_allow_list():
+def test_shipped_geo_files_are_read_by_the_parser():
+    """Every shipped .geo is in the subset: OpenCASCADE, one plane surface, the named groups bearingfe reads."""
     for geo in sorted((ROOT / "meshes").glob("*.geo")):
-        check_geo_script(geo.read_text(), geo.name)  # raises if refused
+        model = parse_geo(geo.read_text(), geo.name)  # raises if refused
+        names = {op[3] for op in model.ops if op[0] == "physical"}
+        assert model.factory == "occ" and {"outer", "arc_start", "arc_end", "side", "film"} <= names
 
 
 def test_ordinary_geo_constructs_are_accepted():
@@ -116,9 +134,13 @@ def test_ordinary_geo_constructs_are_accepted():
     Geometry.Tolerance = 1e-9;
     Field[1] = Distance;
     Field[1].CurvesList = {1};
-    Rotate {{0, 0, 1}, {0, 0, 0}, Pi/2} { Duplicata { Curve{1}; } }
+    Background Field = 1;
+    Rotate {{0, 0, 1}, {0, 0, 0}, Pi/2} { Curve{1}; }
     """
-    check_geo_script(text, "ok.geo")
+    ops = parse_geo(text, "ok.geo").ops
+    # the loop ran the macro three times (k = 3), so the If's Printf ran: Printf is accepted and ignored
+    assert ["option", "Mesh.ElementOrder", 1.0] in ops and ["field_numbers", 1, "CurvesList", [1.0]] in ops
+    assert ["background", 1] in ops and ["rotate", [[1, 1]], 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, math.pi / 2] in ops
 
 
 def test_numeric_define_constant_is_accepted_and_meshes_like_an_assignment(tmp_path):
@@ -154,11 +176,37 @@ def test_trusted_geo_may_write_files(tmp_path):
     assert marker.read_text().strip() == "written" and "outer" in mesh.boundaries
 
 
-@pytest.mark.parametrize("trusted", [False, True])
-def test_geo_loop_that_does_not_end_hits_the_time_limit(tmp_path, trusted):
+def test_trusted_geo_loop_that_does_not_end_hits_the_time_limit(tmp_path):
     geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
     with pytest.raises(GeometryFileError, match=r"did not finish within 1 s.*timeout=.*--geo-timeout"):
-        load_mesh(geo, size=0.2, trusted=trusted, timeout=1)
+        load_mesh(geo, size=0.2, trusted=True, timeout=1)
+
+
+def test_untrusted_geo_loop_stops_at_the_work_budget(tmp_path):
+    """3000 x 3000 passes of a statement are more than MAX_GEO_STEPS = 2e6 steps: refused while reading,
+    before gmsh starts (each pass counts at least one step: the budget is reached in 2e6 / 3000 < 667 outer passes)."""
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    with pytest.raises(GeometryFileError, match=r"hostile.geo: reading the geometry takes more than 2000000 steps "
+                                                 r"\(MAX_GEO_STEPS"):
+        load_mesh(geo, size=0.2)
+
+
+def test_untrusted_geo_reading_keeps_to_the_time_limit(tmp_path):
+    """The parser checks the meshing time limit as it works. Time-free: a clock that advances 1 s at each look
+    passes the 5 s limit at its sixth look, after about 6 x 1024 steps (it looks every 1024)."""
+    from bearingfe.geometry.geofiles import read_geo
+
+    looks = []
+
+    def clock():
+        looks.append(1)
+        return float(len(looks))
+
+    geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
+    with pytest.raises(GeometryFileError, match=r"hostile.geo: reading the geometry did not finish within 5 s "
+                                                 r".*timeout=.*--geo-timeout.*BEARINGFE_GEO_TIMEOUT"):
+        read_geo(geo, timeout=5, clock=clock)
+    assert len(looks) == 7  # the deadline (1 + 5) and six looks
 
 
 def test_geo_time_limit_from_the_environment(tmp_path, monkeypatch):
@@ -168,7 +216,7 @@ def test_geo_time_limit_from_the_environment(tmp_path, monkeypatch):
 
 
 def test_gmsh_error_is_a_one_line_error(tmp_path, capsys):
-    geo = _geo(tmp_path, "Curve Loop(7) = {1, 99};\nPlane Surface(7) = {7};")
+    geo = _geo(tmp_path, "Curve Loop(7) = {1, 3};\nPlane Surface(7) = {7};")  # parsed, but not a closed loop
     with pytest.raises(GeometryFileError, match="gmsh failed"):
         load_mesh(geo, size=0.2)
     out = tmp_path / "m.msh"
@@ -465,7 +513,8 @@ def test_gmsh_child_dies_with_its_parent(tmp_path):
     import time
 
     geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
-    code = f"from bearingfe import load_mesh; load_mesh({str(geo)!r}, size=0.2, timeout=600)"
+    # trusted: gmsh's interpreter runs the loop in the child (untrusted, the parser would refuse it first)
+    code = f"from bearingfe import load_mesh; load_mesh({str(geo)!r}, size=0.2, timeout=600, trusted=True)"
     parent = subprocess.Popen([sys.executable, "-c", code], cwd=ROOT)
     children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
     child = None
@@ -521,10 +570,10 @@ def test_near_contact_solve_warns_and_notes():
 
 
 def test_command_hidden_behind_a_dot_is_refused():
-    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'Sleep' is used as a command"):
-        check_geo_script(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
-    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: .*text value"):
-        check_geo_script(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'Sleep' is not an accepted option"):
+        parse_geo(PLAIN + "\nGeometry. Sleep 5;\n", "dot.geo")
+    with pytest.raises(UntrustedGeoError, match="dot.geo line 26: 'SystemCall' is not an accepted option"):
+        parse_geo(PLAIN + '\nMesh. SystemCall Sprintf("touch x");\n', "dot.geo")
 
 
 def test_scene_with_tiny_mesh_size_is_one_line(tmp_path, capsys, scene_file):
@@ -549,7 +598,7 @@ def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
     geo = _geo(tmp_path, "For i In {1:3000}\nFor j In {1:3000}\nx = i + j;\nEndFor\nEndFor")
     out = tmp_path / "m.msh"
     parent = subprocess.Popen([sys.executable, "-m", "bearingfe.cli", "mesh", str(geo), "--size", "0.2",
-                               "--out", str(out), "--geo-timeout", "600"], cwd=ROOT)
+                               "--out", str(out), "--geo-timeout", "600", "--trust-geo"], cwd=ROOT)
     children = Path(f"/proc/{parent.pid}/task/{parent.pid}/children")
     for _ in range(300):  # gmsh's child appears once bearingfe is imported (a few seconds at most)
         if children.exists() and children.read_text().split():
@@ -562,3 +611,282 @@ def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
     parent.send_signal(signal.SIGKILL)
     assert parent.wait() == -signal.SIGKILL
     assert sorted(p.name for p in tmp_path.iterdir()) == ["hostile.geo"]
+
+
+# -- untrusted .geo text: lexer corners, size, linear work, fuzz -------------------------------------
+
+def test_nul_in_a_comment_hides_no_command(tmp_path, capsys):
+    """The issue's reproduction: gmsh's lexer ends a // comment at NUL, so a command after it ran. bearingfe's
+    parser refuses control characters anywhere, comments included, naming the line; nothing runs."""
+    marker, out = tmp_path / "pwned", tmp_path / "o.msh"
+    evil = tmp_path / "evil.geo"
+    evil.write_bytes(b'// note\x00SystemCall "touch ' + str(marker).encode() + b'";\n' + PLAIN.encode())
+    assert main(["mesh", str(evil), "--size", "0.2", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "evil.geo line 1: control character U+0000" in err and "Traceback" not in err
+    with pytest.raises(GeometryFileError, match=r"evil.geo line 1: control character U\+0000"):
+        load_mesh(evil, size=0.2)
+    assert not marker.exists() and not out.exists()
+
+
+CORNERS = {  # where a checker's lexer could differ from gmsh's: each either refused or harmless comment/text
+    "carriage return in //": b"// note\rSystemCall \"touch {marker}\";\n",
+    "form feed in //": b"// note\x0cSystemCall \"touch {marker}\";\n",
+    "vertical tab in //": b"// note\x0bSystemCall \"touch {marker}\";\n",
+    "NUL in /* */": b"/* note\x00 */ SystemCall \"touch {marker}\";\n",
+    "backslash line end in //": b"// note \\\nSystemCall \"touch {marker}\";\n",
+    "1023-character string": b"Physical Curve(\"" + b"a" * 1023 + b"\") = {1}; SystemCall \"touch {marker}\";\n",
+    "string across a line": b"Printf(\"a\nSystemCall \"touch {marker}\";\n\");\n",
+    "DEL character": b"x = 1;\x7fSystemCall \"touch {marker}\";\n",
+    "UTF-8 line separator": "// note\u2028SystemCall \"touch {marker}\";\n".encode(),
+    "not UTF-8": b"// note \xff\xfe\nSystemCall \"touch {marker}\";\n",
+}
+
+
+@pytest.mark.parametrize("label", sorted(CORNERS))
+def test_lexer_corners_hide_no_command(tmp_path, label):
+    """The refusals name the line; the one file accepted (the command inside a comment, as its text says)
+    meshes the plain shoe. Either way the marker is never written."""
+    marker = tmp_path / "marker"
+    geo = tmp_path / "corner.geo"
+    geo.write_bytes(CORNERS[label].replace(b"{marker}", str(marker).encode()) + PLAIN.encode())
+    try:
+        mesh = load_mesh(geo, size=0.2)
+    except GeometryFileError as exc:
+        assert re.match(r"corner.geo line \d+: ", str(exc)), str(exc)
+    else:
+        assert label in ("carriage return in //", "form feed in //", "UTF-8 line separator") and mesh.n_nodes == 415
+    assert not marker.exists()
+
+
+def test_geo_file_size_is_capped(tmp_path):
+    """MAX_GEO_BYTES = 1e6: one byte more (a long comment) is refused before it is parsed."""
+    from bearingfe.geometry.geo_parser import MAX_GEO_BYTES
+
+    geo = tmp_path / "big.geo"
+    geo.write_text("//" + "x" * (MAX_GEO_BYTES - 2 - len(PLAIN) - 1) + "\n" + PLAIN)
+    assert geo.stat().st_size == MAX_GEO_BYTES
+    assert load_mesh(geo, size=0.3).n_nodes > 0  # exactly at the limit: read
+    geo.write_text("//" + "x" * (MAX_GEO_BYTES - 2 - len(PLAIN)) + "\n" + PLAIN)
+    with pytest.raises(GeometryFileError, match=r"big.geo is larger than the 1000000 bytes a .geo file may have "
+                                                 r"\(MAX_GEO_BYTES\)"):
+        load_mesh(geo, size=0.3)
+
+
+def _steps(text: str) -> tuple[int, str]:
+    """The parser's operation count for ``text`` and how the read ended."""
+    from bearingfe.geometry.geo_parser import Work
+
+    work = Work()
+    try:
+        parse_geo(text, "steps.geo", work=work)
+        outcome = "read"
+    except GeometryFileError as exc:
+        outcome = str(exc)
+    return work.steps, outcome
+
+
+def test_reading_x_paren_is_linear():
+    """The issue's quadratic case: 'x(' repeated 8,000 times took the allow-list 16 s. The parser lexes each
+    token once and refuses at nesting 40: its step count grows by exactly 2 per 'x(' (two tokens), so from
+    4,000 to 8,000 to 16,000 the differences double exactly (no term in n^2)."""
+    runs = [_steps("x(" * n) for n in (4000, 8000, 16000)]
+    assert all("nested more than 40 deep (MAX_NESTING)" in outcome for _, outcome in runs)
+    (s1, _), (s2, _), (s4, _) = runs
+    assert s2 - s1 == 2 * 4000 and s4 - s2 == 2 * 8000
+
+
+def test_reading_a_geometry_is_linear_in_its_size():
+    """k copies of a block (points, lines, a loop, expressions, a bounded loop) after the plain shoe: every copy
+    costs the same number of steps, so the differences between k = 50, 100, 200 double exactly."""
+    block = ("p = newp; Point(p) = {{0.1 + {k} * 1e-3, 0.2, 0, lc / 2}};\n"
+             "Point(p + 1) = {{0.1, 0.2 + Sqrt({k}) * 1e-3, 0}};\n"
+             "Line(newl) = {{p, p + 1}}; s = 0; For i In {{1:5}} s += i^2 % 3; EndFor\n"
+             "If (s > 3) x[] = {{1:4}}; ElseIf (s < 0) x[] = {{}}; Else x[] = {{}}; EndIf\n")
+    counts = []
+    for k in (50, 100, 200):
+        steps, outcome = _steps(PLAIN + "".join(block.format(k=j) for j in range(k)))
+        assert outcome == "read"
+        counts.append(steps)
+    assert counts[2] - counts[1] == 2 * (counts[1] - counts[0]) > 0
+
+
+def test_trusted_geo_runs_in_its_own_session_with_an_empty_environment(tmp_path, monkeypatch):
+    """--trust-geo keeps gmsh's interpreter, in a child that leads its own session (killed as a whole) and
+    gets none of the caller's environment (a variable set here is not there; shell built-ins only: no PATH)."""
+    monkeypatch.setenv("BEARINGFE_PROBE", "secret")
+    env, sid = tmp_path / "env.txt", tmp_path / "sid.txt"
+    geo = _geo(tmp_path, f'SystemCall "export -p > {env}; read -r a b c d e s rest < /proc/$$/stat; '
+                         f'echo $s > {sid}";')
+    load_mesh(geo, size=0.3, trusted=True)
+    exported = env.read_text()
+    assert "BEARINGFE_PROBE" not in exported and "HOME=" not in exported and "PYTHONPATH='" + str(ROOT) not in exported
+    assert int(sid.read_text()) != os.getsid(0)
+
+
+# the fuzz test: random bytes, token soups and mutated shipped files; every input is either read into the
+# geometry operations below or refused with a GeometryFileError, within the work budget, touching no file,
+# process or environment on the way
+
+#: Operation kinds of the gmsh model builder (bearingfe/geometry/geo_model.py, its module table).
+OPERATIONS = {"point", "line", "circle_arc", "circle", "ellipse_arc", "ellipse", "spline", "bspline", "curve_loop",
+              "plane_surface", "rotate", "translate", "dilate", "symmetry", "physical", "size", "option", "field",
+              "field_number", "field_numbers", "field_string", "background"}
+
+FUZZ_WORDS = (
+    "Point Line Circle Ellipse Spline BSpline Curve Loop Plane Surface Physical Characteristic Length MeshSize "
+    "Rotate Translate Dilate Symmetry Field Background Mesh Geometry SetFactory DefineConstant For In EndFor If "
+    "ElseIf Else EndIf Macro Function Return Call Printf Name Min Max Choices Pi newp newl news newreg Sqrt Cos "
+    "SystemCall System NonBlockingSystemCall OnelabRun Include Merge Save Print Exit Abort GetEnv GetValue Sleep "
+    "Plugin Delete CreateDir ShapeFromFile Sprintf StrCat Duplicata Rectangle ExternalProcess Structured "
+    "General Solver MeshSizeMax Algorithm Distance Threshold MathEval CurvesList InField lc x i p "
+    "( ) [ ] {{ }} , ; = += -= ++ -- . : ? ! ^ % # + - * / < > == && || // /* */ \\ \" ' "
+    "0 1 2 -1 0.5 1e9 1e-9 1e308 1e999 2147483648 .5 1.e3"
+).split()
+CONTROL = [chr(c) for c in range(32) if c not in (9, 10)] + ["\x7f", "\u2028", "\ufeff"]
+
+
+def _mutations(rng, count):
+    """``count`` shipped files, their comments removed, with a few edits: insert a word or character, delete or
+    repeat a span."""
+    shipped = [re.sub(r"//[^\n]*", "", p.read_text()) for p in sorted((ROOT / "meshes").glob("*.geo"))]
+    for _ in range(count):
+        text = rng.choice(shipped)
+        for _ in range(rng.randrange(1, 4)):
+            k = rng.randrange(len(text))
+            edit = rng.randrange(4)
+            if edit == 0:
+                text = text[:k] + " " + rng.choice(FUZZ_WORDS).replace("{{", "{") + " " + text[k:]
+            elif edit == 1:
+                text = text[:k] + rng.choice(CONTROL + list("(){}[];,=\"/*\n")) + text[k:]
+            elif edit == 2:
+                text = text[:k] + text[k + rng.randrange(1, 30):]
+            else:
+                text = text[:k] + text[k:k + rng.randrange(1, 60)] * rng.randrange(2, 6) + text[k:]
+        yield text
+
+
+def _fuzz_texts(rng):
+    for _ in range(300):  # random bytes, read as Latin-1: every byte value, NUL and controls included
+        yield bytes(rng.randrange(256) for _ in range(rng.randrange(1, 400))).decode("latin-1")
+    for _ in range(400):  # token soups, with control characters now and then
+        words = [rng.choice(FUZZ_WORDS if rng.random() < 0.97 else CONTROL) for _ in range(rng.randrange(1, 80))]
+        yield rng.choice(["", PLAIN + "\n"]) + " ".join(words).replace("{{", "{").replace("}}", "}")
+    yield from _mutations(rng, 500)
+    for n in (10, 39, 40, 41, 500, 2000):  # nesting of every kind, at and past MAX_NESTING = 40
+        yield "x = " + "(" * n + "1" + ")" * n + ";\n" + PLAIN
+        yield "x[] = " + "{" * n + "1" + "}" * n + ";\n" + PLAIN
+        yield "x = " + "-" * n + "1;\n" + PLAIN
+        yield "x = " + "2^" * n + "1;\n" + PLAIN
+        yield "x = " + "1 ? " * n + "1" + " : 0" * n + ";\n" + PLAIN
+        yield "For i In {1:1}\n" * n + "x = 1;\n" + "EndFor\n" * n + PLAIN
+        yield "If (1)\n" * n + "x = 1;\n" + "EndIf\n" * n + PLAIN
+        yield "x = Sqrt(" * n + "1" + ")" * n + ";\n" + PLAIN
+        yield "x = 1" + " + 1" * n + ";\n" + PLAIN  # a long flat sum: no nesting, read
+    for n in (1023, 1024, 5000, 20000):  # long strings, comments, names, numbers
+        yield f'Physical Curve("{"a" * n}") = {{1}};\n' + PLAIN
+        yield "// " + "x" * n + "\n" + PLAIN
+        yield "/* " + "*" * n + " */\n" + PLAIN
+        yield "/* " + "x" * n + "\n" + PLAIN
+        yield "a" * n + " = 1;\n" + PLAIN
+        yield "x = " + "9" * n + ";\n" + PLAIN
+        yield '"' * n + PLAIN
+    yield "Macro M\nCall M;\nReturn\nCall M;\n" + PLAIN  # a macro that calls itself
+    yield "For i In {1:1e12}\nEndFor\n" + PLAIN  # a loop of 1e12 passes
+    yield "x[] = {1:3e6};\n" + PLAIN  # a list of 3e6 values
+
+
+def _only_geometry(model) -> None:
+    """Every operation is one the builder knows, with plain numbers and short printable names only."""
+    from bearingfe.geometry.geo_parser import FIELD_KINDS, OPTIONS
+
+    def plain(value):
+        if isinstance(value, list):
+            return all(plain(v) for v in value)
+        if isinstance(value, str):
+            return value.isprintable() and len(value) <= 256 and '"' not in value
+        return isinstance(value, (int, float)) and math.isfinite(value)
+
+    assert model.factory in ("occ", "geo")
+    for op in model.ops:
+        assert op[0] in OPERATIONS and plain(op[1:]), op
+        if op[0] == "option":
+            assert op[1] in OPTIONS
+        if op[0] == "field":
+            assert op[2] in FIELD_KINDS
+        if op[0] == "field_string":
+            assert op[2] == "F"
+
+
+def test_fuzz_reads_geometry_or_refuses_by_name(monkeypatch):
+    """1,285 inputs from a fixed seed: each one is read into geometry operations (checked above) or
+    refused with a GeometryFileError, within MAX_GEO_STEPS; no other exception, and no file opened, process
+    started, environment read or exit on the way (those calls fail the test while the parser runs)."""
+    import builtins
+    import random
+    import subprocess
+    import sys
+
+    from bearingfe.geometry.geo_parser import MAX_GEO_STEPS, Work
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError(f"the parser reached outside: {args!r}")
+
+    rng = random.Random(20261128)
+    texts = list(_fuzz_texts(rng))
+    outcomes = {"read": 0, "refused": 0}
+    with monkeypatch.context() as m:
+        for target, name in ((builtins, "open"), (os, "open"), (os, "system"), (os, "getenv"), (os, "execv"),
+                             (os, "fork"), (subprocess, "Popen"), (sys, "exit"), (os, "_exit")):
+            m.setattr(target, name, forbidden)
+        for text in texts:
+            work = Work()
+            try:
+                model = parse_geo(text, "fuzz.geo", work=work)
+            except GeometryFileError as exc:
+                assert str(exc).startswith("fuzz.geo"), str(exc)
+                outcomes["refused"] += 1
+            else:
+                _only_geometry(model)
+                outcomes["read"] += 1
+            assert work.steps <= MAX_GEO_STEPS
+    assert len(texts) == 1285 and outcomes["read"] >= 30 and outcomes["refused"] > 1000, outcomes
+
+
+def test_fuzzed_files_that_read_mesh_or_fail_by_name(tmp_path):
+    """Some of the mutated files the parser reads, meshed for real: a mesh or a GeometryFileError (gmsh's own
+    error, the element limit), never another exception; a marker the hazards would write never appears."""
+    import random
+
+    from bearingfe.geometry.geofiles import MeshSizeError
+
+    shipped = {re.sub(r"//[^\n]*", "", p.read_text()) for p in (ROOT / "meshes").glob("*.geo")}
+    meshed = 0
+    for text in _mutations(random.Random(7), 2000):
+        if meshed == 4:
+            break
+        try:
+            parse_geo(text, "fuzz.geo")
+        except GeometryFileError:
+            continue
+        if text in shipped:
+            continue  # an edit that changed nothing
+        geo = tmp_path / f"fuzz{meshed}.geo"
+        geo.write_text(text)
+        meshed += 1
+        try:
+            load_mesh(geo, size=0.2, max_elements=20000)
+        except (GeometryFileError, MeshSizeError, ValueError) as exc:
+            assert "Traceback" not in str(exc)
+    assert meshed == 4
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"fuzz{k}.geo" for k in range(4)]
+
+
+def test_geo_that_is_not_a_regular_file_is_not_read(tmp_path):
+    """A named pipe called x.geo would block the reader for ever (no time limit covers a blocked open)."""
+    from bearingfe.geometry.geofiles import read_geo
+
+    pipe = tmp_path / "x.geo"
+    os.mkfifo(pipe)
+    with pytest.raises(GeometryFileError, match="x.geo is not a regular file"):
+        read_geo(pipe)

@@ -26,10 +26,32 @@ def test_vtu_round_trip(tmp_path, results):
     back = meshio.read(tmp_path / "f.vtu")
     m = res.basis.mesh
     np.testing.assert_allclose(back.points[:, :2], m.p[:, : m.nvertices].T)
-    np.testing.assert_array_equal(back.cells_dict["triangle"], m.t.T)
-    np.testing.assert_allclose(back.point_data["pressure"], res.pressure[: m.nvertices])
+    np.testing.assert_array_equal(back.cells_dict["triangle"], m.t[:3].T)
+    # without scales only the solver's values, named as such
+    assert set(back.point_data) == {"pressure_nondimensional", "film_thickness_nondimensional"}
+    np.testing.assert_allclose(back.point_data["pressure_nondimensional"], res.pressure[: m.nvertices])
     x = m.p[:, : m.nvertices]
-    np.testing.assert_allclose(back.point_data["film_thickness"], 1 + 0.6 * np.cos(x[0] - 0.3))
+    np.testing.assert_allclose(back.point_data["film_thickness_nondimensional"], 1 + 0.6 * np.cos(x[0] - 0.3))
+
+
+#: The shipped pump's scales (mechanisms/eccentric_pump.toml): R0 = 50 mm, c = 20 um, mu = 0.03 Pa s,
+#: 1500 rpm; pressure scale mu omega R0^2/c^2 = 0.03 * 50 pi * 0.05^2 / (20e-6)^2 = 29.45 MPa.
+SCALE = bf.Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=50 * math.pi)
+
+
+def test_vtu_with_scales_holds_si_fields_on_a_mesh_in_metres(tmp_path, results):
+    res = results[-1]
+    io.write_vtu(res, tmp_path / "f.vtu", SCALE, field_data={"shaft_angle_deg": 212.0})
+    back = meshio.read(tmp_path / "f.vtu")
+    m = res.basis.mesh
+    x = m.p[:, : m.nvertices]
+    assert SCALE.pressure == pytest.approx(0.03 * 50 * math.pi * 0.05**2 / 20e-6**2, rel=1e-15)
+    np.testing.assert_allclose(back.points[:, :2], 0.05 * x.T)  # (R0 phi, R0 z) [m]
+    np.testing.assert_allclose(back.point_data["pressure_Pa"], SCALE.pressure * res.pressure[: m.nvertices])
+    np.testing.assert_allclose(back.point_data["film_thickness_m"], 20e-6 * (1 + 0.6 * np.cos(x[0] - 0.3)))
+    np.testing.assert_allclose(back.point_data["pressure_nondimensional"], res.pressure[: m.nvertices])
+    np.testing.assert_allclose(back.point_data["film_thickness_nondimensional"], 1 + 0.6 * np.cos(x[0] - 0.3))
+    assert float(np.ravel(back.field_data["shaft_angle_deg"])[0]) == 212.0
 
 
 def test_pvd_series_round_trip(tmp_path, results):
@@ -39,7 +61,16 @@ def test_pvd_series_round_trip(tmp_path, results):
     assert [t for t, _ in entries] == times
     for (t, f), res in zip(entries, results):
         back = meshio.read(f)
-        np.testing.assert_allclose(back.point_data["pressure"], res.pressure[: res.basis.mesh.nvertices])
+        np.testing.assert_allclose(back.point_data["pressure_nondimensional"],
+                                   res.pressure[: res.basis.mesh.nvertices])
+    # with scales: SI fields, the time [s] and the shaft angle [deg] of every frame
+    io.write_pvd(results, times, tmp_path / "si.pvd", scale=SCALE, angles=[0.0, 90.0, 180.0])
+    for (t, f), res, angle in zip(io.read_pvd(tmp_path / "si.pvd"), results, (0.0, 90.0, 180.0)):
+        back = meshio.read(f)
+        np.testing.assert_allclose(back.point_data["pressure_Pa"],
+                                   SCALE.pressure * res.pressure[: res.basis.mesh.nvertices])
+        assert float(np.ravel(back.field_data["shaft_angle_deg"])[0]) == angle
+        assert float(np.ravel(back.field_data["time_s"])[0]) == t
     # existing VTU files referenced by path, relative to the pvd
     sub = tmp_path / "sub"
     sub.mkdir()

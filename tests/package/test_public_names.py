@@ -50,10 +50,14 @@ def test_every_public_name_is_still_there(name):
     ("jfo", ("solve_jfo", "JFOError")),
     ("journal", ("JournalBearing", "equilibrium", "dynamic_coefficients", "performance")),
     ("pump", ("EccentricPump", "PressureCycle")),
+    ("hydrostatic", ("SUPPLIES", "Capillary", "Orifice", "ConstantFlow", "PrescribedPressure", "solve_supplied",
+                     "supply_stiffness", "SupplyError")),
     ("stability", ("rotor_modes", "lund_threshold", "log_decrement_map", "threshold_speed")),
     ("tilting_pad", ("TiltingPadBearing", "TiltingPadGeometry", "tilting_pad_equilibrium", "pad_assembly_coefficients",
                      "reduced_coefficients")),
     ("scenes", ("SCENES", "run_scene", "load_scene")),
+    ("thermal", ("Lubricant", "VISCOSITY_LAWS", "ISO_VG", "iso_vg", "WaltherViscosity", "VogelViscosity",
+                 "HeatBalance", "JournalDuty", "effective_temperature", "ThermalError")),
 ])
 def test_the_modules_keep_their_main_names(module, names):
     # the names the README, the examples and the docs reach through bf.<module>

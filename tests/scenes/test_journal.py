@@ -65,13 +65,15 @@ def test_shipped_scene_runs_end_to_end_and_writes_its_files(tmp_path, capsys, sc
         rows = list(csv.DictReader(fh))
     # one row per mesh node; the largest nodal pressure is the summary's, no node thinner than h_min
     assert len(rows) == s["cost"]["nodes"]
-    assert max(float(x["pressure_Pa"]) for x in rows) == pytest.approx(r["max_pressure_Pa"], rel=1e-12)
-    assert min(float(x["film_m"]) for x in rows) >= r["min_film_m"] * (1 - 1e-12)
-    assert min(float(x["pressure_Pa"]) for x in rows) >= 0.0  # Swift-Stieber: no sub-ambient pressure
+    assert max(float(x["pressure [Pa]"]) for x in rows) == pytest.approx(r["max_pressure_Pa"], rel=1e-12)
+    assert min(float(x["film [m]"]) for x in rows) >= r["min_film_m"] * (1 - 1e-12)
+    assert min(float(x["pressure [Pa]"]) for x in rows) >= 0.0  # Swift-Stieber: no sub-ambient pressure
     with open(out / "coefficients.csv") as fh:
         (row,) = list(csv.DictReader(fh))
+    units = {"frequency": "rad/s", "k": "N/m", "c": "N s/m"}  # the ROSS keywords' SI units
     for key, value in s["ross_bearing_element"].items():
-        assert float(row[key]) == pytest.approx(value[0], rel=1e-15)
+        unit = units["frequency" if key == "frequency" else key[0]]
+        assert float(row[f"{key} [{unit}]"]) == pytest.approx(value[0], rel=1e-15)
     # the shipped file asks for an error estimate: half the element size changes eps by < 2 % here
     err = s["error_estimate"]
     assert err["nodes"] > s["cost"]["nodes"] and 0 <= err["eccentricity"] < 0.02
@@ -159,7 +161,7 @@ def _grooved(**groove):
     (dict(bearing={"length": 0.5}), r"\[bearing\] length: L/D must be in \(0, 4\]; got L/D = 5"),
     (dict(bearing={"diameter": None}), r"\[bearing\] diameter: missing \(required\)"),
     (dict(operating={"viscosity": None, "viscosty": 0.018}),
-     r"\[operating\] viscosty: unknown field; allowed: speed, viscosity"),
+     r"\[operating\] viscosty: unknown field; allowed: speed, speed_rad_s, viscosity"),
     (dict(operating={"load": 0.0}), r"\[operating\] load: must be > 0"),
     (dict(operating={"speed": "fast"}), r"\[operating\] speed: expected a finite number"),
     (dict(bearing={"pads": [[10.0, 5.0]]}),
@@ -231,9 +233,9 @@ def test_pads_and_supply_groove(tmp_path, scene_file):
     # the groove's edge nodes carry the supply pressure exactly (Dirichlet), converted back to 1 bar
     with open(out / "pressure_field.csv") as fh:
         rows = list(csv.DictReader(fh))
-    phi = np.array([float(x["phi_deg"]) for x in rows])
-    z = np.array([float(x["z_m"]) for x in rows])
-    p = np.array([float(x["pressure_Pa"]) for x in rows])
+    phi = np.array([float(x["phi [deg]"]) for x in rows])
+    z = np.array([float(x["z [m]"]) for x in rows])
+    p = np.array([float(x["pressure [Pa]"]) for x in rows])
     on_groove = (np.abs(phi - 90.0) <= 5.0 + 1e-9) & (np.abs(z) <= 0.8 * L / 2 + 1e-12)
     assert on_groove.sum() >= 8
     np.testing.assert_allclose(p[on_groove], 1e5, rtol=1e-9)
@@ -241,3 +243,76 @@ def test_pads_and_supply_groove(tmp_path, scene_file):
     ends = np.minimum(phi, 360.0 - phi) < 1e-9
     assert ends.sum() >= 4 and np.all(p[ends] == 0.0)
     assert s["ross_bearing_element"]["frequency"] == [pytest.approx(omega, rel=1e-15)]
+
+
+def test_speed_in_rpm_or_rad_per_s(scene_file):
+    # 3000 rpm = 2 pi 3000/60 = 100 pi rad/s: either field gives the same settings
+    rpm, label = load_scene(scene_file("journal", name="rpm.toml"))
+    rad, _ = load_scene(scene_file("journal", name="rad.toml", operating={"speed": None, "speed_rad_s": 100 * math.pi}))
+    a, b = journal_settings(rpm, label)["operating"], journal_settings(rad, label)["operating"]
+    assert a["speed"] == 3000.0 and b["speed"] == pytest.approx(3000.0, rel=1e-15)
+    assert a["speed_rad_s"] == pytest.approx(100 * math.pi, rel=1e-15) == b["speed_rad_s"]
+    for change in ({"speed_rad_s": 314.0}, {"speed": None}):  # both, neither
+        data, label = load_scene(scene_file("journal", name="bad.toml", operating=change))
+        with pytest.raises(SceneError, match=r"^bad\.toml: \[operating\] speed: give exactly one of speed \[rpm\] "
+                                             r"and speed_rad_s \[rad/s\]"):
+            journal_settings(data, label)
+
+
+def test_limits_are_flagged_in_the_summary(tmp_path, capsys):
+    # limits on either side of the computed figures: the smallest film must stay >= 1 um (it is ~23 um),
+    # the peak pressure <= 1 MPa (it is ~6 MPa: violated), the friction power <= 1 MW, the total flow <= 1 m^3/s
+    limits = {"min_film": 1e-6, "max_pressure": 1e6, "max_friction_power": 1e6, "max_leakage": 1.0}
+    s, out = _run_shipped(tmp_path, limits=limits, solver={"estimate_error": False},
+                          output={"pictures": [], "tables": []})
+    r = s["results"]
+    assert {k: v["ok"] for k, v in r["limits"].items()} == {"min_film": True, "max_pressure": False,
+                                                           "max_friction_power": True, "max_leakage": True}
+    assert r["limits"]["max_pressure"]["value"] == r["max_pressure_Pa"]
+    assert r["limits"]["max_leakage"]["value"] == r["total_flow_m3s"]
+    assert r["limits"]["min_film"] == {"quantity": "smallest film", "value": r["min_film_m"], "limit": 1e-6,
+                                       "unit": "m", "relation": ">=", "ok": True}
+    assert r["within_limits"] is False
+    rows = {q: v for q, v, _ in s["table"]}
+    assert rows[f"limit max_pressure: {r['max_pressure_Pa']:.4g} <= 1e+06 Pa"] == "VIOLATED"
+    assert rows["peak pressure"] == r["max_pressure_Pa"]  # Pa in the table too
+
+
+def test_limits_schema_names_field_and_range(scene_file):
+    data, label = load_scene(scene_file("journal", name="bad.toml", limits={"min_film": -1e-6}))
+    with pytest.raises(SceneError, match=r"^bad\.toml: \[limits\] min_film: must be > 0; got -1e-06"):
+        journal_settings(data, label)
+    data, label = load_scene(scene_file("journal", name="bad.toml", limits={"min_flim": 1e-6}))
+    with pytest.raises(SceneError, match=r"\[limits\] min_flim: unknown field; allowed: min_film, max_pressure"):
+        journal_settings(data, label)
+
+
+def test_pictures_are_titled_with_readable_axes_and_legends(tmp_path, monkeypatch):
+    """The unwrapped maps: a title with the operating point, phi in degrees, z in mm, tick labels that do
+    not overlap, the colour bar labelled with its unit, the red rupture boundary in the legend."""
+    from bearingfe.plot import maps
+
+    drawn = []
+    draw = maps.field_panels
+    monkeypatch.setattr(maps, "field_panels", lambda *a, **k: drawn.append(draw(*a, **k)) or drawn[-1])
+    s, out = _run_shipped(tmp_path, solver={"estimate_error": False},
+                          output={"pictures": ["pressure", "film"], "tables": []})
+    assert len(drawn) == 2
+    r = s["results"]
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    for fig, unit in zip(drawn, ("p [MPa]", "h [um]")):
+        canvas = FigureCanvasAgg(fig)
+        canvas.draw()
+        field, bar = fig.axes
+        assert fig._suptitle.get_text() == s["title"]
+        assert field.get_title().startswith(f"eccentricity {r['eccentricity']:.3f}, attitude "
+                                            f"{r['attitude_deg']:.1f} deg")
+        assert (field.get_xlabel(), field.get_ylabel(), bar.get_ylabel()) == ("phi [deg]", "z [mm]", unit)
+        for axis in (field.yaxis, field.xaxis, bar.yaxis):
+            boxes = [t.get_window_extent() for t in axis.get_ticklabels() if t.get_visible() and t.get_text()]
+            assert len(boxes) >= 3 and not any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:])
+        # the colour bar with its labels and title lies inside the figure: nothing cut
+        assert bar.get_tightbbox(canvas.get_renderer()).x1 <= fig.bbox.x1
+    pressure = drawn[0].axes[0]
+    assert [t.get_text() for t in pressure.get_legend().get_texts()] == ["film rupture boundary"]

@@ -7,7 +7,9 @@ the film ratio is their quotient, and a pictured state re-solved from the
 trajectory balances the applied load (paper eq. 13-14: film force + load = 0).
 """
 
+import contextlib
 import csv
+import io
 import json
 from pathlib import Path
 
@@ -29,22 +31,22 @@ def _min_column(path: Path, name: str) -> float:
         return min(float(row[name]) for row in csv.DictReader(fh))
 
 
-def test_pump_scene_writes_everything_consistent(tmp_path, capsys, scene_file):
-    out = tmp_path / "out"
-    assert main(["run", str(scene_file("pump", COARSE)), "--out", str(out), "--no-progress"]) == 0
+def test_pump_scene_writes_everything_consistent(coarse_run):
+    out, summary, printed, _ = coarse_run
     names = {p.name for p in out.iterdir()}
     assert {"trajectory_pocket.csv", "trajectory_plain.csv", "trajectory.png", "orbit.png", "pressure.png",
-            "pressure.pvd", "summary.json"} <= names
-    summary = json.loads((out / "summary.json").read_text())
+            "film.png", "summary.png", "pressure.pvd", "summary.json"} <= names
     res = summary["results"]
-    pocket = _min_column(out / "trajectory_pocket.csv", "h_min")
-    plain = _min_column(out / "trajectory_plain.csv", "h_min")
+    pocket = _min_column(out / "trajectory_pocket.csv", "h_min [m]")
+    plain = _min_column(out / "trajectory_plain.csv", "h_min [m]")
     assert res["pocket"]["smallest_film_m"] == pytest.approx(pocket, rel=1e-12)
     assert res["plain"]["smallest_film_m"] == pytest.approx(plain, rel=1e-12)
     assert res["film_ratio"] == pytest.approx(pocket / plain, rel=1e-12)
     assert res["pocket"]["status"] == "completed" and res["plain"]["status"] == "completed"
     assert 0.0 < res["pocket"]["balance_ratio"] < 1.0  # the shipped pocket is below hydrostatic balance
-    assert "smallest film ratio" in capsys.readouterr().out
+    assert "smallest film ratio" in printed
+    rows = {q: v for q, v, _ in summary["table"]}
+    assert rows["pocket gain (smallest film)"] == f"{100 * (res['film_ratio'] - 1):+.0f} %"
 
 
 def test_pictured_state_balances_the_load():
@@ -68,3 +70,138 @@ def test_pump_scene_errors_name_the_field(tmp_path, scene_file):
     missing = scene_file("pump", name="missing.toml", pump={"mechanism": "nowhere.toml"})
     assert main(["run", str(missing), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
     assert not (tmp_path / "o").exists()
+
+
+def _csv(path: Path) -> dict[str, np.ndarray]:
+    with open(path) as fh:
+        rows = list(csv.DictReader(fh))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+#: The shipped pump (mechanisms/eccentric_pump.toml): 1500 rpm = 50 pi rad/s; its force scale
+#: mu omega R0^4/c^2 = 0.03 * 50 pi * 0.05^4 / (20e-6)^2 = 73.63 kN.
+OMEGA = 50 * np.pi
+FORCE_SCALE = 0.03 * OMEGA * 0.05**4 / 20e-6**2
+
+
+@pytest.fixture(scope="module")
+def coarse_run(tmp_path_factory):
+    """The coarse scene with limits on either side of its figures, run once: its folder, summary, printed
+    text and the figures it drew (``trajectory``, ``orbit`` and the field grids, in order)."""
+    from unittest import mock
+
+    import bearingfe.scenes.pump as pump_scene
+    from bearingfe.plot import curves, maps
+    from tests.helpers import scene_data, toml_text
+
+    folder = tmp_path_factory.mktemp("pump")
+    scene = folder / "pump.toml"
+    scene.write_text(toml_text(scene_data("pump", COARSE, limits={"min_film": 10e-6, "max_pressure": 40e6,
+                                                                   "max_friction_power": 1.0,
+                                                                   "max_leakage": 1.0})))
+    out = folder / "out"
+    figures = {"fields": []}
+
+    def keep(name, draw):
+        def wrapped(*args, **kwargs):
+            fig = draw(*args, **kwargs)
+            figures[name].append(fig) if name == "fields" else figures.__setitem__(name, fig)
+            return fig
+        return wrapped
+
+    printed = io.StringIO()
+    with mock.patch.object(curves, "trajectory_plot", keep("trajectory", curves.trajectory_plot)), \
+            mock.patch.object(curves, "orbit_plot", keep("orbit", curves.orbit_plot)), \
+            mock.patch.object(maps, "field_panels", keep("fields", maps.field_panels)), \
+            mock.patch.object(pump_scene, "_summary_page", keep("summary", pump_scene._summary_page)), \
+            contextlib.redirect_stdout(printed):
+        assert main(["run", str(scene), "--out", str(out), "--no-progress"]) == 0
+    return out, json.loads((out / "summary.json").read_text()), printed.getvalue(), figures
+
+
+def test_trajectory_csv_headers_carry_units_and_si_values(coarse_run):
+    out, summary, _, _ = coarse_run
+    cols = _csv(out / "trajectory_pocket.csv")
+    assert all(name.endswith("]") and " [" in name for name in cols)  # "name [unit]" everywhere
+    assert {"t [s]", "beta [deg]", "delta [deg]", "h_min [m]", "chamber_pressure [Pa]", "friction_moment [N m]",
+            "flow_inlet [m^3/s]", "load_x [N]", "inlet_pressure_nondimensional [-]", "load_x_nondimensional [-]"
+            } <= set(cols)
+    # angles in degrees: a quarter turn from a steady start at beta = 0
+    assert cols["beta [deg]"][0] == pytest.approx(0.0, abs=1e-9) and cols["beta [deg]"][-1] == pytest.approx(90.0)
+    # t = beta / omega; load [N] = the non-dimensional load times the force scale
+    np.testing.assert_allclose(cols["t [s]"], np.radians(cols["beta [deg]"]) / OMEGA, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(cols["load_x [N]"], cols["load_x_nondimensional [-]"] * FORCE_SCALE, rtol=1e-12)
+
+
+def test_summary_gives_power_leakage_peak_pressure_and_limit_flags(coarse_run):
+    out, summary, _, _ = coarse_run
+    rows = {q: (v, u) for q, v, u in summary["table"]}
+    for design in ("pocket", "plain"):
+        r = summary["results"][design]
+        cols = _csv(out / f"trajectory_{design}.csv")
+        # friction power = mean friction moment x shaft speed [W]; leakage = mean pocket inflow in l/min
+        assert r["mean_friction_power_W"] == pytest.approx(np.mean(cols["friction_moment [N m]"]) * OMEGA, rel=1e-12)
+        assert rows[f"{design}: mean friction power"] == (pytest.approx(r["mean_friction_power_W"]), "W")
+        assert rows[f"{design}: leakage (mean inflow from the pocket)"] == (
+            pytest.approx(np.mean(cols["flow_inlet [m^3/s]"]) * 6e4, rel=1e-12), "l/min")
+        # the peak pressure is at least that of each pictured state, and at least the chamber's at the
+        # most loaded state with a pocket (the pocket carries the chamber pressure)
+        peak = r["peak_pressure_Pa"]
+        assert rows[f"{design}: peak pressure"] == (pytest.approx(peak), "Pa")
+        assert peak >= max(r["loaded_state"]["peak_pressure_Pa"], r["thinnest_state"]["peak_pressure_Pa"])
+        assert r["loaded_state"]["load_N"] == pytest.approx(max(abs(cols["load_x [N]"])), rel=1e-12)
+        assert r["thinnest_state"]["film_m"] == pytest.approx(r["smallest_film_m"], rel=1e-3)
+        # limits: 10 um smallest film, 40 MPa, 1 W (violated: hundreds of W), 1 m^3/s
+        verdicts = r["limits"]
+        assert verdicts["min_film"]["ok"] == (r["smallest_film_m"] >= 10e-6)
+        assert verdicts["max_pressure"]["ok"] and verdicts["max_leakage"]["ok"]
+        assert not verdicts["max_friction_power"]["ok"] and r["within_limits"] is False
+        v = verdicts["max_friction_power"]
+        assert rows[f"{design}: limit max_friction_power: {v['value']:.4g} <= 1 W"] == ("VIOLATED", "")
+    pocket = summary["results"]["pocket"]
+    assert pocket["loaded_state"]["peak_pressure_Pa"] >= pocket["loaded_state"]["chamber_pressure_Pa"]
+
+
+def test_pictures_draw_both_designs(coarse_run):
+    """Every comparison picture holds both designs: lines per design, one field map per design and state."""
+    _, summary, _, figures = coarse_run
+    film = figures["trajectory"].axes[2]
+    assert [ln.get_label() for ln in film.lines if ln.get_marker() in ("None", "")] == ["pocket: h_min", "plain: h_min"]
+    assert len([ln for ln in film.lines if ln.get_marker() == "o"]) == 2  # the smallest film of each marked
+    assert len(figures["orbit"].axes[0].lines) == 1 + 2 * 3
+    panels = figures["fields"]
+    assert len(panels) == 2  # pressure.png, film.png
+    for fig, unit in zip(panels, ("p [MPa]", "h [um]")):
+        titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+        assert len(titles) == 4  # two designs x (most loaded, thinnest film)
+        assert [ax.get_ylabel() for ax in fig.axes if not ax.get_title()] == [unit] * 4  # the colour bars
+        for design in ("pocket", "plain"):
+            for key, what in (("loaded", "most loaded"), ("thinnest", "thinnest film")):
+                st = summary["results"][design][f"{key}_state"]
+                heading = (f"{design}, {what}: beta = {st['beta_deg']:.0f} deg\n"
+                           f"p_max = {st['peak_pressure_Pa'] / 1e6:.3g} MPa, h_min = {st['film_m'] * 1e6:.3g} um")
+                assert heading in titles
+
+
+def test_summary_page_compares_the_designs_with_their_verdicts(coarse_run):
+    out, summary, _, figures = coarse_run
+    assert (out / "summary.png").stat().st_size > 20000
+    page = figures["summary"]
+    films, *rest = page.axes
+    assert [ln.get_label() for ln in films.lines] == [
+        "pocket", f"pocket: min {summary['results']['pocket']['smallest_film_m'] * 1e6:.3g} um at "
+                  f"{summary['results']['pocket']['thinnest_state']['beta_deg']:.0f} deg",
+        "plain", f"plain: min {summary['results']['plain']['smallest_film_m'] * 1e6:.3g} um at "
+                 f"{summary['results']['plain']['thinnest_state']['beta_deg']:.0f} deg",
+        "limit min_film"]
+    assert films.lines[-1].get_ydata()[0] == pytest.approx(10.0)  # the 10 um limit, drawn in um
+    maps = [ax for ax in rest if ax.get_title().startswith(("pocket, most loaded", "plain, most loaded"))]
+    assert len(maps) == 2
+    (table,) = [t for ax in rest for t in ax.tables]
+    cells = {(r, c): cell.get_text().get_text() for (r, c), cell in table.get_celld().items()}
+    rows = {cells[(r, 0)]: (cells[(r, 1)], cells[(r, 2)]) for r in range(1, 1 + max(r for r, _ in cells))}
+    assert [cells[(0, c)] for c in range(4)] == ["", "pocket", "plain", "unit"]
+    assert rows["mean friction power <= 1 W"] == ("VIOLATED", "VIOLATED")
+    assert rows["peak pressure <= 40 MPa"] == ("ok", "ok")
+    ok = {d: "ok" if summary["results"][d]["limits"]["min_film"]["ok"] else "VIOLATED" for d in ("pocket", "plain")}
+    assert rows["smallest film >= 10 um"] == (ok["pocket"], ok["plain"])

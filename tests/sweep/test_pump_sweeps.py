@@ -6,6 +6,7 @@ film over the cycle, mean inlet flow, mean friction moment times shaft speed),
 and a pocket change must act on ``pump.surface``.
 """
 
+import json
 import math
 
 import numpy as np
@@ -43,3 +44,60 @@ def test_pump_case_validation_names_the_field():
         PumpCase(mesh_size=0.0)
     with pytest.raises(ValueError, match="PumpCase.pump"):
         PumpCase(pump="not a pump")
+
+
+def test_case_status_and_csv_headers():
+    from bearingfe.sweep import case_status, csv_headers
+
+    assert case_status(None) == "completed"
+    assert case_status("FilmRuptured: film ruptured: smallest film reached 0.02 c at beta = 0.9 rad") == "ruptured"
+    assert case_status("LiftOffError: the pocket lifts the shoe") == "failed"
+    columns = ["pocket_fraction", "h_min", "peak_pressure", "flow_inlet", "friction_loss", "seconds", "status"]
+    assert csv_headers(columns, "pump") == {
+        "pocket_fraction": "pocket_fraction [-]", "h_min": "h_min [m]", "peak_pressure": "peak_pressure [Pa]",
+        "flow_inlet": "flow_inlet [m^3/s]", "friction_loss": "friction_loss [W]", "seconds": "seconds [s]"}
+    assert csv_headers(["h_min", "load"], "shoe") == {"h_min": "h_min [-]", "load": "load [-]"}
+
+
+#: Two pump cases: the shipped oil (completes) and a hundred times thinner one (the film closes at
+#: about 54 deg: the hostile tests' weak pump, tests/hostile/test_outputs.py).
+RUPTURE_STUDY = """
+[study]
+name = "rupture check"
+run = "pump"
+outputs = ["h_min", "flow_inlet", "friction_loss"]
+objective = "h_min"
+sense = "max"
+
+[base]
+kind = "pump"
+
+[base.set]
+mesh_size = 0.3
+element = "P1"
+start = "steady"
+
+[grid]
+"pump.viscosity" = [0.03, 0.0003]
+"""
+
+
+@pytest.mark.slow  # two pump revolutions in worker processes: about 5 s
+def test_ruptured_cases_are_results_not_failures(tmp_path, capsys):
+    import csv
+
+    from bearingfe.cli import main
+
+    (tmp_path / "s.toml").write_text(RUPTURE_STUDY)
+    argv = ["sweep", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--no-progress"]
+    for run in range(2):  # first use and the cached rerun: both exit 0
+        assert main(argv) == 0
+        out = capsys.readouterr().out
+        assert "2 cases: 1 completed, 1 ruptured (the film closed" in out and "0 failed" in out
+        assert "best (max h_min): pump.viscosity [Pa s]=0.03, h_min [m]=" in out  # the best line with units
+    with open(tmp_path / "out" / "results.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["status"] for r in rows] == ["completed", "ruptured"]
+    assert rows[1]["error"].startswith("FilmRuptured: film ruptured") and rows[1]["h_min [m]"] == ""
+    assert 1e-6 < float(rows[0]["h_min [m]"]) < 20e-6 and rows[0]["pump.viscosity [Pa s]"] == "0.03"
+    assert json.loads((tmp_path / "out" / "best.json").read_text())["pump.viscosity"] == 0.03

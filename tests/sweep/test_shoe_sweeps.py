@@ -200,7 +200,10 @@ def test_sweep_command_writes_table_and_best(tmp_path, capsys):
     assert main(argv) == 0
     best = json.loads((tmp_path / "out" / "best.json").read_text())
     assert best["pocket_fraction"] == 0.08  # the pocket at p_s = 1 carries more than the plain shoe
-    assert "2 cases, 0 failed" in capsys.readouterr().out
+    assert "2 cases: 2 completed, 0 ruptured" in capsys.readouterr().out
+    # the shoe run's outputs are non-dimensional: "[-]" in the CSV headers, seconds in s
+    header = (tmp_path / "out" / "results.csv").read_text().splitlines()[0].split(",")
+    assert header == ["pocket_fraction [-]", "h_min [-]", "load [-]", "seconds [s]", "status", "error", "cached", "key"]
     assert main(argv) == 0
     assert "2 from cache" in capsys.readouterr().out
     (tmp_path / "bad.toml").write_text("[study\n")

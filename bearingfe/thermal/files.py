@@ -1,0 +1,88 @@
+"""The ``[oil]`` fields of scene files: their schema and the lubricant and heat balance they build.
+
+One lubricant, given as exactly one of
+
+- ``grade`` (an ISO 3448 grade, :data:`bearingfe.thermal.lubricant.ISO_VG`) with
+  ``kinematic_viscosity_100C`` [m^2/s] (its data sheet's);
+- ``kinematic_viscosity = [[t1_C, nu1], [t2_C, nu2]]``: the Walther (ASTM D341) law through two points
+  [degC, m^2/s];
+- ``vogel = [a, b, c]``: ``mu = a exp(b/(T - c))`` [Pa s, K, K];
+
+with ``density_15C`` [kg/m^3] and an optional constant ``specific_heat`` [J/(kg K)] (default Cragoe's
+correlation), and the heat balance: ``supply_temperature_C`` [degC], ``carry_over``,
+``conducted_fraction``, ``effective_fraction`` (:class:`bearingfe.thermal.HeatBalance`).
+"""
+
+from __future__ import annotations
+
+from ..core.schema import (Range, SchemaError, build, choice, number, numbers, positive_number)
+from .heat_balance import HeatBalance
+from .lubricant import ISO_VG, Lubricant, VogelViscosity, WaltherViscosity, iso_vg, kelvin
+
+__all__ = ["OIL", "check_oil", "lubricant_of", "balance_of"]
+
+#: What the ``kinematic_viscosity`` field accepts.
+_POINTS_RULE = "two points [[temperature_degC, kinematic_viscosity_m2s], ...] of the Walther (ASTM D341) law"
+
+
+def _viscosity_points(where, value):
+    """Two ``[temperature_C, nu_m2s]`` pairs."""
+    if not (isinstance(value, list) and len(value) == 2):
+        raise SchemaError(f"{where}: expected {_POINTS_RULE}; got {value!r}")
+    return tuple(numbers(2, _POINTS_RULE)(where, v) for v in value)
+
+
+_viscosity_points.accepts = _POINTS_RULE
+
+#: The oil's fields (``{name: (check, default)}``, :mod:`bearingfe.core.schema`): the lubricant and the balance.
+OIL = {
+    "grade": (choice(lambda: ISO_VG), None), "kinematic_viscosity_100C": (positive_number, None),
+    "kinematic_viscosity": (_viscosity_points, None),
+    "vogel": (numbers(3, "Vogel's [a_Pa_s, b_K, c_K] of mu = a exp(b/(T - c))"), None),
+    "density_15C": (number(Range(600.0, 1100.0)), 870.0),
+    "specific_heat": (number(Range(500.0, 5000.0)), None),
+    "supply_temperature_C": (number(Range(-50.0, 200.0)), None),
+    "carry_over": (number(Range(0.0, 1.0)), 0.0),
+    "conducted_fraction": (number(Range(0.0, 1.0, hi_open=True)), 0.0),
+    "effective_fraction": (number(Range(0.0, 1.0, lo_open=True)), 0.5),
+}
+
+
+def check_oil(oil: dict, label: str, section: str, need_supply: bool = True) -> None:
+    """One lubricant (and, with ``need_supply``, a supply temperature) in the read ``[section]`` table.
+
+    Raises
+    ------
+    SchemaError
+        Naming the file, the table and what is wrong.
+    """
+    given = [k for k in ("grade", "kinematic_viscosity", "vogel") if oil[k] is not None]
+    if len(given) != 1:
+        raise SchemaError(f"{label}: [{section}]: give exactly one of grade (with kinematic_viscosity_100C), "
+                          f"kinematic_viscosity or vogel; got {given or 'none'}")
+    if (oil["grade"] is None) != (oil["kinematic_viscosity_100C"] is None):
+        raise SchemaError(f"{label}: [{section}] kinematic_viscosity_100C: goes with grade (both or neither); "
+                          f"got {oil['kinematic_viscosity_100C']!r}")
+    if need_supply and oil["supply_temperature_C"] is None:
+        raise SchemaError(f"{label}: [{section}] supply_temperature_C: missing (required)")
+
+
+def lubricant_of(oil: dict, label: str, section: str) -> Lubricant:
+    """The :class:`Lubricant` of a checked ``[section]`` table (a constructor's error as a :class:`SchemaError`)."""
+    props = dict(density=oil["density_15C"], specific_heat=oil["specific_heat"])
+    if oil["grade"] is not None:
+        return build(label, section, iso_vg, oil["grade"], oil["kinematic_viscosity_100C"], **props)
+    if oil["kinematic_viscosity"] is not None:
+        (t1, n1), (t2, n2) = oil["kinematic_viscosity"]
+        law = build(label, section, WaltherViscosity.through, (kelvin(t1), n1), (kelvin(t2), n2))
+    else:
+        law = build(label, section, VogelViscosity, *oil["vogel"])
+    return build(label, section, Lubricant, law, name="oil", **props)
+
+
+def balance_of(oil: dict, label: str, section: str, supply_temperature: float | None = None) -> HeatBalance:
+    """The :class:`HeatBalance` of a checked ``[section]`` table; ``supply_temperature`` [K] when the table
+    gives none."""
+    t = kelvin(oil["supply_temperature_C"]) if oil["supply_temperature_C"] is not None else supply_temperature
+    return build(label, section, HeatBalance, t, carry_over=oil["carry_over"],
+                 conducted_fraction=oil["conducted_fraction"], effective_fraction=oil["effective_fraction"])

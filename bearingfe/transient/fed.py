@@ -1,0 +1,139 @@
+r"""The plunger shoe with its pocket fed from the chamber through the plunger's restrictor.
+
+The rigid film of :mod:`bearingfe.transient.rigid` (rates from the 2x2 superposition system),
+with the pocket no longer at the chamber pressure ``p_ch(beta)`` but at its own pressure ``p_r``,
+fed through :attr:`bearingfe.EccentricPump.shoe_supply` (a capillary or an orifice,
+:class:`bearingfe.bearings.hydrostatic.Restrictor`). What enters the pocket through the restrictor
+leaves it into the film, fills the pocket's growing gap, or compresses its oil::
+
+    V/K dp_r/dt = Q_restrictor(p_ch - p_r) - Q_film - dV/dt,     dV/dt = int_pocket dh/dt dA,
+
+with ``Q_film`` the film's outflow from the pocket (linear in the superposition's sources: one
+flux per unit field, :func:`bearingfe.bearings.hydrostatic.pocket_flows`) and ``dh/dt`` the
+shoe's squeeze over the pocket (``dh/dgamma = cos(phi - delta)``, ``dh/ddelta = gamma sin(phi -
+delta)``, integrated from the pocket's moments). With the restrictor's ``pocket_volume`` the
+state is ``(gamma, delta, p_r)`` [-, rad, -] and ``p_r`` has this rate equation
+(``dp_r/dbeta = K R0^2 c / (V P) (...)``, non-dimensional flows); without it the pocket holds no
+oil of its own and ``p_r`` is balanced at each instant (the right side at zero), the state stays
+``(gamma, delta)``. The trajectory's ``inlet_pressure`` is ``p_r``.
+
+Starts: the rigid model's steady state at ``beta0`` (pocket at the chamber pressure) with the
+pocket balanced on it, or the periodic state from there; cavitation and the elastic support are
+not combined with a fed pocket.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .base import NoEquilibrium
+from .rigid import Rigid
+from ..bearings.hydrostatic import PocketFilm, SupplyError, balance_pockets, pocket_flows
+from ..bearings.pump import EccentricPump
+from ..core.linalg import DEFAULT_SOLVER
+from ..film import Superposition, source_weights
+from ..geometry.meshing import SupportMesh
+
+__all__ = ["Fed"]
+
+
+class Fed(Rigid):
+    """The rigid film with the pocket fed through the plunger's restrictor (see the module docstring).
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        With ``shoe_supply`` (a :class:`~bearingfe.bearings.hydrostatic.Restrictor`).
+    mesh : SupportMesh
+        Of ``pump.surface``; its pockets share the one restrictor (one pocket pressure).
+    formulation, element, solver
+        See :func:`bearingfe.superpose`.
+    """
+
+    name = "fed"
+    # Newton shooting's monodromy is that of a (gamma, delta) state: not for the pocket-pressure state
+    periodic_methods = ("fixed-point", "anderson", "one-revolution")
+    periodic_default = "anderson"
+
+    def __init__(self, pump: EccentricPump, mesh: SupportMesh, *, formulation: str = "pi", element: str = "P1",
+                 solver: str = DEFAULT_SOLVER) -> None:
+        if pump.shoe_supply is None:
+            raise ValueError(f"{pump.name!r} has no shoe_supply: its pocket is at the chamber pressure (the rigid "
+                             "model)")
+        if not mesh.has_inlet:
+            raise ValueError("the fed model needs a shoe with a pocket (the mesh has no 'inlet' boundary)")
+        super().__init__(pump, mesh, formulation=formulation, element=element, solver=solver)
+        self.restrictor = pump.shoe_supply
+        sc = pump.scale
+        volume = self.restrictor.pocket_volume
+        #: dp_r/dbeta [-] per unit flow imbalance [omega R0^2 c]; None: no pocket volume (balanced pocket)
+        self.compressibility = (None if volume is None else
+                                self.restrictor.bulk_modulus * sc.radius**2 * sc.clearance / (volume * sc.pressure))
+        self._flux: dict[int, tuple[Superposition, np.ndarray]] = {}
+
+    # -- the pocket ------------------------------------------------------------------------------------
+
+    def unit_flux(self, sup: Superposition) -> np.ndarray:
+        """The film's outflow from the pockets of each unit field (4,) [omega R0^2 c]: linear in the sources."""
+        got = self._flux.get(id(sup))
+        if got is None or got[0] is not sup:
+            flux = pocket_flows(PocketFilm(whole=sup, pockets=(sup,)), sup.fields, np.eye(4))[0]
+            if len(self._flux) > 16:
+                self._flux.clear()
+            got = self._flux[id(sup)] = (sup, flux)
+        return got[1]
+
+    def _outflow(self, beta: float, y: np.ndarray, rates: np.ndarray, p: float) -> float:
+        """``Q_film + dV/dt`` [omega R0^2 c] at pocket pressure ``p`` and squeeze rates ``rates``."""
+        sup = self.superposition(y[0], y[1])
+        q_film = float(self.unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
+        _, mc, ms = sup.operators.pocket_moments  # int_pocket (1, cos phi, sin phi)
+        c, s = math.cos(y[1]), math.sin(y[1])
+        return q_film + rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc)
+
+    def _law(self, beta: float):
+        return self.restrictor.law_at(float(self.pump.chamber_pressure(beta)), self.pump.scale)
+
+    def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
+        """``p_r`` [-]: the state's third entry, or balanced at this instant (no pocket volume)."""
+        if np.size(y) > 2:
+            return float(y[2])
+        return self._balanced(beta, y)
+
+    def _balanced(self, beta: float, y: np.ndarray) -> float:
+        """The pocket pressure at which the restrictor feeds exactly the film and the pocket's gap."""
+        pump = self.pump
+        sup = self.superposition(y[0], y[1])
+        load, wedge = pump.load_vector(beta), float(pump.wedge(beta))
+        r0 = np.asarray(sup.rates_for_load(load, wedge, 0.0))
+        r1 = np.asarray(sup.rates_for_load(load, wedge, 1.0)) - r0  # the rates are linear in the pocket pressure
+        f0 = self._outflow(beta, y, r0, 0.0)
+        f1 = self._outflow(beta, y, r0 + r1, 1.0) - f0
+        try:
+            return float(balance_pockets([self._law(beta)], lambda p: np.array([f0 + f1 * p[0]]),
+                                         np.array([[f1]]))[0])
+        except SupplyError as exc:
+            raise NoEquilibrium(f"beta = {beta:.4f} rad: the pocket fed through the restrictor has no balance ({exc})")
+
+    def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
+        rates = self.balance(beta, y, full=False)[0]
+        if self.compressibility is None or np.size(y) == 2:
+            return rates
+        p = float(y[2])
+        imbalance = self._law(beta).flow(p) - self._outflow(beta, y, rates, p)
+        return np.array([rates[0], rates[1], self.compressibility * imbalance])
+
+    # -- start and samples -----------------------------------------------------------------------------
+
+    def initial_state(self, settings) -> tuple[float, np.ndarray]:
+        beta0, y0 = super().initial_state(settings)
+        y0 = np.asarray(y0, float)[:2]
+        if self.compressibility is None:
+            return beta0, y0
+        return beta0, np.array([y0[0], y0[1], self._balanced(beta0, y0)])
+
+    def sample_state(self, beta: float, y: np.ndarray):
+        rates, res, sup, more = super().sample_state(beta, y)
+        return rates, res, sup, dict(more, inlet_pressure=self.pocket_pressure(beta, y))

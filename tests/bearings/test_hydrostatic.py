@@ -1,0 +1,434 @@
+"""Pockets fed through restrictors (bearingfe.bearings.hydrostatic) against the closed forms of the circular recess pad.
+
+Reference (derived in the module docstring of tests/test_reynolds_closed_forms.py and in Rowe,
+*Hydrostatic, Aerostatic and Hybrid Bearing Design*, 2012, ch. 4-5): a flat circular pad of radius R with a
+central recess of radius r at pressure p_r, uniform film h, no motion:
+
+    film flow  Q = pi h^3 p_r / (6 mu ln(R/r)) = K h^3 p_r,    load  W = pi p_r (R^2 - r^2) / (2 ln(R/r)).
+
+Fed from a supply p_s: capillary ``Kc (p_s - p_r) = Q`` gives beta = p_r/p_s = Kc / (Kc + K h^3) and the
+stiffness -dW/dh = 3 W (1 - beta) / h; orifice ``C sqrt(p_s - p_r) = Q`` gives beta from
+``(K h^3 p_s)^2 beta^2 = C^2 p_s (1 - beta)`` and -dW/dh = 6 W (1 - beta) / ((2 - beta) h); constant flow gives
+p_r = Q / (K h^3) and -dW/dh = 3 W / h. At fixed p_s and pad, the capillary stiffness 3 A p_s beta (1 - beta)/h
+is largest at beta = 1/2, the orifice's 6 A p_s beta (1 - beta)/((2 - beta) h) at beta = 2 - sqrt(2).
+
+Tolerances, from the mesh convergence measured on these meshes (pad R = 0.4, r = 0.1, size 0.05, recess edges
+size/3): P2 on curved (order-2) meshes: load and flow errors 4e-6 at size 0.05 and 7e-7 at 0.025, hence 2e-5;
+P1: 6e-4 (load) and 1.7e-3 (flow) at 0.05, 1.2e-4 and 7e-4 at 0.025, hence 3e-3. The stiffness is a central
+difference with step 1e-3: its truncation error measured 4.2e-7 relative against the formula evaluated with
+the computed load and beta, hence 2e-6 there; against the fully closed-form value the mesh error adds.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from bearingfe import (Circle, CosineFilm, Discretization, OperatingPoint, Scale, Surface, UniformFilm, load_mechanism,
+                       mesh_surface, solve_reynolds)
+from bearingfe.bearings.hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, Restrictor,
+                                            SupplyError, pocket_film, pocket_flows, pocket_names, solve_supplied,
+                                            supply_stiffness)
+from bearingfe.core.schema import SchemaError
+from tests.helpers import ROOT
+
+R, r = 0.4, 0.1
+SCALE = Scale(radius=0.05, clearance=20e-6, viscosity=0.05, speed=100.0)  # pad 20 mm radius, film 20 um
+PS = 5e6  # supply pressure [Pa]
+LOG = math.log(R / r)
+C = SCALE.clearance
+#: the film's conductance at h = 1 [m^3/s per Pa]: Q = K h^3 p_r (closed form above, SI)
+K = math.pi * C**3 / (6 * SCALE.viscosity * LOG)
+#: the pad's effective area [m^2]: W = A p_r
+AREA = math.pi * ((R * SCALE.radius) ** 2 - (r * SCALE.radius) ** 2) / (2 * LOG)
+P2 = Discretization(element="P2", formulation="direct")
+P1 = Discretization(element="P1", formulation="direct")
+TOL = {"P1": 3e-3, "P2": 2e-5}
+MU, RHO, CD = SCALE.viscosity, 860.0, 0.7
+
+
+@pytest.fixture(scope="module")
+def pads():
+    surface = Surface(outer=Circle((0.0, 0.0), R), inlets=(Circle((0.0, 0.0), r),))
+    return {"P2": mesh_surface(surface, 0.05, inlet_size=0.05 / 3, order=2),
+            "P1": mesh_surface(surface, 0.05, inlet_size=0.05 / 3, order=1)}
+
+
+def capillary_for(beta: float, h: float = 1.0) -> Capillary:
+    """The capillary that puts the recess at beta p_s: Kc = K h^3 beta / (1 - beta), Kc = pi d^4 / (128 mu l)."""
+    d = 0.4e-3
+    kc = K * h**3 * beta / (1 - beta)
+    return Capillary(diameter=d, length=math.pi * d**4 / (128 * MU * kc), supply_pressure=PS)
+
+
+def orifice_for(beta: float, h: float = 1.0) -> Orifice:
+    """The orifice that puts the recess at beta p_s: C sqrt(p_s (1 - beta)) = K h^3 beta p_s, C = Cd pi d^2/4 sqrt(2/rho)."""
+    c = K * h**3 * beta * PS / math.sqrt(PS * (1 - beta))
+    d = math.sqrt(4 * c / (CD * math.pi * math.sqrt(2 / RHO)))
+    return Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=PS)
+
+
+# -- the supplies ----------------------------------------------------------------------------
+
+def test_the_table_of_supplies():
+    assert set(SUPPLIES) == {"pressure", "capillary", "orifice", "flow"}
+    assert all(cls.kind == kind for kind, cls in SUPPLIES.items())
+
+
+@pytest.mark.parametrize("make, name", [
+    (lambda: Capillary(diameter=-1e-3, length=0.01, supply_pressure=1e6), "Capillary.diameter"),
+    (lambda: Capillary(diameter=1e-3, length=5e-4, supply_pressure=1e6), "Capillary.length"),
+    (lambda: Capillary(diameter=1e-3, length=0.01, supply_pressure=0.0), "Capillary.supply_pressure"),
+    (lambda: Orifice(diameter=1e-3, discharge_coefficient=1.2, density=860, supply_pressure=1e6),
+     "Orifice.discharge_coefficient"),
+    (lambda: Orifice(diameter=1e-3, discharge_coefficient=0.6, density=0.0, supply_pressure=1e6), "Orifice.density"),
+    (lambda: ConstantFlow(flow=math.nan), "ConstantFlow.flow"),
+    (lambda: PrescribedPressure(pressure=math.inf), "PrescribedPressure.pressure"),
+])
+def test_a_bad_supply_is_named(make, name):
+    with pytest.raises(ValueError, match=name):
+        make()
+
+
+def test_the_laws_in_the_solvers_currency():
+    # Hagen-Poiseuille and the sharp orifice in SI, converted back from the non-dimensional law
+    cap = Capillary(diameter=0.5e-3, length=0.02, supply_pressure=PS)
+    law = cap.law(SCALE)
+    dp = 0.3 * PS
+    assert SCALE.to_flow(law.flow(SCALE.from_pressure(PS - dp))) == pytest.approx(
+        math.pi * 0.5e-3**4 * dp / (128 * MU * 0.02), rel=1e-13)
+    orf = Orifice(diameter=0.3e-3, discharge_coefficient=CD, density=RHO, supply_pressure=PS)
+    law = orf.law(SCALE)
+    assert SCALE.to_flow(law.flow(SCALE.from_pressure(PS - dp))) == pytest.approx(
+        CD * math.pi * 0.3e-3**2 / 4 * math.sqrt(2 * dp / RHO), rel=1e-13)
+
+
+# -- the circular recess pad ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_capillary_recess_pad(pads, element):
+    beta = 0.5
+    st = supply_stiffness(pads[element], UniformFilm, 1.0, capillary_for(beta), SCALE,
+                          discretization=P2 if element == "P2" else P1)
+    pocket = st.result.pockets[0]
+    tol = TOL[element]
+    assert pocket.ratio == pytest.approx(beta, rel=tol)
+    assert pocket.film_flow == pytest.approx(K * beta * PS, rel=tol)
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-10)  # the balance itself
+    assert st.result.load == pytest.approx(AREA * beta * PS, rel=tol)
+    # stiffness: the formula with the computed load and ratio (only the finite difference's error) ...
+    assert st.stiffness == pytest.approx(3 * st.result.load * (1 - pocket.ratio) / C, rel=2e-6)
+    # ... and the closed form outright
+    assert st.stiffness == pytest.approx(3 * AREA * beta * PS * (1 - beta) / C, rel=tol)
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_orifice_recess_pad(pads, element):
+    beta = 0.6
+    st = supply_stiffness(pads[element], UniformFilm, 1.0, orifice_for(beta), SCALE,
+                          discretization=P2 if element == "P2" else P1)
+    pocket = st.result.pockets[0]
+    tol = TOL[element]
+    assert pocket.ratio == pytest.approx(beta, rel=tol)
+    assert pocket.film_flow == pytest.approx(K * beta * PS, rel=tol)
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-10)
+    assert st.result.load == pytest.approx(AREA * beta * PS, rel=tol)
+    b = pocket.ratio
+    assert st.stiffness == pytest.approx(6 * st.result.load * (1 - b) / ((2 - b) * C), rel=2e-6)
+    assert st.stiffness == pytest.approx(6 * AREA * beta * PS * (1 - beta) / ((2 - beta) * C), rel=tol)
+
+
+def test_constant_flow_recess_goes_as_h_cubed(pads):
+    flow = 1e-6  # m^3/s
+    mesh = pads["P2"]
+    for h in (0.8, 1.0, 1.25):
+        res = solve_supplied(mesh, UniformFilm(h), ConstantFlow(flow), SCALE, discretization=P2)
+        assert res.pockets[0].pressure == pytest.approx(flow / (K * h**3), rel=TOL["P2"])
+        assert res.pockets[0].film_flow == pytest.approx(flow, rel=1e-10)
+    st = supply_stiffness(mesh, UniformFilm, 1.0, ConstantFlow(flow), SCALE, discretization=P2)
+    # W ~ h^-3: the central difference's truncation error is (n + 1)(n + 2)/6 step^2 = 3.3e-6 for n = 3
+    assert st.stiffness == pytest.approx(3 * st.result.load / C, rel=4e-6)
+
+
+def _peak(beta: np.ndarray, k: np.ndarray) -> float:
+    """The vertex of the parabola through three points."""
+    a, b, _ = np.polyfit(beta, k, 2)
+    return -b / (2 * a)
+
+
+@pytest.mark.parametrize("kind, optimum, betas", [
+    ("capillary", 0.5, (0.46, 0.5, 0.54)),
+    ("orifice", 2 - math.sqrt(2), (0.55, 0.59, 0.63)),
+])
+def test_the_stiffest_recess_ratio(pads, kind, optimum, betas):
+    # at fixed supply pressure and pad, the designs of three restrictors around the optimum: the vertex of
+    # the parabola through their computed stiffnesses against the closed-form optimum (the parabola's
+    # own error over +-0.04 is below 1e-3 for both laws: the cubic term of k(beta) is that small there)
+    make = capillary_for if kind == "capillary" else orifice_for
+    ratios, stiff = [], []
+    for beta in betas:
+        st = supply_stiffness(pads["P2"], UniformFilm, 1.0, make(beta), SCALE, discretization=P2)
+        ratios.append(st.result.pockets[0].ratio)
+        stiff.append(st.stiffness)
+    assert _peak(np.array(ratios), np.array(stiff)) == pytest.approx(optimum, abs=2e-3)
+
+
+# -- every cavitation model -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+@pytest.mark.parametrize("cavitation", ["none", "reynolds", "gumbel"])
+def test_every_finite_element_model_balances_the_pad(pads, cavitation, element):
+    # no motion: the pressure is positive everywhere, so every model is the linear film
+    res = solve_supplied(pads[element], UniformFilm(1.0), orifice_for(0.6), SCALE,
+                         discretization=P2 if element == "P2" else P1, cavitation=cavitation)
+    assert res.pockets[0].ratio == pytest.approx(0.6, rel=TOL[element])
+    assert res.film.cavitation == cavitation
+
+
+def test_jfo_balances_the_pad_through_the_front_door():
+    # the finite-volume scheme (P1 on a straight-sided mesh) holds the one pocket at the balanced pressure;
+    # without motion its film is the P1 Galerkin film (the same numbers: the ratio's error measured 3.0e-3,
+    # 1.3e-3, 5.2e-4 at sizes 0.08, 0.04, 0.02 with either)
+    surface = Surface(outer=Circle((0.0, 0.0), R), inlets=(Circle((0.0, 0.0), r),))
+    mesh = mesh_surface(surface, 0.04, inlet_size=0.04 / 3, order=1)
+    res = solve_supplied(mesh, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
+    pocket = res.pockets[0]
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+    assert pocket.ratio == pytest.approx(0.5, rel=TOL["P1"])
+    linear = solve_supplied(mesh, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1)
+    assert pocket.pressure == pytest.approx(linear.pockets[0].pressure, rel=1e-9)
+    assert res.film.cavitation == "jfo"
+
+
+@pytest.mark.parametrize("cavitation", ["reynolds", "gumbel"])
+def test_a_wedge_under_cavitation_is_balanced_with_the_film(cavitation):
+    # a tilted pad turning: the film ruptures where it diverges; the pocket pressure is iterated with the
+    # cavitation solve until the orifice's flow equals the film's outflow from the pocket
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.3, inlets=(Circle((0.0, 0.0), 0.08),))
+    mesh = mesh_surface(surface, 0.05, inlet_size=0.02, order=2)
+    op = OperatingPoint(wedge=1.0)
+    orf = Orifice(diameter=0.1e-3, discharge_coefficient=CD, density=RHO, supply_pressure=2e6)
+    res = solve_supplied(mesh, CosineFilm(0.8, 0.3), orf, SCALE, operating=op, cavitation=cavitation,
+                         discretization=P2)
+    assert res.film.cavitated is not None and res.film.cavitated.any()
+    pocket = res.pockets[0]
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+    # the film at that pocket pressure through the front door: the same answer
+    p_nd = SCALE.from_pressure(pocket.pressure)
+    ref = solve_reynolds(mesh, CosineFilm(0.8, 0.3), wedge=1.0, inlet_pressure=p_nd, cavitation=cavitation,
+                         discretization=P2)
+    assert SCALE.to_flow(ref.flows["inlet"]) == pytest.approx(pocket.film_flow, rel=1e-9)
+    assert res.film.integral == pytest.approx(ref.integral, rel=1e-9)
+    np.testing.assert_allclose(res.film.force, ref.force, rtol=1e-9)
+
+
+# -- several pockets -------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def twin():
+    surface = Surface(outer=Circle((0.0, 0.0), R), inlets=(Circle((-0.18, 0.0), 0.07), Circle((0.18, 0.0), 0.07)))
+    return mesh_surface(surface, 0.05, inlet_size=0.02, order=2)
+
+
+def test_pocket_fields_are_reciprocal_and_conserve_mass(twin):
+    # the film's conductance is symmetric (the Reynolds operator is self-adjoint), a pocket at pressure
+    # draws from the other (G_01 < 0), and with both at unit pressure the pocket flows are the front door's
+    assert pocket_names(twin) == ("inlet_0", "inlet_1")
+    pf = pocket_film(twin, UniformFilm(1.0), P2)
+    U = np.column_stack([s.fields[:, 3] for s in pf.pockets])
+    G = pocket_flows(pf, U, np.array([[0, 0], [0, 0], [0, 0], [1.0, 1.0]]))
+    assert G[0, 1] == pytest.approx(G[1, 0], rel=1e-8)
+    assert G[0, 1] < 0 < G[0, 0]
+    whole = solve_reynolds(twin, UniformFilm(1.0), wedge=0.0, inlet_pressure=1.0, discretization=P2)
+    assert G.sum() == pytest.approx(whole.flows["inlet"], rel=1e-10)
+
+
+@pytest.mark.parametrize("formulation", ["direct", "pi"])
+def test_equal_prescribed_pockets_are_the_front_doors_film(twin, formulation):
+    # every pocket prescribed at one pressure: the front door's problem, to round-off (both formulations:
+    # the pi form's pocket data are h^(3/2) p)
+    p = 3e6
+    disc = Discretization(element="P2", formulation=formulation)
+    res = solve_supplied(twin, CosineFilm(0.3), PrescribedPressure(p), SCALE, discretization=disc,
+                         operating=OperatingPoint(wedge=1.0, squeeze=(0.1, 0.0)))
+    ref = solve_reynolds(twin, CosineFilm(0.3), wedge=1.0, squeeze=(0.1, 0.0), inlet_pressure=SCALE.from_pressure(p),
+                         discretization=disc)
+    assert res.film.formulation == formulation
+    assert res.film.integral == pytest.approx(ref.integral, rel=1e-10)
+    np.testing.assert_allclose(res.film.force, ref.force, rtol=1e-10)
+    assert res.total_flow == pytest.approx(SCALE.to_flow(ref.flows["inlet"]), rel=1e-10)
+
+
+def test_two_pockets_each_its_own_restrictor(twin):
+    # a capillary and a prescribed pocket: the capillary pocket sits where its restrictor's flow is the film's
+    caps = [capillary_for(0.5), PrescribedPressure(2e6)]
+    res = solve_supplied(twin, UniformFilm(1.0), caps, SCALE, discretization=P2)
+    a, b = res.pockets
+    assert (a.kind, b.kind) == ("capillary", "pressure")
+    assert b.pressure == 2e6
+    assert a.restrictor_flow == pytest.approx(a.film_flow, rel=1e-10)
+    assert res.total_flow == pytest.approx(SCALE.to_flow(res.film.flows["inlet"]), rel=1e-9)
+    # the pressure field holds each pocket at its own pressure
+    assert res.film.interpolate(np.array([-0.18 + 0.07]), np.array([0.0]))[0] == pytest.approx(
+        SCALE.from_pressure(a.pressure), rel=1e-6)
+    assert res.film.interpolate(np.array([0.18 - 0.07]), np.array([0.0]))[0] == pytest.approx(
+        SCALE.from_pressure(b.pressure), rel=1e-6)
+    # symmetric twin capillaries sit at one pressure (to the mesh's asymmetry)
+    sym = solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P2)
+    assert sym.pockets[0].pressure == pytest.approx(sym.pockets[1].pressure, rel=1e-4)
+
+
+def test_several_pockets_under_cavitation(twin):
+    # a wedge over the twin pockets under Swift-Stieber, each pocket through its own orifice
+    op = OperatingPoint(wedge=1.0)
+    orfs = [Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=2e6) for d in (0.1e-3, 0.2e-3)]
+    film = CosineFilm(0.8, 1.5)
+    res = solve_supplied(twin, film, orfs, SCALE, operating=op, cavitation="reynolds", discretization=P2)
+    assert 0.2 < np.mean(res.film.cavitated) < 0.4  # a quarter of the film ruptured
+    for pocket in res.pockets:
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+        assert 0 < pocket.pressure < 2e6
+    assert res.total_flow == pytest.approx(SCALE.to_flow(res.film.flows["inlet"]), rel=1e-9)
+    # the pockets' film state under cavitation, both prescribed at one pressure: the front door's answer
+    p = res.pockets[0].pressure
+    for disc in (P2, Discretization(element="P2", formulation="pi")):
+        same = solve_supplied(twin, film, PrescribedPressure(p), SCALE, operating=op, cavitation="reynolds",
+                              discretization=disc)
+        ref = solve_reynolds(twin, film, wedge=1.0, inlet_pressure=SCALE.from_pressure(p), cavitation="reynolds",
+                             discretization=disc)
+        assert same.film.formulation == ref.formulation == disc.formulation
+        assert same.film.integral == pytest.approx(ref.integral, rel=1e-10)
+        np.testing.assert_allclose(same.film.force, ref.force, rtol=1e-10)
+        assert same.total_flow == pytest.approx(SCALE.to_flow(ref.flows["inlet"]), rel=1e-10)
+
+
+# -- what is refused -----------------------------------------------------------------------------------
+
+def test_an_orifice_that_cannot_feed_the_film_is_an_error(pads):
+    # the surfaces separating fast: the film draws more from the recess at p_r = 0 than the orifice feeds
+    op = OperatingPoint(wedge=0.0, squeeze=(50.0, 0.0))
+    with pytest.raises(SupplyError, match="no solution with p_r >= 0"):
+        solve_supplied(pads["P2"], UniformFilm(1.0), orifice_for(0.5), SCALE, discretization=P2, operating=op)
+
+
+def test_the_wrong_number_of_supplies_is_named(twin):
+    with pytest.raises(ValueError, match="one supply per pocket"):
+        solve_supplied(twin, UniformFilm(1.0), [capillary_for(0.5)], SCALE)
+
+
+def test_an_elastic_pad_is_balanced_on_the_coupled_film(pads):
+    # rigid limit (E* = inf): the rigid answer to the coupled solver's tolerance; a soft pad opens the film
+    # under the recess pressure, lets more oil out and so settles at a lower recess pressure
+    from bearingfe import half_space
+    mesh = pads["P1"]
+    cap = capillary_for(0.5)
+    rigid = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1)
+    stiff = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1,
+                           elastic=half_space(mesh, SCALE, math.inf, "P1"))
+    assert stiff.pockets[0].pressure == pytest.approx(rigid.pockets[0].pressure, rel=1e-9)
+    soft = solve_supplied(mesh, UniformFilm(1.0), cap, SCALE, discretization=P1,
+                          elastic=half_space(mesh, SCALE, 2e9, "P1"))
+    pocket = soft.pockets[0]
+    assert soft.film.max_deflection > 0.05  # the film opens by more than 5 % of the clearance
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+    assert pocket.pressure < 0.99 * rigid.pockets[0].pressure
+
+
+def test_several_pockets_on_the_finite_volume_scheme_are_refused(twin):
+    with pytest.raises(ValueError, match="holds every pocket at one pressure"):
+        solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
+
+
+# -- the pump's shoe fed from its chamber ([shoe.supply]) -----------------------------------------------
+
+def test_the_shipped_pump_keeps_its_prescribed_pocket():
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    assert pump.shoe_supply is None
+    assert pump.pocket_supply(32e6) == PrescribedPressure(32e6)
+
+
+def test_the_orifice_pump_feeds_its_pocket_through_the_plunger():
+    pump = load_mechanism(ROOT / "mechanisms" / "eccentric_pump_orifice.toml")
+    assert pump.shoe_supply == Restrictor("orifice", 0.1e-3, discharge_coefficient=0.7, density=870.0,
+                                          pocket_volume=2.4e-7, bulk_modulus=1.5e9)
+    assert pump.pocket_supply(32e6) == Orifice(diameter=0.1e-3, discharge_coefficient=0.7, density=870.0,
+                                               supply_pressure=32e6)
+    # at discharge, near the cycle's film state (gamma 0.54, delta 3.64 rad: the shoe's steady state at 90 deg,
+    # thinnest film over the pocket): the pocket settles below the chamber pressure; where the film is thick over
+    # the pocket (delta = 0) the orifice cannot keep up and the pocket drops far below it
+    mesh = mesh_surface(pump.surface, 0.15, order=2)
+    ratios = []
+    for film in (CosineFilm(0.5, math.pi), CosineFilm(0.6, 0.0)):
+        res = solve_supplied(mesh, film, pump.pocket_supply(pump.cycle.discharge), pump.scale,
+                             operating=OperatingPoint(wedge=1.0), cavitation="reynolds", discretization=P2)
+        pocket = res.pockets[0]
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+        ratios.append(pocket.ratio)
+    assert 0.8 < ratios[0] < 0.95 and 0.0 < ratios[1] < 0.2
+
+
+@pytest.mark.parametrize("make, fragment", [
+    (lambda: Restrictor("nozzle", 1e-3), "Restrictor.kind must be one of ('capillary', 'orifice')"),
+    (lambda: Restrictor("orifice", 1e-3, discharge_coefficient=0.7), "Restrictor.density is required"),
+    (lambda: Restrictor("capillary", 1e-3, length=0.02, density=870.0), "Restrictor.density is not taken"),
+    (lambda: Restrictor("capillary", -1e-3, length=0.02), "Capillary.diameter must be > 0 m"),
+    (lambda: Restrictor("capillary", 1e-3, length=0.02, pocket_volume=0.0), "Restrictor.pocket_volume must be > 0"),
+    (lambda: Restrictor("capillary", 1e-3, length=0.02, bulk_modulus=-1.0), "Restrictor.bulk_modulus must be > 0"),
+])
+def test_a_bad_restrictor_is_named(make, fragment):
+    with pytest.raises(ValueError, match=fragment.replace("(", r"\(").replace(")", r"\)")):
+        make()
+
+
+@pytest.mark.parametrize("new, fragment", [
+    ('kind = "nozzle"', '[shoe.supply] kind: must be one of'),
+    ('kind = "orifice"\ndiameter = 0.4e-3\ndensity = 870.0', "[shoe.supply] Restrictor.discharge_coefficient is required"),
+    ('kind = "capillary"\nlength = 0.02', "[shoe.supply] diameter: missing (required by kind = 'capillary')"),
+    ('diameter = 0.4e-3', "[shoe.supply] diameter: not taken by kind = 'pressure'"),
+    ('kind = "orifice"\ndiameter = 0.4e-3\ndischarge_coefficient = 1.5\ndensity = 870.0',
+     "[shoe.supply] Orifice.discharge_coefficient must be in (0, 1]"),
+    ('kind = "capillary"\ndiameter = 0.4e-3\nlength = 0.02\nbore = 1', "[shoe.supply] bore: unknown field"),
+])
+def test_shoe_supply_errors_name_the_table(tmp_path, new, fragment):
+    text = (ROOT / "mechanisms" / "eccentric_pump.toml").read_text(encoding="utf-8")
+    old = "[shoe.seat]"
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, "[shoe.supply]\n" + new + "\n\n" + old), encoding="utf-8")
+    with pytest.raises(SchemaError) as info:
+        load_mechanism(path)
+    assert "bad.toml" in str(info.value) and fragment in str(info.value)
+
+
+# -- the pockets' compressibility --------------------------------------------------------------------------
+
+def test_a_capillary_recess_fills_with_its_closed_form_time_constant(pads):
+    # V/K dp/dt = Kc (p_s - p) - K h^3 p: p = p_inf (1 - exp(-t/tau)), tau = V / (K_oil (Kc + K h^3)),
+    # p_inf = beta p_s; with the capillary sized for beta = 0.5, Kc = K: tau = V / (2 K_oil K)
+    from bearingfe.bearings.hydrostatic import pocket_transient
+    volume, bulk = 2e-7, 1.5e9  # [m^3], [Pa]
+    tau = volume / (bulk * 2 * K)
+    times = np.linspace(0.0, 4 * tau, 9)
+    tr = pocket_transient(pads["P2"], UniformFilm(1.0), capillary_for(0.5), SCALE, volumes=volume,
+                          bulk_modulus=bulk, times=times, discretization=P2)
+    assert tr.time_constants[0] == pytest.approx(tau, rel=TOL["P2"])
+    # against the exponential with the computed balance and time constant: the integrator's error only
+    p_inf, tau_h = tr.balanced.pockets[0].pressure, tr.time_constants[0]
+    np.testing.assert_allclose(tr.pressures[:, 0], p_inf * (1 - np.exp(-times / tau_h)), rtol=1e-7, atol=1e-3)
+    # and against the closed form outright (the mesh's error of beta and of K)
+    np.testing.assert_allclose(tr.pressures[:, 0], 0.5 * PS * (1 - np.exp(-times / tau)), rtol=TOL["P2"],
+                               atol=1e-3)
+
+
+def test_an_orifice_recess_settles_at_its_balance(pads):
+    # nonlinear: no closed form of the path, but the end is the balance and the small-signal time constant is
+    # V / (K_oil (C/(2 sqrt(p_s - p_r)) + K h^3)) at the balance (linearised orifice law)
+    from bearingfe.bearings.hydrostatic import pocket_transient
+    volume, bulk = 2e-7, 1.5e9
+    orf = orifice_for(0.6)
+    c_si = CD * math.pi * orf.diameter**2 / 4 * math.sqrt(2 / RHO)
+    tau = volume / (bulk * (c_si / (2 * math.sqrt(0.4 * PS)) + K))
+    tr = pocket_transient(pads["P2"], UniformFilm(1.0), orf, SCALE, volumes=volume, bulk_modulus=bulk,
+                          times=np.linspace(0.0, 20 * tau, 5), initial=0.9 * PS, discretization=P2)
+    assert tr.time_constants[0] == pytest.approx(tau, rel=TOL["P2"])
+    assert tr.pressures[-1, 0] == pytest.approx(tr.balanced.pockets[0].pressure, rel=1e-7)
+    assert tr.pressures[0, 0] == 0.9 * PS

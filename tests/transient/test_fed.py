@@ -1,0 +1,86 @@
+"""The pump transient with the shoe pocket fed through the plunger's orifice (bearingfe.transient.fed).
+
+References are the model's exact limits, each computed by another model or path:
+
+- an orifice so wide that it drops nothing (3 mm: its pressure drop at the film's 0.1 l/min is ~1e-6 of
+  the chamber pressure) is the rigid model with the pocket at the chamber pressure (measured: smallest film
+  4.4e-5, pocket pressure 2.7e-6 relative, the difference of the integrators' paths);
+- a pocket volume V -> 0 is the pocket balanced at each instant (no volume): the difference shrinks like V
+  (measured 0.21, 0.011, 1.1e-3 on the smallest film for V = 2.4e-7, 2.4e-8, 2.4e-9 m^3), so 10x less
+  volume must give about 10x less difference.
+
+Coarse P2 mesh (0.3 R0) and 36 samples a revolution: each run takes about a second.
+"""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import bearingfe as bf
+from bearingfe.bearings.hydrostatic import Restrictor
+from tests.helpers import ROOT
+
+ORIFICE = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump_orifice.toml")
+RIGID = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+
+
+@pytest.fixture(scope="module")
+def mesh():
+    return bf.transient.pump_mesh(ORIFICE, 0.3, order=2)
+
+
+def run(pump, mesh):
+    return bf.simulate(pump, mesh, start="steady", points_per_revolution=36)
+
+
+def with_supply(**changes):
+    return dataclasses.replace(ORIFICE, shoe_supply=dataclasses.replace(ORIFICE.shoe_supply, **changes))
+
+
+def test_a_wide_orifice_is_the_prescribed_pocket(mesh):
+    wide = dataclasses.replace(ORIFICE, shoe_supply=Restrictor("orifice", 3e-3, discharge_coefficient=0.7,
+                                                               density=870.0))
+    fed, rigid = run(wide, mesh), run(RIGID, mesh)
+    assert fed.status == rigid.status == "completed"
+    np.testing.assert_allclose(fed.h_min, rigid.h_min, rtol=5e-4)
+    np.testing.assert_allclose(fed.inlet_pressure, rigid.inlet_pressure, rtol=5e-5)
+
+
+@pytest.mark.slow
+def test_the_pocket_volume_vanishing_is_the_balanced_pocket(mesh):
+    balanced = run(with_supply(pocket_volume=None), mesh)
+    diffs = []
+    for volume in (2.4e-8, 2.4e-9):
+        tr = run(with_supply(pocket_volume=volume), mesh)
+        assert tr.status == "completed"
+        diffs.append(np.max(np.abs(tr.h_min / balanced.h_min - 1)))
+    assert 5 < diffs[0] / diffs[1] < 20  # first order in V
+    assert diffs[1] < 3e-3
+
+
+def test_the_orifice_drops_the_pocket_below_the_chamber(mesh):
+    # the shipped orifice pump: during discharge the pocket sits below the chamber pressure (the orifice's
+    # drop feeds the film), so the pocket lifts less and the film is thinner than with the prescribed pocket
+    fed, rigid = run(ORIFICE, mesh), run(RIGID, mesh)
+    chamber = fed.chamber_pressure / ORIFICE.scale.pressure
+    discharge = chamber > 0.9 * chamber.max()
+    assert np.all(fed.inlet_pressure[discharge] < chamber[discharge])
+    assert np.min(fed.inlet_pressure[discharge] / chamber[discharge]) < 0.99
+    assert fed.h_min.min() < rigid.h_min.min()
+
+
+def test_a_fed_pocket_with_cavitation_is_refused(mesh):
+    with pytest.raises(ValueError, match="feeds its pocket through a restrictor"):
+        bf.simulate(ORIFICE, mesh, cavitation="reynolds")
+
+
+def test_the_pocket_outflow_is_the_films_inlet_flow(mesh):
+    # the model's linear pocket outflow (one flux per unit field) against the film result's inlet flow
+    # (bearingfe.film.result.build_result) at a state with wedge, squeeze and pocket pressure together
+    from bearingfe.transient.fed import Fed
+    model = Fed(ORIFICE, mesh, element="P2")
+    sup = model.superposition(0.5, 3.5)
+    weights = np.array([0.9, 0.03, -0.02, 0.8])
+    res = sup.combine(0.9, (0.03, -0.02), 0.8)
+    assert model.unit_flux(sup) @ weights == pytest.approx(res.flows["inlet"], rel=1e-12)
