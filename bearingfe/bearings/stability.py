@@ -128,7 +128,7 @@ def log_decrement_map(speeds, coefficients_at, mass_parameter_at, pad_mass_at=No
     mass_parameter_at : callable
         ``speed -> (m/2) c omega^2 / W`` [-] (``c omega^2 / g`` for a rotor carried by its weight).
     pad_mass_at : callable, optional
-        ``speed -> `` the pads' non-dimensional mass (tilting pads).
+        ``speed -> pad mass``: the pads' non-dimensional mass (tilting pads).
 
     Returns
     -------
