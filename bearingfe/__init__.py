@@ -18,7 +18,7 @@ module or package          what it does
 ``elastic``                elastic supports (half-space, block, shoe body) and the coupled film
 ``reynolds``               ``solve_reynolds``: the front door of the Reynolds solvers
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``bearings``               journal bearings; pockets fed through restrictors; the pump and its plunger shoe
+``bearings``               journal bearings (fixed and tilting pads), rotor stability; pockets fed through restrictors; the pump and its plunger shoe
 ``validation``             closed-form and published-data checks
 ``thermal``                lubricants (viscosity-temperature laws, ISO VG, density, specific heat); heat balance
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
@@ -32,7 +32,7 @@ module or package          what it does
 """
 
 from . import adaptivity, cavitation, elastic, io, scenes, thermal, transient, validation
-from .bearings import hydrostatic, journal, pump
+from .bearings import hydrostatic, journal, pump, stability, tilting_pad
 from .film import finite_volume as jfo
 from .mechanisms import crank, efficiency, rotor
 from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
@@ -61,6 +61,7 @@ from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study
 from .core.checks import ResolutionWarning, check_resolution
 from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
 from .bearings.pump import EccentricPump, PressureCycle
+from .bearings.tilting_pad import TiltingPadBearing, TiltingPadGeometry
 from .bearings.hydrostatic import (Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError, pocket_transient,
                                    solve_supplied, supply_stiffness)
 from .thermal import ConstantViscosity, Lubricant, ThermalError, VogelViscosity, WaltherViscosity
@@ -77,7 +78,7 @@ __all__ = [
     "validation",
     "Compliance", "ElasticError", "ElasticSolution", "elastic", "half_space", "solve_elastic",
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
-    "film_graded_size", "journal",
+    "film_graded_size", "journal", "TiltingPadBearing", "TiltingPadGeometry", "tilting_pad", "stability",
     "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SupplyError", "hydrostatic", "pocket_transient", "solve_supplied",
     "supply_stiffness",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",

@@ -1,11 +1,14 @@
-"""The bearings built on the film solver: journal bearings and the pump's plunger shoe.
+"""The bearings built on the film solver: journal bearings (fixed and tilting pads), fed pockets, rotor
+stability and the pump's plunger shoe.
 
 ================  ============================================================
 module            what it does
 ================  ============================================================
 ``journal``       Journal bearings with the same Reynolds machinery: performance, equilibrium, dynamic coefficients.
 ``hydrostatic``   Pockets fed through restrictors (capillary, orifice, constant flow): pressures, flows, stiffness.
+``stability``     Stability of a rigid symmetric rotor on two identical bearings: damped eigenvalues, log decrement, Lund's threshold.
 ``pump``          The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
+``tilting_pad``   Tilting-pad journal bearings: equilibrium of the shaft and the pads, and Lund's pad-assembly reduction.
 ================  ============================================================
 """
 
@@ -15,7 +18,13 @@ from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, d
 from .hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, SuppliedResult, SupplyError,
                           pocket_transient, solve_supplied, supply_stiffness)
 from .pump import EccentricPump, PressureCycle
+from .stability import RotorModes, log_decrement_map, lund_threshold, rotor_modes, threshold_speed
+from .tilting_pad import (PadAssemblyCoefficients, TiltingPadBearing, TiltingPadEquilibrium, TiltingPadGeometry,
+                          pad_assembly_coefficients, ross_table, tilting_pad_equilibrium)
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
            "EccentricPump", "PressureCycle", "SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure",
-           "SuppliedResult", "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness"]
+           "SuppliedResult", "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness",
+           "PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
+           "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium", "RotorModes",
+           "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"]

@@ -82,6 +82,8 @@ __all__ = [
     "equilibrium",
     "dynamic_coefficients",
     "short_bearing_force",
+    "position_state",
+    "force_derivatives",
     "EQUILIBRIUM_CAVITATION",
 ]
 
@@ -456,6 +458,35 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
         sups.append(sup)
         force += res.force
     return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation)
+
+
+def position_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation: str, *,
+                   velocity=(0.0, 0.0), warm_start=None, element: str = "P1") -> _State:
+    """The films of ``meshes`` (pads of ``bearing``) with the journal at ``(x, y)`` [c] moving at
+    ``velocity`` [c omega], in the bearing frame: the one film solve every journal result is built on.
+
+    Returns the state whose ``force`` [mu omega R^4/c^2] is the film force on the bore and whose
+    ``results`` hold one :class:`~bearingfe.film.ReynoldsResult` per mesh; ``warm_start``: a previous
+    state to start the rupture sets from. Films of other bearings that are a journal at an effective
+    position (a tilted or preloaded pad) are solved through it.
+    """
+    if cavitation not in EQUILIBRIUM_CAVITATION:
+        raise ValueError(f"cavitation must be one of {EQUILIBRIUM_CAVITATION}, got {cavitation!r}")
+    _check_element(element)
+    return _solve_state(bearing, meshes, float(x), float(y), cavitation, squeeze_xy=tuple(velocity),
+                        warm_start=warm_start, element=element)
+
+
+def force_derivatives(state: _State) -> tuple[np.ndarray, np.ndarray]:
+    """``dF/d(x, y)`` [mu omega R^4/c^3] and ``dF/d(xdot, ydot)`` of the film force on the bore of a
+    :func:`position_state` (bearing frame), linearized on its rupture sets; Galerkin solves only
+    (``cavitation`` ``"reynolds"`` or ``"none"``, no finite-volume surface)."""
+    if any(sup is None for sup in state.sups):
+        raise ValueError("force_derivatives needs the Galerkin system; finite-volume solutions "
+                         "(cavitation='jfo', periodic or recessed surfaces) have none")
+    dFx, dFv = _linearized(state)
+    R = _rot(state.rotation)
+    return R @ dFx @ R.T, R @ dFv @ R.T
 
 
 def _stiffness(bearing: JournalBearing, meshes, state: _State, xy, cavitation: str,
