@@ -110,6 +110,6 @@ bottom.set_xlabel("speed [rpm]")
 bottom.set_ylabel("smallest log decrement")
 bottom.set_title("rigid 800 kg rotor on two such bearings")
 fig.tight_layout()
-path = OUT / "04_tilting_pad.png"
+path = OUT / "05_tilting_pad.png"
 fig.savefig(path, dpi=90)
 print("wrote", path)
