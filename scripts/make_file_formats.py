@@ -37,7 +37,8 @@ its speed in rpm (`speed`) or rad/s (`speed_rad_s`); the optional `[limits]` of 
 `journal` scenes are SI (see *Design limits* below). Ranges checked by the parameter objects the fields build (for example a
 positive clearance) are reported the same way when the file is read.
 
-In the tables below, `table` is the TOML table a field belongs to (`run` is `[run]`,
+In the tables below, `meaning [unit]` says what a field is, with its unit; `table` is the TOML table
+a field belongs to (`run` is `[run]`,
 `surface.inlets[]` an item of the array of tables `[[surface.inlets]]`, and
 `surface.inlets[shape = "circle"]` the fields of such an item whose `shape` is `"circle"`); a field of
 the empty table stands at the top of the file. `default` is the value used when the field is absent:
@@ -46,11 +47,26 @@ the empty table stands at the top of the file. `default` is the value used when 
 
 
 def _rows_table(rows) -> list[str]:
-    lines = ["| table | field | accepts | default |", "|---|---|---|---|"]
+    lines = ["| table | field | meaning [unit] | accepts | default |", "|---|---|---|---|---|"]
     for row in rows:
-        accepts = row.accepts.replace("|", "\\|")
-        lines.append(f"| `{row.table or '(top)'}` | `{row.field}` | {accepts} | `{row.default}` |")
+        accepts, meaning = (text.replace("|", "\\|") for text in (row.accepts, row.meaning))
+        lines.append(f"| `{row.table or '(top)'}` | `{row.field}` | {meaning} | {accepts} | `{row.default}` |")
     return lines
+
+
+def all_rows():
+    """``(file kind, rows)`` of every scene, machine and study spec, in page order."""
+    from bearingfe.core.schema import LIMITS_TABLE, reference_rows
+    from bearingfe.mechanisms.files import SPECS
+    from bearingfe.scenes import SCENES
+    from bearingfe.sweep.studies import STUDY
+
+    out = [(f"scene {kind}", reference_rows(importlib.import_module(runner.__module__).SPEC))
+           for kind, runner in SCENES.items()]
+    out.append(("limits", reference_rows(LIMITS_TABLE.spec, "limits")))
+    out += [(f"machine {kind}", reference_rows(spec)) for kind, spec in SPECS.items()]
+    out.append(("study", reference_rows(STUDY)))
+    return out
 
 
 def page() -> str:

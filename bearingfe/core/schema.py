@@ -2,9 +2,11 @@
 
 A file is read against a *spec*: a mapping ``{name: entry}`` where an entry is
 
-- ``(check, default)``: a field; ``check(where, value) -> value`` raises
+- ``(check, default, meaning)``: a field; ``check(where, value) -> value`` raises
   :class:`SchemaError`, ``default`` is used when the field is absent
-  (:data:`REQUIRED`: the field must be given);
+  (:data:`REQUIRED`: the field must be given), ``meaning`` says what the field is,
+  with its unit in brackets (``"radial clearance c [m]"``), for the file-format
+  reference (:func:`reference_rows`);
 - :class:`Table`: a sub-table ``[section.name]`` read with its own spec;
 - :class:`Tables`: an array of tables ``[[section.name]]``, optionally with one
   spec per value of a key (``shape = "circle"``).
@@ -41,7 +43,7 @@ __all__ = [
     "FieldRow", "LIMITS", "LIMITS_TABLE", "Limit", "NONNEGATIVE", "POSITIVE", "REQUIRED", "Range", "SchemaError",
     "Table", "Tables", "anything", "build", "check_limits", "choice", "choices", "describe", "finite", "flag",
     "in_range", "integer", "nonnegative", "nonnegative_number", "number", "numbers", "one_of", "pair", "path_text",
-    "points", "positive", "positive_number", "read_table", "read_toml", "reference_rows", "text",
+    "points", "positive", "positive_number", "read_table", "read_toml", "reference_rows", "required_field", "text",
     "texts",
 ]
 
@@ -307,12 +309,14 @@ class Table:
 @dataclass(frozen=True)
 class Tables:
     """An array of tables ``[[section.name]]``: each read with ``spec``, or, with ``key``, with
-    ``variants[table[key]]`` (the key's value kept under ``key`` in the result)."""
+    ``variants[table[key]]`` (the key's value kept under ``key`` in the result); ``key_meaning`` says
+    what the key chooses, for the file-format reference."""
 
     spec: Mapping[str, Any] = field(default_factory=dict)
     key: str | None = None
     variants: Mapping[str, Mapping[str, Any]] | Callable[[], Mapping[str, Mapping[str, Any]]] = field(
         default_factory=dict)
+    key_meaning: str = ""
 
     def read(self, value, label: str, section: str) -> tuple[dict, ...]:
         if value is REQUIRED:
@@ -372,7 +376,7 @@ def read_table(table: Any, label: str, section: str, spec: Mapping[str, Any]) ->
         if isinstance(entry, (Table, Tables)):
             out[name] = entry.read(value, label, _sub(section, name))
             continue
-        check, default = entry
+        check, default = entry[0], entry[1]
         if value is REQUIRED:
             if default is REQUIRED:
                 raise SchemaError(_missing(label, section, name, entry))
@@ -380,6 +384,11 @@ def read_table(table: Any, label: str, section: str, spec: Mapping[str, Any]) ->
         else:
             out[name] = check(_where(label, section, name), value)
     return out
+
+
+def required_field(entry: tuple) -> tuple:
+    """The field ``entry`` with no default (:data:`REQUIRED`), its check and meaning kept."""
+    return (entry[0], REQUIRED, *entry[2:])
 
 
 def _missing(label: str, section: str, name: str, entry) -> str:
@@ -454,7 +463,8 @@ LIMITS = {
 }
 
 #: The spec of the ``[limits]`` table (see :data:`LIMITS` for the units).
-LIMITS_TABLE = Table({name: (number(limit.allowed), None) for name, limit in LIMITS.items()})
+LIMITS_TABLE = Table({name: (number(limit.allowed), None, f"{limit.quantity} {limit.relation} this [{limit.unit}]")
+                      for name, limit in LIMITS.items()})
 
 
 def check_limits(values: Mapping[str, float], limits: Mapping[str, float | None]) -> dict[str, dict]:
@@ -499,6 +509,7 @@ class FieldRow:
     field: str
     accepts: str
     default: str
+    meaning: str = ""
 
 
 def _default_text(default: Any) -> str:
@@ -529,7 +540,8 @@ def reference_rows(spec: Mapping[str, Any], section: str = "") -> list[FieldRow]
         elif isinstance(entry, Tables):
             rows += _tables_rows(entry, sub)
         else:
-            rows.append(FieldRow(section, name, describe(entry[0]), _default_text(entry[1])))
+            meaning = entry[2] if len(entry) > 2 else ""
+            rows.append(FieldRow(section, name, describe(entry[0]), _default_text(entry[1]), meaning))
     return rows
 
 
@@ -537,7 +549,8 @@ def _tables_rows(entry: Tables, section: str) -> list[FieldRow]:
     if entry.key is None:
         return reference_rows(entry.spec, f"{section}[]")
     variants = entry.variants() if callable(entry.variants) else entry.variants
-    rows = [FieldRow(f"{section}[]", entry.key, f"one of {_listed(variants)}", "required")]
+    rows = [FieldRow(f"{section}[]", entry.key, f"one of {_listed(variants)}", "required",
+                     entry.key_meaning)]
     for kind, spec in variants.items():
         rows += reference_rows(spec, f"{section}[{entry.key} = {kind!r}]".replace("'", '"'))
     return rows

@@ -25,7 +25,7 @@ from ..core.machine import Drive, Material
 from ..elastic.shoe import SHOE_BACKS, SHOE_SEATS, ShoeBody
 from .machines import CrankMechanism, CrankSlider, Linkage, MillDrive, Rotor, RotorFrame
 from ..core.schema import (REQUIRED, SchemaError, Table, Tables, anything, build, choice, integer, number, numbers,
-                              pair, points, positive_number, read_table, read_toml, text, texts)
+                              pair, points, positive_number, read_table, read_toml, required_field, text, texts)
 from .sections import ibeam
 
 __all__ = ["LOADERS", "SHAPES", "SPECS", "SURFACE", "load_mechanism", "field", "drive_from", "material_from",
@@ -36,39 +36,62 @@ __all__ = ["LOADERS", "SHAPES", "SPECS", "SURFACE", "load_mechanism", "field", "
 
 #: Pocket shapes of ``[[surface.inlets]]``: ``shape = name`` -> (constructor, fields).
 SHAPES: Mapping[str, tuple[Callable, Mapping[str, tuple]]] = MappingProxyType({
-    "circle": (Circle, {"center": (pair, REQUIRED), "radius": (positive_number, REQUIRED)}),
-    "ellipse": (Ellipse, {"center": (pair, REQUIRED), "semi_axes": (pair, REQUIRED), "angle": (number(), 0.0)}),
-    "rectangle": (Rectangle, {"center": (pair, REQUIRED), "size": (pair, REQUIRED), "angle": (number(), 0.0)}),
-    "polygon": (Polygon, {"points": (points, REQUIRED)}),
-    "slot": (Slot, {"center": (pair, REQUIRED), "length": (positive_number, REQUIRED),
-                    "width": (positive_number, REQUIRED), "angle": (number(), 0.0)}),
+    "circle": (Circle, {"center": (pair, REQUIRED, "centre (phi [rad], z [R0])"),
+                        "radius": (positive_number, REQUIRED, "radius [R0]")}),
+    "ellipse": (Ellipse, {"center": (pair, REQUIRED, "centre (phi [rad], z [R0])"),
+                          "semi_axes": (pair, REQUIRED, "semi-axes along phi and z before the turn [R0]"),
+                          "angle": (number(), 0.0, "turn of the axes from phi towards z [rad]")}),
+    "rectangle": (Rectangle, {"center": (pair, REQUIRED, "centre (phi [rad], z [R0])"),
+                              "size": (pair, REQUIRED, "side lengths along phi and z before the turn [R0]"),
+                              "angle": (number(), 0.0, "turn from phi towards z [rad]")}),
+    "polygon": (Polygon, {"points": (points, REQUIRED, "corners (phi [rad], z [R0]) in order")}),
+    "slot": (Slot, {"center": (pair, REQUIRED, "centre (phi [rad], z [R0])"),
+                    "length": (positive_number, REQUIRED, "length over the rounded ends [R0]"),
+                    "width": (positive_number, REQUIRED, "width, the diameter of the rounded ends [R0]"),
+                    "angle": (number(), 0.0, "turn of the length from phi towards z [rad]")}),
 })
 
 #: The ``[surface]`` table: ``arc = [a1, a2]`` [rad], ``half_width`` [-], ``[[surface.inlets]]``.
-SURFACE = {"arc": (pair, (-0.5, 0.5)), "half_width": (positive_number, 0.5),
-           "inlets": Tables(key="shape", variants={name: spec for name, (_, spec) in SHAPES.items()})}
+SURFACE = {"arc": (pair, (-0.5, 0.5), "angular extent [alpha1, alpha2] of the support surface [rad]"),
+           "half_width": (positive_number, 0.5, "half width a = b / (2 R0) of the surface [-]"),
+           "inlets": Tables(key="shape", variants={name: spec for name, (_, spec) in SHAPES.items()},
+                            key_meaning="shape of one high-pressure inlet pocket")}
 
-DRIVE = Table({"speed_rpm": (number(), None), "omega": (number(), None)}, required=True)
-MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), REQUIRED), "density": (number(), 0.0),
-                  "poisson_ratio": (number(), 0.3)}, required=True)
+DRIVE = Table({"speed_rpm": (number(), None, "shaft speed [rpm] (give this or omega)"),
+               "omega": (number(), None, "shaft angular speed [rad/s] (give this or speed_rpm)")}, required=True)
+MATERIAL = Table({"name": (text, None, "material name"),
+                  "youngs_modulus": (number(), REQUIRED, "Young's modulus E [Pa]"),
+                  "density": (number(), 0.0, "density [kg/m^3]"),
+                  "poisson_ratio": (number(), 0.3, "Poisson's ratio [-]")}, required=True)
 #: An optional material of a film surface (``[shoe.material]``, ``[eccentric.material]``): steel if absent.
-SURFACE_MATERIAL = Table({"name": (text, None), "youngs_modulus": (number(), 210e9), "density": (number(), 7850.0),
-                          "poisson_ratio": (number(), 0.3)})
+SURFACE_MATERIAL = Table({"name": (text, None, "material name"),
+                          "youngs_modulus": (number(), 210e9, "Young's modulus E [Pa]"),
+                          "density": (number(), 7850.0, "density [kg/m^3]"),
+                          "poisson_ratio": (number(), 0.3, "Poisson's ratio [-]")})
 
 
 #: How the plunger holds the shoe body (``[shoe.seat]``, see :class:`bearingfe.elastic.shoe.ShoeBody`).
-SHOE_SEAT = Table({"kind": (choice(SHOE_SEATS), "clamped"), "radius": (number(), None)})
+SHOE_SEAT = Table({"kind": (choice(SHOE_SEATS), "clamped", "how the plunger holds the shoe's seat"),
+                   "radius": (number(), None, "radius of the seat disc on the back [m]")})
 #: A bearing lining on the shoe's bore (``[shoe.lining]``): its thickness [m] and material.
-SHOE_LINING = Table({"thickness": (number(), None), "name": (text, None), "youngs_modulus": (number(), None),
-                     "density": (number(), 0.0), "poisson_ratio": (number(), 0.3)})
+SHOE_LINING = Table({"thickness": (number(), None, "thickness of the bearing lining on the bore [m]"),
+                     "name": (text, None, "lining material name"),
+                     "youngs_modulus": (number(), None, "lining Young's modulus [Pa]"),
+                     "density": (number(), 0.0, "lining density [kg/m^3]"),
+                     "poisson_ratio": (number(), 0.3, "lining Poisson's ratio [-]")})
 
 
 #: How the shoe pocket is fed from the chamber (``[shoe.supply]``): ``"pressure"`` (the chamber pressure,
 #: the default) or a restrictor in the plunger (:class:`bearingfe.bearings.hydrostatic.Restrictor`).
-SHOE_SUPPLY = Table({"kind": (choice(lambda: ("pressure", *_restrictor().FIELDS)), "pressure"), "diameter": (number(), None),
-                     "length": (number(), None), "discharge_coefficient": (number(), None),
-                     "density": (number(), None), "pocket_volume": (number(), None),
-                     "bulk_modulus": (number(), None)})
+SHOE_SUPPLY = Table({
+    "kind": (choice(lambda: ("pressure", *_restrictor().FIELDS)), "pressure",
+             "the chamber pressure in the pocket, or a restrictor in the plunger"),
+    "diameter": (number(), None, "restrictor bore diameter [m]"),
+    "length": (number(), None, "capillary length [m]"),
+    "discharge_coefficient": (number(), None, "orifice discharge coefficient Cd [-]"),
+    "density": (number(), None, "oil density for the orifice law [kg/m^3]"),
+    "pocket_volume": (number(), None, "oil volume of the pocket and its feed [m^3] (its compressibility)"),
+    "bulk_modulus": (number(), None, "oil bulk modulus K [Pa]")})
 
 
 def _restrictor():
@@ -118,7 +141,7 @@ def read_surface(table: Any, label: str, *, required: tuple[str, ...] = ()) -> S
     ``required`` names fields that have no default (a machine's shoe gives
     its ``arc`` and ``half_width``).
     """
-    spec = {k: ((v[0], REQUIRED) if k in required else v) for k, v in SURFACE.items()}
+    spec = {k: (required_field(v) if k in required else v) for k, v in SURFACE.items()}
     return surface_of(read_table(table, label, "surface", spec), label)
 
 
@@ -152,46 +175,75 @@ def _kinds() -> tuple[str, ...]:
 
 
 def _file(tables: dict) -> dict:
-    return {"kind": (choice(_kinds), REQUIRED), "name": (text, REQUIRED), **tables}
+    return {"kind": (choice(_kinds), REQUIRED, "the kind of machine"), "name": (text, REQUIRED, "the machine's name"),
+            **tables}
 
 
 SPECS: Mapping[str, dict] = MappingProxyType({
     "crank_slider": _file({
         "drive": DRIVE,
-        "crank": Table({"crank": (number(), REQUIRED), "rod": (number(), REQUIRED),
-                        "rod_cg_from_crank_pin": (number(), None)}, required=True),
-        "masses": Table({"crank": (number(), 0.0), "crank_cg_radius": (number(), 0.0), "slider": (number(), 0.0),
-                         "rod": (number(), 0.0), "rod_inertia": (number(), None)}),
-        "pump": Table({"cylinders": (integer(), 1), "plunger_diameter": (number(), 0.0),
-                       "cylinder_spacing": (number(), 0.0), "pressure": (number(), 0.0)})}),
+        "crank": Table({"crank": (number(), REQUIRED, "crank radius l1 [m]"),
+                        "rod": (number(), REQUIRED, "connecting-rod length l2 [m]"),
+                        "rod_cg_from_crank_pin": (number(), None, "rod centre of mass from the crank pin [m]")},
+                       required=True),
+        "masses": Table({"crank": (number(), 0.0, "crank mass [kg]"),
+                         "crank_cg_radius": (number(), 0.0, "radius of the crank's centre of mass [m]"),
+                         "slider": (number(), 0.0, "slider (crosshead, plunger) mass [kg]"),
+                         "rod": (number(), 0.0, "connecting-rod mass [kg]"),
+                         "rod_inertia": (number(), None, "rod moment of inertia about its centre of mass [kg m^2]")}),
+        "pump": Table({"cylinders": (integer(), 1, "number of cylinders"),
+                       "plunger_diameter": (number(), 0.0, "plunger diameter [m]"),
+                       "cylinder_spacing": (number(), 0.0, "axial spacing of the cylinders [m]"),
+                       "pressure": (number(), 0.0, "discharge pressure [Pa]")})}),
     "rotor_frame": _file({
-        "rotor": Table({"name": (text, "rotor"), "mass": (number(), REQUIRED), "shaft_length": (number(), REQUIRED),
-                        "shaft_diameter": (number(), REQUIRED), "eccentricity": (number(), REQUIRED),
+        "rotor": Table({"name": (text, "rotor", "rotor name"), "mass": (number(), REQUIRED, "rotor mass [kg]"),
+                        "shaft_length": (number(), REQUIRED, "shaft length between supports [m]"),
+                        "shaft_diameter": (number(), REQUIRED, "shaft diameter [m]"),
+                        "eccentricity": (number(), REQUIRED, "mass eccentricity (unbalance) [m]"),
                         "material": MATERIAL}, required=True),
-        "frame": Table({"plate_mass": (number(), REQUIRED), "section": (text, REQUIRED), "height": (number(), REQUIRED),
-                        "columns": (integer(), 1), "axis": (text, "x"), "sections": (texts, ()),
-                        "height_range": (numbers(2, "[lo, hi] in m"), (0.1, 2.0)), "material": MATERIAL},
+        "frame": Table({"plate_mass": (number(), REQUIRED, "mass of the frame plate [kg]"),
+                        "section": (text, REQUIRED, "I-beam of the columns (GOST 8239 designation, e.g. '20a')"),
+                        "height": (number(), REQUIRED, "column height [m]"),
+                        "columns": (integer(), 1, "number of columns"),
+                        "axis": (text, "x", "bending axis of the section ('x' strong, 'y' weak)"),
+                        "sections": (texts, (), "sections to compare in the column-height study"),
+                        "height_range": (numbers(2, "[lo, hi] in m"), (0.1, 2.0),
+                                         "column heights searched [m]"),
+                        "material": MATERIAL},
                        required=True)}),
     "linkage": _file({
         "drive": DRIVE,
-        "linkage": Table({"crank": (number(), REQUIRED), "rod": (number(), REQUIRED),
-                          "pin_diameters": (numbers(3, "3 numbers (joints O, A, B)"), REQUIRED),
-                          "pin_friction": (numbers(3, "3 numbers (joints O, A, B)"), REQUIRED),
-                          "guide_friction": (number(), REQUIRED)}, required=True),
-        "load": Table({"force": (number(), 0.0), "idle_zone_deg": (number(), 30.0)})}),
+        "linkage": Table({"crank": (number(), REQUIRED, "crank radius l1 [m]"),
+                          "rod": (number(), REQUIRED, "connecting-rod length l2 [m]"),
+                          "pin_diameters": (numbers(3, "3 numbers (joints O, A, B)"), REQUIRED,
+                                            "journal diameters of the main bearing, crank pin and wrist pin [m]"),
+                          "pin_friction": (numbers(3, "3 numbers (joints O, A, B)"), REQUIRED,
+                                           "friction coefficients of those joints [-]"),
+                          "guide_friction": (number(), REQUIRED, "friction coefficient of the slider guide [-]")},
+                         required=True),
+        "load": Table({"force": (number(), 0.0, "working force on the slider [N]"),
+                       "idle_zone_deg": (number(), 30.0, "crank angle without load at each dead centre [deg]")})}),
     "eccentric_pump": _file({
         "drive": DRIVE,
-        "eccentric": Table({"eccentricity": (number(), REQUIRED), "pivot_distance": (number(), REQUIRED),
-                            "radius": (number(), REQUIRED), "material": SURFACE_MATERIAL}, required=True),
-        "shoe": Table({"clearance": (number(), REQUIRED), "viscosity": (number(), REQUIRED),
-                       "thickness": (number(), None), "back": (choice(SHOE_BACKS), "flat"),
+        "eccentric": Table({"eccentricity": (number(), REQUIRED, "eccentricity E = |O1 O2|, half the stroke [m]"),
+                            "pivot_distance": (number(), REQUIRED, "distance E2 = |O1 B| from the shaft to the plunger pivot [m]"),
+                            "radius": (number(), REQUIRED, "eccentric radius R0 [m]"),
+                            "material": SURFACE_MATERIAL}, required=True),
+        "shoe": Table({"clearance": (number(), REQUIRED, "radial clearance c of the shoe bore [m]"),
+                       "viscosity": (number(), REQUIRED, "oil dynamic viscosity [Pa s]"),
+                       "thickness": (number(), None, "depth of the shoe body from the film to its back [m]"),
+                       "back": (choice(SHOE_BACKS), "flat", "shape of the shoe's back"),
                        "material": SURFACE_MATERIAL, "seat": SHOE_SEAT, "lining": SHOE_LINING,
                        "supply": SHOE_SUPPLY}, required=True),
-        "plunger": Table({"diameter": (number(), REQUIRED), "preload": (number(), 0.0)}, required=True),
-        "cycle": Table({"discharge": (number(), REQUIRED), "suction": (number(), REQUIRED),
-                        "compression_deg": (number(), 20.0), "decompression_deg": (number(), 20.0)},
+        "plunger": Table({"diameter": (number(), REQUIRED, "plunger diameter [m]"),
+                          "preload": (number(), 0.0, "constant force pressing the shoe onto the eccentric (spring, retaining ring) [N]")},
+                         required=True),
+        "cycle": Table({"discharge": (number(), REQUIRED, "chamber pressure during discharge [Pa]"),
+                        "suction": (number(), REQUIRED, "chamber pressure during suction [Pa]"),
+                        "compression_deg": (number(), 20.0, "shaft angle of the rise to discharge pressure [deg]"),
+                        "decompression_deg": (number(), 20.0, "shaft angle of the fall to suction pressure [deg]")},
                        required=True),
-        "surface": Table({k: ((v[0], REQUIRED) if k in ("arc", "half_width") else v) for k, v in SURFACE.items()},
+        "surface": Table({k: (required_field(v) if k in ("arc", "half_width") else v) for k, v in SURFACE.items()},
                          required=True)}),
 })
 """Each kind's file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`)."""

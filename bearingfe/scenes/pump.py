@@ -122,22 +122,28 @@ def _starts() -> tuple[str, ...]:
 def _thermal_fields() -> dict:
     from ..thermal.files import OIL
 
-    return {"enabled": (flag, False), **OIL}
+    return {"enabled": (flag, False, "run the level-1 heat balance over the cycle"), **OIL}
 
 
 #: The ``"pump"`` scene file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
-    "kind": (anything, REQUIRED),
-    "title": (text, None),
-    "pump": Table({"mechanism": (path_text, "../mechanisms/eccentric_pump.toml"), "compare_plain": (flag, True)}),
-    "run": Table({"revolutions": (positive_number, 1.0), "start": (choice(_starts), "periodic"),
-                  "mesh_size": (positive_number, 0.08), "rtol": (positive_number, 1e-6),
-                  "frames": (integer(NONNEGATIVE), 12), "cavitation": (choice(_cavitation_models), "none"),
-                  "element": (choice(ELEMENTS), "P2")}),
-    "elastic": Table({"enabled": (flag, False), "model": (choice(ELASTIC_MODELS), "half-space"),
-                      "dynamics": (choice(DYNAMICS), "squeeze")}),
+    "kind": (anything, REQUIRED, "the scene kind (this section's name)"),
+    "title": (text, None, "title of the pictures and tables (default: the file name)"),
+    "pump": Table({"mechanism": (path_text, "../mechanisms/eccentric_pump.toml",
+                                 "machine file of the pump (.toml), relative to the scene file"),
+                   "compare_plain": (flag, True, "also run the shoe without its pockets")}),
+    "run": Table({"revolutions": (positive_number, 1.0, "shaft revolutions to simulate"),
+                  "start": (choice(_starts), "periodic", "initial state: the periodic orbit or the steady state"),
+                  "mesh_size": (positive_number, 0.08, "element size [R0]"),
+                  "rtol": (positive_number, 1e-6, "relative tolerance of the integrator [-]"),
+                  "frames": (integer(NONNEGATIVE), 12, "pressure fields in the PVD series"),
+                  "cavitation": (choice(_cavitation_models), "none", "cavitation model"),
+                  "element": (choice(ELEMENTS), "P2", "finite element (P2 on a curved mesh)")}),
+    "elastic": Table({"enabled": (flag, False, "also run every design on an elastic support"),
+                      "model": (choice(ELASTIC_MODELS), "half-space", "compliance of the support"),
+                      "dynamics": (choice(DYNAMICS), "squeeze", "the deflection's rate squeezes the film, or follows the pressure")}),
     "limits": LIMITS_TABLE,
-    "output": Table({"pictures": (choices(PICTURES), PICTURES)}),
+    "output": Table({"pictures": (choices(PICTURES), PICTURES, "pictures to draw")}),
     "thermal": Table(_thermal_fields()),
 }
 

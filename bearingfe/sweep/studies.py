@@ -63,13 +63,17 @@ _settings.accepts = "a table of field = value (the base object's fields)"
 #: The study file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`); the names in
 #: ``[base.set]``, ``[grid]`` and ``[[cases]]`` are checked against the base object and the change builders.
 STUDY = {
-    "study": Table({"name": (text, None), "run": (choice(lambda: RUNS), "shoe"),
-                    "outputs": (choices(lambda: OUTPUTS, empty=False), tuple(STANDARD_OUTPUTS)),
-                    "objective": (text, None), "sense": (choice(("max", "min")), "max"),
-                    "time_limit": (positive_number, None)}),
-    "base": Table({"kind": (choice(lambda: BASES), None), "set": (_settings, {})}),
-    "grid": (anything, None),
-    "cases": (anything, None),
+    "study": Table({"name": (text, None, "study name (default: the file name)"),
+                    "run": (choice(lambda: RUNS), "shoe", "what one case computes"),
+                    "outputs": (choices(lambda: OUTPUTS, empty=False), tuple(STANDARD_OUTPUTS),
+                                "result columns of the table"),
+                    "objective": (text, None, "output the best design is chosen by (default: the first)"),
+                    "sense": (choice(("max", "min")), "max", "whether the objective is maximised or minimised"),
+                    "time_limit": (positive_number, None, "time limit of one case [s] (default 3600)")}),
+    "base": Table({"kind": (choice(lambda: BASES), None, "the base object the changes apply to"),
+                   "set": (_settings, {}, "fields of the base object set before the changes")}),
+    "grid": (anything, None, "changes and their values: every combination is a case"),
+    "cases": (anything, None, "cases given one by one, each a table of changes"),
 }
 
 

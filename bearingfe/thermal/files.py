@@ -36,15 +36,20 @@ _viscosity_points.accepts = _POINTS_RULE
 
 #: The oil's fields (``{name: (check, default)}``, :mod:`bearingfe.core.schema`): the lubricant and the balance.
 OIL = {
-    "grade": (choice(lambda: ISO_VG), None), "kinematic_viscosity_100C": (positive_number, None),
-    "kinematic_viscosity": (_viscosity_points, None),
-    "vogel": (numbers(3, "Vogel's [a_Pa_s, b_K, c_K] of mu = a exp(b/(T - c))"), None),
-    "density_15C": (number(Range(600.0, 1100.0)), 870.0),
-    "specific_heat": (number(Range(500.0, 5000.0)), None),
-    "supply_temperature_C": (number(Range(-50.0, 200.0)), None),
-    "carry_over": (number(Range(0.0, 1.0)), 0.0),
-    "conducted_fraction": (number(Range(0.0, 1.0, hi_open=True)), 0.0),
-    "effective_fraction": (number(Range(0.0, 1.0, lo_open=True)), 0.5),
+    "grade": (choice(lambda: ISO_VG), None, "ISO 3448 viscosity grade (with kinematic_viscosity_100C)"),
+    "kinematic_viscosity_100C": (positive_number, None, "kinematic viscosity at 100 degC [mm^2/s]"),
+    "kinematic_viscosity": (_viscosity_points, None, "two points [[T_degC, nu_mm2_s], ...] of a Walther fit"),
+    "vogel": (numbers(3, "Vogel's [a_Pa_s, b_K, c_K] of mu = a exp(b/(T - c))"), None,
+              "Vogel's coefficients [Pa s, K, K]"),
+    "density_15C": (number(Range(600.0, 1100.0)), 870.0, "density at 15 degC [kg/m^3]"),
+    "specific_heat": (number(Range(500.0, 5000.0)), None,
+                      "specific heat [J/(kg K)] (default: Cragoe's correlation over temperature)"),
+    "supply_temperature_C": (number(Range(-50.0, 200.0)), None, "oil supply temperature [degC]"),
+    "carry_over": (number(Range(0.0, 1.0)), 0.0, "fraction of the trailing-edge flow that re-enters the leading edge [-]"),
+    "conducted_fraction": (number(Range(0.0, 1.0, hi_open=True)), 0.0,
+                           "share of the friction heat conducted away, not carried by the oil [-]"),
+    "effective_fraction": (number(Range(0.0, 1.0, lo_open=True)), 0.5,
+                           "k in T_eff = T_in + k dT (1/2: the mean of inlet and outlet) [-]"),
 }
 
 

@@ -44,3 +44,10 @@ def test_the_reference_rows_say_what_the_reader_accepts():
 def test_a_field_check_without_a_description_is_refused():
     with pytest.raises(ValueError, match="has no description"):
         schema.reference_rows({"x": (lambda where, value: value, 1.0)})
+
+
+def test_every_field_of_every_file_says_what_it_is():
+    """Each field's spec entry carries its meaning with its unit (the page's ``meaning [unit]`` column)."""
+    rows = [(kind, row) for kind, rows in _script().all_rows() for row in rows]
+    assert len(rows) > 150
+    assert [f"{kind}: [{row.table}] {row.field}" for kind, row in rows if not row.meaning.strip()] == []
