@@ -127,7 +127,7 @@ def report(res: dict) -> tuple[str, dict]:
         f"start ({res['ref_turns']} turns): smallest film {h_ref * 1e6:.4f} um.",
         "Error: |min h_min - reference| / reference over one turn from the same start (1-degree sampling).",
         f"Time: integration of one revolution (all factorizations), sparse solver "
-        f"`{bf.linalg.DEFAULT_SOLVER}` (the default); mesh and output post-processing excluded.",
+        f"`{bf.DEFAULT_SOLVER}` (the default); mesh and output post-processing excluded.",
         "",
         "| element | mesh size [R0] | nodes | method | rtol | s / revolution | factorizations | h_min error |",
         "|---|---|---|---|---|---|---|---|",
