@@ -144,12 +144,17 @@ def check_operating_point(wedge: float, squeeze, inlet_pressure: float, cavitati
                              f"larger values overflow the flows and forces), got {value!r}")
 
 
-def check_cavitation_pressure(value: float, name: str = "cavitation_pressure") -> float:
-    """``float(value)`` if ``-MAX_CAVITY_PRESSURE <= value <= 0`` [-], else a ValueError naming ``name``."""
+def _number(value, name: str) -> float:
+    """``float(value)``, or a ValueError naming ``name`` where it is not a number."""
     try:
-        value = float(value)
+        return float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be a number, got {value!r}") from None
+
+
+def check_cavitation_pressure(value: float, name: str = "cavitation_pressure") -> float:
+    """``float(value)`` if ``-MAX_CAVITY_PRESSURE <= value <= 0`` [-], else a ValueError naming ``name``."""
+    value = _number(value, name)
     if not -MAX_CAVITY_PRESSURE <= value <= 0.0:
         raise ValueError(f"{name} must be a cavity pressure in [-{MAX_CAVITY_PRESSURE:g}, 0] (non-dimensional, gauge: "
                          f"at most the edge pressure 0; beyond -{MAX_CAVITY_PRESSURE:g} round-off swamps the film's "
@@ -159,10 +164,7 @@ def check_cavitation_pressure(value: float, name: str = "cavitation_pressure") -
 
 def check_pressure_pa(value: float, name: str) -> float:
     """``float(value)`` if ``0 <= value <= MAX_PRESSURE_PA`` [Pa], else a ValueError naming ``name``."""
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    value = _number(value, name)
     if not 0.0 <= value <= MAX_PRESSURE_PA:
         raise ValueError(f"{name} must be a pressure in [0, {MAX_PRESSURE_PA:g}] Pa (ten times the yield stress of "
                          f"hardened steel), got {value!r}")
@@ -171,10 +173,7 @@ def check_pressure_pa(value: float, name: str) -> float:
 
 def check_depth(value: float, name: str) -> float:
     """``float(value)`` if ``0 < value <= MAX_DEPTH`` [c], else a ValueError naming ``name``."""
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    value = _number(value, name)
     if not 0.0 < value <= MAX_DEPTH:
         raise ValueError(f"{name} must be a depth in (0, {MAX_DEPTH:g}] (units of the clearance; a deeper film is "
                          f"outside the thin-film model), got {value!r}")
