@@ -2,16 +2,19 @@
 
 The Reynolds solvers of the package are isoviscous; this layer says which viscosity the film
 really has. Level 1: one effective temperature from the heat balance of the whole film,
-iterated to a fixed point with the isoviscous solver.
+iterated to a fixed point with the isoviscous solver. Level 2: the film's mean temperature as a field,
+with the viscosity varying over the film.
 
-================  ============================================================
-module            what it does
-================  ============================================================
-``lubricant``     viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
-``heat_balance``  level 1: the effective temperature of a journal bearing from its heat balance
-``pump_cycle``    level 1 over the pump cycle: the plunger shoe's effective temperature
-``files``         the ``[oil]`` fields of scene files: their schema, the lubricant and balance they build
-================  ============================================================
+===================  ============================================================
+module               what it does
+===================  ============================================================
+``lubricant``        viscosity-temperature laws (constant, Vogel, Walther/ASTM D341), ISO VG grades, density, specific heat
+``viscosity_index``  ASTM D2270: the viscosity index from the 40 and 100 degC viscosities, and back
+``heat_balance``     level 1: the effective temperature of a journal bearing from its heat balance
+``pump_cycle``       level 1 over the pump cycle: the plunger shoe's effective temperature
+``film_energy``      level 2: the film's mean temperature field (energy equation) coupled to a Reynolds equation with viscosity varying over the film
+``files``            the ``[oil]`` fields of scene and machine files: their schema, the lubricant and balance they build
+===================  ============================================================
 """
 
 from __future__ import annotations
@@ -20,9 +23,13 @@ from .lubricant import (ISO_VG, VISCOSITY_LAWS, ConstantViscosity, Lubricant, Vi
                         WaltherViscosity, celsius, iso_vg, kelvin)
 from .heat_balance import (EffectiveTemperature, FilmTemperatures, HeatBalance, JournalDuty, ThermalError,
                            effective_temperature, film_temperatures)
+from .viscosity_index import reference_viscosities, viscosity_40, viscosity_100, viscosity_index
+from .film_energy import FilmEnergy, Pad, PadLevel1, film_energy, pad_level1, pad_mesh, slider_reference
 from .pump_cycle import CycleTemperature, cycle_temperature
 
 __all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
            "WaltherViscosity", "celsius", "iso_vg", "kelvin", "EffectiveTemperature", "FilmTemperatures",
            "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures",
-           "CycleTemperature", "cycle_temperature"]
+           "CycleTemperature", "cycle_temperature", "reference_viscosities", "viscosity_40", "viscosity_100",
+           "viscosity_index", "FilmEnergy", "Pad", "PadLevel1", "film_energy", "pad_level1", "pad_mesh",
+           "slider_reference"]

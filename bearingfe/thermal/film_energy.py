@@ -1,0 +1,495 @@
+r"""Level 2: the film's mean temperature as a field, coupled to a Reynolds equation whose viscosity varies over the film.
+
+A plane pad of length ``L`` (along the sliding direction ``x``) and width ``B`` (``y``), film
+thickness ``h(x, y)`` [m], runner sliding at ``U`` [m/s] in ``+x``; SI throughout. On the same P1
+triangle mesh:
+
+- Reynolds with the viscosity of the local temperature ``mu(T)``:
+  ``div(h^3/(12 mu) grad p) = U/2 dh/dx``, weakly
+  ``int h^3/(12 mu) grad p . grad v = int U h/2 dv/dx`` (the package's weak forms
+  :func:`bearingfe.film.forms.weighted_laplace` and :func:`~bearingfe.film.forms.gradient_load`, the
+  coefficient a field at the quadrature points), ``p = 0`` on the pressure edges: the two ends
+  ``x = 0, L`` and, with ``sides="ambient"``, the sides; with ``sides="closed"`` the sides carry no
+  flow (the infinitely wide pad). Swift-Stieber: the nodes where the pressure would fall below 0 are
+  held at 0 (an active set, repeated until no node is negative); the heat of a ruptured zone is then
+  convected by the full-film flux (no fill fraction; the JFO share of the heat is not modelled).
+- The mean film flux ``q = -h^3/(12 mu) grad p + U h/2 e_x`` [m^2/s].
+- The energy equation of the film's mean temperature, convection and viscous heating, optionally a
+  heat-transfer coefficient ``alpha`` [W/(m^2 K)] to walls at ``T_w`` (both walls together):
+  ``rho c_p q . grad T = Phi - alpha (T - T_w)``, ``Phi = mu U^2/h + h^3/(12 mu) |grad p|^2`` [W/m^2];
+  no conduction within the film (pure convection), so Galerkin alone would oscillate: streamline
+  upwind Petrov-Galerkin (SUPG), test functions ``v + tau q . grad v`` with
+  ``tau = ((2|q|/h_e)^2 + (alpha/(rho c_p))^2)^(-1/2)`` and ``h_e = 2|q| / sum_a |q . grad phi_a|``
+  (the element's length along the flow). The supply temperature ``T_s`` enters weakly on the inflow
+  boundary (``q . n < 0``): ``int rho c_p |q . n| (T - T_s) v ds``, so no boundary node is forced.
+- Coupling: fixed point, ``T_(k+1) = T_k + omega (T_new - T_k)``, until the largest change is
+  below ``tolerance`` [K].
+
+Energy balance (exact for the discrete equations, to solver round-off). The energy equation tested
+with ``v = 1`` (the SUPG terms vanish: ``grad 1 = 0``) and Reynolds' consistent nodal boundary
+flows ``r_i = int q . grad phi_i`` (zero at every node Reynolds solves for) give
+
+``int Phi = rho c_p sum_i r_i (T_i - T_s) + rho c_p int_in |q . n| (T - T_s) ds + int alpha (T - T_w)``:
+
+the dissipated power equals the heat carried out by the flows (relative to the supply; the second
+term is the inflow's share, which vanishes as the mesh is refined) plus the heat conducted to the
+walls. :class:`FilmEnergy` reports each term and the balance's residual. ``rho`` and ``c_p`` are
+taken at the supply temperature.
+
+With a :class:`~bearingfe.thermal.lubricant.ConstantViscosity` the viscosity field is uniform and
+the pressure is the isoviscous solution of the same forms (the coefficient ``h^3/(12 mu)``); the
+Reynolds solvers of the rest of the package (compiled operators, journal and pump paths) are not
+touched by this module.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import scipy.sparse as sp
+import skfem
+from skfem import Basis, BilinearForm, ElementTriP1, FacetBasis, LinearForm, MeshTri
+from skfem.helpers import dot, grad
+
+from ..core.schema import Range, in_range, nonnegative, positive
+from ..film.forms import gradient_load, weighted_laplace
+from .heat_balance import HeatBalance, ThermalError, film_temperatures, fixed_point
+from .lubricant import ConstantViscosity, Lubricant
+
+__all__ = ["Pad", "FilmEnergy", "PadLevel1", "SliderReference", "pad_mesh", "film_energy", "pad_level1",
+           "slider_reference", "SIDES"]
+
+#: Pressure conditions on the pad's sides ``y = 0, B``: ambient (``p = 0``) or closed (no flow).
+SIDES = ("ambient", "closed")
+
+
+@dataclass(frozen=True)
+class Pad:
+    """A plane pad under a sliding runner (SI).
+
+    Parameters
+    ----------
+    length : float
+        ``L`` along the sliding direction [m], > 0.
+    width : float
+        ``B`` across it [m], > 0.
+    thickness : callable
+        ``h(x, y)`` [m], vectorised over arrays of ``x``, ``y`` [m]; > 0 over the pad.
+    speed : float
+        Runner speed ``U`` [m/s], > 0, towards ``+x`` (``x = 0`` is the leading edge).
+    sides : str
+        One of :data:`SIDES`.
+    """
+
+    length: float
+    width: float
+    thickness: Callable[[np.ndarray, np.ndarray], np.ndarray]
+    speed: float
+    sides: str = "ambient"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "length", positive("Pad.length", self.length, "m"))
+        object.__setattr__(self, "width", positive("Pad.width", self.width, "m"))
+        object.__setattr__(self, "speed", positive("Pad.speed", self.speed, "m/s"))
+        if not callable(self.thickness):
+            raise ValueError(f"Pad.thickness must be a callable h(x, y) [m], got {self.thickness!r}")
+        if self.sides not in SIDES:
+            raise ValueError(f"Pad.sides must be one of {SIDES}, got {self.sides!r}")
+
+    @classmethod
+    def inclined(cls, length: float, width: float, outlet_film: float, ratio: float, speed: float,
+                 sides: str = "ambient") -> "Pad":
+        """The inclined slider: ``h = h_o (1 + K (1 - x/L))`` with outlet film ``h_o`` [m] and
+        convergence ratio ``K = h_i/h_o - 1`` (``ratio``, > 0)."""
+        h0 = positive("outlet_film", outlet_film, "m")
+        k = positive("ratio", ratio)
+        L = positive("length", length, "m")
+        return cls(length, width, lambda x, y: h0 * (1.0 + k * (1.0 - np.asarray(x) / L)) + 0.0 * np.asarray(y),
+                   speed, sides)
+
+
+def pad_mesh(pad: Pad, nx: int, ny: int) -> MeshTri:
+    """A structured triangle mesh of the pad, ``nx`` by ``ny`` cells (each cut in two) [m]."""
+    for name, n in (("nx", nx), ("ny", ny)):
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+            raise ValueError(f"{name} must be an integer >= 1, got {n!r}")
+    return MeshTri.init_tensor(np.linspace(0.0, pad.length, nx + 1), np.linspace(0.0, pad.width, ny + 1))
+
+
+@dataclass(frozen=True)
+class FilmEnergy:
+    """A pad's film at the fixed point of pressure and temperature (level 2, SI).
+
+    Attributes
+    ----------
+    mesh : skfem.MeshTri
+        The film's mesh [m].
+    pressure, temperature : ndarray
+        Nodal pressure [Pa] and mean film temperature [K].
+    viscosity : ndarray
+        ``mu(T)`` at the nodes [Pa s].
+    load : float
+        ``int p`` [N].
+    friction : float
+        Shear force on the runner ``int (mu U/h + h/2 dp/dx)`` [N].
+    power : float
+        Dissipated power ``int Phi`` [W].
+    friction_power : float
+        ``U`` times ``friction`` [W]; equals ``power`` for the discrete Reynolds solution (its weak
+        form tested with the pressure itself).
+    inflow : float
+        Oil entering the film [m^3/s] (the negative consistent boundary flows).
+    convected : float
+        Heat carried out by the boundary flows, ``rho c_p sum r_i (T_i - T_s)`` [W].
+    inflow_heat : float
+        The weak inlet condition's share, ``rho c_p int_in |q.n| (T - T_s)`` [W] (-> 0 with the mesh).
+    conducted : float
+        Heat to the walls, ``int alpha (T - T_w)`` [W].
+    balance_residual : float
+        ``|power - convected - inflow_heat - conducted| / power`` [-].
+    mean_temperature, max_temperature, outlet_temperature : float
+        Area mean, largest, and flow-weighted mean of the outflow [K].
+    density, specific_heat : float
+        ``rho``, ``c_p`` at the supply temperature [kg/m^3, J/(kg K)].
+    iterations : int
+        Fixed-point iterations.
+    change : float
+        Last largest temperature change [K].
+    cavitated : int
+        Nodes held at zero pressure by the Swift-Stieber condition.
+    """
+
+    mesh: MeshTri
+    pressure: np.ndarray
+    temperature: np.ndarray
+    viscosity: np.ndarray
+    load: float
+    friction: float
+    power: float
+    friction_power: float
+    inflow: float
+    convected: float
+    inflow_heat: float
+    conducted: float
+    balance_residual: float
+    mean_temperature: float
+    max_temperature: float
+    outlet_temperature: float
+    density: float
+    specific_heat: float
+    iterations: int
+    change: float
+    cavitated: int
+
+
+def _viscosity(lubricant: Lubricant, t: np.ndarray) -> np.ndarray:
+    """``mu(T)`` [Pa s] pointwise (the law is scalar)."""
+    t = np.asarray(t, dtype=float)
+    law = lubricant.viscosity_law
+    if isinstance(law, ConstantViscosity):
+        return np.full(t.shape, law.viscosity)
+    flat = t.ravel()
+    uniq, inverse = np.unique(flat, return_inverse=True)
+    values = np.array([lubricant.viscosity(float(v)) for v in uniq])
+    return values[inverse].reshape(t.shape)
+
+
+@BilinearForm
+def _energy(u, v, w):
+    """``int (q . grad u + beta u) (v + tau q . grad v)`` (SUPG)."""
+    qgu = w.q0 * u.grad[0] + w.q1 * u.grad[1]
+    qgv = w.q0 * v.grad[0] + w.q1 * v.grad[1]
+    return (qgu + w.beta * u) * (v + w.tau * qgv)
+
+
+@LinearForm
+def _energy_load(v, w):
+    """``int s (v + tau q . grad v)`` with ``s = Phi/(rho c_p) + beta T_w``."""
+    return w.s * (v + w.tau * (w.q0 * v.grad[0] + w.q1 * v.grad[1]))
+
+
+@BilinearForm
+def _inlet(u, v, w):
+    return w.a * u * v
+
+
+@LinearForm
+def _inlet_load(v, w):
+    return w.a * w.t * v
+
+
+class _Film:
+    """The mesh's bases, quadrature fields of ``h`` and the pressure boundary, built once."""
+
+    def __init__(self, pad: Pad, mesh: MeshTri):
+        self.pad, self.mesh = pad, mesh
+        self.basis = Basis(mesh, ElementTriP1())
+        self.facets = FacetBasis(mesh, ElementTriP1(), facets=mesh.boundary_facets())
+        x = np.asarray(self.basis.global_coordinates())
+        self.h = np.asarray(pad.thickness(x[0], x[1]), dtype=float) * np.ones(x[0].shape)
+        xf = np.asarray(self.facets.global_coordinates())
+        self.hf = np.asarray(pad.thickness(xf[0], xf[1]), dtype=float) * np.ones(xf[0].shape)
+        if not (np.all(np.isfinite(self.h)) and self.h.min() > 0 and np.all(np.isfinite(self.hf))
+                and self.hf.min() > 0):
+            raise ValueError("Pad.thickness must be finite and > 0 over the pad")
+        L, B = pad.length, pad.width
+        tol = 1e-9 * max(L, B)
+        p = mesh.p
+        ends = (np.abs(p[0]) < tol) | (np.abs(p[0] - L) < tol)
+        sides = (np.abs(p[1]) < tol) | (np.abs(p[1] - B) < tol)
+        self.dirichlet = np.flatnonzero(ends | sides) if pad.sides == "ambient" else np.flatnonzero(ends)
+        U = pad.speed
+        self.couette = gradient_load.assemble(self.basis, f0=0.5 * U * self.h, f1=np.zeros_like(self.h))
+        self.area = float(self.basis.dx.sum())
+        # E: nodal -> quadrature values, G0/G1: gradients (rows in basis.dx order)
+        self.E = self.basis.interpolate
+
+    def pressure(self, mu_q: np.ndarray) -> tuple[np.ndarray, int]:
+        """Reynolds with ``mu`` at the quadrature points; Swift-Stieber by an active set."""
+        A = weighted_laplace.assemble(self.basis, c=self.h**3 / (12.0 * mu_q))
+        fixed = self.dirichlet
+        n = self.basis.N
+        for _ in range(n):
+            p = np.zeros(n)
+            free = np.setdiff1d(np.arange(n), fixed)
+            p[free] = skfem.solve(*skfem.condense(A, self.couette, D=fixed, x=p))[free] if free.size else 0.0
+            negative = np.flatnonzero(p < -1e-12 * max(np.abs(p).max(), 1.0))
+            if negative.size == 0:
+                return np.maximum(p, 0.0) if fixed.size > self.dirichlet.size else p, fixed.size - self.dirichlet.size
+            fixed = np.union1d(fixed, negative)
+        raise ThermalError("the Swift-Stieber active set did not settle")  # pragma: no cover
+
+    def flux(self, p: np.ndarray, mu_q: np.ndarray):
+        """``q`` and ``grad p`` at the quadrature points."""
+        dp = self.basis.interpolate(p).grad
+        c = self.h**3 / (12.0 * mu_q)
+        return (-c * dp[0] + 0.5 * self.pad.speed * self.h, -c * dp[1]), dp
+
+
+def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperature: float,
+                wall_coefficient: float = 0.0, wall_temperature: float | None = None, relaxation: float = 1.0,
+                tolerance: float = 1e-9, max_iterations: int = 200) -> FilmEnergy:
+    """The pad's pressure and mean film temperature at their fixed point (level 2).
+
+    Parameters
+    ----------
+    pad : Pad
+        Geometry, speed and side condition.
+    mesh : skfem.MeshTri
+        P1 triangle mesh of ``[0, L] x [0, B]`` [m] (:func:`pad_mesh`).
+    lubricant : Lubricant
+        The oil: ``mu(T)``; ``rho`` and ``c_p`` at the supply temperature.
+    supply_temperature : float
+        ``T_s`` of the oil entering the film [K], > 0.
+    wall_coefficient : float
+        ``alpha`` [W/(m^2 K)], >= 0, to both walls together; 0: adiabatic.
+    wall_temperature : float, optional
+        ``T_w`` [K]; default the supply temperature.
+    relaxation : float
+        ``omega`` in (0, 1].
+    tolerance : float
+        Largest temperature change of the last iteration [K], > 0.
+    max_iterations : int
+        >= 1.
+
+    Raises
+    ------
+    ThermalError
+        No convergence in ``max_iterations`` (the message gives the last change).
+    """
+    Ts = positive("supply_temperature", supply_temperature, "K")
+    alpha = nonnegative("wall_coefficient", wall_coefficient, "W/(m^2 K)")
+    Tw = Ts if wall_temperature is None else positive("wall_temperature", wall_temperature, "K")
+    omega = in_range("relaxation", relaxation, Range(0.0, 1.0, lo_open=True))
+    tol = positive("tolerance", tolerance, "K")
+    if isinstance(max_iterations, bool) or not isinstance(max_iterations, int) or max_iterations < 1:
+        raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+    f = _Film(pad, mesh)
+    rho, cp = lubricant.density_at(Ts), lubricant.specific_heat_at(Ts)
+    rc = rho * cp
+    beta = alpha / rc
+    U = pad.speed
+    T = np.full(f.basis.N, Ts)
+    grads = [f.basis.basis[a][0].grad for a in range(len(f.basis.basis))]
+    normals = f.facets.normals
+    change = np.inf
+    for k in range(1, max_iterations + 1):
+        mu_q = _viscosity(lubricant, np.asarray(f.basis.interpolate(T)))
+        p, cavitated = f.pressure(mu_q)
+        (q0, q1), dp = f.flux(p, mu_q)
+        phi = mu_q * U**2 / f.h + f.h**3 / (12.0 * mu_q) * (dp[0] ** 2 + dp[1] ** 2)
+        speed = np.hypot(q0, q1)
+        spread = sum(np.abs(q0 * g[0] + q1 * g[1]) for g in grads)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inv = np.sqrt((spread) ** 2 + beta**2)  # (2|q|/h_e)^2 = spread^2
+            tau = np.where(inv > 0, 1.0 / inv, 0.0)
+        A = _energy.assemble(f.basis, q0=q0, q1=q1, beta=beta, tau=tau)
+        b = _energy_load.assemble(f.basis, s=phi / rc + beta * Tw, q0=q0, q1=q1, tau=tau)
+        # inflow: q . n < 0 on boundary facets (q from the nodal pressure, viscosity at the facet points)
+        muf = _viscosity(lubricant, np.asarray(f.facets.interpolate(T)))
+        dpf = f.facets.interpolate(p).grad
+        cf = f.hf**3 / (12.0 * muf)
+        qn = (-cf * dpf[0] + 0.5 * U * f.hf) * normals[0] - cf * dpf[1] * normals[1]
+        a_in = np.maximum(-qn, 0.0)
+        A = A + _inlet.assemble(f.facets, a=a_in)
+        b = b + _inlet_load.assemble(f.facets, a=a_in, t=np.full(a_in.shape, Ts))
+        T_new = sp.linalg.spsolve(A.tocsc(), b)
+        if not np.all(np.isfinite(T_new)):
+            raise ThermalError("the energy equation gave non-finite temperatures")
+        change = float(np.abs(T_new - T).max())
+        T = T + omega * (T_new - T)
+        if change <= tol:
+            break
+    else:
+        raise ThermalError(f"level 2 did not converge in {max_iterations} iterations (last change {change:.3g} K); "
+                           f"lower the relaxation")
+    # the balance of the last energy solve (its q, Phi and T_new; T differs from T_new by < tolerance)
+    T = T_new
+    dx = f.basis.dx
+    power = float((phi * dx).sum())
+    # consistent nodal boundary flows r_i = int q . grad phi_i
+    flows = gradient_load.assemble(f.basis, f0=q0, f1=q1)
+    convected = rc * float(flows @ (T - Ts))
+    tf = np.asarray(f.facets.interpolate(T))
+    inflow_heat = rc * float((a_in * (tf - Ts) * f.facets.dx).sum())
+    tq = np.asarray(f.basis.interpolate(T))
+    conducted = float((alpha * (tq - Tw) * dx).sum())
+    residual = abs(power - convected - inflow_heat - conducted) / power
+    tau_runner = mu_q * U / f.h + 0.5 * f.h * dp[0]
+    friction = float((tau_runner * dx).sum())
+    out = np.maximum(qn, 0.0)
+    outflow = float((out * f.facets.dx).sum())
+    outlet = float((out * tf * f.facets.dx).sum()) / outflow if outflow > 0 else float("nan")
+    return FilmEnergy(mesh=mesh, pressure=p, temperature=T, viscosity=_viscosity(lubricant, T),
+                      load=float((np.asarray(f.basis.interpolate(p)) * dx).sum()), friction=friction, power=power,
+                      friction_power=U * friction, inflow=float(-flows[flows < 0].sum()), convected=convected,
+                      inflow_heat=inflow_heat, conducted=conducted, balance_residual=residual,
+                      mean_temperature=float((tq * dx).sum()) / f.area, max_temperature=float(T.max()),
+                      outlet_temperature=outlet, density=rho, specific_heat=cp, iterations=k, change=change,
+                      cavitated=cavitated)
+
+
+@dataclass(frozen=True)
+class PadLevel1:
+    """The pad at the fixed point of the level-1 balance (one effective temperature, SI).
+
+    Attributes
+    ----------
+    temperature : float
+        ``T_eff`` [K].
+    film : FilmEnergy
+        The isoviscous pad at ``mu(T_eff)`` (its own temperature field is the level-2 field of that
+        uniform viscosity, not used by level 1).
+    rise : float
+        ``dT`` across the film [K].
+    evaluations : int
+        Isoviscous solves.
+    """
+
+    temperature: float
+    film: FilmEnergy
+    rise: float
+    evaluations: int
+
+
+def pad_level1(pad: Pad, mesh: MeshTri, lubricant: Lubricant, balance: HeatBalance) -> PadLevel1:
+    """Level 1 on the pad: ``T_eff = T_in + k dT`` with ``dT`` from the whole film's power and flows
+    (:func:`bearingfe.thermal.heat_balance.film_temperatures`: side flow leaves at ``T_in + dT/2``), at
+    the fixed point of :func:`~bearingfe.thermal.heat_balance.fixed_point`."""
+
+    class _State:
+        def __init__(self, t: float):
+            mu = lubricant.viscosity(t)
+            self.film = film_energy(pad, mesh, Lubricant(ConstantViscosity(mu), density=lubricant.density,
+                                                         reference_temperature=lubricant.reference_temperature,
+                                                         density_slope=lubricant.density_slope,
+                                                         specific_heat=lubricant.specific_heat_at(t)),
+                                    balance.supply_temperature)
+            leading, side = _edge_flows(pad, mesh, self.film)
+            self.heat = film_temperatures(self.film.power, leading, side, lubricant.density_at(t),
+                                          lubricant.specific_heat_at(t), balance)
+
+    root, _, states = fixed_point(_State, balance)
+    end = states[root]
+    return PadLevel1(temperature=root, film=end.film, rise=end.heat.rise, evaluations=len(states))
+
+
+def _edge_flows(pad: Pad, mesh: MeshTri, film: FilmEnergy) -> tuple[float, float]:
+    """Leading-edge inflow and side outflow [m^3/s] from the consistent nodal flows of an isoviscous film."""
+    f = _Film(pad, mesh)
+    mu_q = np.full(f.h.shape, float(film.viscosity[0]))
+    (q0, q1), _ = f.flux(film.pressure, mu_q)
+    r = gradient_load.assemble(f.basis, f0=q0, f1=q1)
+    tol = 1e-9 * max(pad.length, pad.width)
+    x, y = mesh.p
+    lead = np.abs(x) < tol
+    side = ((np.abs(y) < tol) | (np.abs(y - pad.width) < tol)) & ~lead & ~(np.abs(x - pad.length) < tol)
+    return float(-r[lead].sum()), float(max(r[side].sum(), 0.0))
+
+
+@dataclass(frozen=True)
+class SliderReference:
+    """The infinitely wide adiabatic slider of viscosity ``mu(T)`` by ODE quadrature (SI, per unit width).
+
+    Attributes
+    ----------
+    flow : float
+        ``q`` [m^2/s], the film's flux per unit width.
+    x : ndarray
+        Abscissae [m] of the dense output.
+    pressure, temperature : callable
+        ``p(x)`` [Pa], ``T(x)`` [K].
+    load : float
+        ``int p dx`` [N/m].
+    power : float
+        ``int Phi dx`` [W/m].
+    """
+
+    flow: float
+    x: np.ndarray
+    pressure: Callable
+    temperature: Callable
+    load: float
+    power: float
+
+
+def slider_reference(length: float, thickness: Callable[[np.ndarray], np.ndarray], speed: float,
+                     lubricant: Lubricant, supply_temperature: float, rtol: float = 1e-11) -> SliderReference:
+    r"""The reference of level 2: an infinitely wide slider, adiabatic, viscosity ``mu(T)``.
+
+    With no side flow the flux per unit width ``q = -h^3/(12 mu) p' + U h/2`` is constant, so
+    ``p' = 12 mu(T) (U h/2 - q)/h^3`` and the energy equation ``rho c_p q T' = Phi`` with
+    ``Phi = mu U^2/h + 12 mu (U h/2 - q)^2/h^3``; ``T(0) = T_s``, ``p(0) = p(L) = 0``. The unknown
+    ``q`` is found by shooting (Brent on ``p(L; q) = 0``, ``q`` between ``U h(L)/2`` and ``U h(0)/2``
+    for a converging film), each shot an adaptive Runge-Kutta integration (scipy ``solve_ivp``, DOP853)
+    to ``rtol``. ``rho`` and ``c_p`` at the supply temperature, as in :func:`film_energy`.
+    """
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq
+
+    L = positive("length", length, "m")
+    U = positive("speed", speed, "m/s")
+    Ts = positive("supply_temperature", supply_temperature, "K")
+    rc = lubricant.density_at(Ts) * lubricant.specific_heat_at(Ts)
+
+    def rhs(x, y, q):
+        h = float(thickness(x))
+        mu = lubricant.viscosity(float(y[1]))
+        g = U * h / 2.0 - q
+        return [12.0 * mu * g / h**3, (mu * U**2 / h + 12.0 * mu * g * g / h**3) / (rc * q),
+                mu * U**2 / h + 12.0 * mu * g * g / h**3, y[0]]
+
+    def shot(q, dense=False):
+        return solve_ivp(rhs, (0.0, L), [0.0, Ts, 0.0, 0.0], args=(q,), method="DOP853", rtol=rtol,
+                         atol=1e-14, dense_output=dense)
+
+    h0, h1 = float(thickness(0.0)), float(thickness(L))
+    if not h0 > h1 > 0:
+        raise ValueError("thickness must converge (h(0) > h(L) > 0) for the slider reference")
+    q = brentq(lambda q: shot(q).y[0, -1], U * h1 / 2.0 * (1 + 1e-12), U * h0 / 2.0 * (1 - 1e-12),
+               xtol=1e-16, rtol=1e-14)
+    sol = shot(q, dense=True)
+    return SliderReference(flow=q, x=sol.t, pressure=lambda x: sol.sol(x)[0], temperature=lambda x: sol.sol(x)[1],
+                           load=float(sol.y[3, -1]), power=float(sol.y[2, -1]))
