@@ -28,7 +28,7 @@ from ..core.schema import (REQUIRED, SchemaError, Table, Tables, anything, build
                               pair, points, positive_number, read_table, read_toml, required_field, text, texts)
 from .sections import ibeam
 
-__all__ = ["LOADERS", "SHAPES", "SPECS", "SURFACE", "load_mechanism", "field", "drive_from", "material_from",
+__all__ = ["LOADERS", "SHAPES", "SPECS", "SURFACE", "load_mechanism", "mechanism_oil", "oil_given", "field", "drive_from", "material_from",
            "read_surface", "surface_from", "surface_of"]
 
 
@@ -174,6 +174,14 @@ def _kinds() -> tuple[str, ...]:
     return tuple(LOADERS)
 
 
+def _oil_fields() -> dict:
+    """The ``[oil]`` table of a machine with an oil film: the fields of the scenes' ``[oil]``
+    (:data:`bearingfe.thermal.files.OIL`)."""
+    from ..thermal.files import OIL
+
+    return dict(OIL)
+
+
 def _file(tables: dict) -> dict:
     return {"kind": (choice(_kinds), REQUIRED, "the kind of machine"), "name": (text, REQUIRED, "the machine's name"),
             **tables}
@@ -230,7 +238,7 @@ SPECS: Mapping[str, dict] = MappingProxyType({
                             "radius": (number(), REQUIRED, "eccentric radius R0 [m]"),
                             "material": SURFACE_MATERIAL}, required=True),
         "shoe": Table({"clearance": (number(), REQUIRED, "radial clearance c of the shoe bore [m]"),
-                       "viscosity": (number(), REQUIRED, "oil dynamic viscosity [Pa s]"),
+                       "viscosity": (number(), None, "oil dynamic viscosity [Pa s] (or an [oil] table)"),
                        "thickness": (number(), None, "depth of the shoe body from the film to its back [m]"),
                        "back": (choice(SHOE_BACKS), "flat", "shape of the shoe's back"),
                        "material": SURFACE_MATERIAL, "seat": SHOE_SEAT, "lining": SHOE_LINING,
@@ -244,7 +252,8 @@ SPECS: Mapping[str, dict] = MappingProxyType({
                         "decompression_deg": (number(), 20.0, "shaft angle of the fall to suction pressure [deg]")},
                        required=True),
         "surface": Table({k: (required_field(v) if k in ("arc", "half_width") else v) for k, v in SURFACE.items()},
-                         required=True)}),
+                         required=True),
+        "oil": Table(_oil_fields())}),
 })
 """Each kind's file: ``{name: (check, default) | Table}`` (see :mod:`bearingfe.core.schema`)."""
 
@@ -296,16 +305,69 @@ def _eccentric_pump(d: dict, label: str):
     from ..bearings.pump import EccentricPump, PressureCycle
 
     e, sh, pl, cy = (d[n] for n in ("eccentric", "shoe", "plunger", "cycle"))
+    viscosity = _shoe_viscosity(sh["viscosity"], d["oil"], label)
     cycle = build(label, "cycle", PressureCycle, discharge=cy["discharge"], suction=cy["suction"],
                   compression=math.radians(cy["compression_deg"]),
                   decompression=math.radians(cy["decompression_deg"]))
     return build(label, "eccentric", EccentricPump, name=d["name"], eccentricity=e["eccentricity"],
                  pivot_distance=e["pivot_distance"], radius=e["radius"], clearance=sh["clearance"],
-                 viscosity=sh["viscosity"], plunger_diameter=pl["diameter"], preload=pl["preload"],
+                 viscosity=viscosity, plunger_diameter=pl["diameter"], preload=pl["preload"],
                  drive=drive_of(d["drive"], label), cycle=cycle, surface=surface_of(d["surface"], label),
                  shoe_material=material_of(sh["material"], "shoe.material", label), shoe_thickness=sh["thickness"],
                  shoe_body=shoe_body_of(sh, label), shoe_supply=shoe_supply_of(sh["supply"], label),
                  eccentric_material=material_of(e["material"], "eccentric.material", label))
+
+
+def oil_given(oil: dict) -> bool:
+    """True if a read ``[oil]`` table names a lubricant (an absent table reads as its defaults)."""
+    return any(oil[k] is not None for k in ("grade", "kinematic_viscosity", "vogel"))
+
+
+def _shoe_viscosity(viscosity: float | None, oil: dict, label: str) -> float:
+    """``[shoe] viscosity``, or the ``[oil]`` table's viscosity at its supply temperature (one of the two)."""
+    from ..thermal.files import check_oil, lubricant_of
+    from ..thermal.lubricant import kelvin
+
+    if not oil_given(oil):
+        given = [k for k, v in oil.items() if v is not None and v != _oil_fields()[k][1]]
+        if given:
+            raise SchemaError(f"{label}: [oil] {given[0]}: the table names no lubricant (give grade with "
+                              f"kinematic_viscosity_100C, kinematic_viscosity or vogel)")
+        if viscosity is None:
+            raise SchemaError(f"{label}: [shoe] viscosity: missing (required without an [oil] table)")
+        return viscosity
+    if viscosity is not None:
+        raise SchemaError(f"{label}: [shoe] viscosity: must be absent with an [oil] table (the oil's viscosity at "
+                          f"its supply temperature is the film's)")
+    check_oil(oil, label, "oil")
+    lubricant = lubricant_of(oil, label, "oil")
+    return build(label, "oil", lubricant.viscosity, kelvin(oil["supply_temperature_C"]))
+
+
+def mechanism_oil(path) -> dict | None:
+    """The checked ``[oil]`` table of a mechanism file (the fields of :data:`bearingfe.thermal.files.OIL`),
+    or None if the file has none.
+
+    Raises
+    ------
+    SchemaError
+        As :func:`load_mechanism`.
+    """
+    data, label = read_toml(path, "mechanism file")
+    if "oil" not in data:
+        return None
+    kind = read_table({"kind": data["kind"]} if "kind" in data else {}, label, "",
+                      {"kind": (choice(_kinds), REQUIRED)})["kind"]
+    if "oil" not in SPECS[kind]:
+        raise SchemaError(f"{label}: [oil]: not a table of kind {kind!r}")
+    oil = read_table(data, label, "", SPECS[kind])["oil"]
+    if not oil_given(oil):
+        raise SchemaError(f"{label}: [oil]: the table names no lubricant (give grade with kinematic_viscosity_100C, "
+                          f"kinematic_viscosity or vogel)")
+    from ..thermal.files import check_oil
+
+    check_oil(oil, label, "oil")
+    return oil
 
 
 LOADERS: dict = {

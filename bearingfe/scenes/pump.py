@@ -70,7 +70,8 @@ the last two with the eccentric as a half-space.
 With ``[thermal] enabled`` every rigid design is run again at the
 viscosity of its level-1 effective temperature
 (:func:`bearingfe.thermal.cycle_temperature`: the cycle-mean heat balance of
-the film, the fields of :data:`bearingfe.thermal.files.OIL`; without
+the film, the fields of :data:`bearingfe.thermal.files.OIL`, or, when ``[thermal]`` names no
+lubricant, the whole ``[oil]`` table of the mechanism file; without
 ``supply_temperature_C`` the oil is fed at the temperature where it has the
 mechanism file's viscosity, so the isothermal run is the shipped model), and
 the summary's ``thermal`` table has, per design, the effective and peak film
@@ -163,13 +164,21 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if s["elastic"]["enabled"] and s["elastic"]["dynamics"] == "squeeze" and s["run"]["cavitation"] != "none":
         raise SchemaError(f"{label}: [elastic] dynamics: 'squeeze' needs [run] cavitation = 'none' (the pressure "
                           f"is a state variable); got cavitation {s['run']['cavitation']!r}: use 'quasi-static'")
-    if s["thermal"]["enabled"]:
+    thermal = s["thermal"]
+    if thermal["enabled"]:
+        from ..mechanisms.files import mechanism_oil, oil_given
         from ..thermal.files import check_oil
 
-        check_oil(s["thermal"], label, "thermal", need_supply=False)
+        if not oil_given(thermal):  # the oil of the mechanism file's [oil] table, if it has one
+            machine = build(label, "pump", mechanism_oil, path)
+            if machine is None:
+                raise SchemaError(f"{label}: [thermal]: names no lubricant (grade with kinematic_viscosity_100C, "
+                                  f"kinematic_viscosity or vogel) and the mechanism file has no [oil] table")
+            thermal = {**machine, "enabled": True}
+        check_oil(thermal, label, "thermal", need_supply=False)
     return {"title": label if s["title"] is None else s["title"], "mechanism": path,
             "compare_plain": s["pump"]["compare_plain"], "run": s["run"], "output": s["output"],
-            "elastic": s["elastic"], "limits": s["limits"], "thermal": s["thermal"]}
+            "elastic": s["elastic"], "limits": s["limits"], "thermal": thermal}
 
 
 def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,

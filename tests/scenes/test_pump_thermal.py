@@ -43,7 +43,7 @@ def test_both_designs_at_their_effective_temperature(tmp_path):
 
 
 @pytest.mark.parametrize("thermal, words", [
-    ({"enabled": True}, "[thermal]: give exactly one of grade"),
+    ({"enabled": True}, "[thermal]: names no lubricant"),
     ({"enabled": True, "grade": "VG 46"}, "[thermal] kinematic_viscosity_100C: goes with grade"),
     ({"enabled": True, **OIL, "conducted_fraction": 1.0}, "[thermal] conducted_fraction: must be in [0, 1)"),
     ({"enabled": "yes"}, "[thermal] enabled: expected true or false"),
@@ -53,3 +53,14 @@ def test_schema_errors_name_the_field(thermal, words):
     with pytest.raises(SceneError) as info:
         settings(data, label)
     assert words in str(info.value)
+
+
+def test_without_a_lubricant_the_mechanism_files_oil_is_used(tmp_path):
+    text = (ROOT / "mechanisms" / "eccentric_pump.toml").read_text(encoding="utf-8")
+    text = text.replace("viscosity = 0.03 ", "# viscosity from [oil] ")
+    text += '\n[oil]\ngrade = "VG 46"\nkinematic_viscosity_100C = 6.8e-6\nsupply_temperature_C = 55.0\n'
+    (tmp_path / "pump.toml").write_text(text, encoding="utf-8")
+    data, label = _data(enabled=True)
+    data["pump"]["mechanism"] = str(tmp_path / "pump.toml")
+    th = settings(data, label)["thermal"]
+    assert (th["enabled"], th["grade"], th["supply_temperature_C"]) == (True, "VG 46", 55.0)
