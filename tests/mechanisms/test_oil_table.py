@@ -62,3 +62,18 @@ def test_oil_table_errors_name_file_and_field(tmp_path, text, message):
     with pytest.raises(SchemaError, match=message) as info:
         load_mechanism(path)
     assert "pump.toml" in str(info.value)
+
+
+def test_grade_with_a_viscosity_index(tmp_path):
+    # the 100 degC viscosity of VG 46 (46 mm^2/s at 40 degC) and VI 100 by ASTM D2270 (tests/thermal/
+    # test_viscosity_index.py), then the same Walther oil as through that viscosity
+    from bearingfe.thermal import viscosity_100
+
+    text = _without_viscosity(PUMP) + OIL.replace("kinematic_viscosity_100C = 6.8e-6", "viscosity_index = 100")
+    pump = load_mechanism(_write(tmp_path, text))
+    nu100 = viscosity_100(46e-6, 100.0)
+    assert 6.7e-6 < nu100 < 6.9e-6  # VG 46 mineral oils of VI ~100 list 6.8 mm^2/s
+    assert pump.viscosity == pytest.approx(iso_vg("VG 46", nu100, density=870.0).viscosity(kelvin(50.0)), rel=1e-14)
+    both = text.replace("viscosity_index = 100", "viscosity_index = 100\nkinematic_viscosity_100C = 6.8e-6")
+    with pytest.raises(SchemaError, match="viscosity_index: give it or kinematic_viscosity_100C, not both"):
+        load_mechanism(_write(tmp_path, both))
