@@ -21,7 +21,8 @@ after the P2/warm-start path (:mod:`benchmarks.targets`); ``pump`` — one
 pump revolution against its error (``benchmarks/pump_revolution.py``, which
 also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
 end; ``scaling`` — growth with the unknowns and the linear solvers;
-``hard`` — hard cases. The operator cost floor is measured by
+``hard`` — hard cases; ``thermal`` — the cost of a level-1 and a level-2 thermal solve against the
+isothermal one (:mod:`benchmarks.thermal_levels`). The operator cost floor is measured by
 ``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
 (linked, not rerun here).
 """
@@ -42,11 +43,12 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import hard_cases, journal_case, pump_revolution, scaling, targets, work_precision  # noqa: E402
+from benchmarks import (hard_cases, journal_case, pump_revolution, scaling, targets, thermal_levels,  # noqa: E402
+                        work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard")
+PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard", "thermal")
 
 
 def _log(msg) -> None:
@@ -140,11 +142,12 @@ def part_hard(quick: bool) -> tuple[str, dict]:
 
 
 RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal, "pump": part_pump,
-           "scene": part_scene, "scaling": part_scaling, "hard": part_hard}
+           "scene": part_scene, "scaling": part_scaling, "hard": part_hard, "thermal": thermal_levels.run}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
           "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
           "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
-          "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases"}
+          "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases",
+          "thermal": "Thermal levels: cost of level 1 and level 2 against the isothermal solve"}
 
 
 # -- storage and the page ------------------------------------------------------------------------

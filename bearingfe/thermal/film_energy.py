@@ -379,9 +379,14 @@ class PadLevel1:
     ----------
     temperature : float
         ``T_eff`` [K].
-    film : FilmEnergy
-        The isoviscous pad at ``mu(T_eff)`` (its own temperature field is the level-2 field of that
-        uniform viscosity, not used by level 1).
+    viscosity : float
+        ``mu(T_eff)`` [Pa s].
+    pressure : ndarray
+        The isoviscous nodal pressure at ``mu(T_eff)`` [Pa].
+    load, power : float
+        ``int p`` [N] and the dissipated power ``int Phi`` [W] of that film.
+    leading_flow, side_flow : float
+        Oil in through the leading edge and out through the sides [m^3/s].
     rise : float
         ``dT`` across the film [K].
     evaluations : int
@@ -389,7 +394,12 @@ class PadLevel1:
     """
 
     temperature: float
-    film: FilmEnergy
+    viscosity: float
+    pressure: np.ndarray
+    load: float
+    power: float
+    leading_flow: float
+    side_flow: float
     rise: float
     evaluations: int
 
@@ -397,36 +407,34 @@ class PadLevel1:
 def pad_level1(pad: Pad, mesh: MeshTri, lubricant: Lubricant, balance: HeatBalance) -> PadLevel1:
     """Level 1 on the pad: ``T_eff = T_in + k dT`` with ``dT`` from the whole film's power and flows
     (:func:`bearingfe.thermal.heat_balance.film_temperatures`: side flow leaves at ``T_in + dT/2``), at
-    the fixed point of :func:`~bearingfe.thermal.heat_balance.fixed_point`."""
+    the fixed point of :func:`~bearingfe.thermal.heat_balance.fixed_point`; one isoviscous Reynolds
+    solve of the same forms per trial temperature."""
+    f = _Film(pad, mesh)
+    U = pad.speed
+    x, y = mesh.p
+    tol = 1e-9 * max(pad.length, pad.width)
+    lead = np.abs(x) < tol
+    side = ((np.abs(y) < tol) | (np.abs(y - pad.width) < tol)) & ~lead & ~(np.abs(x - pad.length) < tol)
+    dx = f.basis.dx
 
     class _State:
         def __init__(self, t: float):
-            mu = lubricant.viscosity(t)
-            self.film = film_energy(pad, mesh, Lubricant(ConstantViscosity(mu), density=lubricant.density,
-                                                         reference_temperature=lubricant.reference_temperature,
-                                                         density_slope=lubricant.density_slope,
-                                                         specific_heat=lubricant.specific_heat_at(t)),
-                                    balance.supply_temperature)
-            leading, side = _edge_flows(pad, mesh, self.film)
-            self.heat = film_temperatures(self.film.power, leading, side, lubricant.density_at(t),
+            self.viscosity = mu = lubricant.viscosity(t)
+            mu_q = np.full(f.h.shape, mu)
+            self.pressure, _ = f.pressure(mu_q)
+            (q0, q1), dp = f.flux(self.pressure, mu_q)
+            self.power = float(((mu * U**2 / f.h + f.h**3 / (12.0 * mu) * (dp[0] ** 2 + dp[1] ** 2)) * dx).sum())
+            r = gradient_load.assemble(f.basis, f0=q0, f1=q1)
+            self.leading, self.side = float(-r[lead].sum()), float(max(r[side].sum(), 0.0))
+            self.load = float((np.asarray(f.basis.interpolate(self.pressure)) * dx).sum())
+            self.heat = film_temperatures(self.power, self.leading, self.side, lubricant.density_at(t),
                                           lubricant.specific_heat_at(t), balance)
 
     root, _, states = fixed_point(_State, balance)
     end = states[root]
-    return PadLevel1(temperature=root, film=end.film, rise=end.heat.rise, evaluations=len(states))
-
-
-def _edge_flows(pad: Pad, mesh: MeshTri, film: FilmEnergy) -> tuple[float, float]:
-    """Leading-edge inflow and side outflow [m^3/s] from the consistent nodal flows of an isoviscous film."""
-    f = _Film(pad, mesh)
-    mu_q = np.full(f.h.shape, float(film.viscosity[0]))
-    (q0, q1), _ = f.flux(film.pressure, mu_q)
-    r = gradient_load.assemble(f.basis, f0=q0, f1=q1)
-    tol = 1e-9 * max(pad.length, pad.width)
-    x, y = mesh.p
-    lead = np.abs(x) < tol
-    side = ((np.abs(y) < tol) | (np.abs(y - pad.width) < tol)) & ~lead & ~(np.abs(x - pad.length) < tol)
-    return float(-r[lead].sum()), float(max(r[side].sum(), 0.0))
+    return PadLevel1(temperature=root, viscosity=end.viscosity, pressure=end.pressure, load=end.load,
+                     power=end.power, leading_flow=end.leading, side_flow=end.side, rise=end.heat.rise,
+                     evaluations=len(states))
 
 
 @dataclass(frozen=True)
