@@ -34,12 +34,11 @@ the temperature (the bracket is widened, up to ``max_temperature``, when it is
 not). :class:`ThermalError` names what failed: no bracket, no convergence, a
 load the bearing cannot carry at some temperature of the search.
 
-Level 2 (not here): the film's mean temperature as a 2-D field from the energy
-equation (convection by the mean film flux, viscous heating, adiabatic or with
-a heat-transfer coefficient to the walls) on the film's mesh, stabilised
-against the convection, coupled to a Reynolds equation whose viscosity varies
-over the film; the forms of :mod:`bearingfe.film.forms` take one viscosity
-(the scale), so that needs a variable coefficient in the direct form first.
+Level 2 (:mod:`bearingfe.thermal.film_energy`): the film's mean temperature as a
+2-D field from the energy equation (convection by the mean film flux, viscous
+heating, adiabatic or with a heat-transfer coefficient to the walls), stabilised
+by SUPG and coupled to a Reynolds equation whose viscosity varies over the film;
+for a plane pad so far, not yet for the journal bearing.
 """
 
 from __future__ import annotations
