@@ -320,8 +320,18 @@ class CompiledOperator:
 
     # -- the system of a film -------------------------------------------------------------
 
-    def matrix_data(self, formulation: str, h: np.ndarray, D: np.ndarray) -> np.ndarray:
-        """Values of the system matrix on the pattern for a film (``h``, ``D`` at the points)."""
+    def matrix_data(self, formulation: str, h: np.ndarray, D: np.ndarray, viscosity: np.ndarray | None = None
+                    ) -> np.ndarray:
+        """Values of the system matrix on the pattern for a film (``h``, ``D`` at the points).
+
+        ``viscosity``, optional (direct form only): the viscosity at the points relative to the scale's, for a
+        film whose viscosity varies (the coefficient ``h^3 / mu``); without it the isoviscous matrix, unchanged.
+        """
+        if viscosity is not None:
+            if formulation != "direct":
+                raise ValueError(f"a varying viscosity needs formulation 'direct' (the pi form's substitution "
+                                 f"assumes one viscosity), got {formulation!r}")
+            return (self.stiffness_scatter @ (h**3 / viscosity))[self.twins[0]]
         if formulation == "direct":
             upper = self.stiffness_scatter @ h**3
         else:

@@ -13,6 +13,11 @@ pressure, flux and shear formulas from here (notation of
   (:func:`film_flux`);
 - shear on the journal ``tau = sliding/h + h/2 dp/dphi`` [mu omega R0 / c]
   (:func:`shear`), whose integral is the friction force (and moment);
+- the viscous dissipation ``mu sliding^2/h + h^3/(12 mu) |grad p|^2`` (:func:`dissipation`), the heat
+  source of the film's energy equation (:mod:`bearingfe.thermal.film_energy`);
+- a viscosity varying over the film (level 2 of :mod:`bearingfe.thermal`): the direct form's
+  coefficient ``h^3 / mu`` in :func:`weighted_laplace`, and the optional ``viscosity`` of
+  :func:`film_flux` and :func:`shear`; the isoviscous formulas are unchanged without it;
 - the substitution coefficient ``D = -3/(4 h^2) (2 h Lap h + |grad h|^2)``
   (:func:`film_at`);
 - the wedge source in conservative form (:func:`couette_source`).
@@ -33,7 +38,7 @@ from skfem.mapping import MappingAffine, MappingIsoparametric
 
 __all__ = ["laplace", "mass", "weighted_mass", "weighted_laplace", "load", "gradient_load", "flux_residual",
            "couette_source", "FilmAt",
-           "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "shear", "TolerantMapping",
+           "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "shear", "dissipation", "TolerantMapping",
            "mapping", "straight_edges", "STRAIGHT_TOLERANCE"]
 
 
@@ -169,15 +174,36 @@ def couette_source(h, formulation: str):
     return c - c.flat[0] if c.size else c
 
 
-def film_flux(h, dp, wedge: float) -> tuple[np.ndarray, np.ndarray]:
-    """``q = -h^3/12 grad p + wedge h/2 e_phi`` (Poiseuille plus Couette) [omega R0^2 c]."""
+def film_flux(h, dp, wedge: float, viscosity=None) -> tuple[np.ndarray, np.ndarray]:
+    """``q = -h^3/12 grad p + wedge h/2 e_phi`` (Poiseuille plus Couette) [omega R0^2 c].
+
+    ``viscosity``, optional: a viscosity varying over the film, relative to the scale's (a field at the
+    same points, or in SI with ``h`` [m], ``p`` [Pa], ``wedge = U`` [m/s]: ``q = -h^3/(12 mu) grad p +
+    U h/2`` [m^2/s]); without it the isoviscous formula, unchanged.
+    """
     c = -np.asarray(h) ** 3 / 12.0
+    if viscosity is not None:
+        c = c / viscosity
     return c * dp[0] + 0.5 * wedge * h, c * dp[1]
 
 
-def shear(h, dp_phi, sliding: float):
-    """Shear on the journal ``sliding/h + h/2 dp/dphi`` [mu omega R0 / c]; its integral is the friction."""
+def shear(h, dp_phi, sliding: float, viscosity=None):
+    """Shear on the journal ``sliding/h + h/2 dp/dphi`` [mu omega R0 / c]; its integral is the friction.
+
+    ``viscosity``, optional: relative to the scale's, a field at the same points (or in SI: ``mu U/h +
+    h/2 dp/dx`` [Pa] with ``sliding = U``); the Poiseuille part does not depend on it.
+    """
+    if viscosity is not None:
+        return viscosity * sliding / h + 0.5 * h * dp_phi
     return sliding / h + 0.5 * h * dp_phi
+
+
+def dissipation(h, dp, sliding: float, viscosity=1.0):
+    """Viscous dissipation per unit area ``mu sliding^2/h + h^3/(12 mu) |grad p|^2``
+    [mu (omega R0)^2 / c, or W/m^2 in SI]: the heat source of the film's energy equation; its integral
+    equals the friction power when ``p`` solves the Reynolds equation (Couette shear work plus the
+    Poiseuille flow's pressure work)."""
+    return viscosity * sliding**2 / h + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2)
 
 
 # -- curved elements ---------------------------------------------------------------------

@@ -54,7 +54,7 @@ from skfem import Basis, BilinearForm, ElementTriP1, FacetBasis, LinearForm, Mes
 from skfem.helpers import dot, grad
 
 from ..core.schema import Range, in_range, nonnegative, positive
-from ..film.forms import gradient_load, weighted_laplace
+from ..film.forms import dissipation, film_flux, gradient_load, shear, weighted_laplace
 from .heat_balance import HeatBalance, ThermalError, film_temperatures, fixed_point
 from .lubricant import ConstantViscosity, Lubricant
 
@@ -264,8 +264,7 @@ class _Film:
     def flux(self, p: np.ndarray, mu_q: np.ndarray):
         """``q`` and ``grad p`` at the quadrature points."""
         dp = self.basis.interpolate(p).grad
-        c = self.h**3 / (12.0 * mu_q)
-        return (-c * dp[0] + 0.5 * self.pad.speed * self.h, -c * dp[1]), dp
+        return film_flux(self.h, dp, self.pad.speed, viscosity=mu_q), dp
 
 
 def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperature: float,
@@ -319,7 +318,7 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
         mu_q = _viscosity(lubricant, np.asarray(f.basis.interpolate(T)))
         p, cavitated = f.pressure(mu_q)
         (q0, q1), dp = f.flux(p, mu_q)
-        phi = mu_q * U**2 / f.h + f.h**3 / (12.0 * mu_q) * (dp[0] ** 2 + dp[1] ** 2)
+        phi = dissipation(f.h, dp, U, mu_q)
         speed = np.hypot(q0, q1)
         spread = sum(np.abs(q0 * g[0] + q1 * g[1]) for g in grads)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -330,8 +329,8 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
         # inflow: q . n < 0 on boundary facets (q from the nodal pressure, viscosity at the facet points)
         muf = _viscosity(lubricant, np.asarray(f.facets.interpolate(T)))
         dpf = f.facets.interpolate(p).grad
-        cf = f.hf**3 / (12.0 * muf)
-        qn = (-cf * dpf[0] + 0.5 * U * f.hf) * normals[0] - cf * dpf[1] * normals[1]
+        qf = film_flux(f.hf, dpf, U, viscosity=muf)
+        qn = qf[0] * normals[0] + qf[1] * normals[1]
         a_in = np.maximum(-qn, 0.0)
         A = A + _inlet.assemble(f.facets, a=a_in)
         b = b + _inlet_load.assemble(f.facets, a=a_in, t=np.full(a_in.shape, Ts))
@@ -357,7 +356,7 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
     tq = np.asarray(f.basis.interpolate(T))
     conducted = float((alpha * (tq - Tw) * dx).sum())
     residual = abs(power - convected - inflow_heat - conducted) / power
-    tau_runner = mu_q * U / f.h + 0.5 * f.h * dp[0]
+    tau_runner = shear(f.h, dp[0], U, viscosity=mu_q)
     friction = float((tau_runner * dx).sum())
     out = np.maximum(qn, 0.0)
     outflow = float((out * f.facets.dx).sum())
@@ -423,7 +422,7 @@ def pad_level1(pad: Pad, mesh: MeshTri, lubricant: Lubricant, balance: HeatBalan
             mu_q = np.full(f.h.shape, mu)
             self.pressure, _ = f.pressure(mu_q)
             (q0, q1), dp = f.flux(self.pressure, mu_q)
-            self.power = float(((mu * U**2 / f.h + f.h**3 / (12.0 * mu) * (dp[0] ** 2 + dp[1] ** 2)) * dx).sum())
+            self.power = float((dissipation(f.h, dp, U, mu_q) * dx).sum())
             r = gradient_load.assemble(f.basis, f0=q0, f1=q1)
             self.leading, self.side = float(-r[lead].sum()), float(max(r[side].sum(), 0.0))
             self.load = float((np.asarray(f.basis.interpolate(self.pressure)) * dx).sum())
