@@ -185,15 +185,8 @@ class FilmEnergy:
 
 
 def _viscosity(lubricant: Lubricant, t: np.ndarray) -> np.ndarray:
-    """``mu(T)`` [Pa s] pointwise (the law is scalar)."""
-    t = np.asarray(t, dtype=float)
-    law = lubricant.viscosity_law
-    if isinstance(law, ConstantViscosity):
-        return np.full(t.shape, law.viscosity)
-    flat = t.ravel()
-    uniq, inverse = np.unique(flat, return_inverse=True)
-    values = np.array([lubricant.viscosity(float(v)) for v in uniq])
-    return values[inverse].reshape(t.shape)
+    """``mu(T)`` [Pa s] pointwise (:meth:`~bearingfe.thermal.lubricant.Lubricant.viscosity_field`)."""
+    return lubricant.viscosity_field(t)
 
 
 @BilinearForm
@@ -267,9 +260,35 @@ class _Film:
         return film_flux(self.h, dp, self.pad.speed, viscosity=mu_q), dp
 
 
+class _Anderson:
+    """Anderson mixing of a fixed point ``x = G(x)`` (Walker and Ni, SIAM J. Numer. Anal. 49, 2011): the
+    relaxed step ``x + omega f`` (``f = G(x) - x``) corrected by the least-squares combination of the last
+    ``memory`` differences of iterates and residuals; ``memory = 0`` is the plain relaxed iteration."""
+
+    def __init__(self, omega: float, memory: int):
+        self.omega, self.memory = omega, memory
+        self.last: tuple[np.ndarray, np.ndarray] | None = None
+        self.dx: list[np.ndarray] = []
+        self.df: list[np.ndarray] = []
+
+    def step(self, x: np.ndarray, f: np.ndarray) -> np.ndarray:
+        plain = x + self.omega * f
+        if self.memory == 0:
+            return plain
+        if self.last is not None:
+            self.dx = (self.dx + [x - self.last[0]])[-self.memory:]
+            self.df = (self.df + [f - self.last[1]])[-self.memory:]
+        self.last = (x.copy(), f.copy())
+        if not self.dx:
+            return plain
+        dX, dF = np.column_stack(self.dx), np.column_stack(self.df)
+        gamma = np.linalg.lstsq(dF, f, rcond=1e-12)[0]
+        return plain - (dX + self.omega * dF) @ gamma
+
+
 def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperature: float,
                 wall_coefficient: float = 0.0, wall_temperature: float | None = None, relaxation: float = 1.0,
-                tolerance: float = 1e-9, max_iterations: int = 200) -> FilmEnergy:
+                tolerance: float = 1e-9, max_iterations: int = 200, memory: int = 3) -> FilmEnergy:
     """The pad's pressure and mean film temperature at their fixed point (level 2).
 
     Parameters
@@ -288,6 +307,9 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
         ``T_w`` [K]; default the supply temperature.
     relaxation : float
         ``omega`` in (0, 1].
+    memory : int
+        Anderson acceleration of the fixed point over the last ``memory`` iterates (>= 0; 0: the plain
+        relaxed iteration).
     tolerance : float
         Largest temperature change of the last iteration [K], > 0.
     max_iterations : int
@@ -302,6 +324,9 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
     alpha = nonnegative("wall_coefficient", wall_coefficient, "W/(m^2 K)")
     Tw = Ts if wall_temperature is None else positive("wall_temperature", wall_temperature, "K")
     omega = in_range("relaxation", relaxation, Range(0.0, 1.0, lo_open=True))
+    if isinstance(memory, bool) or not isinstance(memory, int) or memory < 0:
+        raise ValueError(f"memory must be an integer >= 0, got {memory!r}")
+    mixing = _Anderson(omega, memory)
     tol = positive("tolerance", tolerance, "K")
     if isinstance(max_iterations, bool) or not isinstance(max_iterations, int) or max_iterations < 1:
         raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
@@ -319,7 +344,6 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
         p, cavitated = f.pressure(mu_q)
         (q0, q1), dp = f.flux(p, mu_q)
         phi = dissipation(f.h, dp, U, mu_q)
-        speed = np.hypot(q0, q1)
         spread = sum(np.abs(q0 * g[0] + q1 * g[1]) for g in grads)
         with np.errstate(divide="ignore", invalid="ignore"):
             inv = np.sqrt((spread) ** 2 + beta**2)  # (2|q|/h_e)^2 = spread^2
@@ -337,10 +361,13 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
         T_new = sp.linalg.spsolve(A.tocsc(), b)
         if not np.all(np.isfinite(T_new)):
             raise ThermalError("the energy equation gave non-finite temperatures")
-        change = float(np.abs(T_new - T).max())
-        T = T + omega * (T_new - T)
+        f_k = T_new - T
+        change = float(np.abs(f_k).max())
         if change <= tol:
             break
+        T = mixing.step(T, f_k)
+        if not (np.all(np.isfinite(T)) and T.min() > 0):  # an extrapolation too far: the plain step instead
+            T, mixing = T_new - (1.0 - omega) * f_k, _Anderson(omega, memory)
     else:
         raise ThermalError(f"level 2 did not converge in {max_iterations} iterations (last change {change:.3g} K); "
                            f"lower the relaxation")

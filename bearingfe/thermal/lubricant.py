@@ -39,6 +39,8 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Mapping, Protocol, runtime_checkable
 
+import numpy as np
+
 from ..core.schema import Range, finite, in_range, positive
 
 __all__ = ["ViscosityLaw", "ConstantViscosity", "VogelViscosity", "WaltherViscosity", "VISCOSITY_LAWS", "ISO_VG",
@@ -70,6 +72,14 @@ def _temperature(name: str, value) -> float:
     return in_range(name, value, _TEMPERATURE, "K")
 
 
+def _temperatures(value) -> np.ndarray:
+    """An array of absolute temperatures [K], each finite and > 0."""
+    t = np.asarray(value, dtype=float)
+    if not (np.all(np.isfinite(t)) and np.all(t > 0)):
+        raise ValueError(f"temperature must be finite and > 0 K everywhere, got min {np.nanmin(t)!r}")
+    return t
+
+
 @runtime_checkable
 class ViscosityLaw(Protocol):
     """A viscosity-temperature law: ``dynamic(T, density)`` [Pa s] at ``T`` [K] for an oil of that
@@ -98,6 +108,10 @@ class ConstantViscosity:
         """``mu`` [Pa s] whatever the temperature."""
         _temperature("temperature", temperature)
         return self.viscosity
+
+    def dynamic_field(self, temperature: np.ndarray, density: np.ndarray) -> np.ndarray:
+        """:meth:`dynamic` over an array of temperatures [K] (checked > 0)."""
+        return np.full(_temperatures(temperature).shape, self.viscosity)
 
 
 @dataclass(frozen=True)
@@ -129,6 +143,13 @@ class VogelViscosity:
         if not t > self.c:
             raise ValueError(f"temperature must be > VogelViscosity.c = {self.c:g} K, got {temperature!r}")
         return self.a * math.exp(self.b / (t - self.c))
+
+    def dynamic_field(self, temperature: np.ndarray, density: np.ndarray | None = None) -> np.ndarray:
+        """:meth:`dynamic` over an array of temperatures [K] (each must exceed ``c``)."""
+        t = _temperatures(temperature)
+        if not np.all(t > self.c):
+            raise ValueError(f"temperature must be > VogelViscosity.c = {self.c:g} K, got min {t.min()!r}")
+        return self.a * np.exp(self.b / (t - self.c))
 
     @classmethod
     def through(cls, *points: tuple[float, float]) -> "VogelViscosity":
@@ -187,6 +208,11 @@ class WaltherViscosity:
     def dynamic(self, temperature: float, density: float) -> float:
         """Dynamic viscosity ``nu(T) rho`` [Pa s] for an oil of density ``rho`` [kg/m^3] at ``T``."""
         return self.kinematic(temperature) * positive("density", density, "kg/m^3")
+
+    def dynamic_field(self, temperature: np.ndarray, density: np.ndarray) -> np.ndarray:
+        """:meth:`dynamic` over arrays of temperatures [K] and densities [kg/m^3] (the same formula)."""
+        t = _temperatures(temperature)
+        return (10.0 ** (10.0 ** (self.A - self.B * np.log10(t))) - WALTHER_SHIFT) * 1e-6 * np.asarray(density)
 
     @classmethod
     def through(cls, first: tuple[float, float], second: tuple[float, float]) -> "WaltherViscosity":
@@ -310,6 +336,19 @@ class Lubricant:
     def viscosity(self, temperature: float) -> float:
         """Dynamic viscosity [Pa s] at ``T`` [K]."""
         return self.viscosity_law.dynamic(temperature, self.density_at(temperature))
+
+    def viscosity_field(self, temperature) -> np.ndarray:
+        """Dynamic viscosity [Pa s] over an array of temperatures [K] (a film's field): the law's
+        ``dynamic_field`` when it has one (the formula of :meth:`viscosity` on arrays, equal to round-off),
+        else :meth:`viscosity` point by point."""
+        t = _temperatures(temperature)
+        rho = self.density - self.density_slope * (t - self.reference_temperature)
+        if not np.all(rho > 0):
+            raise ValueError(f"temperature {t.max()!r} K is beyond the linear density law of {self.name!r}")
+        field = getattr(self.viscosity_law, "dynamic_field", None)
+        if field is not None:
+            return np.asarray(field(t, rho), dtype=float)
+        return np.vectorize(self.viscosity, otypes=[float])(t)
 
     def kinematic_viscosity(self, temperature: float) -> float:
         """Kinematic viscosity [m^2/s] at ``T`` [K]."""

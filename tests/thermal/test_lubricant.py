@@ -134,3 +134,20 @@ def test_bad_values_are_named(make, words):
     with pytest.raises(ValueError, match=None) as info:
         make()
     assert words in str(info.value)
+
+
+def test_viscosity_field_is_the_pointwise_viscosity():
+    # the array form of each law is its scalar formula on arrays: equal to round-off (1e-13)
+    import numpy as np
+
+    t = np.linspace(kelvin(20.0), kelvin(140.0), 13).reshape(-1, 1) * np.ones((1, 2))
+    for law in (ConstantViscosity(0.02), VogelViscosity(6e-5, 900.0, 170.0),
+                WaltherViscosity.through((kelvin(40.0), 46e-6), (kelvin(100.0), 6.8e-6))):
+        oil = Lubricant(law, density=870.0)
+        field = oil.viscosity_field(t)
+        assert field.shape == t.shape
+        assert np.allclose(field, [[oil.viscosity(float(v)) for v in row] for row in t], rtol=1e-13, atol=0)
+    with pytest.raises(ValueError):
+        Lubricant(VogelViscosity(6e-5, 900.0, 170.0)).viscosity_field(np.array([300.0, 160.0]))
+    with pytest.raises(ValueError):
+        Lubricant(ConstantViscosity(0.02)).viscosity_field(np.array([300.0, np.nan]))
