@@ -15,10 +15,8 @@ Viscosity-temperature laws (:data:`VISCOSITY_LAWS`, one protocol: ``dynamic(T, d
 
 ISO viscosity grades (:data:`ISO_VG`): the ISO 3448 mid-point kinematic viscosities at 40 degC (each
 grade spans +-10 % about it). :func:`iso_vg` makes a Walther lubricant of a grade through its 40 degC
-mid-point and a 100 degC viscosity that the caller gives (from the oil's data sheet): the 100 degC
-viscosity implied by a viscosity index needs the tables of ASTM D2270 (the 40 degC viscosities ``L``
-and ``H`` of the VI 0 and VI 100 reference oils for each 100 degC viscosity up to 70 mm^2/s), which
-this package does not carry, so it takes the 100 degC viscosity rather than a viscosity index.
+mid-point and a 100 degC viscosity that the caller gives (from the oil's data sheet, or from a
+viscosity index by :func:`bearingfe.thermal.viscosity_index.viscosity_100`, ASTM D2270).
 
 Density: linear in temperature, ``rho(T) = rho_ref - gamma (T - T_ref)``. The slope ``gamma``
 [kg/(m^3 K)] defaults to the average temperature correction of petroleum products of GOST 3900-85

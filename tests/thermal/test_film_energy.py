@@ -132,3 +132,19 @@ def test_anderson_mixing_reaches_the_plain_iterations_fixed_point_in_fewer_itera
     assert mixed.iterations < plain.iterations  # measured 10 against 15
     with pytest.raises(ValueError, match="memory"):
         film_energy(pad, m, OIL, TS, memory=-1)
+
+
+@pytest.mark.parametrize("make", [lambda: Pad(L, B, lambda x, y: 0 * x - 1e-6, U),
+                                  lambda: Pad(L, B, lambda x, y: 0 * x + float("nan"), U)])
+def test_a_film_that_is_not_positive_is_refused(make):
+    pad = make()
+    with pytest.raises(ValueError, match="thickness"):
+        film_energy(pad, pad_mesh(pad, 2, 2), OIL, TS)
+
+
+@pytest.mark.parametrize("make", [lambda: Pad(L, B, "h", U), lambda: Pad(L, B, _thickness, U, sides="open"),
+                                  lambda: Pad(-L, B, _thickness, U), lambda: Pad(L, B, _thickness, 0.0),
+                                  lambda: pad_mesh(Pad.inclined(L, B, H0, K, U), 0, 2)])
+def test_bad_pads_are_refused(make):
+    with pytest.raises(ValueError):
+        make()
