@@ -24,12 +24,13 @@ from .lubricant import (ISO_VG, VISCOSITY_LAWS, ConstantViscosity, Lubricant, Vi
 from .heat_balance import (EffectiveTemperature, FilmTemperatures, HeatBalance, JournalDuty, ThermalError,
                            effective_temperature, film_temperatures)
 from .viscosity_index import reference_viscosities, viscosity_40, viscosity_100, viscosity_index
-from .film_energy import FilmEnergy, Pad, PadLevel1, film_energy, pad_level1, pad_mesh, slider_reference
+from .film_energy import (FilmEnergy, Pad, PadLevel1, film_energy, journal_pad, pad_level1, pad_mesh,
+                          slider_reference)
 from .pump_cycle import CycleTemperature, cycle_temperature
 
 __all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
            "WaltherViscosity", "celsius", "iso_vg", "kelvin", "EffectiveTemperature", "FilmTemperatures",
            "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures",
            "CycleTemperature", "cycle_temperature", "reference_viscosities", "viscosity_40", "viscosity_100",
-           "viscosity_index", "FilmEnergy", "Pad", "PadLevel1", "film_energy", "pad_level1", "pad_mesh",
+           "viscosity_index", "FilmEnergy", "Pad", "PadLevel1", "film_energy", "journal_pad", "pad_level1", "pad_mesh",
            "slider_reference"]

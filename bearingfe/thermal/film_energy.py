@@ -1,6 +1,7 @@
 r"""Level 2: the film's mean temperature as a field, coupled to a Reynolds equation whose viscosity varies over the film.
 
-A plane pad of length ``L`` (along the sliding direction ``x``) and width ``B`` (``y``), film
+A plane pad (or a full journal bearing unwrapped from its line of largest film,
+:func:`journal_pad`) of length ``L`` (along the sliding direction ``x``) and width ``B`` (``y``), film
 thickness ``h(x, y)`` [m], runner sliding at ``U`` [m/s] in ``+x``; SI throughout. On the same P1
 triangle mesh:
 
@@ -10,9 +11,10 @@ triangle mesh:
   :func:`bearingfe.film.forms.weighted_laplace` and :func:`~bearingfe.film.forms.gradient_load`, the
   coefficient a field at the quadrature points), ``p = 0`` on the pressure edges: the two ends
   ``x = 0, L`` and, with ``sides="ambient"``, the sides; with ``sides="closed"`` the sides carry no
-  flow (the infinitely wide pad). Swift-Stieber: the nodes where the pressure would fall below 0 are
-  held at 0 (an active set, repeated until no node is negative); the heat of a ruptured zone is then
-  convected by the full-film flux (no fill fraction; the JFO share of the heat is not modelled).
+  flow (the infinitely wide pad). Swift-Stieber: ``p >= 0`` with a non-negative residual where
+  ``p = 0`` (the primal-dual active set method); the heat of a ruptured zone is then convected by
+  the full-film flux, the Couette flow ``U h/2`` (no fill fraction: the JFO share of the heat is
+  not modelled).
 - The mean film flux ``q = -h^3/(12 mu) grad p + U h/2 e_x`` [m^2/s].
 - The energy equation of the film's mean temperature, convection and viscous heating, optionally a
   heat-transfer coefficient ``alpha`` [W/(m^2 K)] to walls at ``T_w`` (both walls together):
@@ -58,7 +60,7 @@ from ..film.forms import dissipation, film_flux, gradient_load, shear, weighted_
 from .heat_balance import HeatBalance, ThermalError, film_temperatures, fixed_point
 from .lubricant import ConstantViscosity, Lubricant
 
-__all__ = ["Pad", "FilmEnergy", "PadLevel1", "SliderReference", "pad_mesh", "film_energy", "pad_level1",
+__all__ = ["Pad", "FilmEnergy", "PadLevel1", "SliderReference", "journal_pad", "pad_mesh", "film_energy", "pad_level1",
            "slider_reference", "SIDES"]
 
 #: Pressure conditions on the pad's sides ``y = 0, B``: ambient (``p = 0``) or closed (no flow).
@@ -108,6 +110,29 @@ class Pad:
         L = positive("length", length, "m")
         return cls(length, width, lambda x, y: h0 * (1.0 + k * (1.0 - np.asarray(x) / L)) + 0.0 * np.asarray(y),
                    speed, sides)
+
+
+def journal_pad(radius: float, length: float, clearance: float, eccentricity_ratio: float, omega: float) -> Pad:
+    """A full 360-degree journal bearing unwrapped from its line of largest film (the Raimondi-Boyd bearing of
+    :func:`bearingfe.bearings.journal.performance`): ``x = R phi`` in ``[0, 2 pi R]``, ``y`` along the axis,
+    ``h = c (1 + eps cos(x/R))``, the journal's surface at ``U = omega R``, ambient pressure on all edges (oil
+    fed at the line of largest film at the supply temperature: no hot-oil carry-over).
+
+    Parameters
+    ----------
+    radius, length, clearance : float
+        ``R``, ``L``, ``c`` [m], > 0.
+    eccentricity_ratio : float
+        ``eps`` in [0, 1).
+    omega : float
+        Shaft speed [rad/s], > 0.
+    """
+    R = positive("radius", radius, "m")
+    c = positive("clearance", clearance, "m")
+    eps = in_range("eccentricity_ratio", eccentricity_ratio, Range(0.0, 1.0, hi_open=True))
+    U = positive("omega", omega, "rad/s") * R
+    return Pad(2.0 * np.pi * R, length, lambda x, y: c * (1.0 + eps * np.cos(np.asarray(x) / R)) + 0.0 * np.asarray(y),
+               U, "ambient")
 
 
 def pad_mesh(pad: Pad, nx: int, ny: int) -> MeshTri:
@@ -240,18 +265,26 @@ class _Film:
         self.E = self.basis.interpolate
 
     def pressure(self, mu_q: np.ndarray) -> tuple[np.ndarray, int]:
-        """Reynolds with ``mu`` at the quadrature points; Swift-Stieber by an active set."""
-        A = weighted_laplace.assemble(self.basis, c=self.h**3 / (12.0 * mu_q))
-        fixed = self.dirichlet
+        """Reynolds with ``mu`` at the quadrature points; Swift-Stieber (``p >= 0``, the residual ``A p - b >= 0``
+        where ``p = 0``) by the primal-dual active set method, started from the unconstrained solution."""
+        A = weighted_laplace.assemble(self.basis, c=self.h**3 / (12.0 * mu_q)).tocsr()
+        b = self.couette
         n = self.basis.N
-        for _ in range(n):
+        ambient = np.zeros(n, dtype=bool)
+        ambient[self.dirichlet] = True
+        active = np.zeros(n, dtype=bool)
+        for _ in range(n + 1):
+            fixed = np.flatnonzero(ambient | active)
             p = np.zeros(n)
             free = np.setdiff1d(np.arange(n), fixed)
-            p[free] = skfem.solve(*skfem.condense(A, self.couette, D=fixed, x=p))[free] if free.size else 0.0
-            negative = np.flatnonzero(p < -1e-12 * max(np.abs(p).max(), 1.0))
-            if negative.size == 0:
-                return np.maximum(p, 0.0) if fixed.size > self.dirichlet.size else p, fixed.size - self.dirichlet.size
-            fixed = np.union1d(fixed, negative)
+            if free.size:
+                p[free] = skfem.solve(*skfem.condense(A, b, D=fixed, x=p))[free]
+            multiplier = np.where(active, A @ p - b, 0.0)
+            scale = max(np.abs(p).max(), 1e-300)
+            new = ~ambient & ((p < -1e-12 * scale) | (active & (multiplier > 0)))
+            if np.array_equal(new, active):
+                return p, int(active.sum())
+            active = new
         raise ThermalError("the Swift-Stieber active set did not settle")  # pragma: no cover
 
     def flux(self, p: np.ndarray, mu_q: np.ndarray):
