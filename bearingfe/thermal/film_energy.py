@@ -243,6 +243,13 @@ class _Film:
 
     def __init__(self, pad: Pad, mesh: MeshTri):
         self.pad, self.mesh = pad, mesh
+        if not isinstance(mesh, MeshTri):
+            raise ValueError(f"mesh must be a scikit-fem MeshTri of the pad (pad_mesh), got {type(mesh).__name__}")
+        lo, hi = mesh.p.min(axis=1), mesh.p.max(axis=1)
+        if not np.allclose([lo[0], lo[1], hi[0], hi[1]], [0.0, 0.0, pad.length, pad.width], rtol=0,
+                           atol=1e-9 * max(pad.length, pad.width)):
+            raise ValueError(f"mesh must cover the pad [0, {pad.length:g}] x [0, {pad.width:g}] m, got "
+                             f"[{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}] m")
         self.basis = Basis(mesh, ElementTriP1())
         self.facets = FacetBasis(mesh, ElementTriP1(), facets=mesh.boundary_facets())
         x = np.asarray(self.basis.global_coordinates())
@@ -261,8 +268,6 @@ class _Film:
         U = pad.speed
         self.couette = gradient_load.assemble(self.basis, f0=0.5 * U * self.h, f1=np.zeros_like(self.h))
         self.area = float(self.basis.dx.sum())
-        # E: nodal -> quadrature values, G0/G1: gradients (rows in basis.dx order)
-        self.E = self.basis.interpolate
 
     def pressure(self, mu_q: np.ndarray) -> tuple[np.ndarray, int]:
         """Reynolds with ``mu`` at the quadrature points; Swift-Stieber (``p >= 0``, the residual ``A p - b >= 0``

@@ -168,3 +168,9 @@ def test_isoviscous_journal_matches_the_packages_journal_solver():
     assert load == pytest.approx(perf.load * mu * omega * R**4 / c**2, rel=6e-3)
     assert r.friction / load * R / c == pytest.approx(perf.friction_variable, rel=6e-3)
     assert r.cavitated > 0 and r.balance_residual < 1e-12
+
+
+def test_a_mesh_of_another_pad_is_refused():
+    pad, other = Pad.inclined(L, B, H0, K, U), Pad.inclined(2 * L, B, H0, K, U)
+    with pytest.raises(ValueError, match="mesh must cover the pad"):
+        film_energy(pad, pad_mesh(other, 4, 2), OIL, TS)
