@@ -32,6 +32,13 @@ Discretization (P1, vertex-centred finite volumes on the median dual mesh):
   midpoint from a limited linear reconstruction around the upwind node
   (second-order upwind, Barth-Jespersen limiter, lagged over a few solves),
   which removes most of the first-order flux's crosswind smearing;
+- on any mesh, ``couette="streamline"`` takes theta at each median-dual segment
+  from the foot of the sliding-direction line through the segment midpoint
+  on its triangle's edge (P1 interpolation of the two nodes of that edge,
+  upstream): a fill fraction that varies across the sliding direction is
+  carried along it without crosswind smearing, in one linear flux (no
+  limiter, no extra solves); the scheme is not positive (theta may dip
+  below 0 with squeeze or time steps, refused by :class:`JFOError`);
 - the storage ``int theta h`` is lumped on the dual cells
   (``H_i = int h phi_i``); the steady squeeze term is ``theta_i int dh/dt
   phi_i``, a time step backward Euler ``(theta H - theta_old H_old)/dt``.
@@ -75,7 +82,7 @@ from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
-           "UNSTRUCTURED_JFO_NOTE", "TENSOR_SOURCES"]
+           "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
@@ -84,8 +91,10 @@ TOLERANCE = 1e-10
 #: Couette flux discretizations of :func:`solve_jfo` (``couette=``): ``"median"`` (median-dual segments,
 #: any straight P1 mesh, first-order upwind), ``"grid"`` (box cells of a tensor grid, flux along the grid
 #: lines only), ``"limited"`` (median-dual segments, second-order upwind with a Barth-Jespersen limiter)
-#: and ``"auto"`` (``"grid"`` on tensor grids, :data:`TENSOR_SOURCES`, else ``"median"``).
-COUETTE_FLUXES = ("auto", "median", "grid", "limited")
+#: ``"streamline"`` (median-dual segments, theta at the foot of the streamline through each segment: no
+#: crosswind smearing, not positive) and ``"auto"`` (``"grid"`` on tensor grids, :data:`TENSOR_SOURCES`,
+#: else ``"median"``).
+COUETTE_FLUXES = ("auto", "median", "grid", "limited", "streamline")
 
 
 #: Mesh sources whose median-dual Couette flux carries a front along ``phi`` without crosswind smearing
@@ -93,11 +102,18 @@ COUETTE_FLUXES = ("auto", "median", "grid", "limited")
 ALIGNED_SOURCES = ("strip",)
 #: Note on a JFO result with a cavity solved by the median-dual flux of an unstructured mesh.
 UNSTRUCTURED_JFO_NOTE = (
-    "JFO with a cavity on an unstructured mesh: the median-dual upwind Couette flux smears the fill fraction "
-    "across the sliding direction, so loads and flows converge slowly (order about 1 or less; errors of "
-    "several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); solve_jfo(..., couette='limited') "
-    "reduces the smearing, and for rectangular surfaces with rectangular pockets "
-    "bearingfe.geometry.meshing.grid_mesh (couette='grid') removes it; or check the answer on a finer mesh")
+    "JFO with a cavity on an unstructured mesh with couette='median': the median-dual upwind Couette flux smears "
+    "the fill fraction across the sliding direction, so loads and flows converge slowly (order about 1 or less; "
+    "errors of several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); the default "
+    "couette='streamline' removes the smearing, and for rectangular surfaces with rectangular pockets "
+    "bearingfe.geometry.meshing.grid_mesh (couette='grid') too; or check the answer on a finer mesh")
+#: Note on a JFO result with a cavity on an unstructured mesh of a surface with recesses (film steps).
+RECESS_JFO_NOTE = (
+    "JFO with a cavity on an unstructured mesh of a surface with recesses: a node on a recess contour carries one "
+    "fill fraction for both film depths, a first-order error along the contours that dominates small loads (the "
+    "dimpled slider of docs/jfo_gmsh.md: 2-3 % on 1e4 nodes of uniform size); refine the mesh at the contours "
+    "(mesh_surface(..., inlet_size=size / 8, grading_distance=2 * size) halves it) or check the answer on a "
+    "finer mesh")
 
 
 class JFOError(RuntimeError):
@@ -282,6 +298,46 @@ def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
     return (E @ R).tocsr()
 
 
+# -- streamline upwind values of theta on the median dual ---------------------------------------------
+
+def _streamline_weights(mesh: SupportMesh, d: _Dual, direction: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes ``(3, n_segments)`` and weights of theta at the foot of each median-dual segment's streamline.
+
+    From the segment midpoint the line along ``-direction e_phi`` (upstream of the sliding) is followed to
+    the edge of the segment's triangle; theta there is the P1 interpolation of the triangle's nodes (two
+    non-zero weights, both >= 0). A fill fraction that varies across the sliding direction only is thus
+    carried without crosswind smearing (the foot lies on the same ``z`` as the segment), and the exact
+    cavity solution (``theta h`` constant along ``phi``) is met for a linear ``theta``.
+    """
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    nt = t.shape[1]
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    gx = np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det          # d lambda_k / d phi
+    tri = np.arange(d.i.size) % nt
+    xs, ys = d.midpoint
+    gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
+    nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
+    lam = gx[:, tri] * (xs - x[nxt][:, tri]) + gy[:, tri] * (ys - y[nxt][:, tri])
+    rate = -direction * gx[:, tri]                     # d lambda / d tau along the upstream ray
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tau = np.where(rate < 0, -lam / rate, np.inf)
+    step = np.min(tau, axis=0)
+    step = np.where(np.isfinite(step), step, 0.0)
+    w = np.clip(lam + rate * step, 0.0, None)
+    w /= w.sum(axis=0)
+    return t[:, tri], w
+
+
+def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
+    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
+    rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
+    cols = np.concatenate([nodes.ravel(), nodes.ravel()])
+    vals = np.concatenate([(f * w).ravel(), -(f * w).ravel()])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
 # -- film with recesses --------------------------------------------------------------
 
 def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
@@ -421,6 +477,7 @@ class _System:
     faces: _GridFaces | None = None       # grid flux: the box faces ...
     face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
     reconstruction: _Reconstruction | None = None   # couette="limited": the second-order upwind values
+    couette: str = "median"                         # the Couette flux (COUETTE_FLUXES, "auto" resolved)
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
@@ -446,8 +503,11 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         rec = _reconstruction(mesh, d, f) if couette == "limited" else None
     up = np.where(f > 0, fi, fj)
     n = basis.N
-    C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
-                      shape=(n, n)).tocsr()
+    if couette == "streamline":
+        C = _streamline_flux(n, d, f, *_streamline_weights(mesh, d, math.copysign(1.0, wedge))).tocsr()
+    else:
+        C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
+                          shape=(n, n)).tocsr()
     area = load.assemble(basis, f=np.ones_like(h_q))
     storage = load.assemble(basis, f=hdot_q)
     source = np.zeros(n)
@@ -459,7 +519,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
     return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
-                   reconstruction=rec, **grid)
+                   reconstruction=rec, couette=couette, **grid)
 
 
 # -- the complementarity solve ----------------------------------------------------------
@@ -835,7 +895,8 @@ TENSOR_SOURCES = ("grid", "structured")
 
 
 def _auto_couette(mesh: SupportMesh) -> str:
-    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), else ``"median"``."""
+    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), else ``"median"``
+    (``"streamline"`` is more accurate for steady solves but not positive: see :func:`solve_jfo`)."""
     if mesh.source not in TENSOR_SOURCES:
         return "median"
     try:
@@ -892,7 +953,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         is booked as ``flows["cavitation"]``) and ``"none"`` (no pressure
         bound). :func:`bearingfe.solve_reynolds` uses them for recessed and
         periodic surfaces.
-    couette : {"auto", "median", "grid", "limited"}
+    couette : {"auto", "median", "grid", "limited", "streamline"}
         Discretization of the Couette flux ``wedge/2 theta h``. ``"median"``:
         through the median-dual segments of any straight P1 mesh (first-order
         upwinding smears fronts that run along ``phi`` sideways, by a width of
@@ -907,7 +968,15 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         unstructured meshes, a few times the cost (the limiter is lagged:
         up to :data:`LIMITER_SWEEPS` warm-started solves). ``"auto"``:
         ``"grid"`` on tensor-grid meshes (``grid_mesh``, the structured
-        journal mesh; :data:`TENSOR_SOURCES`), else ``"median"``. See
+        journal mesh; :data:`TENSOR_SOURCES`), else ``"median"``.
+        ``"streamline"``: the median-dual segments with ``theta`` at the
+        foot of the sliding line through each segment midpoint on the edge of
+        its triangle (linear, one active-set solve like ``"median"``): no
+        crosswind smearing, so loads and flows of pockets, grooves and
+        periodic seams converge at first order or better on gmsh meshes
+        (docs/jfo_gmsh.md); the error left is at recess contours (refine the
+        mesh there). Not positive: with squeeze or time steps theta may fall
+        below 0 (a :class:`JFOError`), so it is not the default. See
         ``docs/jfo.md``.
 
     Returns
@@ -991,10 +1060,12 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
-    first_order_unstructured = system.faces is None and system.reconstruction is None and (
-        mesh.source not in ALIGNED_SOURCES)
-    if model == "jfo" and first_order_unstructured and bool(np.any(emptied)):
-        notes += (UNSTRUCTURED_JFO_NOTE,)
+    first_order_unstructured = system.couette == "median" and mesh.source not in ALIGNED_SOURCES
+    if model == "jfo" and bool(np.any(emptied)):
+        if first_order_unstructured:
+            notes += (UNSTRUCTURED_JFO_NOTE,)
+        elif system.couette == "streamline" and mesh.surface is not None and mesh.surface.recesses:
+            notes += (RECESS_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
     return ReynoldsResult(
