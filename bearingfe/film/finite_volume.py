@@ -82,7 +82,7 @@ from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
-           "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES"]
+           "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES", "STREAMLINE_PASSES"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
@@ -330,6 +330,30 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction: float) -> tuple[
     return t[:, tri], w
 
 
+@dataclass(frozen=True, eq=False)
+class _Streamline:
+    """The streamline flux's pieces: segments, their fluxes ``f``, foot nodes and weights, upwind nodes."""
+
+    d: _Dual
+    flux: np.ndarray
+    nodes: np.ndarray      # (3, n_segments)
+    weights: np.ndarray    # (3, n_segments), >= 0, summing to 1
+    up: np.ndarray         # upwind node of each segment
+
+    def matrix(self, n: int, upwinded: np.ndarray) -> sp.csr_matrix:
+        """The flux with the segments ``upwinded`` (bool per segment) taking theta of their upwind node."""
+        w = np.where(upwinded, 0.0, self.weights)
+        w[0] += np.where(upwinded, 1.0, 0.0)
+        nodes = self.nodes.copy()
+        nodes[0] = np.where(upwinded, self.up, nodes[0])
+        return _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+
+
+#: Passes of ``couette="streamline"`` at most that upwind the segments out of nodes with theta < 0 or
+#: switching in an active-set cycle (each one warm-started active-set solve).
+STREAMLINE_PASSES = 8
+
+
 def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
     """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
     rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
@@ -476,7 +500,7 @@ class _System:
     inv_h_q: np.ndarray    # 1/h at the quadrature points (for the shear)
     faces: _GridFaces | None = None       # grid flux: the box faces ...
     face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
-    reconstruction: _Reconstruction | None = None   # couette="limited": the second-order upwind values
+    reconstruction: "_Reconstruction | _Streamline | None" = None   # couette="limited" / "streamline"
     couette: str = "median"                         # the Couette flux (COUETTE_FLUXES, "auto" resolved)
 
 
@@ -504,7 +528,9 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     up = np.where(f > 0, fi, fj)
     n = basis.N
     if couette == "streamline":
-        C = _streamline_flux(n, d, f, *_streamline_weights(mesh, d, math.copysign(1.0, wedge))).tocsr()
+        nodes, w = _streamline_weights(mesh, d, math.copysign(1.0, wedge))
+        rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up)
+        C = _streamline_flux(n, d, f, nodes, w).tocsr()
     else:
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
@@ -624,9 +650,12 @@ class _SetSolver:
 
 
 def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
-                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
+                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
+                negative: bool = False) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
-    ``fixed``: one solve on the given sets (no sign tests)."""
+    ``fixed``: one solve on the given sets (no sign tests); ``negative``: return a converged cavity with
+    ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again). A cycle raises
+    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     cav = cavity.copy()
     seen: set[bytes] = set()
@@ -644,7 +673,7 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
         if np.array_equal(new, cav):
-            if theta.min(initial=1.0) < -tol:
+            if theta.min(initial=1.0) < -tol and not negative:
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
@@ -653,12 +682,16 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
                              residual=float(np.abs(res).max(initial=0.0)) / scale)
         key = np.packbits(new).tobytes()
         if key in seen:
-            raise JFOError(f"JFO active-set iteration cycles after {it} iterations "
-                           f"({int(new.sum())} cavitated dofs); refine the mesh or warm-start closer")
+            error = JFOError(f"JFO active-set iteration cycles after {it} iterations "
+                             f"({int(new.sum())} cavitated dofs); refine the mesh or warm-start closer")
+            error.switching = np.flatnonzero(new != cav)
+            raise error
         seen.add(np.packbits(cav).tobytes())
         cav = new
-    raise JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
-                   f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+    error = JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
+                     f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+    error.switching = np.flatnonzero(new != cav)
+    raise error
 
 
 def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -714,6 +747,45 @@ def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: fl
         system = dataclasses.replace(system, C=(C1 + _limited_flux(rec, alpha)).tocsr())
         sol = _active_set(system, unk, p_fixed, p_c, sol.cavity, factorize, tol, max_iterations)
     return system, sol
+
+
+def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
+    """``couette="streamline"``: the active set on the streamline flux; where it ends with ``theta < 0`` or
+    cycles (the flux is not positive: a cell's outflow takes theta of its neighbours), the segments out of
+    those nodes take theta of their upwind node instead (first-order upwind, positive) and the problem is
+    solved again, warm-started, up to :data:`STREAMLINE_PASSES` times. The upwinded set only grows, so the
+    passes end. Returns the system of the final flux, the solution and the number of upwinded segments."""
+    st = system.reconstruction
+    n = ops.n_dofs
+    free = np.zeros(n, bool)
+    free[ops.interior] = True
+    upwinded = np.zeros(st.up.size, bool)
+    start = cavity
+    for _ in range(STREAMLINE_PASSES):
+        try:
+            sol = _active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
+        except JFOError as error:
+            switching = getattr(error, "switching", None)
+            if switching is None or switching.size == 0:
+                raise
+            mark = np.zeros(unk.rep.size)
+            mark[switching] = 1.0
+            bad = (unk.S @ mark) > 0.5
+            cavity = start
+        else:
+            bad = np.where(free, unk.S @ sol.theta, 1.0) < -tol
+            if not bad.any():
+                return system, sol, int(upwinded.sum())
+            cavity = sol.cavity
+        new = upwinded | bad[st.up]
+        if np.array_equal(new, upwinded):
+            break
+        upwinded = new
+        system = dataclasses.replace(system, C=st.matrix(n, upwinded))
+    raise JFOError("the streamline JFO solve keeps ending with theta < 0 or cycling after upwinding "
+                   f"{int(upwinded.sum())} segments: the film empties faster than the Couette flow refills it "
+                   "(time step too long, or a squeeze rate no oil film can follow); try couette='median'")
 
 
 def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
@@ -895,14 +967,16 @@ TENSOR_SOURCES = ("grid", "structured")
 
 
 def _auto_couette(mesh: SupportMesh) -> str:
-    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), else ``"median"``
-    (``"streamline"`` is more accurate for steady solves but not positive: see :func:`solve_jfo`)."""
-    if mesh.source not in TENSOR_SOURCES:
+    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), ``"median"`` on
+    meshes whose median dual is aligned with ``phi`` already (:data:`ALIGNED_SOURCES`), else ``"streamline"``."""
+    if mesh.source in ALIGNED_SOURCES:
         return "median"
+    if mesh.source not in TENSOR_SOURCES:
+        return "streamline"
     try:
         _grid_faces(mesh)
     except ValueError:
-        return "median"
+        return "streamline"
     return "grid"
 
 
@@ -1020,9 +1094,13 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     else:
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
-        solve = _active_set if cavitation == "jfo" else _obstacle
-        sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
-        if system.reconstruction is not None and cavitation == "jfo":
+        if couette == "streamline" and cavitation == "jfo":
+            system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
+                                                      max_iterations, ops)
+        else:
+            solve = _active_set if cavitation == "jfo" else _obstacle
+            sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+        if couette == "limited" and cavitation == "jfo":
             system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
@@ -1030,8 +1108,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     p = np.where(free, unk.S @ sol.p, p_fixed)
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+    cost = {"assembly": t1 - start, "cavitation": t2 - t1}
+    if couette == "streamline" and cavitation == "jfo":
+        cost["upwinded_segments"] = float(upwinded)
     result = _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
-                     cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
+                     cavitated, sol, cost, start, cavitation)
     # a static solve notes its film's resolution (the smooth film: recess steps lie on element edges)
     return result if dt is not None else note_resolution(result, mesh, film, stacklevel=3)
 
