@@ -339,14 +339,53 @@ class _Streamline:
     nodes: np.ndarray      # (3, n_segments)
     weights: np.ndarray    # (3, n_segments), >= 0, summing to 1
     up: np.ndarray         # upwind node of each segment
+    scale: np.ndarray | None = None      # (3, n_segments): deepest film at the node / film on the segment's side
+    up_scale: np.ndarray | None = None   # (n_segments,): the same for the upwind node
 
-    def matrix(self, n: int, upwinded: np.ndarray) -> sp.csr_matrix:
-        """The flux with the segments ``upwinded`` (bool per segment) taking theta of their upwind node."""
+    def matrices(self, n: int, upwinded: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix | None]:
+        """The flux of full and of cavitated nodes' theta, with the segments ``upwinded`` (bool per segment)
+        taking theta of their upwind node."""
         w = np.where(upwinded, 0.0, self.weights)
         w[0] += np.where(upwinded, 1.0, 0.0)
         nodes = self.nodes.copy()
         nodes[0] = np.where(upwinded, self.up, nodes[0])
-        return _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+        C = _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+        if self.scale is None:
+            return C, None
+        s = self.scale.copy()
+        s[0] = np.where(upwinded, self.up_scale, s[0])
+        return C, _streamline_flux(n, self.d, self.flux, nodes, w * s).tocsr()
+
+
+def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
+    """Per segment and node of its triangle: the deepest film around the node over the film at the node on
+    the triangle's side (1 except at nodes on recess contours), and the same for the segment's upwind node;
+    None without recesses.
+
+    In a cavity the oil flux ``theta h`` is carried along ``phi`` and is continuous across a recess contour,
+    while ``theta`` jumps; a contour node has one unknown for both sides, so its cavitated ``theta`` refers to
+    its deepest film and each triangle takes ``theta h_max / h_side`` of it (the same oil flux on both sides).
+    """
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None, None
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    nt = t.shape[1]
+    g = p[:, t].mean(axis=1)
+    depth = np.empty(t.shape)
+    for a in range(3):
+        q = p[:, t[a]] + 1e-6 * (g - p[:, t[a]])   # just inside the triangle: its side of a step
+        depth[a] = surface.recess_depth(q[0], q[1])
+    deepest = np.zeros(m.nvertices)
+    np.maximum.at(deepest, t.ravel(), depth.ravel())
+    h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
+    scale = (h0[t] + deepest[t]) / (h0[t] + depth)          # (3, n_triangles)
+    tri = np.arange(d.i.size) % nt
+    pair = np.arange(d.i.size) // nt                         # 0: (0, 1), 1: (1, 2), 2: (2, 0)
+    first, second = pair, (pair + 1) % 3
+    local_up = np.where(f > 0, first, second)
+    return scale[:, tri], scale[local_up, tri]
 
 
 #: Passes of ``couette="streamline"`` at most that upwind the segments out of nodes with theta < 0 or
@@ -502,6 +541,7 @@ class _System:
     face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
     reconstruction: "_Reconstruction | _Streamline | None" = None   # couette="limited" / "streamline"
     couette: str = "median"                         # the Couette flux (COUETTE_FLUXES, "auto" resolved)
+    C_cavity: sp.csr_matrix | None = None   # outflow of cavitated nodes' theta where it differs from C's
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
@@ -527,10 +567,12 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         rec = _reconstruction(mesh, d, f) if couette == "limited" else None
     up = np.where(f > 0, fi, fj)
     n = basis.N
+    C_cavity = None
     if couette == "streamline":
         nodes, w = _streamline_weights(mesh, d, math.copysign(1.0, wedge))
-        rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up)
-        C = _streamline_flux(n, d, f, nodes, w).tocsr()
+        scale, up_scale = _contour_scales(mesh, film, d, f)
+        rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
+        C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
     else:
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
@@ -545,7 +587,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
     return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
-                   reconstruction=rec, couette=couette, **grid)
+                   reconstruction=rec, couette=couette, C_cavity=C_cavity, **grid)
 
 
 # -- the complementarity solve ----------------------------------------------------------
@@ -589,6 +631,23 @@ def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
     b = St @ (K @ p0 + G @ theta0 + system.source)
     return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+
+
+def _reduced_cavity(system: _System, unk: _Unknowns, G: sp.csr_matrix) -> sp.csr_matrix:
+    """Condensed operator of the cavitated unknowns' theta (``G`` where the system has no separate one)."""
+    if system.C_cavity is None:
+        return G
+    St = unk.S.T.tocsr()
+    return (St @ (system.C_cavity + sp.diags(system.storage)) @ unk.S).tocsr()
+
+
+def _effective(system: _System, unk: _Unknowns, cavity: np.ndarray) -> _System:
+    """The system with one Couette operator: the cavitated columns from ``C_cavity`` (for the flows)."""
+    if system.C_cavity is None:
+        return system
+    cav = (unk.S @ cavity.astype(float)) > 0.5
+    C = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    return dataclasses.replace(system, C=C, C_cavity=None)
 
 
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
@@ -657,10 +716,11 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
     ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
-    solver = _SetSolver(KII, GII, factorize)
+    solver = _SetSolver(KII, GcII, factorize)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - GII @ full.astype(float)
@@ -677,7 +737,7 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
-            res = KII @ P + GII @ theta + b
+            res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale)
         key = np.packbits(new).tobytes()
@@ -776,13 +836,14 @@ def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c:
         else:
             bad = np.where(free, unk.S @ sol.theta, 1.0) < -tol
             if not bad.any():
-                return system, sol, int(upwinded.sum())
+                return _effective(system, unk, sol.cavity), sol, int(upwinded.sum())
             cavity = sol.cavity
         new = upwinded | bad[st.up]
         if np.array_equal(new, upwinded):
             break
         upwinded = new
-        system = dataclasses.replace(system, C=st.matrix(n, upwinded))
+        C, C_cavity = st.matrices(n, upwinded)
+        system = dataclasses.replace(system, C=C, C_cavity=C_cavity)
     raise JFOError("the streamline JFO solve keeps ending with theta < 0 or cycling after upwinding "
                    f"{int(upwinded.sum())} segments: the film empties faster than the Couette flow refills it "
                    "(time step too long, or a squeeze rate no oil film can follow); try couette='median'")
