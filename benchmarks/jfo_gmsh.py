@@ -8,8 +8,8 @@ Usage (from the repository root)::
 Three cases, each solved with ``cavitation="jfo"`` (:data:`KINDS`) on
 
 - gmsh meshes (:func:`bearingfe.mesh_surface`, pocket and recess contours on element edges, the Couette
-  flux through the median-dual segments, first order: ``couette="median"``, the default there),
-- the same gmsh meshes with theta at the streamline foot (``couette="streamline"``), and gmsh meshes refined
+  flux through the median-dual segments, first order: ``couette="median"``, the default before),
+- the same gmsh meshes with theta at the streamline foot (``couette="streamline"``, the default), and gmsh meshes refined
   at the pocket and recess contours with it (``graded``), and
 - phi-aligned tensor grids (:func:`bearingfe.geometry.meshing.grid_mesh`, grid lines through the pocket
   edges, recess contours cut through the cells: ``couette="grid"``).
@@ -53,11 +53,11 @@ from bearingfe.geometry.meshing import grid_mesh  # noqa: E402
 KINDS = {
     "grid": ("grid", "grid", "`grid_mesh` + `couette=\"grid\"` (phi-aligned box faces)"),
     "streamline": ("gmsh", "streamline",
-                   "`mesh_surface` + `couette=\"streamline\"` (median dual, theta at the streamline foot)"),
+                   "`mesh_surface` + `couette=\"streamline\"` (median dual, theta at the streamline foot; the default on gmsh meshes)"),
     "graded": ("graded", "streamline",
                "`mesh_surface` refined at the contours + `couette=\"streamline\"`"),
     "gmsh": ("gmsh", "median",
-             "`mesh_surface` + `couette=\"median\"` (median dual, first-order upwind; the default on gmsh meshes)"),
+             "`mesh_surface` + `couette=\"median\"` (median dual, first-order upwind; the default before the streamline flux)"),
 }
 #: Contour refinement of the ``graded`` kind: inlet (and recess contour) size and grading distance per size.
 GRADED = dict(inlet=1 / 8, grading=2.0)
@@ -250,9 +250,9 @@ def goals(results) -> list[str]:
     return ["## Goals: within 1 % of the converged load and flows", "",
             md_table(["case", "mesh", "goal", "coarsest mesh within 1 % [nodes]", "its time [s]", "verdict"], rows),
             "", "`grid`: `grid_mesh` with the phi-aligned grid flux; `streamline`: `mesh_surface` with "
-            "`couette=\"streamline\"`; `graded`: the same on meshes refined at the pocket and recess contours "
+            "`couette=\"streamline\"` (the default); `graded`: the same on meshes refined at the pocket and recess contours "
             f"(`inlet_size={GRADED['inlet']:g} * size`, `grading_distance={GRADED['grading']:g} * size`); `gmsh`: "
-            "`mesh_surface` with the default first-order median-dual flux. A case not within 1 % on the meshes "
+            "`mesh_surface` with the first-order median-dual flux (`couette=\"median\"`). A case not within 1 % on the meshes "
             "measured below is NOT met.", ""]
 
 
