@@ -32,6 +32,18 @@ Discretization (P1, vertex-centred finite volumes on the median dual mesh):
   midpoint from a limited linear reconstruction around the upwind node
   (second-order upwind, Barth-Jespersen limiter, lagged over a few solves),
   which removes most of the first-order flux's crosswind smearing;
+- on any mesh, ``couette="streamline"`` takes theta at each median-dual segment
+  from the foot of the sliding-direction line through the segment midpoint
+  on its triangle's edge (P1 interpolation of the two nodes of that edge,
+  upstream): a fill fraction that varies across the sliding direction is
+  carried along it without crosswind smearing, in one linear flux (no
+  limiter, no extra solves). A cavitated node on a recess contour refers
+  its theta to its deepest film and each triangle takes ``theta h_max /
+  h_side`` of it (the oil flux ``theta h`` is what is continuous across a
+  film step in a cavity). The scheme is not positive: where theta would end
+  below 0 (strong squeeze, long time steps) or the active set cycles, the
+  segments out of those nodes are upwinded and the problem solved again.
+  The default on gmsh meshes;
 - the storage ``int theta h`` is lumped on the dual cells
   (``H_i = int h phi_i``); the steady squeeze term is ``theta_i int dh/dt
   phi_i``, a time step backward Euler ``(theta H - theta_old H_old)/dt``.
@@ -75,7 +87,7 @@ from .mesh_operators import Operators, operators
 from .result import ReynoldsResult
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
-           "UNSTRUCTURED_JFO_NOTE", "TENSOR_SOURCES"]
+           "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES", "STREAMLINE_PASSES"]
 
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 80
@@ -84,8 +96,10 @@ TOLERANCE = 1e-10
 #: Couette flux discretizations of :func:`solve_jfo` (``couette=``): ``"median"`` (median-dual segments,
 #: any straight P1 mesh, first-order upwind), ``"grid"`` (box cells of a tensor grid, flux along the grid
 #: lines only), ``"limited"`` (median-dual segments, second-order upwind with a Barth-Jespersen limiter)
-#: and ``"auto"`` (``"grid"`` on tensor grids, :data:`TENSOR_SOURCES`, else ``"median"``).
-COUETTE_FLUXES = ("auto", "median", "grid", "limited")
+#: ``"streamline"`` (median-dual segments, theta at the foot of the streamline through each segment: no
+#: crosswind smearing; upwinded where theta would fall below 0) and ``"auto"`` (``"grid"`` on tensor grids,
+#: :data:`TENSOR_SOURCES`, ``"median"`` on strips, :data:`ALIGNED_SOURCES`, else ``"streamline"``).
+COUETTE_FLUXES = ("auto", "median", "grid", "limited", "streamline")
 
 
 #: Mesh sources whose median-dual Couette flux carries a front along ``phi`` without crosswind smearing
@@ -93,11 +107,18 @@ COUETTE_FLUXES = ("auto", "median", "grid", "limited")
 ALIGNED_SOURCES = ("strip",)
 #: Note on a JFO result with a cavity solved by the median-dual flux of an unstructured mesh.
 UNSTRUCTURED_JFO_NOTE = (
-    "JFO with a cavity on an unstructured mesh: the median-dual upwind Couette flux smears the fill fraction "
-    "across the sliding direction, so loads and flows converge slowly (order about 1 or less; errors of "
-    "several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); solve_jfo(..., couette='limited') "
-    "reduces the smearing, and for rectangular surfaces with rectangular pockets "
-    "bearingfe.geometry.meshing.grid_mesh (couette='grid') removes it; or check the answer on a finer mesh")
+    "JFO with a cavity on an unstructured mesh with couette='median': the median-dual upwind Couette flux smears "
+    "the fill fraction across the sliding direction, so loads and flows converge slowly (order about 1 or less; "
+    "errors of several % on meshes of 1e4 nodes are measured in docs/jfo_gmsh.md); the default "
+    "couette='streamline' removes the smearing, and for rectangular surfaces with rectangular pockets "
+    "bearingfe.geometry.meshing.grid_mesh (couette='grid') too; or check the answer on a finer mesh")
+#: Note on a JFO result with a cavity on an unstructured mesh of a surface with recesses (film steps).
+RECESS_JFO_NOTE = (
+    "JFO with a cavity on an unstructured mesh of a surface with recesses: a node on a recess contour carries one "
+    "fill fraction for both film depths, a first-order error along the contours that dominates small loads (the "
+    "dimpled slider of docs/jfo_gmsh.md: load 1.2 % off on 11,903 nodes of uniform size, 0.6 % on 6,029 nodes "
+    "refined at the contour); refine the mesh at the contours (mesh_surface(..., inlet_size=size / 8, "
+    "grading_distance=2 * size)) or check the answer on a finer mesh")
 
 
 class JFOError(RuntimeError):
@@ -282,6 +303,109 @@ def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
     return (E @ R).tocsr()
 
 
+# -- streamline upwind values of theta on the median dual ---------------------------------------------
+
+def _streamline_weights(mesh: SupportMesh, d: _Dual, direction: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes ``(3, n_segments)`` and weights of theta at the foot of each median-dual segment's streamline.
+
+    From the segment midpoint the line along ``-direction e_phi`` (upstream of the sliding) is followed to
+    the edge of the segment's triangle; theta there is the P1 interpolation of the triangle's nodes (two
+    non-zero weights, both >= 0). A fill fraction that varies across the sliding direction only is thus
+    carried without crosswind smearing (the foot lies on the same ``z`` as the segment), and the exact
+    cavity solution (``theta h`` constant along ``phi``) is met for a linear ``theta``.
+    """
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    nt = t.shape[1]
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    gx = np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det          # d lambda_k / d phi
+    tri = np.arange(d.i.size) % nt
+    xs, ys = d.midpoint
+    gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
+    nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
+    lam = gx[:, tri] * (xs - x[nxt][:, tri]) + gy[:, tri] * (ys - y[nxt][:, tri])
+    rate = -direction * gx[:, tri]                     # d lambda / d tau along the upstream ray
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tau = np.where(rate < 0, -lam / rate, np.inf)
+    step = np.min(tau, axis=0)
+    step = np.where(np.isfinite(step), step, 0.0)
+    w = np.clip(lam + rate * step, 0.0, None)
+    w /= w.sum(axis=0)
+    return t[:, tri], w
+
+
+@dataclass(frozen=True, eq=False)
+class _Streamline:
+    """The streamline flux's pieces: segments, their fluxes ``f``, foot nodes and weights, upwind nodes."""
+
+    d: _Dual
+    flux: np.ndarray
+    nodes: np.ndarray      # (3, n_segments)
+    weights: np.ndarray    # (3, n_segments), >= 0, summing to 1
+    up: np.ndarray         # upwind node of each segment
+    scale: np.ndarray | None = None      # (3, n_segments): deepest film at the node / film on the segment's side
+    up_scale: np.ndarray | None = None   # (n_segments,): the same for the upwind node
+
+    def matrices(self, n: int, upwinded: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix | None]:
+        """The flux of full and of cavitated nodes' theta, with the segments ``upwinded`` (bool per segment)
+        taking theta of their upwind node."""
+        w = np.where(upwinded, 0.0, self.weights)
+        w[0] += np.where(upwinded, 1.0, 0.0)
+        nodes = self.nodes.copy()
+        nodes[0] = np.where(upwinded, self.up, nodes[0])
+        C = _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+        if self.scale is None:
+            return C, None
+        s = self.scale.copy()
+        s[0] = np.where(upwinded, self.up_scale, s[0])
+        return C, _streamline_flux(n, self.d, self.flux, nodes, w * s).tocsr()
+
+
+def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
+    """Per segment and node of its triangle: the deepest film around the node over the film at the node on
+    the triangle's side (1 except at nodes on recess contours), and the same for the segment's upwind node;
+    None without recesses.
+
+    In a cavity the oil flux ``theta h`` is carried along ``phi`` and is continuous across a recess contour,
+    while ``theta`` jumps; a contour node has one unknown for both sides, so its cavitated ``theta`` refers to
+    its deepest film and each triangle takes ``theta h_max / h_side`` of it (the same oil flux on both sides).
+    """
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None, None
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    nt = t.shape[1]
+    g = p[:, t].mean(axis=1)
+    depth = np.empty(t.shape)
+    for a in range(3):
+        q = p[:, t[a]] + 1e-6 * (g - p[:, t[a]])   # just inside the triangle: its side of a step
+        depth[a] = surface.recess_depth(q[0], q[1])
+    deepest = np.zeros(m.nvertices)
+    np.maximum.at(deepest, t.ravel(), depth.ravel())
+    h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
+    scale = (h0[t] + deepest[t]) / (h0[t] + depth)          # (3, n_triangles)
+    tri = np.arange(d.i.size) % nt
+    pair = np.arange(d.i.size) // nt                         # 0: (0, 1), 1: (1, 2), 2: (2, 0)
+    first, second = pair, (pair + 1) % 3
+    local_up = np.where(f > 0, first, second)
+    return scale[:, tri], scale[local_up, tri]
+
+
+#: Passes of ``couette="streamline"`` at most that upwind the segments out of nodes with theta < 0 or
+#: switching in an active-set cycle (each one warm-started active-set solve).
+STREAMLINE_PASSES = 8
+
+
+def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
+    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
+    rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
+    cols = np.concatenate([nodes.ravel(), nodes.ravel()])
+    vals = np.concatenate([(f * w).ravel(), -(f * w).ravel()])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
 # -- film with recesses --------------------------------------------------------------
 
 def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
@@ -420,7 +544,9 @@ class _System:
     inv_h_q: np.ndarray    # 1/h at the quadrature points (for the shear)
     faces: _GridFaces | None = None       # grid flux: the box faces ...
     face_film: np.ndarray | None = None   # ... and their mean film (int h dz / face length)
-    reconstruction: _Reconstruction | None = None   # couette="limited": the second-order upwind values
+    reconstruction: "_Reconstruction | _Streamline | None" = None   # couette="limited" / "streamline"
+    couette: str = "median"                         # the Couette flux (COUETTE_FLUXES, "auto" resolved)
+    C_cavity: sp.csr_matrix | None = None   # outflow of cavitated nodes' theta where it differs from C's
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
@@ -446,8 +572,15 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         rec = _reconstruction(mesh, d, f) if couette == "limited" else None
     up = np.where(f > 0, fi, fj)
     n = basis.N
-    C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
-                      shape=(n, n)).tocsr()
+    C_cavity = None
+    if couette == "streamline":
+        nodes, w = _streamline_weights(mesh, d, math.copysign(1.0, wedge))
+        scale, up_scale = _contour_scales(mesh, film, d, f)
+        rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
+        C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
+    else:
+        C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
+                          shape=(n, n)).tocsr()
     area = load.assemble(basis, f=np.ones_like(h_q))
     storage = load.assemble(basis, f=hdot_q)
     source = np.zeros(n)
@@ -459,7 +592,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
     return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
-                   reconstruction=rec, **grid)
+                   reconstruction=rec, couette=couette, C_cavity=C_cavity, **grid)
 
 
 # -- the complementarity solve ----------------------------------------------------------
@@ -503,6 +636,23 @@ def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
     b = St @ (K @ p0 + G @ theta0 + system.source)
     return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+
+
+def _reduced_cavity(system: _System, unk: _Unknowns, G: sp.csr_matrix) -> sp.csr_matrix:
+    """Condensed operator of the cavitated unknowns' theta (``G`` where the system has no separate one)."""
+    if system.C_cavity is None:
+        return G
+    St = unk.S.T.tocsr()
+    return (St @ (system.C_cavity + sp.diags(system.storage)) @ unk.S).tocsr()
+
+
+def _effective(system: _System, unk: _Unknowns, cavity: np.ndarray) -> _System:
+    """The system with one Couette operator: the cavitated columns from ``C_cavity`` (for the flows)."""
+    if system.C_cavity is None:
+        return system
+    cav = (unk.S @ cavity.astype(float)) > 0.5
+    C = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    return dataclasses.replace(system, C=C, C_cavity=None)
 
 
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
@@ -564,14 +714,18 @@ class _SetSolver:
 
 
 def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
-                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False) -> _Solution:
+                factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
+                negative: bool = False) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
-    ``fixed``: one solve on the given sets (no sign tests)."""
+    ``fixed``: one solve on the given sets (no sign tests); ``negative``: return a converged cavity with
+    ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again). A cycle raises
+    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
+    GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
-    solver = _SetSolver(KII, GII, factorize)
+    solver = _SetSolver(KII, GcII, factorize)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - GII @ full.astype(float)
@@ -584,21 +738,25 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
         if np.array_equal(new, cav):
-            if theta.min(initial=1.0) < -tol:
+            if theta.min(initial=1.0) < -tol and not negative:
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
-            res = KII @ P + GII @ theta + b
+            res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale)
         key = np.packbits(new).tobytes()
         if key in seen:
-            raise JFOError(f"JFO active-set iteration cycles after {it} iterations "
-                           f"({int(new.sum())} cavitated dofs); refine the mesh or warm-start closer")
+            error = JFOError(f"JFO active-set iteration cycles after {it} iterations "
+                             f"({int(new.sum())} cavitated dofs); refine the mesh or warm-start closer")
+            error.switching = np.flatnonzero(new != cav)
+            raise error
         seen.add(np.packbits(cav).tobytes())
         cav = new
-    raise JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
-                   f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+    error = JFOError(f"JFO active-set iteration did not converge in {max_iterations} iterations "
+                     f"({int(cav.sum())} cavitated dofs); raise max_iterations or warm-start closer")
+    error.switching = np.flatnonzero(new != cav)
+    raise error
 
 
 def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -654,6 +812,46 @@ def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: fl
         system = dataclasses.replace(system, C=(C1 + _limited_flux(rec, alpha)).tocsr())
         sol = _active_set(system, unk, p_fixed, p_c, sol.cavity, factorize, tol, max_iterations)
     return system, sol
+
+
+def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
+    """``couette="streamline"``: the active set on the streamline flux; where it ends with ``theta < 0`` or
+    cycles (the flux is not positive: a cell's outflow takes theta of its neighbours), the segments out of
+    those nodes take theta of their upwind node instead (first-order upwind, positive) and the problem is
+    solved again, warm-started, up to :data:`STREAMLINE_PASSES` times. The upwinded set only grows, so the
+    passes end. Returns the system of the final flux, the solution and the number of upwinded segments."""
+    st = system.reconstruction
+    n = ops.n_dofs
+    free = np.zeros(n, bool)
+    free[ops.interior] = True
+    upwinded = np.zeros(st.up.size, bool)
+    start = cavity
+    for _ in range(STREAMLINE_PASSES):
+        try:
+            sol = _active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
+        except JFOError as error:
+            switching = getattr(error, "switching", None)
+            if switching is None or switching.size == 0:
+                raise
+            mark = np.zeros(unk.rep.size)
+            mark[switching] = 1.0
+            bad = (unk.S @ mark) > 0.5
+            cavity = start
+        else:
+            bad = np.where(free, unk.S @ sol.theta, 1.0) < -tol
+            if not bad.any():
+                return _effective(system, unk, sol.cavity), sol, int(upwinded.sum())
+            cavity = sol.cavity
+        new = upwinded | bad[st.up]
+        if np.array_equal(new, upwinded):
+            break
+        upwinded = new
+        C, C_cavity = st.matrices(n, upwinded)
+        system = dataclasses.replace(system, C=C, C_cavity=C_cavity)
+    raise JFOError("the streamline JFO solve keeps ending with theta < 0 or cycling after upwinding "
+                   f"{int(upwinded.sum())} segments: the film empties faster than the Couette flow refills it "
+                   "(time step too long, or a squeeze rate no oil film can follow); try couette='median'")
 
 
 def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
@@ -835,13 +1033,16 @@ TENSOR_SOURCES = ("grid", "structured")
 
 
 def _auto_couette(mesh: SupportMesh) -> str:
-    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), else ``"median"``."""
-    if mesh.source not in TENSOR_SOURCES:
+    """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), ``"median"`` on
+    meshes whose median dual is aligned with ``phi`` already (:data:`ALIGNED_SOURCES`), else ``"streamline"``."""
+    if mesh.source in ALIGNED_SOURCES:
         return "median"
+    if mesh.source not in TENSOR_SOURCES:
+        return "streamline"
     try:
         _grid_faces(mesh)
     except ValueError:
-        return "median"
+        return "streamline"
     return "grid"
 
 
@@ -892,7 +1093,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         is booked as ``flows["cavitation"]``) and ``"none"`` (no pressure
         bound). :func:`bearingfe.solve_reynolds` uses them for recessed and
         periodic surfaces.
-    couette : {"auto", "median", "grid", "limited"}
+    couette : {"auto", "median", "grid", "limited", "streamline"}
         Discretization of the Couette flux ``wedge/2 theta h``. ``"median"``:
         through the median-dual segments of any straight P1 mesh (first-order
         upwinding smears fronts that run along ``phi`` sideways, by a width of
@@ -907,7 +1108,21 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         unstructured meshes, a few times the cost (the limiter is lagged:
         up to :data:`LIMITER_SWEEPS` warm-started solves). ``"auto"``:
         ``"grid"`` on tensor-grid meshes (``grid_mesh``, the structured
-        journal mesh; :data:`TENSOR_SOURCES`), else ``"median"``. See
+        journal mesh; :data:`TENSOR_SOURCES`), ``"median"`` on strip meshes
+        (:data:`ALIGNED_SOURCES`), else ``"streamline"``.
+        ``"streamline"``: the median-dual segments with ``theta`` at the
+        foot of the sliding line through each segment midpoint on the edge of
+        its triangle (linear, one active-set solve like ``"median"``): no
+        crosswind smearing, so loads and flows of pockets, grooves and
+        periodic seams converge at first order or better on gmsh meshes
+        (docs/jfo_gmsh.md). A cavitated node on a recess contour refers its
+        ``theta`` to its deepest film (each triangle takes the same oil flux
+        ``theta h``); the error left is first order at recess contours (refine
+        the mesh there; such results carry :data:`RECESS_JFO_NOTE`). The flux
+        is not positive: where the solution ends with ``theta < 0`` or the
+        active set cycles, the segments out of those nodes are upwinded and
+        the problem solved again (at most :data:`STREAMLINE_PASSES` times;
+        ``result.cost["upwinded_segments"]`` counts them). See
         ``docs/jfo.md``.
 
     Returns
@@ -951,9 +1166,13 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     else:
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
-        solve = _active_set if cavitation == "jfo" else _obstacle
-        sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
-        if system.reconstruction is not None and cavitation == "jfo":
+        if couette == "streamline" and cavitation == "jfo":
+            system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
+                                                      max_iterations, ops)
+        else:
+            solve = _active_set if cavitation == "jfo" else _obstacle
+            sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+        if couette == "limited" and cavitation == "jfo":
             system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
@@ -961,8 +1180,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     p = np.where(free, unk.S @ sol.p, p_fixed)
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+    cost = {"assembly": t1 - start, "cavitation": t2 - t1}
+    if couette == "streamline" and cavitation == "jfo":
+        cost["upwinded_segments"] = float(upwinded)
     result = _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
-                     cavitated, sol, {"assembly": t1 - start, "cavitation": t2 - t1}, start, cavitation)
+                     cavitated, sol, cost, start, cavitation)
     # a static solve notes its film's resolution (the smooth film: recess steps lie on element edges)
     return result if dt is not None else note_resolution(result, mesh, film, stacklevel=3)
 
@@ -991,10 +1213,12 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
-    first_order_unstructured = system.faces is None and system.reconstruction is None and (
-        mesh.source not in ALIGNED_SOURCES)
-    if model == "jfo" and first_order_unstructured and bool(np.any(emptied)):
-        notes += (UNSTRUCTURED_JFO_NOTE,)
+    first_order_unstructured = system.couette == "median" and mesh.source not in ALIGNED_SOURCES
+    if model == "jfo" and bool(np.any(emptied)):
+        if first_order_unstructured:
+            notes += (UNSTRUCTURED_JFO_NOTE,)
+        elif system.couette == "streamline" and mesh.surface is not None and mesh.surface.recesses:
+            notes += (RECESS_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
                 mesh_operators=ops.seconds, active_set_residual=sol.residual)
     return ReynoldsResult(

@@ -18,10 +18,11 @@ def test_performance_jfo_matches_raimondi_boyd_and_swift_stieber():
     assert jfo.sommerfeld == pytest.approx(ss.sommerfeld, rel=5e-4)
     assert abs(jfo.attitude - ss.attitude) < 0.01
     assert jfo.sommerfeld == pytest.approx(RAIMONDI_BOYD[1.0][0.6][0], rel=1e-2)
-    # the inflow at the line of largest film is the same; the side flow is not: Swift-Stieber's cavity
-    # carries the full Couette flow h/2 and leaks part of it sideways (measured Qs/Q 0.681 vs 0.569)
+    # the inflow at the line of largest film is the same; the side flow nearly so: JFO's side flow ratio
+    # converges to about Swift-Stieber's from below (streamline flux, sizes 0.1, 0.05, 0.025: 0.648, 0.665,
+    # 0.672 against 0.681; the first-order median flux's 0.569 on this mesh was its crosswind smearing)
     assert jfo.flow_variable == pytest.approx(ss.flow_variable, rel=1e-3)
-    assert jfo.side_flow_ratio < 0.9 * ss.side_flow_ratio
+    assert 0.93 * ss.side_flow_ratio < jfo.side_flow_ratio < ss.side_flow_ratio
     # friction: the Couette shear acts on the oil fraction only under JFO
     assert jfo.friction_variable < ss.friction_variable
 

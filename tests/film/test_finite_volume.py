@@ -205,8 +205,9 @@ def test_vanishing_recess_is_the_plain_film():
     film = CosineFilm(0.5, math.pi)  # converging then diverging: pressure peak, then a cavity
     shallow = solve_reynolds(_dimpled(0.1, depth=1e-9), film, cavitation="jfo")
     plain = solve_reynolds(mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.5), 0.1), film, cavitation="jfo")
-    # different meshes of the same film: agreement to discretization error (measured 0.07 %)
-    assert shallow.integral == pytest.approx(plain.integral, rel=3e-3)
+    # different meshes of the same film: agreement to discretization error (measured 0.40 % with the
+    # streamline flux on these meshes of size 0.1)
+    assert shallow.integral == pytest.approx(plain.integral, rel=6e-3)
     assert 0.2 < shallow.cavitated_fraction < 0.4
 
 

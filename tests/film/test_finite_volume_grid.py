@@ -58,7 +58,7 @@ def test_couette_option_is_checked():
     gmsh_mesh = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5), 0.2)
     with pytest.raises(ValueError, match="tensor-grid"):
         solve_jfo(gmsh_mesh, UniformFilm(1.0), couette="grid")
-    assert COUETTE_FLUXES == ("auto", "median", "grid", "limited")
+    assert COUETTE_FLUXES == ("auto", "median", "grid", "limited", "streamline")
 
 
 # -- the closed-form pocket slider with the grid flux ---------------------------------------------
