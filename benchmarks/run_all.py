@@ -17,7 +17,10 @@ and (b) a rectangular recess at high inlet pressure against the FD
 reference, with the cost split; ``journal_c`` — (c) a full journal bearing
 at eccentricity 0.95 with cavitation (:mod:`benchmarks.journal_case`);
 ``journal`` — journal equilibrium + 8 coefficients at eps 0.6, before and
-after the P2/warm-start path (:mod:`benchmarks.targets`); ``pump`` — one
+after the P2/warm-start path (:mod:`benchmarks.targets`); ``journal_pads`` — the same on pads and grooves, the
+structured rupture-refined path against gmsh (:mod:`benchmarks.journal_pads`); ``journal_ross`` — against ROSS
+on ROSS's plain-journal fixture (:mod:`benchmarks.journal_ross`; ``ROSS_PYTHON`` names the interpreter of an
+environment with ROSS, else its recorded run is reused); ``pump`` — one
 pump revolution against its error (``benchmarks/pump_revolution.py``, which
 also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
 end; ``scaling`` — growth with the unknowns and the linear solvers;
@@ -42,11 +45,12 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import hard_cases, journal_case, pump_revolution, scaling, targets, work_precision  # noqa: E402
+from benchmarks import (hard_cases, journal_case, journal_pads, journal_ross, pump_revolution, scaling,  # noqa: E402
+                        targets, work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard")
+PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "pump", "scene", "scaling", "hard")
 
 
 def _log(msg) -> None:
@@ -102,6 +106,15 @@ def part_journal(quick: bool) -> tuple[str, dict]:
     return targets.journal_report(targets.journal_run(quick, log=_log))
 
 
+def part_journal_pads(quick: bool) -> tuple[str, dict]:
+    return journal_pads.report(journal_pads.run(quick, log=_log))
+
+
+def part_journal_ross(quick: bool) -> tuple[str, dict]:
+    # ROSS runs in its own environment: ROSS_PYTHON names its interpreter (else the recorded ROSS run is reused)
+    return journal_ross.report(journal_ross.run(quick, log=_log))
+
+
 def part_pump(quick: bool) -> tuple[str, dict]:
     if quick:
         path = DOCS / "benchmarks_pump.json"
@@ -139,10 +152,13 @@ def part_hard(quick: bool) -> tuple[str, dict]:
     return hard_cases.report() + "\n", {}
 
 
-RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal, "pump": part_pump,
+RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal,
+           "journal_pads": part_journal_pads, "journal_ross": part_journal_ross, "pump": part_pump,
            "scene": part_scene, "scaling": part_scaling, "hard": part_hard}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
           "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
+          "journal_pads": "Journal equilibrium and coefficients on pads and grooves (structured path)",
+          "journal_ross": "Journal equilibrium and coefficients against ROSS",
           "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
           "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases"}
 

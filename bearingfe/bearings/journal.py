@@ -855,17 +855,26 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         linear solution is negative); the answers agree to the active-set
         tolerance.
     structured : bool
-        Full bearing only: mesh with :func:`structured_journal_mesh` (a graded
-        tensor-product mesh, no gmsh) instead of :func:`journal_mesh`.
+        Mesh with :func:`structured_meshes` (graded tensor-product meshes,
+        no gmsh) instead of :func:`journal_mesh`: the full bearing's
+        unwrapped film (:func:`structured_journal_mesh`), or
+        :func:`bearingfe.grid_mesh` of every pad with the axial grooves as
+        rectangular pockets (pads and partial arcs: Newton in ``(x, y)``,
+        the meshes graded for the first guess, remeshed once if the answer's
+        thinnest film moved), or of the periodic film with its seam (solved
+        by finite volumes with the grid Couette flux).
     rupture_size : float, optional
-        Full bearing, ``structured=True``, ``cavitation="reynolds"`` only:
+        ``structured=True``, ``cavitation="reynolds"``, not periodic:
         element size [-] at the rupture front, in ``(0, size]``. After
-        Newton on the structured mesh (to ``max(tol, COARSE_TOL)``), the
-        elements near the discrete rupture front are split (conforming
-        red-green-blue refinement), one level at a time, each level solved
-        once at that position from the previous level's rupture set, until
-        the front lies in elements no longer than ``rupture_size``; then
-        Newton to ``tol`` on that mesh (the returned ``meshes``, which
+        Newton on the structured meshes (to ``max(tol, COARSE_TOL)``), the
+        elements near the discrete rupture front of every film are split
+        (conforming red-green-blue refinement), one level at a time, each
+        level solved once at that position from the previous level's
+        rupture sets, until the front lies in elements no longer than
+        ``rupture_size`` (on a pad whose largest pressure is a fraction
+        ``f`` of the bearing's largest, ``rupture_size / f``: its front
+        weighs on the coefficients in proportion); then Newton to ``tol`` on
+        those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
         well the mesh resolves the front (the pressure gradient has a kink
@@ -874,7 +883,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         the eight coefficients within 5e-4 of converged references on plain
         bearings of L/D 0.25 and 0.5 at eps 0.3 to 0.8, many times faster
         than a uniform mesh of that accuracy (docs/benchmarks.md, part
-        ``journal``: errors and times of other settings there).
+        ``journal``: errors and times of other settings there), and within
+        1e-3 on two-groove bearings, a partial arc and a pad with a supply
+        groove (part ``journal_pads``).
 
     Raises
     ------
@@ -1070,13 +1081,17 @@ RUPTURE_SPLITS = 2
 def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
                     opts: "_Solves") -> tuple[tuple, "_State"]:
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
-    front lies in elements no longer than ``rupture_size``. Per level: the elements within
-    :data:`RUPTURE_REACH` diameters of a front element are split :data:`RUPTURE_SPLITS` times, then one solve
-    with the journal at ``at`` (mesh frame) started from the previous level's rupture sets (nested
-    iteration)."""
+    front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
+    longer than ``rupture_size / f`` on a film whose largest pressure is a fraction ``f`` of that (the
+    coefficients' error from a front scales with the pressures around it: a lightly loaded pad's front
+    needs no refinement). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
+    from the previous level's rupture sets (nested iteration)."""
     levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
     for _ in range(levels):
-        refined = [_refined_at_front(bearing, mesh, res, rupture_size) for mesh, res in zip(meshes, state.results)]
+        peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
+        sizes = [rupture_size * max(peaks) / peak if peak > 0 else math.inf for peak in peaks]
+        refined = [_refined_at_front(bearing, mesh, res, size) for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
             return meshes, state
         meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
@@ -1091,6 +1106,8 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
                       rupture_size: float) -> SupportMesh | None:
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
     longer than ``rupture_size`` (or it has no front)."""
+    if not math.isfinite(rupture_size):
+        return None
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     front = _front_elements(res)
     diameters = cell_diameters(m)
