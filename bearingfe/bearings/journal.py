@@ -872,8 +872,8 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         level solved once at that position from the previous level's
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
-        ``f`` of the bearing's largest, ``rupture_size / f``: its front
-        weighs on the coefficients in proportion); then Newton to ``tol`` on
+        ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
+        lightly loaded pad's front weighs less on the coefficients); then Newton to ``tol`` on
         those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
@@ -1076,22 +1076,30 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
 RUPTURE_REACH = 0.75
 #: ... this many times per level (one solve per level).
 RUPTURE_SPLITS = 2
+#: A film whose largest pressure is a fraction f of the bearing's has its front refined to
+#: ``rupture_size * min(1 / f, RUPTURE_LIGHT)``: the lightly loaded pad of a two-groove bearing (f = 0.01)
+#: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients).
+RUPTURE_LIGHT = 4.0
+#: Supply pockets: elements within this many of their diameters of a pocket corner are split ...
+CORNER_REACH = 1.5
+#: ... until they are no longer than this times ``rupture_size`` (graded towards the corner).
+CORNER_SIZE = 1.0
 
 
 def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
                     opts: "_Solves") -> tuple[tuple, "_State"]:
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
     front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
-    longer than ``rupture_size / f`` on a film whose largest pressure is a fraction ``f`` of that (the
-    coefficients' error from a front scales with the pressures around it: a lightly loaded pad's front
-    needs no refinement). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
+    ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
     from the previous level's rupture sets (nested iteration)."""
     levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
     for _ in range(levels):
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
-        sizes = [rupture_size * max(peaks) / peak if peak > 0 else math.inf for peak in peaks]
-        refined = [_refined_at_front(bearing, mesh, res, size) for mesh, res, size in zip(meshes, state.results, sizes)]
+        sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
+        refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
+                   for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
             return meshes, state
         meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
@@ -1102,28 +1110,46 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
                        f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
 
 
+def _corners(shape) -> list[tuple[float, float]]:
+    """The four corners of an axis-aligned rectangular pocket."""
+    xy = shape.boundary()
+    (x0, z0), (x1, z1) = xy.min(axis=1), xy.max(axis=1)
+    return [(x0, z0), (x1, z0), (x0, z1), (x1, z1)]
+
+
 def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
-                      rupture_size: float) -> SupportMesh | None:
+                      rupture_size: float, corner_size: float = 0.0) -> SupportMesh | None:
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
     longer than ``rupture_size`` (or it has no front)."""
-    if not math.isfinite(rupture_size):
-        return None
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
+    changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
-    if not front.any() or diameters[front].max() <= rupture_size * (1 + 1e-9):
-        return None
-    centres = m.p[:, m.t].mean(axis=1)[:, front].T
-    reach = RUPTURE_REACH * diameters[front]
-    for _ in range(RUPTURE_SPLITS):
+    if math.isfinite(rupture_size) and front.any() and diameters[front].max() > rupture_size * (1 + 1e-9):
+        centres = m.p[:, m.t].mean(axis=1)[:, front].T
+        reach = RUPTURE_REACH * diameters[front]
+        for _ in range(RUPTURE_SPLITS):
+            d = cell_diameters(m)
+            near = np.zeros(m.nelements, bool)
+            for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
+                near[hits] = True
+            marked = np.flatnonzero(near & (d > rupture_size * (1 + 1e-9)))
+            if not marked.size:
+                break
+            m = m.refined(marked)
+            changed = True
+    # the corners of the supply pockets (the pressure gradient is singular there): graded down to corner_size
+    corners = np.array([(x, z) for g in mesh.surface.inlets for x, z in _corners(g)]) if corner_size else np.zeros((0, 2))
+    for _ in range(64 if corners.size else 0):
         d = cell_diameters(m)
-        near = np.zeros(m.nelements, bool)
-        for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
-            near[hits] = True
-        marked = np.flatnonzero(near & (d > rupture_size * (1 + 1e-9)))
+        gap = np.min(np.hypot(*(m.p[:, m.t].mean(axis=1)[:, :, None] - corners.T[:, None, :])), axis=1)
+        marked = np.flatnonzero((gap < CORNER_REACH * d) & (d > corner_size * (1 + 1e-9)))
         if not marked.size:
             break
         m = m.refined(marked)
+        changed = True
+    if not changed:
+        return None
     check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
     if bearing.raimondi_boyd:
         return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width)
