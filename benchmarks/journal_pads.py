@@ -106,17 +106,22 @@ def run(quick: bool = False, log=print, cases=None) -> dict:
     return out
 
 
-def cheapest(rows: list[dict], structured: bool, worst: dict[str, float]) -> dict | None:
-    """The cheapest setting of a kind whose worst error over all cases is within :data:`TARGET`."""
-    ok = [r for r in rows if r["structured"] == structured and worst[r["label"]] <= TARGET]
+#: The cases without a supply pocket, over which a setting must reach :data:`TARGET` to count as robust.
+PLAIN = ("two_groove", "two_groove_ld1", "partial_arc")
+
+
+def cheapest(rows: list[dict], structured: bool, worst: dict[str, float] | None = None) -> dict | None:
+    """The cheapest run of a kind within :data:`TARGET` (by its own error, or by ``worst[label]``)."""
+    ok = [r for r in rows if r["structured"] == structured and (worst[r["label"]] if worst else r["error"]) <= TARGET]
     return min(ok, key=lambda r: r["seconds"]) if ok else None
 
 
 def report(res: dict) -> tuple[str, dict]:
     cases = res["cases"]
     labels = [r["label"] for r in next(iter(cases.values()))["rows"]]
-    worst = {lab: max(next(r for r in c["rows"] if r["label"] == lab)["error"] for c in cases.values())
-             for lab in labels}
+    plain = [n for n in PLAIN if n in cases]
+    worst = {lab: max(next(r for r in cases[n]["rows"] if r["label"] == lab)["error"] for n in plain)
+             for lab in labels} if plain else {}
     lines = [f"Equilibrium + 8 linearized coefficients (P2) on pads and grooves (`benchmarks/journal_pads.py`; "
              f"cases and references in its docstring). Reference per case: P2 on the structured mesh of size "
              f"{REFERENCE['size']} refined to {REFERENCE['rupture_size']} at the rupture front (checked against "
@@ -135,21 +140,40 @@ def report(res: dict) -> tuple[str, dict]:
                               [[r["label"], r["nodes"], r["newton"], r["seconds"],
                                 r["full_seconds"] if r["structured"] else "-", r["error"]] for r in c["rows"]]))
         lines.append("")
-    lines.append(md_table(["run", f"worst error, {len(cases)} bearings"], [[lab, worst[lab]] for lab in labels]))
+    if plain:
+        lines.append(md_table(["run", f"worst error over {', '.join(plain)}"], [[lab, worst[lab]] for lab in labels]))
+        lines.append("")
+    lines.append(f"Cheapest run within {TARGET:.0e} of the reference, per case (time ratio: against the full "
+                 "bearing with the same setting, same process):")
     lines.append("")
     for name, c in cases.items():
-        s, g = cheapest(c["rows"], True, worst), cheapest(c["rows"], False, worst)
+        s, g = cheapest(c["rows"], True), cheapest(c["rows"], False)
         facts[name] = dict(structured=s and s["seconds"], structured_label=s and s["label"],
                            full=s and s["full_seconds"], gmsh=g and g["seconds"], gmsh_label=g and g["label"])
+        gm = (f"; gmsh: {g['seconds']:.3g} s ({g['label']}, error {g['error']:.1e}), {g['seconds'] / s['seconds']:.2g}x "
+              "the structured time" if g and s else f"; gmsh: {g['seconds']:.3g} s ({g['label']})" if g
+              else "; gmsh: not within it on the meshes measured")
         if s is None:
-            lines.append(f"- {name}: no structured setting within {TARGET:.0e} on every bearing.")
+            best = min((r for r in c["rows"] if r["structured"]), key=lambda r: r["error"])
+            lines.append(f"- {name}: NOT within {TARGET:.0e} with the structured settings measured (best "
+                         f"{best['error']:.1e}, {best['label']}, {best['seconds']:.3g} s){gm}.")
             continue
-        ratio = s["seconds"] / s["full_seconds"]
-        gm = (f"; gmsh: {g['seconds']:.3g} s ({g['label']}), {g['seconds'] / s['seconds']:.2g}x the structured time"
-              if g else "; no gmsh setting within it on every bearing")
-        lines.append(f"- {name}: error <= {TARGET:.0e} on every bearing for {s['seconds']:.3g} s ({s['label']}), "
-                     f"{ratio:.2f}x the full bearing's {s['full_seconds']:.3g} s with the same setting{gm}.")
+        lines.append(f"- {name}: {s['seconds']:.3g} s ({s['label']}, error {s['error']:.1e}), "
+                     f"{s['seconds'] / s['full_seconds']:.2f}x the full bearing's {s['full_seconds']:.3g} s{gm}.")
+    if plain:
+        robust = cheapest([r for r in cases[plain[0]]["rows"]], True, worst)
+        if robust is None:
+            lines.append(f"- No structured setting is within {TARGET:.0e} on all of {', '.join(plain)}.")
+        else:
+            lab = robust["label"]
+            per = [(n, next(r for r in cases[n]["rows"] if r["label"] == lab)) for n in plain]
+            facts["robust"] = dict(label=lab, worst=worst[lab], seconds={n: r["seconds"] for n, r in per},
+                                   full={n: r["full_seconds"] for n, r in per})
+            lines.append(f"- Within {TARGET:.0e} on all of {', '.join(plain)}: {lab} (worst {worst[lab]:.1e}); "
+                         + "; ".join(f"{n} {r['seconds']:.3g} s = {r['seconds'] / r['full_seconds']:.2f}x the full "
+                                     f"bearing" for n, r in per) + ".")
     lines.append("")
+    facts["raw"] = res  # the measurements, so that the page can be rewritten without rerunning them
     return "\n".join(lines), facts
 
 
