@@ -237,6 +237,13 @@ def targets_summary(facts: dict) -> str:
             ("no goal" if target != "1e-03" else (sp >= 5) if math.isfinite(sp) else None),
             f"after: {v.get('after_label') or (str(v.get('after_element', 'P2')) + ' size ' + str(v.get('after_size')))}"
             f", before: P1 size {v.get('before_size')}")
+    r = facts.get("journal_ross", {})
+    for key, what in (("ross_accuracy", "ROSS's default-grid accuracy"), ("1e-03", "error 1e-03")):
+        v = r.get(key) or {}
+        sp, t, tr = v.get("speedup", math.nan), v.get("seconds", math.nan), r.get("ross_seconds", math.nan)
+        add(f"journal equilibrium + 8 coefficients against ROSS on its fixture, {what}", ">= 5x",
+            f"{_fmt(t)} against ROSS {_fmt(tr)}: {_fmt(sp, 'x')}" if math.isfinite(sp) else "not measured",
+            (sp >= 5) if math.isfinite(sp) else None, str(v.get("label", "")))
     s = facts.get("scene", {}).get("scene", math.nan)
     add("main scene end to end (2 designs, periodic, pictures)", "<= 5 s", _fmt(s),
         (s <= 5) if math.isfinite(s) else None, "fresh process, imports included")
