@@ -30,7 +30,7 @@ REF_PARTIAL = (0.6070039618008299, [[1.5767537404466596, 0.2895793322140407], [-
 REF_SUPPLY = (0.7610474403853972, [[4.884519017996365, 0.06277581088017187], [-5.780678379575545, 4.89196942608784]],
               [[5.446019188176204, -4.178598015055321], [-4.178598015055334, 6.8458141600819085]])
 #: name -> (bearing, reference, tolerance). The supply groove's pocket corners (singular pressure gradient,
-#: graded towards rupture_size) leave it at about 1.2e-3 (and gmsh P2 of size 0.07 at 1.3e-3)
+#: graded towards rupture_size) leave it at about 1.2e-3 (gmsh P2: 2.2e-3 at size 0.07, 6.8e-4 at 0.05)
 REFERENCES = {
     "two_groove": (TWO_GROOVE, REF_TWO, 1e-3),
     "partial_arc": (PARTIAL, REF_PARTIAL, 1e-3),
