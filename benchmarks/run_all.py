@@ -17,7 +17,10 @@ and (b) a rectangular recess at high inlet pressure against the FD
 reference, with the cost split; ``journal_c`` — (c) a full journal bearing
 at eccentricity 0.95 with cavitation (:mod:`benchmarks.journal_case`);
 ``journal`` — journal equilibrium + 8 coefficients at eps 0.6, before and
-after the P2/warm-start path (:mod:`benchmarks.targets`); ``pump`` — one
+after the P2/warm-start path (:mod:`benchmarks.targets`); ``journal_pads`` — the same on pads and grooves, the
+structured rupture-refined path against gmsh (:mod:`benchmarks.journal_pads`); ``journal_ross`` — against ROSS
+on ROSS's plain-journal fixture (:mod:`benchmarks.journal_ross`; ``ROSS_PYTHON`` names the interpreter of an
+environment with ROSS, else its recorded run is reused); ``pump`` — one
 pump revolution against its error (``benchmarks/pump_revolution.py``, which
 also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
 end; ``scaling`` — growth with the unknowns and the linear solvers;
@@ -43,12 +46,13 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import (hard_cases, journal_case, pump_revolution, scaling, targets, thermal_levels,  # noqa: E402
-                        work_precision)
+from benchmarks import (hard_cases, journal_case, journal_pads, journal_ross, pump_revolution, scaling,  # noqa: E402
+                        targets, thermal_levels, work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard", "thermal")
+PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "pump", "scene", "scaling", "hard",
+         "thermal")
 
 
 def _log(msg) -> None:
@@ -104,6 +108,15 @@ def part_journal(quick: bool) -> tuple[str, dict]:
     return targets.journal_report(targets.journal_run(quick, log=_log))
 
 
+def part_journal_pads(quick: bool) -> tuple[str, dict]:
+    return journal_pads.report(journal_pads.run(quick, log=_log))
+
+
+def part_journal_ross(quick: bool) -> tuple[str, dict]:
+    # ROSS runs in its own environment: ROSS_PYTHON names its interpreter (else the recorded ROSS run is reused)
+    return journal_ross.report(journal_ross.run(quick, log=_log))
+
+
 def part_pump(quick: bool) -> tuple[str, dict]:
     if quick:
         path = DOCS / "benchmarks_pump.json"
@@ -141,10 +154,13 @@ def part_hard(quick: bool) -> tuple[str, dict]:
     return hard_cases.report() + "\n", {}
 
 
-RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal, "pump": part_pump,
+RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal,
+           "journal_pads": part_journal_pads, "journal_ross": part_journal_ross, "pump": part_pump,
            "scene": part_scene, "scaling": part_scaling, "hard": part_hard, "thermal": thermal_levels.run}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
           "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
+          "journal_pads": "Journal equilibrium and coefficients on pads and grooves (structured path)",
+          "journal_ross": "Journal equilibrium and coefficients against ROSS",
           "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
           "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases",
           "thermal": "Thermal levels: cost of level 1 and level 2 against the isothermal solve"}
@@ -204,7 +220,7 @@ def _fmt(x, unit: str = " s") -> str:
 
 
 def targets_summary(facts: dict) -> str:
-    """The issue-13 targets, each with its measured number and a verdict computed from it."""
+    """The fast-path targets, each with its measured number and a verdict computed from it."""
     rows = []
 
     def add(what, goal, measured, ok, note=""):
@@ -224,6 +240,13 @@ def targets_summary(facts: dict) -> str:
             ("no goal" if target != "1e-03" else (sp >= 5) if math.isfinite(sp) else None),
             f"after: {v.get('after_label') or (str(v.get('after_element', 'P2')) + ' size ' + str(v.get('after_size')))}"
             f", before: P1 size {v.get('before_size')}")
+    r = facts.get("journal_ross", {})
+    for key, what in (("ross_accuracy", "ROSS's default-grid accuracy"), ("1e-03", "error 1e-03")):
+        v = r.get(key) or {}
+        sp, t, tr = v.get("speedup", math.nan), v.get("seconds", math.nan), r.get("ross_seconds", math.nan)
+        add(f"journal equilibrium + 8 coefficients against ROSS on its fixture, {what}", ">= 5x",
+            f"{_fmt(t)} against ROSS {_fmt(tr)}: {_fmt(sp, 'x')}" if math.isfinite(sp) else "not measured",
+            (sp >= 5) if math.isfinite(sp) else None, str(v.get("label", "")))
     s = facts.get("scene", {}).get("scene", math.nan)
     add("main scene end to end (2 designs, periodic, pictures)", "<= 5 s", _fmt(s),
         (s <= 5) if math.isfinite(s) else None, "fresh process, imports included")
@@ -241,7 +264,7 @@ def targets_summary(facts: dict) -> str:
     add("FEM vs FD at load error 1e-3, case (b)", ">= 3x", f"{f:.3f}x (`solve_reynolds`), "
         f"{ff:.3f}x (`superpose(...).force`)" if math.isfinite(f) and math.isfinite(ff) else "not measured",
         (max(f, ff) >= 3) if math.isfinite(f) and math.isfinite(ff) else None)
-    return md_table(["target (issue 13)", "goal", "measured", "verdict", "note"], rows)
+    return md_table(["target", "goal", "measured", "verdict", "note"], rows)
 
 
 def main(argv=None) -> int:
@@ -281,7 +304,7 @@ def main(argv=None) -> int:
         "The cost floor of one film state (the compiled operator against its sparse LU and solves) is measured "
         "separately: [benchmarks_operator.md](benchmarks_operator.md) (`benchmarks/operator_floor.py`).",
         "",
-        "## Targets of the fast inner loop (issue 13)",
+        "## Targets of the fast inner loop",
         "",
         targets_summary({name: facts for name, (_, facts) in parts.items()}),
         "",

@@ -63,7 +63,7 @@ from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
 from ..geometry.locate import cell_diameters
-from ..geometry.meshing import SupportMesh, mesh_surface, refine_uniformly
+from ..geometry.meshing import SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_uniformly
 from ..core.parameters import Discretization, takes
 from ..film import forms
 from ..core.parameters import ELEMENTS
@@ -78,6 +78,7 @@ __all__ = [
     "film_graded_size",
     "journal_mesh",
     "structured_journal_mesh",
+    "structured_meshes",
     "performance",
     "equilibrium",
     "dynamic_coefficients",
@@ -370,6 +371,51 @@ def _graded_columns(length: float, size: float, min_size: float, eps: float, row
     phis = np.interp(np.linspace(0.0, count[-1], n + 1), count, x)
     phis[0], phis[-1] = 0.0, length
     return phis
+
+
+def structured_meshes(bearing: JournalBearing, size: float, *, min_size: float | None = None, eps: float = 0.0,
+                      phi0: float = 0.0) -> tuple[SupportMesh, ...]:
+    """Tensor-product meshes of every film of ``bearing`` (no gmsh): the structured counterpart of
+    :func:`journal_mesh`.
+
+    The full Raimondi-Boyd bearing: :func:`structured_journal_mesh` (frame of the line of largest film,
+    ``phi0`` unused). Pads, partial arcs and periodic films (bearing frame): :func:`bearingfe.grid_mesh`
+    of each surface of :meth:`JournalBearing.surfaces`, with the axial grooves as rectangular pockets
+    (their edges on grid lines) and, on a periodic film, the seam; the columns are graded towards the
+    thinnest film of ``CosineFilm(eps, phi0)`` as :func:`film_graded_size` grades (``size sqrt(h)``
+    clipped to ``[min_size, size]``), the rows uniform, about ``size`` high. Straight edges are exact
+    for these rectangles, and on a tensor grid the finite-volume (JFO) solver carries the Couette flux
+    along the grid lines (``couette="auto"`` of :func:`bearingfe.solve_jfo`).
+
+    Parameters
+    ----------
+    bearing : JournalBearing
+    size : float
+        Largest element size [-], in (0, 1].
+    min_size : float, optional
+        Smallest column width [-], in (0, size]; default :func:`default_min_size`.
+    eps, phi0 : float
+        Eccentricity ratio in ``[0, 0.995]`` and line of largest film [rad] (bearing frame) of the grading.
+
+    Returns
+    -------
+    tuple of SupportMesh
+        One per pad (one for the full or periodic film).
+    """
+    if not (isinstance(size, (int, float)) and math.isfinite(size) and 0 < size <= 1):
+        raise ValueError(f"size must be in (0, 1], got {size!r}")
+    if bearing.raimondi_boyd:
+        return (structured_journal_mesh(bearing, size, min_size=min_size, eps=eps),)
+    eps = _check_eps(eps)
+    if not math.isfinite(phi0):
+        raise ValueError(f"phi0 must be finite, got {phi0!r}")
+    min_size = default_min_size(size, eps) if min_size is None else float(min_size)
+    if not (math.isfinite(min_size) and 0 < min_size <= size):
+        raise ValueError(f"min_size must be in (0, size = {size}], got {min_size!r}")
+
+    def width(phi):
+        return np.clip(size * np.sqrt(np.maximum(1.0 + eps * np.cos(phi - phi0), 0.0)), min_size, size)
+    return tuple(grid_mesh(s, size, column_width=width) for s in bearing.surfaces())
 
 
 def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float) -> SupportMesh:
@@ -809,17 +855,26 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         linear solution is negative); the answers agree to the active-set
         tolerance.
     structured : bool
-        Full bearing only: mesh with :func:`structured_journal_mesh` (a graded
-        tensor-product mesh, no gmsh) instead of :func:`journal_mesh`.
+        Mesh with :func:`structured_meshes` (graded tensor-product meshes,
+        no gmsh) instead of :func:`journal_mesh`: the full bearing's
+        unwrapped film (:func:`structured_journal_mesh`), or
+        :func:`bearingfe.grid_mesh` of every pad with the axial grooves as
+        rectangular pockets (pads and partial arcs: Newton in ``(x, y)``,
+        the meshes graded for the first guess, remeshed once if the answer's
+        thinnest film moved), or of the periodic film with its seam (solved
+        by finite volumes with the grid Couette flux).
     rupture_size : float, optional
-        Full bearing, ``structured=True``, ``cavitation="reynolds"`` only:
+        ``structured=True``, ``cavitation="reynolds"``, not periodic:
         element size [-] at the rupture front, in ``(0, size]``. After
-        Newton on the structured mesh (to ``max(tol, COARSE_TOL)``), the
-        elements near the discrete rupture front are split (conforming
-        red-green-blue refinement), one level at a time, each level solved
-        once at that position from the previous level's rupture set, until
-        the front lies in elements no longer than ``rupture_size``; then
-        Newton to ``tol`` on that mesh (the returned ``meshes``, which
+        Newton on the structured meshes (to ``max(tol, COARSE_TOL)``), the
+        elements near the discrete rupture front of every film are split
+        (conforming red-green-blue refinement), one level at a time, each
+        level solved once at that position from the previous level's
+        rupture sets, until the front lies in elements no longer than
+        ``rupture_size`` (on a pad whose largest pressure is a fraction
+        ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
+        lightly loaded pad's front weighs less on the coefficients); then Newton to ``tol`` on
+        those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
         well the mesh resolves the front (the pressure gradient has a kink
@@ -828,7 +883,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         the eight coefficients within 5e-4 of converged references on plain
         bearings of L/D 0.25 and 0.5 at eps 0.3 to 0.8, many times faster
         than a uniform mesh of that accuracy (docs/benchmarks.md, part
-        ``journal``: errors and times of other settings there).
+        ``journal``: errors and times of other settings there), and within
+        1e-3 on two-groove bearings, a partial arc and a pad with a supply
+        groove (part ``journal_pads``).
 
     Raises
     ------
@@ -852,13 +909,17 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         mesher = _Mesher(bearing, size, min_size, order, structured)
         return _equilibrium_full(bearing, w, theta_load, eps, mesher, opts, tol, max_newton, rupture_size)
     xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
-    for _ in range(2):
-        ms = default_min_size(size, np.hypot(*xy)) if min_size is None else min_size
-        meshes = journal_mesh(bearing, size, min_size=ms, eps=float(np.hypot(*xy)),
-                              phi0=math.atan2(-xy[1], -xy[0]), order=order)
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton)
-        if min_size is not None:
-            break
+    if structured:
+        xy, state, k, res, meshes = _equilibrium_structured(bearing, xy, load, size, min_size, opts, tol,
+                                                            max_newton, rupture_size)
+    else:
+        for _ in range(2):
+            ms = default_min_size(size, np.hypot(*xy)) if min_size is None else min_size
+            meshes = journal_mesh(bearing, size, min_size=ms, eps=float(np.hypot(*xy)),
+                                  phi0=math.atan2(-xy[1], -xy[0]), order=order)
+            xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton)
+            if min_size is not None:
+                break
     e = float(np.hypot(*xy))
     att = math.degrees(abs(_angle_between(theta_load, math.atan2(xy[1], xy[0]))))
     return Equilibrium(eps=e, attitude=att, position=xy, force=state.force, newton_iterations=k,
@@ -889,13 +950,43 @@ def _angle_between(a: float, b: float) -> float:
     return (b - a + math.pi) % (2 * math.pi) - math.pi
 
 
-def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton):
+def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, tol, max_newton, rupture_size):
+    """Pads, partial arcs and periodic films on :func:`structured_meshes`: Newton in ``(x, y)`` on meshes graded
+    for the first guess (remeshed once if the answer's thinnest film moved), then, with ``rupture_size``, the
+    rupture refinement of every pad and Newton to ``tol`` on the refined meshes. Returns
+    ``(xy, state, newton_steps, residual, meshes)``."""
+    first_tol = tol if rupture_size is None else max(tol, COARSE_TOL)
+    # first guess: the short bearing's attitude (its force turned onto the load), not the load line itself
+    e = float(np.hypot(*xy))
+    F = short_bearing_force(e, bearing.half_width)
+    xy = _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
+    k_total = 0
+    for _ in range(3):
+        e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
+        ms = default_min_size(size, e) if min_size is None else min_size
+        meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton)
+        k_total += k
+        e_new = float(np.hypot(*xy))
+        moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
+        if (min_size is not None or (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= 0.1
+                                     and moved <= 0.5 * math.sqrt(1 - e_new))):
+            break
+    if rupture_size is not None:
+        meshes, state = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state)
+        k_total += k
+    return xy, state, k_total, res, meshes
+
+
+def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None):
+    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made."""
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
         if e > EPS_MAX:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
-        state = opts.solve(bearing, meshes, xy[0], xy[1])
+        state = first if k == 0 and first is not None else opts.solve(bearing, meshes, xy[0], xy[1])
         R = state.force - load
         res = float(np.hypot(*R) / w)
         if res <= tol:
@@ -914,8 +1005,6 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton):
 def _check_structured(bearing: JournalBearing, structured, rupture_size, size, cavitation: str, order) -> None:
     if not isinstance(structured, bool):
         raise ValueError(f"structured must be True or False, got {structured!r}")
-    if structured and not bearing.raimondi_boyd:
-        raise ValueError("structured=True is for the full Raimondi-Boyd bearing (pads=None, not periodic)")
     if structured and order != 1:
         raise ValueError("structured meshes are straight-sided (exact for the unwrapped film): use order=1")
     if rupture_size is None:
@@ -923,6 +1012,9 @@ def _check_structured(bearing: JournalBearing, structured, rupture_size, size, c
     if not structured or cavitation != "reynolds":
         raise ValueError("rupture_size needs structured=True and cavitation='reynolds' (it refines a "
                          "structured mesh around the Swift-Stieber rupture front)")
+    if bearing.periodic:
+        raise ValueError("rupture_size is for Galerkin solves: a periodic film is solved by finite volumes on "
+                         "its grid (structured=True without rupture_size)")
     if not (isinstance(rupture_size, (int, float)) and not isinstance(rupture_size, bool)
             and math.isfinite(rupture_size) and 0 < rupture_size <= size):
         raise ValueError(f"rupture_size must be in (0, size = {size}], got {rupture_size!r}")
@@ -984,23 +1076,56 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
 RUPTURE_REACH = 0.75
 #: ... this many times per level (one solve per level).
 RUPTURE_SPLITS = 2
+#: A film whose largest pressure is a fraction f of the bearing's has its front refined to
+#: ``rupture_size * min(1 / f, RUPTURE_LIGHT)``: the lightly loaded pad of a two-groove bearing (f = 0.01)
+#: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients).
+RUPTURE_LIGHT = 4.0
+#: Supply pockets: elements within this many of their diameters of a pocket corner are split ...
+CORNER_REACH = 1.5
+#: ... until they are no longer than this times ``rupture_size`` (graded towards the corner).
+CORNER_SIZE = 1.0
 
 
-def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State", eps: float, rupture_size: float,
-                    opts: "_Solves") -> tuple[SupportMesh, "_State"]:
-    """Refine the elements near the rupture front (conforming red-green-blue splits) until the front lies in
-    elements no longer than ``rupture_size``. Per level: the elements within :data:`RUPTURE_REACH` diameters
-    of a front element are split :data:`RUPTURE_SPLITS` times, then one solve at ``eps`` started from the
-    previous level's rupture set (nested iteration)."""
-    a = bearing.half_width
-    levels = 8 + 2 * math.ceil(math.log2(max(mesh.size / rupture_size, 1.0)))
+def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
+                    opts: "_Solves") -> tuple[tuple, "_State"]:
+    """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
+    front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
+    longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
+    ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
+    from the previous level's rupture sets (nested iteration)."""
+    levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
     for _ in range(levels):
-        res = state.results[0]
-        m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
-        front = _front_elements(res)
-        diameters = cell_diameters(m)
-        if not front.any() or diameters[front].max() <= rupture_size * (1 + 1e-9):
-            return mesh, state
+        peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
+        sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
+        refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
+                   for mesh, res, size in zip(meshes, state.results, sizes)]
+        if all(r is None for r in refined):
+            return meshes, state
+        meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
+        start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
+                      for mesh, res in zip(meshes, state.results))
+        state = opts.solve(bearing, meshes, *at, start=start)
+    raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
+                       f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
+
+
+def _corners(shape) -> list[tuple[float, float]]:
+    """The four corners of an axis-aligned rectangular pocket."""
+    xy = shape.boundary()
+    (x0, z0), (x1, z1) = xy.min(axis=1), xy.max(axis=1)
+    return [(x0, z0), (x1, z0), (x0, z1), (x1, z1)]
+
+
+def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
+                      rupture_size: float, corner_size: float = 0.0) -> SupportMesh | None:
+    """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
+    longer than ``rupture_size`` (or it has no front)."""
+    m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
+    changed = False
+    front = _front_elements(res)
+    diameters = cell_diameters(m)
+    if math.isfinite(rupture_size) and front.any() and diameters[front].max() > rupture_size * (1 + 1e-9):
         centres = m.p[:, m.t].mean(axis=1)[:, front].T
         reach = RUPTURE_REACH * diameters[front]
         for _ in range(RUPTURE_SPLITS):
@@ -1012,12 +1137,23 @@ def _refine_rupture(bearing: JournalBearing, mesh: SupportMesh, state: "_State",
             if not marked.size:
                 break
             m = m.refined(marked)
-        check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
-        new = _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), a)
-        start = _nearest_rupture(res, np.asarray(operators(new, opts.element).basis.doflocs))
-        mesh, state = new, opts.solve(bearing, (new,), -eps, 0.0, start=(start,))
-    raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
-                       f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
+            changed = True
+    # the corners of the supply pockets (the pressure gradient is singular there): graded down to corner_size
+    corners = np.array([(x, z) for g in mesh.surface.inlets for x, z in _corners(g)]) if corner_size else np.zeros((0, 2))
+    for _ in range(64 if corners.size else 0):
+        d = cell_diameters(m)
+        gap = np.min(np.hypot(*(m.p[:, m.t].mean(axis=1)[:, :, None] - corners.T[:, None, :])), axis=1)
+        marked = np.flatnonzero((gap < CORNER_REACH * d) & (d > corner_size * (1 + 1e-9)))
+        if not marked.size:
+            break
+        m = m.refined(marked)
+        changed = True
+    if not changed:
+        return None
+    check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
+    if bearing.raimondi_boyd:
+        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width)
+    return name_surface_boundaries(m, mesh.surface, source="structured")
 
 
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray) -> np.ndarray:
@@ -1042,8 +1178,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
     if rupture_size is not None:
-        mesh, state = _refine_rupture(bearing, meshes[0], state, eps, rupture_size, opts)
-        meshes = (mesh,)
+        meshes, state = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts)
         eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
         k_total += k
     F = state.force

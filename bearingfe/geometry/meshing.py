@@ -31,7 +31,7 @@ from ..core.tempdirs import private_tempdir
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
            "check_triangles", "check_support_mesh",
-           "strip_mesh", "grid_mesh", "periodic_pairs"]
+           "strip_mesh", "grid_mesh", "name_surface_boundaries", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -764,7 +764,7 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
 
 
 def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
-              max_elements: int | None = None) -> SupportMesh:
+              max_elements: int | None = None, column_width: Callable | None = None) -> SupportMesh:
     """A structured mesh of a rectangular surface, aligned with the sliding direction ``phi``.
 
     Cells of at most ``size`` along ``phi`` and ``size_z`` along ``z``, each
@@ -796,6 +796,11 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
         Largest cell length along ``z`` [-], > 0; default ``size``.
     max_elements : int, optional
         Largest number of triangles (as in :func:`mesh_surface`).
+    column_width : callable, optional
+        Graded columns: ``column_width(phi)`` (vectorized) is the wanted
+        column width [-] along ``phi``, in ``(0, size]``; between consecutive
+        pocket edges the columns equidistribute it (e.g. narrow where a
+        journal's film is thin). Default: uniform columns of at most ``size``.
 
     Returns
     -------
@@ -812,7 +817,10 @@ def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
     size_z = size if size_z is None else _checked_size(size_z, "size_z")
     a1, a2 = surface.arc
     a = surface.half_width
-    xs = _grid_lines([a1, a2] + [x for r in pockets for x in r[:2]], size)
+    if column_width is None:
+        xs = _grid_lines([a1, a2] + [x for r in pockets for x in r[:2]], size)
+    else:
+        xs = _graded_lines([a1, a2] + [x for r in pockets for x in r[:2]], size, column_width, max_elements)
     if xs.size < 3:   # at least two cells along phi
         xs = np.linspace(a1, a2, 3)
     zs = _grid_lines([-a, a] + [z for r in pockets for z in r[2:]], size_z)
@@ -834,11 +842,20 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
     edges stay on grid lines), for the once-refined load-error estimate.
     """
     check_element_count(2.0 * (xs.size - 1) * (zs.size - 1), max_elements, what="grid_mesh refined")
-    a1, a2 = surface.arc
-    a = surface.half_width
     m = skfem.MeshTri1.init_tensor(xs, zs)
     if pockets:
         m = _without_pockets(m, pockets)
+    bnd = _surface_boundaries(m, surface, pockets)
+    again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
+    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface,
+                       size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again)
+
+
+def _surface_boundaries(m: skfem.MeshTri1, surface: Surface, pockets) -> dict[str, np.ndarray]:
+    """The boundary facets of a straight mesh of a rectangular surface, named by where they lie (as
+    :func:`grid_mesh` names them); ``pockets``: the ``(phi_lo, phi_hi, z_lo, z_hi)`` of the holes."""
+    a1, a2 = surface.arc
+    a = surface.half_width
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * max(a2 - a1, 2 * a)
@@ -852,10 +869,48 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
         edge = [facets[_on_rectangle(mid, r, tol)] for r in pockets]
         bnd["inlet"] = np.concatenate(edge)
         bnd.update({f"inlet_{k}": e for k, e in enumerate(edge)})
-    again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface,
-                       size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again)
+    return bnd
 
+
+def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str = "grid") -> SupportMesh:
+    """A straight triangle mesh of a rectangular surface (e.g. a :func:`grid_mesh` refined locally by
+    scikit-fem, which drops the named boundaries) with its boundaries named as :func:`grid_mesh` names them.
+
+    Parameters
+    ----------
+    m : skfem.MeshTri1
+        Covers the surface's rectangle with its axis-aligned rectangular pockets left out.
+    surface : Surface
+        Default rectangular outline, pockets axis-aligned rectangles.
+    source : str
+        Recorded as ``SupportMesh.source``.
+    """
+    if not surface.is_rectangular:
+        raise ValueError("name_surface_boundaries needs the default rectangular outline (Surface(outer=None))")
+    pockets = tuple(_axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets))
+    p = m.p[:, m.t]
+    edges = np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
+    return SupportMesh(mesh=m.with_boundaries(_surface_boundaries(m, surface, pockets)), surface=surface,
+                       size=float(edges.max()), source=source)
+
+
+def _graded_lines(breaks: list[float], size: float, width: Callable, max_elements: int | None) -> np.ndarray:
+    """Grid coordinates through every break point with spacings about ``clip(width(x), 0, size)``:
+    between consecutive breaks, the integral of ``1 / width`` (trapezoidal on a fine sampling) split evenly."""
+    b = np.unique(np.asarray(breaks, float))
+    span = b[-1] - b[0]
+    b = b[np.concatenate([[True], np.diff(b) > 1e-9 * span])]
+    pieces = []
+    for x0, x1 in zip(b[:-1], b[1:]):
+        x = np.linspace(x0, x1, max(65, math.ceil(4096 * (x1 - x0) / span)))
+        w = np.minimum(np.asarray(width(x), float), size)
+        if w.shape != x.shape or not np.all(np.isfinite(w) & (w > 0)):
+            raise ValueError("column_width must return finite widths > 0 at every phi of the surface")
+        count = np.concatenate([[0.0], np.cumsum(0.5 * (1 / w[1:] + 1 / w[:-1]) * np.diff(x))])
+        check_element_count(2.0 * count[-1], max_elements, what="grid_mesh columns")
+        n = max(1, math.ceil(count[-1] - 1e-9))
+        pieces.append(np.interp(np.linspace(0.0, count[-1], n + 1), count, x)[:-1])
+    return np.concatenate(pieces + [b[-1:]])
 
 
 def _axis_rectangle(shape, k: int) -> tuple[float, float, float, float]:

@@ -1,0 +1,136 @@
+"""The structured, rupture-refined journal path on pads and grooves (``structured_meshes``, no gmsh).
+
+References (``benchmarks/journal_pads.py``, cases ``two_groove``, ``partial_arc``, ``supply_groove``, load
+(0, -1)): P2 on the structured mesh of size 0.1 with the rupture front refined to 0.005 (5,000 to 12,000
+nodes), which moves by about 1e-4 from the front twice as coarse in the error measure below (relative eps
+error, and the largest K and C deviation over the largest reference coefficient) and agrees with P2 on gmsh
+meshes of size 0.035 (7,800 to 10,400 nodes) to their own uncertainty (they change by 4e-4 to 9e-4 from the
+gmsh mesh 1.4x coarser: the coefficients on uniform meshes converge erratically). The target is 1e-3 in that
+measure. The periodic grooved film: the Richardson extrapolation of ``docs/jfo_gmsh.md`` (case
+``grooved_journal``, grids up to 309,222 nodes).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from bearingfe.bearings.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, position_state,
+                                        structured_meshes)
+
+D = math.radians
+TWO_GROOVE = JournalBearing(0.5, pads=((D(10), D(170)), (D(190), D(350))))
+SUPPLY = JournalBearing(0.5, pads=((D(-60), D(300)),), grooves=(Groove(D(120), D(20), 0.8),), supply_pressure=0.5)
+PARTIAL = JournalBearing(0.5, pads=((D(-165), D(-15)),))
+#: (eps, K, C) of the references (K c/W, C c omega/W in the ROSS frame).
+REF_TWO = (0.6050406573610951, [[1.6819461617909193, 0.3174600732268121], [-3.6828557390118495, 3.6383916735497155]],
+           [[1.7751082358319188, -1.8783440318910525], [-1.8783440318910527, 6.800212405890708]])
+REF_PARTIAL = (0.6070039618008299, [[1.5767537404466596, 0.2895793322140407], [-3.668943108623666, 3.747845019139138]],
+               [[1.6014460256284333, -1.7784124119741826], [-1.7784124119741849, 6.898776969449451]])
+REF_SUPPLY = (0.7610474403853972, [[4.884519017996365, 0.06277581088017187], [-5.780678379575545, 4.89196942608784]],
+              [[5.446019188176204, -4.178598015055321], [-4.178598015055334, 6.8458141600819085]])
+#: name -> (bearing, reference, tolerance). The supply groove's pocket corners (singular pressure gradient,
+#: graded towards rupture_size) leave it at about 1.2e-3 (gmsh P2: 2.2e-3 at size 0.07, 6.8e-4 at 0.05)
+REFERENCES = {
+    "two_groove": (TWO_GROOVE, REF_TWO, 1e-3),
+    "partial_arc": (PARTIAL, REF_PARTIAL, 1e-3),
+    "supply_groove": (SUPPLY, REF_SUPPLY, 2e-3),
+}
+
+
+def error(eq, dc, ref) -> float:
+    eps, K, C = ref
+    K, C = np.asarray(K), np.asarray(C)
+    return max(abs(eq.eps - eps) / eps, np.abs(dc.K - K).max() / np.abs(K).max(),
+               np.abs(dc.C - C).max() / np.abs(C).max())
+
+
+def longest_edges(m) -> np.ndarray:
+    p = m.p[:, m.t[:3]]
+    return np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
+
+
+def test_structured_meshes_cover_each_pad_with_its_groove_as_a_pocket():
+    (mesh,) = structured_meshes(SUPPLY, 0.2, eps=0.6, phi0=D(90))
+    m = mesh.mesh
+    p = m.p[:, m.t]
+    area = 0.5 * np.abs((p[0, 1] - p[0, 0]) * (p[1, 2] - p[1, 0]) - (p[1, 1] - p[1, 0]) * (p[0, 2] - p[0, 0]))
+    # the pad (360 degrees x 2a) less the groove (20 degrees x 0.8 of the length)
+    assert area.sum() == pytest.approx(2 * math.pi * 1.0 - D(20) * 0.8, rel=1e-12)
+    bnd = mesh.boundaries
+    assert {"outer", "arc_start", "arc_end", "side", "inlet", "inlet_0"} <= set(bnd)
+    inlet = m.p[:, m.facets[:, bnd["inlet"]]]
+    assert inlet[0].min() == pytest.approx(D(110)) and inlet[0].max() == pytest.approx(D(130))
+    assert np.abs(inlet[1]).max() == pytest.approx(0.4)
+    # columns graded towards the thinnest film (phi0 + pi = 270 degrees): size sqrt(1 - eps) there
+    xs = np.unique(m.p[0])
+    widths, mids = np.diff(xs), 0.5 * (xs[1:] + xs[:-1])
+    assert widths[np.abs(mids - D(270)) < 0.2].max() < 0.14 and widths.max() > 0.18 and widths.max() <= 0.2 + 1e-12
+    two = structured_meshes(TWO_GROOVE, 0.2, eps=0.6)
+    assert [mm.surface.arc for mm in two] == [s.arc for s in TWO_GROOVE.surfaces()]
+    assert all(mm.source == "grid" for mm in two)
+
+
+@pytest.fixture(scope="module", params=sorted(REFERENCES))
+def refined(request):
+    bearing, ref, tolerance = REFERENCES[request.param]
+    eq = equilibrium(bearing, (0.0, -1.0), element="P2", structured=True, size=0.2, rupture_size=0.04)
+    return request.param, eq, dynamic_coefficients(eq), ref, tolerance
+
+
+def test_rupture_refined_pads_meet_the_1e3_target(refined):
+    name, eq, dc, ref, tolerance = refined
+    assert error(eq, dc, ref) < tolerance, name
+    assert eq.residual < 1e-8
+    # the refinement is local: long elements away from the fronts, short ones on them
+    edges = [longest_edges(m.mesh) for m in eq.meshes]
+    assert max(e.max() for e in edges) > 0.2 and min(e.min() for e in edges) < 0.04 + 1e-12
+    if name == "supply_groove":
+        res = eq.state.results[0]
+        assert res.flows["inlet"] > 0  # the groove feeds the film
+        # the refined mesh keeps the pocket contour as its inlet boundary
+        m = eq.meshes[0].mesh
+        inlet = m.p[:, m.facets[:, eq.meshes[0].boundaries["inlet"]]]
+        assert inlet[0].min() == pytest.approx(D(110)) and inlet[0].max() == pytest.approx(D(130))
+
+
+def test_unrefined_structured_pads_miss_it():
+    # the same grid without the rupture refinement misses the target (measured 2.0e-3, refined 1.6e-4): the
+    # refinement is what brings the coefficients in
+    eq = equilibrium(TWO_GROOVE, (0.0, -1.0), element="P2", structured=True, size=0.2)
+    assert error(eq, dynamic_coefficients(eq), REF_TWO) > 1.5e-3
+
+
+def test_linearized_coefficients_are_the_derivative_on_refined_pads(refined):
+    _, eq, lin, _, _ = refined
+    fd = dynamic_coefficients(eq, method="finite-difference", step=1e-5)
+    assert np.abs(lin.K - fd.K).max() < 1e-4 * np.abs(lin.K).max()
+    assert np.abs(lin.C - fd.C).max() < 1e-4 * np.abs(lin.C).max()
+
+
+def test_periodic_grooved_film_on_the_grid_side_flow_within_1_percent():
+    # L/D 1, eps 0.6, a 20-degree groove over 80 % of the length at pi/2 fed at 0.2, periodic seam: the
+    # structured meshes are grid_mesh with the groove as a pocket and the seam, and the finite-volume solver
+    # takes the grid Couette flux on them. Converged side flow 0.22973864 (Richardson, docs/jfo_gmsh.md);
+    # measured +0.62 % here (10,274 nodes, under a second)
+    bearing = JournalBearing(1.0, periodic=True, grooves=(Groove(math.pi / 2, D(20), 0.8),), supply_pressure=0.2)
+    (mesh,) = structured_meshes(bearing, 0.035, eps=0.6, phi0=0.0, min_size=0.035)
+    assert mesh.source == "grid" and {"periodic_start", "periodic_end", "inlet"} <= set(mesh.boundaries)
+    res = position_state(bearing, (mesh,), -0.6, 0.0, "jfo").results[0]
+    assert res.flows["side"] == pytest.approx(0.22973864, rel=0.01)
+    assert res.flows["inlet"] == pytest.approx(res.flows["side"], rel=1e-9)  # JFO: the groove feeds the leakage
+    # equilibrium(structured=True) routes the periodic film through the grid too
+    eq = equilibrium(bearing, (0.0, -2.0), structured=True, size=0.1, cavitation="jfo")
+    assert eq.meshes[0].source == "grid" and eq.residual < 1e-8
+
+
+def test_bad_structured_options_for_pads():
+    periodic = JournalBearing(1.0, periodic=True, grooves=(Groove(0.0, 0.3),))
+    with pytest.raises(ValueError, match="periodic film is solved by finite volumes"):
+        equilibrium(periodic, (0.0, -1.0), structured=True, rupture_size=0.05)
+    with pytest.raises(ValueError, match="phi0 must be finite"):
+        structured_meshes(TWO_GROOVE, 0.2, phi0=float("nan"))
+    with pytest.raises(ValueError, match="size must be in"):
+        structured_meshes(TWO_GROOVE, 0.0)
+    with pytest.raises(ValueError, match="min_size must be in"):
+        structured_meshes(TWO_GROOVE, 0.2, min_size=0.5)
