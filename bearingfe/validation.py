@@ -283,7 +283,7 @@ class PocketSlider:
 
     This is a JFO solution (``p >= p_cav``, ``0 < theta_c < 1``, flux continuous
     at the rupture step and at ``x_r``) when ``start < x_r < end``; the
-    constructor checks it. Defaults: issue 14's case (20 mm, 1 m/s,
+    constructor checks it. Defaults: the reference case (20 mm, 1 m/s,
     0.01 Pa s, 1 um / 10 um, pocket 2-5 mm, 100 kPa, 50 kPa), derived in
     ``docs/jfo.md``.
     """
@@ -360,7 +360,7 @@ class PocketSlider:
 
 
 def jfo_pocket_slider(quick: bool = False) -> list[Check]:
-    """Issue 14's pocket slider with JFO cavitation against its closed form (:class:`PocketSlider`)."""
+    """The pocket slider with JFO cavitation against its closed form (:class:`PocketSlider`)."""
     case = PocketSlider()
     ex = case.exact()
     num = case.solve(160 if quick else 640)

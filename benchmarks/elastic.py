@@ -85,7 +85,7 @@ def _hmin_diff(a, b, clearance: float) -> tuple[float, float]:
 def revolution_cost(pump, size: float, full: bool = True) -> dict:
     """One revolution rigid against elastic (squeeze model), each from its own periodic state.
 
-    Elastic: the fast defaults, the settings before issue 16 (LSODA with the raw pressures to 1e-8,
+    Elastic: the fast defaults, the settings before the fast path (LSODA with the raw pressures to 1e-8,
     rtol 1e-6, threaded BLAS) and a tight reference (LSODA, rtol 1e-8) that the accuracy is measured on.
     """
     import bearingfe.transient.elastic as et
@@ -485,7 +485,7 @@ compared with a tight reference run (LSODA, rtol 1e-8; smallest film {rv['refere
 |---|---|---|---|---|---|---|---|
 | rigid (`simulate`, defaults) | {rv['rigid_s']:.2f} | 1 | {rv['rigid_nfev']} | {rv['rigid_steps']} | - | - | - |
 | elastic, defaults (BDF, rtol 1e-5, film opening to 1e-5 c, one BLAS thread) | {rv['fast']['s']:.2f} | {rv['fast']['ratio']:.1f} | {rv['fast']['nfev']} | {rv['fast']['steps']} | {rv['fast']['jacobians']} | {rv['fast']['curve_error_c']:.1e} | {rv['fast']['smallest_error_c']:.1e} |
-| elastic, settings before issue 16 (LSODA, rtol 1e-6, pressures to 1e-8, threaded BLAS) | {rv['before']['s']:.2f} | {rv['before']['ratio']:.1f} | {rv['before']['nfev']} | {rv['before']['steps']} | {rv['before']['jacobians']} | {rv['before']['curve_error_c']:.1e} | {rv['before']['smallest_error_c']:.1e} |
+| elastic, settings before the fast path (LSODA, rtol 1e-6, pressures to 1e-8, threaded BLAS) | {rv['before']['s']:.2f} | {rv['before']['ratio']:.1f} | {rv['before']['nfev']} | {rv['before']['steps']} | {rv['before']['jacobians']} | {rv['before']['curve_error_c']:.1e} | {rv['before']['smallest_error_c']:.1e} |
 
 The elastic state is the interior pressure ({co['dofs']} dofs less the outline and pocket), so each
 right side costs one product with the dense compliance, one with `K^-1` and sparse products with the

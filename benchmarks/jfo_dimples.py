@@ -5,7 +5,7 @@ Usage (from the repository root)::
     PYTHONPATH=. nice python benchmarks/jfo_dimples.py            # full run, ~3 min idle, ~8 on a loaded machine
     PYTHONPATH=. python benchmarks/jfo_dimples.py --quick         # coarse grids only (smoke test)
 
-The case follows the data issue 14 quotes from Woloszynski, Podsiadlo & Stachowiak (Tribol. Lett. 58:18,
+The case follows the data quoted from Woloszynski, Podsiadlo & Stachowiak (Tribol. Lett. 58:18,
 2015): an 80 x 80 mm slider, smallest film 15 um, dimple depth 12 um, mu 0.03 Pa s, U 5 m/s, ambient
 100 kPa, cavity 30 kPa. The paper's full layout is not quoted there, so the layout is ours and stated:
 a parallel land at the smallest film with a 5 x 5 array of circular dimples of radius 4 mm on a 14 mm
@@ -241,10 +241,10 @@ def main(argv=None) -> None:
     if not ratios:
         verdict = "No published time for these grids (quick run): no verdict."
     elif all(math.isfinite(r) and r >= 10 for r in ratios):
-        verdict = (f"The issue's goal (the same accuracy at least 10x faster) is MET on both grids, meshing "
+        verdict = (f"The goal (the same accuracy at least 10x faster) is MET on both grids, meshing "
                    f"included: {min(ratios):.1f}x at least.")
     else:
-        verdict = ("The issue's goal (the same accuracy at least 10x faster, meshing included) is NOT met on "
+        verdict = ("The goal (the same accuracy at least 10x faster, meshing included) is NOT met on "
                    "every grid here: " + ", ".join(f"{r:.1f}x" if math.isfinite(r) else "not reached" for r in ratios)
                    + ("; this run shared the machine with other jobs, so our wall times are inflated (rerun on an "
                       "idle machine); by CPU time: " + ", ".join(f"{r:.1f}x" if math.isfinite(r) else "not reached"
@@ -261,9 +261,9 @@ def main(argv=None) -> None:
         f"used {other:.2f} cores meanwhile: "
         f"{'an idle machine' if other < 0.25 else 'a SHARED machine, absolute times are inflated'}).",
         "",
-        "Case (issue 14, after Woloszynski, Podsiadlo & Stachowiak, Tribol. Lett. 58:18, 2015): 80 x 80 mm, land "
+        "Case (after Woloszynski, Podsiadlo & Stachowiak, Tribol. Lett. 58:18, 2015): 80 x 80 mm, land "
         "film 15 um, dimple depth 12 um, mu 0.03 Pa s, U 5 m/s, ambient 100 kPa, cavity 30 kPa. The layout is "
-        "ours (the paper's is not given in the issue): a parallel land with 5 x 5 circular dimples, radius 4 mm, "
+        "ours (the paper does not give it): a parallel land with 5 x 5 circular dimples, radius 4 mm, "
         "pitch 14 mm, centred. Every solve is cold (no warm start); times are wall-clock on this machine.",
         "",
         f"Reference: Richardson extrapolation of our grid solutions on {', '.join(str(r['label']) for r in fine)} "

@@ -6,7 +6,7 @@ Usage (from the repository root)::
     PYTHONPATH=. python benchmarks/jfo_validation.py           # full run, ~3-5 min on 2 cores
     PYTHONPATH=. python benchmarks/jfo_validation.py --quick   # small sizes (smoke test)
 
-Sections: (1) the pocket slider of issue 14 (closed form, ``bearingfe.validation.PocketSlider``);
+Sections: (1) the pocket slider (closed form, ``bearingfe.validation.PocketSlider``);
 (2) the oscillating squeeze film (moving-boundary reference, ``OscillatingSqueeze``); (3) no rupture:
 JFO against the Galerkin Reynolds solution; (4) the Raimondi-Boyd journal, L/D 1, eps 0.6, Swift-Stieber
 against JFO; (5) a grooved periodic journal at equilibrium; (6) the shipped pump (periodic start, one
@@ -140,7 +140,7 @@ def main(argv=None) -> None:
         "",
         "## 1. Pocket slider against its closed form",
         "",
-        f"Issue 14's case (20 mm, 1 m/s, 0.01 Pa s, 1/10 um, pocket 2-5 mm, 100/50 kPa): load "
+        f"The reference case (20 mm, 1 m/s, 0.01 Pa s, 1/10 um, pocket 2-5 mm, 100/50 kPa): load "
         f"{ex.load:.6g} N/m, flow {ex.flow:.6g} m^2/s, reformation {ex.reformation * 1e3:.6g} mm, "
         f"theta {ex.theta_cavity:.6g}. Strip of n cells (`strip_mesh`), P1 JFO.",
         "",

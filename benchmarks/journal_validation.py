@@ -40,7 +40,7 @@ if __package__ in (None, ""):  # run as a script: make the repository root impor
 from benchmarks import estimate_validation  # noqa: E402
 
 RB = RAIMONDI_BOYD
-S_TOL, ATT_TOL = 0.01, 0.3  # issue 3 acceptance: 1 % on S, 0.3 deg on the attitude
+S_TOL, ATT_TOL = 0.01, 0.3  # the acceptance tolerance: 1 % on S, 0.3 deg on the attitude
 
 
 def size_for(ld: float) -> float:

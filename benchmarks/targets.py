@@ -1,4 +1,4 @@
-"""Speed targets of the fast inner loop (issue 13): journal equilibrium + coefficients, the main scene.
+"""Speed targets of the fast inner loop: journal equilibrium + coefficients, the main scene.
 
 Journal: a plain 360-degree bearing, ``L/D = 0.5``, at eccentricity 0.6.
 Task: the equilibrium under the load that the reference puts at ``eps =

@@ -3,7 +3,7 @@ r"""Compiled film operator: the film-independent linear maps of a mesh and eleme
 Everything the Reynolds equation needs from a film state enters through a few
 fields at the quadrature points (``h^3`` or ``D``, the sources, ``h`` and its
 gradient). What does not depend on the film is built once per
-``(mesh, element)`` (issue 13):
+``(mesh, element)``:
 
 - the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
   (gradients) from dofs to the ``n_q`` quadrature points;

@@ -44,7 +44,7 @@ def test_pump_page_names_its_cheapest_run_within_a_tenth_of_a_percent():
 
 def test_target_verdicts_follow_the_measured_numbers():
     text = (DOCS / "benchmarks.md").read_text()
-    rows = _rows(text, "| target (issue 13)")
+    rows = _rows(text, "| target |")
     assert len(rows) >= 5
     for what, goal, measured, verdict, _ in rows:
         number = re.match(r"([\d.e+-]+)", measured)

@@ -616,7 +616,7 @@ def test_mesh_command_killed_while_meshing_leaves_nothing_beside_out(tmp_path):
 # -- untrusted .geo text: lexer corners, size, linear work, fuzz -------------------------------------
 
 def test_nul_in_a_comment_hides_no_command(tmp_path, capsys):
-    """The issue's reproduction: gmsh's lexer ends a // comment at NUL, so a command after it ran. bearingfe's
+    """The reported reproduction: gmsh's lexer ends a // comment at NUL, so a command after it ran. bearingfe's
     parser refuses control characters anywhere, comments included, naming the line; nothing runs."""
     marker, out = tmp_path / "pwned", tmp_path / "o.msh"
     evil = tmp_path / "evil.geo"
@@ -687,7 +687,7 @@ def _steps(text: str) -> tuple[int, str]:
 
 
 def test_reading_x_paren_is_linear():
-    """The issue's quadratic case: 'x(' repeated 8,000 times took the allow-list 16 s. The parser lexes each
+    """The reported quadratic case: 'x(' repeated 8,000 times took the allow-list 16 s. The parser lexes each
     token once and refuses at nesting 40: its step count grows by exactly 2 per 'x(' (two tokens), so from
     4,000 to 8,000 to 16,000 the differences double exactly (no term in n^2)."""
     runs = [_steps("x(" * n) for n in (4000, 8000, 16000)]

@@ -63,12 +63,12 @@ def test_state_result_balances_the_load(setup):
     assert res.h_min * PUMP.clearance == pytest.approx(traj.h_min[-1], rel=1e-12)
 
 
-# -- the fast path (issue 16): defaults against a tight reference, continuation, stiff limit, guards --------
+# -- the fast path: defaults against a tight reference, continuation, stiff limit, guards --------
 
 @pytest.fixture(scope="module")
 def revolution(setup):
     """One revolution from the steady start at the defaults (BDF, rtol 1e-5, film opening to 1e-5 c) and
-    at the tight reference (LSODA on the raw pressures, rtol 1e-8: the pre-issue-16 path, tightened)."""
+    at the tight reference (LSODA on the raw pressures, rtol 1e-8: the path before the fast defaults, tightened)."""
     mesh, C = setup
     fast = simulate_elastic(PUMP, C, 1.0, start="steady", points_per_revolution=72)
     ref = simulate_elastic(PUMP, C, 1.0, start="steady", points_per_revolution=72, method="LSODA", rtol=1e-8,
