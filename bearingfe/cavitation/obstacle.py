@@ -13,6 +13,7 @@ knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,10 +79,16 @@ class ObstacleProblem:
         Cap on active-set iterations; beyond it :class:`CavitationError`.
     cache_size : int
         Number of factorizations (one per active set) kept.
+    reuse : bool
+        Solve on a new free set by conjugate gradients preconditioned with
+        the last factorization (of a nearby free set) instead of factorizing
+        it (see :meth:`solve`); a new factorization is made only when the
+        iteration has not converged within the cost of about half a
+        factorization. False: one factorization per new set (the plain method).
     """
 
     def __init__(self, A: sp.spmatrix, factorize: Factorize, *, tol: float = TOLERANCE,
-                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4) -> None:
+                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4, reuse: bool = True) -> None:
         if not (0 < tol < 1e-2):
             raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -91,32 +98,78 @@ class ObstacleProblem:
         self.factorize = factorize
         self.tol = float(tol)
         self.max_iterations = max_iterations
+        self.reuse = bool(reuse)
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
+        self._diag = self.A.diagonal()
+        self._reference = None  # (free mask, solve, seconds) of the last factorization: the preconditioner
+        #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
+        self.krylov_iterations = 0
 
-    def _solver(self, free: np.ndarray):
-        key = np.packbits(free).tobytes()
+    def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
-            return self._cache[key], 0
-        idx = np.flatnonzero(free)
-        solve = self.factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
-        if len(self._cache) >= self._cache_size:
+            del self._cache[key]
+        elif len(self._cache) >= self._cache_size:
             self._cache.pop(next(iter(self._cache)))
         self._cache[key] = solve
-        return solve, 1
 
-    def add_factorization(self, free: np.ndarray, solve) -> None:
-        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache."""
+    def _factor(self, free: np.ndarray):
+        idx = np.flatnonzero(free)
+        t0 = time.perf_counter()
+        solve = self.factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
+        self._reference = (free.copy(), solve, time.perf_counter() - t0)
+        self._store(np.packbits(free).tobytes(), solve)
+        return solve
+
+    def _solver(self, free: np.ndarray):
+        """A factorization of ``A[free][:, free]`` (cached); ``(solve, 1 if new else 0)``."""
+        key = np.packbits(free).tobytes()
+        solve = self._cache.get(key)
+        if solve is not None and not isinstance(solve, _Krylov):
+            return solve, 0
+        return self._factor(free), 1
+
+    def add_factorization(self, free: np.ndarray, solve, seconds: float | None = None) -> None:
+        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache
+        (``seconds``: what it cost, which sets how many conjugate-gradient
+        iterations may be spent before a new factorization pays)."""
         free = np.asarray(free, bool)
         if free.shape != (self.n,):
             raise ValueError(f"free must be a boolean mask of length {self.n}")
-        if len(self._cache) >= self._cache_size:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[np.packbits(free).tobytes()] = solve
+        self._store(np.packbits(free).tobytes(), solve)
+        self._reference = (free.copy(), solve, seconds)
+
+    def _solve_free(self, free: np.ndarray, b_free: np.ndarray, rtol: float | None = None,
+                    x0: np.ndarray | None = None) -> tuple[np.ndarray, int, bool]:
+        """``A[free][:, free]^-1 b_free``: cached, by preconditioned CG, or by a new factorization.
+
+        Returns the solution, 1 if a factorization was made (else 0), and
+        whether it is exact (a factorization) or a conjugate-gradient iterate
+        to the relative step ``rtol`` (default ``tol / 100``).
+        """
+        key = np.packbits(free).tobytes()
+        solve = self._cache.get(key)
+        if solve is None and self.reuse and self._reference is not None:
+            ref = self._reference[0]
+            changed = int(np.count_nonzero(ref != free))
+            if changed <= max(50.0, 8.0 * np.sqrt(self.n)):  # a few layers along the free boundary
+                solve = _Krylov(self, free)
+                self._store(key, solve)
+        if isinstance(solve, _Krylov):
+            try:
+                u = solve(b_free, rtol=rtol, x0=x0)
+                self.krylov_iterations += solve.last_iterations
+                return u, 0, False
+            except _NotConverged as exc:
+                self.krylov_iterations += exc.iterations
+                return self._factor(free)(b_free), 1, True
+        if solve is None:
+            return self._factor(free)(b_free), 1, True
+        return solve(b_free), 0, True
 
     def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Solve with ``u = 0`` on a given active set (the linearization on a
-        fixed rupture set); ``b`` may have several columns."""
+        fixed rupture set) with a factorization; ``b`` may have several columns."""
         free = ~np.asarray(active, bool)
         solve, _ = self._solver(free)
         b = np.asarray(b, float)
@@ -144,13 +197,17 @@ class ObstacleProblem:
         seen: set[bytes] = set()
         factorizations = 0
         scale_b = float(np.abs(b).max(initial=0.0))
+        loose = 1e3 * self.tol  # intermediate sets need only the signs of the clear cases
+        exact = True
+        u = np.zeros(self.n)
         for it in range(1, self.max_iterations + 1):
             free = ~active
-            solve, new = self._solver(free)
-            factorizations += new
+            u_previous = u
             u = np.zeros(self.n)
             if free.any():
-                u[free] = solve(b[free])
+                x0 = u_previous[free] if not exact else None
+                u[free], new, exact = self._solve_free(free, b[free], loose, x0)
+                factorizations += new
             if not np.all(np.isfinite(u)):
                 raise CavitationError("the linear solve on the full-film set returned non-finite values "
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
@@ -159,11 +216,22 @@ class ObstacleProblem:
             tol_u = self.tol * float(np.abs(u).max(initial=0.0))
             tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
             new_active = np.where(active, lam > -tol_l, u < -tol_u)
+            key = np.packbits(new_active).tobytes()
+            if not exact and (np.array_equal(new_active, active) or key in seen):
+                # settled (or back to a set seen) on an inexact solve: solve this set to the tolerance
+                u[free], new, exact = self._solve_free(free, b[free], None, u[free])
+                factorizations += new
+                lam = self.A @ u - b
+                lam[free] = 0.0
+                tol_u = self.tol * float(np.abs(u).max(initial=0.0))
+                tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
+                new_active = np.where(active, lam > -tol_l, u < -tol_u)
+                key = np.packbits(new_active).tobytes()
+                exact = True
             if np.array_equal(new_active, active):
                 return ObstacleSolution(u=u, multiplier=lam, active=active, iterations=it,
                                         factorizations=factorizations)
             seen.add(np.packbits(active).tobytes())
-            key = np.packbits(new_active).tobytes()
             if key in seen:
                 raise CavitationError(
                     f"cavitation active-set iteration cycles after {it} iterations "
@@ -173,3 +241,93 @@ class ObstacleProblem:
         raise CavitationError(
             f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
+
+
+class _NotConverged(Exception):
+    def __init__(self, iterations: int) -> None:
+        super().__init__(iterations)
+        self.iterations = iterations
+
+
+class _Krylov:
+    """``A[free][:, free]^-1 b`` by conjugate gradients preconditioned with the
+    factorization of a nearby free set ``F0``.
+
+    The preconditioner is the factorization on the dofs free in both sets and
+    the diagonal on the dofs only ``free`` has: symmetric positive definite,
+    and equal to the exact inverse but for the rows next to the dofs where
+    the two sets differ, so the iteration converges in a few steps when the
+    sets differ by a few layers of dofs along the free boundary. It stops when
+    the last update is below ``tol / 100`` of the solution (max norm) and
+    raises :class:`_NotConverged` when it has spent about half the cost of a
+    factorization (from the measured times) without getting there.
+    """
+
+    def __init__(self, problem: ObstacleProblem, free: np.ndarray) -> None:
+        ref_free, self.ref_solve, seconds = problem._reference
+        self.problem = problem
+        self.idx = np.flatnonzero(free)
+        pos = np.full(problem.n, -1)
+        pos[self.idx] = np.arange(self.idx.size)
+        ref_idx = np.flatnonzero(ref_free)
+        common = free[ref_idx]
+        self.ref_n = ref_idx.size
+        self.ref_common = np.flatnonzero(common)        # positions in F0 of the common dofs
+        self.common = pos[ref_idx[common]]              # their positions in F
+        new = free & ~ref_free
+        self.new = pos[np.flatnonzero(new)]
+        self.new_diag = problem._diag[np.flatnonzero(new)]
+        self.factor_seconds = seconds
+        self.rtol = 1e-2 * problem.tol
+        self.last_iterations = 0
+
+    def _precondition(self, r: np.ndarray) -> np.ndarray:
+        t = np.zeros(self.ref_n)
+        t[self.ref_common] = r[self.common]
+        s = np.asarray(self.ref_solve(t)).reshape(-1)
+        z = np.empty_like(r)
+        z[self.common] = s[self.ref_common]
+        z[self.new] = r[self.new] / self.new_diag
+        return z
+
+    def _matvec(self, x: np.ndarray) -> np.ndarray:
+        full = np.zeros(self.problem.n)
+        full[self.idx] = x
+        return (self.problem.A @ full)[self.idx]
+
+    def __call__(self, b: np.ndarray, rtol: float | None = None, x0: np.ndarray | None = None) -> np.ndarray:
+        b = np.asarray(b, float)
+        if b.ndim == 2:
+            return np.column_stack([self(c, rtol) for c in b.T])
+        rtol = self.rtol if rtol is None else max(float(rtol), self.rtol)
+        t0 = time.perf_counter()
+        x = np.zeros_like(b) if x0 is None else np.array(x0, float)
+        r = b - self._matvec(x) if x0 is not None else b.copy()
+        z = self._precondition(r)
+        p = z.copy()
+        rz = float(r @ z)
+        cap = 200
+        if self.factor_seconds is not None:  # about a factorization's worth of iterations
+            per = max(time.perf_counter() - t0, 1e-6)
+            cap = int(min(200, max(25, self.factor_seconds / per)))
+        scale = float(np.abs(b).max(initial=0.0))
+        if scale == 0.0:
+            self.last_iterations = 0
+            return x
+        for it in range(1, cap + 1):
+            q = self._matvec(p)
+            pq = float(p @ q)
+            if not pq > 0.0:
+                raise _NotConverged(it)
+            alpha = rz / pq
+            x += alpha * p
+            r -= alpha * q
+            step = abs(alpha) * float(np.abs(p).max())
+            if step <= rtol * float(np.abs(x).max()):
+                self.last_iterations = it
+                return x
+            z = self._precondition(r)
+            rz_new = float(r @ z)
+            p = z + (rz_new / rz) * p
+            rz = rz_new
+        raise _NotConverged(cap)
