@@ -143,7 +143,10 @@ def nested_start(A: sp.spmatrix, b: np.ndarray, points: np.ndarray, factorize: F
     active = None
     iterations = 0
     for k in range(len(grids) - 1, -1, -1):
-        problem = ObstacleProblem(matrices[k], factorize, tol=tol, max_iterations=max_iterations)
+        # a coarse node that reads only a few dofs (strongly graded meshes) can make the columns of the
+        # interpolation dependent: a relative 1e-10 on the diagonal keeps the coarse matrix definite
+        M = matrices[k] + sp.diags(1e-10 * matrices[k].diagonal())
+        problem = ObstacleProblem(M, factorize, tol=tol, max_iterations=min(max_iterations, 25))
         sol = problem.solve(rhs[k], active)
         iterations += sol.iterations
         # carried down one level: ruptured where every node the interpolation reads is ruptured

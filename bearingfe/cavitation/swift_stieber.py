@@ -126,13 +126,18 @@ def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: "Model
     cost = {}
     notes = ()
     krylov = fp.problem.krylov_iterations
-    try:
-        if options.warm_start is None and fp.problem.n >= NESTED_MIN:
-            points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
+    if options.warm_start is None and fp.problem.n >= NESTED_MIN:
+        points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
+        try:
             start, info = nested_start(fp.problem.A, b, points, fp.problem.factorize, tol=options.tol,
                                        max_iterations=options.max_iterations)
             cost["cavitation_coarse_iterations"] = float(info["coarse_iterations"])
-            cost["cavitation_coarse"] = time.perf_counter() - t0
+        except (CavitationError, RuntimeError, ValueError, np.linalg.LinAlgError) as exc:
+            # a coarse problem failed (e.g. a singular coarse matrix): start from the default set
+            notes += (f"cavitation: the coarse-grid start failed ({exc}); started from the linear solution",)
+            cost["cavitation_fallback"] = 1.0
+        cost["cavitation_coarse"] = time.perf_counter() - t0
+    try:
         sol = fp.problem.solve(b, start)
     except CavitationError as exc:
         if not fp.problem.reuse and options.warm_start is not None:
@@ -141,8 +146,8 @@ def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: "Model
         plain = ObstacleProblem(fp.problem.A, fp.problem.factorize, tol=options.tol,
                                 max_iterations=options.max_iterations, reuse=False)
         sol = plain.solve(b, warm_mask(fp, sup, weights, options.warm_start))
-        notes = (f"cavitation: the nested/reused-factorization path failed ({exc}); solved by the plain "
-                 "active-set method",)
+        notes += (f"cavitation: the nested/reused-factorization path failed ({exc}); solved by the plain "
+                  "active-set method",)
         cost["cavitation_fallback"] = 1.0
     cavitated = np.zeros(sup.operators.n_dofs, bool)
     cavitated[fp.interior] = sol.active

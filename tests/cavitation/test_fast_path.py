@@ -68,9 +68,22 @@ def test_failed_fast_path_falls_back_and_says_so(journal_mesh, monkeypatch):
     def failing(*args, **kwargs):
         raise CavitationError("coarse problem did not converge (forced by the test)")
 
+    # a failed coarse start: the iteration starts from the linear solution instead, and says so
     monkeypatch.setattr(swift_stieber, "nested_start", failing)
     res = solve_cavitating(sup, 1.0)
     assert res.cost["cavitation_fallback"] == 1.0
+    assert any("coarse-grid start failed" in note for note in res.notes)
+    np.testing.assert_array_equal(res.cavitated[fp.interior], ref.active)
+    # a failed iteration with reused factorizations: the plain method, which says so
+    original = ObstacleProblem.solve
+
+    def failing_reuse(self, b, active=None):
+        if self.reuse:
+            raise CavitationError("forced by the test")
+        return original(self, b, active)
+
+    monkeypatch.setattr(ObstacleProblem, "solve", failing_reuse)
+    res = solve_cavitating(superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct"), 1.0)
     assert any("plain active-set method" in note for note in res.notes)
     np.testing.assert_array_equal(res.cavitated[fp.interior], ref.active)
     assert res.iterations == ref.iterations
