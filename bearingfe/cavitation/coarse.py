@@ -36,6 +36,8 @@ __all__ = ["COARSEST", "NESTED_MIN", "grid_interpolation", "nested_start"]
 
 #: Nodes of the coarsest grid (about): its cold solve is the cheap start of the chain.
 COARSEST = 600
+#: The finest coarse grid has ``2**FIRST_LEVEL`` times the mean dof spacing.
+FIRST_LEVEL = 1
 #: Below this many unknowns the cold start is used as is (a grid would be as large as the system).
 NESTED_MIN = 2500
 
@@ -80,7 +82,7 @@ def _levels(points: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, tuple[int,
     extent = np.maximum(hi - lo, 1e-12 * max(float((hi - lo).max()), 1.0))
     spacing = math.sqrt(float(extent[0] * extent[1]) / len(points))  # mean dof spacing
     grids = []
-    for k in range(1, 40):
+    for k in range(FIRST_LEVEL, 40):
         H = spacing * 2.0**k
         shape = tuple(int(max(2, math.ceil(e / H) + 1)) for e in extent)
         grids.append((lo, extent / (np.array(shape) - 1), shape))
