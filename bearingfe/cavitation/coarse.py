@@ -39,7 +39,7 @@ COARSEST = 600
 #: The finest coarse grid has ``2**FIRST_LEVEL`` times the mean dof spacing.
 FIRST_LEVEL = 1
 #: Below this many unknowns the cold start is used as is (a grid would be as large as the system).
-NESTED_MIN = 2500
+NESTED_MIN = 500
 
 
 def grid_interpolation(points: np.ndarray, origin: np.ndarray, spacing: np.ndarray,

@@ -7,7 +7,15 @@ active set, then moves nodes with ``u < 0`` to the active set and nodes with
 ``lam < 0`` back. It stops when the set no longer changes (complementarity then
 holds to round-off) and raises :class:`CavitationError` at the iteration cap or on
 a cycle. Factorizations are cached per active set, so a warm start from a
-previous solution with the same set costs one back-substitution. Nothing here
+previous solution with the same set costs one back-substitution.
+
+Consecutive active sets differ by a layer or two of dofs along the free
+boundary, so a new set is solved by conjugate gradients preconditioned with the
+last factorization (exact on the common dofs, diagonal on the newly freed ones),
+to a loose step on intermediate sets and to ``tol / 100`` once the set has
+settled; a set far from the last factorization (a tenth of the dofs) or whose
+iteration would cost more than a factorization is factorized instead
+(``reuse=False``: a factorization per set, the plain method). Nothing here
 knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
 """
 

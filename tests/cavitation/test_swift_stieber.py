@@ -92,7 +92,7 @@ def test_nested_iteration_keeps_the_active_set_count_bounded():
     # moves about one element per iteration, so the count grows like 1/size (measured 4, 6, 13, 24 on
     # 418 .. 24k nodes at eps = 0.4, L/D = 1). Started from the previous mesh's rupture set (nested
     # iteration, warm_start on another mesh) it stays at 2-4 and the answer is the same; the default
-    # cold start (coarse-grid nested iteration above 2500 unknowns) stays bounded too.
+    # cold start (coarse-grid nested iteration above 500 unknowns) stays bounded too.
     film = CosineFilm(0.4, 0.0)
     m = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=1.0), 0.2)
     previous, plain_counts, cold_counts, nested_counts = None, [], [], []
