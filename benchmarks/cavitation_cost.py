@@ -185,7 +185,10 @@ def report(rows: list[dict]) -> tuple[str, dict]:
         "Load: 1-minute load average of the 2-core shared machine at the end of the size.", "",
         md_table(["element", "unknowns", "floor s", "linear s", "Reynolds s", "Reynolds / linear",
                   "Gumbel / linear", "iterations", "plain s", "plain iterations", "load", "peak"], table), "",
-        "Worst Reynolds / linear ratio: " + ", ".join(f"{e} {v:.2f}" for e, v in sorted(worst.items())) + ".", ""])
+        "Worst Reynolds / linear ratio: " + ", ".join(f"{e} {v:.2f}" for e, v in sorted(worst.items())) + ".",
+        "",
+        "Within 3x of the non-cavitating solve at every measured size: " + "; ".join(
+            f"{e} {'yes' if v <= 3.0 else 'NO'}" for e, v in sorted(worst.items())) + ".", ""])
     return text, {"worst_ratio_" + e: v for e, v in worst.items()}
 
 

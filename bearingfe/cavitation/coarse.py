@@ -30,7 +30,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .obstacle import CavitationError, ObstacleProblem
-from ..core.linalg import Factorize
+from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small
 
 __all__ = ["COARSEST", "NESTED_MIN", "grid_interpolation", "nested_start"]
 
@@ -148,7 +148,7 @@ def nested_start(A: sp.spmatrix, b: np.ndarray, points: np.ndarray, factorize: F
         # a coarse node that reads only a few dofs (strongly graded meshes) can make the columns of the
         # interpolation dependent: a relative 1e-10 on the diagonal keeps the coarse matrix definite
         M = matrices[k] + sp.diags(1e-10 * matrices[k].diagonal())
-        problem = ObstacleProblem(M, factorize, tol=tol, max_iterations=min(max_iterations, 25))
+        problem = ObstacleProblem(M, factorize_splu_small if M.shape[0] <= SMALL_PANELS_UP_TO else factorize, tol=tol, max_iterations=min(max_iterations, 25))
         sol = problem.solve(rhs[k], active)
         iterations += sol.iterations
         # carried down one level: ruptured where every node the interpolation reads is ruptured

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..core.linalg import Factorize
+from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
 
@@ -133,7 +133,10 @@ class ObstacleProblem:
     def _factor(self, free: np.ndarray):
         idx = np.flatnonzero(free)
         t0 = time.perf_counter()
-        solve = self.factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
+        factorize = self.factorize
+        if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
+            factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
+        solve = factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
         self._reference = (free.copy(), solve, time.perf_counter() - t0)
         self._store(np.packbits(free).tobytes(), solve)
         self.factorization_count += 1
