@@ -38,8 +38,6 @@ TOLERANCE = 1e-10
 MAX_ITERATIONS = 60
 #: Relative step (in units of the tolerance) of the CG solves on the intermediate active sets.
 LOOSE = 1e5
-#: Rings of neighbours added to a free set before it is factorized as a preconditioner.
-DILATION = 0  # measured: growing the set (1-3 rings) cost more outer and CG iterations than it saved
 
 
 class CavitationError(RuntimeError):
@@ -115,8 +113,6 @@ class ObstacleProblem:
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
-        self._pattern = sp.csr_matrix((np.ones(self.A.nnz, np.int8), self.A.indices, self.A.indptr),
-                                      shape=self.A.shape)
         self._reference = None  # (free mask, solve, seconds) of the last factorization: the preconditioner
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
         self.krylov_iterations = 0
@@ -172,13 +168,10 @@ class ObstacleProblem:
         solve = self._cache.get(key)
         if solve is None and self.reuse:
             if self._reference is None or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n:
-                # far from the last factorization: factorize this set grown by DILATION rings of
-                # neighbours, so that the next sets, which move the free boundary by a layer or two,
-                # are subsets of it (the preconditioner is then a principal block of its inverse)
-                grown = free.copy()
-                for _ in range(DILATION):
-                    grown |= (self._pattern @ grown.astype(np.int8)) > 0
-                self._factor(grown)
+                # far from the last factorization: factorize this set, the reference of the next ones
+                # (measured: factorizing it grown by 1-3 rings of neighbours, so that the next sets are
+                # subsets of it, cost more outer and CG iterations than it saved)
+                return self._factor(free)(b_free), 1, True
             solve = _Krylov(self, free)
             self._store(key, solve)
         if isinstance(solve, _Krylov):
