@@ -23,8 +23,9 @@ mesh, interleaved and best of N:
 Run as ``python -m benchmarks.cavitation_cost measure P1 1e5`` (one size, JSON
 on stdout; internal) or ``python -m benchmarks.cavitation_cost run [--sizes ..]
 [--elements ..]``, which adds its rows to ``docs/benchmarks_parts/cavitation_runs.json``;
-the ``cavitation`` part of ``benchmarks/run_all.py`` runs the default sizes and
-writes the page section from that file.
+``python -m benchmarks.cavitation_cost publish`` writes the page section from that
+file (the ``cavitation`` part of ``benchmarks/run_all.py`` runs the default sizes
+and does the same).
 """
 
 from __future__ import annotations
@@ -118,6 +119,7 @@ def measure(element: str, target: float) -> dict:
 
 def _one(element: str, target: float, timeout: float) -> dict:
     cmd = [sys.executable, "-m", "benchmarks.cavitation_cost", "measure", element, repr(target)]
+    start = time.perf_counter()
     try:
         r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
                            cwd=str(Path(__file__).resolve().parents[1]))
@@ -126,7 +128,7 @@ def _one(element: str, target: float, timeout: float) -> dict:
     if r.returncode != 0:
         tail = (r.stderr.strip().splitlines() or ["?"])[-1]
         return {"element": element, "target": target, "error": tail[:300]}
-    return dict(json.loads(r.stdout.strip().splitlines()[-1]), target=target)
+    return dict(json.loads(r.stdout.strip().splitlines()[-1]), target=target, seconds=time.perf_counter() - start)
 
 
 def run(quick: bool = False, sizes=None, elements=("P1", "P2"), log=print, timeout: float = 3600.0) -> list[dict]:
@@ -192,10 +194,30 @@ def report(rows: list[dict]) -> tuple[str, dict]:
     return text, {"worst_ratio_" + e: v for e, v in worst.items()}
 
 
+def publish() -> None:
+    """Write the ``cavitation`` part from :data:`RUNS` (sizes run separately, e.g. in the background)
+    and rebuild ``docs/benchmarks.md`` from the stored parts (``run_all.py --only ""``)."""
+    from . import run_all
+
+    rows = json.loads(RUNS.read_text())
+    text, facts = report(rows)
+    loads = [r["load"] for r in rows if "load" in r]
+    dates = sorted(r["date"] for r in rows if "date" in r)
+    text = (f"Measured {dates[0]} .. {dates[-1]} by `python -m benchmarks.cavitation_cost run` (one process per "
+            "size) and published with `python -m benchmarks.cavitation_cost publish`.\n\n" + text)
+    # other processes' cores: the 1-minute load average less this benchmark's own process
+    run_all._store("cavitation", text, facts, float(sum(r.get("seconds", 0.0) for r in rows)), False,
+                   max(0.0, float(np.mean(loads)) - 1.0) if loads else math.nan)
+    run_all.main(["--only", ""])
+
+
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["measure"]:
         print(json.dumps(measure(argv[1], float(argv[2]))))
+        return 0
+    if argv[:1] == ["publish"]:
+        publish()
         return 0
     import argparse
 
