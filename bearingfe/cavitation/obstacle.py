@@ -114,6 +114,7 @@ class ObstacleProblem:
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
         self._reference = None  # (free mask, solve, seconds) of the last factorization: the preconditioner
+        self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
         self.krylov_iterations = 0
         #: factorizations made, in total
@@ -167,11 +168,17 @@ class ObstacleProblem:
         key = np.packbits(free).tobytes()
         solve = self._cache.get(key)
         if solve is None and self.reuse:
-            if self._reference is None or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n:
+            if not self._low_memory and (self._reference is None
+                                         or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n):
                 # far from the last factorization: factorize this set, the reference of the next ones
                 # (measured: factorizing it grown by 1-3 rings of neighbours, so that the next sets are
                 # subsets of it, cost more outer and CG iterations than it saved)
-                return self._factor(free)(b_free), 1, True
+                try:
+                    return self._factor(free)(b_free), 1, True
+                except (MemoryError, RuntimeError):  # e.g. SUPERLU_MALLOC fails: no room for a second factor
+                    if self._reference is None:
+                        raise
+                    self._low_memory = True
             solve = _Krylov(self, free)
             self._store(key, solve)
         if isinstance(solve, _Krylov):
@@ -181,6 +188,11 @@ class ObstacleProblem:
                 return u, 0, False
             except _NotConverged as exc:
                 self.krylov_iterations += exc.iterations
+                if self._low_memory:
+                    raise CavitationError(
+                        "no memory for a factorization of the active set and the conjugate gradients "
+                        f"preconditioned with the last one did not converge in {exc.iterations} iterations "
+                        f"({self.n} unknowns)") from None
                 return self._factor(free)(b_free), 1, True
         if solve is None:
             return self._factor(free)(b_free), 1, True
@@ -336,6 +348,8 @@ class _Krylov:
         if self.cap is None:  # a factorization's worth of iterations (fixed at the first call: reproducible)
             per = max(time.perf_counter() - t0, 1e-6)
             self.cap = 200 if self.factor_seconds is None else int(min(200, max(8, self.factor_seconds / per)))
+            if self.problem._low_memory:
+                self.cap = 1000
         cap = self.cap
         if float(np.abs(b).max(initial=0.0)) == 0.0:
             self.last_iterations = 0

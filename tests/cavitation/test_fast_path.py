@@ -99,3 +99,22 @@ def test_grid_interpolation_is_a_partition_of_unity():
     gx, gz = np.meshgrid(np.arange(9) * 0.25, -0.5 + np.arange(5) * 0.25, indexing="ij")
     f = 3 * gx.ravel() - 2 * gz.ravel() + 1
     np.testing.assert_allclose(P @ f, 3 * pts[:, 0] - 2 * pts[:, 1] + 1, atol=1e-12)
+
+
+def test_no_memory_for_a_second_factorization_falls_back_to_cg_on_the_first(journal_mesh):
+    # at 1e6 unknowns SuperLU can fail to allocate the active set's factorization next to the full one
+    # (SUPERLU_MALLOC fails: a RuntimeError); then CG preconditioned with the full factorization solves
+    # every set, to the same answer
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+
+    def no_memory(A):
+        raise RuntimeError("SUPERLU_MALLOC fails for buf in intCalloc() (forced by the test)")
+
+    problem = ObstacleProblem(fp.problem.A, no_memory)
+    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve, 1.0)
+    sol = problem.solve(fp.rhs @ weights, (sup.fields @ weights)[fp.interior] < 0)
+    assert sol.factorizations == 0 and problem.krylov_iterations > 0
+    np.testing.assert_array_equal(sol.active, ref.active)
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
