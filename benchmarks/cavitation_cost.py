@@ -159,7 +159,7 @@ def _g(x, fmt="{:.3g}"):
 
 def report(rows: list[dict]) -> tuple[str, dict]:
     """Markdown section and facts (worst ratio of the cavitating to the linear solve)."""
-    table, worst = [], {}
+    table, worst, above = [], {}, {}
     for r in sorted(rows, key=lambda r: (r["element"], r["target"])):
         if "error" in r:
             table.append([r["element"], f"{r['target']:.0e}", "-", "-", "-", "-", "-", "-", "-", "-", "-",
@@ -167,6 +167,8 @@ def report(rows: list[dict]) -> tuple[str, dict]:
             continue
         ratio, gratio = r["reynolds"] / r["linear"], r["gumbel"] / r["linear"]
         worst[r["element"]] = max(worst.get(r["element"], 0.0), ratio)
+        if r["unknowns"] >= 2500:
+            above[r["element"]] = max(above.get(r["element"], 0.0), ratio)
         same = ("same set" if r.get("plain_same_set") else "DIFFERENT set") if "plain_same_set" in r else ""
         table.append([r["element"], r["unknowns"], _g(r["floor"]), _g(r["linear"]), _g(r["reynolds"]),
                       f"{ratio:.2f}", f"{gratio:.2f}",
@@ -189,6 +191,9 @@ def report(rows: list[dict]) -> tuple[str, dict]:
                   "Gumbel / linear", "iterations", "plain s", "plain iterations", "load", "peak"], table), "",
         "Worst Reynolds / linear ratio: " + ", ".join(f"{e} {v:.2f}" for e, v in sorted(worst.items())) + ".",
         "",
+        "From 3000 unknowns up: " + ", ".join(f"{e} {v:.2f}" for e, v in sorted(above.items())) + " at worst; "
+        "below, the fixed costs of the coarse grids and of a few active-set steps (milliseconds of scipy "
+        "calls) weigh against a linear solve of about 2 ms.", "",
         "Within 3x of the non-cavitating solve at every measured size: " + "; ".join(
             f"{e} {'yes' if v <= 3.0 else 'NO'}" for e, v in sorted(worst.items())) + ".", ""])
     return text, {"worst_ratio_" + e: v for e, v in worst.items()}
