@@ -30,6 +30,7 @@ and does the same).
 
 from __future__ import annotations
 
+import gc
 import json
 import math
 import os
@@ -84,10 +85,14 @@ def measure(element: str, target: float) -> dict:
         t = time.perf_counter()
         factorize(A)(rhs)
         best["floor"] = min(best["floor"], time.perf_counter() - t)
+        del sup, A, rhs
+        gc.collect()  # one film state's factorizations alive at a time (1e6 unknowns: several GB each)
         t = time.perf_counter()
         sup = bf.superpose(mesh, film, formulation="direct", element=element)
         res = solve_cavitating(sup, 1.0)
         best["reynolds"] = min(best["reynolds"], time.perf_counter() - t)
+        del sup
+        gc.collect()
         t = time.perf_counter()
         sup = bf.superpose(mesh, film, formulation="direct", element=element)
         gum = solve_cavitating(sup, 1.0, model="gumbel")
