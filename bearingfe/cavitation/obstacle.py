@@ -175,7 +175,8 @@ class ObstacleProblem:
                 # subsets of it, cost more outer and CG iterations than it saved)
                 try:
                     return self._factor(free)(b_free), 1, True
-                except (MemoryError, RuntimeError):  # e.g. SUPERLU_MALLOC fails: no room for a second factor
+                except (MemoryError, RuntimeError, SystemError):  # SuperLU out of memory: "SUPERLU_MALLOC fails",
+                    # or "gstrf was called with invalid arguments" (measured at 1e6 unknowns, 16 GB address space)
                     if self._reference is None:
                         raise
                     self._low_memory = True
