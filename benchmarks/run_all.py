@@ -24,6 +24,9 @@ environment with ROSS, else its recorded run is reused); ``pump`` — one
 pump revolution against its error (``benchmarks/pump_revolution.py``, which
 also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
 end; ``scaling`` — growth with the unknowns and the linear solvers;
+``cavitation`` — the cavitating solves against the non-cavitating one and the
+floor, 1e3 .. 3e5 unknowns (:mod:`benchmarks.cavitation_cost`; larger sizes by
+``python -m benchmarks.cavitation_cost run --sizes 1e6``, merged);
 ``hard`` — hard cases; ``thermal`` — the cost of a level-1 and a level-2 thermal solve against the
 isothermal one (:mod:`benchmarks.thermal_levels`). The operator cost floor is measured by
 ``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
@@ -46,13 +49,13 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import (hard_cases, journal_case, journal_pads, journal_ross, pump_revolution, scaling,  # noqa: E402
-                        targets, thermal_levels, work_precision)
+from benchmarks import (cavitation_cost, hard_cases, journal_case, journal_pads, journal_ross,  # noqa: E402
+                        pump_revolution, scaling, targets, thermal_levels, work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "pump", "scene", "scaling", "hard",
-         "thermal")
+PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "pump", "scene", "scaling",
+         "cavitation", "hard", "thermal")
 
 
 def _log(msg) -> None:
@@ -150,19 +153,28 @@ def part_scaling(quick: bool) -> tuple[str, dict]:
     return choice + "\n\n" + scaling.report(sc) + "\n", {}
 
 
+def part_cavitation(quick: bool) -> tuple[str, dict]:
+    rows = cavitation_cost.run(quick, log=_log)
+    if not quick:  # with the larger sizes run separately (e.g. 1e6 in the background) and merged into the file
+        rows = json.loads(cavitation_cost.RUNS.read_text())
+    return cavitation_cost.report(rows)
+
+
 def part_hard(quick: bool) -> tuple[str, dict]:
     return hard_cases.report() + "\n", {}
 
 
 RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal,
            "journal_pads": part_journal_pads, "journal_ross": part_journal_ross, "pump": part_pump,
-           "scene": part_scene, "scaling": part_scaling, "hard": part_hard, "thermal": thermal_levels.run}
+           "scene": part_scene, "scaling": part_scaling, "cavitation": part_cavitation, "hard": part_hard,
+           "thermal": thermal_levels.run}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
           "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
           "journal_pads": "Journal equilibrium and coefficients on pads and grooves (structured path)",
           "journal_ross": "Journal equilibrium and coefficients against ROSS",
           "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
-          "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases",
+          "scaling": "Growth with the number of unknowns; linear solvers",
+          "cavitation": "Cost of the cavitating solves (Swift-Stieber, Gumbel) up to 1e6 unknowns", "hard": "Hard cases",
           "thermal": "Thermal levels: cost of level 1 and level 2 against the isothermal solve"}
 
 

@@ -9,6 +9,7 @@ finite-element film state, and whether the finite-volume scheme solves it too);
 module             what it does
 =================  ==============================================================
 ``obstacle``       the obstacle problem on a condensed system (primal-dual active set)
+``coarse``         its cold start by nested iteration on coarse-grid Galerkin problems
 ``swift_stieber``  ``p >= 0`` with a free boundary on a film state; warm and nested starts
 ``jfo``            mass-conserving (JFO) cavitation as a table entry (finite volumes)
 ``models``         the table :data:`MODELS`, its contract, the linear and Gumbel models

@@ -23,7 +23,15 @@ the pressure would fall below the (near-zero) cavity pressure. Two models:
     round-off) and raises :class:`CavitationError` at the iteration cap or
     on a cycle. Factorizations are cached per active set, so a warm start
     from a previous solution with the same rupture set costs one
-    back-substitution.
+    back-substitution. From a cold start the free boundary would move by
+    about one layer of dofs per iteration (7 .. 52 iterations, each with a
+    factorization, at 1e3 .. 1e5 unknowns); instead the start is the rupture
+    set of nested coarse-grid problems (:mod:`bearingfe.cavitation.coarse`)
+    and the steps after the first factorization are conjugate-gradient
+    solves preconditioned with it (:class:`~bearingfe.cavitation.obstacle.ObstacleProblem`),
+    which keeps the cost within a few factorizations at every size
+    (``docs/benchmarks.md``, part ``cavitation``). If that path fails, the
+    plain method runs and the result's ``notes`` say so.
 ``"gumbel"`` (half-Sommerfeld)
     the linear solution with its negative part discarded: cheap, not a
     solution of any conservation law, kept as the textbook comparison.

@@ -7,18 +7,28 @@ active set, then moves nodes with ``u < 0`` to the active set and nodes with
 ``lam < 0`` back. It stops when the set no longer changes (complementarity then
 holds to round-off) and raises :class:`CavitationError` at the iteration cap or on
 a cycle. Factorizations are cached per active set, so a warm start from a
-previous solution with the same set costs one back-substitution. Nothing here
+previous solution with the same set costs one back-substitution.
+
+Consecutive active sets differ by a layer or two of dofs along the free
+boundary, so a new set is solved by conjugate gradients preconditioned with the
+last factorization (exact on the common dofs, diagonal on the newly freed ones),
+to a loose step on intermediate sets and to ``tol / 100`` once the set has
+settled; a set far from the last factorization (a tenth of the dofs) or whose
+iteration would cost more than a factorization is factorized instead
+(``reuse=False``: a factorization per set, the plain method). Nothing here
 knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
 """
 
 from __future__ import annotations
 
+import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
-from ..core.linalg import Factorize
+from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
 
@@ -26,6 +36,8 @@ __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE"
 TOLERANCE = 1e-10
 #: Default cap on active-set iterations.
 MAX_ITERATIONS = 60
+#: Relative step (in units of the tolerance) of the CG solves on the intermediate active sets.
+LOOSE = 1e5
 
 
 class CavitationError(RuntimeError):
@@ -78,10 +90,16 @@ class ObstacleProblem:
         Cap on active-set iterations; beyond it :class:`CavitationError`.
     cache_size : int
         Number of factorizations (one per active set) kept.
+    reuse : bool
+        Solve on a new free set by conjugate gradients preconditioned with
+        the last factorization (of a nearby free set) instead of factorizing
+        it (see :meth:`solve`); a new factorization is made only when the
+        iteration has not converged within the cost of about half a
+        factorization. False: one factorization per new set (the plain method).
     """
 
     def __init__(self, A: sp.spmatrix, factorize: Factorize, *, tol: float = TOLERANCE,
-                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4) -> None:
+                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4, reuse: bool = True) -> None:
         if not (0 < tol < 1e-2):
             raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -91,32 +109,99 @@ class ObstacleProblem:
         self.factorize = factorize
         self.tol = float(tol)
         self.max_iterations = max_iterations
+        self.reuse = bool(reuse)
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
+        self._diag = self.A.diagonal()
+        self._reference = None  # (free mask, solve, seconds) of the last factorization: the preconditioner
+        self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
+        #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
+        self.krylov_iterations = 0
+        #: factorizations made, in total
+        self.factorization_count = 0
 
-    def _solver(self, free: np.ndarray):
-        key = np.packbits(free).tobytes()
+    def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
-            return self._cache[key], 0
-        idx = np.flatnonzero(free)
-        solve = self.factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
-        if len(self._cache) >= self._cache_size:
+            del self._cache[key]
+        elif len(self._cache) >= self._cache_size:
             self._cache.pop(next(iter(self._cache)))
         self._cache[key] = solve
-        return solve, 1
 
-    def add_factorization(self, free: np.ndarray, solve) -> None:
-        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache."""
+    def _factor(self, free: np.ndarray):
+        idx = np.flatnonzero(free)
+        t0 = time.perf_counter()
+        factorize = self.factorize
+        if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
+            factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
+        solve = factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
+        self._reference = (free.copy(), solve, time.perf_counter() - t0)
+        self._store(np.packbits(free).tobytes(), solve)
+        self.factorization_count += 1
+        return solve
+
+    def _solver(self, free: np.ndarray):
+        """A factorization of ``A[free][:, free]`` (cached); ``(solve, 1 if new else 0)``."""
+        key = np.packbits(free).tobytes()
+        solve = self._cache.get(key)
+        if solve is not None and not isinstance(solve, _Krylov):
+            return solve, 0
+        return self._factor(free), 1
+
+    def add_factorization(self, free: np.ndarray, solve, seconds: float | None = None) -> None:
+        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache
+        (``seconds``: what it cost, which sets how many conjugate-gradient
+        iterations may be spent before a new factorization pays)."""
         free = np.asarray(free, bool)
         if free.shape != (self.n,):
             raise ValueError(f"free must be a boolean mask of length {self.n}")
-        if len(self._cache) >= self._cache_size:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[np.packbits(free).tobytes()] = solve
+        self._store(np.packbits(free).tobytes(), solve)
+        self._reference = (free.copy(), solve, seconds)
+
+    def _solve_free(self, free: np.ndarray, b_free: np.ndarray, rtol: float | None = None,
+                    x0: np.ndarray | None = None) -> tuple[np.ndarray, int, bool]:
+        """``A[free][:, free]^-1 b_free``: cached, by preconditioned CG, or by a new factorization.
+
+        Returns the solution, 1 if a factorization was made (else 0), and
+        whether it is exact (a factorization) or a conjugate-gradient iterate
+        to the relative step ``rtol`` (default ``tol / 100``).
+        """
+        key = np.packbits(free).tobytes()
+        solve = self._cache.get(key)
+        if solve is None and self.reuse:
+            if not self._low_memory and (self._reference is None
+                                         or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n):
+                # far from the last factorization: factorize this set, the reference of the next ones
+                # (measured: factorizing it grown by 1-3 rings of neighbours, so that the next sets are
+                # subsets of it, cost more outer and CG iterations than it saved)
+                try:
+                    return self._factor(free)(b_free), 1, True
+                except (MemoryError, RuntimeError, SystemError):  # SuperLU out of memory: "SUPERLU_MALLOC fails",
+                    # or "gstrf was called with invalid arguments" (measured at 1e6 unknowns, 16 GB address space)
+                    if self._reference is None:
+                        raise
+                    self._low_memory = True
+            solve = _Krylov(self, free)
+            self._store(key, solve)
+        if isinstance(solve, _Krylov):
+            try:
+                u = solve(b_free, rtol=rtol, x0=x0)
+                self.krylov_iterations += solve.last_iterations
+                return u, 0, False
+            except _NotConverged as exc:
+                self.krylov_iterations += exc.iterations
+                if self._low_memory:
+                    raise CavitationError(
+                        "no memory for a factorization of the active set and the conjugate gradients "
+                        f"preconditioned with the last one did not converge in {exc.iterations} iterations "
+                        f"({self.n} unknowns)") from None
+                return self._factor(free)(b_free), 1, True
+        if solve is None:
+            return self._factor(free)(b_free), 1, True
+        return solve(b_free), 0, True
 
     def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Solve with ``u = 0`` on a given active set (the linearization on a
-        fixed rupture set); ``b`` may have several columns."""
+        fixed rupture set) with a factorization; ``b`` may have several columns."""
         free = ~np.asarray(active, bool)
         solve, _ = self._solver(free)
         b = np.asarray(b, float)
@@ -142,15 +227,18 @@ class ObstacleProblem:
         if active.shape != (self.n,):
             raise ValueError(f"active must be a boolean mask of length {self.n}")
         seen: set[bytes] = set()
-        factorizations = 0
+        made = self.factorization_count
         scale_b = float(np.abs(b).max(initial=0.0))
+        loose = LOOSE * self.tol  # intermediate sets need only the signs of the clear cases
+        exact = True
+        u = np.zeros(self.n)
         for it in range(1, self.max_iterations + 1):
             free = ~active
-            solve, new = self._solver(free)
-            factorizations += new
+            u_previous = u
             u = np.zeros(self.n)
             if free.any():
-                u[free] = solve(b[free])
+                x0 = u_previous[free] if not exact else None
+                u[free], _, exact = self._solve_free(free, b[free], loose, x0)
             if not np.all(np.isfinite(u)):
                 raise CavitationError("the linear solve on the full-film set returned non-finite values "
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
@@ -159,11 +247,21 @@ class ObstacleProblem:
             tol_u = self.tol * float(np.abs(u).max(initial=0.0))
             tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
             new_active = np.where(active, lam > -tol_l, u < -tol_u)
+            key = np.packbits(new_active).tobytes()
+            if not exact and (np.array_equal(new_active, active) or key in seen):
+                # settled (or back to a set seen) on an inexact solve: solve this set to the tolerance
+                u[free], _, exact = self._solve_free(free, b[free], None, u[free])
+                lam = self.A @ u - b
+                lam[free] = 0.0
+                tol_u = self.tol * float(np.abs(u).max(initial=0.0))
+                tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
+                new_active = np.where(active, lam > -tol_l, u < -tol_u)
+                key = np.packbits(new_active).tobytes()
+                exact = True
             if np.array_equal(new_active, active):
                 return ObstacleSolution(u=u, multiplier=lam, active=active, iterations=it,
-                                        factorizations=factorizations)
+                                        factorizations=self.factorization_count - made)
             seen.add(np.packbits(active).tobytes())
-            key = np.packbits(new_active).tobytes()
             if key in seen:
                 raise CavitationError(
                     f"cavitation active-set iteration cycles after {it} iterations "
@@ -173,3 +271,112 @@ class ObstacleProblem:
         raise CavitationError(
             f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    # not BLAS: its threads wait for each other on a busy machine, which made a CG step cost ms
+    return float(np.multiply(a, b).sum())
+
+
+class _NotConverged(Exception):
+    def __init__(self, iterations: int) -> None:
+        super().__init__(iterations)
+        self.iterations = iterations
+
+
+class _Krylov:
+    """``A[free][:, free]^-1 b`` by conjugate gradients preconditioned with the
+    factorization of a nearby free set ``F0``.
+
+    The preconditioner is the factorization on the dofs free in both sets and
+    the diagonal on the dofs only ``free`` has: symmetric positive definite,
+    and equal to the exact inverse but for the rows next to the dofs where
+    the two sets differ, so the iteration converges in a few steps when the
+    sets differ by a few layers of dofs along the free boundary. It stops when
+    the last update is below ``rtol`` of the solution (max norm; at most
+    ``tol / 100``) and raises :class:`_NotConverged` when the rate of the last
+    steps says it would need more than a factorization's cost in iterations
+    (from the measured times of the first call) to get there.
+    """
+
+    def __init__(self, problem: ObstacleProblem, free: np.ndarray) -> None:
+        ref_free, self.ref_solve, seconds = problem._reference
+        self.problem = problem
+        self.idx = np.flatnonzero(free)
+        pos = np.full(problem.n, -1)
+        pos[self.idx] = np.arange(self.idx.size)
+        ref_idx = np.flatnonzero(ref_free)
+        common = free[ref_idx]
+        self.ref_n = ref_idx.size
+        self.ref_common = np.flatnonzero(common)        # positions in F0 of the common dofs
+        self.common = pos[ref_idx[common]]              # their positions in F
+        new = free & ~ref_free
+        self.new = pos[np.flatnonzero(new)]
+        self.new_diag = problem._diag[np.flatnonzero(new)]
+        self.factor_seconds = seconds
+        self.rtol = 1e-2 * problem.tol
+        self.last_iterations = 0
+        self.cap = None
+        self._last = None
+
+    def _precondition(self, r: np.ndarray) -> np.ndarray:
+        t = np.zeros(self.ref_n)
+        t[self.ref_common] = r[self.common]
+        s = np.asarray(self.ref_solve(t)).reshape(-1)
+        z = np.empty_like(r)
+        z[self.common] = s[self.ref_common]
+        z[self.new] = r[self.new] / self.new_diag
+        return z
+
+    def _matvec(self, x: np.ndarray) -> np.ndarray:
+        full = np.zeros(self.problem.n)
+        full[self.idx] = x
+        return (self.problem.A @ full)[self.idx]
+
+    def __call__(self, b: np.ndarray, rtol: float | None = None, x0: np.ndarray | None = None) -> np.ndarray:
+        b = np.asarray(b, float)
+        if b.ndim == 2:
+            return np.column_stack([self(c, rtol) for c in b.T])
+        rtol = self.rtol if rtol is None else max(float(rtol), self.rtol)
+        if x0 is None and self._last is not None and np.array_equal(self._last[0], b):
+            x0 = self._last[1]  # the same right side again (a warm start on this set): start from its answer
+        t0 = time.perf_counter()
+        x = np.zeros_like(b) if x0 is None else np.array(x0, float)
+        r = b - self._matvec(x) if x0 is not None else b.copy()
+        z = self._precondition(r)
+        p = z.copy()
+        rz = _dot(r, z)
+        if self.cap is None:  # a factorization's worth of iterations (fixed at the first call: reproducible)
+            per = max(time.perf_counter() - t0, 1e-6)
+            self.cap = 200 if self.factor_seconds is None else int(min(200, max(8, self.factor_seconds / per)))
+            if self.problem._low_memory:
+                self.cap = 1000
+        cap = self.cap
+        if float(np.abs(b).max(initial=0.0)) == 0.0:
+            self.last_iterations = 0
+            return np.zeros_like(b)
+        steps = []
+        for it in range(1, cap + 1):
+            q = self._matvec(p)
+            pq = _dot(p, q)
+            if not pq > 0.0:
+                raise _NotConverged(it)
+            alpha = rz / pq
+            x += alpha * p
+            r -= alpha * q
+            size = float(np.abs(x).max())
+            steps.append(abs(alpha) * float(np.abs(p).max()) / size if size > 0 else 1.0)
+            if steps[-1] <= rtol:
+                self.last_iterations = it
+                if rtol <= self.rtol:
+                    self._last = (b.copy(), x.copy())
+                return x
+            if it >= 6:  # projected from the rate of the last four steps: give up early if it would not pay
+                rate = (steps[-1] / max(steps[-5], 1e-300)) ** 0.25
+                if rate >= 1.0 or it + math.log(rtol / steps[-1]) / math.log(rate) > cap:
+                    raise _NotConverged(it)
+            z = self._precondition(r)
+            rz_new = _dot(r, z)
+            p = z + (rz_new / rz) * p
+            rz = rz_new
+        raise _NotConverged(cap)

@@ -17,12 +17,13 @@ from __future__ import annotations
 
 import time
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .obstacle import MAX_ITERATIONS, TOLERANCE, ObstacleProblem
+from .coarse import NESTED_MIN, nested_start
+from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
 from ..core.linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import ruptured_elements
@@ -69,7 +70,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     factorize = get_linear_solver(solver)
     problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
     if factorize is system.factorize:
-        problem.add_factorization(np.ones(problem.n, bool), system.solve)
+        problem.add_factorization(np.ones(problem.n, bool), system.solve, sup.cost.get("factorization"))
     fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
                      lift=system.lift)
     _PROBLEMS[sup] = fp
@@ -108,12 +109,50 @@ def _transferred_mask(previous: ReynoldsResult, basis) -> np.ndarray:
 
 
 def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: "ModelOptions") -> ReynoldsResult:
-    """``"reynolds"``: ``p >= 0`` with a free boundary, by the primal-dual active-set method."""
+    """``"reynolds"``: ``p >= 0`` with a free boundary, by the primal-dual active-set method.
+
+    Without a warm start, a system of :data:`~bearingfe.cavitation.coarse.NESTED_MIN`
+    unknowns or more starts from the rupture set of nested coarse-grid problems
+    (:func:`~bearingfe.cavitation.coarse.nested_start`), and the active-set steps
+    reuse the last factorization as a preconditioner (:class:`ObstacleProblem`).
+    Should that path fail (a coarse problem or the iteration from its start not
+    converging), the plain method is run from the default start and the result's
+    ``notes`` say so.
+    """
     t0 = time.perf_counter()
     fp = obstacle_problem(sup, options.solver, tol=options.tol, max_iterations=options.max_iterations)
-    sol = fp.problem.solve(fp.rhs @ weights, warm_mask(fp, sup, weights, options.warm_start))
+    b = fp.rhs @ weights
+    start = warm_mask(fp, sup, weights, options.warm_start)
+    cost = {}
+    notes = ()
+    krylov = fp.problem.krylov_iterations
+    if options.warm_start is None and fp.problem.n >= NESTED_MIN:
+        points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
+        try:
+            start, info = nested_start(fp.problem.A, b, points, fp.problem.factorize, tol=options.tol,
+                                       max_iterations=options.max_iterations)
+            cost["cavitation_coarse_iterations"] = float(info["coarse_iterations"])
+        except (CavitationError, RuntimeError, ValueError, np.linalg.LinAlgError) as exc:
+            # a coarse problem failed (e.g. a singular coarse matrix): start from the default set
+            notes += (f"cavitation: the coarse-grid start failed ({exc}); started from the linear solution",)
+            cost["cavitation_fallback"] = 1.0
+        cost["cavitation_coarse"] = time.perf_counter() - t0
+    try:
+        sol = fp.problem.solve(b, start)
+    except CavitationError as exc:
+        if not fp.problem.reuse and options.warm_start is not None:
+            raise
+        # the plain method: a factorization per active set, from the default start
+        plain = ObstacleProblem(fp.problem.A, fp.problem.factorize, tol=options.tol,
+                                max_iterations=options.max_iterations, reuse=False)
+        sol = plain.solve(b, warm_mask(fp, sup, weights, options.warm_start))
+        notes += (f"cavitation: the nested/reused-factorization path failed ({exc}); solved by the plain "
+                  "active-set method",)
+        cost["cavitation_fallback"] = 1.0
     cavitated = np.zeros(sup.operators.n_dofs, bool)
     cavitated[fp.interior] = sol.active
-    cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
-    return build_result(sup, sup.system.full(sol.u, weights), weights, options.sliding, cavitation="reynolds",
-                        iterations=sol.iterations, cavitated=cavitated, extra_cost=cost)
+    cost.update({"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations),
+                 "cavitation_krylov_iterations": float(fp.problem.krylov_iterations - krylov)})
+    res = build_result(sup, sup.system.full(sol.u, weights), weights, options.sliding, cavitation="reynolds",
+                       iterations=sol.iterations, cavitated=cavitated, extra_cost=cost)
+    return replace(res, notes=res.notes + notes) if notes else res

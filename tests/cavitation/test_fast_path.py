@@ -1,0 +1,120 @@
+"""The cold start by coarse-grid nested iteration and the factorization reuse give the plain method's answer.
+
+The plain primal-dual active-set method (a factorization per active set, from the Gumbel set) is the
+reference: the fast path must find the same rupture set and the same unknown to the solver tolerance
+(sign tests at 1e-10 relative; the conjugate-gradient solves stop at a relative step of 1e-12).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from bearingfe import CosineFilm, Surface, mesh_surface, superpose
+from bearingfe.cavitation import ObstacleProblem, obstacle_problem, solve_cavitating
+from bearingfe.cavitation import swift_stieber
+from bearingfe.cavitation.coarse import NESTED_MIN, grid_interpolation
+from bearingfe.cavitation.obstacle import CavitationError
+
+
+@pytest.fixture(scope="module")
+def journal_mesh():
+    # full 360-degree bearing, L/D = 1/2: about 3600 P1 unknowns (above NESTED_MIN), 14000 P2
+    return mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.045)
+
+
+def _plain(sup, weights):
+    fp = obstacle_problem(sup)
+    b = fp.rhs @ weights
+    problem = ObstacleProblem(fp.problem.A, fp.problem.factorize, reuse=False)
+    return fp, problem.solve(b, (sup.fields @ weights)[fp.interior] < 0)
+
+
+@pytest.mark.parametrize("formulation,element,weights", [
+    ("direct", "P1", (1.0, 0.0, 0.0, 0.0)),
+    ("pi", "P1", (1.0, 0.4, -0.3, 0.0)),
+    ("direct", "P2", (1.0, 0.0, 0.2, 0.0)),
+])
+def test_fast_path_matches_the_plain_method(journal_mesh, formulation, element, weights):
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.2), formulation=formulation, element=element)
+    weights = np.array(weights)
+    fp, ref = _plain(sup, weights)
+    assert fp.problem.n >= NESTED_MIN  # the nested cold start is taken
+    res = solve_cavitating(sup, weights[0], tuple(weights[1:3]))
+    assert "cavitation_coarse_iterations" in res.cost and "cavitation_fallback" not in res.cost
+    np.testing.assert_array_equal(res.cavitated[fp.interior], ref.active)
+    # the reference is a true solution (zero residual on its full-film set), and the pressures agree
+    lam = fp.problem.A @ ref.u - fp.rhs @ weights
+    assert np.abs(lam[~ref.active]).max() <= 1e-9 * np.abs(lam).max()
+    np.testing.assert_allclose(res.pressure, _pressure_of(sup, res, ref, weights), rtol=0,
+                               atol=1e-9 * np.abs(res.pressure).max())
+    # fewer iterations than the plain method, which walks the free boundary one layer per step
+    assert res.iterations < ref.iterations
+
+
+def _pressure_of(sup, res, ref, weights):
+    from bearingfe.film import build_result
+
+    cav = np.zeros(sup.operators.n_dofs, bool)
+    cav[sup.system.interior] = ref.active
+    return build_result(sup, sup.system.full(ref.u, weights), weights, cavitation="reynolds", cavitated=cav).pressure
+
+
+def test_failed_fast_path_falls_back_and_says_so(journal_mesh, monkeypatch):
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+
+    def failing(*args, **kwargs):
+        raise CavitationError("coarse problem did not converge (forced by the test)")
+
+    # a failed coarse start: the iteration starts from the linear solution instead, and says so
+    monkeypatch.setattr(swift_stieber, "nested_start", failing)
+    res = solve_cavitating(sup, 1.0)
+    assert res.cost["cavitation_fallback"] == 1.0
+    assert any("coarse-grid start failed" in note for note in res.notes)
+    np.testing.assert_array_equal(res.cavitated[fp.interior], ref.active)
+    # a failed iteration with reused factorizations: the plain method, which says so
+    original = ObstacleProblem.solve
+
+    def failing_reuse(self, b, active=None):
+        if self.reuse:
+            raise CavitationError("forced by the test")
+        return original(self, b, active)
+
+    monkeypatch.setattr(ObstacleProblem, "solve", failing_reuse)
+    res = solve_cavitating(superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct"), 1.0)
+    assert any("plain active-set method" in note for note in res.notes)
+    np.testing.assert_array_equal(res.cavitated[fp.interior], ref.active)
+    assert res.iterations == ref.iterations
+
+
+def test_grid_interpolation_is_a_partition_of_unity():
+    # bilinear weights: non-negative, sum to one, reproduce linear functions exactly
+    rng = np.random.default_rng(0)
+    pts = rng.uniform([0.0, -0.5], [2.0, 0.5], size=(200, 2))
+    P = grid_interpolation(pts, np.array([0.0, -0.5]), np.array([0.25, 0.25]), (9, 5))
+    assert P.data.min() >= 0.0
+    np.testing.assert_allclose(np.asarray(P.sum(axis=1)).ravel(), 1.0, atol=1e-14)
+    gx, gz = np.meshgrid(np.arange(9) * 0.25, -0.5 + np.arange(5) * 0.25, indexing="ij")
+    f = 3 * gx.ravel() - 2 * gz.ravel() + 1
+    np.testing.assert_allclose(P @ f, 3 * pts[:, 0] - 2 * pts[:, 1] + 1, atol=1e-12)
+
+
+def test_no_memory_for_a_second_factorization_falls_back_to_cg_on_the_first(journal_mesh):
+    # at 1e6 unknowns SuperLU can fail to allocate the active set's factorization next to the full one
+    # (SUPERLU_MALLOC fails: a RuntimeError); then CG preconditioned with the full factorization solves
+    # every set, to the same answer
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+
+    def no_memory(A):
+        raise RuntimeError("SUPERLU_MALLOC fails for buf in intCalloc() (forced by the test)")
+
+    problem = ObstacleProblem(fp.problem.A, no_memory)
+    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve, 1.0)
+    sol = problem.solve(fp.rhs @ weights, (sup.fields @ weights)[fp.interior] < 0)
+    assert sol.factorizations == 0 and problem.krylov_iterations > 0
+    np.testing.assert_array_equal(sol.active, ref.active)
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
