@@ -405,11 +405,12 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
+    from ..plot.layout import frame, save
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
-    fig = Figure(figsize=(8.27, 11.69), layout="constrained")  # A4 portrait
-    grid = fig.add_gridspec(3, len(rigid), height_ratios=[1.0, 0.95, 0.9])
-    ax = fig.add_subplot(grid[0, :])
+    fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
+    ax = fig.add_subplot(frame(fig, top=0.85, bottom=7.3, left=0.8, right=0.5)[0, 0])
+    maps_grid = frame(fig, ncols=len(rigid), top=5.0, bottom=3.8, left=0.8, right=0.5, wgap=1.1)
     for (n, traj), color in zip(runs.items(), DESIGN_COLORS):
         deg = np.degrees(traj.beta)
         ax.plot(deg, traj.h_min * 1e6, color=color, label=n)
@@ -426,8 +427,8 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     ax.legend(loc="best", fontsize="small")
     ax.set_title("smallest film over the cycle")
     for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
-        maps.field_axes(fig.add_subplot(grid[1, j]), panel)
-    table = fig.add_subplot(grid[2, :])
+        maps.field_axes(fig.add_subplot(maps_grid[0, j]), panel)
+    table = fig.add_subplot(frame(fig, top=8.2, bottom=0.2, left=0.8, right=0.5)[0, 0])
     table.axis("off")
     names = list(runs)
     cells = table.table(cellText=_comparison(runs, pumps, states, s["limits"]), colLabels=["", *names, "unit"],
@@ -446,8 +447,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
         gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
         table.set_title(f"smallest film pocket/plain: {gain}", fontsize="medium")
     fig.suptitle(s["title"])
-    fig.savefig(path, dpi=100)
-    return fig
+    return save(fig, path)
 
 
 def _comparison(runs: dict, pumps: dict, states: dict, limits: dict) -> list[list[str]]:
