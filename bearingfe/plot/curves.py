@@ -20,7 +20,7 @@ from typing import Mapping
 
 import numpy as np
 
-from .layout import frame, save
+from .figures import frame, save
 
 __all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot"]
 

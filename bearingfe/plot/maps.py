@@ -23,7 +23,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .layout import frame, save
+from .figures import frame, save
 
 __all__ = ["FIELDS", "DISPLAY_TRIANGLES", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
 

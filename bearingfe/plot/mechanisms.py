@@ -24,7 +24,7 @@ def _figure(ax, nrows: int = 1, size=(7.0, 4.5)):
 
 
 def _finish(fig, path):
-    from .layout import save
+    from .figures import save
 
     return save(fig, path)
 

@@ -222,9 +222,14 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
                             compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
               for name, traj in runs.items()}
-    for j, name in enumerate(pictures):
-        tick(done + 1 + j, steps, f"picture: {name}")
-        files += _draw(name, pumps, runs, states, s, out_dir)
+    from ..plot.figures import draw_in_parallel
+
+    tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
+    # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
+    order = sorted(pictures, key=_COST_ORDER.index)
+    drawn = dict(zip(order, draw_in_parallel([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
+                                             for name in order])))
+    files += [f for name in pictures for f in drawn[name]]
     if run["frames"] > 0:
         main = runs["pocket"]
         frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
@@ -245,6 +250,10 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+#: The pictures from the dearest to draw to the cheapest (how :func:`run` shares them among processes).
+_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "orbit")
 
 
 def simulate_design(pump, run: dict):
@@ -405,7 +414,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
-    from ..plot.layout import frame, save
+    from ..plot.figures import frame, save
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
     fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
