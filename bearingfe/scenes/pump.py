@@ -197,9 +197,13 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     start = time.perf_counter()
     runs, meshes, balance, compliances = {}, {}, {}, {}
     done = 0
+    from ..core.parallel import in_processes
+
+    tick(done, steps, f"simulating: {', '.join(designs)}")
+    # the designs are independent: on two free cores each in its own process (the same results)
+    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()])))
     for name, p in designs.items():
-        tick(done, steps, f"simulating: {name}")
-        meshes[name], runs[name] = simulate_design(p, run)
+        meshes[name], runs[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
         done += 1
         if elastic:
@@ -222,13 +226,11 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
                             compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
               for name, traj in runs.items()}
-    from ..plot.figures import draw_in_parallel
-
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
     # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
     order = sorted(pictures, key=_COST_ORDER.index)
-    drawn = dict(zip(order, draw_in_parallel([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
-                                             for name in order])))
+    drawn = dict(zip(order, in_processes([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
+                                         for name in order])))
     files += [f for name in pictures for f in drawn[name]]
     if run["frames"] > 0:
         main = runs["pocket"]

@@ -1,8 +1,6 @@
-"""Fixed layouts, saving and pictures drawn in forked processes (bearingfe.plot.figures)."""
+"""Fixed layouts and saving (bearingfe.plot.figures)."""
 
 from __future__ import annotations
-
-import os
 
 import pytest
 
@@ -34,28 +32,3 @@ def test_save_writes_a_png_at_the_package_resolution(tmp_path):
     assert figures.save(fig, tmp_path / "a.png") is fig
     assert Image.open(tmp_path / "a.png").size == (2 * figures.DPI, figures.DPI)
 
-
-def _job(path, text):
-    def job():
-        path.write_text(f"{text} {os.getpid()}")
-        return [path.name]
-    return job
-
-
-def test_jobs_run_in_two_processes_and_keep_their_order(tmp_path):
-    """Four jobs on two workers: this process draws the 1st and 3rd, a forked child the others; the
-    results come back in the jobs' order."""
-    jobs = [_job(tmp_path / f"{k}.txt", k) for k in range(4)]
-    assert figures.draw_in_parallel(jobs, processes=2) == [["0.txt"], ["1.txt"], ["2.txt"], ["3.txt"]]
-    pids = [int((tmp_path / f"{k}.txt").read_text().split()[1]) for k in range(4)]
-    assert pids[0] == pids[2] == os.getpid() and pids[1] == pids[3] != os.getpid()
-    figures.draw_in_parallel(jobs, processes=1)
-    assert all(int((tmp_path / f"{k}.txt").read_text().split()[1]) == os.getpid() for k in range(4))
-
-
-def test_an_error_in_a_child_is_raised_here(tmp_path):
-    def bad():
-        raise ValueError("no such design")
-
-    with pytest.raises(ValueError, match="no such design"):
-        figures.draw_in_parallel([_job(tmp_path / "a.txt", 0), bad], processes=2)
