@@ -301,7 +301,8 @@ def write_ross_bearings(table: Mapping, folder: str | Path, *, n: int = 0, tag: 
     ``BearingElement`` has 1-D ``kxx ... cyy`` over ``frequency`` [rad/s], and ``BearingElement.save``
     writes them as a TOML table ``[BearingElement_<tag>]`` holding its constructor's keywords, which
     ``ross.BearingElement.load(file)`` reads back. A table over speed and frequency is therefore
-    written as one such file per rotor speed, ``<tag>_<speed>rpm.toml``, each with the coefficients of
+    written as one such file per rotor speed, ``<tag>_<speed>rpm.toml`` (the speed to 6 digits, a
+    decimal point written ``p``), each with the coefficients of
     that speed over the whirl frequencies; ``speed`` [rad/s] is kept in each file too (an extra key,
     which ``load`` passes on as a keyword ROSS ignores).
 
@@ -337,14 +338,15 @@ def write_ross_bearings(table: Mapping, folder: str | Path, *, n: int = 0, tag: 
                              f"got {v.shape}")
         values[name] = v
     rpm = speeds * 30.0 / math.pi
-    names = [f"{tag}_{r:.6g}rpm.toml" for r in rpm]
+    labels = [f"{tag}_{r:.6g}rpm".replace(".", "p") for r in rpm]  # no dot: it splits a TOML key
+    names = [f"{label}.toml" for label in labels]
     if len(set(names)) != len(names):
         raise ValueError("two speeds give the same file name: speeds must differ by more than 1e-6 relative")
     out = []
     for i, name in enumerate(names):
-        fields = {"n": int(n), "tag": f"{tag}_{rpm[i]:.6g}rpm", "scale_factor": 1,
+        fields = {"n": int(n), "tag": labels[i], "scale_factor": 1,
                   **{k: v[i] for k, v in values.items()}, "frequency": freqs, "speed": float(speeds[i])}
-        text = f"[BearingElement_{fields['tag']}]\n" + "".join(f"{k} = {_toml_value(v)}\n" for k, v in fields.items())
+        text = f'["BearingElement_{labels[i]}"]\n' + "".join(f"{k} = {_toml_value(v)}\n" for k, v in fields.items())
         path = Path(folder) / name
         with atomic_path(path) as tmp:
             tmp.write_text(text)
