@@ -17,10 +17,13 @@ and (b) a rectangular recess at high inlet pressure against the FD
 reference, with the cost split; ``journal_c`` — (c) a full journal bearing
 at eccentricity 0.95 with cavitation (:mod:`benchmarks.journal_case`);
 ``journal`` — journal equilibrium + 8 coefficients at eps 0.6, before and
-after the P2/warm-start path (:mod:`benchmarks.targets`); ``pump`` — one
+after the P2/warm-start path (:mod:`benchmarks.targets`); ``tilting`` — a
+five-pad tilting-pad bearing's equilibrium and reduced coefficients at 1e-3
+beside the plain bearing and the floor (:mod:`benchmarks.tilting_pad_speed`);
+``pump`` — one
 pump revolution against its error (``benchmarks/pump_revolution.py``, which
 also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
-end; ``scaling`` — growth with the unknowns and the linear solvers;
+end against its yardstick (SuperLU on a 90k-unknown Laplacian); ``scaling`` — growth with the unknowns and the linear solvers;
 ``hard`` — hard cases. The operator cost floor is measured by
 ``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
 (linked, not rerun here).
@@ -42,11 +45,12 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import hard_cases, journal_case, pump_revolution, scaling, targets, work_precision  # noqa: E402
+from benchmarks import (hard_cases, journal_case, pump_revolution, scaling, targets, tilting_pad_speed,  # noqa: E402
+                        work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "pump", "scene", "scaling", "hard")
+PARTS = ("precision", "journal_c", "journal", "tilting", "pump", "scene", "scaling", "hard")
 
 
 def _log(msg) -> None:
@@ -118,6 +122,10 @@ def part_pump(quick: bool) -> tuple[str, dict]:
             + "\n", facts)
 
 
+def part_tilting(quick: bool) -> tuple[str, dict]:
+    return tilting_pad_speed.report(tilting_pad_speed.run(quick, log=_log))
+
+
 def part_scene(quick: bool) -> tuple[str, dict]:
     return targets.scene_report(targets.scene_run(log=_log))
 
@@ -140,9 +148,10 @@ def part_hard(quick: bool) -> tuple[str, dict]:
 
 
 RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal, "pump": part_pump,
-           "scene": part_scene, "scaling": part_scaling, "hard": part_hard}
+           "scene": part_scene, "scaling": part_scaling, "hard": part_hard, "tilting": part_tilting}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
           "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
+          "tilting": "Tilting-pad bearing: equilibrium and reduced coefficients (five pads)",
           "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
           "scaling": "Growth with the number of unknowns; linear solvers", "hard": "Hard cases"}
 

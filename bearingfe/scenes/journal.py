@@ -45,6 +45,20 @@ Scene file::
     conducted_fraction = 0.0             # share of the friction power conducted away, in [0, 1)
     effective_fraction = 0.5             # T_eff = T_in + k dT, k in (0, 1]
 
+    [tilting_pad]                        # optional: a tilting-pad bearing instead of fixed pads
+    n_pads = 5                           # 2 to 12
+    arc_deg = 60.0                       # each pad [deg]
+    offset = 0.6                         # pivot from the leading edge, fraction of the arc
+    preload = 0.25                       # m = 1 - C_b/C_p ([bearing] radial_clearance is C_p)
+    load_on_pad = false                  # a pivot on the load line, or the load between two pads
+    pivot_stiffness = 5e8                # [N/m]; absent: rigid pivots
+    pad_inertia = 2e-5                   # about the pivot [kg m^2]
+    pad_thickness = 0.012                # pad surface to the rocker line [m]
+    rotor_mass = 800.0                   # [kg], rigid rotor on two such bearings (default 2 load / g)
+    stability_speeds = [1500.0, 12000.0] # [rpm] (default 0.25 to 2 times the speed)
+    stability_points = 8
+    frequency_ratios = [0.5, 1.0, 1.5, 2.0]   # whirl frequency / speed of the tables
+
 Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
 (up), the direction in which the journal turns. The runner finds the
 equilibrium under the load (:func:`bearingfe.bearings.journal.equilibrium`, Newton),
