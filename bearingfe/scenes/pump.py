@@ -52,7 +52,9 @@ the mean friction power [W] (mean friction moment times shaft speed, as a
 design study's ``friction_loss``), the leakage [l/min] (mean inflow from the
 pocket) and side leakage, and each set limit with ``ok`` or ``VIOLATED``
 (:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
-summary).
+summary). When the process may use two cores, the designs' rigid runs and
+then the pictures are shared with a forked process
+(:func:`bearingfe.core.parallel.in_processes`; the results are the same).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
 (materials ``[shoe.material]`` and ``[eccentric.material]`` of the mechanism
