@@ -36,6 +36,7 @@ module or package          what it does
 # ``bearingfe --version`` then loads only the modules it needs (the command line starts in a fraction of
 # the time of importing every subpackage). ``from bearingfe import X`` and ``bearingfe.X`` work as before.
 import importlib as _importlib
+from importlib.util import find_spec as _find_spec
 
 #: Public modules: name -> module path inside the package.
 _MODULES = {
@@ -101,6 +102,8 @@ def __getattr__(name: str):
         value = _importlib.import_module(f"{__name__}.{_MODULES[name]}")
     elif name in _ORIGIN:
         value = getattr(_importlib.import_module(f"{__name__}.{_ORIGIN[name]}"), name)
+    elif not name.startswith("_") and _find_spec(f"{__name__}.{name}") is not None:
+        value = _importlib.import_module(f"{__name__}.{name}")  # a subpackage: bearingfe.film, ...
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
