@@ -456,8 +456,8 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
     whirl frequencies, the stability map of a rigid rotor on two such bearings, pictures, tables and ROSS
     files."""
     from ..bearings.stability import log_decrement_map, threshold_speed
-    from ..bearings.tilting_pad import (pad_assembly_coefficients, ross_table_of, tilting_pad_equilibrium,
-                                        tilting_pad_meshes)
+    from ..bearings.tilting_pad import (TiltingPadConvergenceError, pad_assembly_coefficients, ross_table_of,
+                                        tilting_pad_equilibrium, tilting_pad_meshes)
     from ..core.scales import Scale
     from ..io.writers import write_csv, write_json, write_ross_bearings
 
@@ -476,10 +476,18 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
         """Equilibrium and full coefficients at a speed [rad/s], warm-started from the nearest speed solved."""
         if speed not in solved:
             near = min(solved, key=lambda v: abs(v - speed)) if solved else None
-            eq = build(label, "tilting_pad", tilting_pad_equilibrium, geometry,
-                       (0.0, -load / bearing.force_scale(mu, speed)), meshes=meshes, cavitation=solver["cavitation"],
-                       start=None if near is None else solved[near][0],
-                       pivot_stiffness=bearing.pivot_stiffness_parameter(mu, speed))
+            args = (geometry, (0.0, -load / bearing.force_scale(mu, speed)))
+            options = dict(meshes=meshes, cavitation=solver["cavitation"],
+                           pivot_stiffness=bearing.pivot_stiffness_parameter(mu, speed))
+            try:
+                eq = build(label, "tilting_pad", tilting_pad_equilibrium, *args, **options,
+                           start=None if near is None else solved[near][0])
+            except TiltingPadConvergenceError:
+                if near is None:
+                    raise
+                # the warm start (another speed: on flexible pivots another pivot stiffness parameter too)
+                # can lead Newton astray where the cold start does not
+                eq = build(label, "tilting_pad", tilting_pad_equilibrium, *args, **options)
             solved[speed] = (eq, pad_assembly_coefficients(eq))
         return solved[speed]
 

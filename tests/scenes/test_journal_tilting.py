@@ -137,3 +137,20 @@ def test_bad_tilting_pad_input_names_the_field(change, message):
 def test_the_shipped_scene_reads():
     s = settings(tomllib.loads(SHIPPED.read_text()), "journal_tilting.toml")
     assert s["tilting_pad"]["n_pads"] == 5 and s["tilting_pad"]["preload"] == 0.25
+
+
+def test_flexible_pivots_deflect_by_load_over_stiffness(tmp_path):
+    """On flexible pivots each loaded pad's pivot moves out until the spring carries the pad's load:
+    deflection = load / k (the spring balance k xi_i = F_i . n_i, the load along the pivot line), and the
+    softer bearing sits lower (a larger eccentricity) than on rigid pivots."""
+    data = _coarse()
+    data["tilting_pad"]["pivot_stiffness"] = 1e9
+    data["output"] = {"pictures": [], "tables": []}
+    (tmp_path / "s.toml").write_text(toml_text(data))
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    pads = [p for p in summary["results"]["pads"] if p["loaded"]]
+    assert pads
+    for p in pads:
+        assert p["pivot_deflection_m"] == pytest.approx(p["load_N"] / 1e9, rel=1e-5)
+    assert "pressure.png" not in summary["files"] and "coefficients.csv" not in summary["files"]
