@@ -294,7 +294,8 @@ def scene_report(res: dict) -> tuple[str, dict]:
             f"fresh process: **{res['wall']:.2f} s** wall-clock (median of runs of {runs} s, after a warm-up run of "
             f"{res.get('warmup', math.nan):.2f} s that compiles the bytecode of changed code), of which "
             f"{res['inner']:.2f} s inside the scene "
-            f"(the rest: Python and library imports, VTK start-up). Periodic start: "
+            f"(the rest: Python's start and the imports; the designs and the pictures run in two processes when "
+            f"two cores are free). Periodic start: "
             + ", ".join(f"{k} {v} revolutions" for k, v in res["periodic"].items())
             + f" (+ the output revolution); film ratio pocket/plain {res['film_ratio']:.4f}.\n")
     return text, dict(scene=res["wall"], scene_inner=res["inner"], scene_best=res["best"],
