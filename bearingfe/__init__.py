@@ -31,41 +31,88 @@ module or package          what it does
 =========================  =====================================================
 """
 
-from . import adaptivity, cavitation, elastic, io, scenes, thermal, transient, validation
-from .bearings import hydrostatic, journal, pump, stability, tilting_pad
-from .film import finite_volume as jfo
-from .mechanisms import crank, efficiency, rotor
-from .adaptivity import AdaptiveLevel, AdaptiveResult, AdaptivityError, adapt, error_indicators, load_indicators
-from .cavitation import CavitationError
-from .elastic import Compliance, ElasticError, ElasticSolution, half_space, solve_elastic
-from .film.finite_volume import JFOError, solve_jfo
-from .core.limits import LimitError
-from .film.fd import FDResult, solve_reynolds_fd
-from .film.thickness import (CosineFilm, Film, ProfileFilm, StepFilm, SumFilm, TaperFilm, TaperLandFilm,
-                             UniformFilm)
-from .geometry.surface import Circle, Ellipse, Polygon, Recess, Rectangle, Shape, Slot, Surface
-from .core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS, PatternFactorizer, available_solvers
-from .core.machine import Drive, Material
-from .mechanisms.machines import (CrankMechanism, CrankSlider, Frame, Linkage, MillDrive, Rotor,
-                       RotorFrame, Section)
-from .mechanisms.files import LOADERS, load_mechanism
-from .geometry.geofiles import GeometryFileError, MeshSizeError, UntrustedGeoError
-from .geometry.meshing import SupportMesh, grid_mesh, load_mesh, mesh_surface, refine_uniformly
-from .core.parameters import Discretization, OperatingPoint
-from .core.scales import Scale
-from .reynolds import (CoercivityError, ReynoldsResult, Superposition, operators, solve_reynolds,
-                       superpose)
-from .scenes import SceneError
-from .mechanisms.sections import ibeam, ibeams
-from .sweep import CHANGES, OUTPUTS, PumpCase, ShoeCase, best_design, read_study  # module bearingfe.sweep: sweep()
-from .core.checks import ResolutionWarning, check_resolution
-from .bearings.journal import DynamicCoefficients, Groove, JournalBearing, film_graded_size
-from .bearings.pump import EccentricPump, PressureCycle
-from .bearings.tilting_pad import TiltingPadBearing, TiltingPadGeometry
-from .bearings.hydrostatic import (Capillary, ConstantFlow, Orifice, PrescribedPressure, SupplyError, pocket_transient,
-                                   solve_supplied, supply_stiffness)
-from .thermal import ConstantViscosity, Lubricant, ThermalError, VogelViscosity, WaltherViscosity
-from .transient import LiftOffError, Trajectory, balance_ratio, simulate, steady_state
+
+# The names are imported on first use (PEP 562), not on ``import bearingfe``: a run of one scene or
+# ``bearingfe --version`` then loads only the modules it needs (the command line starts in a fraction of
+# the time of importing every subpackage). ``from bearingfe import X`` and ``bearingfe.X`` work as before.
+import importlib as _importlib
+from importlib.util import find_spec as _find_spec
+
+#: Public modules: name -> module path inside the package.
+_MODULES = {
+    "adaptivity": "adaptivity",
+    "cavitation": "cavitation",
+    "elastic": "elastic",
+    "io": "io",
+    "scenes": "scenes",
+    "thermal": "thermal",
+    "transient": "transient",
+    "validation": "validation",
+    "hydrostatic": "bearings.hydrostatic",
+    "journal": "bearings.journal",
+    "pump": "bearings.pump",
+    "stability": "bearings.stability",
+    "tilting_pad": "bearings.tilting_pad",
+    "jfo": "film.finite_volume",
+    "crank": "mechanisms.crank",
+    "efficiency": "mechanisms.efficiency",
+    "rotor": "mechanisms.rotor",
+    "sweep": "sweep",
+}
+#: Public names: module path inside the package -> the names it gives.
+_NAMES = {
+    "adaptivity": ('AdaptiveLevel', 'AdaptiveResult', 'AdaptivityError', 'adapt', 'error_indicators',
+                   'load_indicators'),
+    "cavitation": ('CavitationError',),
+    "elastic": ('Compliance', 'ElasticError', 'ElasticSolution', 'half_space', 'solve_elastic'),
+    "film.finite_volume": ('JFOError', 'solve_jfo'),
+    "core.limits": ('LimitError',),
+    "film.fd": ('FDResult', 'solve_reynolds_fd'),
+    "film.thickness": ('CosineFilm', 'Film', 'ProfileFilm', 'StepFilm', 'SumFilm', 'TaperFilm', 'TaperLandFilm',
+                       'UniformFilm'),
+    "geometry.surface": ('Circle', 'Ellipse', 'Polygon', 'Recess', 'Rectangle', 'Shape', 'Slot', 'Surface'),
+    "core.linalg": ('DEFAULT_SOLVER', 'LINEAR_SOLVERS', 'PatternFactorizer', 'available_solvers'),
+    "core.machine": ('Drive', 'Material'),
+    "mechanisms.machines": ('CrankMechanism', 'CrankSlider', 'Frame', 'Linkage', 'MillDrive', 'Rotor', 'RotorFrame',
+                            'Section'),
+    "mechanisms.files": ('LOADERS', 'load_mechanism'),
+    "geometry.geofiles": ('GeometryFileError', 'MeshSizeError', 'UntrustedGeoError'),
+    "geometry.meshing": ('SupportMesh', 'grid_mesh', 'load_mesh', 'mesh_surface', 'refine_uniformly'),
+    "core.parameters": ('Discretization', 'OperatingPoint'),
+    "core.scales": ('Scale',),
+    "reynolds": ('CoercivityError', 'ReynoldsResult', 'Superposition', 'operators', 'solve_reynolds', 'superpose'),
+    "scenes": ('SceneError',),
+    "mechanisms.sections": ('ibeam', 'ibeams'),
+    "sweep": ('CHANGES', 'OUTPUTS', 'PumpCase', 'ShoeCase', 'best_design', 'read_study'),
+    "core.checks": ('ResolutionWarning', 'check_resolution'),
+    "bearings.journal": ('DynamicCoefficients', 'Groove', 'JournalBearing', 'film_graded_size'),
+    "bearings.pump": ('EccentricPump', 'PressureCycle'),
+    "bearings.tilting_pad": ('TiltingPadBearing', 'TiltingPadGeometry'),
+    "bearings.hydrostatic": ('Capillary', 'ConstantFlow', 'Orifice', 'PrescribedPressure', 'SupplyError',
+                             'pocket_transient', 'solve_supplied', 'supply_stiffness'),
+    "thermal": ('ConstantViscosity', 'Lubricant', 'ThermalError', 'VogelViscosity', 'WaltherViscosity'),
+    "transient": ('LiftOffError', 'Trajectory', 'balance_ratio', 'simulate', 'steady_state'),
+}
+_ORIGIN = {name: module for module, names in _NAMES.items() for name in names}
+
+
+def __getattr__(name: str):
+    """Import a public name's module on first use and keep the name (PEP 562)."""
+    if name in _MODULES:
+        value = _importlib.import_module(f"{__name__}.{_MODULES[name]}")
+    elif name in _ORIGIN:
+        value = getattr(_importlib.import_module(f"{__name__}.{_ORIGIN[name]}"), name)
+    elif not name.startswith("_") and _find_spec(f"{__name__}.{name}") is not None:
+        value = _importlib.import_module(f"{__name__}.{name}")  # a subpackage: bearingfe.film, ...
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
 
 from .version import __version__
 

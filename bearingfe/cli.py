@@ -146,7 +146,7 @@ def _sweep(args) -> int:
     """
     from .io.outfolder import output_folder
     from .io.writers import write_json
-    from .sweep import CACHE_FILES, best_design, csv_headers, read_study, sweep
+    from .sweep import CACHE_FILES, best_design, csv_headers, read_study, si_columns, sweep
 
     study = read_study(args.study)  # ValueError -> exit code 2 in main()
     out = Path(args.out)
@@ -163,6 +163,7 @@ def _sweep(args) -> int:
                 client.close()
                 if cluster is not None:
                     cluster.close()
+        table = si_columns(table, study.scale)  # a shoe study with [scale]: SI beside the non-dimensional
         table.rename(columns=csv_headers(table.columns, study.run)).to_csv(work / "results.csv", index=False)
         try:
             best = best_design(table, study.objective, study.sense)

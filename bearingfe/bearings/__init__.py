@@ -14,13 +14,34 @@ module            what it does
 
 from __future__ import annotations
 
-from .journal import DynamicCoefficients, Groove, JournalBearing, equilibrium, dynamic_coefficients
-from .hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, SuppliedResult, SupplyError,
-                          pocket_transient, solve_supplied, supply_stiffness)
-from .pump import EccentricPump, PressureCycle
-from .stability import RotorModes, log_decrement_map, lund_threshold, rotor_modes, threshold_speed
-from .tilting_pad import (PadAssemblyCoefficients, TiltingPadBearing, TiltingPadEquilibrium, TiltingPadGeometry,
-                          pad_assembly_coefficients, ross_table, tilting_pad_equilibrium)
+import importlib as _importlib
+
+#: Public names by module, imported on first use (PEP 562): the pump's shoe (``bearings.pump``) does not
+#: load the journal, tilting-pad and hydrostatic solvers (the main scene starts faster).
+_NAMES = {
+    "journal": ("DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients"),
+    "hydrostatic": ("SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SuppliedResult",
+                    "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness"),
+    "pump": ("EccentricPump", "PressureCycle"),
+    "stability": ("RotorModes", "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"),
+    "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
+                    "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium"),
+}
+_ORIGIN = {name: module for module, names in _NAMES.items() for name in names}
+
+
+def __getattr__(name: str):
+    """Import a public name's module on first use and keep the name (PEP 562)."""
+    if name not in _ORIGIN:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(_importlib.import_module(f"{__name__}.{_ORIGIN[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
 
 __all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
            "EccentricPump", "PressureCycle", "SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure",

@@ -73,6 +73,7 @@ __all__ = [
     "pad_assembly_coefficients",
     "reduced_coefficients",
     "ross_table",
+    "ross_table_of",
 ]
 
 #: Cavitation models of free (tilting) pads; locked pads take every model of
@@ -826,7 +827,7 @@ def reduced_coefficients(full: PadAssemblyCoefficients, frequency_ratio: float =
 
 def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds, frequencies, *,
                size: float = 0.05, cavitation: str = "reynolds", element: str = "P1") -> dict:
-    """Reduced coefficients over (rotor speed, whirl frequency) as ROSS 3 ``BearingElement`` keywords.
+    """Reduced coefficients over (rotor speed, whirl frequency), ROSS ``BearingElement`` keywords per speed.
 
     At each speed the equilibrium under the load (warm-started from the previous speed, on the bearing's
     pivots) gives the full coefficients, reduced at every whirl frequency with the pads' mass at that
@@ -848,8 +849,10 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
     -------
     dict
         ``speed`` and ``frequency`` (lists [rad/s]), and ``kxx, kxy, kyx, kyy`` [N/m], ``cxx, cxy, cyx, cyy``
-        [N s/m] as nested lists of shape ``(len(speed), len(frequency))``: pass as
-        ``ross.BearingElement(n=..., **table)`` (ROSS is not imported).
+        [N s/m] as nested lists of shape ``(len(speed), len(frequency))``: row ``i`` with ``frequency`` is
+        the bearing at ``speed[i]``, ``ross.BearingElement(n=..., frequency=frequency, kxx=kxx[i], ...)``
+        (ROSS, up to 2.4, takes coefficients over frequency only; it is not imported). Files in ROSS's
+        own format, one per speed: :func:`bearingfe.io.writers.write_ross_bearings`.
     """
     _check_positive(load=load, viscosity=viscosity)
     speeds, frequencies = np.asarray(speeds, float), np.asarray(frequencies, float)
@@ -858,14 +861,26 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
             raise ValueError(f"{name} must be positive, finite and increasing, got {v!r}")
     geometry = bearing.geometry
     meshes = tilting_pad_meshes(geometry, size)
-    table = {f"{k}{a}{b}": np.zeros((speeds.size, frequencies.size)) for k in "kc" for a in "xy" for b in "xy"}
     eq = None
-    for i, speed in enumerate(speeds):
-        w = load / bearing.force_scale(viscosity, speed)
-        eq = tilting_pad_equilibrium(geometry, (0.0, -w), meshes=meshes, start=eq, cavitation=cavitation,
-                                     element=element,
+
+    def full_at(speed):
+        nonlocal eq
+        eq = tilting_pad_equilibrium(geometry, (0.0, -load / bearing.force_scale(viscosity, speed)), meshes=meshes,
+                                     start=eq, cavitation=cavitation, element=element,
                                      pivot_stiffness=bearing.pivot_stiffness_parameter(viscosity, speed))
-        full = pad_assembly_coefficients(eq)
+        return pad_assembly_coefficients(eq)
+
+    return ross_table_of(bearing, viscosity, speeds, frequencies, full_at)
+
+
+def ross_table_of(bearing: TiltingPadBearing, viscosity: float, speeds, frequencies, full_at) -> dict:
+    """:func:`ross_table` from coefficients already found: ``full_at(speed)`` gives the
+    :class:`PadAssemblyCoefficients` at each rotor speed [rad/s] (the equilibrium under the load there),
+    reduced here at every whirl frequency with the pads' mass at that speed."""
+    speeds, frequencies = np.asarray(speeds, float), np.asarray(frequencies, float)
+    table = {f"{k}{a}{b}": np.zeros((speeds.size, frequencies.size)) for k in "kc" for a in "xy" for b in "xy"}
+    for i, speed in enumerate(speeds):
+        full = full_at(float(speed))
         mass = bearing.pad_mass(viscosity, speed)
         for j, frequency in enumerate(frequencies):
             K, C = full.reduced(frequency / speed, pad_mass=mass).to_si(

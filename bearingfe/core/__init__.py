@@ -11,6 +11,7 @@ module            what it does
 ``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
 ``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
+``parallel``      Independent jobs of one run shared with forked processes when more than one core is free.
 ================  ============================================================
 """
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["MIN_CLEARANCE_RATIO", "Scale"]
+__all__ = ["MIN_CLEARANCE_RATIO", "SCALE_FIELDS", "Scale", "scale_of"]
 
 #: Smallest clearance ratio ``c / R0`` [-]: below it the scales (``R0^2 / c^2``) leave the range of floating
 #: point (``c = 1e-300`` m gave "float division by zero", ``D = 1e15`` m degenerate film outlines).
@@ -123,3 +123,35 @@ class Scale:
     def to_thickness(self, h: float) -> float:
         """Non-dimensional film thickness -> m."""
         return h * self.clearance
+
+
+def _scale_fields() -> dict:
+    from .schema import positive_number
+
+    return {"radius": (positive_number, None, "eccentric (journal) radius R0 [m]"),
+            "clearance": (positive_number, None, "radial clearance c [m]"),
+            "viscosity": (positive_number, None, "oil dynamic viscosity [Pa s]"),
+            "speed_rpm": (positive_number, None, "shaft speed [rpm] (or omega)"),
+            "omega": (positive_number, None, "shaft angular speed [rad/s] (or speed_rpm)")}
+
+
+#: The ``[scale]`` table of the input files that report a non-dimensional problem in SI (the ``"reynolds"``
+#: scene, shoe studies): ``{name: (check, default, meaning)}`` (:mod:`bearingfe.core.schema`); read with
+#: :func:`scale_of`.
+SCALE_FIELDS = _scale_fields()
+
+
+def scale_of(table: dict, label: str) -> Scale:
+    """The :class:`Scale` of a checked ``[scale]`` table (:data:`SCALE_FIELDS`): all of radius, clearance and
+    viscosity, and exactly one of ``speed_rpm`` and ``omega``; errors name the file ``label`` and the field."""
+    from .machine import Drive
+    from .schema import SchemaError, build
+
+    for name in ("radius", "clearance", "viscosity"):
+        if table[name] is None:
+            raise SchemaError(f"{label}: [scale] {name}: missing (required with [scale])")
+    if (table["speed_rpm"] is None) == (table["omega"] is None):
+        raise SchemaError(f"{label}: [scale] speed_rpm/omega: give exactly one (speed_rpm [rpm] or omega [rad/s])")
+    omega = Drive.from_rpm(table["speed_rpm"]).omega if table["speed_rpm"] is not None else table["omega"]
+    return build(label, "scale", Scale, radius=table["radius"], clearance=table["clearance"],
+                 viscosity=table["viscosity"], speed=omega)

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.spatial import cKDTree
 
 __all__ = ["containing_cells", "nearest_cells", "barycentric", "probe_matrices", "probes", "cell_diameters"]
 
@@ -37,6 +36,8 @@ def barycentric(p: np.ndarray, t: np.ndarray, cells: np.ndarray, points: np.ndar
 
 
 def _search(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidates: int):
+    from scipy.spatial import cKDTree  # here: scipy.spatial is a tenth of a second to import
+
     centroids = p[:, t].mean(axis=1)
     k = min(candidates, t.shape[1])
     _, near = cKDTree(centroids.T).query(points.T, k=k)

@@ -22,7 +22,8 @@ import numpy as np
 
 from ..core.limits import check_limit
 
-__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json"]
+__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json",
+           "ROSS_COEFFICIENTS", "write_ross_bearings", "read_ross_bearing"]
 
 #: Trajectory columns written by :func:`write_csv` when present, in this order.
 CSV_FIELDS = ("beta", "gamma", "delta", "phi0", "h_min", "friction_moment", "flow_inlet", "flow_side",
@@ -269,3 +270,98 @@ def write_json(summary: Mapping, path: str | Path) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text + "\n")
     return path
+
+
+# -- ROSS bearing files ---------------------------------------------------------------------------
+
+#: Coefficients of a ``ross.BearingElement`` file and their units: stiffness [N/m], damping [N s/m].
+ROSS_COEFFICIENTS = {"kxx": "N/m", "kxy": "N/m", "kyx": "N/m", "kyy": "N/m",
+                     "cxx": "N s/m", "cxy": "N s/m", "cyx": "N s/m", "cyy": "N s/m"}
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, str):
+        return json.dumps(v)  # a TOML basic string is a JSON string
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, (bool, np.bool_)):
+        return "true" if v else "false"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    f = float(v)
+    if not math.isfinite(f):
+        raise ValueError(f"a ROSS bearing file holds finite numbers only, got {v!r}")
+    return repr(f)
+
+
+def write_ross_bearings(table: Mapping, folder: str | Path, *, n: int = 0, tag: str = "bearing") -> list[Path]:
+    """Write coefficients over (rotor speed, whirl frequency) as ROSS bearing files, one per speed.
+
+    ROSS (up to its 2.4 release) keeps a bearing's coefficients as functions of one frequency: a
+    ``BearingElement`` has 1-D ``kxx ... cyy`` over ``frequency`` [rad/s], and ``BearingElement.save``
+    writes them as a TOML table ``[BearingElement_<tag>]`` holding its constructor's keywords, which
+    ``ross.BearingElement.load(file)`` reads back. A table over speed and frequency is therefore
+    written as one such file per rotor speed, ``<tag>_<speed>rpm.toml`` (the speed to 6 digits, a
+    decimal point written ``p``), each with the coefficients of
+    that speed over the whirl frequencies; ``speed`` [rad/s] is kept in each file too (an extra key,
+    which ``load`` passes on as a keyword ROSS ignores).
+
+    Parameters
+    ----------
+    table : mapping
+        ``speed`` (m,) and ``frequency`` (f,) [rad/s] and the coefficients of :data:`ROSS_COEFFICIENTS`
+        as arrays (m, f) (as :func:`bearingfe.bearings.tilting_pad.ross_table` returns).
+    folder : str or Path
+        Existing folder for the files.
+    n : int
+        The rotor node of the bearing (``BearingElement(n=...)``).
+    tag : str
+        Element tag: letters, digits, ``_`` and ``-``.
+
+    Returns
+    -------
+    list of Path
+        The files, in the order of the speeds.
+    """
+    if not (isinstance(tag, str) and tag and all(ch.isalnum() or ch in "_-" for ch in tag)):
+        raise ValueError(f"tag must be letters, digits, '_' or '-', got {tag!r}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise ValueError(f"n must be a node number >= 0, got {n!r}")
+    speeds, freqs = np.asarray(table["speed"], float), np.asarray(table["frequency"], float)
+    if speeds.ndim != 1 or freqs.ndim != 1 or not speeds.size or not freqs.size:
+        raise ValueError("speed and frequency must be non-empty 1-D arrays")
+    values = {}
+    for name in ROSS_COEFFICIENTS:
+        v = np.asarray(table[name], float)
+        if v.shape != (speeds.size, freqs.size):
+            raise ValueError(f"{name} must have the shape (speeds, frequencies) = {(speeds.size, freqs.size)}, "
+                             f"got {v.shape}")
+        values[name] = v
+    rpm = speeds * 30.0 / math.pi
+    labels = [f"{tag}_{r:.6g}rpm".replace(".", "p") for r in rpm]  # no dot: it splits a TOML key
+    names = [f"{label}.toml" for label in labels]
+    if len(set(names)) != len(names):
+        raise ValueError("two speeds give the same file name: speeds must differ by more than 1e-6 relative")
+    out = []
+    for i, name in enumerate(names):
+        fields = {"n": int(n), "tag": labels[i], "scale_factor": 1,
+                  **{k: v[i] for k, v in values.items()}, "frequency": freqs, "speed": float(speeds[i])}
+        text = f'["BearingElement_{labels[i]}"]\n' + "".join(f"{k} = {_toml_value(v)}\n" for k, v in fields.items())
+        path = Path(folder) / name
+        with atomic_path(path) as tmp:
+            tmp.write_text(text)
+        out.append(path)
+    return out
+
+
+def read_ross_bearing(path: str | Path) -> dict:
+    """The keywords of the one ``ross.BearingElement`` in a ROSS bearing file (TOML or JSON), as
+    ``BearingElement.load`` reads them: the first table's fields, coefficient lists as arrays."""
+    import tomllib
+
+    path = Path(path)
+    data = json.loads(path.read_text()) if path.suffix == ".json" else tomllib.loads(path.read_text())
+    if not data:
+        raise ValueError(f"{path}: no element in the file")
+    fields = dict(next(iter(data.values())))
+    return {k: (np.asarray(v, float) if isinstance(v, list) else v) for k, v in fields.items()}

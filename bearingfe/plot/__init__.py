@@ -7,5 +7,6 @@ module          what it draws
 ``curves``      trajectories, orbits and other curves (matplotlib)
 ``maps``        field maps side by side, P2 fields on a refined display mesh (matplotlib)
 ``mechanisms``  the crank and rotor models' curves (matplotlib)
+``figures``     fixed margins in inches (no layout-engine pass); saving at the package's resolution
 ==============  ==============================================================
 """

@@ -20,6 +20,8 @@ from typing import Mapping
 
 import numpy as np
 
+from .figures import frame, save
+
 __all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot"]
 
 #: Attributes a trajectory must have, in the order they are checked.
@@ -56,12 +58,6 @@ def _arrays(traj, names=TRAJECTORY_FIELDS) -> dict[str, np.ndarray]:
     return out
 
 
-def _save(fig, path):
-    if path is not None:
-        fig.savefig(path, dpi=100)
-    return fig
-
-
 def _label(design: str, what: str) -> str:
     return f"{design}: {what}" if design else what
 
@@ -86,8 +82,9 @@ def trajectory_plot(trajs, path=None, *, title: str | None = None):
     from matplotlib.figure import Figure
 
     designs = {name: _arrays(t) for name, t in designs_of(trajs).items()}
-    fig = Figure(figsize=(7.5, 9.5), layout="constrained")
-    axes = fig.subplots(5, 1, sharex=True)
+    fig = Figure(figsize=(7.5, 9.5))
+    axes = frame(fig, nrows=5, top=0.75 if title else 0.2, bottom=0.55, left=1.05, right=0.2,
+                 hgap=0.12).subplots(sharex=True)
     for (design, d), color in zip(designs.items(), DESIGN_COLORS):
         deg = np.degrees(d["beta"])
         axes[0].plot(deg, d["gamma"], color=color, label=_label(design, "gamma"))
@@ -111,7 +108,7 @@ def trajectory_plot(trajs, path=None, *, title: str | None = None):
     axes[-1].set_xticks(np.arange(0, 361, 45))
     if title:
         fig.suptitle(textwrap.fill(title, 80))
-    return _save(fig, path)
+    return save(fig, path)
 
 
 def orbit_plot(trajs, path=None, *, title: str | None = None):
@@ -128,8 +125,8 @@ def orbit_plot(trajs, path=None, *, title: str | None = None):
     """
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(6.0, 7.2), layout="constrained")
-    ax = fig.subplots()
+    fig = Figure(figsize=(6.0, 7.2))
+    ax = frame(fig, top=0.95 if title else 0.4, bottom=1.75, left=0.85, right=0.2).subplots()
     t = np.linspace(0, 2 * np.pi, 361)
     ax.plot(np.cos(t), np.sin(t), "--", color="0.5", lw=0.8, label="gamma = 1")
     for (design, traj), color in zip(designs_of(trajs).items(), DESIGN_COLORS):
@@ -146,8 +143,8 @@ def orbit_plot(trajs, path=None, *, title: str | None = None):
     ax.set_xlabel("gamma cos(delta) [-]")
     ax.set_ylabel("gamma sin(delta) [-]")
     ax.grid(True, alpha=0.3)
-    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize="small")
+    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncols=2, fontsize="small")
     ax.set_title("orbit of the shoe-bore centre", fontsize="medium")
     if title:
         fig.suptitle(textwrap.fill(title, 60))
-    return _save(fig, path)
+    return save(fig, path)

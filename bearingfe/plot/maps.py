@@ -23,6 +23,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .figures import frame, save
+
 __all__ = ["FIELDS", "DISPLAY_TRIANGLES", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
 
 #: Field kind -> (symbol, colour map, pocket colour or None: the pockets carry the inlet pressure).
@@ -166,9 +168,12 @@ def field_panels(panels: Sequence[Sequence[Panel | None]], path=None, *, title: 
     if not rows or not any(p is not None for r in rows for p in r):
         raise ValueError("no panel to draw")
     ncols = max(len(r) for r in rows)
-    fig = Figure(figsize=(panel_size[0] * ncols, panel_size[1] * len(rows) + (0.4 if title else 0.0)),
-                 layout="constrained")
-    axes = np.atleast_2d(fig.subplots(len(rows), ncols, squeeze=False))
+    fig = Figure(figsize=(panel_size[0] * ncols, panel_size[1] * len(rows) + (0.4 if title else 0.0)))
+    # fixed margins [in]: two-line panel titles above, tick and axis labels left and below, the colour
+    # bar's label right of every panel (its bar takes a share of the panel's own width)
+    grid = frame(fig, nrows=len(rows), ncols=ncols, top=0.55 + (0.4 if title else 0.0), bottom=0.5, left=0.75,
+                 right=0.35, wgap=0.95, hgap=1.0)
+    axes = np.atleast_2d(grid.subplots(squeeze=False))
     for i, row in enumerate(rows):
         for j in range(ncols):
             panel = row[j] if j < len(row) else None
@@ -178,6 +183,4 @@ def field_panels(panels: Sequence[Sequence[Panel | None]], path=None, *, title: 
                 field_axes(axes[i, j], panel, nrefs=nrefs)
     if title:
         fig.suptitle(title)
-    if path is not None:
-        fig.savefig(path, dpi=100)
-    return fig
+    return save(fig, path)

@@ -24,9 +24,9 @@ def _figure(ax, nrows: int = 1, size=(7.0, 4.5)):
 
 
 def _finish(fig, path):
-    if path is not None:
-        fig.savefig(path, dpi=100)
-    return fig
+    from .figures import save
+
+    return save(fig, path)
 
 
 def plot_crank_kinematics(mech, ax=None, path=None):

@@ -45,6 +45,20 @@ Scene file::
     conducted_fraction = 0.0             # share of the friction power conducted away, in [0, 1)
     effective_fraction = 0.5             # T_eff = T_in + k dT, k in (0, 1]
 
+    [tilting_pad]                        # optional: a tilting-pad bearing instead of fixed pads
+    n_pads = 5                           # 2 to 12
+    arc_deg = 60.0                       # each pad [deg]
+    offset = 0.6                         # pivot from the leading edge, fraction of the arc
+    preload = 0.25                       # m = 1 - C_b/C_p ([bearing] radial_clearance is C_p)
+    load_on_pad = false                  # a pivot on the load line, or the load between two pads
+    pivot_stiffness = 5e8                # [N/m]; absent: rigid pivots
+    pad_inertia = 2e-5                   # about the pivot [kg m^2]
+    pad_thickness = 0.012                # pad surface to the rocker line [m]
+    rotor_mass = 800.0                   # [kg], rigid rotor on two such bearings (default 2 load / g)
+    stability_speeds = [1500.0, 12000.0] # [rpm] (default 0.25 to 2 times the speed)
+    stability_points = 8
+    frequency_ratios = [0.5, 1.0, 1.5, 2.0]   # whirl frequency / speed of the tables
+
 Angles are in the bearing frame: from ``+x`` (horizontal) towards ``+y``
 (up), the direction in which the journal turns. The runner finds the
 equilibrium under the load (:func:`bearingfe.bearings.journal.equilibrium`, Newton),
@@ -104,7 +118,8 @@ from typing import Callable
 import numpy as np
 
 from ..core.schema import (LIMITS_TABLE, REQUIRED, Range, SchemaError, Table, Tables, anything, build, check_limits,
-                           choice, choices, flag, nonnegative_number, number, positive_number, read_table, text)
+                           choice, choices, flag, integer, nonnegative_number, number, numbers, positive_number,
+                           read_table, text)
 
 __all__ = ["run", "settings", "pressure_columns", "SPEC", "PICTURES", "TABLES"]
 
@@ -156,6 +171,39 @@ def _oil_fields() -> dict:
     return dict(OIL)
 
 
+def _ratios(where, value):
+    """Whirl frequency over rotor speed: 1 to 20 increasing numbers > 0."""
+    if not (isinstance(value, list) and 1 <= len(value) <= 20 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0 for v in value)
+            and all(b > a for a, b in zip(value, value[1:]))):
+        raise SchemaError(f"{where}: expected {_ratios.accepts}; got {value!r}")
+    return tuple(float(v) for v in value)
+
+
+_ratios.accepts = "1 to 20 increasing numbers > 0 [-]"
+
+
+def _tilting_fields() -> dict:
+    """The ``[tilting_pad]`` table: the bearing is a tilting-pad bearing (:class:`bearingfe.TiltingPadBearing`)."""
+    return {
+        "n_pads": (integer(Range(2, 12)), 5, "number of pads [-]"),
+        "arc_deg": (number(Range(0.0, 180.0, lo_open=True, hi_open=True)), 60.0, "angular extent of each pad [deg]"),
+        "offset": (number(_OPEN_UNIT), 0.5, "pivot from the leading edge as a fraction of the arc [-]"),
+        "preload": (number(Range(0.0, 1.0, hi_open=True)), 0.0, "preload m = 1 - C_b/C_p [-]"),
+        "load_on_pad": (flag, False, "a pivot on the load line (true) or the load between two pads (false)"),
+        "pivot_stiffness": (positive_number, None, "radial stiffness of each pivot [N/m] (default: rigid)"),
+        "pad_inertia": (nonnegative_number, 0.0, "moment of inertia of a pad about its pivot [kg m^2]"),
+        "pad_thickness": (nonnegative_number, 0.0, "pad surface to pivot (rocker) line [m]"),
+        "rotor_mass": (positive_number, None,
+                       "rigid rotor on two such bearings for the stability map [kg] (default: 2 load / g)"),
+        "stability_speeds": (numbers(2, "a pair [lowest_rpm, highest_rpm]"), None,
+                             "speed range of the stability map [rpm] (default: 0.25 to 2 times the speed)"),
+        "stability_points": (integer(Range(2, 40)), 8, "speeds in the stability map [-]"),
+        "frequency_ratios": (_ratios, (0.5, 1.0, 1.5, 2.0),
+                             "whirl frequency over speed of the coefficient tables and ROSS files [-]"),
+    }
+
+
 #: The ``"journal"`` scene file: ``{name: (check, default) | Table | Tables}`` (see :mod:`bearingfe.core.schema`).
 SPEC = {
     "kind": (anything, REQUIRED, "the scene kind (this section's name)"),
@@ -186,6 +234,7 @@ SPEC = {
                      "tables": (choices(TABLES), TABLES, "CSV tables to write")}),
     "limits": LIMITS_TABLE,
     "oil": Table(_oil_fields()),
+    "tilting_pad": Table(_tilting_fields()),
 }
 
 
@@ -206,8 +255,39 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
                           f"got {solver['min_size']!r}")
     oil = s["oil"] if "oil" in data else None
     _check_oil(s["operating"], oil, label)
+    tilting = s["tilting_pad"] if "tilting_pad" in data else None
+    if tilting is not None:
+        _check_tilting(s, tilting, oil, label)
     return {"title": label if s["title"] is None else s["title"], "bearing": bearing,
-            "operating": op, "solver": solver, "output": s["output"], "limits": s["limits"], "oil": oil}
+            "operating": op, "solver": solver, "output": s["output"], "limits": s["limits"], "oil": oil,
+            "tilting_pad": tilting}
+
+
+def _check_tilting(s: dict, t: dict, oil, label: str) -> None:
+    """What a tilting-pad bearing takes of the other tables: no fixed pads or grooves, a load along -y
+    (the pads are laid out about it), no heat balance, a cavitation model with a pad moment balance."""
+    from ..bearings.tilting_pad import TILTING_PAD_CAVITATION
+
+    b = s["bearing"]
+    for name in ("pads", "grooves"):
+        if b[name]:
+            raise SchemaError(f"{label}: [bearing] {name}: must be absent with [tilting_pad] (the pads are "
+                              f"n_pads, arc_deg, offset there); got {b[name]!r}")
+    if b["supply_pressure"]:
+        raise SchemaError(f"{label}: [bearing] supply_pressure: must be 0 with [tilting_pad]")
+    if s["operating"]["load_direction_deg"] != -90.0:
+        raise SchemaError(f"{label}: [operating] load_direction_deg: must be -90 with [tilting_pad] (load on "
+                          f"or between pads: [tilting_pad] load_on_pad); got {s['operating']['load_direction_deg']!r}")
+    if oil is not None:
+        raise SchemaError(f"{label}: [oil]: not with [tilting_pad] (give [operating] viscosity)")
+    if s["solver"]["cavitation"] not in TILTING_PAD_CAVITATION:
+        raise SchemaError(f"{label}: [solver] cavitation: must be one of {TILTING_PAD_CAVITATION} with "
+                          f"[tilting_pad] (a free pad needs film rupture to balance); got {s['solver']['cavitation']!r}")
+    if s["solver"]["estimate_error"]:
+        raise SchemaError(f"{label}: [solver] estimate_error: not with [tilting_pad]")
+    if t["stability_speeds"] is not None and not 0 < t["stability_speeds"][0] < t["stability_speeds"][1]:
+        raise SchemaError(f"{label}: [tilting_pad] stability_speeds: must be [lowest, highest] with "
+                          f"0 < lowest < highest [rpm]; got {list(t['stability_speeds'])!r}")
 
 
 def _check_oil(op: dict, oil: dict | None, label: str) -> None:
@@ -315,6 +395,8 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     s = settings(data, label)
     solver, out = s["solver"], s["output"]
     tick = progress or (lambda done, total, what: None)
+    if s["tilting_pad"] is not None:
+        return _run_tilting(s, label, out_dir, tick)
     thermal, t_thermal = None, 0.0
     if s["oil"] is not None:
         tick(0, 1, "effective temperature (heat balance)")
@@ -350,6 +432,219 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+# -- tilting pads ----------------------------------------------------------------------------
+
+#: Standard gravity [m/s^2]: a rotor carried by its weight (the default rotor of the stability map).
+GRAVITY = 9.80665
+
+
+def _tilting_bearing(s: dict, label: str):
+    from ..bearings.tilting_pad import TiltingPadBearing
+
+    b, t = s["bearing"], s["tilting_pad"]
+    return build(label, "tilting_pad", TiltingPadBearing, radius=b["diameter"] / 2, length=b["length"],
+                 pad_clearance=b["radial_clearance"], n_pads=t["n_pads"], arc=math.radians(t["arc_deg"]),
+                 offset=t["offset"], preload=t["preload"], load_on_pad=t["load_on_pad"],
+                 pad_inertia=t["pad_inertia"], pad_thickness=t["pad_thickness"],
+                 pivot_stiffness=math.inf if t["pivot_stiffness"] is None else t["pivot_stiffness"])
+
+
+def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
+    """The ``[tilting_pad]`` scene: equilibrium of the shaft and the pads, the reduced coefficients over the
+    whirl frequencies, the stability map of a rigid rotor on two such bearings, pictures, tables and ROSS
+    files."""
+    from ..bearings.stability import log_decrement_map, threshold_speed
+    from ..bearings.tilting_pad import (TiltingPadConvergenceError, pad_assembly_coefficients, ross_table_of,
+                                        tilting_pad_equilibrium, tilting_pad_meshes)
+    from ..core.scales import Scale
+    from ..io.writers import write_csv, write_json, write_ross_bearings
+
+    b, op, t, solver, out = s["bearing"], s["operating"], s["tilting_pad"], s["solver"], s["output"]
+    bearing = _tilting_bearing(s, label)
+    geometry = bearing.geometry
+    mu, omega, load = op["viscosity"], op["speed_rad_s"], op["load"]
+    scale = build(label, "bearing", Scale, radius=bearing.radius, clearance=bearing.pad_clearance, viscosity=mu,
+                  speed=omega)
+    meshes = build(label, "solver", tilting_pad_meshes, geometry, solver["size"])
+    steps = 4
+    tick(0, steps, "equilibrium and coefficients")
+    solved: dict = {}
+
+    def solve(speed: float):
+        """Equilibrium and full coefficients at a speed [rad/s], warm-started from the nearest speed solved."""
+        if speed not in solved:
+            near = min(solved, key=lambda v: abs(v - speed)) if solved else None
+            args = (geometry, (0.0, -load / bearing.force_scale(mu, speed)))
+            options = dict(meshes=meshes, cavitation=solver["cavitation"],
+                           pivot_stiffness=bearing.pivot_stiffness_parameter(mu, speed))
+            try:
+                eq = build(label, "tilting_pad", tilting_pad_equilibrium, *args, **options,
+                           start=None if near is None else solved[near][0])
+            except TiltingPadConvergenceError:
+                if near is None:
+                    raise
+                # the warm start (another speed: on flexible pivots another pivot stiffness parameter too)
+                # can lead Newton astray where the cold start does not
+                eq = build(label, "tilting_pad", tilting_pad_equilibrium, *args, **options)
+            solved[speed] = (eq, pad_assembly_coefficients(eq))
+        return solved[speed]
+
+    t0 = time.perf_counter()
+    eq, full = solve(omega)
+    t_eq = time.perf_counter() - t0
+    ratios = np.asarray(t["frequency_ratios"])
+    pad_mass = bearing.pad_mass(mu, omega)
+    sync = full.reduced(1.0, pad_mass=pad_mass)
+    K, C = sync.to_si(viscosity=mu, speed=omega, radius=bearing.radius, clearance=bearing.pad_clearance)
+    tick(1, steps, "stability map")
+    lo, hi = (0.25 * op["speed"], 2.0 * op["speed"]) if t["stability_speeds"] is None else t["stability_speeds"]
+    speeds = np.linspace(lo, hi, t["stability_points"]) * math.pi / 30
+    rotor_mass = 2 * load / GRAVITY if t["rotor_mass"] is None else t["rotor_mass"]
+    t0 = time.perf_counter()
+    delta = log_decrement_map(speeds, lambda v: solve(float(v))[1],
+                              lambda v: 0.5 * rotor_mass * bearing.pad_clearance * v**2 / load,
+                              lambda v: bearing.pad_mass(mu, v))
+    threshold = threshold_speed(speeds, delta)
+    # coefficients over (rotor speed, whirl frequency): the map's speeds, whirl at the ratios of the speed
+    table = ross_table_of(bearing, mu, speeds, ratios * omega, lambda v: solve(v)[1])
+    t_map = time.perf_counter() - t0
+    results = [st.results[0] for st in eq.pads.states if st is not None]
+    film = _film_results(eq, scale, results)
+    r_pivot = bearing.radius + bearing.pad_thickness
+    pads = [{"pivot_deg": math.degrees(float(th)), "loaded": not bool(idle),
+             "rotation_rad": float(q) * bearing.pad_clearance / r_pivot,
+             "load_N": float(np.hypot(*f)) * bearing.force_scale(mu, omega),
+             "pivot_deflection_m": 0.0 if eq.deflections is None else float(d) * bearing.pad_clearance}
+            for th, q, f, idle, d in zip(geometry.pivots, eq.tilts, eq.pad_forces, eq.idle,
+                                         np.zeros(geometry.n_pads) if eq.deflections is None else eq.deflections)]
+    verdicts = check_limits({"min_film": film["min_film_m"], "max_pressure": film["max_pressure_Pa"],
+                             "max_friction_power": film["friction_power_W"], "max_leakage": film["total_flow_m3s"]},
+                            s["limits"])
+    res = {"eccentricity": eq.eps, "attitude_deg": eq.attitude, "sommerfeld": eq.sommerfeld,
+           "journal_position_m": (np.asarray(eq.position) * bearing.pad_clearance).tolist(), **film,
+           "pads": pads, "newton_iterations": eq.newton_iterations, "limits": verdicts,
+           "within_limits": all(v["ok"] for v in verdicts.values())}
+    coefficients = {"frequency_ratio": ratios.tolist(), "frequency_rad_s": (ratios * omega).tolist(),
+                    "K_N_per_m": K.tolist(), "C_Ns_per_m": C.tolist(),
+                    "K_nondimensional": sync.K.tolist(), "C_nondimensional": sync.C.tolist(),
+                    "pad_mass_nondimensional": pad_mass}
+    per_ratio = [full.reduced(float(r), pad_mass=pad_mass).to_si(viscosity=mu, speed=omega, radius=bearing.radius,
+                                                                  clearance=bearing.pad_clearance) for r in ratios]
+    stability = {"speed_rpm": (speeds * 30 / math.pi).tolist(), "log_decrement": delta.tolist(),
+                 "threshold_rpm": threshold * 30 / math.pi if math.isfinite(threshold) else None,
+                 "rotor_mass_kg": rotor_mass, "rotor": "rigid, symmetric, on two such bearings"}
+    summary = {"kind": "journal", "title": s["title"], "bearing": {**_bearing_echo(b), "tilting_pad": dict(t)},
+               "operating": dict(op), "scales": _scales(scale), "results": res, "coefficients": coefficients,
+               "stability": stability, "limits": dict(s["limits"]),
+               "cost": {"nodes": sum(m.n_nodes for m in meshes), "seconds": {"equilibrium": t_eq,
+                                                                             "stability_and_tables": t_map}}}
+    tick(2, steps, "pictures and tables")
+    t0 = time.perf_counter()
+    files = []
+    if "coefficients" in out["tables"]:
+        cols = {"frequency_ratio [-]": ratios, "frequency [rad/s]": ratios * omega}
+        for name, unit, which in (("k", "N/m", 0), ("c", "N s/m", 1)):
+            for i, a in enumerate("xy"):
+                for j, c_ in enumerate("xy"):
+                    cols[f"{name}{a}{c_} [{unit}]"] = np.array([kc[which][i, j] for kc in per_ratio])
+        files.append(write_csv(cols, out_dir / "coefficients.csv", fields=list(cols)).name)
+        files += [p.name for p in write_ross_bearings(table, out_dir, tag="tilting_pad")]
+    cols = {"speed [rpm]": speeds * 30 / math.pi, "speed [rad/s]": speeds, "log_decrement [-]": delta,
+            "eccentricity [-]": np.array([solve(float(v))[0].eps for v in speeds])}
+    files.append(write_csv(cols, out_dir / "stability.csv", fields=list(cols)).name)
+    if "pressure" in out["pictures"]:
+        files.append(_tilting_pressure_picture(eq, meshes, bearing, scale, pads, out_dir / "pressure.png",
+                                               s["title"]).name)
+    files.append(_stability_picture(stability, op["speed"], out_dir / "stability.png", s["title"]).name)
+    summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
+    summary["table"] = _tilting_table(res, K, C, stability, summary["cost"])
+    summary["files"] = files + ["summary.json"]
+    tick(3, steps, "summary")
+    write_json(summary, out_dir / "summary.json")
+    tick(steps, steps, "done")
+    return summary
+
+
+def _tilting_table(r: dict, K, C, stability: dict, cost: dict) -> list:
+    rows = [("eccentricity ratio", r["eccentricity"], "-"), ("attitude angle", r["attitude_deg"], "deg"),
+            ("minimum film", r["min_film_m"] * 1e6, "um"), ("peak pressure", r["max_pressure_Pa"], "Pa"),
+            ("Sommerfeld number", r["sommerfeld"], "-"), ("friction power", r["friction_power_W"], "W"),
+            ("side flow", r["side_flow_m3s"] * 6e4, "l/min")]
+    rows += [(f"pad {k + 1} at {p['pivot_deg']:.0f} deg: rotation", p["rotation_rad"] * 1e6, "urad")
+             for k, p in enumerate(r["pads"])]
+    rows += [(f"pad {k + 1}: load", p["load_N"], "N") for k, p in enumerate(r["pads"])]
+    rows += [(f"limit {name}: {v['value']:.4g} {v['relation']} {v['limit']:.4g} {v['unit']}",
+              "ok" if v["ok"] else "VIOLATED", "") for name, v in r["limits"].items()]
+    rows += [(f"k{a}{b} (synchronous)", float(K[i, j]), "N/m") for i, a in enumerate("xy") for j, b in enumerate("xy")]
+    rows += [(f"c{a}{b} (synchronous)", float(C[i, j]), "N s/m") for i, a in enumerate("xy")
+             for j, b in enumerate("xy")]
+    rows += [("smallest log decrement over the map", min(stability["log_decrement"]), "-"),
+             ("stability threshold", "none in the map" if stability["threshold_rpm"] is None
+              else stability["threshold_rpm"], "" if stability["threshold_rpm"] is None else "rpm"),
+             ("nodes", cost["nodes"], ""), ("seconds", sum(cost["seconds"].values()), "s")]
+    return [list(row) for row in rows]
+
+
+def _tilting_pressure_picture(eq, meshes, bearing, scale, pads: list, path: Path, title: str) -> Path:
+    """Every loaded pad's pressure [MPa] over the angle [deg] and the axial position [mm], one colour scale,
+    each pad outlined and labelled with its rotation [urad] and load [kN]."""
+    from matplotlib.figure import Figure
+    from matplotlib.tri import Triangulation
+
+    from ..plot.figures import frame, save
+    from ..plot.maps import sampled
+
+    fig = Figure(figsize=(10.0, 4.6))
+    ax = fig.add_subplot(frame(fig, top=0.8, bottom=0.55, left=0.8, right=0.3)[0, 0])
+    to_mm = bearing.radius * 1e3
+    drawn = [(sampled(st.results[0]), st) for st in eq.pads.states if st is not None]
+    hi = max((float(v.max()) for (_, _, v), _ in drawn), default=1.0) * scale.pressure / 1e6
+    art = None
+    for (xy, tri, v), _ in drawn:
+        art = ax.tripcolor(Triangulation(np.degrees(xy[0]), xy[1] * to_mm, tri.T), v * scale.pressure / 1e6,
+                           shading="gouraud", cmap="viridis", vmin=0.0, vmax=hi or 1.0, rasterized=True)
+    half = bearing.length / 2 * 1e3
+    for (start, end), pad in zip(bearing.geometry.arcs, pads):
+        a, e = math.degrees(start), math.degrees(end)
+        ax.plot([a, e, e, a, a], [-half, -half, half, half, -half], color="k", lw=0.8)
+        ax.plot([pad["pivot_deg"]] * 2, [-half, half], color="w" if pad["loaded"] else "0.5", lw=0.8, ls=":")
+        ax.text((a + e) / 2, half * 1.08, f"{pad['rotation_rad'] * 1e6:.3g} urad\n{pad['load_N'] / 1e3:.3g} kN",
+                ha="center", va="bottom", fontsize="small")
+    ax.set_ylim(-half * 1.05, half * 1.6)
+    ax.set_xlabel("angle from +x towards +y [deg] (pivots dotted)")
+    ax.set_ylabel("z [mm]")
+    if art is not None:
+        fig.colorbar(art, ax=ax, shrink=0.9).set_label("p [MPa]")
+    ax.set_title(f"{title}\n{len(pads)} tilting pads: eps = {eq.eps:.3g}, attitude = {eq.attitude:.3g} deg; "
+                 f"pad rotation and load above each pad", fontsize="medium")
+    save(fig, path)
+    return path
+
+
+def _stability_picture(stability: dict, speed_rpm: float, path: Path, title: str) -> Path:
+    """The smallest log decrement of the rigid rotor against speed, the operating speed and any threshold."""
+    from matplotlib.figure import Figure
+
+    from ..plot.figures import frame, save
+
+    fig = Figure(figsize=(7.0, 4.2))
+    ax = fig.add_subplot(frame(fig, top=0.75, bottom=0.55, left=0.85, right=0.25)[0, 0])
+    rpm, delta = np.asarray(stability["speed_rpm"]), np.asarray(stability["log_decrement"])
+    ax.plot(rpm, delta, "o-", color="tab:green", label="smallest log decrement")
+    ax.axhline(0.0, color="red", lw=0.8, label="stability limit")
+    ax.axvline(speed_rpm, color="0.4", ls="--", lw=0.8, label=f"operating speed {speed_rpm:.4g} rpm")
+    if stability["threshold_rpm"] is not None:
+        ax.axvline(stability["threshold_rpm"], color="red", ls=":", label=f"threshold {stability['threshold_rpm']:.4g} rpm")
+    ax.set_xlabel("speed [rpm]")
+    ax.set_ylabel("log decrement [-]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    ax.set_title(f"{title}\nstability map: {stability['rotor_mass_kg']:.4g} kg {stability['rotor']}",
+                 fontsize="medium")
+    save(fig, path)
+    return path
 
 
 # -- the heat balance ----------------------------------------------------------------------
@@ -407,9 +702,10 @@ def _thermal_rows(th: dict) -> list:
 
 # -- results ---------------------------------------------------------------------------------
 
-def _film_results(eq, scale) -> dict:
-    """Films, pressures, friction and flows of the pads at the equilibrium, in SI."""
-    results = eq.state.results
+def _film_results(eq, scale, results=None) -> dict:
+    """Films, pressures, friction and flows of the pads at the equilibrium (or of the pad ``results``
+    given), in SI."""
+    results = eq.state.results if results is None else results
     flows = [{k: scale.to_flow(v) for k, v in r.flows.items()} for r in results]
     side = sum(f["side"] for f in flows)
     inlet = sum(f["inlet"] for f in flows)

@@ -52,7 +52,9 @@ the mean friction power [W] (mean friction moment times shaft speed, as a
 design study's ``friction_loss``), the leakage [l/min] (mean inflow from the
 pocket) and side leakage, and each set limit with ``ok`` or ``VIOLATED``
 (:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
-summary).
+summary). When the process may use two cores, the designs' rigid runs and
+then the pictures are shared with a forked process
+(:func:`bearingfe.core.parallel.in_processes`; the results are the same).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
 (materials ``[shoe.material]`` and ``[eccentric.material]`` of the mechanism
@@ -206,9 +208,13 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     start = time.perf_counter()
     runs, meshes, balance, compliances = {}, {}, {}, {}
     done = 0
+    from ..core.parallel import in_processes
+
+    tick(done, steps, f"simulating: {', '.join(designs)}")
+    # the designs are independent: on two free cores each in its own process (the same results)
+    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()])))
     for name, p in designs.items():
-        tick(done, steps, f"simulating: {name}")
-        meshes[name], runs[name] = simulate_design(p, run)
+        meshes[name], runs[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
         done += 1
         if elastic:
@@ -231,9 +237,12 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
                             compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
               for name, traj in runs.items()}
-    for j, name in enumerate(pictures):
-        tick(done + 1 + j, steps, f"picture: {name}")
-        files += _draw(name, pumps, runs, states, s, out_dir)
+    tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
+    # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
+    order = sorted(pictures, key=_COST_ORDER.index)
+    drawn = dict(zip(order, in_processes([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
+                                         for name in order])))
+    files += [f for name in pictures for f in drawn[name]]
     if run["frames"] > 0:
         main = runs["pocket"]
         frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
@@ -254,6 +263,10 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+#: The pictures from the dearest to draw to the cheapest (how :func:`run` shares them among processes).
+_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "orbit")
 
 
 def simulate_design(pump, run: dict):
@@ -414,11 +427,12 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
+    from ..plot.figures import frame, save
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
-    fig = Figure(figsize=(8.27, 11.69), layout="constrained")  # A4 portrait
-    grid = fig.add_gridspec(3, len(rigid), height_ratios=[1.0, 0.95, 0.9])
-    ax = fig.add_subplot(grid[0, :])
+    fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
+    ax = fig.add_subplot(frame(fig, top=0.85, bottom=7.3, left=0.8, right=0.5)[0, 0])
+    maps_grid = frame(fig, ncols=len(rigid), top=5.0, bottom=3.8, left=0.8, right=0.5, wgap=1.1)
     for (n, traj), color in zip(runs.items(), DESIGN_COLORS):
         deg = np.degrees(traj.beta)
         ax.plot(deg, traj.h_min * 1e6, color=color, label=n)
@@ -435,8 +449,8 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     ax.legend(loc="best", fontsize="small")
     ax.set_title("smallest film over the cycle")
     for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
-        maps.field_axes(fig.add_subplot(grid[1, j]), panel)
-    table = fig.add_subplot(grid[2, :])
+        maps.field_axes(fig.add_subplot(maps_grid[0, j]), panel)
+    table = fig.add_subplot(frame(fig, top=8.2, bottom=0.2, left=0.8, right=0.5)[0, 0])
     table.axis("off")
     names = list(runs)
     cells = table.table(cellText=_comparison(runs, pumps, states, s["limits"]), colLabels=["", *names, "unit"],
@@ -455,8 +469,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
         gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
         table.set_title(f"smallest film pocket/plain: {gain}", fontsize="medium")
     fig.suptitle(s["title"])
-    fig.savefig(path, dpi=100)
-    return fig
+    return save(fig, path)
 
 
 def _comparison(runs: dict, pumps: dict, states: dict, limits: dict) -> list[list[str]]:

@@ -52,6 +52,7 @@ from typing import Callable
 
 from ..core.linalg import DEFAULT_SOLVER, LINEAR_SOLVERS
 from ..core.parameters import ELEMENTS, FORMULATIONS
+from ..core.scales import SCALE_FIELDS, scale_of
 from ..core.schema import (REQUIRED, SchemaError, Table, anything, build, choice, choices, flag,
                            nonnegative_number, number, pair, positive_number, read_table, text)
 from ..mechanisms.files import SURFACE, surface_of
@@ -80,11 +81,7 @@ SPEC = {
                      "estimate_error": (flag, False, "also solve on the mesh refined once and report the load error")}),
     "output": Table({"pictures": (choices(PICTURES), PICTURES, "pictures to draw"),
                      "warp": (nonnegative_number, 0.15, "radial push of the peak pressure in the wrapped picture [R0]")}),
-    "scale": Table({"radius": (positive_number, None, "eccentric (journal) radius R0 [m]"),
-                    "clearance": (positive_number, None, "radial clearance c [m]"),
-                    "viscosity": (positive_number, None, "oil dynamic viscosity [Pa s]"),
-                    "speed_rpm": (positive_number, None, "shaft speed [rpm] (or omega)"),
-                    "omega": (positive_number, None, "shaft angular speed [rad/s] (or speed_rpm)")}),
+    "scale": Table(SCALE_FIELDS),
 }
 
 #: m^3/s -> l/min.
@@ -98,24 +95,9 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
     if s["solver"]["linear_solver"] is None:
         s["solver"]["linear_solver"] = DEFAULT_SOLVER
     s["surface"] = surface_of(s["surface"], label)
-    s["scale"] = _scale_of(s["scale"], label) if "scale" in data else None
+    s["scale"] = scale_of(s["scale"], label) if "scale" in data else None
     del s["kind"]
     return s
-
-
-def _scale_of(t: dict, label: str):
-    """The :class:`Scale` of a ``[scale]`` table: all of radius, clearance, viscosity, and one speed."""
-    from ..core.machine import Drive
-    from ..core.scales import Scale
-
-    for name in ("radius", "clearance", "viscosity"):
-        if t[name] is None:
-            raise SchemaError(f"{label}: [scale] {name}: missing (required with [scale])")
-    if (t["speed_rpm"] is None) == (t["omega"] is None):
-        raise SchemaError(f"{label}: [scale] speed_rpm/omega: give exactly one (speed_rpm [rpm] or omega [rad/s])")
-    omega = Drive.from_rpm(t["speed_rpm"]).omega if t["speed_rpm"] is not None else t["omega"]
-    return build(label, "scale", Scale, radius=t["radius"], clearance=t["clearance"], viscosity=t["viscosity"],
-                 speed=omega)
 
 
 def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,

@@ -24,7 +24,7 @@ a pivot turns a grid back into a 2-D array for contour plots. (An
 Modules
 -------
 ``cases``     parameter objects and run functions (ShoeCase, PumpCase, RUNS, BASES)
-``outputs``   named reductions of a result to one float (OUTPUTS)
+``outputs``   named reductions of a result to one float (OUTPUTS), their units and SI columns
 ``changes``   field paths and change builders (CHANGES, apply_changes, expand_cases)
 ``execute``   processes / Dask, the resumable cache, the table (sweep, run_case, case_key)
 ``workers``   local worker processes: per-case time limit, no worker outlives its parent
@@ -42,11 +42,12 @@ from .changes import (CHANGES, POCKET_SHAPES, apply_changes, centroid, check_cha
                       pocket_fraction, pocket_position, pocket_shape, set_field)
 from .execute import (CACHE_FILES, CacheWarning, best_design, case_key, case_status, estimated_elements, run_case,
                       sweep)
-from .outputs import OUTPUT_UNITS, OUTPUTS, STANDARD_OUTPUTS, csv_headers
+from .outputs import OUTPUT_UNITS, OUTPUTS, SI_OUTPUTS, STANDARD_OUTPUTS, csv_headers, si_columns
 from .studies import Study, read_study
 
 __all__ = [
     "CACHE_FILES", "CacheWarning", "estimated_elements", "FilmRuptured", "case_status", "csv_headers", "OUTPUT_UNITS",
     "CHANGES", "OUTPUTS", "RUNS", "BASES", "PumpCase", "PumpOutcome", "ShoeCase", "Study", "apply_changes", "best_design",
     "case_key", "expand_cases", "read_study", "run_case", "run_pump", "run_shoe", "set_field", "sweep",
+    "SI_OUTPUTS", "si_columns",
 ]

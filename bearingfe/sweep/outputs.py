@@ -11,7 +11,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-__all__ = ["OUTPUTS", "OUTPUT_UNITS", "STANDARD_OUTPUTS", "csv_headers"]
+__all__ = ["OUTPUTS", "OUTPUT_UNITS", "SI_OUTPUTS", "STANDARD_OUTPUTS", "csv_headers", "si_columns"]
 
 
 def _h_min(result) -> float:
@@ -76,10 +76,36 @@ COLUMN_UNITS = {"pocket_fraction": "-", "pocket_position": "-", "seconds": "s",
                 "pump.viscosity": "Pa s", "pump.clearance": "m", "pump.radius": "m"}
 
 
+#: SI columns of a shoe run's non-dimensional outputs: output -> (SI column, unit, its scale as a function
+#: of a :class:`bearingfe.core.scales.Scale`; the scales of :mod:`bearingfe.core.scales`).
+SI_OUTPUTS: dict[str, tuple[str, str, Callable[[Any], float]]] = {
+    "h_min": ("h_min_si", "m", lambda sc: sc.clearance),
+    "peak_pressure": ("peak_pressure_si", "Pa", lambda sc: sc.pressure),
+    "flow_inlet": ("flow_inlet_si", "m^3/s", lambda sc: sc.flow),
+    "friction_loss": ("friction_loss_si", "W", lambda sc: sc.power),
+    "load": ("load_si", "N", lambda sc: sc.force),
+}
+
+
+def si_columns(table, scale):
+    """``table`` with an SI column beside each non-dimensional output it has (:data:`SI_OUTPUTS`):
+    ``<output>_si`` right after ``<output>``, the value times its scale. ``scale`` None: the table as
+    given. A new table (pandas.DataFrame); the outputs themselves are kept."""
+    if scale is None:
+        return table
+    out = table.copy()
+    for output, (name, _, factor) in SI_OUTPUTS.items():
+        if output in out.columns and name not in out.columns:
+            out.insert(out.columns.get_loc(output) + 1, name, out[output] * factor(scale))
+    return out
+
+
 def csv_headers(columns, run) -> dict[str, str]:
     """``{column: "column [unit]"}`` for the columns of a sweep table whose unit is known (the outputs of the
-    run ``"pump"`` (SI) or ``"shoe"`` (non-dimensional, ``[-]``), the change builders and ``seconds``); text
+    run ``"pump"`` (SI) or ``"shoe"`` (non-dimensional, ``[-]``), a shoe run's SI columns
+    (:func:`si_columns`), the change builders and ``seconds``); text
     columns (``status``, ``error``, ``key``...), a dotted-path change and a run given as a function keep
     their names."""
-    units = {**(OUTPUT_UNITS.get(run, {}) if isinstance(run, str) else {}), **COLUMN_UNITS}
+    units = {**(OUTPUT_UNITS.get(run, {}) if isinstance(run, str) else {}), **COLUMN_UNITS,
+             **{name: unit for name, unit, _ in SI_OUTPUTS.values()}}
     return {c: f"{c} [{units[c]}]" for c in columns if c in units}

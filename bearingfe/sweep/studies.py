@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ..core.scales import SCALE_FIELDS, Scale, scale_of
 from ..core.schema import SchemaError, Table, anything, choice, choices, positive_number, read_table, read_toml, text
 from .cases import BASES, RUNS
 from .changes import apply_changes, check_change_name, expand_cases
@@ -39,6 +40,9 @@ class Study:
     time_limit : float or None
         ``[study] time_limit``: seconds one case may take (None: the default
         of :func:`~bearingfe.sweep.sweep`).
+    scale : Scale or None
+        ``[scale]`` of a ``"shoe"`` study: the radius, clearance, viscosity and speed that turn its
+        non-dimensional outputs into SI columns beside them (:func:`~bearingfe.sweep.si_columns`).
     """
 
     name: str
@@ -49,6 +53,7 @@ class Study:
     objective: str
     sense: str
     time_limit: float | None = None
+    scale: Scale | None = None
 
 
 def _settings(where: str, value) -> dict:
@@ -74,6 +79,7 @@ STUDY = {
                    "set": (_settings, {}, "fields of the base object set before the changes")}),
     "grid": (anything, None, "changes and their values: every combination is a case"),
     "cases": (anything, None, "cases given one by one, each a table of changes"),
+    "scale": Table(SCALE_FIELDS),  # a "shoe" study's outputs also in SI
 }
 
 
@@ -105,6 +111,11 @@ def read_study(path: str | Path) -> Study:
         raise SchemaError(f"{where}: {exc}") from None
     if not cases:
         raise SchemaError(f"{where}: the study has no cases")
+    scale = None
+    if "scale" in data:
+        if run != "shoe":
+            raise SchemaError(f"{label}: [scale]: only for run = \"shoe\" (a {run!r} run reports SI already)")
+        scale = scale_of(s["scale"], label)
     name = Path(path).stem if study["name"] is None else study["name"]
     return Study(name=name, base=base, changes=changes, run=run, outputs=tuple(outputs), objective=objective,
-                 sense=study["sense"], time_limit=study["time_limit"])
+                 sense=study["sense"], time_limit=study["time_limit"], scale=scale)

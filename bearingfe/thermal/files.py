@@ -16,10 +16,14 @@ correlation), and the heat balance: ``supply_temperature_C`` [degC], ``carry_ove
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from ..core.schema import (Range, SchemaError, build, choice, number, numbers, positive_number)
-from .heat_balance import HeatBalance
 from .lubricant import ISO_VG, Lubricant, VogelViscosity, WaltherViscosity, iso_vg, kelvin
 from .viscosity_index import viscosity_100
+
+if TYPE_CHECKING:  # imported where used: the heat balance pulls in the journal solver
+    from .heat_balance import HeatBalance
 
 __all__ = ["OIL", "check_oil", "lubricant_of", "balance_of"]
 
@@ -102,6 +106,8 @@ def lubricant_of(oil: dict, label: str, section: str) -> Lubricant:
 def balance_of(oil: dict, label: str, section: str, supply_temperature: float | None = None) -> HeatBalance:
     """The :class:`HeatBalance` of a checked ``[section]`` table; ``supply_temperature`` [K] when the table
     gives none."""
+    from .heat_balance import HeatBalance
+
     t = kelvin(oil["supply_temperature_C"]) if oil["supply_temperature_C"] is not None else supply_temperature
     return build(label, section, HeatBalance, t, carry_over=oil["carry_over"],
                  conducted_fraction=oil["conducted_fraction"], effective_fraction=oil["effective_fraction"])

@@ -110,7 +110,10 @@ def coarse_run(tmp_path_factory):
         return wrapped
 
     printed = io.StringIO()
-    with mock.patch.object(curves, "trajectory_plot", keep("trajectory", curves.trajectory_plot)), \
+    from bearingfe.core import parallel
+
+    # every picture drawn in this process (not in forked ones), so that its figure can be kept
+    with mock.patch.object(parallel, "PROCESSES", 1), mock.patch.object(curves, "trajectory_plot", keep("trajectory", curves.trajectory_plot)), \
             mock.patch.object(curves, "orbit_plot", keep("orbit", curves.orbit_plot)), \
             mock.patch.object(maps, "field_panels", keep("fields", maps.field_panels)), \
             mock.patch.object(pump_scene, "_summary_page", keep("summary", pump_scene._summary_page)), \

@@ -225,3 +225,75 @@ def test_pocket_study_example_quick(tmp_path, monkeypatch):
     image = matplotlib.image.imread(tmp_path / "pocket_study.png")
     assert image.std() > 0.05  # a drawn contour plot, not a blank canvas
     assert (tmp_path / "pocket_study.csv").read_text().count("\n") == 5  # header + 2 x 2 grid
+
+
+SCALE = """
+[scale]
+radius = 0.05
+clearance = 20e-6
+viscosity = 0.03
+speed_rpm = 1500.0
+"""
+
+
+def test_si_columns_are_the_outputs_times_their_scales():
+    """Each SI column is its output times the scale of bearingfe.core.scales (closed forms: pressure
+    mu omega R0^2 / c^2, force mu omega R0^4 / c^2, flow omega R0^2 c, power mu omega^2 R0^4 / c)."""
+    import pandas as pd
+
+    from bearingfe.core.scales import Scale
+    from bearingfe.sweep import csv_headers, si_columns
+
+    mu, omega, r, c = 0.03, 50 * math.pi, 0.05, 20e-6
+    table = pd.DataFrame({"pocket_fraction": [0.0, 0.1], "h_min": [0.4, 0.5], "peak_pressure": [2.0, 3.0],
+                          "flow_inlet": [0.0, 0.01], "friction_loss": [1.5, 1.6], "load": [0.7, 0.9],
+                          "balance_ratio": [0.8, 0.9], "seconds": [1.0, 1.0], "status": ["completed"] * 2})
+    out = si_columns(table, Scale(radius=r, clearance=c, viscosity=mu, speed=omega))
+    assert list(out.columns) == ["pocket_fraction", "h_min", "h_min_si", "peak_pressure", "peak_pressure_si",
+                                 "flow_inlet", "flow_inlet_si", "friction_loss", "friction_loss_si", "load",
+                                 "load_si", "balance_ratio", "seconds", "status"]
+    for output, scale in (("h_min", c), ("peak_pressure", mu * omega * r**2 / c**2), ("flow_inlet", omega * r**2 * c),
+                          ("friction_loss", mu * omega**2 * r**4 / c), ("load", mu * omega * r**4 / c**2)):
+        np.testing.assert_allclose(out[f"{output}_si"], table[output] * scale, rtol=1e-14)
+    assert si_columns(table, None) is table
+    headers = csv_headers(out.columns, "shoe")
+    assert (headers["h_min"], headers["h_min_si"], headers["load_si"], headers["friction_loss_si"]) == (
+        "h_min [-]", "h_min_si [m]", "load_si [N]", "friction_loss_si [W]")
+
+
+def test_study_scale_is_checked(tmp_path):
+    path = tmp_path / "s.toml"
+    for text, message in [
+        (STUDY + SCALE.replace("speed_rpm = 1500.0", ""), r"\[scale\] speed_rpm/omega: give exactly one"),
+        (STUDY + SCALE.replace("radius = 0.05", ""), r"\[scale\] radius: missing"),
+        (STUDY + SCALE.replace("clearance = 20e-6", "clearance = 0.1"), r"\[scale\].*clearance"),
+        (STUDY.replace('run = "shoe"', 'run = "pump"').replace('kind = "shoe"', 'kind = "pump"')
+         .replace("mesh_size = 0.2\ngamma = 0.4\n", "").replace('outputs = ["h_min", "load"]', 'outputs = ["h_min"]')
+         .replace('objective = "load"', 'objective = "h_min"') + SCALE, r"\[scale\]: only for run = \"shoe\""),
+    ]:
+        path.write_text(text)
+        with pytest.raises(ValueError, match=message):
+            read_study(path)
+    path.write_text(STUDY + SCALE)
+    assert read_study(path).scale.speed == pytest.approx(50 * math.pi)  # 1500 rpm
+    assert read_study(ROOT / "studies" / "pocket_study.toml").scale.clearance == 20e-6
+
+
+def test_sweep_command_writes_si_columns_beside_the_outputs(tmp_path, capsys):
+    """With [scale] the table and best.json carry h_min_si [m] = h_min c and load_si [N] = load x the force
+    scale mu omega R0^4 / c^2 beside the non-dimensional columns."""
+    import pandas as pd
+
+    from bearingfe.cli import main
+
+    (tmp_path / "s.toml").write_text(STUDY.replace("pocket_fraction = [0.0, 0.08]", "pocket_fraction = [0.08]")
+                                     + SCALE)
+    assert main(["sweep", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    table = pd.read_csv(tmp_path / "out" / "results.csv")
+    assert list(table.columns[:5]) == ["pocket_fraction [-]", "h_min [-]", "h_min_si [m]", "load [-]", "load_si [N]"]
+    force = 0.03 * 50 * math.pi * 0.05**4 / 20e-6**2
+    assert table["h_min_si [m]"][0] == pytest.approx(table["h_min [-]"][0] * 20e-6, rel=1e-12)
+    assert table["load_si [N]"][0] == pytest.approx(table["load [-]"][0] * force, rel=1e-12)
+    best = json.loads((tmp_path / "out" / "best.json").read_text())
+    assert best["load_si"] == pytest.approx(best["load"] * force, rel=1e-12)
+    assert "load_si [N]=" in capsys.readouterr().out
