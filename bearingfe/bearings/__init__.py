@@ -14,7 +14,7 @@ module            what it does
 
 from __future__ import annotations
 
-import importlib as _importlib
+from ..core.lazy import lazy_names
 
 #: Public names by module, imported on first use (PEP 562): the pump's shoe (``bearings.pump``) does not
 #: load the journal, tilting-pad and hydrostatic solvers (the main scene starts faster).
@@ -27,25 +27,4 @@ _NAMES = {
     "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
                     "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium"),
 }
-_ORIGIN = {name: module for module, names in _NAMES.items() for name in names}
-
-
-def __getattr__(name: str):
-    """Import a public name's module on first use and keep the name (PEP 562)."""
-    if name not in _ORIGIN:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_importlib.import_module(f"{__name__}.{_ORIGIN[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
-
-
-__all__ = ["DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients",
-           "EccentricPump", "PressureCycle", "SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure",
-           "SuppliedResult", "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness",
-           "PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
-           "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium", "RotorModes",
-           "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"]
+__getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())

@@ -12,6 +12,7 @@ module            what it does
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
 ``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
 ``parallel``      Independent jobs of one run shared with forked processes when more than one core is free.
+``lazy``          Packages whose public names load their modules on first use (PEP 562).
 ================  ============================================================
 """
 

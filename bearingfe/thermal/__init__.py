@@ -19,7 +19,7 @@ module               what it does
 
 from __future__ import annotations
 
-import importlib as _importlib
+from ..core.lazy import lazy_names
 
 #: Public names by module, imported on first use (PEP 562): reading an ``[oil]`` table
 #: (``thermal.files``) does not import the journal solver behind the heat balance.
@@ -33,25 +33,4 @@ _NAMES = {
                     "slider_reference"),
     "pump_cycle": ("CycleTemperature", "cycle_temperature"),
 }
-_ORIGIN = {name: module for module, names in _NAMES.items() for name in names}
-
-
-def __getattr__(name: str):
-    """Import a public name's module on first use and keep the name (PEP 562)."""
-    if name not in _ORIGIN:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_importlib.import_module(f"{__name__}.{_ORIGIN[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
-
-
-__all__ = ["ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
-           "WaltherViscosity", "celsius", "iso_vg", "kelvin", "EffectiveTemperature", "FilmTemperatures",
-           "HeatBalance", "JournalDuty", "ThermalError", "effective_temperature", "film_temperatures",
-           "CycleTemperature", "cycle_temperature", "reference_viscosities", "viscosity_40", "viscosity_100",
-           "viscosity_index", "FilmEnergy", "Pad", "PadLevel1", "film_energy", "journal_pad", "pad_level1", "pad_mesh",
-           "slider_reference"]
+__getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())
