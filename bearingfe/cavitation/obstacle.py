@@ -210,6 +210,15 @@ class ObstacleProblem:
             u[free] = np.asarray(solve(b[free])).reshape(b[free].shape)
         return u
 
+    def _next_set(self, u: np.ndarray, b: np.ndarray, active: np.ndarray, free: np.ndarray,
+                  scale_b: float) -> tuple[np.ndarray, np.ndarray]:
+        """The multiplier of ``u`` and the active set it asks for (primal-dual rule, sign tolerances)."""
+        lam = self.A @ u - b
+        lam[free] = 0.0
+        tol_u = self.tol * float(np.abs(u).max(initial=0.0))
+        tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
+        return lam, np.where(active, lam > -tol_l, u < -tol_u)
+
     def solve(self, b: np.ndarray, active: np.ndarray | None = None) -> ObstacleSolution:
         """Primal-dual active-set iteration from an initial rupture set.
 
@@ -242,20 +251,12 @@ class ObstacleProblem:
             if not np.all(np.isfinite(u)):
                 raise CavitationError("the linear solve on the full-film set returned non-finite values "
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
-            lam = self.A @ u - b
-            lam[free] = 0.0
-            tol_u = self.tol * float(np.abs(u).max(initial=0.0))
-            tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
-            new_active = np.where(active, lam > -tol_l, u < -tol_u)
+            lam, new_active = self._next_set(u, b, active, free, scale_b)
             key = np.packbits(new_active).tobytes()
             if not exact and (np.array_equal(new_active, active) or key in seen):
                 # settled (or back to a set seen) on an inexact solve: solve this set to the tolerance
                 u[free], _, exact = self._solve_free(free, b[free], None, u[free])
-                lam = self.A @ u - b
-                lam[free] = 0.0
-                tol_u = self.tol * float(np.abs(u).max(initial=0.0))
-                tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))
-                new_active = np.where(active, lam > -tol_l, u < -tol_u)
+                lam, new_active = self._next_set(u, b, active, free, scale_b)
                 key = np.packbits(new_active).tobytes()
                 exact = True
             if np.array_equal(new_active, active):
