@@ -22,7 +22,6 @@ knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -113,7 +112,7 @@ class ObstacleProblem:
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
-        self._reference = None  # (free mask, solve, seconds) of the last factorization: the preconditioner
+        self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
         self.krylov_iterations = 0
@@ -129,12 +128,11 @@ class ObstacleProblem:
 
     def _factor(self, free: np.ndarray):
         idx = np.flatnonzero(free)
-        t0 = time.perf_counter()
         factorize = self.factorize
         if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
             factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
         solve = factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
-        self._reference = (free.copy(), solve, time.perf_counter() - t0)
+        self._reference = (free.copy(), solve)
         self._store(np.packbits(free).tobytes(), solve)
         self.factorization_count += 1
         return solve
@@ -147,15 +145,14 @@ class ObstacleProblem:
             return solve, 0
         return self._factor(free), 1
 
-    def add_factorization(self, free: np.ndarray, solve, seconds: float | None = None) -> None:
-        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache
-        (``seconds``: what it cost, which sets how many conjugate-gradient
-        iterations may be spent before a new factorization pays)."""
+    def add_factorization(self, free: np.ndarray, solve) -> None:
+        """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache: the
+        preconditioner of the next sets' conjugate-gradient solves."""
         free = np.asarray(free, bool)
         if free.shape != (self.n,):
             raise ValueError(f"free must be a boolean mask of length {self.n}")
         self._store(np.packbits(free).tobytes(), solve)
-        self._reference = (free.copy(), solve, seconds)
+        self._reference = (free.copy(), solve)
 
     def _solve_free(self, free: np.ndarray, b_free: np.ndarray, rtol: float | None = None,
                     x0: np.ndarray | None = None) -> tuple[np.ndarray, int, bool]:
@@ -314,7 +311,7 @@ class _Krylov:
     """
 
     def __init__(self, problem: ObstacleProblem, free: np.ndarray) -> None:
-        ref_free, self.ref_solve, seconds = problem._reference
+        ref_free, self.ref_solve = problem._reference
         self.problem = problem
         self.idx = np.flatnonzero(free)
         pos = np.full(problem.n, -1)
@@ -327,7 +324,6 @@ class _Krylov:
         new = free & ~ref_free
         self.new = pos[np.flatnonzero(new)]
         self.new_diag = problem._diag[np.flatnonzero(new)]
-        self.factor_seconds = seconds
         self.rtol = 1e-2 * problem.tol
         self.last_iterations = 0
         self.cap = None

@@ -70,7 +70,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     factorize = get_linear_solver(solver)
     problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
     if factorize is system.factorize:
-        problem.add_factorization(np.ones(problem.n, bool), system.solve, sup.cost.get("factorization"))
+        problem.add_factorization(np.ones(problem.n, bool), system.solve)
     fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
                      lift=system.lift)
     _PROBLEMS[sup] = fp

@@ -113,7 +113,7 @@ def test_no_memory_for_a_second_factorization_falls_back_to_cg_on_the_first(jour
         raise RuntimeError("SUPERLU_MALLOC fails for buf in intCalloc() (forced by the test)")
 
     problem = ObstacleProblem(fp.problem.A, no_memory)
-    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve, 1.0)
+    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve)
     sol = problem.solve(fp.rhs @ weights, (sup.fields @ weights)[fp.interior] < 0)
     assert sol.factorizations == 0 and problem.krylov_iterations > 0
     np.testing.assert_array_equal(sol.active, ref.active)
