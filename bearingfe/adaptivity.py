@@ -51,7 +51,8 @@ from .geometry.locate import cell_diameters
 from .geometry.meshing import SupportMesh, mesh_surface
 from .core.parameters import Discretization, OperatingPoint, takes
 from .film import forms
-from .film.forms import film_flux, mapping, pressure_from_unknown, unknown_scale
+from .film.forms import along, film_flux, mapping, pressure_from_unknown, unknown_scale
+from .geometry.runner import velocity_at
 from .reynolds import CAVITATION, ELEMENTS, FORMULATIONS, ReynoldsResult, solve_reynolds
 from .film.flows import ruptured_elements
 
@@ -83,6 +84,7 @@ class _Field:
     element: str
     wedge: float
     source: Callable[[np.ndarray], np.ndarray]
+    runner: object = None   # the runner's velocity (bearingfe.geometry.runner); None: along phi
 
 
 def error_indicators(result: ReynoldsResult, *, norm: str = "flux") -> np.ndarray:
@@ -154,7 +156,7 @@ def _primal_squared(result: ReynoldsResult, weight: float, bases: "_Bases") -> n
         return rates[0] * np.asarray(shapes[0], float) + rates[1] * np.asarray(shapes[1], float)
 
     f = _Field(basis=result.basis, film=film, u=_unknown(result), formulation=result.formulation,
-               element=result.element, wedge=result.wedge, source=hdot)
+               element=result.element, wedge=result.wedge, source=hdot, runner=result.runner)
     squared = _squared_indicators(f, weight, bases)
     squared[_ruptured(result)] = 0.0
     return squared
@@ -252,7 +254,8 @@ def _squared_indicators(f: _Field, weight: float, bases: "_Bases") -> np.ndarray
     _, dp, lap = _pressure_fields(f, basis, x, bases.laplacian(f.u))
     h = np.asarray(f.film.thickness(x[0], x[1]), float)
     dh = [np.asarray(g, float) for g in f.film.gradient(x[0], x[1])]
-    div_q = -0.25 * h**2 * (dh[0] * dp[0] + dh[1] * dp[1]) - h**3 / 12.0 * lap + 0.5 * f.wedge * dh[0]
+    div_q = (-0.25 * h**2 * (dh[0] * dp[0] + dh[1] * dp[1]) - h**3 / 12.0 * lap
+             + 0.5 * f.wedge * along(velocity_at(f.runner, x), dh))
     residual = np.sum((div_q + f.source(x)) ** 2 * (h**3 / 12.0) ** -weight * basis.dx, axis=1)
     squared = bases.diameters**2 * residual + _jump_terms(f, weight, bases) + _natural_terms(f, weight, bases)
     return np.maximum(squared, 0.0)

@@ -39,6 +39,7 @@ from ..film.compiled import interpolation_maps
 from ..film.forms import load as load_form, weighted_laplace
 from ..geometry.locate import probe_matrices
 from ..geometry.meshing import SupportMesh
+from ..geometry.runner import require_along_phi
 
 __all__ = ["DeflectedFilm", "ElasticSolution", "solve_elastic", "balance_load", "ElasticBalance", "ChordBalance",
            "pressure_sensitivity", "newton", "solve_rigid_h_min"]
@@ -358,6 +359,7 @@ def _check_compliance(compliance: Compliance, mesh: SupportMesh, element: str) -
     if not isinstance(compliance, Compliance):
         raise ValueError(f"elastic must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
     check_dense_size(compliance.n_dofs)
+    require_along_phi(mesh, "the elastic support")
     if compliance.mesh is not mesh:
         raise ValueError("elastic: the compliance was built on another mesh; build it on this one")
     if compliance.element != element:

@@ -41,8 +41,9 @@ from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .flows import named_flows, outflow, ruptured_elements
-from .forms import FilmAt, couette_source, film_at, film_flux, shear, unknown_scale
+from .forms import FilmAt, along, couette_source, film_at, film_flux, shear, unknown_scale
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
+from ..geometry.runner import is_along_phi, velocity_at
 
 __all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
 
@@ -244,6 +245,7 @@ class CompiledOperator:
     _position: np.ndarray = field(repr=False)
     _lazy: dict = field(default_factory=dict, repr=False)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    runner: object = None          # the mesh's runner if not the original one (bearingfe.geometry.runner)
 
     def __getstate__(self) -> dict:
         state = self.__dict__.copy()
@@ -296,6 +298,24 @@ class CompiledOperator:
     def transposed_phi_gradient(self) -> sp.csr_matrix:
         """``G_phi^T``: (weighted) point values -> their integrals against each basis function's ``d/dphi``."""
         return self._get("grad_phi_t", lambda: self.grad[0].T.tocsr())
+
+    @property
+    def transposed_z_gradient(self) -> sp.csr_matrix:
+        """``G_z^T``: (weighted) point values -> their integrals against each basis function's ``d/dz``."""
+        return self._get("grad_z_t", lambda: self.grad[1].T.tocsr())
+
+    @property
+    def runner_at(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The runner's velocity ``u`` at the points, or None for the original runner (``e_phi``)."""
+        return self._get("runner_at", lambda: velocity_at(self.runner, self.x))
+
+    def couette_load(self, c: np.ndarray) -> np.ndarray:
+        """``int c u . grad v`` for every basis function ``v``: the conservative Couette load of a density
+        ``c`` at the points (:func:`bearingfe.film.forms.couette_source`; ``int c dv/dphi`` for ``u = e_phi``)."""
+        u = self.runner_at
+        if u is None:
+            return self.transposed_phi_gradient @ (self.dx * c)
+        return self.transposed_phi_gradient @ (self.dx * c * u[0]) + self.transposed_z_gradient @ (self.dx * c * u[1])
 
     @property
     def phi_sources(self) -> sp.csr_matrix:
@@ -456,11 +476,16 @@ class CompiledOperator:
         lap = np.asarray(film.laplacian(*self.points), float).ravel() * np.ones_like(h)
         dx = self.dx
         c = couette_source(h, "pi")
-        pointwise = 6.0 * h**-1.5 * hx
+        u = self.runner_at
+        pointwise = 6.0 * h**-1.5 * along(u, (hx, hz))
         absolute_value, absolute_phi, absolute_z = self._absolute_maps()
         I = self.interior
-        wedge = (self.transposed_phi_gradient @ (dx * c) - self.transposed_value @ (dx * pointwise))[I]
-        wedge_size = (absolute_phi @ (dx * np.abs(c)) + absolute_value @ (dx * np.abs(pointwise)))[I]
+        wedge = (self.couette_load(c) - self.transposed_value @ (dx * pointwise))[I]
+        if u is None:
+            couette_size = absolute_phi @ (dx * np.abs(c))
+        else:
+            couette_size = absolute_phi @ (dx * np.abs(c * u[0])) + absolute_z @ (dx * np.abs(c * u[1]))
+        wedge_size = (couette_size + absolute_value @ (dx * np.abs(pointwise)))[I]
         laplace = (self.transposed_value @ (dx * lap) + self.transposed_phi_gradient @ (dx * hx)
                    + self.grad[1].T @ (dx * hz))[I]
         laplace_size = (absolute_value @ (dx * np.abs(lap)) + absolute_phi @ (dx * np.abs(hx))
@@ -523,31 +548,37 @@ class CompiledOperator:
         """
         wedge = weights[0]
         _, dp = self.pressure(u, h, dh, pi)
-        q0, q1 = film_flux(h, dp, wedge)
+        direction = self._direction(self.runner_at)
+        q0, q1 = film_flux(h, dp, wedge, direction=direction)
         dxc = self.dx[:, None]
         qx, qz, qh = q0 * dxc, q1 * dxc, hdot * dxc
         residual = self.group_maps[0] @ qx + self.group_maps[1] @ qz - self.group_maps[2] @ qh
         residual = residual + self._corner_terms(u, films, wedge, pi)
-        friction = np.sum(shear(h, dp[0], sliding) * dxc, axis=0)
+        friction = np.sum(shear(h, dp, sliding, direction=direction) * dxc, axis=0)
         squeeze = np.sum(qh, axis=0)
         flows = named_flows(self.groups, residual, squeeze)
         balance = flows["inlet"] - outflow(flows) - flows["squeeze"]
         if cavitated is not None:
             r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
             cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
-            source = self._ruptured_source(u, cavitated, wedge, dh, hdot)
+            source = self._ruptured_source(u, cavitated, wedge, along(direction, dh), hdot)
             corrected = named_flows(self.groups, residual + self.group_maps[2] @ (source * dxc), squeeze)
             corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])
                                        - (outflow(corrected) - outflow(flows)))
             flows, balance = corrected, balance - cavitation
         return FilmFlows(flows=flows, mass_balance=balance, friction=friction)
 
-    def _ruptured_source(self, u, cavitated, wedge, dh, hdot) -> np.ndarray:
-        """``wedge/2 dh/dphi + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
+    @staticmethod
+    def _direction(u):
+        """The runner's velocity at the points shaped to broadcast against ``(n_points, S)`` arrays."""
+        return None if u is None else (u[0][:, None], u[1][:, None])
+
+    def _ruptured_source(self, u, cavitated, wedge, dh_along, hdot) -> np.ndarray:
+        """``wedge/2 u . grad h + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
         ruptured = ruptured_elements(self._basis.element_dofs, u, cavitated)  # (n_cells, S)
         n_points = self._basis.dx.shape[1]
         mask = np.repeat(ruptured, n_points, axis=0)
-        return np.where(mask, 0.5 * wedge * dh[0] + hdot, 0.0)
+        return np.where(mask, 0.5 * wedge * dh_along + hdot, 0.0)
 
     def _corner_terms(self, u, films, wedge, pi) -> np.ndarray:
         """Per group: direct facet fluxes at its corner dofs minus their weighted shared sum."""
@@ -563,7 +594,7 @@ class CompiledOperator:
         p = s * value
         chain = np.where(pi, 1.5 * p / h, 0.0)
         dp0, dp1 = s * gx - chain * dh[0], s * gz - chain * dh[1]
-        q0, q1 = film_flux(h, (dp0, dp1), wedge)
+        q0, q1 = film_flux(h, (dp0, dp1), wedge, direction=self._direction(velocity_at(self.runner, x)))
         qn = q0 * normals[0][:, None] + q1 * normals[1][:, None]
         direct = {name: phi_ds @ qn[rows] for name, (rows, phi_ds) in parts.items()}  # (n_corner_dofs, S)
         weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
@@ -606,7 +637,7 @@ class CompiledSystem:
             fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
             fields[:, 3:] = (co.loads * s).T
             self._weights = co.transposed_value @ fields
-            self._weights[:, 0] = co.transposed_phi_gradient @ (co.dx * couette_source(self.h, self.formulation))
+            self._weights[:, 0] = co.couette_load(couette_source(self.h, self.formulation))
         return self._weights
 
     def rhs(self, lift: np.ndarray) -> np.ndarray:
@@ -683,4 +714,4 @@ def compile_operator(ops) -> CompiledOperator:
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
                             indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,
                             group_maps=group_maps, corners=corners, _basis=basis, _position=position,
-                            _lazy=lazy)
+                            _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)

@@ -78,13 +78,15 @@ import numpy as np
 import scipy.sparse as sp
 
 from .thickness import Film
-from .forms import load, weighted_laplace
+from .forms import along, load, weighted_laplace
+from .flows import edge_groups
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
+from ..geometry.runner import is_along_phi, velocity_at
 from .mesh_operators import Operators, operators
-from .result import ReynoldsResult
+from .result import ReynoldsResult, runner_of
 
 __all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
            "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES", "STREAMLINE_PASSES"]
@@ -305,10 +307,12 @@ def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
 
 # -- streamline upwind values of theta on the median dual ---------------------------------------------
 
-def _streamline_weights(mesh: SupportMesh, d: _Dual, direction: float) -> tuple[np.ndarray, np.ndarray]:
+def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndarray, np.ndarray]:
     """Nodes ``(3, n_segments)`` and weights of theta at the foot of each median-dual segment's streamline.
 
-    From the segment midpoint the line along ``-direction e_phi`` (upstream of the sliding) is followed to
+    ``direction``: the sliding's sign along ``e_phi`` (a float), or the Couette velocity at each segment's
+    midpoint (two arrays: a runner other than the original, :mod:`bearingfe.geometry.runner`).
+    From the segment midpoint the line along ``-direction`` (upstream of the sliding) is followed to
     the edge of the segment's triangle; theta there is the P1 interpolation of the triangle's nodes (two
     non-zero weights, both >= 0). A fill fraction that varies across the sliding direction only is thus
     carried without crosswind smearing (the foot lies on the same ``z`` as the segment), and the exact
@@ -325,7 +329,10 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction: float) -> tuple[
     gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
     nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
     lam = gx[:, tri] * (xs - x[nxt][:, tri]) + gy[:, tri] * (ys - y[nxt][:, tri])
-    rate = -direction * gx[:, tri]                     # d lambda / d tau along the upstream ray
+    if np.ndim(direction) == 0:
+        rate = -direction * gx[:, tri]                 # d lambda / d tau along the upstream ray
+    else:
+        rate = -(direction[0] * gx[:, tri] + direction[1] * gy[:, tri])
     with np.errstate(divide="ignore", invalid="ignore"):
         tau = np.where(rate < 0, -lam / rate, np.inf)
     step = np.min(tau, axis=0)
@@ -568,13 +575,16 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     else:                   # median dual: one segment per (triangle, edge)
         d = _dual(mesh)
         fi, fj = d.i, d.j
-        f = 0.5 * wedge * _thickness(mesh, film, d.midpoint[0], d.midpoint[1]) * d.normal[0]
+        u = velocity_at(mesh.runner, d.midpoint)
+        normal_speed = d.normal[0] if u is None else u[0] * d.normal[0] + u[1] * d.normal[1]
+        f = 0.5 * wedge * _thickness(mesh, film, d.midpoint[0], d.midpoint[1]) * normal_speed
         rec = _reconstruction(mesh, d, f) if couette == "limited" else None
     up = np.where(f > 0, fi, fj)
     n = basis.N
     C_cavity = None
     if couette == "streamline":
-        nodes, w = _streamline_weights(mesh, d, math.copysign(1.0, wedge))
+        sign = math.copysign(1.0, wedge)
+        nodes, w = _streamline_weights(mesh, d, sign if u is None else (sign * u[0], sign * u[1]))
         scale, up_scale = _contour_scales(mesh, film, d, f)
         rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
         C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
@@ -898,7 +908,7 @@ def _box_fill(mesh: SupportMesh, film: Film, system: _System, theta: np.ndarray,
 
 def _group_dofs(mesh: SupportMesh, basis) -> dict[str, np.ndarray]:
     bnd = mesh.boundaries
-    names = [k for k in ("side", "arc_start", "arc_end") if k in bnd] or ["outer"]
+    names = edge_groups(bnd)
     return {k: basis.get_dofs(bnd[k]).all() for k in names}
 
 
@@ -923,7 +933,9 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     g = grad_p[:, elem]
     for node, quarter in ((a, 0.75 * pa + 0.25 * pb), (b, 0.25 * pa + 0.75 * pb)):
         h = _thickness(mesh, film, quarter[0], quarter[1])
-        qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * n[0]
+        u = velocity_at(mesh.runner, quarter)
+        un = n[0] if u is None else u[0] * n[0] + u[1] * n[1]
+        qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
         np.add.at(out, node, 0.5 * length * qn)
     return out
 
@@ -1035,6 +1047,8 @@ TENSOR_SOURCES = ("grid", "structured")
 def _auto_couette(mesh: SupportMesh) -> str:
     """``"grid"`` on tensor-grid meshes (``grid_mesh``, an unrefined structured journal mesh), ``"median"`` on
     meshes whose median dual is aligned with ``phi`` already (:data:`ALIGNED_SOURCES`), else ``"streamline"``."""
+    if not is_along_phi(mesh.runner):
+        return "streamline"
     if mesh.source in ALIGNED_SOURCES:
         return "median"
     if mesh.source not in TENSOR_SOURCES:
@@ -1152,6 +1166,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         raise ValueError(f"couette must be one of {COUETTE_FLUXES}, got {couette!r}")
     if couette == "auto":
         couette = _auto_couette(mesh)
+    if couette == "grid" and not is_along_phi(mesh.runner):
+        raise ValueError(f"couette='grid' carries the oil along phi only; the mesh's runner is {mesh.runner!r}: "
+                         "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     ops = operators(mesh, "P1")
     p_c = float(cavitation_pressure)
@@ -1206,7 +1223,10 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         friction = float(np.sum((sliding * system.inv_h_q + 0.5 * system.h_q * dp[0]) * dx)) - sliding * deficit
         cav_fraction = cavity / float(np.sum(area))
     else:
-        friction = float(np.sum((theta_q * sliding * system.inv_h_q + 0.5 * system.h_q * dp[0]) * dx))
+        u = velocity_at(mesh.runner, x)
+        speed2 = 1.0 if u is None else u[0] ** 2 + u[1] ** 2
+        friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
+                                 + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = ops.pocket_moments
     force = np.array([np.sum(np.array(pq) * np.cos(x[0]) * dx), np.sum(np.array(pq) * np.sin(x[0]) * dx)])
     force = force + inlet_pressure * pm[1:]
@@ -1227,4 +1247,5 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
         coercivity=math.nan, notes=notes, cost=MappingProxyType(cost), cavitation=model,
         iterations=sol.iterations if model != "none" else 0, cavitated=cavitated if model != "none" else None,
-        theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c)
+        theta=theta if model == "jfo" else None, cavitated_fraction=cav_fraction, cavitation_pressure=p_c,
+        runner=runner_of(mesh))

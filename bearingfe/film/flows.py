@@ -2,8 +2,8 @@
 
 A film's flows are the boundary fluxes of ``q = -h^3/12 grad p + wedge h/2 e_phi``
 [omega R0^2 c], grouped by the boundary they leave through: ``side`` (z = +-a),
-``arc_start``, ``arc_end`` (or the whole ``outer`` outline when it is not a
-rectangle), ``inlet`` (out of the pockets into the film: the sign is turned),
+``arc_start``, ``arc_end`` (a thrust pad's sector: ``arc_start``, ``arc_end``, ``inner_rim``,
+``outer_rim``; or the whole ``outer`` outline when it has no named edges), ``inlet`` (out of the pockets into the film: the sign is turned),
 ``squeeze`` (``int dh/dt``: the film volume's rate) and, under cavitation,
 ``cavitation`` (what the full film hands to the ruptured zone). The balance
 ``inlet = outflow + squeeze (+ cavitation)`` holds up to discretization error.
@@ -15,7 +15,17 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["named_flows", "outflow", "ruptured_elements", "NOT_OUTFLOWS"]
+__all__ = ["named_flows", "outflow", "ruptured_elements", "NOT_OUTFLOWS", "EDGE_GROUPS", "edge_groups"]
+
+#: Named outline edges a flow leaves through, when the mesh has them: the rectangle's ``side`` (both
+#: ``z = +-a``), ``arc_start``, ``arc_end``; an annular sector's (a thrust pad's) ``arc_start``,
+#: ``arc_end``, ``inner_rim`` and ``outer_rim``. A mesh with none of them has one group, ``outer``.
+EDGE_GROUPS = ("side", "arc_start", "arc_end", "inner_rim", "outer_rim")
+
+
+def edge_groups(boundaries) -> list[str]:
+    """The outflow groups of a mesh's boundaries: its named edges (:data:`EDGE_GROUPS`) or ``["outer"]``."""
+    return [name for name in EDGE_GROUPS if name in boundaries] or ["outer"]
 
 #: Flow names that are not a boundary's outflow.
 NOT_OUTFLOWS = ("inlet", "squeeze", "cavitation")

@@ -9,10 +9,13 @@ pressure, flux and shear formulas from here (notation of
 - pressure from the unknown (the pi form's chain rule): with
   ``p = s Pi``, ``s = h^(-3/2)``: ``grad p = s grad Pi - 3/2 p grad h / h``
   (:func:`pressure_from_unknown`); the direct form's unknown is ``p``;
-- film flux ``q = -h^3/12 grad p + wedge h/2 e_phi`` [omega R0^2 c]
+- film flux ``q = -h^3/12 grad p + wedge h/2 u`` [omega R0^2 c]
   (:func:`film_flux`);
-- shear on the journal ``tau = sliding/h + h/2 dp/dphi`` [mu omega R0 / c]
-  (:func:`shear`), whose integral is the friction force (and moment);
+- shear on the runner along its velocity ``tau . u = sliding |u|^2/h + h/2 u . grad p``
+  [mu omega R0 / c] (:func:`shear`; ``u = e_phi`` on the journal: ``sliding/h + h/2 dp/dphi``),
+  whose integral is the friction force (and moment);
+- the runner's velocity ``u`` (:mod:`bearingfe.geometry.runner`): ``e_phi`` unless a ``direction``
+  field is passed (a thrust collar's ``omega x r``); the Couette terms carry ``u``;
 - the viscous dissipation ``mu sliding^2/h + h^3/(12 mu) |grad p|^2`` (:func:`dissipation`), the heat
   source of the film's energy equation (:mod:`bearingfe.thermal.film_energy`);
 - a viscosity varying over the film (level 2 of :mod:`bearingfe.thermal`): the direct form's
@@ -38,7 +41,7 @@ from skfem.mapping import MappingAffine, MappingIsoparametric
 
 __all__ = ["laplace", "mass", "weighted_mass", "weighted_laplace", "load", "gradient_load", "flux_residual",
            "couette_source", "FilmAt",
-           "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "shear", "dissipation", "TolerantMapping",
+           "film_at", "unknown_scale", "pressure_from_unknown", "film_flux", "along", "shear", "dissipation", "TolerantMapping",
            "mapping", "straight_edges", "STRAIGHT_TOLERANCE"]
 
 
@@ -155,6 +158,9 @@ def pressure_from_unknown(value, gradient, h, dh, formulation: str) -> tuple[np.
 def couette_source(h, formulation: str):
     """The wedge (Couette) source of the Reynolds equation in conservative form, per unit wedge.
 
+    For a runner velocity ``u`` other than ``e_phi`` (divergence free, :mod:`bearingfe.geometry.runner`)
+    the density multiplies ``u . grad v`` instead of ``dv/dphi`` (``div(h u) = u . grad h``).
+
     The source ``6 wedge dh/dphi`` is tested in divergence form, integrated by parts
     against test functions that vanish on the Dirichlet boundary:
     ``int 6 dh/dphi v = -int 6 h dv/dphi``. So the load of the wedge column is
@@ -174,9 +180,11 @@ def couette_source(h, formulation: str):
     return c - c.flat[0] if c.size else c
 
 
-def film_flux(h, dp, wedge: float, viscosity=None) -> tuple[np.ndarray, np.ndarray]:
-    """``q = -h^3/12 grad p + wedge h/2 e_phi`` (Poiseuille plus Couette) [omega R0^2 c].
+def film_flux(h, dp, wedge: float, viscosity=None, direction=None) -> tuple[np.ndarray, np.ndarray]:
+    """``q = -h^3/12 grad p + wedge h/2 u`` (Poiseuille plus Couette) [omega R0^2 c].
 
+    ``direction``, optional: the runner's velocity ``u`` at the same points, relative to the reference
+    speed (:func:`bearingfe.geometry.runner.velocity_at`); without it ``u = e_phi`` (the original runner).
     ``viscosity``, optional: a viscosity varying over the film, relative to the scale's (a field at the
     same points, or in SI with ``h`` [m], ``p`` [Pa], ``wedge = U`` [m/s]: ``q = -h^3/(12 mu) grad p +
     U h/2`` [m^2/s]); without it the isoviscous formula, unchanged.
@@ -184,26 +192,45 @@ def film_flux(h, dp, wedge: float, viscosity=None) -> tuple[np.ndarray, np.ndarr
     c = -np.asarray(h) ** 3 / 12.0
     if viscosity is not None:
         c = c / viscosity
-    return c * dp[0] + 0.5 * wedge * h, c * dp[1]
+    if direction is None:
+        return c * dp[0] + 0.5 * wedge * h, c * dp[1]
+    return c * dp[0] + 0.5 * wedge * h * direction[0], c * dp[1] + 0.5 * wedge * h * direction[1]
 
 
-def shear(h, dp_phi, sliding: float, viscosity=None):
-    """Shear on the journal ``sliding/h + h/2 dp/dphi`` [mu omega R0 / c]; its integral is the friction.
+def along(direction, vector):
+    """``u . v``: a vector field's component along the runner's velocity ``u`` (``v[0]`` for ``u = e_phi``)."""
+    if direction is None:
+        return vector[0]
+    return direction[0] * vector[0] + direction[1] * vector[1]
 
+
+def _speed_squared(direction):
+    return 1.0 if direction is None else direction[0] ** 2 + direction[1] ** 2
+
+
+def shear(h, dp, sliding: float, viscosity=None, direction=None):
+    """Shear on the runner along its velocity, ``tau . u = sliding |u|^2/h + h/2 u . grad p``
+    [mu omega R0 / c]; its integral is the friction force (the friction torque over ``R0`` for a
+    rotating runner; times the reference speed, the friction power).
+
+    ``dp``: the pressure gradient ``(dp/dphi, dp/dz)``; ``direction``: the runner's velocity ``u``
+    (:func:`film_flux`), default ``e_phi``: then ``sliding/h + h/2 dp/dphi``.
     ``viscosity``, optional: relative to the scale's, a field at the same points (or in SI: ``mu U/h +
     h/2 dp/dx`` [Pa] with ``sliding = U``); the Poiseuille part does not depend on it.
     """
+    speed = sliding * _speed_squared(direction)
     if viscosity is not None:
-        return viscosity * sliding / h + 0.5 * h * dp_phi
-    return sliding / h + 0.5 * h * dp_phi
+        return viscosity * speed / h + 0.5 * h * along(direction, dp)
+    return speed / h + 0.5 * h * along(direction, dp)
 
 
-def dissipation(h, dp, sliding: float, viscosity=1.0):
-    """Viscous dissipation per unit area ``mu sliding^2/h + h^3/(12 mu) |grad p|^2``
+def dissipation(h, dp, sliding: float, viscosity=1.0, direction=None):
+    """Viscous dissipation per unit area ``mu sliding^2 |u|^2/h + h^3/(12 mu) |grad p|^2``
     [mu (omega R0)^2 / c, or W/m^2 in SI]: the heat source of the film's energy equation; its integral
     equals the friction power when ``p`` solves the Reynolds equation (Couette shear work plus the
-    Poiseuille flow's pressure work)."""
-    return viscosity * sliding**2 / h + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2)
+    Poiseuille flow's pressure work). ``direction``: the runner's velocity ``u`` (:func:`film_flux`)."""
+    return (viscosity * sliding**2 * _speed_squared(direction) / h
+            + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2))
 
 
 # -- curved elements ---------------------------------------------------------------------

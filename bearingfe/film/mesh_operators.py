@@ -22,6 +22,7 @@ from . import forms
 from .assembly import ASSEMBLIES, DEFAULT_ASSEMBLY, Assembly
 from .compiled import CompiledOperator
 from .forms import mapping
+from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh
 
@@ -148,7 +149,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     inlet = basis.get_dofs(bnd["inlet"]).all() if "inlet" in bnd else np.zeros(0, dtype=np.int64)
     fixed = np.union1d(outer, inlet)
     interior = np.setdiff1d(np.arange(basis.N), fixed)
-    names = [n for n in ("side", "arc_start", "arc_end") if n in bnd] or ["outer"]
+    names = edge_groups(bnd)
     groups = _flow_groups(basis, bnd, names)
     facet_groups = _corner_facets(m, basis, bnd, groups) if len(names) > 1 else {}
     if inlet.size:

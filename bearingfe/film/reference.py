@@ -36,7 +36,8 @@ import skfem
 from . import forms
 from .compiled import FilmFlows
 from .flows import named_flows, outflow, ruptured_elements
-from .forms import FilmAt, couette_source, film_at, film_flux, pressure_from_unknown, shear, unknown_scale
+from .forms import FilmAt, along, couette_source, film_at, film_flux, pressure_from_unknown, shear, unknown_scale
+from ..geometry.runner import velocity_at
 from ..core.linalg import Factorize, Solve
 
 if TYPE_CHECKING:
@@ -59,8 +60,11 @@ def unit_sources(ops: "Operators", at: FilmAt, formulation: str) -> np.ndarray:
     form (:func:`bearingfe.film.forms.couette_source`), the squeeze rates ``int 12 s dh/dq_k v``."""
     weight = unknown_scale(at.h, formulation)
     basis = ops.basis
+    c = couette_source(at.h, formulation)
+    u = velocity_at(ops.mesh.runner, ops.x)
+    f0, f1 = (c, np.zeros_like(at.h)) if u is None else (c * u[0], c * u[1])
     return np.column_stack([
-        forms.gradient_load.assemble(basis, f0=couette_source(at.h, formulation), f1=np.zeros_like(at.h)),
+        forms.gradient_load.assemble(basis, f0=f0, f1=f1),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[0]),
         forms.load.assemble(basis, f=weight * 12.0 * at.shapes[1]),
         np.zeros(basis.N),
@@ -138,7 +142,8 @@ class ReferenceAssembly:
         ops = self.ops
         _, dp = pressure_at_quadrature(ops, at, u, formulation)
         flows, balance = _flows(ops, film, at, u, formulation, dp, float(weights[0]), weights[1:3], cavitated)
-        friction = float(np.sum(shear(at.h, dp[0], sliding) * ops.basis.dx))
+        direction = velocity_at(ops.mesh.runner, ops.x)
+        friction = float(np.sum(shear(at.h, dp, sliding, direction=direction) * ops.basis.dx))
         return flows, balance, friction
 
 
@@ -146,9 +151,11 @@ def _flows(ops: "Operators", film: "Film", at: FilmAt, u: np.ndarray, formulatio
            wedge: float, rates, cavitated: np.ndarray | None = None) -> tuple[dict[str, float], float]:
     """Consistent boundary fluxes from the weak-form residual (see the module docstring)."""
     hdot = rates[0] * at.shapes[0] + rates[1] * at.shapes[1]
-    q0, q1 = film_flux(at.h, dp, wedge)
+    direction = velocity_at(ops.mesh.runner, ops.x)
+    q0, q1 = film_flux(at.h, dp, wedge, direction=direction)
     r = forms.flux_residual.assemble(ops.basis, q0=q0, q1=q1, hdot=hdot)
-    direct = {name: _facet_flux(fb, film, u, formulation, wedge) for name, fb in ops.facet_bases.items()}
+    direct = {name: _facet_flux(fb, film, u, formulation, wedge, ops.mesh.runner)
+              for name, fb in ops.facet_bases.items()}
     flows = _group_flows(ops, r, direct, hdot)
     balance = flows["inlet"] - outflow(flows) - flows["squeeze"]
     if cavitated is None:
@@ -157,7 +164,7 @@ def _flows(ops: "Operators", film: "Film", at: FilmAt, u: np.ndarray, formulatio
     ruptured = ruptured_elements(ops.basis.element_dofs, u, cavitated)
     corrected = dict(flows)
     if ruptured.any():
-        source = np.where(ruptured[:, None], 0.5 * wedge * at.dh[0] + hdot, 0.0)
+        source = np.where(ruptured[:, None], 0.5 * wedge * along(direction, at.dh) + hdot, 0.0)
         corrected = _group_flows(ops, r + forms.load.assemble(ops.basis, f=source), direct, hdot)
     corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])
                                - (outflow(corrected) - outflow(flows)))
@@ -182,12 +189,13 @@ def _group_flows(ops: "Operators", r: np.ndarray, direct: Mapping[str, np.ndarra
     return {k: float(v) for k, v in flows.items()}
 
 
-def _facet_flux(fb: skfem.FacetBasis, film: "Film", u: np.ndarray, formulation: str, wedge: float) -> np.ndarray:
+def _facet_flux(fb: skfem.FacetBasis, film: "Film", u: np.ndarray, formulation: str, wedge: float,
+                runner=None) -> np.ndarray:
     """``int q . n v ds`` on the facets of ``fb`` from the solution gradient."""
     x = np.array(fb.global_coordinates())
     at = film_at(film, x)
     field_ = fb.interpolate(u)
     _, dp = pressure_from_unknown(np.array(field_), field_.grad, at.h, at.dh, formulation)
     n = np.array(fb.normals)
-    q0, q1 = film_flux(at.h, dp, wedge)
+    q0, q1 = film_flux(at.h, dp, wedge, direction=velocity_at(runner, x))
     return forms.load.assemble(fb, f=q0 * n[0] + q1 * n[1])

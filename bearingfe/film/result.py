@@ -26,6 +26,7 @@ from .estimate import ERROR_TOLERANCE, LoadError, load_error
 from .forms import unknown_scale
 from .thickness import Film
 from ..geometry.locate import probes
+from ..geometry.runner import is_along_phi
 
 if TYPE_CHECKING:
     from .mesh_operators import Operators
@@ -91,7 +92,12 @@ def build_result(sup: "Superposition", u: np.ndarray, weights: np.ndarray, slidi
         formulation=sup.formulation, element=ops.element, force=force, integral=integral,
         h_min=sup.h_min, flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
         coercivity=sup.coercivity, notes=sup.notes, cost=MappingProxyType(cost),
-        cavitation=cavitation, iterations=int(iterations), cavitated=cavitated)
+        cavitation=cavitation, iterations=int(iterations), cavitated=cavitated, runner=runner_of(ops.mesh))
+
+
+def runner_of(mesh) -> object:
+    """The mesh's runner for a result: None for the original one (uniform along ``phi``)."""
+    return None if is_along_phi(mesh.runner) else mesh.runner
 
 
 def film_outputs(sups: Sequence["Superposition"], u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
@@ -184,6 +190,10 @@ class ReynoldsResult:
         The load's estimated error (:mod:`bearingfe.film.estimate`) if the
         solve was asked for it (``solve_reynolds(..., estimate_error=True)``);
         otherwise :meth:`estimate_load_error` computes it on demand.
+    runner : Runner or None
+        The mesh's runner (:mod:`bearingfe.geometry.runner`) when it is not the original uniform sliding
+        along ``phi`` (None): the Couette terms of ``flows``, ``friction`` and the error indicators carry
+        its velocity.
     refined : callable or None
         ``refined(self) -> (fine, order, seconds)``: the same solve on the
         mesh refined once, the order of its load error
@@ -218,6 +228,7 @@ class ReynoldsResult:
     deflection: np.ndarray | None = None
     elastic_iterations: int = 0
     load_error: LoadError | None = None
+    runner: object = None
     refined: Callable[["ReynoldsResult"], tuple["ReynoldsResult", float, float]] | None = dataclasses.field(
         default=None, repr=False)
     _estimates: dict = dataclasses.field(default_factory=dict, init=False, repr=False)

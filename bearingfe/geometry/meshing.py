@@ -27,6 +27,7 @@ import skfem
 from .geofiles import (GeometryFileError, MeshData, check_element_count, estimate_triangles, max_elements_limit,
                        read_msh, run_geo)
 from .surface import Surface
+from .runner import ALONG_PHI
 from ..core.tempdirs import private_tempdir
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
@@ -115,6 +116,12 @@ class SupportMesh:
         finite-volume solver (:mod:`bearingfe.film.finite_volume`) takes them."""
         surface = self.surface
         return surface is not None and (bool(surface.recesses) or surface.periodic)
+
+    @property
+    def runner(self):
+        """How the runner slides over the surface (:mod:`bearingfe.geometry.runner`): the surface's,
+        or uniformly along ``phi`` for a mesh without one."""
+        return self.surface.runner if self.surface is not None else ALONG_PHI
 
     @property
     def max_edge(self) -> float:
@@ -476,6 +483,8 @@ def _build_geometry(gmsh, surface: Surface) -> dict[str, list[int]]:
         # edges bottom (side), right (arc_end), top (side), left (arc_start).
         bottom, right, top, left = outer_curves
         groups.update(arc_start=[left], arc_end=[right], side=[bottom, top])
+    elif hasattr(outline, "edge_groups"):  # an outline that names its edges (AnnularSector)
+        groups.update({name: [outer_curves[i] for i in idx] for name, idx in outline.edge_groups().items()})
     for name, curves in groups.items():
         if curves:
             gmsh.model.addPhysicalGroup(1, curves, name=name)

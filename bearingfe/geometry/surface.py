@@ -22,6 +22,7 @@ import numpy as np
 
 from ..core.checks import check_depth
 from ..core.schema import positive
+from .runner import ALONG_PHI, Runner
 
 __all__ = [
     "Shape",
@@ -244,6 +245,106 @@ def Rectangle(center: Sequence[float], size: Sequence[float], angle: float = 0.0
 
 
 @dataclass(frozen=True)
+class AnnularSector:
+    """An annular sector: the outline of a thrust pad in the plane of its runner.
+
+    Parameters
+    ----------
+    inner_radius, outer_radius : float
+        Radii of the inner and outer rims [-] (units of the reference radius), ``0 < inner < outer``.
+    start : float
+        Angle of the edge at the sector's start (the leading edge under a counter-clockwise runner),
+        from the ``+x`` axis [rad].
+    extent : float
+        Angular extent of the sector [rad], ``0 < extent < 2 pi``; the sector runs counter-clockwise from
+        ``start``.
+    centre : (float, float)
+        Centre of the rims [-] (the runner's axis for a thrust bearing).
+
+    Notes
+    -----
+    Its edges are named for the flows (:meth:`edge_groups`): ``arc_start`` (the radial edge at ``start``),
+    ``outer_rim``, ``arc_end`` (the radial edge at ``start + extent``) and ``inner_rim``; the rims are
+    exact circular arcs in gmsh.
+    """
+
+    inner_radius: float
+    outer_radius: float
+    start: float = 0.0
+    extent: float = math.pi / 4
+    centre: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        ri = positive("AnnularSector.inner_radius", self.inner_radius)
+        ro = positive("AnnularSector.outer_radius", self.outer_radius)
+        if not ro > ri:
+            raise ValueError(f"AnnularSector.outer_radius must exceed inner_radius ({ri!r}), got {ro!r}")
+        start, extent = float(self.start), float(self.extent)
+        if not (math.isfinite(start) and abs(start) <= 1e3):
+            raise ValueError(f"AnnularSector.start must be a finite angle [rad] with |start| <= 1e3, got {self.start!r}")
+        if not (math.isfinite(extent) and 0.0 < extent < 2 * math.pi):
+            raise ValueError(f"AnnularSector.extent must be in (0, 2 pi) [rad], got {self.extent!r}")
+        object.__setattr__(self, "inner_radius", ri)
+        object.__setattr__(self, "outer_radius", ro)
+        object.__setattr__(self, "start", start)
+        object.__setattr__(self, "extent", extent)
+        object.__setattr__(self, "centre", _pair(self.centre, "AnnularSector.centre"))
+
+    @property
+    def area(self) -> float:
+        return 0.5 * self.extent * (self.outer_radius**2 - self.inner_radius**2)
+
+    def _point(self, r, angle) -> np.ndarray:
+        return np.array([self.centre[0] + r * np.cos(angle), self.centre[1] + r * np.sin(angle)])
+
+    def boundary(self, n: int = _SAMPLES) -> np.ndarray:
+        ri, ro, a1 = self.inner_radius, self.outer_radius, self.start
+        a2 = a1 + self.extent
+        lengths = np.array([ro - ri, ro * self.extent, ro - ri, ri * self.extent])
+        counts = np.maximum(2, np.round(n * lengths / lengths.sum()).astype(int))
+        t = [np.linspace(0.0, 1.0, k, endpoint=False) for k in counts]
+        return np.hstack([self._point(ri + (ro - ri) * t[0], a1 + 0 * t[0]),
+                          self._point(ro + 0 * t[1], a1 + self.extent * t[1]),
+                          self._point(ro - (ro - ri) * t[2], a2 + 0 * t[2]),
+                          self._point(ri + 0 * t[3], a2 - self.extent * t[3])])
+
+    def polar(self, x, y) -> tuple[np.ndarray, np.ndarray]:
+        """Radius and angle from ``start`` (in ``[0, 2 pi)``) of points about the centre."""
+        dx, dy = np.asarray(x, float) - self.centre[0], np.asarray(y, float) - self.centre[1]
+        return np.hypot(dx, dy), np.mod(np.arctan2(dy, dx) - self.start, 2 * math.pi)
+
+    def contains(self, phi, z):
+        r, angle = self.polar(phi, z)
+        return (r > self.inner_radius) & (r < self.outer_radius) & (angle > 0.0) & (angle < self.extent)
+
+    def corners(self) -> np.ndarray:
+        a1, a2 = self.start, self.start + self.extent
+        return np.column_stack([self._point(self.inner_radius, a1), self._point(self.outer_radius, a1),
+                                self._point(self.outer_radius, a2), self._point(self.inner_radius, a2)])
+
+    def _arc_pieces(self) -> int:
+        return int(math.ceil(self.extent / (math.pi / 2)))  # each gmsh arc well below pi
+
+    def add_to_gmsh(self, occ) -> list[int]:
+        k = self._arc_pieces()
+        angles = self.start + self.extent * np.arange(k + 1) / k
+        centre = occ.addPoint(self.centre[0], self.centre[1], 0.0)
+        outer = [occ.addPoint(*self._point(self.outer_radius, a), 0.0) for a in angles]
+        inner = [occ.addPoint(*self._point(self.inner_radius, a), 0.0) for a in angles]
+        curves = [occ.addLine(inner[0], outer[0])]
+        curves += [occ.addCircleArc(outer[i], centre, outer[i + 1]) for i in range(k)]
+        curves.append(occ.addLine(outer[k], inner[k]))
+        curves += [occ.addCircleArc(inner[i + 1], centre, inner[i]) for i in reversed(range(k))]
+        return curves
+
+    def edge_groups(self) -> dict[str, list[int]]:
+        """Positions of each named edge's curves in :meth:`add_to_gmsh`'s list."""
+        k = self._arc_pieces()
+        return {"arc_start": [0], "outer_rim": list(range(1, k + 1)), "arc_end": [k + 1],
+                "inner_rim": list(range(k + 2, 2 * k + 2))}
+
+
+@dataclass(frozen=True)
 class Slot:
     """Slot (stadium, kidney-like) pocket: a rectangle with semicircular ends.
 
@@ -378,6 +479,10 @@ class Surface:
         across the seam ``phi = alpha1 ~ alpha2`` and the solver identifies
         them. Pockets (e.g. axial grooves of partial length) stay strictly
         inside the arc: choose ``alpha1`` away from them.
+    runner : Runner
+        How the facing surface slides over this one (:mod:`bearingfe.geometry.runner`): uniformly
+        along ``phi`` (the default, every journal and slider) or rotating about an axis (a thrust
+        collar over a pad in the plane).
     """
 
     arc: tuple[float, float] = (-0.5, 0.5)
@@ -386,6 +491,7 @@ class Surface:
     outer: Shape | None = None
     recesses: tuple = ()
     periodic: bool = False
+    runner: Runner = ALONG_PHI
     _outline: Shape = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -410,6 +516,8 @@ class Surface:
             if not isinstance(r, Recess):
                 raise ValueError(f"Surface.recesses[{i}] must be a Recess(shape, depth), got {r!r}")
         object.__setattr__(self, "recesses", recesses)
+        if not isinstance(self.runner, Runner):
+            raise ValueError(f"Surface.runner must be a runner (Translating or Rotating), got {self.runner!r}")
         if not isinstance(self.periodic, bool):
             raise ValueError(f"Surface.periodic must be True or False, got {self.periodic!r}")
         if self.periodic and (self.outer is not None or abs(a2 - a1 - 2 * math.pi) > 1e-9):

@@ -421,7 +421,7 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
     tq = np.asarray(f.basis.interpolate(T))
     conducted = float((alpha * (tq - Tw) * dx).sum())
     residual = abs(power - convected - inflow_heat - conducted) / power
-    tau_runner = shear(f.h, dp[0], U, viscosity=mu_q)
+    tau_runner = shear(f.h, dp, U, viscosity=mu_q)
     friction = float((tau_runner * dx).sum())
     out = np.maximum(qn, 0.0)
     outflow = float((out * f.facets.dx).sum())

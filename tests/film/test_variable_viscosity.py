@@ -55,8 +55,8 @@ def test_flux_shear_dissipation_with_a_viscosity():
     assert np.allclose(q1, -h**3 / (12 * mu) * dp[1], rtol=1e-15)
     iso = film_flux(h, dp, 1.0)
     assert np.array_equal(iso[0], -h**3 / 12.0 * dp[0] + 0.5 * 1.0 * h)  # isoviscous formula, bitwise
-    assert np.allclose(shear(h, dp[0], 1.0, viscosity=mu), mu / h + h / 2 * dp[0], rtol=1e-15)
-    assert np.array_equal(shear(h, dp[0], 1.0), 1.0 / h + 0.5 * h * dp[0])
+    assert np.allclose(shear(h, dp, 1.0, viscosity=mu), mu / h + h / 2 * dp[0], rtol=1e-15)
+    assert np.array_equal(shear(h, dp, 1.0), 1.0 / h + 0.5 * h * dp[0])
     zero = (np.zeros(3), np.zeros(3))
     assert np.allclose(dissipation(h, zero, 2.0, mu), mu * 4.0 / h, rtol=1e-15)
     assert np.allclose(dissipation(h, dp, 1.0, mu), mu / h + h**3 / (12 * mu) * (dp[0] ** 2 + dp[1] ** 2), rtol=1e-15)
