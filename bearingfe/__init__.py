@@ -12,13 +12,13 @@ module or package          what it does
 =========================  =====================================================
 ``version``                the package version
 ``core``                   input schema, size limits, checks, scales, parameter objects, sparse solvers
-``geometry``               support surfaces and pockets, gmsh meshing, untrusted geometry files
+``geometry``               support surfaces and pockets, the runner's motion, gmsh meshing, untrusted geometry files
 ``film``                   one film state: film models, forms, compiled operator, superposition, results, FD, FV
 ``cavitation``             cavitation models and their table (``MODELS``)
 ``elastic``                elastic supports (half-space, block, shoe body) and the coupled film
 ``reynolds``               ``solve_reynolds``: the front door of the Reynolds solvers
 ``adaptivity``             a posteriori error indicators, error-driven adaptive meshes
-``bearings``               journal bearings (fixed and tilting pads), rotor stability; pockets fed through restrictors; the pump and its plunger shoe
+``bearings``               journal bearings (fixed and tilting pads), thrust bearings, rotor stability; pockets fed through restrictors; the pump and its plunger shoe
 ``validation``             closed-form and published-data checks
 ``thermal``                lubricants (viscosity-temperature laws, ISO VG, density, specific heat); heat balance
 ``transient``              the plunger shoe over the pump cycle (``simulate``)
@@ -53,6 +53,7 @@ _MODULES = {
     "pump": "bearings.pump",
     "stability": "bearings.stability",
     "tilting_pad": "bearings.tilting_pad",
+    "thrust": "bearings.thrust",
     "jfo": "film.finite_volume",
     "crank": "mechanisms.crank",
     "efficiency": "mechanisms.efficiency",
@@ -68,9 +69,10 @@ _NAMES = {
     "film.finite_volume": ('JFOError', 'solve_jfo'),
     "core.limits": ('LimitError',),
     "film.fd": ('FDResult', 'solve_reynolds_fd'),
-    "film.thickness": ('CosineFilm', 'Film', 'ProfileFilm', 'StepFilm', 'SumFilm', 'TaperFilm', 'TaperLandFilm',
+    "film.thickness": ('CosineFilm', 'Film', 'PlaneFilm', 'PolarProfileFilm', 'ProfileFilm', 'StepFilm', 'SumFilm', 'TaperFilm', 'TaperLandFilm',
                        'UniformFilm'),
-    "geometry.surface": ('Circle', 'Ellipse', 'Polygon', 'Recess', 'Rectangle', 'Shape', 'Slot', 'Surface'),
+    "geometry.runner": ('Rotating', 'Translating'),
+    "geometry.surface": ('AnnularSector', 'Circle', 'Ellipse', 'Polygon', 'Recess', 'Rectangle', 'Shape', 'Slot', 'Surface'),
     "core.linalg": ('DEFAULT_SOLVER', 'LINEAR_SOLVERS', 'PatternFactorizer', 'available_solvers'),
     "core.machine": ('Drive', 'Material'),
     "mechanisms.machines": ('CrankMechanism', 'CrankSlider', 'Frame', 'Linkage', 'MillDrive', 'Rotor', 'RotorFrame',
@@ -88,6 +90,7 @@ _NAMES = {
     "bearings.journal": ('DynamicCoefficients', 'Groove', 'JournalBearing', 'film_graded_size'),
     "bearings.pump": ('EccentricPump', 'PressureCycle'),
     "bearings.tilting_pad": ('TiltingPadBearing', 'TiltingPadGeometry'),
+    "bearings.thrust": ('SliderPad', 'ThrustPad', 'pad_for_load', 'tilting_equilibrium'),
     "bearings.hydrostatic": ('Capillary', 'ConstantFlow', 'Orifice', 'PrescribedPressure', 'SupplyError',
                              'pocket_transient', 'solve_supplied', 'supply_stiffness'),
     "thermal": ('ConstantViscosity', 'Lubricant', 'ThermalError', 'VogelViscosity', 'WaltherViscosity'),
@@ -138,4 +141,6 @@ __all__ = [
     "SupportMesh", "Surface", "crank", "efficiency", "ibeam", "ibeams", "load_mechanism", "load_mesh",
     "mesh_surface", "grid_mesh", "operators", "refine_uniformly", "rotor", "solve_reynolds", "solve_reynolds_fd", "superpose",
     "thermal", "ConstantViscosity", "Lubricant", "ThermalError", "VogelViscosity", "WaltherViscosity",
+    "AnnularSector", "PlaneFilm", "PolarProfileFilm", "Rotating", "SliderPad", "ThrustPad", "Translating",
+    "pad_for_load", "thrust", "tilting_equilibrium",
 ]

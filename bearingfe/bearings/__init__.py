@@ -1,5 +1,5 @@
 """The bearings built on the film solver: journal bearings (fixed and tilting pads), fed pockets, rotor
-stability and the pump's plunger shoe.
+stability, thrust bearings and the pump's plunger shoe.
 
 ================  ============================================================
 module            what it does
@@ -9,6 +9,7 @@ module            what it does
 ``stability``     Stability of a rigid symmetric rotor on two identical bearings: damped eigenvalues, log decrement, Lund's threshold.
 ``pump``          The eccentric radial-plunger pump: parameters, chamber-pressure cycle, swinging-plunger kinematics.
 ``tilting_pad``   Tilting-pad journal bearings: equilibrium of the shaft and the pads, and Lund's pad-assembly reduction.
+``thrust``        Thrust bearings: annular sector pads on a rotating collar, fixed geometry or tilting on a pivot.
 ================  ============================================================
 """
 
@@ -26,5 +27,7 @@ _NAMES = {
     "stability": ("RotorModes", "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"),
     "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
                     "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium"),
+    "thrust": ("AxialCoefficients", "PIVOTS", "SliderPad", "ThrustError", "ThrustPad", "ThrustPerformance",
+               "axial_coefficients", "pad_for_load", "solve_pad", "tilting_equilibrium"),
 }
 __getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())

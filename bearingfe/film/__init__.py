@@ -15,13 +15,14 @@ module            what it does
 ``flows``         Named film flows, written once for every discretization and every transient.
 ``fd``            Finite-difference reference solver of the Reynolds equation (paper 004's method).
 ``finite_volume`` Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
+``polar_fd``      Finite-difference reference of a thrust pad's film on a polar grid (an independent check of the FEM).
 ================  ============================================================
 """
 
 from __future__ import annotations
 
-from .thickness import (CosineFilm, Film, ProfileFilm, StepFilm, SumFilm, TaperFilm, TaperLandFilm, UniformFilm,
-                        is_smooth, smallest_film)
+from .thickness import (CosineFilm, Film, PlaneFilm, PolarProfileFilm, ProfileFilm, StepFilm, SumFilm, TaperFilm,
+                        TaperLandFilm, UniformFilm, is_smooth, smallest_film)
 from .mesh_operators import Operators, operators
 from .assembly import ASSEMBLIES
 from .superposition import SOURCES, CoercivityError, CondensedSystem, Superposition, source_weights, superpose
@@ -30,7 +31,7 @@ from .estimate import ERROR_TOLERANCE, LOAD_ORDERS, LoadError, load_error, load_
 from .finite_volume import JFOError, solve_jfo
 from .fd import FDResult, solve_reynolds_fd
 
-__all__ = ["CosineFilm", "Film", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm", "TaperLandFilm", "UniformFilm",
+__all__ = ["CosineFilm", "Film", "PlaneFilm", "PolarProfileFilm", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm", "TaperLandFilm", "UniformFilm",
            "is_smooth", "smallest_film", "Operators", "operators", "ASSEMBLIES", "SOURCES",
            "CoercivityError", "CondensedSystem", "Superposition", "source_weights", "superpose", "ReynoldsResult",
            "build_result", "film_outputs", "ERROR_TOLERANCE", "LOAD_ORDERS", "LoadError", "load_error", "load_order", "JFOError", "solve_jfo", "FDResult", "solve_reynolds_fd"]

@@ -7,18 +7,21 @@ as a film (see :class:`Film`).
 
 The models shipped here:
 
-=====================  ===========================================================
-model                  the film
-=====================  ===========================================================
-:class:`CosineFilm`    the rigid eccentric journal in a circular bore
-:class:`UniformFilm`   parallel surfaces (a flat slider, a squeeze film)
-:class:`TaperFilm`     an inclined plane along any direction (the inclined slider)
-:class:`TaperLandFilm` a taper down to a flat land (the taper-land pad)
-:class:`ProfileFilm`   any piecewise-linear profile along a direction, steps allowed
-                       (a Rayleigh step, several lands and tapers)
-:class:`StepFilm`      a base film deepened by a constant over a region of any outline
-:class:`SumFilm`       a base film plus static additions (``film + other`` makes one)
-=====================  ===========================================================
+=========================  ===========================================================================
+model                      the film
+=========================  ===========================================================================
+:class:`CosineFilm`        the rigid eccentric journal in a circular bore
+:class:`UniformFilm`       parallel surfaces (a flat slider, a squeeze film)
+:class:`TaperFilm`         an inclined plane along any direction (the inclined slider)
+:class:`TaperLandFilm`     a taper down to a flat land (the taper-land pad)
+:class:`ProfileFilm`       any piecewise-linear profile along a direction, steps allowed
+                           (a Rayleigh step, several lands and tapers)
+:class:`StepFilm`          a base film deepened by a constant over a region of any outline
+:class:`SumFilm`           a base film plus static additions (``film + other`` makes one)
+:class:`PlaneFilm`         a flat pad tilted over a flat runner (a thrust pad: pivot film, pitch, roll)
+:class:`PolarProfileFilm`  a profile along the angle or the radius about a centre, steps allowed
+                           (a thrust pad's taper-land or Rayleigh step)
+=========================  ===========================================================================
 
 Films with a kink or a step (``smooth = False``) have no Laplacian as a
 function, which the substituted ``pi`` form needs: the solvers then use the
@@ -37,6 +40,7 @@ import numpy as np
 from ..core.checks import MAX_GAMMA, check_angle
 
 __all__ = ["Film", "CosineFilm", "UniformFilm", "TaperFilm", "TaperLandFilm", "ProfileFilm", "StepFilm", "SumFilm",
+           "PlaneFilm", "PolarProfileFilm",
            "is_smooth", "smallest_film"]
 
 
@@ -390,6 +394,165 @@ class ProfileFilm(_Profile):
 
     def knots(self) -> tuple[np.ndarray, np.ndarray]:
         return np.array([s for s, _ in self.points]), np.array([h for _, h in self.points])
+
+
+@dataclass(frozen=True)
+class PlaneFilm(_Addable):
+    """A flat pad tilted over a flat runner: ``h = h_pivot + slope . ((x, y) - pivot)`` (a thrust pad,
+    the film at its pivot and its pitch and roll as the two slopes).
+
+    Parameters
+    ----------
+    h_pivot : float
+        Film at the pivot [c]; the plane may be thinner elsewhere, the solvers refuse ``h <= 0``.
+    pivot : (float, float)
+        The pivot's position in the plane [-].
+    slope : (float, float)
+        ``(dh/dx, dh/dy)`` [c per unit length].
+    second_rates : bool
+        Which state variables the squeeze shapes are: False (default) ``(h_pivot, slope_x)``, shapes
+        ``(1, x - x_p)``; True ``(slope_y, -)``, shapes ``(y - y_p, 0)`` (the roll rate's column of a pad's
+        damping).
+    """
+
+    h_pivot: float
+    pivot: tuple[float, float] = (0.0, 0.0)
+    slope: tuple[float, float] = (0.0, 0.0)
+    second_rates: bool = False
+
+    def __post_init__(self) -> None:
+        h = float(self.h_pivot)
+        if not math.isfinite(h):
+            raise ValueError(f"PlaneFilm.h_pivot must be a finite number [c], got {self.h_pivot!r}")
+        object.__setattr__(self, "h_pivot", h)
+        for name in ("pivot", "slope"):
+            try:
+                a, b = (float(v) for v in getattr(self, name))
+            except (TypeError, ValueError):
+                raise ValueError(f"PlaneFilm.{name} must be a pair of numbers, got {getattr(self, name)!r}") from None
+            if not (math.isfinite(a) and math.isfinite(b)):
+                raise ValueError(f"PlaneFilm.{name} must be finite, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, (a, b))
+
+    def thickness(self, phi, z):
+        return (self.h_pivot + self.slope[0] * (np.asarray(phi, float) - self.pivot[0])
+                + self.slope[1] * (np.asarray(z, float) - self.pivot[1]))
+
+    def gradient(self, phi, z):
+        zero = _zeros(phi, z)
+        return zero + self.slope[0], zero + self.slope[1]
+
+    def laplacian(self, phi, z):
+        return _zeros(phi, z)
+
+    def rate_shapes(self, phi, z):
+        zero = _zeros(phi, z)
+        if self.second_rates:
+            return zero + (np.asarray(z, float) - self.pivot[1]), zero
+        return zero + 1.0, zero + (np.asarray(phi, float) - self.pivot[0])
+
+    def minimum(self, phi_range: tuple[float, float]) -> float | None:
+        return None
+
+
+@dataclass(frozen=True)
+class PolarProfileFilm(_Addable):
+    """A piecewise-linear profile along the angle or the radius about a centre, steps allowed: a thrust pad's
+    machined taper-land or Rayleigh step (step lines radial for ``along="angle"``, circumferential for
+    ``along="radius"``), added to the pad's :class:`PlaneFilm` (``plane + profile``).
+
+    Parameters
+    ----------
+    points : sequence of (s, h)
+        Abscissae (angle from ``start`` [rad], or radius [-]; non-decreasing) and the film there [c]
+        (>= 0: an addition may be zero on the land), linear in between, constant beyond the ends; two
+        points at one abscissa make a step (the film at the step takes the second value).
+    along : {"angle", "radius"}
+    centre : (float, float)
+        The centre of the angles and radii (the runner's axis) [-].
+    start : float
+        Angle of the abscissa 0 for ``along="angle"`` [rad] (the pad's leading edge).
+    """
+
+    points: tuple
+    along: str = "angle"
+    centre: tuple[float, float] = (0.0, 0.0)
+    start: float = 0.0
+
+    def __post_init__(self) -> None:
+        try:
+            pts = tuple((float(s), float(h)) for s, h in self.points)
+        except (TypeError, ValueError):
+            raise ValueError(f"PolarProfileFilm.points must be (s, h) pairs of numbers, got {self.points!r}") from None
+        if len(pts) < 2:
+            raise ValueError(f"PolarProfileFilm.points must have at least 2 points, got {len(pts)}")
+        _check_abscissae("PolarProfileFilm", [s for s, _ in pts], strict=False)
+        for s_, h in pts:
+            if not (math.isfinite(h) and h >= 0.0):
+                raise ValueError(f"PolarProfileFilm.points: film at s = {s_:g} must be finite and >= 0 [c], got {h!r}")
+        if self.along not in ("angle", "radius"):
+            raise ValueError(f"PolarProfileFilm.along must be 'angle' or 'radius', got {self.along!r}")
+        try:
+            cx, cy = (float(v) for v in self.centre)
+        except (TypeError, ValueError):
+            raise ValueError(f"PolarProfileFilm.centre must be a pair of numbers, got {self.centre!r}") from None
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "centre", (cx, cy))
+        object.__setattr__(self, "start", check_angle(self.start, "PolarProfileFilm.start"))
+
+    @property
+    def smooth(self) -> bool:
+        """One straight piece along the angle (``theta`` is harmonic: no Laplacian left); False otherwise."""
+        return len(self.points) == 2 and self.along == "angle"
+
+    def knots(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.array([s for s, _ in self.points]), np.array([h for _, h in self.points])
+
+    def _polar(self, x, y):
+        dx, dy = np.asarray(x, float) - self.centre[0], np.asarray(y, float) - self.centre[1]
+        r = np.hypot(dx, dy)
+        return dx, dy, r, np.mod(np.arctan2(dy, dx) - self.start + math.pi, 2 * math.pi) - math.pi
+
+    def _abscissa(self, x, y):
+        dx, dy, r, angle = self._polar(x, y)
+        return angle if self.along == "angle" else r
+
+    def thickness(self, phi, z):
+        s, h = self.knots()
+        return _interpolate(self._abscissa(phi, z), s, h)
+
+    def _slope(self, x: np.ndarray) -> np.ndarray:
+        s, h = self.knots()
+        out = np.zeros(np.shape(x))
+        for k in range(len(s) - 1):
+            if s[k + 1] > s[k]:
+                inside = (x > s[k]) & (x < s[k + 1])
+                out = np.where(inside, (h[k + 1] - h[k]) / (s[k + 1] - s[k]), out)
+        return out
+
+    def gradient(self, phi, z):
+        dx, dy, r, angle = self._polar(phi, z)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.along == "angle":
+                g = self._slope(angle) / r**2
+                return -g * dy, g * dx
+            g = self._slope(r) / r
+            return g * dx, g * dy
+
+    def laplacian(self, phi, z):
+        """0 along the angle (harmonic); ``slope / r`` along the radius (inside each piece)."""
+        dx, dy, r, angle = self._polar(phi, z)
+        if self.along == "angle":
+            return _zeros(phi, z)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self._slope(r) / r
+
+    def rate_shapes(self, phi, z):
+        zero = _zeros(phi, z)
+        return zero + 1.0, zero
+
+    def minimum(self, phi_range: tuple[float, float]) -> float | None:
+        return None
 
 
 def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
