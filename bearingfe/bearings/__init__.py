@@ -28,6 +28,6 @@ _NAMES = {
     "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",
                     "pad_assembly_coefficients", "ross_table", "tilting_pad_equilibrium"),
     "thrust": ("AxialCoefficients", "PIVOTS", "SliderPad", "ThrustError", "ThrustPad", "ThrustPerformance",
-               "axial_coefficients", "pad_for_load", "solve_pad", "tilting_equilibrium"),
+               "axial_coefficients", "carry", "load_curve", "pad_for_load", "solve_pad", "tilting_equilibrium"),
 }
 __getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())

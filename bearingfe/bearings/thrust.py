@@ -42,7 +42,7 @@ from ..geometry.runner import Rotating, Translating
 from ..geometry.surface import AnnularSector, Surface
 
 __all__ = ["ThrustPad", "SliderPad", "PadSolution", "ThrustPerformance", "ThrustError", "PIVOTS", "solve_pad", "pad_for_load",
-           "tilting_equilibrium", "axial_coefficients", "AxialCoefficients", "performance"]
+           "tilting_equilibrium", "axial_coefficients", "AxialCoefficients", "performance", "carry", "load_curve"]
 
 #: Pivot kinds: the unknowns of the pad's equilibrium beside the film at the pivot.
 PIVOTS: Mapping[str, tuple[str, ...]] = MappingProxyType({
@@ -580,3 +580,30 @@ def axial_coefficients(pad: ThrustPad, mesh: SupportMesh, scale: Scale, at: Thru
     # rates are per unit non-dimensional time (1/omega): the damping in SI is Im(z) / Omega times the force/film scale
     return AxialCoefficients(k_zz=float(z.real * k_scale), c_zz=float(z.imag * k_scale / omega),
                              frequency=omega, stiffness=K, damping=C)
+
+
+def carry(pad, mesh: SupportMesh, scale: Scale, load: float, *, pivot: str | None = "point", pitch: float = 0.0,
+          roll: float = 0.0, start: tuple[float, float, float] | None = None, **solve_options) -> ThrustPerformance:
+    """The bearing under ``load`` [N]: tilting pads in equilibrium on their pivots (``pivot`` of
+    :data:`PIVOTS`), or fixed-geometry pads (``pivot=None``: the tilt ``pitch``, ``roll`` [rad] held, the film
+    at the pivot found). ``start``: a neighbouring solution's ``(h_pivot, pitch, roll)`` (warm start)."""
+    if pivot is None:
+        return pad_for_load(pad, mesh, scale, load, pitch=pitch, roll=roll,
+                            h_guess=None if start is None else start[0], **solve_options)
+    return tilting_equilibrium(pad, mesh, scale, load, pivot=pivot, start=start, **solve_options)
+
+
+def load_curve(pad, mesh: SupportMesh, scale: Scale, loads, *, pivot: str | None = "point", pitch: float = 0.0,
+               roll: float = 0.0, **solve_options) -> tuple[ThrustPerformance, ...]:
+    """The bearing over ``loads`` [N] (each > 0), every solve warm-started from the previous one with its film
+    and tilt scaled by ``(W_prev / W)^(1/2)`` (the rigid isoviscous film's similarity)."""
+    out: list[ThrustPerformance] = []
+    start = None
+    for w in loads:
+        if out:
+            k = math.sqrt(out[-1].load / float(w))
+            prev = out[-1]
+            start = (prev.h_pivot * k, prev.pitch * k if pivot is not None else pitch,
+                     prev.roll * k if pivot == "point" else roll)
+        out.append(carry(pad, mesh, scale, w, pivot=pivot, pitch=pitch, roll=roll, start=start, **solve_options))
+    return tuple(out)

@@ -40,7 +40,8 @@ class Panel:
     result, ``z`` in units of ``R0``); ``surface`` gives the exact
     pocket and outline curves; ``offset_deg`` is added to the angle (e.g. a pad's place in the
     bearing frame); ``true_aspect``: draw arc length and width to the same scale (a full journal
-    bearing, far longer round than wide, reads better stretched: ``False``).
+    bearing, far longer round than wide, reads better stretched: ``False``); ``plane``: the result lives on
+    a plane (a thrust pad: ``x``, ``y`` in units of ``R0``), both axes drawn in mm.
     """
 
     result: Any
@@ -52,6 +53,7 @@ class Panel:
     surface: Any = None
     offset_deg: float = 0.0
     true_aspect: bool = True
+    plane: bool = False
 
 
 #: Display triangles aimed at: a P2 field is refined while its display mesh stays below this.
@@ -107,7 +109,10 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     xy, t, v = sampled(panel.result, kind=panel.kind, nrefs=nrefs)
     v = v * panel.scale
     to_mm = 1.0 if panel.radius is None else panel.radius * 1e3
-    x, y = np.degrees(xy[0]) + panel.offset_deg, xy[1] * to_mm
+    def to_axes(u, w):
+        return (u * to_mm, w * to_mm) if panel.plane else (np.degrees(u) + panel.offset_deg, w * to_mm)
+
+    x, y = to_axes(xy[0], xy[1])
     tri = Triangulation(x, y, t.T)
     lo, hi = float(v.min()), float(v.max())
     inlet = float(getattr(panel.result, "inlet_pressure", 0.0)) * panel.scale
@@ -120,7 +125,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         hi = lo + (abs(lo) or 1.0) * 1e-6
     mappable = ax.tripcolor(tri, v, shading="gouraud", cmap=cmap, vmin=lo, vmax=hi, rasterized=True)
     for loop in loops:
-        px, py = np.degrees(loop[0]) + panel.offset_deg, loop[1] * to_mm
+        px, py = to_axes(loop[0], loop[1])
         if pocket_color is None:
             ax.fill(px, py, color=mappable.cmap(mappable.norm(inlet)), zorder=2)
         else:
@@ -128,8 +133,8 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         ax.plot(np.append(px, px[0]), np.append(py, py[0]), color="k", lw=1.0, zorder=3)
     if panel.surface is not None:
         out = panel.surface.outline.boundary(360)
-        ax.plot(np.degrees(np.append(out[0], out[0, 0])) + panel.offset_deg, np.append(out[1], out[1, 0]) * to_mm,
-                color="k", lw=1.0)
+        ox, oy = to_axes(np.append(out[0], out[0, 0]), np.append(out[1], out[1, 0]))
+        ax.plot(ox, oy, color="k", lw=1.0)
     ruptured = getattr(panel.result, "cavitated", None)
     if panel.kind == "pressure" and ruptured is not None and np.size(ruptured) == panel.result.basis.N:
         _, _, flag = sampled(panel.result, np.asarray(ruptured, dtype=float).ravel(), nrefs=nrefs)
@@ -141,10 +146,16 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         ax.plot([], [], color="red", label="p = 0")
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize="small")
-    if panel.true_aspect:
-        ax.set_aspect(1.0 / (np.pi / 180 * to_mm))  # 1 deg of arc is R0 pi/180 long
-    ax.set_xlabel("phi [deg]")
-    ax.set_ylabel("z [R0]" if panel.radius is None else "z [mm]")
+    unit = "R0" if panel.radius is None else "mm"
+    if panel.plane:
+        ax.set_aspect(1.0)
+        ax.set_xlabel(f"x [{unit}]")
+        ax.set_ylabel(f"y [{unit}]")
+    else:
+        if panel.true_aspect:
+            ax.set_aspect(1.0 / (np.pi / 180 * to_mm))  # 1 deg of arc is R0 pi/180 long
+        ax.set_xlabel("phi [deg]")
+        ax.set_ylabel(f"z [{unit}]")
     if panel.title:
         ax.set_title(panel.title, fontsize="medium")
     if colorbar:

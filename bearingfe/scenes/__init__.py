@@ -17,6 +17,7 @@ module        scene kind
 ``reynolds``  ``"reynolds"``: one static film solve (surface, film, operating point)
 ``pump``      ``"pump"``: the plunger shoe with and without its pocket over a revolution
 ``journal``   ``"journal"``: a journal bearing from a file in SI units
+``thrust``    ``"thrust"``: a thrust bearing of sector pads (tilting or fixed) in SI units
 ============  =================================================================
 """
 
@@ -26,7 +27,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Callable, Mapping
 
-from . import journal, pump, reynolds
+from . import journal, pump, reynolds, thrust
 from ..core.schema import SchemaError, choice, read_toml
 
 __all__ = ["SceneError", "SCENES", "SETTINGS", "load_scene", "run_scene"]
@@ -39,12 +40,14 @@ SCENES: Mapping[str, Callable[..., dict]] = MappingProxyType({
     "reynolds": reynolds.run,
     "pump": pump.run,
     "journal": journal.run,
+    "thrust": thrust.run,
 })
 #: Scene kinds and the readers of their files: ``settings(data, label, base_dir) -> settings``.
 SETTINGS: Mapping[str, Callable[..., dict]] = MappingProxyType({
     "reynolds": reynolds.settings,
     "pump": pump.settings,
     "journal": journal.settings,
+    "thrust": thrust.settings,
 })
 
 
