@@ -327,22 +327,29 @@ def _pad_loads(pad: ThrustPad, res) -> tuple[float, np.ndarray]:
     X, Y = x[0] - xp[0], x[1] - xp[1]
     load = float(np.sum(p * dx))
     m = np.array([np.sum(p * (X * t[0] + Y * t[1]) * dx), np.sum(p * (X * r[0] + Y * r[1]) * dx)])
-    if pad.pockets and res.inlet_pressure != 0.0:
-        for shape in pad.pockets:
-            area, cx, cy = _polygon_moments(shape.boundary(2048))
-            load += res.inlet_pressure * area
-            m += res.inlet_pressure * area * np.array([(cx - xp[0]) * t[0] + (cy - xp[1]) * t[1],
-                                                       (cx - xp[0]) * r[0] + (cy - xp[1]) * r[1]])
+    if res.inlet_pressure != 0.0:
+        area, cx, cy = _pocket_moments(basis)
+        X, Y = cx - xp[0] * area, cy - xp[1] * area   # int over the pockets of (x - x_p), (y - y_p)
+        load += res.inlet_pressure * area
+        m += res.inlet_pressure * np.array([X * t[0] + Y * t[1], X * r[0] + Y * r[1]])
     return load, m
 
 
-def _polygon_moments(xy: np.ndarray) -> tuple[float, float, float]:
-    """Area and centroid of a closed polyline (shoelace)."""
-    x, y = xy
-    xn, yn = np.roll(x, -1), np.roll(y, -1)
-    cross = x * yn - xn * y
-    area = 0.5 * cross.sum()
-    return abs(area), float(((x + xn) * cross).sum() / (6 * area)), float(((y + yn) * cross).sum() / (6 * area))
+def _pocket_moments(basis) -> tuple[float, float, float]:
+    """``int 1``, ``int x``, ``int y`` over the pockets (the mesh's holes, curved edges included), by the
+    divergence theorem on their contours: with ``n`` the film's outward normal (into the pocket),
+    ``int_P 1 = -oint x n_x``, ``int_P x = -oint x^2/2 n_x``, ``int_P y = -oint y^2/2 n_y``."""
+    from ..film.mesh_operators import facet_basis
+
+    facets = (basis.mesh.boundaries or {}).get("inlet")
+    if facets is None or len(facets) == 0:
+        return 0.0, 0.0, 0.0
+    fb = facet_basis(basis, facets, 8)
+    x = np.asarray(fb.global_coordinates())
+    n = np.asarray(fb.normals)
+    dx = np.asarray(fb.dx)
+    return (float(-np.sum(x[0] * n[0] * dx)), float(-np.sum(0.5 * x[0] ** 2 * n[0] * dx)),
+            float(-np.sum(0.5 * x[1] ** 2 * n[1] * dx)))
 
 
 # -- the bearing in SI ------------------------------------------------------------------------

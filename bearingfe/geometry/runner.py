@@ -7,14 +7,14 @@ whose velocity ``omega x r`` grows with the radius and turns with the angle. A r
 velocity field over the support's plane, relative to a reference speed (the journal's ``omega R0``,
 the collar's ``omega R0`` at the unit radius ``R0``):
 
-===================  ==================================================================
-runner               velocity ``u = U / U_ref`` at ``(x, y)`` of the plane [-]
-===================  ==================================================================
-:class:`Translating` uniform ``(cos a, sin a)`` (default ``a = 0``: along ``phi``, every
-                     journal, slider and pump film)
-:class:`Rotating`    ``sense (-(y - y_c), x - x_c)``: a collar turning about ``(x_c, y_c)``
-                     (counter-clockwise for ``sense = +1``), speed 1 at the unit radius
-===================  ==================================================================
+======================  ==================================================================
+runner                  velocity ``u = U / U_ref`` at ``(x, y)`` of the plane [-]
+======================  ==================================================================
+:class:`Translating`    uniform ``(cos a, sin a)`` (default ``a = 0``: along ``phi``, every
+                        journal, slider and pump film)
+:class:`Rotating`       ``sense (-(y - y_c), x - x_c)``: a collar turning about ``(x_c, y_c)``
+                        (counter-clockwise for ``sense = +1``), speed 1 at the unit radius
+======================  ==================================================================
 
 Both fields are divergence free (rigid motions of the runner in its plane), which the conservative
 Couette source needs (:func:`bearingfe.film.forms.couette_source`: ``div(h u) = u . grad h``).

@@ -167,3 +167,38 @@ def test_polar_profile_gradient(along, points):
     gy = (film.thickness(x, y + e) - film.thickness(x, y - e)) / (2 * e)
     g = film.gradient(x, y)
     assert np.allclose(g[0], gx, atol=1e-6) and np.allclose(g[1], gy, atol=1e-6)
+
+
+def _cavitating_sector():
+    """A sector pad whose film converges to the middle of its angle and diverges after: the second half
+    ruptures under every cavitation model."""
+    film = PlaneFilm(0.6, (0.0, 0.0), (0.0, 0.0)) + PolarProfileFilm(
+        ((0.0, 1.0), (0.5 * SECTOR.extent, 0.0), (SECTOR.extent, 1.0)), along="angle")
+    return bf.mesh_surface(bf.Surface(outer=SECTOR, runner=Rotating()), 0.04), film
+
+
+def test_every_cavitation_model_takes_the_rotating_runner():
+    """Swift-Stieber, Gumbel and JFO on a ruptured sector pad: Gumbel's clipped full-film pressure carries less
+    than Swift-Stieber's (whose positive zone is not pulled down by a negative lobe), the JFO film is mass-conserving to round-off and its load within 10 % of
+    Swift-Stieber's (the two rupture models differ by the reformation the JFO film carries)."""
+    mesh, film = _cavitating_sector()
+    ss, gumbel, jfo = (bf.solve_reynolds(mesh, film, formulation="direct", cavitation=c)
+                       for c in ("reynolds", "gumbel", "jfo"))
+    assert np.mean(ss.cavitated) > 0.2 and jfo.cavitated_fraction > 0.2
+    assert ss.integral > gumbel.integral > 0
+    assert abs(jfo.mass_balance) < 1e-12 * abs(jfo.flows["arc_start"])
+    assert jfo.integral == pytest.approx(ss.integral, rel=0.1)
+
+
+def test_pockets_on_a_pad_count_in_its_load():
+    """A parallel sector pad fed through a circular pocket (no sliding): the pad's load from bearings.thrust
+    (film plus pocket pressure times its area, by the pocket's polygon) equals the solver's int p."""
+    from bearingfe.bearings.thrust import ThrustPad, solve_pad
+    from bearingfe.core.scales import Scale
+
+    pocket = bf.Circle((0.75 * math.cos(0.35), 0.75 * math.sin(0.35)), 0.08)
+    pad = ThrustPad(0.05, 0.1, 0.7, pockets=(pocket,))
+    scale = Scale(0.1, 20e-6, 0.03, 100.0)
+    sol = solve_pad(pad, pad.mesh(0.04), pad.state(scale, 20e-6), scale=scale, inlet_pressure=0.5, wedge=0.0)
+    assert sol.load == pytest.approx(sol.result.integral, rel=1e-12)  # the same pocket (the mesh's hole)
+    assert sol.load > 0.5 * pocket.area * 0.95  # at least the pocket pressure over the pocket (its polygon)
