@@ -144,7 +144,15 @@ _DUALS: "weakref.WeakKeyDictionary[SupportMesh, _Dual]" = weakref.WeakKeyDiction
 def _dual(mesh: SupportMesh) -> _Dual:
     if mesh in _DUALS:
         return _DUALS[mesh]
-    m = mesh.mesh
+    d = median_dual(mesh.mesh)
+    _DUALS[mesh] = d
+    return d
+
+
+def median_dual(m) -> _Dual:
+    """The median-dual segments of a straight P1 triangle mesh ``m`` (a scikit-fem mesh): per (triangle,
+    edge) the edge's nodes, the segment's normal from the first to the second scaled by its length, and
+    its midpoint."""
     p, t = m.p, m.t[:3]
     g = p[:, t].mean(axis=1)
     ii, jj, nn, xx = [], [], [], []
@@ -156,9 +164,7 @@ def _dual(mesh: SupportMesh) -> _Dual:
         flip = np.sum(n * (p[:, j] - p[:, i]), axis=0) < 0
         n[:, flip] *= -1
         ii.append(i), jj.append(j), nn.append(n), xx.append(0.5 * (mid + g))
-    d = _Dual(i=np.concatenate(ii), j=np.concatenate(jj), normal=np.hstack(nn), midpoint=np.hstack(xx))
-    _DUALS[mesh] = d
-    return d
+    return _Dual(i=np.concatenate(ii), j=np.concatenate(jj), normal=np.hstack(nn), midpoint=np.hstack(xx))
 
 
 @dataclass(frozen=True, eq=False)

@@ -174,36 +174,46 @@ def couette_source(h, formulation: str):
     return c - c.flat[0] if c.size else c
 
 
-def film_flux(h, dp, wedge: float, viscosity=None) -> tuple[np.ndarray, np.ndarray]:
+def film_flux(h, dp, wedge: float, viscosity=None, fill=None) -> tuple[np.ndarray, np.ndarray]:
     """``q = -h^3/12 grad p + wedge h/2 e_phi`` (Poiseuille plus Couette) [omega R0^2 c].
 
     ``viscosity``, optional: a viscosity varying over the film, relative to the scale's (a field at the
     same points, or in SI with ``h`` [m], ``p`` [Pa], ``wedge = U`` [m/s]: ``q = -h^3/(12 mu) grad p +
     U h/2`` [m^2/s]); without it the isoviscous formula, unchanged.
+    ``fill``, optional: the JFO fill fraction ``theta`` [-] at the same points: the liquid's flux, the
+    Couette part ``wedge theta h/2``; without it (or with ``theta = 1``) the full film's.
     """
     c = -np.asarray(h) ** 3 / 12.0
     if viscosity is not None:
         c = c / viscosity
-    return c * dp[0] + 0.5 * wedge * h, c * dp[1]
+    couette = 0.5 * wedge * h if fill is None else 0.5 * wedge * fill * h
+    return c * dp[0] + couette, c * dp[1]
 
 
-def shear(h, dp_phi, sliding: float, viscosity=None):
+def shear(h, dp_phi, sliding: float, viscosity=None, fill=None):
     """Shear on the journal ``sliding/h + h/2 dp/dphi`` [mu omega R0 / c]; its integral is the friction.
 
     ``viscosity``, optional: relative to the scale's, a field at the same points (or in SI: ``mu U/h +
     h/2 dp/dx`` [Pa] with ``sliding = U``); the Poiseuille part does not depend on it.
+    ``fill``, optional: the JFO fill fraction ``theta`` [-]: in a cavity only the liquid's share of the
+    gap is sheared, ``theta mu U/h``; without it the full film's.
     """
-    if viscosity is not None:
-        return viscosity * sliding / h + 0.5 * h * dp_phi
-    return sliding / h + 0.5 * h * dp_phi
+    couette = sliding / h if viscosity is None else viscosity * sliding / h
+    if fill is not None:
+        couette = fill * couette
+    return couette + 0.5 * h * dp_phi
 
 
-def dissipation(h, dp, sliding: float, viscosity=1.0):
+def dissipation(h, dp, sliding: float, viscosity=1.0, fill=None):
     """Viscous dissipation per unit area ``mu sliding^2/h + h^3/(12 mu) |grad p|^2``
     [mu (omega R0)^2 / c, or W/m^2 in SI]: the heat source of the film's energy equation; its integral
     equals the friction power when ``p`` solves the Reynolds equation (Couette shear work plus the
-    Poiseuille flow's pressure work)."""
-    return viscosity * sliding**2 / h + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2)
+    Poiseuille flow's pressure work). ``fill``, optional: the JFO fill fraction ``theta`` [-]; in a
+    cavity only the liquid's share dissipates, ``theta mu sliding^2/h``."""
+    couette = viscosity * sliding**2 / h
+    if fill is not None:
+        couette = fill * couette
+    return couette + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2)
 
 
 # -- curved elements ---------------------------------------------------------------------
