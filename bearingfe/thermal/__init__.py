@@ -31,6 +31,6 @@ _NAMES = {
     "viscosity_index": ("reference_viscosities", "viscosity_40", "viscosity_100", "viscosity_index"),
     "film_energy": ("FilmEnergy", "Pad", "PadLevel1", "film_energy", "journal_pad", "pad_level1", "pad_mesh",
                     "slider_reference"),
-    "pump_cycle": ("CycleTemperature", "cycle_temperature"),
+    "pump_cycle": ("CycleTemperature", "cycle_temperature", "shoe_pad"),
 }
 __getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())
