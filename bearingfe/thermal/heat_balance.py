@@ -41,7 +41,9 @@ Level 2 (:mod:`bearingfe.thermal.film_energy`): the film's mean temperature as a
 2-D field from the energy equation (convection by the mean film flux, viscous
 heating, adiabatic or with a heat-transfer coefficient to the walls), stabilised
 by SUPG and coupled to a Reynolds equation whose viscosity varies over the film;
-for a plane pad so far, not yet for the journal bearing.
+on a plane pad, a full journal unwrapped from its groove (with Swift-Stieber or
+JFO cavitation, hot-oil carry-over at the groove) and the plain pump shoe at one
+frozen state of its cycle (:func:`bearingfe.thermal.pump_cycle.shoe_pad`).
 """
 
 from __future__ import annotations
