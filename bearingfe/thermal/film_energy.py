@@ -189,15 +189,19 @@ class FilmEnergy:
         Dissipated power ``int Phi`` [W].
     friction_power : float
         ``U`` times ``friction`` [W]; equals ``power`` for the discrete Reynolds solution (its weak
-        form tested with the pressure itself).
+        form tested with the pressure itself; with JFO, whose Couette flux is finite-volume, to the
+        discretization).
     inflow : float
         Oil entering the film [m^3/s] (the negative consistent boundary flows).
     convected : float
-        Heat carried out by the boundary flows, ``rho c_p sum r_i (T_i - T_s)`` [W].
+        Heat carried out by the boundary flows, ``rho c_p sum r_i (T_i - T_s)`` [W] (with JFO the
+        outflows at their cells' temperatures, the inflows at their inlet temperatures), net of the
+        carried-over heat that re-enters.
     inflow_heat : float
-        The weak inlet condition's share, ``rho c_p int_in |q.n| (T - T_s)`` [W] (-> 0 with the mesh).
+        The weak inlet condition's share, ``rho c_p int_in |q.n| (T - T_in)`` [W] (-> 0 with the mesh;
+        0 with JFO, whose inlet is nodal).
     conducted : float
-        Heat to the walls, ``int alpha (T - T_w)`` [W].
+        Heat to the walls, ``int alpha (T - T_w)`` [W] (lumped on the cells with JFO).
     balance_residual : float
         ``|power - convected - inflow_heat - conducted| / power`` [-].
     mean_temperature, max_temperature, outlet_temperature : float
@@ -496,14 +500,14 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
     leading = (np.abs(np.asarray(f.facets.global_coordinates()[0]).mean(axis=1)) < 1e-9 * pad.length)[:, None]
     jfo = cavitation == "jfo"
     cavity = None
-    theta, theta_q, theta_f = np.ones(f.basis.N), None, None
+    theta, theta_q = np.ones(f.basis.N), None
     change = np.inf
     for k in range(1, max_iterations + 1):
         mu_q = _viscosity(lubricant, np.asarray(f.basis.interpolate(T)))
         if jfo:
             p, theta, cavity, flows, K = f.jfo(mu_q, cavity)
             cavitated = int(cavity.sum())
-            theta_q, theta_f = np.asarray(f.basis.interpolate(theta)), np.asarray(f.facets.interpolate(theta))
+            theta_q = np.asarray(f.basis.interpolate(theta))
         else:
             p, cavitated = f.pressure(mu_q)
         (q0, q1), dp = f.flux(p, mu_q, theta_q)
@@ -557,13 +561,13 @@ def film_energy(pad: Pad, mesh: MeshTri, lubricant: Lubricant, supply_temperatur
     T = T_new
     dx = f.basis.dx
     power = float((phi * dx).sum())
-    convected = rc * float(flows @ (T - Ts))
     if jfo:  # the nodal inlet: the oil enters at t_b exactly (no weak share), and leaves at its cell's temperature
         convected = rc * float(np.maximum(flows, 0.0) @ (T - Ts) - a_in @ (t_b - Ts))
         inflow_heat = 0.0
         outflow = float(np.maximum(flows, 0.0).sum())
         outlet = float(np.maximum(flows, 0.0) @ T) / outflow if outflow > 0 else float("nan")
     else:
+        convected = rc * float(flows @ (T - Ts))
         tf = np.asarray(f.facets.interpolate(T))
         inflow_heat = rc * float((a_in * (tf - t_b) * f.facets.dx).sum())
         out = np.maximum(qn, 0.0)
