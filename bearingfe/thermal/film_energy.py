@@ -601,7 +601,7 @@ def _carried_inlet(flows: np.ndarray, T: np.ndarray, leading: np.ndarray, traili
         return Ts, 0.0, t_t
     q_lead = float(np.maximum(-flows[leading], 0.0).sum())
     fresh = q_lead - lam * q_t
-    if not fresh > 0:
+    if not fresh > 1e-9 * q_lead:  # (round-off of the flows aside)
         raise ThermalError(f"the carried-over oil ({lam:g} x {q_t:.4g} m^3/s of the trailing edge) is not less than "
                            f"the leading edge's inflow ({q_lead:.4g} m^3/s): no fresh oil enters; lower carry_over")
     return mixed_inlet(fresh, Ts, q_t, t_t, lam), lam * q_t, t_t

@@ -302,3 +302,10 @@ def test_carry_over_outside_0_1_is_refused(carry_over):
     pad = Pad.inclined(L, B, H0, K, U)
     with pytest.raises(ValueError, match=r"carry_over must be in \[0, 1\]"):
         film_energy(pad, pad_mesh(pad, 2, 2), OIL, TS, carry_over=carry_over)
+
+
+def test_carrying_over_all_the_outflow_of_a_closed_slider_is_an_error():
+    # closed sides: all the oil that enters leaves at the trailing edge, so lambda = 1 leaves no fresh oil
+    pad = Pad.inclined(L, 0.01, H0, K, U, sides="closed")
+    with pytest.raises(ThermalError, match="no fresh oil"):
+        film_energy(pad, pad_mesh(pad, 8, 1), OIL, TS, carry_over=1.0)
