@@ -88,7 +88,7 @@ from ..geometry.runner import is_along_phi, velocity_at
 from .mesh_operators import Operators, operators
 from .result import ReynoldsResult, runner_of
 
-__all__ = ["JFOError", "solve_jfo", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
+__all__ = ["JFOError", "solve_jfo", "FVSystem", "FVUnknowns", "active_set", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
            "UNSTRUCTURED_JFO_NOTE", "RECESS_JFO_NOTE", "TENSOR_SOURCES", "STREAMLINE_PASSES"]
 
 #: Default cap on active-set iterations.
@@ -146,7 +146,15 @@ _DUALS: "weakref.WeakKeyDictionary[SupportMesh, _Dual]" = weakref.WeakKeyDiction
 def _dual(mesh: SupportMesh) -> _Dual:
     if mesh in _DUALS:
         return _DUALS[mesh]
-    m = mesh.mesh
+    d = median_dual(mesh.mesh)
+    _DUALS[mesh] = d
+    return d
+
+
+def median_dual(m) -> _Dual:
+    """The median-dual segments of a straight P1 triangle mesh ``m`` (a scikit-fem mesh): per (triangle,
+    edge) the edge's nodes, the segment's normal from the first to the second scaled by its length, and
+    its midpoint."""
     p, t = m.p, m.t[:3]
     g = p[:, t].mean(axis=1)
     ii, jj, nn, xx = [], [], [], []
@@ -158,9 +166,7 @@ def _dual(mesh: SupportMesh) -> _Dual:
         flip = np.sum(n * (p[:, j] - p[:, i]), axis=0) < 0
         n[:, flip] *= -1
         ii.append(i), jj.append(j), nn.append(n), xx.append(0.5 * (mid + g))
-    d = _Dual(i=np.concatenate(ii), j=np.concatenate(jj), normal=np.hstack(nn), midpoint=np.hstack(xx))
-    _DUALS[mesh] = d
-    return d
+    return _Dual(i=np.concatenate(ii), j=np.concatenate(jj), normal=np.hstack(nn), midpoint=np.hstack(xx))
 
 
 @dataclass(frozen=True, eq=False)
@@ -538,7 +544,7 @@ def _rate(film: Film, phi: np.ndarray, z: np.ndarray, squeeze) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class _System:
+class FVSystem:
     """Discrete JFO operators of one film state and operating point (all dofs)."""
 
     K: sp.csr_matrix       # Poiseuille: int h^3/12 grad p . grad v
@@ -557,7 +563,7 @@ class _System:
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
-              couette: str = "median") -> _System:
+              couette: str = "median") -> FVSystem:
     basis = ops.basis
     x = ops.x
     h_q = _thickness(mesh, film, x[0], x[1])
@@ -601,7 +607,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         storage = storage + H / dt
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
-    return _System(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
+    return FVSystem(K=K, C=C, storage=storage, source=source, area=area, h_q=h_q, hdot_q=hdot_q, inv_h_q=inv_h_q,
                    reconstruction=rec, couette=couette, C_cavity=C_cavity, **grid)
 
 
@@ -617,7 +623,7 @@ class _Solution:
 
 
 @dataclass(frozen=True, eq=False)
-class _Unknowns:
+class FVUnknowns:
     """Map from the unknowns (interior dofs, seam pairs of a periodic mesh merged) to all dofs."""
 
     S: sp.csr_matrix        # (n_dofs, m): full = S @ reduced (zero rows on fixed dofs)
@@ -625,7 +631,7 @@ class _Unknowns:
     fixed: np.ndarray       # dofs with given pressure and theta = 1
 
 
-def _unknowns(mesh: SupportMesh, ops: Operators) -> _Unknowns:
+def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
     n, I = ops.n_dofs, ops.interior
     rep_of = np.arange(n)
     start, end = periodic_pairs(mesh)
@@ -633,10 +639,10 @@ def _unknowns(mesh: SupportMesh, ops: Operators) -> _Unknowns:
     reps = np.unique(rep_of[I])
     cols = np.searchsorted(reps, rep_of[I])
     S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
-    return _Unknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I))
+    return FVUnknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I))
 
 
-def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
+def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
     """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b``."""
     K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
     St = unk.S.T.tocsr()
@@ -648,7 +654,7 @@ def _reduced(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float):
     return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
 
 
-def _reduced_cavity(system: _System, unk: _Unknowns, G: sp.csr_matrix) -> sp.csr_matrix:
+def _reduced_cavity(system: FVSystem, unk: FVUnknowns, G: sp.csr_matrix) -> sp.csr_matrix:
     """Condensed operator of the cavitated unknowns' theta (``G`` where the system has no separate one)."""
     if system.C_cavity is None:
         return G
@@ -656,7 +662,7 @@ def _reduced_cavity(system: _System, unk: _Unknowns, G: sp.csr_matrix) -> sp.csr
     return (St @ (system.C_cavity + sp.diags(system.storage)) @ unk.S).tocsr()
 
 
-def _effective(system: _System, unk: _Unknowns, cavity: np.ndarray) -> _System:
+def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSystem:
     """The system with one Couette operator: the cavitated columns from ``C_cavity`` (for the flows)."""
     if system.C_cavity is None:
         return system
@@ -723,7 +729,7 @@ class _SetSolver:
             return None
 
 
-def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
                 negative: bool = False) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
@@ -769,7 +775,7 @@ def _active_set(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float
     raise error
 
 
-def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+def _obstacle(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
               factorize: Factorize, tol: float, max_iterations: int) -> _Solution:
     """Swift-Stieber on the same discretization: theta = 1 everywhere, ``P >= 0``, multiplier
     ``lam = K P + G 1 + b >= 0`` (the oil the ruptured zone creates), ``P lam = 0``; primal-dual active set."""
@@ -802,7 +808,7 @@ def _obstacle(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, 
 LIMITER_SWEEPS = 6
 
 
-def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, sol: _Solution,
+def _limited_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, sol: _Solution,
                    factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
     """``couette="limited"``: from the first-order solution, the limiter of the last theta frozen and the
     second-order flux solved implicitly (one linear complementarity problem, warm-started on the last
@@ -820,11 +826,11 @@ def _limited_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: fl
             break
         alpha = new
         system = dataclasses.replace(system, C=(C1 + _limited_flux(rec, alpha)).tocsr())
-        sol = _active_set(system, unk, p_fixed, p_c, sol.cavity, factorize, tol, max_iterations)
+        sol = active_set(system, unk, p_fixed, p_c, sol.cavity, factorize, tol, max_iterations)
     return system, sol
 
 
-def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
+def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                       factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
     """``couette="streamline"``: the active set on the streamline flux; where it ends with ``theta < 0`` or
     cycles (the flux is not positive: a cell's outflow takes theta of its neighbours), the segments out of
@@ -839,7 +845,7 @@ def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c:
     start = cavity
     for _ in range(STREAMLINE_PASSES):
         try:
-            sol = _active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
         except JFOError as error:
             switching = getattr(error, "switching", None)
             if switching is None or switching.size == 0:
@@ -864,7 +870,7 @@ def _streamline_solve(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c:
                    "(time step too long, or a squeeze rate no oil film can follow); try couette='median'")
 
 
-def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: float,
+def _initial_cavity(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float,
                     factorize: Factorize) -> np.ndarray:
     """Cavity guess: where the full-film (theta = 1) solution falls below p_c."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
@@ -874,7 +880,7 @@ def _initial_cavity(system: _System, unk: _Unknowns, p_fixed: np.ndarray, p_c: f
 
 # -- the fill inside the box cells of a grid ------------------------------------------------
 
-def _box_fill(mesh: SupportMesh, film: Film, system: _System, theta: np.ndarray, wedge: float,
+def _box_fill(mesh: SupportMesh, film: Film, system: FVSystem, theta: np.ndarray, wedge: float,
               samples: int = 8) -> tuple[float, float]:
     """Shear deficit ``int (1 - fill)/h`` and area ``int [fill < 1]`` of the emptied box cells of a grid.
 
@@ -940,7 +946,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     return out
 
 
-def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: _System, wedge: float,
+def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
            p: np.ndarray, theta: np.ndarray, created: bool = False) -> tuple[dict[str, float], float]:
     """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative)."""
     basis = ops.basis
@@ -1015,7 +1021,7 @@ def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitatio
     return sq
 
 
-def _warm_cavity(warm_start, ops: Operators, unk: _Unknowns) -> np.ndarray | None:
+def _warm_cavity(warm_start, ops: Operators, unk: FVUnknowns) -> np.ndarray | None:
     """Cavity mask on the unknowns from a previous result (same mesh, or another mesh of the same
     surface: nearest-node transfer, i.e. nested iteration) or from a boolean mask on the dofs."""
     if warm_start is None:
@@ -1179,7 +1185,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     unk = _unknowns(mesh, ops)
     cavity = _warm_cavity(warm_start, ops, unk)
     if cavitation == "none":
-        sol = _active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
+        sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
@@ -1187,7 +1193,7 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
                                                       max_iterations, ops)
         else:
-            solve = _active_set if cavitation == "jfo" else _obstacle
+            solve = active_set if cavitation == "jfo" else _obstacle
             sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
         if couette == "limited" and cavitation == "jfo":
             system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)

@@ -180,7 +180,7 @@ def couette_source(h, formulation: str):
     return c - c.flat[0] if c.size else c
 
 
-def film_flux(h, dp, wedge: float, viscosity=None, direction=None) -> tuple[np.ndarray, np.ndarray]:
+def film_flux(h, dp, wedge: float, viscosity=None, direction=None, fill=None) -> tuple[np.ndarray, np.ndarray]:
     """``q = -h^3/12 grad p + wedge h/2 u`` (Poiseuille plus Couette) [omega R0^2 c].
 
     ``direction``, optional: the runner's velocity ``u`` at the same points, relative to the reference
@@ -188,13 +188,16 @@ def film_flux(h, dp, wedge: float, viscosity=None, direction=None) -> tuple[np.n
     ``viscosity``, optional: a viscosity varying over the film, relative to the scale's (a field at the
     same points, or in SI with ``h`` [m], ``p`` [Pa], ``wedge = U`` [m/s]: ``q = -h^3/(12 mu) grad p +
     U h/2`` [m^2/s]); without it the isoviscous formula, unchanged.
+    ``fill``, optional: the JFO fill fraction ``theta`` [-]: in a cavity the Couette flux carries the
+    liquid's share, ``wedge theta h/2 u``.
     """
     c = -np.asarray(h) ** 3 / 12.0
     if viscosity is not None:
         c = c / viscosity
+    couette = 0.5 * wedge * h if fill is None else 0.5 * wedge * fill * h
     if direction is None:
-        return c * dp[0] + 0.5 * wedge * h, c * dp[1]
-    return c * dp[0] + 0.5 * wedge * h * direction[0], c * dp[1] + 0.5 * wedge * h * direction[1]
+        return c * dp[0] + couette, c * dp[1]
+    return c * dp[0] + couette * direction[0], c * dp[1] + couette * direction[1]
 
 
 def along(direction, vector):
@@ -208,7 +211,7 @@ def _speed_squared(direction):
     return 1.0 if direction is None else direction[0] ** 2 + direction[1] ** 2
 
 
-def shear(h, dp, sliding: float, viscosity=None, direction=None):
+def shear(h, dp, sliding: float, viscosity=None, direction=None, fill=None):
     """Shear on the runner along its velocity, ``tau . u = sliding |u|^2/h + h/2 u . grad p``
     [mu omega R0 / c]; its integral is the friction force (the friction torque over ``R0`` for a
     rotating runner; times the reference speed, the friction power).
@@ -217,20 +220,27 @@ def shear(h, dp, sliding: float, viscosity=None, direction=None):
     (:func:`film_flux`), default ``e_phi``: then ``sliding/h + h/2 dp/dphi``.
     ``viscosity``, optional: relative to the scale's, a field at the same points (or in SI: ``mu U/h +
     h/2 dp/dx`` [Pa] with ``sliding = U``); the Poiseuille part does not depend on it.
+    ``fill``, optional: the JFO fill fraction ``theta`` [-]: in a cavity only the liquid's share of the
+    gap is sheared, ``theta mu U/h``; without it the full film's.
     """
     speed = sliding * _speed_squared(direction)
-    if viscosity is not None:
-        return viscosity * speed / h + 0.5 * h * along(direction, dp)
-    return speed / h + 0.5 * h * along(direction, dp)
+    couette = speed / h if viscosity is None else viscosity * speed / h
+    if fill is not None:
+        couette = fill * couette
+    return couette + 0.5 * h * along(direction, dp)
 
 
-def dissipation(h, dp, sliding: float, viscosity=1.0, direction=None):
+def dissipation(h, dp, sliding: float, viscosity=1.0, direction=None, fill=None):
     """Viscous dissipation per unit area ``mu sliding^2 |u|^2/h + h^3/(12 mu) |grad p|^2``
     [mu (omega R0)^2 / c, or W/m^2 in SI]: the heat source of the film's energy equation; its integral
     equals the friction power when ``p`` solves the Reynolds equation (Couette shear work plus the
-    Poiseuille flow's pressure work). ``direction``: the runner's velocity ``u`` (:func:`film_flux`)."""
-    return (viscosity * sliding**2 * _speed_squared(direction) / h
-            + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2))
+    Poiseuille flow's pressure work). ``direction``: the runner's velocity ``u`` (:func:`film_flux`);
+    ``fill``, optional: the JFO fill fraction ``theta`` [-]; in a cavity only the liquid's share
+    dissipates, ``theta mu sliding^2 |u|^2/h``."""
+    couette = viscosity * sliding**2 * _speed_squared(direction) / h
+    if fill is not None:
+        couette = fill * couette
+    return couette + np.asarray(h) ** 3 / (12.0 * viscosity) * (dp[0] ** 2 + dp[1] ** 2)
 
 
 # -- curved elements ---------------------------------------------------------------------

@@ -28,11 +28,11 @@ _NAMES = {
     "lubricant": ("ISO_VG", "VISCOSITY_LAWS", "ConstantViscosity", "Lubricant", "ViscosityLaw", "VogelViscosity",
                   "WaltherViscosity", "celsius", "iso_vg", "kelvin"),
     "heat_balance": ("EffectiveTemperature", "FilmTemperatures", "HeatBalance", "JournalDuty", "ThermalError",
-                     "effective_temperature", "film_temperatures"),
+                     "effective_temperature", "film_temperatures", "mixed_inlet"),
     "viscosity_index": ("reference_viscosities", "viscosity_40", "viscosity_100", "viscosity_index"),
     "film_energy": ("FilmEnergy", "Pad", "PadLevel1", "film_energy", "journal_pad", "pad_level1", "pad_mesh",
                     "slider_reference"),
-    "pump_cycle": ("CycleTemperature", "cycle_temperature"),
+    "pump_cycle": ("CycleTemperature", "cycle_temperature", "shoe_pad"),
     "thrust_balance": ("ThrustTemperature", "thrust_temperature"),
 }
 __getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())

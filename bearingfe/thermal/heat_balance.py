@@ -18,7 +18,10 @@ Couette flow is not the flow that reaches the trailing edge); ``rho`` and
   ``(1 - chi) P = rho c_p (Q_s/2 + Q_t) dT``;
 - hot-oil carry-over: a fraction ``lambda`` (``carry_over``) of the trailing
   flow re-enters the leading edge with the fresh oil at the supply temperature
-  ``T_s``, ``T_in = T_s + lambda (Q_t/Q) (T_in + dT - T_s)``;
+  ``T_s``: the mix of :func:`mixed_inlet`,
+  ``T_in = (Q_supply T_s + lambda Q_t T_out)/(Q_supply + lambda Q_t)`` with
+  ``Q_supply = Q - lambda Q_t`` and ``T_out = T_in + dT``, solved for ``T_in``:
+  ``T_in = T_s + lambda Q_t dT / Q_supply``;
 - the effective temperature is ``T_eff = T_in + k dT``
   (``effective_fraction``, 1/2: the mean of inlet and outlet, as in the
   Raimondi-Boyd design procedure).
@@ -38,7 +41,9 @@ Level 2 (:mod:`bearingfe.thermal.film_energy`): the film's mean temperature as a
 2-D field from the energy equation (convection by the mean film flux, viscous
 heating, adiabatic or with a heat-transfer coefficient to the walls), stabilised
 by SUPG and coupled to a Reynolds equation whose viscosity varies over the film;
-for a plane pad so far, not yet for the journal bearing.
+on a plane pad, a full journal unwrapped from its groove (with Swift-Stieber or
+JFO cavitation, hot-oil carry-over at the groove) and the plain pump shoe at one
+frozen state of its cycle (:func:`bearingfe.thermal.pump_cycle.shoe_pad`).
 """
 
 from __future__ import annotations
@@ -57,7 +62,7 @@ from ..core.schema import Range, finite, in_range, nonnegative, positive
 from .lubricant import Lubricant
 
 __all__ = ["HeatBalance", "JournalDuty", "FilmTemperatures", "EffectiveTemperature", "ThermalError",
-           "film_rise", "film_temperatures", "effective_temperature", "fixed_point"]
+           "film_rise", "film_temperatures", "effective_temperature", "fixed_point", "mixed_inlet"]
 
 _FRACTION = Range(0.0, 1.0)
 
@@ -182,6 +187,39 @@ class FilmTemperatures:
     supply_flow: float
     convected: float
     conducted: float
+
+
+def mixed_inlet(supply_flow: float, supply_temperature: float, carried_flow: float, outlet_temperature: float,
+                carry_over: float) -> float:
+    """Inlet temperature of a pad or groove with hot-oil carry-over [K]: the mix
+    ``T_in = (Q_supply T_s + lambda Q_carry T_out) / (Q_supply + lambda Q_carry)``.
+
+    Parameters
+    ----------
+    supply_flow : float
+        Fresh oil ``Q_supply`` [m^3/s], > 0.
+    supply_temperature : float
+        Its temperature ``T_s`` [K], > 0.
+    carried_flow : float
+        The outflow ``Q_carry`` [m^3/s], >= 0, a fraction of which is carried over.
+    outlet_temperature : float
+        Its temperature ``T_out`` [K], > 0.
+    carry_over : float
+        ``lambda`` [-] in [0, 1].
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range (named in the message).
+    """
+    qs = positive("supply_flow", supply_flow, "m^3/s")
+    Ts = positive("supply_temperature", supply_temperature, "K")
+    qc = nonnegative("carried_flow", carried_flow, "m^3/s")
+    To = positive("outlet_temperature", outlet_temperature, "K")
+    lam = in_range("carry_over", carry_over, _FRACTION)
+    if lam * qc == 0.0:
+        return Ts
+    return (qs * Ts + lam * qc * To) / (qs + lam * qc)
 
 
 def film_rise(power, leading_flow, side_flow, heat_capacity: float, conducted_fraction: float):

@@ -35,7 +35,7 @@ from ..transient import Trajectory, simulate, state_result
 from .heat_balance import HeatBalance, ThermalError, film_rise, film_temperatures, fixed_point
 from .lubricant import Lubricant
 
-__all__ = ["CycleHeat", "CycleTemperature", "cycle_heat", "cycle_temperature"]
+__all__ = ["CycleHeat", "CycleTemperature", "cycle_heat", "cycle_temperature", "shoe_pad"]
 
 
 @dataclass(frozen=True)
@@ -212,3 +212,48 @@ def cycle_temperature(pump: EccentricPump, mesh: SupportMesh, lubricant: Lubrica
         smallest_film=end.trajectory.smallest_film, isothermal_smallest_film=start.trajectory.smallest_film,
         isothermal_friction_power=start.cycle.mean_power, evaluations=len(runs), residual=residual,
         balance=balance, trajectory=end.trajectory, isothermal_trajectory=start.trajectory)
+
+
+def shoe_pad(pump: EccentricPump, trajectory: Trajectory, index: int):
+    """The plunger shoe's film at one sample of a pump run as a :class:`~bearingfe.thermal.film_energy.Pad`
+    (SI), for level 2 (:func:`bearingfe.thermal.film_energy.film_energy`) at that state.
+
+    In the shoe frame the eccentric slides at ``wedge omega R0`` past the shoe and the film is
+    ``h = c (1 + gamma cos(psi - delta))`` (:mod:`bearingfe.bearings.pump`); unrolled, ``x = R0 (psi -
+    psi_start)`` along the arc (from ``psi_end`` backwards when the sliding runs towards ``-psi``, so that
+    ``x = 0`` is always the leading edge) and ``y = R0 (z + a)`` across, ambient pressure on every edge.
+    The state is frozen: its squeeze rates (``gamma'``, ``delta'``) are left out, as is the pocket (a
+    shoe with pockets is refused: the pad has none).
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        A shoe surface without pockets (the rectangle ``arc x [-a, a]``).
+    trajectory : Trajectory
+        A run of that pump (:func:`bearingfe.transient.simulate`).
+    index : int
+        The sample.
+
+    Raises
+    ------
+    ValueError
+        A shoe that is not a plain rectangle, a sample out of range, or a sample where the eccentric does not slide.
+    """
+    from .film_energy import Pad
+
+    surface = pump.surface
+    if surface.inlets or surface.recesses or surface.outer is not None or surface.periodic:
+        raise ValueError("shoe_pad needs a plain rectangular shoe (no pockets, recesses, outline or periodic arc): "
+                         "the pad has none")
+    n = trajectory.beta.size
+    if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -n <= index < n:
+        raise ValueError(f"index must be an integer sample of the run, in [-{n}, {n}), got {index!r}")
+    R0, c = pump.radius, pump.clearance
+    a0, a1 = pump.surface.arc
+    g, d, w = (float(v[index]) for v in (trajectory.gamma, trajectory.delta, trajectory.wedge))
+    if w == 0.0:
+        raise ValueError(f"the eccentric does not slide past the shoe at sample {index} (wedge 0)")
+    start, sign = (a0, 1.0) if w > 0 else (a1, -1.0)
+    return Pad(R0 * (a1 - a0), 2.0 * pump.surface.half_width * R0,
+               lambda x, y: c * (1.0 + g * np.cos(start + sign * np.asarray(x) / R0 - d)) + 0.0 * np.asarray(y),
+               abs(w) * pump.scale.speed * R0, "ambient")

@@ -28,7 +28,7 @@ from scipy.optimize import brentq
 
 from bearingfe.bearings.journal import JournalBearing, equilibrium
 from bearingfe.thermal import (ConstantViscosity, HeatBalance, JournalDuty, Lubricant, ThermalError,
-                               WaltherViscosity, effective_temperature, film_temperatures, kelvin)
+                               WaltherViscosity, effective_temperature, film_temperatures, kelvin, mixed_inlet)
 from bearingfe.validation import RAIMONDI_BOYD
 
 FAST = dict(size=0.1, structured=True)
@@ -212,3 +212,34 @@ def test_against_shigleys_worked_example_12_12():
     assert r.temperature_rise * 1.8 == pytest.approx(27.8, rel=0.03)
     assert r.min_film / duty.clearance == pytest.approx(0.482, rel=0.03)
     assert r.friction_power / BTU == pytest.approx(0.124, rel=0.03)
+
+
+def test_mixed_inlet_is_the_hand_computed_mix():
+    # by hand: (2e-6 * 313.15 + 0.5 * 1e-6 * 343.15) / (2e-6 + 0.5e-6) = 313.15 + 0.5e-6 * 30 / 2.5e-6 = 319.15 K
+    assert mixed_inlet(2e-6, 313.15, 1e-6, 343.15, 0.5) == pytest.approx(319.15, rel=1e-14)
+    assert mixed_inlet(2e-6, 313.15, 1e-6, 343.15, 0.0) == 313.15  # no carry-over: the supply, exactly
+    assert mixed_inlet(2e-6, 313.15, 1e-6, 343.15, 1.0) == pytest.approx(313.15 + 30.0 / 3.0, rel=1e-14)
+
+
+@pytest.mark.parametrize("carry_over", [1.2, -0.1, float("nan")])
+def test_mixed_inlet_refuses_a_fraction_outside_0_1(carry_over):
+    with pytest.raises(ValueError, match="carry_over must be"):  # "in [0, 1]" or "a finite number"
+        mixed_inlet(2e-6, 313.15, 1e-6, 343.15, carry_over)
+
+
+@pytest.mark.parametrize("args, name", [((0.0, 313.15, 1e-6, 343.15, 0.5), "supply_flow"),
+                                        ((2e-6, 313.15, -1e-6, 343.15, 0.5), "carried_flow"),
+                                        ((2e-6, -1.0, 1e-6, 343.15, 0.5), "supply_temperature")])
+def test_mixed_inlet_refuses_bad_flows_and_temperatures(args, name):
+    with pytest.raises(ValueError, match=name):
+        mixed_inlet(*args)
+
+
+@pytest.mark.parametrize("carry_over", [0.0, 0.4, 1.0])
+def test_level1_inlet_is_the_mix_of_its_own_outlet(carry_over):
+    # the level-1 balance solves the mix for T_in in closed form: fed back its own outlet it must reproduce it
+    balance = HeatBalance(kelvin(45.0), carry_over=carry_over)
+    Q, Qs = 3.1e-5, 1.9e-5
+    heat = film_temperatures(950.0, Q, Qs, 850.0, 1950.0, balance)
+    assert heat.inlet == pytest.approx(mixed_inlet(heat.supply_flow, kelvin(45.0), Q - Qs, heat.outlet, carry_over),
+                                       rel=1e-13)

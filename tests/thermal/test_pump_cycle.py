@@ -65,3 +65,26 @@ def test_fixed_point_conserves_energy_and_thins_the_film(pump, mesh):
     assert r.residual <= 3 * balance.tolerance
     assert r.smallest_film < r.isothermal_smallest_film
     assert r.peak_temperature >= r.outlet_temperature > r.temperature > r.inlet_temperature > r.supply_temperature
+
+
+def test_shoe_pad_is_the_runs_film_at_its_thinnest_sample(pump):
+    # the pad must be the transient's film at that state: its thinnest film is the run's h_min there (the
+    # closed form c (1 - gamma) when the thinnest line lies on the shoe), its size R0 x arc by 2 a R0 and its
+    # speed the eccentric's sliding speed wedge omega R0 (module docstring of bearingfe.bearings.pump)
+    from bearingfe.geometry.surface import Surface
+    from bearingfe.thermal import shoe_pad
+
+    plain = dataclasses.replace(pump, surface=Surface(arc=pump.surface.arc, half_width=pump.surface.half_width))
+    traj = simulate(plain, pump_mesh(plain, 0.3, order=1), 1.0, **RUN)
+    k = int(np.argmin(traj.h_min))
+    pad = shoe_pad(plain, traj, k)
+    a0, a1 = plain.surface.arc
+    assert pad.length == pytest.approx(plain.radius * (a1 - a0), rel=1e-14)
+    assert pad.width == pytest.approx(2 * plain.surface.half_width * plain.radius, rel=1e-14)
+    assert pad.speed == pytest.approx(abs(traj.wedge[k]) * plain.drive.omega * plain.radius, rel=1e-14)
+    x = np.linspace(0.0, pad.length, 20001)
+    assert pad.thickness(x, 0 * x).min() == pytest.approx(traj.h_min[k], rel=1e-6)
+    with pytest.raises(ValueError, match="plain rectangular shoe"):
+        shoe_pad(pump, traj, k)
+    with pytest.raises(ValueError, match="index"):
+        shoe_pad(plain, traj, traj.beta.size)
