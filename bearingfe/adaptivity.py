@@ -203,13 +203,15 @@ def load_indicators(result: ReynoldsResult) -> np.ndarray:
         raise ValueError(f"result must be a bearingfe.ReynoldsResult, got {type(result).__name__}")
     bases = _Bases(result.basis, result.element)
     primal = np.sqrt(_primal_squared(result, 1.0, bases))
-    force = np.asarray(result.force, float)
+    force = load_vector(result)
     norm_f = float(np.linalg.norm(force))
     if not norm_f > 0:
         raise ValueError("load_indicators needs a non-zero film force (the load direction is undefined)")
     d = force / norm_f
 
     def g(x):
+        if d.size == 1:  # a plane film: the load is int p, normal to the plane
+            return d[0] + 0.0 * x[0]
         return d[0] * np.cos(x[0]) + d[1] * np.sin(x[0])
 
     z = _dual_pressure(result, g)
@@ -218,6 +220,15 @@ def load_indicators(result: ReynoldsResult) -> np.ndarray:
     dual = _squared_indicators(f, 1.0, bases)
     dual[_ruptured(result)] = 0.0
     return primal * np.sqrt(dual)
+
+
+def load_vector(result: ReynoldsResult) -> np.ndarray:
+    """The load the adaptivity refines for: the force ``int p (cos phi, sin phi)`` of a film on the unwrapped
+    cylinder (the original runner, along ``phi``); ``[int p]`` on a plane whose runner is another
+    (:mod:`bearingfe.geometry.runner`: a thrust pad, a slider at an angle), normal to the plane."""
+    if getattr(result, "runner", None) is not None:
+        return np.array([float(result.integral)])
+    return np.asarray(result.force, float)
 
 
 def _ruptured(result: ReynoldsResult) -> np.ndarray:
@@ -555,7 +566,7 @@ class AdaptiveResult:
 
     @property
     def load(self) -> float:
-        return float(np.linalg.norm(self.result.force))
+        return float(np.linalg.norm(load_vector(self.result)))
 
     @property
     def n_nodes(self) -> tuple[int, ...]:
@@ -625,8 +636,8 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
     (:func:`target_sizes`: equidistribution at about ``growth`` times the
     elements; :func:`size_field`: graded, nearest-node lookup). Cavitated
     solves (``"reynolds"``) start from the previous level's rupture set
-    (nested iteration). The loop stops when the load vector changes by less
-    than ``tol`` between two successive levels,
+    (nested iteration). The loop stops when the load vector (:func:`load_vector`: the force on a
+    journal-like film, ``int p`` on a plane pad) changes by less than ``tol`` between two successive levels,
     ``|F_n - F_(n-1)| / |F_n| < tol``; that change is the reported error
     estimate. If the error falls by a factor ``r`` per level it
     overestimates the last level's error by ``r - 1`` (measured: 2 to 10);
@@ -729,13 +740,13 @@ def adapt(surface: Surface, film: Film, *, size: float, tol: float = 1e-3, max_l
 
 def _load_change(res: ReynoldsResult, previous: ReynoldsResult | None, level: int) -> float:
     """``|F - F_previous| / |F|`` (NaN without a previous level)."""
-    load = float(np.linalg.norm(res.force))
+    load = float(np.linalg.norm(load_vector(res)))
     if not (math.isfinite(load) and load > 0):
         raise ValueError(f"the load |force| = {load!r} on level {level}: a relative load change is "
                          "undefined (no film force); adapt() needs a loaded film")
     if previous is None:
         return math.nan
-    return float(np.linalg.norm(res.force - previous.force)) / load
+    return float(np.linalg.norm(load_vector(res) - load_vector(previous))) / load
 
 
 def _held_text(held: float, min_size: float) -> str:
@@ -748,7 +759,7 @@ def _level_record(mesh: SupportMesh, res: ReynoldsResult, eta: np.ndarray, estim
     p, f = mesh.mesh.p, mesh.mesh.facets
     return AdaptiveLevel(
         n_nodes=mesh.n_nodes, n_elements=mesh.n_elements, n_dofs=int(res.basis.N), force=res.force.copy(),
-        load=float(np.linalg.norm(res.force)), estimate=estimate, indicator=float(np.sqrt(np.sum(eta**2))),
+        load=float(np.linalg.norm(load_vector(res))), estimate=estimate, indicator=float(np.sqrt(np.sum(eta**2))),
         smallest_size=float(np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0).min()),
         iterations=int(res.iterations), meshing_seconds=meshed - start, solve_seconds=solved - meshed,
         seconds=time.perf_counter() - start)

@@ -202,3 +202,22 @@ def test_pockets_on_a_pad_count_in_its_load():
     sol = solve_pad(pad, pad.mesh(0.04), pad.state(scale, 20e-6), scale=scale, inlet_pressure=0.5, wedge=0.0)
     assert sol.load == pytest.approx(sol.result.integral, rel=1e-12)  # the same pocket (the mesh's hole)
     assert sol.load > 0.5 * pocket.area * 0.95  # at least the pocket pressure over the pocket (its polygon)
+
+
+def test_error_estimate_and_adaptivity_take_a_thrust_pad():
+    """The once-refined load estimate of a sector pad matches its true error (polar FD reference), and
+    adapt() refines for int p (the load normal to the plane) to within its estimate."""
+    import warnings
+
+    reference = _sector_reference()
+    surface = bf.Surface(outer=SECTOR, runner=Rotating())
+    film = _tilted_sector_film()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", bf.ResolutionWarning)
+        res = bf.solve_reynolds(bf.mesh_surface(surface, 0.04), film, formulation="direct", estimate_error=True)
+        adapted = bf.adapt(surface, film, size=0.1, formulation="direct", tol=1e-3)
+    true = abs(res.integral / reference - 1.0)
+    assert res.load_error.relative == pytest.approx(true, rel=0.05)
+    assert res.load_error.extrapolated_integral == pytest.approx(reference, rel=3e-4)
+    assert adapted.load == pytest.approx(adapted.result.integral, rel=1e-15)
+    assert abs(adapted.load / reference - 1.0) < 2 * adapted.error_estimate < 2e-3
