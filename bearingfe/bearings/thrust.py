@@ -85,6 +85,9 @@ class ThrustPad:
     pockets : tuple of Shape
         Pockets (at ``pocket_pressure``) inside the pad, in the non-dimensional plane (units of the outer
         radius, the collar's axis at the origin).
+    addition : Film or None
+        Any user film added to the pad's position and profile (a chamfer on a rim, waviness, a measured
+        form error), non-dimensional: ``h(x, y)`` [h_ref] over the plane in units of the outer radius.
     """
 
     inner_radius: float
@@ -96,8 +99,14 @@ class ThrustPad:
     profile: tuple = ()
     profile_along: str = "angle"
     pockets: tuple = ()
+    addition: object = None
 
     def __post_init__(self) -> None:
+        from ..film.thickness import Film
+
+        if self.addition is not None and not isinstance(self.addition, Film):
+            raise ValueError(f"ThrustPad.addition must be a film (the bearingfe.Film protocol) or None, "
+                             f"got {type(self.addition).__name__}")
         ri, ro = float(self.inner_radius), float(self.outer_radius)
         if not (math.isfinite(ri) and math.isfinite(ro) and 0.0 < ri < ro):
             raise ValueError(f"ThrustPad: need 0 < inner_radius < outer_radius [m], got {self.inner_radius!r}, "
@@ -194,8 +203,8 @@ class ThrustPad:
         t, r = self.axes
         slope = -q[1] * t + q[2] * r
         plane = PlaneFilm(float(q[0]), self.pivot, (float(slope[0]), float(slope[1])), second_rates=second_rates)
-        profile = self._profile(scale)
-        return plane if profile is None else SumFilm(plane, (profile,))
+        extras = tuple(f for f in (self._profile(scale), self.addition) if f is not None)
+        return SumFilm(plane, extras) if extras else plane
 
     def _profile(self, scale: Scale | None):
         if not self.profile:

@@ -145,3 +145,17 @@ def test_a_load_no_film_carries_is_reported(mesh):
     """A flat untilted pad carries no load at any film: Newton reports that it cannot, it does not hang."""
     with pytest.raises(ThrustError, match="pad_for_load"):
         pad_for_load(PAD, mesh, SCALE, 1e3, max_iterations=8)
+
+
+def test_user_film_addition_is_added(mesh):
+    """A user film added to the pad (a uniform 0.5 h_ref) is the same pad at a film 0.5 h_ref thicker at the
+    pivot: equal loads to round-off."""
+    import bearingfe as bf
+
+    thicker = ThrustPad(0.05, 0.1, math.radians(40), n_pads=6, pivot_offset=0.6, addition=bf.UniformFilm(0.5))
+    q = PAD.state(SCALE, 30e-6, 5e-4, 1e-4)
+    a = solve_pad(thicker, mesh, q, scale=SCALE, formulation="direct")
+    b = solve_pad(PAD, mesh, q + np.array([0.5, 0.0, 0.0]), scale=SCALE, formulation="direct")
+    assert a.load == pytest.approx(b.load, rel=1e-12)
+    with pytest.raises(ValueError, match="addition"):
+        ThrustPad(0.05, 0.1, 0.5, addition=0.5)
