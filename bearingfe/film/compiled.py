@@ -237,7 +237,6 @@ class CompiledOperator:
     indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
     indices: np.ndarray
     loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
-    sources: sp.csr_matrix         # (E^T dx)[I]: (n_I, n_q)
     groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
     group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
     corners: tuple                 # facet data of the corner dofs (see _corner_terms)
@@ -290,19 +289,21 @@ class CompiledOperator:
         return self._get("twins", lambda: _twins(self.indptr, self.indices, self.n_dofs))
 
     @property
-    def transposed_value(self) -> sp.csr_matrix:
-        """``E^T``: (weighted) point values -> their integrals against each basis function."""
-        return self._get("value_t", lambda: self.value.T.tocsr())
+    def transposed_value(self) -> sp.csc_matrix:
+        """``E^T``: (weighted) point values -> their integrals against each basis function (a view of ``E``:
+        no copy, the transposed product runs on the same arrays)."""
+        return self.value.T
 
     @property
-    def transposed_phi_gradient(self) -> sp.csr_matrix:
-        """``G_phi^T``: (weighted) point values -> their integrals against each basis function's ``d/dphi``."""
-        return self._get("grad_phi_t", lambda: self.grad[0].T.tocsr())
+    def transposed_phi_gradient(self) -> sp.csc_matrix:
+        """``G_phi^T``: (weighted) point values -> their integrals against each basis function's ``d/dphi``
+        (a view)."""
+        return self.grad[0].T
 
     @property
-    def transposed_z_gradient(self) -> sp.csr_matrix:
-        """``G_z^T``: (weighted) point values -> their integrals against each basis function's ``d/dz``."""
-        return self._get("grad_z_t", lambda: self.grad[1].T.tocsr())
+    def transposed_z_gradient(self) -> sp.csc_matrix:
+        """``G_z^T``: (weighted) point values -> their integrals against each basis function's ``d/dz`` (a view)."""
+        return self.grad[1].T
 
     @property
     def runner_at(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -316,6 +317,17 @@ class CompiledOperator:
         if u is None:
             return self.transposed_phi_gradient @ (self.dx * c)
         return self.transposed_phi_gradient @ (self.dx * c * u[0]) + self.transposed_z_gradient @ (self.dx * c * u[1])
+
+    @property
+    def sources(self) -> sp.csr_matrix:
+        """``(E^T dx)[I]``: a density at the points -> its integral against each interior basis function
+        (built on first use: only the dynamic coefficients and the elastic paths ask for it)."""
+        def build():
+            E = self.value
+            scaled = sp.csr_matrix((E.data * np.repeat(self.dx, np.diff(E.indptr)), E.indices, E.indptr),
+                                   shape=E.shape)
+            return scaled.T.tocsr()[self.interior]
+        return self._get("sources", build)
 
     @property
     def phi_sources(self) -> sp.csr_matrix:
@@ -667,8 +679,6 @@ def compile_operator(ops) -> CompiledOperator:
     x = np.asarray(ops.x).reshape(2, -1)
     I = ops.interior
     loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
-    scaled = sp.csr_matrix((E.data * np.repeat(dx, np.diff(E.indptr)), E.indices, E.indptr), shape=E.shape)
-    sources = scaled.T.tocsr()[I]  # (E^T dx)[I]
     groups = tuple(ops.flow_groups)
     A = np.zeros((len(groups), n))
     corner_dofs = set()
@@ -712,6 +722,6 @@ def compile_operator(ops) -> CompiledOperator:
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
         lazy["corner_weights"] = weights_of
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
-                            indptr=indptr, indices=indices, loads=loads, sources=sources, groups=groups,
+                            indptr=indptr, indices=indices, loads=loads, groups=groups,
                             group_maps=group_maps, corners=corners, _basis=basis, _position=position,
                             _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)
