@@ -65,7 +65,8 @@ def _child(jobs, indices, conn) -> None:
     conn.close()
 
 
-def in_processes(jobs: Sequence[Callable[[], Any]], processes: int | None = None) -> list:
+def in_processes(jobs: Sequence[Callable[[], Any]], processes: int | None = None, *,
+                 after_fork: Callable[[], Any] | None = None) -> list:
     """The results of ``jobs`` (functions of no argument), in their order, run on ``processes`` workers.
 
     Parameters
@@ -75,6 +76,9 @@ def in_processes(jobs: Sequence[Callable[[], Any]], processes: int | None = None
     processes : int, optional
         Workers (default :data:`PROCESSES`, at most the number of jobs). Jobs are dealt round-robin:
         worker 0 (this process) runs jobs 0, n, 2n, ...; give the dearest first.
+    after_fork : callable, optional
+        Called in this process once the children exist, before its own jobs (e.g. to start a thread, which
+        must not run while a process forks: the child would inherit its locks held).
 
     Raises
     ------
@@ -84,6 +88,8 @@ def in_processes(jobs: Sequence[Callable[[], Any]], processes: int | None = None
     processes = PROCESSES if processes is None else processes
     n = min(len(jobs), cores() if processes is None else max(1, int(processes)))
     if n < 2 or sys.platform == "win32" or not hasattr(os, "fork"):
+        if after_fork is not None:
+            after_fork()
         return [job() for job in jobs]
     import multiprocessing
 
@@ -98,6 +104,8 @@ def in_processes(jobs: Sequence[Callable[[], Any]], processes: int | None = None
             there.close()
             children.append((indices, here, proc))
         results: list = [None] * len(jobs)
+        if after_fork is not None:
+            after_fork()
         for i in shares[0]:
             results[i] = jobs[i]()
         error = None

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "save"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "save", "preload"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100
@@ -51,3 +51,23 @@ def save(fig, path):
         fig.savefig(path, dpi=DPI, **({"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if png else {}))
     return fig
 
+
+def preload():
+    """Import matplotlib's figure machinery and the picture modules in a background thread; returns the
+    thread (join it before the process forks or draws).
+
+    The import costs about half a second; a scene starts it while its physics runs in the main thread
+    (which spends much of its time in compiled code that releases the interpreter), so the pictures, and the
+    processes forked to draw them, find the modules loaded. Nothing is drawn and no global state is set.
+    """
+    import threading
+
+    def load() -> None:
+        import matplotlib.figure  # noqa: F401
+        from matplotlib.backends import backend_agg  # noqa: F401
+
+        from . import curves, maps  # noqa: F401
+
+    thread = threading.Thread(target=load, name="bearingfe-preload-pictures", daemon=True)
+    thread.start()
+    return thread

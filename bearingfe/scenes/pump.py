@@ -209,10 +209,14 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     runs, meshes, balance, compliances = {}, {}, {}, {}
     done = 0
     from ..core.parallel import in_processes
+    from ..plot.figures import preload
 
     tick(done, steps, f"simulating: {', '.join(designs)}")
-    # the designs are independent: on two free cores each in its own process (the same results)
-    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()])))
+    # the designs are independent: on two free cores each in its own process (the same results); the picture
+    # modules load in a thread of this process meanwhile (after the fork: a child must not inherit the import)
+    loading = []
+    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()],
+                                           after_fork=(lambda: loading.append(preload())) if pictures else None)))
     for name, p in designs.items():
         meshes[name], runs[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
@@ -238,6 +242,8 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                             compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
               for name, traj in runs.items()}
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
+    for thread in loading:  # loaded before the pictures fork
+        thread.join()
     # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
     order = sorted(pictures, key=_COST_ORDER.index)
     drawn = dict(zip(order, in_processes([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)

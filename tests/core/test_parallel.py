@@ -45,3 +45,23 @@ def test_a_child_that_dies_is_an_error(tmp_path):
 
     with pytest.raises(RuntimeError, match="ended without a result"):
         in_processes([_job(tmp_path / "a.txt", 0), dies], processes=2)
+
+
+def test_after_fork_runs_here_once_after_the_children_exist(tmp_path):
+    """after_fork runs in this process only (not in a child), once, whether or not children are forked."""
+    calls = []
+    in_processes([_job(tmp_path / f"{k}.txt", k) for k in range(2)], processes=2,
+                 after_fork=lambda: calls.append(os.getpid()))
+    in_processes([_job(tmp_path / "c.txt", 0)], processes=1, after_fork=lambda: calls.append(os.getpid()))
+    assert calls == [os.getpid(), os.getpid()]
+
+
+def test_preload_loads_the_picture_modules_without_drawing():
+    """figures.preload imports matplotlib's figure and the picture modules in a thread; no pyplot state."""
+    import sys
+
+    from bearingfe.plot.figures import preload
+
+    preload().join()
+    assert "matplotlib.figure" in sys.modules and "bearingfe.plot.maps" in sys.modules
+    assert "matplotlib.pyplot" not in sys.modules or sys.modules["matplotlib.pyplot"].get_fignums() == []
