@@ -53,8 +53,8 @@ def save(fig, path):
 
 
 def preload():
-    """Import matplotlib's figure machinery and the picture modules in a background thread; returns the
-    thread (join it before the process forks or draws).
+    """Import matplotlib's figure machinery (figure, triangulations, the Agg backend) in a background thread;
+    returns the thread (join it before the process forks or draws).
 
     The import costs about half a second; a scene starts it while its physics runs in the main thread
     (which spends much of its time in compiled code that releases the interpreter), so the pictures, and the
@@ -64,9 +64,8 @@ def preload():
 
     def load() -> None:
         import matplotlib.figure  # noqa: F401
+        import matplotlib.tri  # noqa: F401
         from matplotlib.backends import backend_agg  # noqa: F401
-
-        from . import curves, maps  # noqa: F401
 
     thread = threading.Thread(target=load, name="bearingfe-preload-pictures", daemon=True)
     thread.start()

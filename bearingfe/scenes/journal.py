@@ -265,7 +265,8 @@ def settings(data: dict, label: str, base_dir: Path | None = None) -> dict:
 
 def _check_tilting(s: dict, t: dict, oil, label: str) -> None:
     """What a tilting-pad bearing takes of the other tables: no fixed pads or grooves, a load along -y
-    (the pads are laid out about it), no heat balance, a cavitation model with a pad moment balance."""
+    (the pads are laid out about it), a cavitation model with a pad moment balance; [oil] gives the pads' level-1
+    heat balance (:func:`bearingfe.thermal.tilting_pad_temperature`)."""
     from ..bearings.tilting_pad import TILTING_PAD_CAVITATION
 
     b = s["bearing"]
@@ -278,8 +279,6 @@ def _check_tilting(s: dict, t: dict, oil, label: str) -> None:
     if s["operating"]["load_direction_deg"] != -90.0:
         raise SchemaError(f"{label}: [operating] load_direction_deg: must be -90 with [tilting_pad] (load on "
                           f"or between pads: [tilting_pad] load_on_pad); got {s['operating']['load_direction_deg']!r}")
-    if oil is not None:
-        raise SchemaError(f"{label}: [oil]: not with [tilting_pad] (give [operating] viscosity)")
     if s["solver"]["cavitation"] not in TILTING_PAD_CAVITATION:
         raise SchemaError(f"{label}: [solver] cavitation: must be one of {TILTING_PAD_CAVITATION} with "
                           f"[tilting_pad] (a free pad needs film rupture to balance); got {s['solver']['cavitation']!r}")
@@ -464,10 +463,16 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
     b, op, t, solver, out = s["bearing"], s["operating"], s["tilting_pad"], s["solver"], s["output"]
     bearing = _tilting_bearing(s, label)
     geometry = bearing.geometry
-    mu, omega, load = op["viscosity"], op["speed_rad_s"], op["load"]
+    omega, load = op["speed_rad_s"], op["load"]
+    meshes = build(label, "solver", tilting_pad_meshes, geometry, solver["size"])
+    thermal = None
+    if s["oil"] is not None:  # the viscosity of the pads' level-1 heat balance
+        thermal = _tilting_thermal(s, label, bearing, meshes)
+        mu = thermal.viscosity
+    else:
+        mu = op["viscosity"]
     scale = build(label, "bearing", Scale, radius=bearing.radius, clearance=bearing.pad_clearance, viscosity=mu,
                   speed=omega)
-    meshes = build(label, "solver", tilting_pad_meshes, geometry, solver["size"])
     steps = 4
     tick(0, steps, "equilibrium and coefficients")
     solved: dict = {}
@@ -560,11 +565,47 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
     files.append(_stability_picture(stability, op["speed"], out_dir / "stability.png", s["title"]).name)
     summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
     summary["table"] = _tilting_table(res, K, C, stability, summary["cost"])
+    if thermal is not None:
+        summary["thermal"] = _tilting_thermal_summary(thermal, s["oil"])
+        summary["table"][-1:-1] = _thermal_rows(summary["thermal"])
     summary["files"] = files + ["summary.json"]
     tick(3, steps, "summary")
     write_json(summary, out_dir / "summary.json")
     tick(steps, steps, "done")
     return summary
+
+
+def _tilting_thermal(s: dict, label: str, bearing, meshes):
+    """The effective temperature of the scene's tilting pads (:func:`bearingfe.thermal.tilting_pad_temperature`)."""
+    from ..thermal import tilting_pad_temperature
+    from ..thermal.files import balance_of, lubricant_of
+
+    oil, op, solver = s["oil"], s["operating"], s["solver"]
+    return build(label, "oil", tilting_pad_temperature, bearing, op["load"], op["speed_rad_s"],
+                 lubricant_of(oil, label, "oil"), balance_of(oil, label, "oil"), meshes=meshes,
+                 cavitation=solver["cavitation"])
+
+
+def _tilting_thermal_summary(t, oil: dict) -> dict:
+    """The tilting pads' heat balance in the summary, in the journal's terms (SI; temperatures in degC)."""
+    from ..thermal import celsius
+
+    def rel(new, old):
+        return (new - old) / old
+    return {
+        "model": "level 1: effective temperature from the heat balance of the loaded pads",
+        "effective_temperature_C": celsius(t.temperature), "supply_temperature_C": celsius(t.supply_temperature),
+        "inlet_temperature_C": celsius(t.heat.inlet), "outlet_temperature_C": celsius(t.heat.outlet),
+        "temperature_rise_K": t.heat.rise, "effective_viscosity_Pa_s": t.viscosity,
+        "supply_viscosity_Pa_s": t.supply_viscosity, "power_loss_W": t.friction_power,
+        "convected_power_W": t.heat.convected, "conducted_power_W": t.heat.conducted,
+        "leading_flow_m3s": t.leading_flow, "side_flow_m3s": t.side_flow, "supply_flow_m3s": t.heat.supply_flow,
+        "isothermal": {"at": "the supply temperature", "eccentricity": t.isothermal_eccentricity,
+                       "min_film_m": t.isothermal_min_film, "power_loss_W": t.isothermal_friction_power},
+        "moved": {"eccentricity": t.eccentricity - t.isothermal_eccentricity,
+                  "min_film": rel(t.min_film, t.isothermal_min_film),
+                  "power_loss": rel(t.friction_power, t.isothermal_friction_power)},
+        "evaluations": t.evaluations, "residual_K": t.residual, "oil": dict(oil)}
 
 
 def _tilting_table(r: dict, K, C, stability: dict, cost: dict) -> list:

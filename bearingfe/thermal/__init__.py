@@ -12,7 +12,7 @@ module               what it does
 ``viscosity_index``  ASTM D2270: the viscosity index from the 40 and 100 degC viscosities, and back
 ``heat_balance``     level 1: the effective temperature of a journal bearing from its heat balance
 ``pump_cycle``       level 1 over the pump cycle: the plunger shoe's effective temperature
-``thrust_balance``   level 1 of a thrust bearing: the pads' effective temperature from their heat balance
+``pad_balance``      level 1 of pad bearings (thrust pads, tilting-pad journals): the effective temperature from their heat balance
 ``film_energy``      level 2: the film's mean temperature field (energy equation) coupled to a Reynolds equation with viscosity varying over the film
 ``files``            the ``[oil]`` fields of scene and machine files: their schema, the lubricant and balance they build
 ===================  ============================================================
@@ -33,6 +33,6 @@ _NAMES = {
     "film_energy": ("FilmEnergy", "Pad", "PadLevel1", "film_energy", "journal_pad", "pad_level1", "pad_mesh",
                     "slider_reference"),
     "pump_cycle": ("CycleTemperature", "cycle_temperature", "shoe_pad"),
-    "thrust_balance": ("ThrustTemperature", "thrust_temperature"),
+    "pad_balance": ("ThrustTemperature", "TiltingPadTemperature", "thrust_temperature", "tilting_pad_temperature"),
 }
 __getattr__, __dir__, __all__ = lazy_names(__name__, _NAMES, globals())

@@ -154,3 +154,21 @@ def test_flexible_pivots_deflect_by_load_over_stiffness(tmp_path):
     for p in pads:
         assert p["pivot_deflection_m"] == pytest.approx(p["load_N"] / 1e9, rel=1e-5)
     assert "pressure.png" not in summary["files"] and "coefficients.csv" not in summary["files"]
+
+
+def test_tilting_pads_with_an_oil_table_run_at_their_effective_temperature(tmp_path):
+    """[oil] with [tilting_pad]: the pads' level-1 heat balance sets the viscosity of everything the scene
+    reports; the summary says how far the film moved from the isothermal one at the supply temperature."""
+    data = _coarse()
+    data["tilting_pad"].update(stability_points=2)
+    del data["operating"]["viscosity"]
+    data["oil"] = dict(grade="VG 32", kinematic_viscosity_100C=5.4e-6, supply_temperature_C=40.0)
+    (tmp_path / "s.toml").write_text(toml_text(data))
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    th = summary["thermal"]
+    assert th["effective_temperature_C"] > 40.0 and th["effective_viscosity_Pa_s"] < th["supply_viscosity_Pa_s"]
+    assert th["convected_power_W"] + th["conducted_power_W"] == pytest.approx(th["power_loss_W"], rel=1e-10)
+    assert th["moved"]["min_film"] < 0  # hotter, thinner
+    assert summary["results"]["friction_power_W"] == pytest.approx(th["power_loss_W"], rel=1e-6)
+    assert any(row[0] == "effective temperature" for row in summary["table"])
