@@ -80,7 +80,7 @@ def run_ours(cells, couette: str, repeat: int = 1) -> list[dict]:
         for _ in range(repeat):
             t0, c0 = time.perf_counter(), time.process_time()
             mesh = (bf.grid_mesh(shape, 1.0 / c, max_elements=10**7) if couette == "grid"
-                    else bf.mesh_surface(shape, c))
+                    else bf.mesh_surface(shape, c, recess_size=c))   # uniform: the flux compared, not the mesh
             t1 = time.perf_counter()
             res = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=P_C, couette=couette)
             t2, c2 = time.perf_counter(), time.process_time()

@@ -289,3 +289,27 @@ def test_refining_a_grid_with_a_pocket_splits_every_cell_and_keeps_the_pocket_ed
     assert inlet_length(coarse) == pytest.approx(2 * (0.2 + 0.3), rel=1e-12)
     assert inlet_length(fine) == pytest.approx(2 * (0.2 + 0.3), rel=1e-12)
     assert fine.refinement is not None
+
+
+def test_recess_contours_are_refined_by_default():
+    """A surface with a recess: mesh_surface's default refines the recess contour to size / 8 (edges on the
+    contour about that long), recess_size=size turns it off, and the refined mesh is the one remeshed by
+    refine_once (its recipe keeps the setting)."""
+    import numpy as np
+
+    import bearingfe as bf
+    from bearingfe.geometry.meshing import RECESS_REFINEMENT, refine_once
+
+    surface = bf.Surface(arc=(-0.5, 0.5), half_width=0.5, recesses=[bf.Recess(bf.Circle((0.0, 0.0), 0.2), 1.0)])
+    default, uniform = bf.mesh_surface(surface, 0.08), bf.mesh_surface(surface, 0.08, recess_size=0.08)
+
+    def contour_edges(mesh):
+        p, f = mesh.mesh.p, mesh.mesh.facets
+        on = (np.abs(np.hypot(*p[:, f[0]]) - 0.2) < 1e-9) & (np.abs(np.hypot(*p[:, f[1]]) - 0.2) < 1e-9)
+        return np.linalg.norm(p[:, f[0]] - p[:, f[1]], axis=0)[on]
+
+    assert np.median(contour_edges(default)) == pytest.approx(RECESS_REFINEMENT * 0.08, rel=0.3)
+    assert np.median(contour_edges(uniform)) == pytest.approx(0.08, rel=0.3)
+    assert default.n_nodes > 2 * uniform.n_nodes
+    finer = refine_once(default)
+    assert finer.n_nodes > 3 * default.n_nodes
