@@ -467,6 +467,24 @@ def _newton(residual, q0: np.ndarray, free: list[int], scales: np.ndarray, pad: 
                       f"(relative residuals: {[f'{v:.2e}' for v in history[-5:]]})")
 
 
+def _warm(solve_options: dict):
+    """The solve options with the last cavitated result as the next solve's warm start (its rupture set):
+    Newton's states differ by little, so the next active-set solve starts from the right set."""
+    state: dict = {}
+    cavitating = solve_options.get("cavitation", "none") not in ("none", "gumbel")
+
+    def options() -> dict:
+        if cavitating and "result" in state and "warm_start" not in solve_options:
+            return dict(solve_options, warm_start=state["result"])
+        return solve_options
+
+    def keep(sol: PadSolution) -> PadSolution:
+        if cavitating:
+            state["result"] = sol.result
+        return sol
+    return options, keep
+
+
 def pad_for_load(pad: ThrustPad, mesh: SupportMesh, scale: Scale, load: float, *, pitch: float = 0.0,
                  roll: float = 0.0, h_guess: float | None = None, tol: float = TOLERANCE,
                  max_iterations: int = MAX_ITERATIONS, **solve_options) -> ThrustPerformance:
@@ -480,9 +498,10 @@ def pad_for_load(pad: ThrustPad, mesh: SupportMesh, scale: Scale, load: float, *
     _check_load(load)
     target = scale.from_force(load) / pad.n_pads
     q0 = pad.state(scale, scale.clearance if h_guess is None else h_guess, pitch, roll)
+    options, keep = _warm(solve_options)
 
     def residual(q):
-        sol = solve_pad(pad, mesh, q, scale=scale, **solve_options)
+        sol = keep(solve_pad(pad, mesh, q, scale=scale, **options()))
         return np.array([sol.load - target]), sol
 
     q, sol, _ = _newton(residual, q0, [0], np.array([target]), pad, "pad_for_load", tol, max_iterations)
@@ -514,8 +533,10 @@ def tilting_equilibrium(pad: ThrustPad, mesh: SupportMesh, scale: Scale, load: f
     free = [0, 1] if pivot == "line" else [0, 1, 2]
     lever = pad.lever
 
+    options, keep = _warm(solve_options)
+
     def residual(q):
-        sol = solve_pad(pad, mesh, q, scale=scale, **solve_options)
+        sol = keep(solve_pad(pad, mesh, q, scale=scale, **options()))
         r = np.array([sol.load - target, *sol.moments])[: len(free)]
         return r, sol
 
