@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from bearingfe.cli import main
-from bearingfe.io.writers import ROSS_COEFFICIENTS, read_ross_bearing, write_ross_bearings
+from bearingfe.io.writers import ROSS_COEFFICIENTS, read_ross_bearing, write_ross3_bearing, write_ross_bearings
 from bearingfe.scenes.journal import settings
 from tests.helpers import ROOT, toml_text
 
@@ -117,6 +117,38 @@ def test_ross_files_read_back(tmp_path):
         write_ross_bearings(table, tmp_path, tag="a b")
     with pytest.raises(ValueError, match="finite"):
         write_ross_bearings({**table, "cyy": np.full((2, 3), np.inf)}, tmp_path)
+
+
+def test_ross3_file_reads_back(tmp_path):
+    """One ROSS 3.x file over two speeds x three frequencies: the layout ROSS 3.1.0's
+    ``BearingElement.save`` writes for a 2-D table (its keys, sorted; one section
+    ``BearingElement_<tag>``; every coefficient (speeds, frequencies)), read back exactly. (That ROSS 3.1
+    itself loads it and evaluates the same coefficients: benchmarks/tilting_pad_ross3.py.)"""
+    rng = np.random.default_rng(2)
+    table = {"speed": [300.0, 600.0], "frequency": [100.0, 300.0, 600.0],
+             **{k: rng.normal(size=(2, 3)) * 1e8 for k in ROSS_COEFFICIENTS}}
+    path = write_ross3_bearing(table, tmp_path / "brg.toml", n=3, tag="brg")
+    data = tomllib.loads(path.read_text())
+    assert list(data) == ["BearingElement_brg"]
+    ross31_keys = ["color", "cxx", "cxy", "cyx", "cyy", "czz", "frequency", "interpolation", "kxx", "kxy", "kyx",
+                   "kyy", "kzz", "mxx", "mxy", "myx", "myy", "mzz", "n", "scale_factor", "speed", "tag"]
+    assert list(data["BearingElement_brg"]) == ross31_keys
+    back = read_ross_bearing(path)
+    assert back["n"] == 3 and back["tag"] == "brg" and back["interpolation"] == "pchip" and back["scale_factor"] == 1
+    np.testing.assert_array_equal(back["speed"], table["speed"])
+    np.testing.assert_array_equal(back["frequency"], table["frequency"])
+    for k in ROSS_COEFFICIENTS:
+        np.testing.assert_array_equal(back[k], table[k])
+    for k in ("kzz", "czz", "mxx", "mxy", "myx", "myy", "mzz"):
+        np.testing.assert_array_equal(back[k], np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="shape"):
+        write_ross3_bearing({**table, "kxx": [[1.0]]}, tmp_path / "a.toml")
+    with pytest.raises(ValueError, match="increasing"):
+        write_ross3_bearing({**table, "speed": [600.0, 300.0]}, tmp_path / "a.toml")
+    with pytest.raises(ValueError, match="interpolation"):
+        write_ross3_bearing(table, tmp_path / "a.toml", interpolation="cubic")
+    with pytest.raises(ValueError, match="finite"):
+        write_ross3_bearing({**table, "cyy": np.full((2, 3), np.nan)}, tmp_path / "a.toml")
 
 
 @pytest.mark.parametrize("change, message", [
