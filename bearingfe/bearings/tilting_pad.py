@@ -898,8 +898,10 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
         ``speed`` and ``frequency`` (lists [rad/s]), and ``kxx, kxy, kyx, kyy`` [N/m], ``cxx, cxy, cyx, cyy``
         [N s/m] as nested lists of shape ``(len(speed), len(frequency))``: row ``i`` with ``frequency`` is
         the bearing at ``speed[i]``, ``ross.BearingElement(n=..., frequency=frequency, kxx=kxx[i], ...)``
-        (ROSS, up to 2.4, takes coefficients over frequency only; it is not imported). Files in ROSS's
-        own format, one per speed: :func:`bearingfe.io.writers.write_ross_bearings`.
+        (ROSS up to 2.4 takes coefficients over frequency only; ROSS 3.x the whole table,
+        ``BearingElement(n=..., speed=speed, frequency=frequency, kxx=kxx, ...)``; it is not imported).
+        Files in ROSS's own format: one per speed, :func:`bearingfe.io.writers.write_ross_bearings`
+        (ROSS 2.x); the 2-D table in one file, :func:`bearingfe.io.writers.write_ross3_bearing` (ROSS 3.x).
     """
     _check_positive(load=load, viscosity=viscosity)
     speeds, frequencies = np.asarray(speeds, float), np.asarray(frequencies, float)

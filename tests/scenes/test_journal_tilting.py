@@ -78,7 +78,14 @@ def test_coefficient_table_ross_files_and_the_summary_agree(run):
     assert ross["speed"] == pytest.approx(omega, rel=1e-15)
     for name, (i, j) in (("kxx", (0, 0)), ("kyy", (1, 1)), ("cxx", (0, 0)), ("cyy", (1, 1))):
         assert ross[name][0] == pytest.approx((K if name[0] == "k" else C)[i, j], rel=1e-9)
-    assert {"coefficients.csv", "stability.csv", "pressure.png", "stability.png"} <= set(summary["files"])
+    # the ROSS 3.x file: the whole table, speeds 3000, 6000, 9000 rpm by whirl frequencies 1 and 2 omega
+    ross3 = read_ross_bearing(out / "tilting_pad_ross3.toml")
+    np.testing.assert_allclose(ross3["speed"], np.array([3000.0, 6000.0, 9000.0]) * math.pi / 30, rtol=1e-15)
+    np.testing.assert_array_equal(ross3["frequency"], ross["frequency"])
+    for name in ROSS_COEFFICIENTS:
+        np.testing.assert_array_equal(ross3[name][1], ross[name])  # the 6000 rpm row is the 2.x file
+    assert {"coefficients.csv", "stability.csv", "pressure.png", "stability.png",
+            "tilting_pad_ross3.toml"} <= set(summary["files"])
     assert (out / "pressure.png").stat().st_size > 20000 and (out / "stability.png").stat().st_size > 10000
 
 
