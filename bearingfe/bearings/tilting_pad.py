@@ -37,8 +37,13 @@ The full coefficients are ``sum_i T_i^T D_i T_i`` (and the same of
 
 Flexible pivots (radial stiffness ``k``): pad ``i`` also moves out along its
 pivot line by ``xi_i``, so its effective position is ``x + (m - xi_i) n_i + q_i t_i``,
-and ``k xi_i = F_i . n_i`` at equilibrium (a Newton iteration per pad around the
-moment balance); ``xi_i`` joins the degrees of freedom (massless), the spring on its row.
+and ``k xi_i = F_i . n_i`` at equilibrium (Newton's steps on ``xi_i`` kept inside the
+bracket ``[0, s_i)``, ``s_i = x . n_i + m``, around the moment balance); ``xi_i`` joins the
+degrees of freedom (massless), the spring on its row. With the pivot offset from the pad's
+middle the pad carries a finite load ``F(0+)`` by its tilt alone however little the shaft closes
+its film, and none once it does not: a spring with ``k s_i < F(0+)`` pushes the pad out to that
+edge, where it sits (``EDGE_GAP`` short of it) carrying the spring's ``k xi_i``; the shaft then
+sees that pad's spring alone. So the equilibrium is found from a cold start on soft pivots too.
 
 Dynamic coefficients over the shaft and pad degrees of freedom, and the 2x2
 coefficients of the journal at whirl frequency ``Omega`` (Lund 1964): with the
