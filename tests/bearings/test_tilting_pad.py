@@ -396,7 +396,7 @@ def _soft_bearing(n_pads, on_pad, pivot_stiffness):
 
 @pytest.mark.parametrize("n_pads, on_pad", [(4, False), (4, True), (5, False), (5, True)])
 def test_soft_pivots_from_a_cold_start(n_pads, on_pad):
-    # 5e8 and 1e9 N/m at 6000 rpm, 0.015 Pa s, loads 1 and 12 kN, every solve from a cold start: the shaft
+    # 5e8 and 1e9 N/m at 6000 rpm, 0.015 Pa s, loads 1, 4 and 12 kN, every solve from a cold start: the shaft
     # carries the load, every loaded pad has no moment about its pivot, and each pivot spring carries its
     # pad's radial film force (k xi = F . n) unless the film out-pushes it right up to the pad's unloaded
     # edge, where the pad sits (xi = s0 = n . x + m to 1e-6) carrying k xi; softer pivots let the shaft sink
@@ -407,7 +407,7 @@ def test_soft_pivots_from_a_cold_start(n_pads, on_pad):
     for k_si in (5e8, 1e9):
         bearing = _soft_bearing(n_pads, on_pad, k_si)
         k = bearing.pivot_stiffness_parameter(mu, omega)
-        for load in (1000.0, 12000.0):
+        for load in (1000.0, 4000.0, 12000.0):
             w = load / bearing.force_scale(mu, omega)
             eq = tilting_pad_equilibrium(bearing.geometry, (0.0, -w), meshes=meshes, pivot_stiffness=k)
             assert eq.residual <= 1e-8
@@ -420,9 +420,10 @@ def test_soft_pivots_from_a_cold_start(n_pads, on_pad):
             assert np.all(eq.deflections[~loaded] == 0) and np.all(eq.deflections[loaded] > 0)
             assert np.all(eq.deflections[loaded] <= s0[loaded] + 1e-12)
             eps[k_si, load] = eq.eps
-    for load in (1000.0, 12000.0):
+    for load in (1000.0, 4000.0, 12000.0):
         assert eps[5e8, load] > eps[1e9, load]
-        assert eps[5e8, 1000.0] < eps[5e8, 12000.0]
+    for k_si in (5e8, 1e9):
+        assert eps[k_si, 1000.0] < eps[k_si, 4000.0] < eps[k_si, 12000.0]
 
 
 @pytest.mark.parametrize("n_pads, on_pad", [(4, True), (5, False)])
