@@ -37,8 +37,13 @@ The full coefficients are ``sum_i T_i^T D_i T_i`` (and the same of
 
 Flexible pivots (radial stiffness ``k``): pad ``i`` also moves out along its
 pivot line by ``xi_i``, so its effective position is ``x + (m - xi_i) n_i + q_i t_i``,
-and ``k xi_i = F_i . n_i`` at equilibrium (a Newton iteration per pad around the
-moment balance); ``xi_i`` joins the degrees of freedom (massless), the spring on its row.
+and ``k xi_i = F_i . n_i`` at equilibrium (Newton's steps on ``xi_i`` kept inside the
+bracket ``[0, s_i)``, ``s_i = x . n_i + m``, around the moment balance); ``xi_i`` joins the
+degrees of freedom (massless), the spring on its row. With the pivot offset from the pad's
+middle the pad carries a finite load ``F(0+)`` by its tilt alone however little the shaft closes
+its film, and none once it does not: a spring with ``k s_i < F(0+)`` pushes the pad out to that
+edge, where it sits (``EDGE_GAP`` short of it) carrying the spring's ``k xi_i``; the shaft then
+sees that pad's spring alone. So the equilibrium is found from a cold start on soft pivots too.
 
 Dynamic coefficients over the shaft and pad degrees of freedom, and the 2x2
 coefficients of the journal at whirl frequency ``Omega`` (Lund 1964): with the
@@ -491,6 +496,61 @@ def _balance_pad(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: f
         f"(shaft at {xy.round(6).tolist()}, moment {r:.3g} of the load)")
 
 
+#: Film left at a pad pushed out to the edge of its loaded range: ``x'' . n + m`` [C_p] (see _balance_pivot).
+EDGE_GAP = 1e-7
+
+
+def _balance_pivot(geometry: TiltingPadGeometry, mesh, i: int, xy, q0: float, w: float, cavitation: str,
+                   element: str, warm, tol: float, k: float, xi0: float | None):
+    """Loaded pad ``i`` on a pivot spring ``k``: the outward deflection ``xi`` at which the spring carries
+    the film's radial force, with the pad balanced about its pivot. Returns ``(xi, q, state, D, force)``.
+
+    The pad sees the shaft at ``xy - xi n``, nearer its pivot than the preload puts it by
+    ``s = s0 - xi`` (``s0 = n . xy + m > 0``); its radial force ``F(s)`` rises with ``s`` and the spring's
+    ``k xi`` with ``xi``, so ``g(xi) = F(s0 - xi) - k xi`` falls on ``[0, s0)`` and has at most one
+    root there. Newton's steps on ``g`` (slope ``-(n K n + k)``, ``K`` the pad's condensed stiffness)
+    are kept inside the bracket of its change of sign and bisected when they leave it: no cap on the
+    deflection, no step that jumps past the pad's unloaded range.
+
+    ``F`` does not vanish as ``s -> 0+`` on a pad with an offset pivot: the pad carries a load ``F(0+)``
+    by its tilt alone, and drops it at ``s = 0``, where it is counted unloaded. A spring with
+    ``k s0 < F(0+)`` therefore pushes the pad out to that edge (``g`` stays positive on ``[0, s0)``):
+    the pad sits at ``s = EDGE_GAP`` carrying the spring's ``k xi``, the film's force scaled down to it
+    (``force`` differs from ``state.force`` then), and the shaft sees the spring alone.
+    """
+    n, t = geometry.normals()
+    xy = np.asarray(xy, float)
+    s0 = float(n[i] @ xy) + geometry.preload
+    edge = s0 - min(EDGE_GAP, 0.5 * s0)
+    lo, hi = 0.0, edge  # g(lo) >= 0 (the film pushes, the spring is slack); g(hi) not known yet
+    edge_checked = False
+    xi = 0.0 if xi0 is None or not math.isfinite(xi0) else min(max(xi0, 0.0), edge)
+    q, state = q0, warm
+    for _ in range(80):
+        q, state, D = _balance_pad(geometry, mesh, i, xy - xi * n[i], q, w, cavitation, element, state, tol)
+        K = _condensed(D, t[i], n[i], k, deflected=False)
+        radial = float(state.force @ n[i])
+        excess = radial - k * xi
+        if abs(excess) <= tol * float(np.hypot(*state.force)) or abs(excess) <= 1e-2 * tol * w:
+            return xi, q, state, D, state.force
+        if excess > 0:
+            lo = xi
+            if xi == edge:  # the film pushes harder than the spring right up to the unloaded edge
+                return xi, q, state, D, state.force * (k * xi / radial)
+        else:
+            hi = xi
+            edge_checked = True
+        new = xi + excess / (float(n[i] @ K @ n[i]) + k)
+        if not lo < new < hi:
+            new = edge if not edge_checked and new >= hi else 0.5 * (lo + hi)
+            edge_checked = edge_checked or new == edge
+        if hi - lo <= 1e-14 * max(1.0, s0):
+            break
+        xi = new
+    raise TiltingPadConvergenceError(f"tilting-pad equilibrium: the pivot of pad {i} found no deflection "
+                                     f"that carries its film force (imbalance {excess:.3g})")
+
+
 def _balance(geometry: TiltingPadGeometry, meshes, xy, tilts, w: float, cavitation: str, element: str,
              warm: "_Pads | None", tol: float, locked: bool, pivot_stiffness: float = math.inf
              ) -> tuple[_Pads, np.ndarray, list]:
@@ -519,29 +579,21 @@ def _balance(geometry: TiltingPadGeometry, meshes, xy, tilts, w: float, cavitati
             D, _ = _pad_derivatives(geometry, mesh, i, state, xy, tilts[i], cavitation, element, damping=False)
             stiffness.append(D)
         else:
-            xi = 0.0 if warm is None or not math.isfinite(pivot_stiffness) else float(warm.deflections[i])
-            s0 = float(n[i] @ xy) + geometry.preload
-            xi = min(xi, 0.5 * s0)
-            for _ in range(60):
-                # the pad on a pivot deflected outward by xi sees the shaft at xy - xi n
-                tilts[i], state, D = _balance_pad(geometry, mesh, i, xy - xi * n[i], tilts[i], w, cavitation,
-                                                  element, start, tol)
-                start = state
-                K = _condensed(D, t[i], n[i], pivot_stiffness, deflected=False)
-                if not math.isfinite(pivot_stiffness):
-                    break
-                # the film's radial force against the spring: Newton with the film's condensed radial stiffness
-                excess = float(state.force @ n[i]) - pivot_stiffness * xi
-                if abs(excess) <= tol * float(np.hypot(*state.force)) or abs(excess) <= 1e-2 * tol * w:
-                    break
-                xi = min(xi + excess / (float(n[i] @ K @ n[i]) + pivot_stiffness), 0.5 * (xi + s0))
+            if math.isfinite(pivot_stiffness):
+                xi, tilts[i], state, D, force = _balance_pivot(geometry, mesh, i, xy, tilts[i], w, cavitation, element,
+                                                               start, tol, pivot_stiffness,
+                                                               None if warm is None else float(warm.deflections[i]))
             else:
-                raise TiltingPadConvergenceError(f"tilting-pad equilibrium: the pivot of pad {i} found no deflection "
-                                                 "that carries its film force")
+                xi = 0.0
+                tilts[i], state, D = _balance_pad(geometry, mesh, i, xy, tilts[i], w, cavitation, element, start, tol)
+                force = state.force
             deflections[i] = xi
-            stiffness.append(_condensed(D, t[i], n[i], pivot_stiffness, deflected=True))
+            stiffness.append(_condensed(D, t[i], n[i], pivot_stiffness, deflected=True) if force is state.force
+                             else pivot_stiffness * np.outer(force / float(force @ n[i]), n[i]))
+            forces[i] = force
         states.append(state)
-        forces[i] = state.force
+        if locked:
+            forces[i] = state.force
     return _Pads(states=tuple(states), forces=forces, kinds=kinds, deflections=deflections), tilts, stiffness
 
 
@@ -851,8 +903,10 @@ def ross_table(bearing: TiltingPadBearing, load: float, viscosity: float, speeds
         ``speed`` and ``frequency`` (lists [rad/s]), and ``kxx, kxy, kyx, kyy`` [N/m], ``cxx, cxy, cyx, cyy``
         [N s/m] as nested lists of shape ``(len(speed), len(frequency))``: row ``i`` with ``frequency`` is
         the bearing at ``speed[i]``, ``ross.BearingElement(n=..., frequency=frequency, kxx=kxx[i], ...)``
-        (ROSS, up to 2.4, takes coefficients over frequency only; it is not imported). Files in ROSS's
-        own format, one per speed: :func:`bearingfe.io.writers.write_ross_bearings`.
+        (ROSS up to 2.4 takes coefficients over frequency only; ROSS 3.x the whole table,
+        ``BearingElement(n=..., speed=speed, frequency=frequency, kxx=kxx, ...)``; it is not imported).
+        Files in ROSS's own format: one per speed, :func:`bearingfe.io.writers.write_ross_bearings`
+        (ROSS 2.x); the 2-D table in one file, :func:`bearingfe.io.writers.write_ross3_bearing` (ROSS 3.x).
     """
     _check_positive(load=load, viscosity=viscosity)
     speeds, frequencies = np.asarray(speeds, float), np.asarray(frequencies, float)

@@ -10,7 +10,7 @@ module            what it does
 
 from __future__ import annotations
 from .writers import (atomic_path, umask, write_vtu, write_pvd, read_pvd, write_csv, write_json, write_ross_bearings,
-                      read_ross_bearing)
+                      write_ross3_bearing, read_ross_bearing)
 from .outfolder import (MANIFEST, OutputFolderError, lock_folder, output_folder, read_manifest)
 
-__all__ = ['atomic_path', 'umask', 'write_vtu', 'write_pvd', 'read_pvd', 'write_csv', 'write_json', 'write_ross_bearings', 'read_ross_bearing', 'MANIFEST', 'OutputFolderError', 'lock_folder', 'output_folder', 'read_manifest']
+__all__ = ['atomic_path', 'umask', 'write_vtu', 'write_pvd', 'read_pvd', 'write_csv', 'write_json', 'write_ross_bearings', 'write_ross3_bearing', 'read_ross_bearing', 'MANIFEST', 'OutputFolderError', 'lock_folder', 'output_folder', 'read_manifest']

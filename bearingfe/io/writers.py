@@ -354,9 +354,82 @@ def write_ross_bearings(table: Mapping, folder: str | Path, *, n: int = 0, tag: 
     return out
 
 
+#: Every coefficient table of a ROSS 3.x ``BearingElement``: stiffness [N/m], damping [N s/m], mass [kg];
+#: ``BearingElement.save`` writes them all, over both axes, with ``kyy``, ``cyy``, ``myy`` given.
+ROSS3_COEFFICIENTS = {**{f"k{a}": "N/m" for a in ("xx", "yy", "xy", "yx", "zz")},
+                      **{f"c{a}": "N s/m" for a in ("xx", "yy", "xy", "yx", "zz")},
+                      **{f"m{a}": "kg" for a in ("xx", "yy", "xy", "yx", "zz")}}
+
+#: The interpolations a ROSS 3.x table takes along each axis.
+ROSS3_INTERPOLATION = ("pchip", "linear")
+
+
+def write_ross3_bearing(table: Mapping, path: str | Path, *, n: int = 0, tag: str = "bearing",
+                        interpolation: str = "pchip", color: str = "#355d7a") -> Path:
+    """Write coefficients over (rotor speed, whirl frequency) as one ROSS 3.x bearing file.
+
+    ROSS 3.x keeps a ``BearingElement``'s coefficients as a two-dimensional table: given both axes
+    ``speed`` and ``frequency`` [rad/s], each of ``kxx ... mzz`` has the shape ``(len(speed),
+    len(frequency))`` and is interpolated along the speed first, then the frequency. Its ``save``
+    writes a TOML table ``[BearingElement_<tag>]`` with the keys in sorted order: ``color``, the
+    fifteen coefficient tables (:data:`ROSS3_COEFFICIENTS`), ``frequency``, ``interpolation``, ``n``,
+    ``scale_factor``, ``speed``, ``tag`` (``n_link`` and ``radial_clearance`` left out when absent);
+    ``ross.BearingElement.load(path)`` builds the element from it. This writes exactly that: the table's
+    ``kxx ... cyy``, the axial and mass tables zero.
+
+    Parameters
+    ----------
+    table : mapping
+        ``speed`` (m,) and ``frequency`` (f,) [rad/s], each increasing, and the coefficients of
+        :data:`ROSS_COEFFICIENTS` as arrays (m, f) (as :func:`bearingfe.bearings.tilting_pad.ross_table`
+        returns).
+    path : str or Path
+        The file (``.toml``); its folder must exist.
+    n : int
+        The rotor node of the bearing (``BearingElement(n=...)``).
+    tag : str
+        Element tag: letters, digits, ``_`` and ``-``.
+    interpolation : {"pchip", "linear"}
+        ROSS's interpolation along each axis.
+    color : str
+        ROSS's drawing colour.
+
+    Returns
+    -------
+    Path
+    """
+    if not (isinstance(tag, str) and tag and all(ch.isalnum() or ch in "_-" for ch in tag)):
+        raise ValueError(f"tag must be letters, digits, '_' or '-', got {tag!r}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise ValueError(f"n must be a node number >= 0, got {n!r}")
+    if interpolation not in ROSS3_INTERPOLATION:
+        raise ValueError(f"interpolation must be one of {ROSS3_INTERPOLATION}, got {interpolation!r}")
+    path = Path(path)
+    if path.suffix != ".toml":
+        raise ValueError(f"path must end in .toml, got {str(path)!r}")
+    speeds, freqs = np.asarray(table["speed"], float), np.asarray(table["frequency"], float)
+    for name, axis in (("speed", speeds), ("frequency", freqs)):
+        if axis.ndim != 1 or not axis.size or not np.all(np.diff(axis) > 0):
+            raise ValueError(f"{name} must be a non-empty increasing 1-D array, got {axis!r}")
+    fields = {"color": color}
+    for name in sorted(ROSS3_COEFFICIENTS):
+        v = np.asarray(table[name], float) if name in ROSS_COEFFICIENTS else np.zeros((speeds.size, freqs.size))
+        if v.shape != (speeds.size, freqs.size):
+            raise ValueError(f"{name} must have the shape (speeds, frequencies) = {(speeds.size, freqs.size)}, "
+                             f"got {v.shape}")
+        fields[name] = v
+    fields.update(frequency=freqs, interpolation=interpolation, n=int(n), scale_factor=1, speed=speeds, tag=tag)
+    fields = dict(sorted(fields.items()))
+    text = f'["BearingElement_{tag}"]\n' + "".join(f"{k} = {_toml_value(v)}\n" for k, v in fields.items())
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+    return path
+
+
 def read_ross_bearing(path: str | Path) -> dict:
     """The keywords of the one ``ross.BearingElement`` in a ROSS bearing file (TOML or JSON), as
-    ``BearingElement.load`` reads them: the first table's fields, coefficient lists as arrays."""
+    ``BearingElement.load`` reads them: the first table's fields, coefficient lists as arrays (2-D over
+    speed and frequency in a ROSS 3.x file, :func:`write_ross3_bearing`)."""
     import tomllib
 
     path = Path(path)

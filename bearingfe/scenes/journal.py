@@ -458,7 +458,7 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
     from ..bearings.tilting_pad import (TiltingPadConvergenceError, pad_assembly_coefficients, ross_table_of,
                                         tilting_pad_equilibrium, tilting_pad_meshes)
     from ..core.scales import Scale
-    from ..io.writers import write_csv, write_json, write_ross_bearings
+    from ..io.writers import write_csv, write_json, write_ross3_bearing, write_ross_bearings
 
     b, op, t, solver, out = s["bearing"], s["operating"], s["tilting_pad"], s["solver"], s["output"]
     bearing = _tilting_bearing(s, label)
@@ -556,6 +556,7 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
                     cols[f"{name}{a}{c_} [{unit}]"] = np.array([kc[which][i, j] for kc in per_ratio])
         files.append(write_csv(cols, out_dir / "coefficients.csv", fields=list(cols)).name)
         files += [p.name for p in write_ross_bearings(table, out_dir, tag="tilting_pad")]
+        files.append(write_ross3_bearing(table, out_dir / "tilting_pad_ross3.toml", tag="tilting_pad").name)
     cols = {"speed [rpm]": speeds * 30 / math.pi, "speed [rad/s]": speeds, "log_decrement [-]": delta,
             "eccentricity [-]": np.array([solve(float(v))[0].eps for v in speeds])}
     files.append(write_csv(cols, out_dir / "stability.csv", fields=list(cols)).name)

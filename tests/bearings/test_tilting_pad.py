@@ -384,3 +384,88 @@ def test_flexible_pivots_are_springs_in_series_with_the_pads():
         assert f.K[0, 0] == pytest.approx(series.real, rel=1e-6)
         assert nu == 0 or f.C[0, 0] == pytest.approx(series.imag / nu, rel=1e-6)
         assert abs(f.K[0, 1]) <= 1e-7 * abs(f.K[0, 0])
+
+
+def _soft_bearing(n_pads, on_pad, pivot_stiffness):
+    """The scene's five-pad bearing (scenes/journal_tilting.toml: D 100 mm, L 50 mm, C_p 80 um, 60 %
+    offset, preload 0.25) or a four-pad one with 80-degree pads, on pivots of the given stiffness [N/m]."""
+    arc = 60.0 if n_pads == 5 else 80.0
+    return TiltingPadBearing(radius=0.05, length=0.05, pad_clearance=80e-6, n_pads=n_pads, arc=math.radians(arc),
+                             offset=0.6, preload=0.25, load_on_pad=on_pad, pivot_stiffness=pivot_stiffness)
+
+
+@pytest.mark.parametrize("n_pads, on_pad", [(4, False), (4, True), (5, False), (5, True)])
+def test_soft_pivots_from_a_cold_start(n_pads, on_pad):
+    # 5e8 and 1e9 N/m at 6000 rpm, 0.015 Pa s, loads 1, 4 and 12 kN, every solve from a cold start: the shaft
+    # carries the load, every loaded pad has no moment about its pivot, and each pivot spring carries its
+    # pad's radial film force (k xi = F . n) unless the film out-pushes it right up to the pad's unloaded
+    # edge, where the pad sits (xi = s0 = n . x + m to 1e-6) carrying k xi; softer pivots let the shaft sink
+    mu, omega = 0.015, 6000 * math.pi / 30
+    n, t = _soft_bearing(n_pads, on_pad, 5e8).geometry.normals()
+    meshes = tilting_pad_meshes(_soft_bearing(n_pads, on_pad, 5e8).geometry, 0.15)
+    eps = {}
+    for k_si in (5e8, 1e9):
+        bearing = _soft_bearing(n_pads, on_pad, k_si)
+        k = bearing.pivot_stiffness_parameter(mu, omega)
+        for load in (1000.0, 4000.0, 12000.0):
+            w = load / bearing.force_scale(mu, omega)
+            eq = tilting_pad_equilibrium(bearing.geometry, (0.0, -w), meshes=meshes, pivot_stiffness=k)
+            assert eq.residual <= 1e-8
+            np.testing.assert_allclose(eq.force, (0.0, -w), atol=1e-8 * w)
+            assert np.abs(np.einsum("ij,ij->i", eq.pad_forces, t)).max() <= 1e-8 * w
+            radial = np.einsum("ij,ij->i", eq.pad_forces, n)
+            s0 = n @ eq.position + bearing.preload
+            loaded = s0 > 0
+            np.testing.assert_allclose(radial[loaded], k * eq.deflections[loaded], rtol=1e-7, atol=1e-9 * w)
+            assert np.all(eq.deflections[~loaded] == 0) and np.all(eq.deflections[loaded] > 0)
+            assert np.all(eq.deflections[loaded] <= s0[loaded] + 1e-12)
+            eps[k_si, load] = eq.eps
+    for load in (1000.0, 4000.0, 12000.0):
+        assert eps[5e8, load] > eps[1e9, load]
+    for k_si in (5e8, 1e9):
+        assert eps[k_si, 1000.0] < eps[k_si, 4000.0] < eps[k_si, 12000.0]
+
+
+@pytest.mark.parametrize("n_pads, on_pad", [(4, True), (5, False)])
+def test_stiff_pivots_reach_the_rigid_result(n_pads, on_pad):
+    # the pads move out by F/k: at 1e15 N/m (C_p 80 um, k C_p^3/(mu omega R^4) = 8.7e6) that is below
+    # 1e-7 C_p, and the shaft's position, the rotations and the pad forces agree with rigid pivots to that order
+    mu, omega, load = 0.015, 6000 * math.pi / 30, 4000.0
+    bearing = _soft_bearing(n_pads, on_pad, 1e15)
+    g = bearing.geometry
+    meshes = tilting_pad_meshes(g, 0.15)
+    w = load / bearing.force_scale(mu, omega)
+    rigid = tilting_pad_equilibrium(g, (0.0, -w), meshes=meshes)
+    stiff = tilting_pad_equilibrium(g, (0.0, -w), meshes=meshes,
+                                    pivot_stiffness=bearing.pivot_stiffness_parameter(mu, omega))
+    assert 0 < stiff.deflections.max() < 1e-7
+    np.testing.assert_allclose(stiff.position, rigid.position, atol=1e-6)
+    np.testing.assert_allclose(stiff.tilts, rigid.tilts, atol=1e-5)
+    np.testing.assert_allclose(stiff.pad_forces, rigid.pad_forces, atol=1e-5 * w)
+
+
+def test_soft_pivot_pushes_a_pad_to_its_unloaded_edge():
+    # the scene's bearing at its load (3.92 kN) on 5e8 N/m pivots: the top pad's film, with its pivot 60 %
+    # along the arc, carries F(0+) ~ 0.17 [mu omega R^4/C_p^2] by its tilt alone however little the shaft
+    # closes it, more than its spring carries at the deflection that empties it (k s0); so the pad sits at
+    # the edge of its loaded range (x' . n + m = EDGE_GAP) with the spring's force k xi < F(0+), and the
+    # bearing still carries the load. At 3 kN the same pad is loaded in the ordinary way (k xi = F(s) > F(0+)).
+    from bearingfe.bearings.tilting_pad import EDGE_GAP
+    mu, omega = 0.015, 6000 * math.pi / 30
+    bearing = _soft_bearing(5, False, 5e8)
+    n, _ = bearing.geometry.normals()
+    k = bearing.pivot_stiffness_parameter(mu, omega)
+    meshes = tilting_pad_meshes(bearing.geometry, 0.15)
+    top = []
+    for load in (3000.0, 3924.0):
+        w = load / bearing.force_scale(mu, omega)
+        eq = tilting_pad_equilibrium(bearing.geometry, (0.0, -w), meshes=meshes, pivot_stiffness=k)
+        assert eq.residual <= 1e-8
+        gap = float(n[2] @ eq.position) + bearing.preload - eq.deflections[2]
+        film = float(eq.pads.states[2].force @ n[2])  # the film's own force at that gap
+        top.append((gap, float(eq.pad_forces[2] @ n[2]), film))
+    (gap3, carried3, film3), (gap4, carried4, film4) = top
+    assert gap3 > 1e-3 and carried3 == pytest.approx(film3, rel=1e-8)
+    assert gap4 == pytest.approx(EDGE_GAP, rel=1e-6)
+    assert carried4 == pytest.approx(k * eq.deflections[2], rel=1e-12) and 0 < carried4 < 0.8 * film4
+    assert film4 < film3  # F(s) rises with s: the edge's film force is the least

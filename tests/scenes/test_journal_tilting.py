@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from bearingfe.cli import main
-from bearingfe.io.writers import ROSS_COEFFICIENTS, read_ross_bearing, write_ross_bearings
+from bearingfe.io.writers import ROSS_COEFFICIENTS, read_ross_bearing, write_ross3_bearing, write_ross_bearings
 from bearingfe.scenes.journal import settings
 from tests.helpers import ROOT, toml_text
 
@@ -78,7 +78,14 @@ def test_coefficient_table_ross_files_and_the_summary_agree(run):
     assert ross["speed"] == pytest.approx(omega, rel=1e-15)
     for name, (i, j) in (("kxx", (0, 0)), ("kyy", (1, 1)), ("cxx", (0, 0)), ("cyy", (1, 1))):
         assert ross[name][0] == pytest.approx((K if name[0] == "k" else C)[i, j], rel=1e-9)
-    assert {"coefficients.csv", "stability.csv", "pressure.png", "stability.png"} <= set(summary["files"])
+    # the ROSS 3.x file: the whole table, speeds 3000, 6000, 9000 rpm by whirl frequencies 1 and 2 omega
+    ross3 = read_ross_bearing(out / "tilting_pad_ross3.toml")
+    np.testing.assert_allclose(ross3["speed"], np.array([3000.0, 6000.0, 9000.0]) * math.pi / 30, rtol=1e-15)
+    np.testing.assert_array_equal(ross3["frequency"], ross["frequency"])
+    for name in ROSS_COEFFICIENTS:
+        np.testing.assert_array_equal(ross3[name][1], ross[name])  # the 6000 rpm row is the 2.x file
+    assert {"coefficients.csv", "stability.csv", "pressure.png", "stability.png",
+            "tilting_pad_ross3.toml"} <= set(summary["files"])
     assert (out / "pressure.png").stat().st_size > 20000 and (out / "stability.png").stat().st_size > 10000
 
 
@@ -117,6 +124,38 @@ def test_ross_files_read_back(tmp_path):
         write_ross_bearings(table, tmp_path, tag="a b")
     with pytest.raises(ValueError, match="finite"):
         write_ross_bearings({**table, "cyy": np.full((2, 3), np.inf)}, tmp_path)
+
+
+def test_ross3_file_reads_back(tmp_path):
+    """One ROSS 3.x file over two speeds x three frequencies: the layout ROSS 3.1.0's
+    ``BearingElement.save`` writes for a 2-D table (its keys, sorted; one section
+    ``BearingElement_<tag>``; every coefficient (speeds, frequencies)), read back exactly. (That ROSS 3.1
+    itself loads it and evaluates the same coefficients: benchmarks/tilting_pad_ross3.py.)"""
+    rng = np.random.default_rng(2)
+    table = {"speed": [300.0, 600.0], "frequency": [100.0, 300.0, 600.0],
+             **{k: rng.normal(size=(2, 3)) * 1e8 for k in ROSS_COEFFICIENTS}}
+    path = write_ross3_bearing(table, tmp_path / "brg.toml", n=3, tag="brg")
+    data = tomllib.loads(path.read_text())
+    assert list(data) == ["BearingElement_brg"]
+    ross31_keys = ["color", "cxx", "cxy", "cyx", "cyy", "czz", "frequency", "interpolation", "kxx", "kxy", "kyx",
+                   "kyy", "kzz", "mxx", "mxy", "myx", "myy", "mzz", "n", "scale_factor", "speed", "tag"]
+    assert list(data["BearingElement_brg"]) == ross31_keys
+    back = read_ross_bearing(path)
+    assert back["n"] == 3 and back["tag"] == "brg" and back["interpolation"] == "pchip" and back["scale_factor"] == 1
+    np.testing.assert_array_equal(back["speed"], table["speed"])
+    np.testing.assert_array_equal(back["frequency"], table["frequency"])
+    for k in ROSS_COEFFICIENTS:
+        np.testing.assert_array_equal(back[k], table[k])
+    for k in ("kzz", "czz", "mxx", "mxy", "myx", "myy", "mzz"):
+        np.testing.assert_array_equal(back[k], np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="shape"):
+        write_ross3_bearing({**table, "kxx": [[1.0]]}, tmp_path / "a.toml")
+    with pytest.raises(ValueError, match="increasing"):
+        write_ross3_bearing({**table, "speed": [600.0, 300.0]}, tmp_path / "a.toml")
+    with pytest.raises(ValueError, match="interpolation"):
+        write_ross3_bearing(table, tmp_path / "a.toml", interpolation="cubic")
+    with pytest.raises(ValueError, match="finite"):
+        write_ross3_bearing({**table, "cyy": np.full((2, 3), np.nan)}, tmp_path / "a.toml")
 
 
 @pytest.mark.parametrize("change, message", [
