@@ -429,40 +429,62 @@ def _film_floor(pad: ThrustPad, q: np.ndarray) -> float:
     return float(np.min(q[0] + slope[0] * (xy[0] - pad.pivot[0]) + slope[1] * (xy[1] - pad.pivot[1])))
 
 
+def _jacobian(residual, q: np.ndarray, r: np.ndarray, free: list[int]) -> np.ndarray:
+    """Forward-difference Jacobian of ``residual`` over the entries ``free`` of ``q`` (one solve each)."""
+    J = np.empty((len(free), len(free)))
+    for j, k in enumerate(free):
+        dq = np.zeros_like(q)
+        dq[k] = 1e-6 * max(abs(q[k]), 1e-2 * q[0], 1e-3)
+        J[:, j] = (residual(q + dq)[0] - r) / dq[k]
+    return J
+
+
 def _newton(residual, q0: np.ndarray, free: list[int], scales: np.ndarray, pad: ThrustPad, what: str,
             tol: float, max_iterations: int):
-    """Damped Newton on ``residual(q)[:len(free)] = 0`` over the entries ``free`` of ``q``, finite-difference
-    Jacobian, steps halved until the film stays positive and the residual norm falls."""
+    """Damped quasi-Newton on ``residual(q)[:len(free)] = 0`` over the entries ``free`` of ``q``: a
+    finite-difference Jacobian, kept with Broyden's rank-one updates while full steps at least halve the
+    residual (one film solve a step instead of ``1 + len(free)``), differenced again otherwise; steps are
+    halved until the film stays positive and the residual norm falls."""
     q = np.array(q0, float)
     r, sol = residual(q)
     history = []
-    for it in range(max_iterations):
+    J, fresh = None, False
+    it = 0
+    while it < max_iterations:
         norm = float(np.max(np.abs(r / scales)))
-        history.append(norm)
+        if not history or history[-1] != norm:
+            history.append(norm)
         if norm < tol:
             return q, sol, it
-        J = np.empty((len(free), len(free)))
-        for j, k in enumerate(free):
-            dq = np.zeros_like(q)
-            dq[k] = 1e-6 * max(abs(q[k]), 1e-2 * q[0], 1e-3)
-            J[:, j] = (residual(q + dq)[0] - r) / dq[k]
+        if J is None:
+            J, fresh = _jacobian(residual, q, r, free), True
         try:
             step = np.linalg.solve(J, -r)
         except np.linalg.LinAlgError:
             raise ThrustError(f"{what}: singular Jacobian at state {q.tolist()} (residuals {history})") from None
-        lam = 1.0
+        lam, trial_norm = 1.0, math.inf
         while lam > 1e-4:
             trial = q.copy()
             trial[free] += lam * step
             if _film_floor(pad, trial) > 0.02 * trial[0] > 0:
                 rt, st = residual(trial)
-                if float(np.max(np.abs(rt / scales))) < (1 - 1e-4 * lam) * norm:
+                trial_norm = float(np.max(np.abs(rt / scales)))
+                if trial_norm < (1 - 1e-4 * lam) * norm:
                     break
             lam *= 0.5
         else:
+            if not fresh:  # the updated Jacobian led nowhere: difference it again and retry from here
+                J = None
+                continue
             raise ThrustError(f"{what}: no step reduces the residual from state {q.tolist()} "
                               f"(relative residuals by iteration: {[f'{v:.2e}' for v in history]})")
+        if lam == 1.0 and trial_norm < 0.5 * norm:  # Broyden's update along the full step
+            J = J + np.outer(rt - r - J @ step, step) / float(step @ step)
+            fresh = False
+        else:  # a shortened or a weak step: the linear model is poor here, difference it again
+            J = None
         q, r, sol = trial, rt, st
+        it += 1
     raise ThrustError(f"{what}: no convergence in {max_iterations} iterations "
                       f"(relative residuals: {[f'{v:.2e}' for v in history[-5:]]})")
 
