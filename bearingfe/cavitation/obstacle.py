@@ -250,8 +250,10 @@ class ObstacleProblem:
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
             lam, new_active = self._next_set(u, b, active, free, scale_b)
             key = np.packbits(new_active).tobytes()
-            if not exact and (np.array_equal(new_active, active) or key in seen):
-                # settled (or back to a set seen) on an inexact solve: solve this set to the tolerance
+            changes = int(np.count_nonzero(new_active != active))
+            if not exact and (changes <= max(SETTLING_CHANGES, SETTLING_FRACTION * self.n) or key in seen):
+                # settled, nearly (a few dofs flipping on the rounding of an inexact solve), or back to a
+                # set seen, on an inexact solve: solve this set to the tolerance and decide on that
                 u[free], _, exact = self._solve_free(free, b[free], None, u[free])
                 lam, new_active = self._next_set(u, b, active, free, scale_b)
                 key = np.packbits(new_active).tobytes()
@@ -269,6 +271,14 @@ class ObstacleProblem:
         raise CavitationError(
             f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
+
+
+#: An inexact (conjugate-gradient) solve whose next set differs in at most this many dofs, or this fraction
+#: of them, is redone to the tolerance before the set moves: near the answer the rounding of a loose solve
+#: flips dofs on the free boundary back and forth (measured: 2-4 dofs of 1.8e5 chattering for five steps,
+#: then a cycle) where the exact solve settles.
+SETTLING_CHANGES = 16
+SETTLING_FRACTION = 1e-4
 
 
 def krylov_cap(unknowns: int, low_memory: bool = False) -> int:
