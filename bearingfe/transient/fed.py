@@ -15,7 +15,8 @@ delta)``, integrated from the pocket's moments). With the restrictor's ``pocket_
 state is ``(gamma, delta, p_r)`` [-, rad, -] and ``p_r`` has this rate equation
 (``dp_r/dbeta = K R0^2 c / (V P) (...)``, non-dimensional flows); without it the pocket holds no
 oil of its own and ``p_r`` is balanced at each instant (the right side at zero), the state stays
-``(gamma, delta)``. The trajectory's ``inlet_pressure`` is ``p_r``.
+``(gamma, delta)``. The trajectory's ``inlet_pressure`` is ``p_r``; its ``flow_restrictor`` and
+``flow_pocket_gap`` are ``Q_restrictor`` and ``dV/dt`` [m^3/s] (``flow_inlet`` is ``Q_film``).
 
 Starts: the rigid model's steady state at ``beta0`` (pocket at the chamber pressure) with the
 pocket balanced on it, or the periodic state from there; cavitation and the elastic support are
@@ -89,9 +90,14 @@ class Fed(Rigid):
         """``Q_film + dV/dt`` [omega R0^2 c] at pocket pressure ``p`` and squeeze rates ``rates``."""
         sup = self.superposition(y[0], y[1])
         q_film = float(self.unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
+        return q_film + self._gap_rate(sup, y, rates)
+
+    @staticmethod
+    def _gap_rate(sup: Superposition, y: np.ndarray, rates: np.ndarray) -> float:
+        """``dV/dbeta = int_pocket dh/dbeta dA`` [omega R0^2 c]: the shoe's motion opening the pocket's gap."""
         _, mc, ms = sup.operators.pocket_moments  # int_pocket (1, cos phi, sin phi)
         c, s = math.cos(y[1]), math.sin(y[1])
-        return q_film + rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc)
+        return float(rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc))
 
     def _law(self, beta: float):
         return self.restrictor.law_at(float(self.pump.chamber_pressure(beta)), self.pump.scale)
@@ -135,5 +141,9 @@ class Fed(Rigid):
         return beta0, np.array([y0[0], y0[1], self._balanced(beta0, y0)])
 
     def sample_state(self, beta: float, y: np.ndarray):
+        """The rigid sample with the pocket pressure [-], the restrictor's flow and the pocket's gap rate [m^3/s]."""
         rates, res, sup, more = super().sample_state(beta, y)
-        return rates, res, sup, dict(more, inlet_pressure=self.pocket_pressure(beta, y))
+        p = self.pocket_pressure(beta, y)
+        sc = self.pump.scale
+        return rates, res, sup, dict(more, inlet_pressure=p, flow_restrictor=sc.to_flow(self._law(beta).flow(p)),
+                                     flow_pocket_gap=sc.to_flow(self._gap_rate(sup, y, rates)))
