@@ -248,9 +248,19 @@ of the restrictor's flow less the film's and the gap's (second order in the samp
 at 1 degree), and that the chamber's supply power `Q_r p_ch` is the pumping power plus the pocket's own
 work to 2e-3.
 
+With `cavitation="reynolds"` or `"gumbel"` the pocket runs on the ruptured film (`FedCavitating`: the
+cavitated film's own outflow from the pocket drives `p_r`; it needs `pocket_volume`). On the shipped
+orifice pump the Swift-Stieber run completes, its flows balancing as above (1.4e-3 at 0.5 degree); the
+Gumbel run stops as `"no-equilibrium"` at about 195 degrees, where the orifice vents the compressed
+pocket more slowly than the chamber falls: its 17 MPa press on the pocket's own area with 0.87 of the
+plunger load and through the film with 3 times it, and a film without tension finds no rates to hold the
+shoe (the message says so).
+
 ## Not yet
 
-- A fed pocket with cavitation or the elastic support in the transient (refused by name), and Newton
+- A fed pocket with the mass-conserving JFO film or the elastic support in the transient (refused by
+  name: JFO carries its fill fraction by backward Euler steps, the elastic support its own pressure
+  state), a pocket balanced at each instant (no `pocket_volume`) on a cavitating film, and Newton
   shooting for the three-state model (its periodic start is Anderson's).
 - The dynamics of a fed support other than the pad moving normal to itself (a journal's or a tilted
   pad's coefficients with their pockets' pressures responding): `bf.supply_dynamics` takes the
