@@ -551,3 +551,20 @@ def test_bad_dynamics_arguments_are_named(pads):
         supply_dynamics(pads["P1"], 1e-3, capillary_for(0.5), SCALE)
     with pytest.raises(ValueError, match="volumes"):
         supply_dynamics(pads["P1"], 1.0, capillary_for(0.5), SCALE, volumes=-1.0)
+
+
+def test_two_fed_pockets_share_the_dynamics(twin):
+    # two equal pockets symmetric about z: each through an equal capillary they respond alike (to the mesh's
+    # asymmetry), their shares and the film's add up to the whole; a pocket held at its pressure takes no share
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    cap = Capillary(diameter=0.4e-3, length=0.05, supply_pressure=PS)
+    dyn = supply_dynamics(twin, 1.0, cap, SCALE, frequencies=(0.0, 1e3), volumes=1e-7, discretization=P2)
+    a, b = dyn.result.pockets
+    np.testing.assert_allclose(a.damping, b.damping, rtol=1e-2)
+    np.testing.assert_allclose(a.stiffness, b.stiffness, rtol=1e-2)
+    np.testing.assert_allclose(a.damping + b.damping + dyn.squeeze_damping, dyn.damping, rtol=1e-12)
+    np.testing.assert_allclose(a.stiffness + b.stiffness + dyn.film_stiffness, dyn.stiffness, rtol=1e-12)
+    assert np.all(dyn.stiffness > 0) and np.all(dyn.damping > dyn.squeeze_damping) and dyn.squeeze_damping > 0
+    mixed = supply_dynamics(twin, 1.0, [PrescribedPressure(0.5 * PS), cap], SCALE, discretization=P2)
+    held, fed = mixed.result.pockets
+    assert held.damping[0] == 0.0 and held.stiffness[0] == 0.0 and fed.damping[0] > 0
