@@ -22,7 +22,8 @@ from ..core.lazy import lazy_names
 _NAMES = {
     "journal": ("DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients"),
     "hydrostatic": ("SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SuppliedResult",
-                    "SupplyError", "pocket_transient", "solve_supplied", "supply_stiffness"),
+                    "SupplyError", "SupportDynamics", "pocket_transient", "solve_supplied", "supply_dynamics",
+                    "supply_stiffness"),
     "pump": ("EccentricPump", "PressureCycle"),
     "stability": ("RotorModes", "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"),
     "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",

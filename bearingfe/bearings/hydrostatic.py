@@ -59,10 +59,13 @@ The oil in a pocket is compressible: :func:`pocket_transient` integrates each
 pocket's own rate equation ``V/K dp_r/dt = Q_restrictor - Q_film`` at a fixed
 film (volume ``V``, bulk modulus ``K``) and gives the time constants of its
 linearisation at the balance (``V / (K (Kc + G))`` for a capillary-fed pocket).
-The pump transient does not carry it yet: there the pocket is at the chamber
-pressure. The pump's shoe pocket may be fed from the chamber through a
+:func:`supply_dynamics` linearises the same rate equation with the pad in motion
+(``UniformFilm(h)`` moving normal to itself, the pocket's own gap opening with it)
+and gives the dynamic stiffness and damping at each frequency, in all and per
+pocket. The pump's shoe pocket may be fed from the chamber through a
 :class:`Restrictor` in the plunger (``[shoe.supply]`` of the machine file;
-:meth:`bearingfe.EccentricPump.pocket_supply`).
+:meth:`bearingfe.EccentricPump.pocket_supply`), carried by the pump transient's
+``"fed"`` model (:mod:`bearingfe.transient.fed`).
 
 Closed forms the tests check (circular pad of radius ``R`` with a central
 recess of radius ``r``, uniform film ``h``: Rowe, *Hydrostatic, Aerostatic and
@@ -71,7 +74,12 @@ film flow ``Q = pi h^3 p_r / (6 mu ln(R/r))``, load ``W = pi p_r (R^2 - r^2) /
 (2 ln(R/r))``; with ``beta = p_r/p_s`` the stiffness ``3 W (1 - beta)/h``
 (capillary, largest at ``beta = 1/2`` for a given supply pressure and area) and
 ``6 W (1 - beta)/((2 - beta) h)`` (orifice, largest at ``beta = 2 - sqrt(2)``); at
-constant flow ``p_r ~ h^-3`` and the stiffness is ``3 W/h``.
+constant flow ``p_r ~ h^-3`` and the stiffness is ``3 W/h``. Its squeeze-film damping
+with the recess held at its pressure (a rigid supply) is ``B = 3 pi mu/(2 h^3) (R^4 -
+r^4 - (R^2 - r^2)^2/ln(R/r))``; fed through a restrictor of slope ``k_r`` the slow
+motion adds ``W_1^2/(k_r + G)`` (``W_1 = W/p_r`` the effective area, ``G = Q/p_r``), and
+a pocket of volume ``V`` makes the dynamic stiffness ``Z = W_1 (3 G p_r/h + i omega
+W_1)/(k_r + G + i omega V/K) + i omega B``.
 """
 
 from __future__ import annotations
@@ -97,7 +105,7 @@ from ..reynolds import discretization_for, solve_reynolds
 __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
            "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
            "balance_pockets",
-           "solve_supplied", "supply_stiffness"]
+           "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics"]
 
 
 class SupplyError(RuntimeError):
@@ -585,6 +593,9 @@ class PocketState:
         Flow out of the pocket into the film [m^3/s].
     supply_pressure : float
         ``p_s`` [Pa] (NaN at constant flow; the pocket pressure when prescribed).
+    stiffness, damping : ndarray or None
+        What this pocket's pressure response adds to the support's stiffness [N/m] and damping
+        [N s/m] at each frequency of :func:`supply_dynamics` (None from :func:`solve_supplied`).
     """
 
     name: str
@@ -593,6 +604,8 @@ class PocketState:
     restrictor_flow: float
     film_flow: float
     supply_pressure: float
+    stiffness: np.ndarray | None = None
+    damping: np.ndarray | None = None
 
     @property
     def ratio(self) -> float:
@@ -960,3 +973,161 @@ def supply_stiffness(mesh: SupportMesh, films: Callable[[float], Film], h: float
     return SupportStiffness(result=centre, stiffness=-(up.load - down.load) / dh,
                             force_stiffness=-(up.force - down.force) / dh,
                             pressure_rate=(up.pressures - down.pressures) / dh)
+
+
+# -- dynamics: the pad's motion linearised -------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SupportDynamics:
+    """Stiffness and damping of a fed pad moving normal to itself, linearised at its balance [SI].
+
+    Attributes
+    ----------
+    result : SuppliedResult
+        The balanced support at ``h``; each pocket's :class:`PocketState` carries its share of the
+        stiffness and damping (``stiffness``, ``damping``, one value per frequency).
+    frequencies : ndarray, shape (F,)
+        Angular frequencies of the motion [rad/s] (0: the limit of slow motion).
+    stiffness : ndarray, shape (F,)
+        ``Re Z`` of the dynamic stiffness ``Z = -dW/dh`` [N/m].
+    damping : ndarray, shape (F,)
+        ``Im Z / omega`` [N s/m] (at ``omega = 0`` its limit, ``d Im Z/d omega``).
+    squeeze_damping : float
+        The film's own damping with every pocket held at its pressure (a rigid supply) [N s/m].
+    film_stiffness : float
+        ``-dW/dh`` with every pocket held at its pressure [N/m] (0 for a flat pad: its load is
+        ``int p dA`` of pressures that do not depend on ``h``).
+    pressure_response : ndarray, shape (F, n), complex
+        ``dp_r / dh`` of each pocket at each frequency [Pa/m].
+    """
+
+    result: SuppliedResult
+    frequencies: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    squeeze_damping: float
+    film_stiffness: float
+    pressure_response: np.ndarray
+
+
+def supply_dynamics(mesh: SupportMesh, h: float, supplies: Sequence[Supply] | Supply, scale: Scale, *,
+                    frequencies: Sequence[float] = (0.0,), volumes: Sequence[float] | float | None = None,
+                    bulk_modulus: float = 1.5e9, step: float = 1e-3,
+                    discretization: Discretization = Discretization()) -> SupportDynamics:
+    r"""Stiffness and damping of a fed pad moving normal to itself (``UniformFilm(h)``), linearised.
+
+    The pockets' rate equations of the pad in motion, ``V/K dp_r/dt = Q_restrictor(p_r) - Q_film(h, p, dh/dt)
+    - A_r dh/dt`` (``A_r dh/dt`` the pocket's own gap opening), with the load ``W(h, p, dh/dt)``, are
+    linearised at the balance (:func:`solve_supplied`, no motion) for a small harmonic motion
+    ``dh = h_hat exp(i omega t)``::
+
+        (i omega V/K + k_r + G) dp = -(dQ/dh + i omega (q_s + A_r)) h_hat,
+        Z = -dW/h_hat = -a . dp/h_hat - dW/dh + i omega B,
+
+    with ``k_r = -dQ_restrictor/dp`` (:meth:`Law.slope`), ``G`` the film's conductance, ``q_s`` the pockets'
+    outflow per unit squeeze, ``a`` the load per unit pocket pressure, ``B`` the film's squeeze damping at
+    fixed pockets, and ``dQ/dh``, ``dW/dh`` at fixed pockets by a central difference of films at
+    ``h +- step`` (as :func:`supply_stiffness`). The film is linear in ``p`` and ``dh/dt`` (no cavitation,
+    rigid surfaces): each term is one superposition column. The stiffness is ``Re Z``, the damping
+    ``Im Z / omega``; at ``omega = 0`` the limit ``d Im Z / d omega``. Prescribed pockets (a rigid supply)
+    keep ``dp = 0``: the damping is then ``B``, for the circular recess pad the closed form
+    ``3 pi mu/(2 h^3) (R^4 - R0^4 - (R^2 - R0^2)^2/ln(R/R0))``. A restrictor adds ``a (q_s + A_r)/(k_r + G)``
+    to the slow-motion damping (``q_s + A_r = a`` on the recess pad: the squeeze draws from the pocket what
+    its pressure carries), and the pocket's compressibility ``V/K`` takes some back at speed.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        The pad with its pockets.
+    h : float
+        Film thickness [c], > step.
+    supplies, scale, discretization
+        As :func:`solve_supplied`.
+    frequencies : sequence of float
+        Angular frequencies of the motion [rad/s], >= 0.
+    volumes : float or sequence of float, optional
+        Each pocket's oil volume [m^3], > 0; default none (an incompressible pocket).
+    bulk_modulus : float
+        The oil's bulk modulus ``K`` [Pa], > 0.
+    step : float
+        The difference step [c], in (0, 0.1].
+
+    Returns
+    -------
+    SupportDynamics
+    """
+    from ..film import UniformFilm
+
+    h = positive("h", h, "c")
+    step = in_range("step", step, Range(0.0, 0.1, lo_open=True))
+    if h <= step:
+        raise ValueError(f"h must be larger than step = {step:g} [c], got {h!r}")
+    omega = np.asarray(frequencies, float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
+        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
+    names = pocket_names(mesh)
+    laws = _laws(names, supplies, scale)
+    n = len(laws)
+    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
+    if volumes is None:
+        vol = np.zeros(n)
+    else:
+        vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
+        for k, v in enumerate(vol):
+            positive(f"volumes[{k}]", v, "m^3")
+    balanced = solve_supplied(mesh, UniformFilm(h), supplies, scale, discretization=discretization)
+    p0 = np.array([scale.from_pressure(p) for p in balanced.pressures])
+
+    def linear(hh: float):
+        """Per pocket: outflow per unit pressure of each pocket (n, n) and per unit squeeze (n,); the load per unit
+        pocket pressure (n,) and per unit squeeze; the pockets' areas (n,) [non-dimensional]."""
+        pf = pocket_film(mesh, UniformFilm(hh), discretization)
+        U = np.column_stack([pf.whole.fields[:, 1]] + [s.fields[:, 3] for s in pf.pockets])
+        W = np.zeros((4, n + 1))
+        W[1, 0] = 1.0
+        W[3, 1:] = 1.0
+        flows = pocket_flows(pf, U, W)
+        loads = np.array([s.integrals[3] for s in pf.pockets])
+        areas = np.array([s.operators.pocket_moments[0] for s in pf.pockets])
+        return flows[:, 1:], flows[:, 0], loads, float(pf.whole.integrals[1]), areas
+
+    G, q_s, a, w_s, areas = linear(h)
+    G_up, _, a_up, _, _ = linear(h + step)
+    G_down, _, a_down, _, _ = linear(h - step)
+    # SI: pressures [Pa], flows [m^3/s], lengths [m], speeds dh/dt [m/s] (time scale 1/omega of the scale)
+    P, Q, F = scale.pressure, scale.flow, scale.force
+    c, t = scale.clearance, 1.0 / scale.speed
+    G_si = G * Q / P
+    dQ_dh = (G_up - G_down) @ p0 / (2 * step) * Q / c
+    dW_dh = float((a_up - a_down) @ p0) / (2 * step) * F / c
+    demand = (q_s + areas) * Q * t / c  # [m^3/s per m/s]: the film's and the pocket's own
+    a_si = a * F / P  # [N/Pa]
+    B = -w_s * F * t / c  # [N s/m]
+    free = np.array([law.kind != "pressure" for law in laws])
+    k_r = np.array([-law.slope(pk) if law.kind != "pressure" else 0.0 for law, pk in zip(laws, p0)]) * Q / P
+    if not np.all(np.isfinite(k_r)):
+        raise SupplyError("an orifice at its supply pressure (no pressure drop) has no linearisation: its flow's "
+                          "slope is infinite")
+    compliance = vol / bulk  # [m^3/Pa]
+    idx = np.flatnonzero(free)
+    S0 = np.diag(k_r[idx]) + G_si[np.ix_(idx, idx)]
+    response = np.zeros((omega.size, n), complex)  # dp/h_hat [Pa/m]
+    slope = np.zeros(n)  # d(Im dp / h_hat)/d omega at omega = 0
+    if idx.size:
+        D, M, Gam = dQ_dh[idx], demand[idx], np.diag(compliance[idx])
+        s0_D = np.linalg.solve(S0, D)
+        slope[idx] = -np.linalg.solve(S0, M) + np.linalg.solve(S0, Gam @ s0_D)
+        for i, w in enumerate(omega):
+            response[i, idx] = np.linalg.solve(S0 + 1j * w * Gam, -(D + 1j * w * M))
+    Z = -(response @ a_si) - dW_dh + 1j * omega * B
+    stiffness = Z.real
+    share_k = -(response * a_si).real
+    with np.errstate(invalid="ignore", divide="ignore"):
+        damping = np.where(omega > 0, Z.imag / np.where(omega > 0, omega, 1.0), B - float(slope @ a_si))
+        share_c = np.where(omega[:, None] > 0, -(response * a_si).imag / np.where(omega > 0, omega, 1.0)[:, None],
+                           -(slope * a_si)[None, :])
+    pockets = tuple(dataclasses.replace(ps, stiffness=share_k[:, j], damping=share_c[:, j])
+                    for j, ps in enumerate(balanced.pockets))
+    return SupportDynamics(result=dataclasses.replace(balanced, pockets=pockets), frequencies=omega,
+                           stiffness=stiffness, damping=damping, squeeze_damping=float(B), film_stiffness=-dW_dh,
+                           pressure_response=response)

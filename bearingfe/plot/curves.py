@@ -22,7 +22,7 @@ import numpy as np
 
 from .figures import frame, save
 
-__all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot"]
+__all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot", "pocket_plot"]
 
 #: Attributes a trajectory must have, in the order they are checked.
 TRAJECTORY_FIELDS = ("beta", "gamma", "delta", "h_min", "friction_moment", "flow_inlet", "flow_side")
@@ -103,6 +103,67 @@ def trajectory_plot(trajs, path=None, *, title: str | None = None):
         ax.grid(True, alpha=0.3)
     axes[2].set_ylim(bottom=0.0)
     for ax in (axes[2], axes[4]) if len(designs) == 1 else axes:
+        ax.legend(loc="best", fontsize="small")
+    axes[-1].set_xlabel("shaft angle beta [deg]")
+    axes[-1].set_xticks(np.arange(0, 361, 45))
+    if title:
+        fig.suptitle(textwrap.fill(title, 80))
+    return save(fig, path)
+
+
+def pocket_plot(trajs, scale, omega: float, path=None, *, title: str | None = None):
+    """The pocket over the cycle: its pressure, the leakage and the power lost, against shaft angle.
+
+    Three axes: pressure [MPa] (the chamber's dashed black, then each design's pocket pressure),
+    flow [l/min] (per design the pocket's outflow into the film solid, the side flow dashed and,
+    where the pocket is fed through a restrictor, the restrictor's flow dash-dotted) and power
+    [W] (per design friction solid, pumping dashed: :func:`bearingfe.transient.trajectory.power_columns`).
+    A design without a pocket (its ``flow_inlet`` zero throughout, no restrictor) has no pocket lines.
+
+    Parameters
+    ----------
+    trajs : Trajectory or mapping of them
+        :class:`bearingfe.Trajectory` (the pocket pressure and the powers need its columns).
+    scale : Scale
+        The runs' scales (the non-dimensional pocket pressure to Pa).
+    omega : float
+        Shaft speed [rad/s].
+    path : str or Path, optional
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    from ..transient.trajectory import power_columns
+
+    designs = designs_of(trajs)
+    fig = Figure(figsize=(7.5, 7.0))
+    axes = frame(fig, nrows=3, top=0.75 if title else 0.2, bottom=0.55, left=1.05, right=0.2,
+                 hgap=0.12).subplots(sharex=True)
+    first = next(iter(designs.values()))
+    _arrays(first)
+    axes[0].plot(np.degrees(first.beta), np.asarray(first.chamber_pressure) / 1e6, "--", color="k", label="chamber")
+    for (design, traj), color in zip(designs.items(), DESIGN_COLORS):
+        deg = np.degrees(_arrays(traj)["beta"])
+        power = power_columns(traj, scale, omega)
+        if np.any(np.asarray(traj.flow_inlet) != 0) or traj.flow_restrictor is not None:  # it has a pocket
+            axes[0].plot(deg, scale.to_pressure(np.asarray(traj.inlet_pressure, float)) / 1e6, color=color,
+                         label=_label(design, "pocket"))
+            axes[1].plot(deg, LITRES_PER_MINUTE * np.asarray(traj.flow_inlet), color=color,
+                         label=_label(design, "pocket into the film"))
+        axes[1].plot(deg, LITRES_PER_MINUTE * np.asarray(traj.flow_side), "--", color=color,
+                     label=_label(design, "side"))
+        if traj.flow_restrictor is not None:
+            axes[1].plot(deg, LITRES_PER_MINUTE * np.asarray(traj.flow_restrictor), "-.", color=color,
+                         label=_label(design, "restrictor"))
+        axes[2].plot(deg, power["friction_power"], color=color, label=_label(design, "friction"))
+        axes[2].plot(deg, power["pumping_power"], "--", color=color, label=_label(design, "pumping"))
+    for ax, label in zip(axes, ("pressure [MPa]", "flow [l/min]", "power [W]")):
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
         ax.legend(loc="best", fontsize="small")
     axes[-1].set_xlabel("shaft angle beta [deg]")
     axes[-1].set_xticks(np.arange(0, 361, 45))

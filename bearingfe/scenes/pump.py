@@ -25,7 +25,7 @@ Scene file::
     max_friction_power = 500.0                       # mean friction power [W]
     max_leakage = 1e-6                               # mean inflow from the pocket [m^3/s]
     [output]
-    pictures = ["trajectory", "orbit", "pressure", "film", "deflection", "summary"]
+    pictures = ["trajectory", "orbit", "pocket", "pressure", "film", "deflection", "summary"]
     [thermal]
     enabled = false                                  # level-1 heat balance over the cycle (see below)
     grade = "VG 46"                                  # the oil: the [oil] fields of the journal scene
@@ -35,8 +35,13 @@ Scene file::
 Every output is SI (angles in degrees); the solver's non-dimensional values
 are kept beside, named as such. Writes ``trajectory_pocket.csv`` and
 ``trajectory_plain.csv`` (headers ``"name [unit]"``,
-:func:`bearingfe.transient.trajectory.report_columns`); ``trajectory.png`` and
+:func:`bearingfe.transient.trajectory.report_columns`: with the pocket pressure
+[Pa], the restrictor's flow when the pocket is fed through one, and the power
+lost at each sample [W]); ``trajectory.png`` and
 ``orbit.png`` with both designs, the smallest film of each marked;
+``pocket.png`` (:func:`bearingfe.plot.curves.pocket_plot`): the chamber and
+pocket pressures, the restrictor, pocket and side flows and the friction and
+pumping power over the cycle;
 ``pressure.png`` and ``film.png``: every design at its most loaded state (the
 largest plunger force) and at its thinnest film, P2 fields sampled on a
 refined display mesh (:mod:`bearingfe.plot.maps`), each map titled with the
@@ -50,7 +55,14 @@ table gives per design the smallest film [um] and where, the peak pressure
 [Pa] (the largest over the pictured states and :data:`PEAK_SAMPLES` more),
 the mean friction power [W] (mean friction moment times shaft speed, as a
 design study's ``friction_loss``), the leakage [l/min] (mean inflow from the
-pocket) and side leakage, and each set limit with ``ok`` or ``VIOLATED``
+pocket) and side leakage, then the leakage and the power lost over the cycle
+(:func:`bearingfe.transient.trajectory.cycle_losses`; ``results.<design>.losses``
+in the summary): the pocket pressure (mean, peak) [Pa], the restrictor's,
+the pocket's (into the film) and the side flows (mean, peak) [l/min], and the
+mean power [W] split into friction and pumping, the pumping being the
+restrictor's loss (its flow times its pressure drop, chamber to pocket) and the
+film's (the pocket's outflow times the pocket pressure, dropped to the
+surroundings); the total is friction plus pumping. Then each set limit with ``ok`` or ``VIOLATED``
 (:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
 summary). When the process may use two cores, the designs' rigid runs and
 then the pictures are shared with a forked process
@@ -103,7 +115,7 @@ from ..core.schema import (LIMITS_TABLE, NONNEGATIVE, REQUIRED, SchemaError, Tab
 
 __all__ = ["run", "settings", "simulate_design", "pocket_gain", "SPEC", "PICTURES"]
 
-PICTURES = ("trajectory", "orbit", "pressure", "film", "deflection", "summary")
+PICTURES = ("trajectory", "orbit", "pocket", "pressure", "film", "deflection", "summary")
 #: Support compliances of :mod:`bearingfe.elastic.coupled` by name.
 ELASTIC_MODELS = ("half-space", "block", "shoe", "body")
 #: How the deflection enters the squeeze term: its rate, or not at all (quasi-static).
@@ -199,7 +211,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     designs = {"pocket": pump}
     if s["compare_plain"] and pump.surface.inlets:
         plain = Surface(arc=pump.surface.arc, half_width=pump.surface.half_width)
-        designs["plain"] = dataclasses.replace(pump, surface=plain)
+        designs["plain"] = dataclasses.replace(pump, surface=plain, shoe_supply=None)  # no pocket to feed
     run, pictures, elastic = s["run"], s["output"]["pictures"], s["elastic"]["enabled"]
     if not elastic:
         pictures = tuple(p for p in pictures if p != "deflection")
@@ -235,7 +247,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(done, steps, "files")
     files = []
     for name, traj in runs.items():
-        cols = report_columns(traj, pump.scale)
+        cols = report_columns(traj, pump.scale, pump.drive.omega)
         files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
     pumps = {name: designs[name.removesuffix("_elastic")] for name in runs}
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
@@ -272,7 +284,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 
 
 #: The pictures from the dearest to draw to the cheapest (how :func:`run` shares them among processes).
-_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "orbit")
+_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "pocket", "orbit")
 
 
 def simulate_design(pump, run: dict):
@@ -409,6 +421,11 @@ def _draw(name: str, pumps: dict, runs: dict, states: dict, s: dict, out_dir: Pa
     if name == "orbit":
         curves.orbit_plot({n: runs[n] for n in runs}, out_dir / "orbit.png", title=title)
         return ["orbit.png"]
+    if name == "pocket":
+        pump = next(iter(pumps.values()))
+        curves.pocket_plot({n: runs[n] for n in runs}, pump.scale, pump.drive.omega, out_dir / "pocket.png",
+                           title=f"{title}: pocket pressure, leakage and power loss")
+        return ["pocket.png"]
     if name == "summary":
         _summary_page(pumps, runs, states, s, out_dir / "summary.png")
         return ["summary.png"]
@@ -482,8 +499,11 @@ def _comparison(runs: dict, pumps: dict, states: dict, limits: dict) -> list[lis
     """Rows ``[quantity, value of each run..., unit]`` of the summary page."""
     from ..core.schema import LIMITS, check_limits
 
+    from ..transient.trajectory import cycle_losses
+
     figures = {n: _design_figures(traj, pumps[n], states[n]) for n, traj in runs.items()}
     verdicts = {n: check_limits(f, limits) for n, f in figures.items()}
+    losses = {n: cycle_losses(traj, pumps[n]) for n, traj in runs.items()}
     rows = [("smallest film", lambda n: f"{figures[n]['min_film'] * 1e6:.3g}", "um"),
             ("  at shaft angle", lambda n: f"{states[n]['thinnest']['beta_deg']:.0f}", "deg"),
             ("peak pressure", lambda n: f"{figures[n]['max_pressure'] / 1e6:.3g}", "MPa"),
@@ -491,6 +511,10 @@ def _comparison(runs: dict, pumps: dict, states: dict, limits: dict) -> list[lis
             ("leakage (inflow from the pocket)", lambda n: f"{figures[n]['max_leakage'] * LITRES_PER_MINUTE:.3g}",
              "l/min"),
             ("side leakage", lambda n: f"{np.mean(runs[n].flow_side) * LITRES_PER_MINUTE:.3g}", "l/min"),
+            ("restrictor flow (mean)", lambda n: "-" if losses[n].restrictor_flow_mean is None else
+             f"{losses[n].restrictor_flow_mean * LITRES_PER_MINUTE:.3g}", "l/min"),
+            ("pumping power (restrictor + film)", lambda n: f"{losses[n].pumping_power:.3g}", "W"),
+            ("total power loss", lambda n: f"{losses[n].total_power:.3g}", "W"),
             ("status", lambda n: runs[n].status, "")]
     for limit, value in limits.items():
         if value is not None:
@@ -522,8 +546,38 @@ def _film_ratio(pocket, plain, suffix: str) -> tuple[float | None, tuple]:
     return None, ("not computed: " + ", ".join(f"{n} {st}" for n, st in statuses.items()), "")
 
 
+def _losses(name: str, losses, has_pocket: bool) -> tuple[list[tuple], dict]:
+    """The leakage and power rows of one run's summary table, and its ``losses`` entry of ``summary.json`` [SI]."""
+    lpm = LITRES_PER_MINUTE
+    rows = []
+    if has_pocket:
+        rows += [(f"{name}: pocket pressure (mean)", losses.pocket_pressure_mean, "Pa"),
+                 (f"{name}: pocket pressure (peak)", losses.pocket_pressure_peak, "Pa")]
+    if losses.restrictor_flow_mean is not None:
+        rows += [(f"{name}: restrictor flow (mean)", losses.restrictor_flow_mean * lpm, "l/min"),
+                 (f"{name}: restrictor flow (peak)", losses.restrictor_flow_peak * lpm, "l/min")]
+    if has_pocket:
+        rows.append((f"{name}: pocket flow into the film (peak)", losses.pocket_flow_peak * lpm, "l/min"))
+    rows += [(f"{name}: side leakage (peak)", losses.side_flow_peak * lpm, "l/min"),
+             (f"{name}: power loss: restrictor (mean)", losses.restrictor_power, "W"),
+             (f"{name}: power loss: film leakage (mean)", losses.film_power, "W"),
+             (f"{name}: pumping power (restrictor + film, mean)", losses.pumping_power, "W"),
+             (f"{name}: total power loss (friction + pumping, mean)", losses.total_power, "W")]
+    entry = {"pocket_pressure_mean_Pa": losses.pocket_pressure_mean if has_pocket else None,
+             "pocket_pressure_peak_Pa": losses.pocket_pressure_peak if has_pocket else None,
+             "restrictor_flow_mean_m3s": losses.restrictor_flow_mean,
+             "restrictor_flow_peak_m3s": losses.restrictor_flow_peak,
+             "pocket_flow_mean_m3s": losses.pocket_flow_mean, "pocket_flow_peak_m3s": losses.pocket_flow_peak,
+             "side_flow_mean_m3s": losses.side_flow_mean, "side_flow_peak_m3s": losses.side_flow_peak,
+             "friction_power_W": losses.friction_power, "restrictor_power_W": losses.restrictor_power,
+             "film_power_W": losses.film_power, "pumping_power_W": losses.pumping_power,
+             "total_power_W": losses.total_power}
+    return rows, entry
+
+
 def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, pumps: dict, states: dict) -> dict:
     from ..core.schema import check_limits
+    from ..transient.trajectory import cycle_losses
 
     table = []
     results = {}
@@ -539,7 +593,9 @@ def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, p
                   (f"{name}: mean friction power", figures["max_friction_power"], "W"),
                   (f"{name}: leakage (mean inflow from the pocket)", figures["max_leakage"] * LITRES_PER_MINUTE,
                    "l/min"),
-                  (f"{name}: side leakage (mean)", float(np.mean(traj.flow_side)) * LITRES_PER_MINUTE, "l/min"),
+                  (f"{name}: side leakage (mean)", float(np.mean(traj.flow_side)) * LITRES_PER_MINUTE, "l/min")]
+        loss_rows, loss_entry = _losses(name, cycle_losses(traj, pumps[name]), bool(pumps[name].surface.inlets))
+        table += loss_rows + [
                   (f"{name}: balance ratio", balance[design], "-"),
                   (f"{name}: mass balance (relative)", traj.mass_balance_relative, "-"),
                   (f"{name}: status", traj.status, "")]
@@ -556,7 +612,8 @@ def _summary(s: dict, runs: dict, balance: dict, meshes: dict, seconds: float, p
                          "peak_pressure_states": states[name]["peak_states"],
                          "mass_balance_relative": traj.mass_balance_relative,
                          "periodic_iterations": traj.periodic_iterations,
-                         "limits": verdicts, "within_limits": all(v["ok"] for v in verdicts.values())}
+                         "limits": verdicts, "within_limits": all(v["ok"] for v in verdicts.values()),
+                         "losses": loss_entry}
         if traj.max_deflection is not None:
             largest = float(np.max(traj.max_deflection))
             table.append((f"{name}: largest deflection", largest * 1e6, "um"))

@@ -15,10 +15,24 @@ delta)``, integrated from the pocket's moments). With the restrictor's ``pocket_
 state is ``(gamma, delta, p_r)`` [-, rad, -] and ``p_r`` has this rate equation
 (``dp_r/dbeta = K R0^2 c / (V P) (...)``, non-dimensional flows); without it the pocket holds no
 oil of its own and ``p_r`` is balanced at each instant (the right side at zero), the state stays
-``(gamma, delta)``. The trajectory's ``inlet_pressure`` is ``p_r``.
+``(gamma, delta)``. The trajectory's ``inlet_pressure`` is ``p_r``; its ``flow_restrictor`` and
+``flow_pocket_gap`` are ``Q_restrictor`` and ``dV/dt`` [m^3/s] (``flow_inlet`` is ``Q_film``).
 
 Starts: the rigid model's steady state at ``beta0`` (pocket at the chamber pressure) with the
-pocket balanced on it, or the periodic state from there; cavitation and the elastic support are
+pocket balanced on it, or the periodic state from there.
+
+:class:`FedCavitating` is the same pocket on the film with Swift-Stieber or Gumbel rupture (the
+rates of :class:`~bearingfe.transient.cavitating.Cavitating`): ``Q_film`` is then the cavitated
+film's outflow from the pocket (its result's ``inlet`` flow), no longer linear in the pocket
+pressure, so the pocket needs its ``pocket_volume`` (``p_r`` a state; a pocket balanced at each
+instant would need the cavitated film solved inside its balance). Its start is the rigid model's,
+the pocket balanced on the film without rupture (the first steps take it to the cavitated
+balance; the periodic start converges it, but only to the integrator's accuracy: on the shipped
+orifice pump Anderson's and the fixed-point start stall at a residual of 5e-5 to 1.3e-4 with
+``rtol = 1e-5``, and reach ``periodic_tol = 1e-6`` with ``rtol = 1e-7``, measured). Where the compressed pocket outlasts the chamber's
+decompression it may press the shoe off harder than a film without tension can hold: the rates'
+Newton finds no state and the run ends ``"no-equilibrium"``, its message giving the pocket's
+force against the plunger load. The mass-conserving ``"jfo"`` model and the elastic support are
 not combined with a fed pocket.
 """
 
@@ -29,14 +43,16 @@ import math
 import numpy as np
 
 from .base import NoEquilibrium
+from .cavitating import Cavitating
 from .rigid import Rigid
 from ..bearings.hydrostatic import PocketFilm, SupplyError, balance_pockets, pocket_flows
 from ..bearings.pump import EccentricPump
+from ..cavitation import CavitationError
 from ..core.linalg import DEFAULT_SOLVER
 from ..film import Superposition, source_weights
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["Fed"]
+__all__ = ["Fed", "FedCavitating"]
 
 
 class Fed(Rigid):
@@ -58,13 +74,13 @@ class Fed(Rigid):
     periodic_default = "anderson"
 
     def __init__(self, pump: EccentricPump, mesh: SupportMesh, *, formulation: str = "pi", element: str = "P1",
-                 solver: str = DEFAULT_SOLVER) -> None:
+                 solver: str = DEFAULT_SOLVER, **options) -> None:
         if pump.shoe_supply is None:
             raise ValueError(f"{pump.name!r} has no shoe_supply: its pocket is at the chamber pressure (the rigid "
                              "model)")
         if not mesh.has_inlet:
             raise ValueError("the fed model needs a shoe with a pocket (the mesh has no 'inlet' boundary)")
-        super().__init__(pump, mesh, formulation=formulation, element=element, solver=solver)
+        super().__init__(pump, mesh, formulation=formulation, element=element, solver=solver, **options)
         self.restrictor = pump.shoe_supply
         sc = pump.scale
         volume = self.restrictor.pocket_volume
@@ -85,13 +101,22 @@ class Fed(Rigid):
             got = self._flux[id(sup)] = (sup, flux)
         return got[1]
 
-    def _outflow(self, beta: float, y: np.ndarray, rates: np.ndarray, p: float) -> float:
-        """``Q_film + dV/dt`` [omega R0^2 c] at pocket pressure ``p`` and squeeze rates ``rates``."""
+    def _outflow(self, beta: float, y: np.ndarray, rates: np.ndarray, p: float, result=None) -> float:
+        """``Q_film + dV/dt`` [omega R0^2 c] at pocket pressure ``p`` and squeeze rates ``rates``: the linear film's
+        outflow, or that of the film ``result`` the rates were balanced on (a cavitated film)."""
         sup = self.superposition(y[0], y[1])
-        q_film = float(self.unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
+        if result is not None:
+            q_film = float(result.flows["inlet"])
+        else:
+            q_film = float(self.unit_flux(sup) @ source_weights(float(self.pump.wedge(beta)), rates, p))
+        return q_film + self._gap_rate(sup, y, rates)
+
+    @staticmethod
+    def _gap_rate(sup: Superposition, y: np.ndarray, rates: np.ndarray) -> float:
+        """``dV/dbeta = int_pocket dh/dbeta dA`` [omega R0^2 c]: the shoe's motion opening the pocket's gap."""
         _, mc, ms = sup.operators.pocket_moments  # int_pocket (1, cos phi, sin phi)
         c, s = math.cos(y[1]), math.sin(y[1])
-        return q_film + rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc)
+        return float(rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc))
 
     def _law(self, beta: float):
         return self.restrictor.law_at(float(self.pump.chamber_pressure(beta)), self.pump.scale)
@@ -118,11 +143,11 @@ class Fed(Rigid):
             raise NoEquilibrium(f"beta = {beta:.4f} rad: the pocket fed through the restrictor has no balance ({exc})")
 
     def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
-        rates = self.balance(beta, y, full=False)[0]
+        rates, result = self.balance(beta, y, full=False)
         if self.compressibility is None or np.size(y) == 2:
             return rates
         p = float(y[2])
-        imbalance = self._law(beta).flow(p) - self._outflow(beta, y, rates, p)
+        imbalance = self._law(beta).flow(p) - self._outflow(beta, y, rates, p, result)
         return np.array([rates[0], rates[1], self.compressibility * imbalance])
 
     # -- start and samples -----------------------------------------------------------------------------
@@ -135,5 +160,48 @@ class Fed(Rigid):
         return beta0, np.array([y0[0], y0[1], self._balanced(beta0, y0)])
 
     def sample_state(self, beta: float, y: np.ndarray):
+        """The rigid sample with the pocket pressure [-], the restrictor's flow and the pocket's gap rate [m^3/s]."""
         rates, res, sup, more = super().sample_state(beta, y)
-        return rates, res, sup, dict(more, inlet_pressure=self.pocket_pressure(beta, y))
+        p = self.pocket_pressure(beta, y)
+        sc = self.pump.scale
+        return rates, res, sup, dict(more, inlet_pressure=p, flow_restrictor=sc.to_flow(self._law(beta).flow(p)),
+                                     flow_pocket_gap=sc.to_flow(self._gap_rate(sup, y, rates)))
+
+
+class FedCavitating(Fed, Cavitating):
+    """The fed pocket (:class:`Fed`) on the film with Swift-Stieber or Gumbel rupture (:class:`Cavitating`).
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        With ``shoe_supply`` and its ``pocket_volume`` (the pocket pressure a state).
+    mesh, formulation, element, solver
+        As :class:`Fed`.
+    cavitation : {"reynolds", "gumbel"}
+    """
+
+    name = "fed cavitating"
+
+    def __init__(self, pump: EccentricPump, mesh: SupportMesh, *, cavitation: str = "reynolds",
+                 formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER) -> None:
+        if pump.shoe_supply is not None and pump.shoe_supply.pocket_volume is None:
+            raise ValueError(f"{pump.name!r}: a pocket fed through a restrictor on a cavitating film "
+                             f"(cavitation={cavitation!r}) needs [shoe.supply] pocket_volume: its pressure is then a "
+                             "state; balanced at each instant it would need the cavitated film solved inside the "
+                             "pocket's balance")
+        super().__init__(pump, mesh, formulation=formulation, element=element, solver=solver, cavitation=cavitation)
+
+    def balancing_rates(self, sup: Superposition, load: np.ndarray, wedge: float, inlet_pressure: float):
+        """The cavitated film's rates (:meth:`Cavitating.balancing_rates`); where its Newton finds none, a
+        :class:`~bearingfe.transient.base.NoEquilibrium` that gives the pocket's force against the load."""
+        try:
+            return super().balancing_rates(sup, load, wedge, inlet_pressure)
+        except CavitationError:
+            sc, load_norm = self.pump.scale, max(float(np.linalg.norm(load)), 1e-300)
+            own = float(np.linalg.norm(sup.operators.pocket_moments[1:] * inlet_pressure)) / load_norm
+            whole = float(np.linalg.norm(sup.forces[:, 3] * inlet_pressure)) / load_norm
+            raise NoEquilibrium(
+                f"no cavitated film carries the load: the pocket at {sc.to_pressure(inlet_pressure) / 1e6:.4g} MPa "
+                f"presses on its own area with {own:.3g} and through the film around it with {whole:.3g} times the "
+                f"plunger load; a film without tension ({self.cavitation!r}) takes the excess back only by "
+                "separating fast (the shoe lifting off), and the rates' Newton found no such state") from None

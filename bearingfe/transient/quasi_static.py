@@ -12,6 +12,7 @@ key of :data:`MODELS`      model                                                
 ``"cavitating"``           rigid film, Swift-Stieber or Gumbel rupture                ``"reynolds"``, ``"gumbel"``
 ``"jfo"``                  rigid film, mass-conserving rupture (history carried)      ``"jfo"`` (P1)
 ``"fed"``                  rigid film, pocket fed through the plunger's restrictor    ``pump.shoe_supply`` given
+``"fed cavitating"``       the fed pocket on the film with Swift-Stieber or Gumbel    ``pump.shoe_supply``, ``"reynolds"``, ``"gumbel"``
 ``"quasi-static elastic"`` elastic support, deflection following the pressure         ``elastic=...``
 ``"elastic"``              elastic support with the squeeze of the deflection         :func:`~bearingfe.transient.elastic.simulate_elastic`
 =========================  =========================================================  ==========================
@@ -33,7 +34,7 @@ from .base import Model
 from .cavitating import Cavitating
 from .driver import run_transient
 from .elastic import ElasticSqueeze, QuasiStaticElastic
-from .fed import Fed
+from .fed import Fed, FedCavitating
 from .jfo import JFO
 from .rigid import Rigid, balance_ratio, pump_mesh, steady_state
 from .settings import Integration
@@ -44,16 +45,17 @@ __all__ = ["simulate", "MODELS", "film_model", "pump_mesh", "steady_state", "bal
 #: The film models of the pump transient by name (:class:`bearingfe.transient.base.Model`).
 MODELS: Mapping[str, type[Model]] = MappingProxyType({"rigid": Rigid, "cavitating": Cavitating, "jfo": JFO,
                                                       "quasi-static elastic": QuasiStaticElastic,
-                                                      "elastic": ElasticSqueeze, "fed": Fed})
+                                                      "elastic": ElasticSqueeze, "fed": Fed,
+                                                      "fed cavitating": FedCavitating})
 
 
 def _model_name(cavitation: str, elastic: Compliance | None, pump: EccentricPump | None = None) -> str:
     if pump is not None and pump.shoe_supply is not None:
-        if cavitation != "none" or elastic is not None:
+        if cavitation == "jfo" or elastic is not None:
             raise ValueError(f"{pump.name!r} feeds its pocket through a restrictor ([shoe.supply]): the fed model "
-                             f"runs on the rigid film with cavitation='none', not cavitation={cavitation!r}"
-                             f"{' with elastic=' if elastic is not None else ''}")
-        return "fed"
+                             f"runs on the rigid film with cavitation 'none', 'reynolds' or 'gumbel', not "
+                             f"cavitation={cavitation!r}{' with elastic=' if elastic is not None else ''}")
+        return "fed" if cavitation == "none" else "fed cavitating"
     if elastic is not None:
         if cavitation == "jfo":
             raise ValueError("elastic: the JFO model runs on a rigid film; cavitation='jfo' does not take elastic=")
@@ -67,9 +69,9 @@ def film_model(pump: EccentricPump, mesh: SupportMesh, *, cavitation: str, elast
     name = _model_name(cavitation, elastic, pump)
     if name == "quasi-static elastic":
         return QuasiStaticElastic(pump, elastic, cavitation=cavitation, formulation=formulation, solver=solver)
-    if name == "cavitating":
-        return Cavitating(pump, mesh, cavitation=cavitation, formulation=formulation, element=element,
-                          solver=solver)
+    if name in ("cavitating", "fed cavitating"):
+        return MODELS[name](pump, mesh, cavitation=cavitation, formulation=formulation, element=element,
+                            solver=solver)
     return MODELS[name](pump, mesh, formulation=formulation, element=element, solver=solver)
 
 
@@ -145,7 +147,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         revolution first and starts from its end (film history included).
         A pump whose shoe pocket is fed through the plunger's restrictor
         (``pump.shoe_supply``, ``[shoe.supply]``) runs the ``"fed"`` model
-        (:mod:`bearingfe.transient.fed`) and takes ``"none"`` only.
+        (:mod:`bearingfe.transient.fed`) with ``"none"``, ``"reynolds"`` or
+        ``"gumbel"`` (then its ``pocket_volume`` is needed), not ``"jfo"``.
     method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the

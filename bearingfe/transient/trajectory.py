@@ -11,7 +11,8 @@ import numpy as np
 
 from ..bearings.pump import EccentricPump
 
-__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "make_trajectory", "report_columns"]
+__all__ = ["Trajectory", "LiftOffError", "STATUSES", "SAMPLE_COLUMNS", "POCKET_COLUMNS", "make_trajectory",
+           "report_columns", "power_columns", "CycleLosses", "cycle_losses"]
 
 #: How a run ends (:attr:`Trajectory.status`).
 STATUSES = ("completed", "ruptured", "no-equilibrium", "stalled")
@@ -96,6 +97,14 @@ class Trajectory:
         Nodal pressure [-] at each sample, shape (n, n_dofs), where the
         pressure is a state of the run
         (:func:`bearingfe.transient.elastic.simulate_elastic`); else None.
+    flow_restrictor : ndarray or None
+        Flow from the chamber through the plunger's restrictor into the pocket [m^3/s] (the
+        ``"fed"`` model, :mod:`bearingfe.transient.fed`); None when the pocket is at the chamber
+        pressure or there is none.
+    flow_pocket_gap : ndarray or None
+        ``dV/dt``: the rate at which the shoe's motion opens the gap over the pocket [m^3/s] (the
+        ``"fed"`` model); what the restrictor feeds beyond it and ``flow_inlet`` compresses the
+        pocket's oil: ``V/K dp_r/dt = flow_restrictor - flow_inlet - flow_pocket_gap``.
     """
 
     t: np.ndarray
@@ -125,6 +134,8 @@ class Trajectory:
     element: str = "P1"
     max_deflection: np.ndarray | None = None
     pressures: np.ndarray | None = None
+    flow_restrictor: np.ndarray | None = None
+    flow_pocket_gap: np.ndarray | None = None
 
     @property
     def smallest_film(self) -> float:
@@ -146,12 +157,18 @@ class Trajectory:
         cols["load_x"], cols["load_y"] = self.load[:, 0], self.load[:, 1]
         if self.max_deflection is not None:
             cols["max_deflection"] = np.asarray(self.max_deflection)
+        for name in POCKET_COLUMNS:
+            if getattr(self, name) is not None:
+                cols[name] = np.asarray(getattr(self, name))
         return cols
 
 
 #: The SI columns a model's samples give (:meth:`bearingfe.transient.base.Model.samples`).
 SAMPLE_COLUMNS = ("gamma_rate", "delta_rate", "h_min", "friction_moment", "flow_inlet", "flow_side", "flow_arc",
                   "flow_squeeze", "mass_balance")
+
+#: The optional SI columns of a model that feeds the pocket through a restrictor [m^3/s].
+POCKET_COLUMNS = ("flow_restrictor", "flow_pocket_gap")
 
 
 def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states: np.ndarray,
@@ -171,7 +188,7 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
         The model's states at the samples: ``(gamma [-], delta [rad], ...)``.
     columns : mapping
         The model's SI columns at the samples: every name of
-        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m],
+        :data:`SAMPLE_COLUMNS`, optionally ``max_deflection`` [m], those of :data:`POCKET_COLUMNS`,
         ``pressures`` (shape (n, n_dofs), non-dimensional) and ``inlet_pressure``
         (the pocket pressure [-] of a model that carries it; default the chamber's).
     status, message, rupture_beta
@@ -198,15 +215,18 @@ def make_trajectory(pump: EccentricPump, beta0: float, betas: np.ndarray, states
         status=status, message=message, rupture_beta=math.nan if status == "completed" else float(rupture_beta),
         start=(float(start[0]), float(start[1])), periodic_iterations=int(periodic_iterations),
         periodic_residual=float(periodic_residual), element=element, stats=MappingProxyType(dict(stats)),
-        max_deflection=columns.get("max_deflection"), pressures=columns.get("pressures"))
+        max_deflection=columns.get("max_deflection"), pressures=columns.get("pressures"),
+        **{name: np.asarray(columns[name], float) for name in POCKET_COLUMNS if name in columns})
 
 
-def report_columns(traj: Trajectory, scale) -> dict[str, np.ndarray]:
+def report_columns(traj: Trajectory, scale, omega: float | None = None) -> dict[str, np.ndarray]:
     """A trajectory's columns as a person reads them, each headed ``"name [unit]"``.
 
-    Angles in degrees, everything else SI (the load in N from ``scale``,
-    :class:`bearingfe.core.scales.Scale`); the solver's non-dimensional pocket
-    pressure and load are kept as extra columns named ``*_nondimensional [-]``.
+    Angles in degrees, everything else SI (the load in N and the pocket pressure in Pa from
+    ``scale``, :class:`bearingfe.core.scales.Scale`); the restrictor's flow and the pocket's gap
+    rate when the run has them (:data:`POCKET_COLUMNS`); with the shaft speed ``omega`` [rad/s]
+    also the powers of :func:`power_columns` [W]. The solver's non-dimensional pocket pressure
+    and load are kept as extra columns named ``*_nondimensional [-]``.
     """
     cols = {"t [s]": traj.t, "beta [deg]": np.degrees(traj.beta), "gamma [-]": traj.gamma,
             "delta [deg]": np.degrees(traj.delta), "gamma_rate [1/rad]": traj.gamma_rate,
@@ -218,6 +238,100 @@ def report_columns(traj: Trajectory, scale) -> dict[str, np.ndarray]:
             "load_x [N]": scale.to_force(traj.load[:, 0]), "load_y [N]": scale.to_force(traj.load[:, 1])}
     if traj.max_deflection is not None:
         cols["max_deflection [m]"] = traj.max_deflection
+    cols["pocket_pressure [Pa]"] = scale.to_pressure(np.asarray(traj.inlet_pressure, float))
+    for name in POCKET_COLUMNS:
+        if getattr(traj, name) is not None:
+            cols[f"{name} [m^3/s]"] = getattr(traj, name)
+    if omega is not None:
+        cols.update({f"{name} [W]": v for name, v in power_columns(traj, scale, omega).items()})
     cols.update({"inlet_pressure_nondimensional [-]": traj.inlet_pressure,
                  "load_x_nondimensional [-]": traj.load[:, 0], "load_y_nondimensional [-]": traj.load[:, 1]})
     return {k: np.asarray(v, dtype=float) for k, v in cols.items()}
+
+
+def power_columns(traj: Trajectory, scale, omega: float) -> dict[str, np.ndarray]:
+    """The power lost at each sample [W], by where it goes.
+
+    ``friction_power = M_f omega`` (the film's shear); ``restrictor_power = Q_r (p_ch - p_r)``, the
+    flow through the plunger's restrictor times its pressure drop (0 when the pocket is at the
+    chamber pressure: no restrictor); ``film_power = Q_film p_r``, the pocket's outflow into the film
+    times its drop from the pocket to the surroundings (0 without a pocket). ``pumping_power`` is
+    their hydraulic sum and ``total_power`` all three.
+
+    Parameters
+    ----------
+    traj : Trajectory
+    scale : Scale
+        The run's scales (the pocket pressure to Pa).
+    omega : float
+        Shaft speed [rad/s].
+    """
+    p_r = scale.to_pressure(np.asarray(traj.inlet_pressure, float))
+    friction = np.asarray(traj.friction_moment, float) * float(omega)
+    film = np.asarray(traj.flow_inlet, float) * p_r
+    restrictor = (np.zeros_like(film) if traj.flow_restrictor is None else
+                  np.asarray(traj.flow_restrictor, float) * (np.asarray(traj.chamber_pressure, float) - p_r))
+    return {"friction_power": friction, "restrictor_power": restrictor, "film_power": film,
+            "pumping_power": restrictor + film, "total_power": friction + restrictor + film}
+
+
+@dataclass(frozen=True)
+class CycleLosses:
+    """Leakage and power loss of a run over its samples (a cycle): means and peaks [SI].
+
+    Flows in m^3/s (``* 6e4`` for l/min), pressures in Pa, powers in W (the mean power; times
+    ``2 pi / omega`` it is the energy of one revolution in J). A peak is the largest sample.
+
+    Attributes
+    ----------
+    pocket_pressure_mean, pocket_pressure_peak : float
+        The pocket pressure (the chamber's when the pocket is not fed through a restrictor) [Pa].
+    restrictor_flow_mean, restrictor_flow_peak : float or None
+        Flow through the plunger's restrictor [m^3/s]; None without a restrictor.
+    pocket_flow_mean, pocket_flow_peak : float
+        The pocket's outflow into the film (``flow_inlet``) [m^3/s].
+    side_flow_mean, side_flow_peak : float
+        Out through the sides ``z = +-a`` (``flow_side``) [m^3/s].
+    friction_power, restrictor_power, film_power : float
+        Mean of each column of :func:`power_columns` [W].
+    """
+
+    pocket_pressure_mean: float
+    pocket_pressure_peak: float
+    restrictor_flow_mean: float | None
+    restrictor_flow_peak: float | None
+    pocket_flow_mean: float
+    pocket_flow_peak: float
+    side_flow_mean: float
+    side_flow_peak: float
+    friction_power: float
+    restrictor_power: float
+    film_power: float
+
+    @property
+    def pumping_power(self) -> float:
+        """Mean hydraulic power lost through the restrictor and the film [W]."""
+        return self.restrictor_power + self.film_power
+
+    @property
+    def total_power(self) -> float:
+        """Mean friction plus pumping power [W]."""
+        return self.friction_power + self.pumping_power
+
+
+def cycle_losses(traj: Trajectory, pump: EccentricPump) -> CycleLosses:
+    """The leakage and power loss of a run (:class:`CycleLosses`), from its samples."""
+    power = power_columns(traj, pump.scale, pump.drive.omega)
+    p_r = pump.scale.to_pressure(np.asarray(traj.inlet_pressure, float))
+    q_r = traj.flow_restrictor
+
+    def mean(a) -> float:
+        return float(np.mean(a))
+
+    return CycleLosses(pocket_pressure_mean=mean(p_r), pocket_pressure_peak=float(np.max(p_r)),
+                       restrictor_flow_mean=None if q_r is None else mean(q_r),
+                       restrictor_flow_peak=None if q_r is None else float(np.max(q_r)),
+                       pocket_flow_mean=mean(traj.flow_inlet), pocket_flow_peak=float(np.max(traj.flow_inlet)),
+                       side_flow_mean=mean(traj.flow_side), side_flow_peak=float(np.max(traj.flow_side)),
+                       friction_power=mean(power["friction_power"]), restrictor_power=mean(power["restrictor_power"]),
+                       film_power=mean(power["film_power"]))

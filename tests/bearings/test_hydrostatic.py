@@ -432,3 +432,139 @@ def test_an_orifice_recess_settles_at_its_balance(pads):
     assert tr.time_constants[0] == pytest.approx(tau, rel=TOL["P2"])
     assert tr.pressures[-1, 0] == pytest.approx(tr.balanced.pockets[0].pressure, rel=1e-7)
     assert tr.pressures[0, 0] == 0.9 * PS
+
+
+# -- dynamics: the pad's normal motion linearised ------------------------------------------------------------
+#
+# Squeeze of the annulus r < rho < R with both edges at 0 (the recess held: a rigid supply) from
+# d/drho (rho h^3/(12 mu) dp/drho) = rho dh/dt: the load -B dh/dt with
+#     B = 3 pi mu / (2 h^3) (R^4 - r^4 - (R^2 - r^2)^2 / ln(R/r)),
+# and the squeeze's outflow from the recess plus the recess's own gap opening pi r^2 dh/dt adds up to
+# AREA dh/dt (AREA = W/p_r, the effective area). Fed through a restrictor of slope k_r
+# (V/K dp/dt = Q_r(p) - K h^3 p - AREA dh/dt), a small motion h_hat exp(i w t) gives
+#     Z = -dW/h_hat = AREA (3 K h^2 p_r / c + i w AREA) / (k_r + K h^3 + i w V/K) + i w B
+# (h in units of c; capillary k_r = Kc, orifice k_r = K h^3 beta / (2 (1 - beta))). Mesh errors measured at
+# size 0.05: P2 1.6e-5 on B, 3e-6 on the fed damping, 8e-6 on the stiffness; P1 1.6e-2 on B (hence 2e-2 there).
+
+B_SQUEEZE = 3 * math.pi * MU / (2 * C**3) * ((R * SCALE.radius) ** 4 - (r * SCALE.radius) ** 4
+                                            - ((R * SCALE.radius) ** 2 - (r * SCALE.radius) ** 2) ** 2 / LOG)
+DYN_TOL = {"P1": 2e-2, "P2": 5e-5}
+
+
+def closed_form_z(w: np.ndarray, k_r: float, beta: float, compliance: float = 0.0) -> np.ndarray:
+    """The recess pad's dynamic stiffness Z(w) [N/m] at h = 1 (the derivation above)."""
+    return AREA * (3 * K * beta * PS / C + 1j * w * AREA) / (k_r + K + 1j * w * compliance) + 1j * w * B_SQUEEZE
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_a_rigid_supply_damps_as_the_squeeze_film_closed_form(pads, element):
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    disc = P2 if element == "P2" else P1
+    dyn = supply_dynamics(pads[element], 1.0, PrescribedPressure(0.5 * PS), SCALE, frequencies=(0.0, 100.0, 1e4),
+                          discretization=disc)
+    np.testing.assert_allclose(dyn.damping, B_SQUEEZE, rtol=DYN_TOL[element])
+    assert dyn.squeeze_damping == pytest.approx(B_SQUEEZE, rel=DYN_TOL[element])
+    # the held recess does not move and the flat pad's load does not depend on h at fixed pressures: no stiffness
+    # (the central difference of equal loads: round-off, below 1e-9 of the fed recess's 3 W (1 - beta)/h)
+    assert np.all(np.abs(dyn.stiffness) < 1e-9 * 3 * AREA * 0.5 * PS / C)
+    assert np.all(dyn.pressure_response == 0) and np.all(dyn.result.pockets[0].damping == 0)
+
+
+def test_a_capillary_fed_compressible_recess_against_its_closed_form(pads):
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    volume, bulk = 1e-7, 1.5e9
+    w = np.array([0.0, 10.0, 1e3, 1e5])  # [rad/s]: up to past the pocket's corner (k_r + G) K/V = 1.6e4 rad/s
+    supply = capillary_for(0.5)
+    dyn = supply_dynamics(pads["P2"], 1.0, supply, SCALE, frequencies=w, volumes=volume, bulk_modulus=bulk,
+                          discretization=P2)
+    z = closed_form_z(w, K, 0.5, volume / bulk)
+    slow = B_SQUEEZE + AREA**2 / (2 * K) - AREA * volume / bulk * 3 * K * 0.5 * PS / C / (2 * K) ** 2  # d Im Z/dw
+    np.testing.assert_allclose(dyn.stiffness, z.real, rtol=1e-4)
+    np.testing.assert_allclose(dyn.damping, np.r_[slow, z.imag[1:] / w[1:]], rtol=1e-4)
+    # the restrictor's slow damping (A^2/(Kc + G)) is 0.85 of the squeeze film's; the oil's compressibility takes
+    # it back towards B at speed
+    assert dyn.damping[0] > 1.8 * B_SQUEEZE and dyn.damping[-1] < 1.01 * B_SQUEEZE
+    # per pocket: its share and the film's add up to the whole; its state is the balance (beta = 0.5)
+    pocket = dyn.result.pockets[0]
+    np.testing.assert_allclose(pocket.stiffness + dyn.film_stiffness, dyn.stiffness, rtol=1e-12)
+    np.testing.assert_allclose(pocket.damping + dyn.squeeze_damping, dyn.damping, rtol=1e-12)
+    assert pocket.pressure == pytest.approx(0.5 * PS, rel=TOL["P2"])
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-10)
+    # incompressible: the slow stiffness is the static one of supply_stiffness's closed form 3 W (1 - beta)/h
+    rigid = supply_dynamics(pads["P2"], 1.0, supply, SCALE, discretization=P2)
+    assert rigid.stiffness[0] == pytest.approx(3 * AREA * 0.5 * PS * 0.5 / C, rel=1e-4)
+    assert rigid.damping[0] == pytest.approx(B_SQUEEZE + AREA**2 / (2 * K), rel=1e-4)
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_an_orifice_fed_recess_slow_stiffness_and_damping(pads, element):
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    beta = 0.6
+    disc = P2 if element == "P2" else P1
+    dyn = supply_dynamics(pads[element], 1.0, orifice_for(beta), SCALE, discretization=disc)
+    k_r = K * beta / (2 * (1 - beta))
+    assert dyn.stiffness[0] == pytest.approx(6 * AREA * beta * PS * (1 - beta) / ((2 - beta) * C),
+                                             rel=max(TOL[element], 1e-4))
+    assert dyn.damping[0] == pytest.approx(B_SQUEEZE + AREA**2 / (k_r + K), rel=DYN_TOL[element])
+
+
+def test_the_linearisation_is_the_small_harmonic_motion_of_the_transient(pads):
+    # the nonlinear rate equation of the capillary-fed recess (closed-form film: Q = K h^3 p, W = AREA p - B/h^3
+    # dh/dt, the pocket's demand AREA dh/dt) driven by h = 1 + eps sin(w t): the first harmonic of the load over a
+    # settled period is -Z eps (linear response; the quadratic terms are O(eps) relative: eps = 1e-4)
+    from scipy.integrate import solve_ivp
+
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    volume, bulk, eps, w = 1e-7, 1.5e9, 1e-4, 2e3
+    kc = K  # beta = 0.5
+
+    def hdot(t):
+        return C * eps * w * math.cos(w * t)
+
+    def rhs(t, y):
+        h = 1 + eps * math.sin(w * t)
+        return [bulk / volume * (kc * (PS - y[0]) - K * h**3 * y[0] - AREA * hdot(t))]
+
+    tau = volume / (bulk * 2 * K)
+    period = 2 * math.pi / w
+    t0 = max(30 * tau, 3 * period)
+    t = t0 + np.linspace(0.0, period, 257)[:-1]
+    sol = solve_ivp(rhs, (0.0, t[-1]), [0.5 * PS], t_eval=t, method="Radau", rtol=1e-11, atol=1e-6)
+    h = 1 + eps * np.sin(w * t)
+    load = AREA * sol.y[0] - B_SQUEEZE / h**3 * np.array([hdot(tt) for tt in t])
+    phase = np.exp(-1j * w * t)
+    # the motion eps c sin(w t) = Re(-i eps c exp(i w t)) [m], so the load's harmonic 2 mean(W exp(-i w t)) is
+    # -Z (-i eps c)
+    z_transient = -1j * 2 * np.mean(load * phase) / (eps * C)
+    dyn = supply_dynamics(pads["P2"], 1.0, capillary_for(0.5), SCALE, frequencies=(w,), volumes=volume,
+                          bulk_modulus=bulk, discretization=P2)
+    z = dyn.stiffness[0] + 1j * w * dyn.damping[0]
+    assert z_transient == pytest.approx(z, rel=1e-4)  # measured 7.5e-6 (the mesh's error and O(eps))
+    assert z == pytest.approx(closed_form_z(np.array([w]), K, 0.5, volume / bulk)[0], rel=1e-4)
+
+
+def test_bad_dynamics_arguments_are_named(pads):
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    with pytest.raises(ValueError, match="frequencies"):
+        supply_dynamics(pads["P1"], 1.0, capillary_for(0.5), SCALE, frequencies=(-1.0,))
+    with pytest.raises(ValueError, match="h must be larger than step"):
+        supply_dynamics(pads["P1"], 1e-3, capillary_for(0.5), SCALE)
+    with pytest.raises(ValueError, match="volumes"):
+        supply_dynamics(pads["P1"], 1.0, capillary_for(0.5), SCALE, volumes=-1.0)
+
+
+def test_two_fed_pockets_share_the_dynamics(twin):
+    # two equal pockets symmetric about z: each through an equal capillary they respond alike (to the mesh's
+    # asymmetry), their shares and the film's add up to the whole; a pocket held at its pressure takes no share
+    from bearingfe.bearings.hydrostatic import supply_dynamics
+    cap = Capillary(diameter=0.4e-3, length=0.05, supply_pressure=PS)
+    dyn = supply_dynamics(twin, 1.0, cap, SCALE, frequencies=(0.0, 1e3), volumes=1e-7, discretization=P2)
+    a, b = dyn.result.pockets
+    np.testing.assert_allclose(a.damping, b.damping, rtol=1e-2)
+    np.testing.assert_allclose(a.stiffness, b.stiffness, rtol=1e-2)
+    np.testing.assert_allclose(a.damping + b.damping + dyn.squeeze_damping, dyn.damping, rtol=1e-12)
+    np.testing.assert_allclose(a.stiffness + b.stiffness + dyn.film_stiffness, dyn.stiffness, rtol=1e-12)
+    assert np.all(dyn.stiffness > 0) and np.all(dyn.damping > dyn.squeeze_damping) and dyn.squeeze_damping > 0
+    mixed = supply_dynamics(twin, 1.0, [PrescribedPressure(0.5 * PS), cap], SCALE, discretization=P2)
+    held, fed = mixed.result.pockets
+    assert held.damping[0] == 0.0 and held.stiffness[0] == 0.0 and fed.damping[0] > 0

@@ -26,3 +26,5 @@ def test_coarsest_errors_recomputed(element):
         for name in ("pressure", "flow", "load", "stiffness"):
             # the errors themselves (1e-2 to 1e-7) recomputed to 1e-9 absolute: the page's numbers are this code's
             assert now[kind][name] == pytest.approx(stored[kind][name], abs=1e-9), (kind, name)
+    for name in ("squeeze", "fed", "dynamic"):  # the pad in motion against its closed forms
+        assert now["dynamics"][name] == pytest.approx(stored["dynamics"][name], abs=1e-9), name

@@ -208,3 +208,95 @@ def test_summary_page_compares_the_designs_with_their_verdicts(coarse_run):
     assert rows["peak pressure <= 40 MPa"] == ("ok", "ok")
     ok = {d: "ok" if summary["results"][d]["limits"]["min_film"]["ok"] else "VIOLATED" for d in ("pocket", "plain")}
     assert rows["smallest film >= 10 um"] == (ok["pocket"], ok["plain"])
+
+
+#: The shipped pump's pressure scale mu omega R0^2/c^2 = 0.03 * 50 pi * 0.05^2 / (20e-6)^2 = 29.45 MPa.
+PRESSURE_SCALE = 0.03 * OMEGA * 0.05**2 / 20e-6**2
+
+
+def _losses_of(cols: dict, rows: dict, design: str, entry: dict, fed: bool):
+    """The summary's leakage and power of one design against its own CSV columns (the definitions: powers are
+    means of flow x pressure drop and of friction moment x shaft speed; peaks the largest samples)."""
+    p_r, p_ch = cols["pocket_pressure [Pa]"], cols["chamber_pressure [Pa]"]
+    np.testing.assert_allclose(p_r, cols["inlet_pressure_nondimensional [-]"] * PRESSURE_SCALE, rtol=1e-12)
+    friction = np.mean(cols["friction_moment [N m]"]) * OMEGA
+    film = np.mean(cols["flow_inlet [m^3/s]"] * p_r)
+    restrictor = np.mean(cols["flow_restrictor [m^3/s]"] * (p_ch - p_r)) if fed else 0.0
+    assert entry["friction_power_W"] == pytest.approx(friction, rel=1e-9)
+    assert entry["film_power_W"] == pytest.approx(film, rel=1e-9, abs=1e-12)
+    assert entry["restrictor_power_W"] == pytest.approx(restrictor, rel=1e-9, abs=1e-12)
+    assert entry["pumping_power_W"] == pytest.approx(entry["restrictor_power_W"] + entry["film_power_W"], rel=1e-12)
+    assert entry["total_power_W"] == pytest.approx(entry["friction_power_W"] + entry["pumping_power_W"], rel=1e-12)
+    assert rows[f"{design}: total power loss (friction + pumping, mean)"] == (pytest.approx(entry["total_power_W"]), "W")
+    assert entry["side_flow_peak_m3s"] == pytest.approx(np.max(cols["flow_side [m^3/s]"]), rel=1e-9)
+    assert rows[f"{design}: side leakage (peak)"] == (pytest.approx(entry["side_flow_peak_m3s"] * 6e4), "l/min")
+    if fed:
+        assert entry["restrictor_flow_mean_m3s"] == pytest.approx(np.mean(cols["flow_restrictor [m^3/s]"]), rel=1e-9)
+        assert rows[f"{design}: restrictor flow (peak)"] == (
+            pytest.approx(np.max(cols["flow_restrictor [m^3/s]"]) * 6e4, rel=1e-9), "l/min")
+    else:
+        assert entry["restrictor_flow_mean_m3s"] is None and "flow_restrictor [m^3/s]" not in cols
+    np.testing.assert_allclose(cols["total_power [W]"], cols["friction_power [W]"] + cols["pumping_power [W]"],
+                               rtol=1e-12)
+
+
+def test_leakage_and_power_of_the_prescribed_pocket_and_the_plain_shoe(coarse_run):
+    # the shipped pump holds its pocket at the chamber pressure: no restrictor, the pumping power is the film's
+    # (pocket outflow x chamber pressure); the plain shoe has no pocket: its pumping power is 0
+    out, summary, _, _ = coarse_run
+    rows = {q: (v, u) for q, v, u in summary["table"]}
+    for design in ("pocket", "plain"):
+        cols = _csv(out / f"trajectory_{design}.csv")
+        _losses_of(cols, rows, design, summary["results"][design]["losses"], fed=False)
+    pocket = _csv(out / "trajectory_pocket.csv")
+    np.testing.assert_allclose(pocket["pocket_pressure [Pa]"], pocket["chamber_pressure [Pa]"], rtol=1e-9)
+    assert summary["results"]["plain"]["losses"]["pumping_power_W"] == 0.0
+    assert summary["results"]["pocket"]["losses"]["pumping_power_W"] > 0.0
+    assert "pocket.png" in summary["files"] and (out / "pocket.png").stat().st_size > 20000
+
+
+def test_the_orifice_fed_pocket_reports_its_pressure_leakage_and_power(tmp_path):
+    """The shipped orifice machine (coarse, half a revolution) and its plain twin: the pocket pressure over the cycle
+    in the CSV and pocket.png, the restrictor's flow, and the power split that sums to the total (the flow balance
+    itself is checked in tests/transient/test_fed.py)."""
+    from unittest import mock
+
+    from bearingfe.core import parallel
+    from bearingfe.plot import curves
+    from tests.helpers import scene_data, toml_text
+
+    scene = tmp_path / "orifice.toml"
+    scene.write_text(toml_text(scene_data(
+        "pump", COARSE, pump={"mechanism": (ROOT / "mechanisms" / "eccentric_pump_orifice.toml").as_posix(),
+                              "compare_plain": True},
+        run={"revolutions": 0.5, "mesh_size": 0.3, "frames": 0}, output={"pictures": ["pocket"]})))
+    drawn, draw = {}, curves.pocket_plot
+
+    def keep(*args, **kwargs):
+        drawn["fig"] = fig = draw(*args, **kwargs)
+        return fig
+
+    with mock.patch.object(parallel, "PROCESSES", 1), mock.patch.object(curves, "pocket_plot", keep), \
+            contextlib.redirect_stdout(io.StringIO()):
+        assert main(["run", str(scene), "--out", str(tmp_path / "out"), "--no-progress"]) == 0
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    rows = {q: (v, u) for q, v, u in summary["table"]}
+    cols = _csv(tmp_path / "out" / "trajectory_pocket.csv")
+    entry = summary["results"]["pocket"]["losses"]
+    _losses_of(cols, rows, "pocket", entry, fed=True)
+    # the plain twin has no pocket to feed: the rigid model, no restrictor, no pumping power
+    _losses_of(_csv(tmp_path / "out" / "trajectory_plain.csv"), rows, "plain", summary["results"]["plain"]["losses"],
+               fed=False)
+    assert summary["results"]["plain"]["losses"]["pumping_power_W"] == 0.0
+    # the orifice drops the pressure while it feeds: the pocket stays below the chamber in discharge, and its loss
+    # is part of the pumping power (both positive)
+    discharge = cols["chamber_pressure [Pa]"] > 0.9 * cols["chamber_pressure [Pa]"].max()
+    assert np.all(cols["pocket_pressure [Pa]"][discharge] < cols["chamber_pressure [Pa]"][discharge])
+    assert entry["restrictor_power_W"] > 0 and entry["film_power_W"] > 0
+    assert rows["pocket: pocket pressure (peak)"] == (pytest.approx(np.max(cols["pocket_pressure [Pa]"])), "Pa")
+    # the curve: chamber then pocket pressure in MPa on the first panel, the restrictor's flow on the second
+    pressure, flow, _ = drawn["fig"].axes
+    np.testing.assert_allclose(pressure.lines[1].get_ydata(), cols["pocket_pressure [Pa]"] / 1e6, rtol=1e-12)
+    assert [ln.get_label() for ln in flow.lines] == ["pocket: pocket into the film", "pocket: side",
+                                                     "pocket: restrictor", "plain: side"]  # plain: no pocket
+    np.testing.assert_allclose(flow.lines[2].get_ydata(), cols["flow_restrictor [m^3/s]"] * 6e4, rtol=1e-12)

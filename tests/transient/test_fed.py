@@ -70,9 +70,11 @@ def test_the_orifice_drops_the_pocket_below_the_chamber(mesh):
     assert fed.h_min.min() < rigid.h_min.min()
 
 
-def test_a_fed_pocket_with_cavitation_is_refused(mesh):
+def test_a_fed_pocket_refuses_jfo_and_a_cavitating_film_without_pocket_volume(mesh):
     with pytest.raises(ValueError, match="feeds its pocket through a restrictor"):
-        bf.simulate(ORIFICE, mesh, cavitation="reynolds")
+        bf.simulate(ORIFICE, mesh, cavitation="jfo", element="P1")
+    with pytest.raises(ValueError, match="pocket_volume"):
+        bf.simulate(with_supply(pocket_volume=None), mesh, cavitation="reynolds")
 
 
 def test_the_pocket_outflow_is_the_films_inlet_flow(mesh):
@@ -84,3 +86,85 @@ def test_the_pocket_outflow_is_the_films_inlet_flow(mesh):
     weights = np.array([0.9, 0.03, -0.02, 0.8])
     res = sup.combine(0.9, (0.03, -0.02), 0.8)
     assert model.unit_flux(sup) @ weights == pytest.approx(res.flows["inlet"], rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def dense(mesh):
+    """The shipped orifice pump over one revolution from the steady start, sampled every 1 and 2 degrees."""
+    return {n: bf.simulate(ORIFICE, mesh, start="steady", points_per_revolution=n) for n in (180, 360)}
+
+
+def test_the_pocket_flows_balance_over_the_cycle(dense):
+    # V/K dp_r/dt = Q_restrictor - Q_film - dV/dt (the model's rate equation), checked in its integral form on the
+    # samples: the oil stored by compression, V/K (p_r(t) - p_r(0)), against the trapezoidal integral of the
+    # flows. The trapezoid's error is second order in the sample spacing (measured 2.9e-3 and 7.2e-4 of the
+    # stored range at 2 and 1 degree): it must shrink about 4x when the spacing halves and be < 1.5e-3 at 1 deg.
+    from scipy.integrate import cumulative_trapezoid
+    supply = ORIFICE.shoe_supply
+    errors = []
+    for n, tr in dense.items():
+        assert tr.status == "completed"
+        stored = supply.pocket_volume / supply.bulk_modulus * (tr.inlet_pressure - tr.inlet_pressure[0]) \
+            * ORIFICE.scale.pressure
+        net = cumulative_trapezoid(tr.flow_restrictor - tr.flow_inlet - tr.flow_pocket_gap, tr.t, initial=0.0)
+        errors.append(np.max(np.abs(stored - net)) / np.ptp(stored))
+    assert 3.0 < errors[0] / errors[1] < 5.0
+    assert errors[1] < 1.5e-3
+
+
+def test_the_power_split_sums_to_the_total_and_to_the_chambers_supply(dense):
+    # total = friction + restrictor + film (by definition, at every sample and in the means); and the
+    # chamber's hydraulic power Q_r p_ch is the restrictor's and the film's loss plus the pocket's own work
+    # p_r (dV/dt + V/K dp_r/dt) (energy of the flow balance above; dp_r/dt by central differences:
+    # measured 5e-4 relative at 1 degree)
+    from bearingfe.transient.trajectory import cycle_losses, power_columns
+    tr = dense[360]
+    sc, supply = ORIFICE.scale, ORIFICE.shoe_supply
+    cols = power_columns(tr, sc, ORIFICE.drive.omega)
+    np.testing.assert_allclose(cols["total_power"], cols["friction_power"] + cols["restrictor_power"]
+                               + cols["film_power"], rtol=1e-14, atol=0)
+    losses = cycle_losses(tr, ORIFICE)
+    assert losses.total_power == pytest.approx(losses.friction_power + losses.restrictor_power + losses.film_power,
+                                               rel=1e-14)
+    assert losses.friction_power == pytest.approx(np.mean(tr.friction_moment) * ORIFICE.drive.omega, rel=1e-14)
+    p_r = tr.inlet_pressure * sc.pressure
+    work = np.mean(p_r * (tr.flow_pocket_gap + supply.pocket_volume / supply.bulk_modulus * np.gradient(p_r, tr.t)))
+    supplied = np.mean(tr.flow_restrictor * tr.chamber_pressure)
+    assert losses.pumping_power + work == pytest.approx(supplied, rel=2e-3)
+    # the orifice drops the pressure only while it feeds: its loss is a fraction of the film's (measured 0.24)
+    assert 0 < losses.restrictor_power < losses.film_power
+    # peaks are the largest samples; the pocket never exceeds the discharge pressure it is fed from
+    assert losses.restrictor_flow_peak == pytest.approx(np.max(tr.flow_restrictor), rel=1e-14)
+    assert losses.pocket_pressure_peak <= ORIFICE.cycle.discharge * (1 + 1e-9)
+
+
+
+def test_the_fed_pocket_on_a_swift_stieber_film(mesh):
+    # the cavitated film's own outflow feeds the pocket's rate equation: the flows balance in the integral form
+    # of test_the_pocket_flows_balance_over_the_cycle (measured 1.3e-2, 5.8e-3, 1.4e-3 of the stored range at 2,
+    # 1 and 0.5 degree: the quadrature's error at the decompression's steep flows, converging); the film at a
+    # sample, re-solved with rupture, carries the load (film force + load = 0) with no pressure below 0
+    from scipy.integrate import cumulative_trapezoid
+    # to 216 deg: past the decompression, where the cavitated pocket's flows change fastest
+    tr = bf.simulate(ORIFICE, mesh, 0.6, start="steady", points_per_revolution=720, cavitation="reynolds")
+    assert tr.status == "completed"
+    supply = ORIFICE.shoe_supply
+    stored = supply.pocket_volume / supply.bulk_modulus * (tr.inlet_pressure - tr.inlet_pressure[0]) \
+        * ORIFICE.scale.pressure
+    net = cumulative_trapezoid(tr.flow_restrictor - tr.flow_inlet - tr.flow_pocket_gap, tr.t, initial=0.0)
+    assert np.max(np.abs(stored - net)) / np.ptp(stored) < 3e-3
+    k = int(np.argmin(np.abs(tr.beta - np.radians(200.0))))  # decompression: the pocket above the chamber
+    assert tr.inlet_pressure[k] > tr.chamber_pressure[k] / ORIFICE.scale.pressure
+    res = bf.transient.state_result(ORIFICE, mesh, tr, k, "reynolds")
+    np.testing.assert_allclose(res.force, -tr.load[k], atol=1e-6 * np.abs(tr.load[k, 0]))
+    assert res.pressure.min() >= 0.0 and np.any(res.cavitated)
+
+
+def test_a_gumbel_film_that_cannot_hold_the_compressed_pocket_ends_the_run_with_why(mesh):
+    # after the inner dead centre the orifice vents the compressed pocket more slowly than the chamber falls: at
+    # 195 deg the pocket's 17 MPa presses on its own area with 0.87 of the plunger load and through the film
+    # with 3 times it; Gumbel's film (no tension) finds no rates there: the run stops as "no-equilibrium"
+    tr = bf.simulate(ORIFICE, mesh, start="steady", points_per_revolution=36, cavitation="gumbel")
+    assert tr.status == "no-equilibrium"
+    assert "presses on its own area" in tr.message and "'gumbel'" in tr.message
+    assert 180 < np.degrees(tr.rupture_beta) < 210
