@@ -1,0 +1,193 @@
+r"""The half-space compliance on a uniform grid, applied by FFT convolution (no dense matrix).
+
+On a mesh of :func:`bearingfe.geometry.meshing.grid_mesh` with uniform grid lines
+(spacings ``dphi``, ``dz``) every triangle is a translate of one of a few
+reference triangles (two for the tensor split), so the Boussinesq influence of
+:mod:`bearingfe.elastic.half_space`
+
+    w_i = kappa sum_T sum_k int_T lambda_k(y) / |x_i - y| dA(y) p(dof_k(T))
+
+is, for each reference triangle ``s`` and each of its vertices ``k``, a discrete
+convolution over the cells: ``w = kappa sum_(s,k) K_(s,k) * q_(s,k)`` with the kernel
+``K_(s,k)(m) = int_(T_s) lambda_k(y) / |m h - y| dA`` (the same exact integrals as the
+dense matrix, ``m`` the grid offset) and ``q_(s,k)(c) = p(c + o_k)`` on the cells ``c``
+that carry a triangle of shape ``s`` (none in a pocket: the holes are handled
+exactly, and so is the edge of the film, where a node's hat is cut). The
+convolutions are linear (zero-padded to twice the grid), by real FFTs:
+``O(N log N)`` time and ``O(N)`` memory per product instead of the dense
+``O(N^2)``, and the same numbers as the dense product to round-off. The pocket
+term (pressure ``p_s`` over the holes) is the dense model's contour integral at
+each node, ``O(N x pocket facets)``.
+
+P1 elements only (the deflection is collocated at the grid nodes).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.fft as sfft
+import skfem
+
+from .compliance import Compliance, contact_modulus
+from .half_space import _element_integrals, _pocket_integrals
+from ..core.scales import Scale
+from ..film import operators
+from ..geometry.meshing import SupportMesh
+
+__all__ = ["GridConvolution", "grid_convolution", "half_space_fft"]
+
+
+def _uniform_index(values: np.ndarray, what: str) -> tuple[np.ndarray, float, float, int]:
+    """Grid index of each coordinate on uniform lines: ``values = origin + index * step``."""
+    lines = np.unique(np.round(values, 12))
+    if lines.size < 2:
+        raise ValueError(f"the mesh has a single grid line along {what}: not a grid")
+    steps = np.diff(lines)
+    step = float(lines[-1] - lines[0]) / (lines.size - 1)
+    if np.max(np.abs(steps - step)) > 1e-9 * max(step, 1e-300) * lines.size:
+        raise ValueError(f"the FFT half-space needs uniform grid lines along {what} (grid_mesh without pockets "
+                         f"off the grid); spacings range {steps.min():.6g} .. {steps.max():.6g}: use "
+                         f"the dense half_space on this mesh")
+    index = np.rint((values - lines[0]) / step).astype(np.int64)
+    if np.max(np.abs(lines[0] + index * step - values)) > 1e-9 * step * lines.size:
+        raise ValueError(f"mesh nodes off the uniform grid lines along {what}: use the dense half_space")
+    return index, float(lines[0]), step, int(lines.size)
+
+
+class GridConvolution:
+    """The geometric influence ``G p = sum_j int phi_j / |x_i - y| dA p_j`` [R0] at the nodes of a uniform grid mesh.
+
+    Built once per mesh (the kernels of the reference triangles, exact
+    integrals); :meth:`__call__` applies it to a nodal field by FFT.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        A triangular (P1) mesh whose nodes lie on uniform grid lines and
+        whose triangles are half-cells of that grid, e.g.
+        :func:`bearingfe.geometry.meshing.grid_mesh` of a plain surface.
+
+    Raises
+    ------
+    ValueError
+        A mesh off a uniform grid (non-uniform lines, curved or other triangles).
+    """
+
+    def __init__(self, mesh: SupportMesh):
+        m = mesh.mesh
+        if not isinstance(m, skfem.MeshTri1):
+            raise ValueError(f"the FFT half-space needs a straight P1 triangle mesh (grid_mesh), "
+                             f"got {type(m).__name__}")
+        ix, x0, hx, nx = _uniform_index(m.p[0], "phi")
+        iz, z0, hz, nz = _uniform_index(m.p[1], "z")
+        self.n_nodes = m.p.shape[1]
+        self.shape = (nx, nz)                                # grid nodes along phi and z
+        self.step = (hx, hz)
+        self.origin = (x0, z0)
+        self.flat = ix * nz + iz                             # grid position of each node
+        tx, tz = ix[m.t], iz[m.t]                            # (3, n_elements)
+        cx, cz = tx.min(axis=0), tz.min(axis=0)              # the cell of each triangle
+        ox, oz = tx - cx, tz - cz
+        if ox.max() > 1 or oz.max() > 1:
+            raise ValueError("the FFT half-space needs triangles that are half-cells of the grid (grid_mesh)")
+        code = (ox * 2 + oz)                                 # vertex offsets as 0..3, shape (3, n_elements)
+        shapes, which = np.unique(code.T, axis=0, return_inverse=True)
+        which = np.asarray(which).ravel()
+        ncx, ncz = nx - 1, nz - 1
+        px, pz = 2 * nx, 2 * nz                              # zero-padded: linear, not circular, convolution
+        self._pad = (px, pz)
+        # offsets m = i - c of node i from cell c, i in [0, n), c in [0, n - 1): m in [-(n - 2), n - 1]
+        mx = np.arange(-(ncx - 1), nx)
+        mz = np.arange(-(ncz - 1), nz)
+        MX, MZ = np.meshgrid(mx, mz, indexing="ij")
+        pts = np.array([MX.ravel() * hx, MZ.ravel() * hz])
+        self._terms = []                                     # (cells mask, node offset (ox, oz), kernel FFT)
+        for s, shape in enumerate(shapes):
+            offs = [(int(c) // 2, int(c) % 2) for c in shape]
+            v = np.array([[o[0] * hx for o in offs], [o[1] * hz for o in offs]])[:, :, None]  # (2, 3, 1)
+            K = _element_integrals(pts, v, "P1")[:, :, 0]   # (3, n_offsets)
+            mask = np.zeros((ncx, ncz))
+            sel = which == s
+            mask[cx[sel], cz[sel]] = 1.0
+            for k in range(3):
+                kernel = np.zeros((px, pz))
+                # kernel[m mod pad] = K(m): negative offsets wrap to the end of the padded array
+                kernel[np.mod(MX, px), np.mod(MZ, pz)] = K[k].reshape(MX.shape)
+                self._terms.append((mask, offs[k], sfft.rfft2(kernel)))
+        self._ncells = (ncx, ncz)
+
+    def __call__(self, p: np.ndarray) -> np.ndarray:
+        """``G p`` at the nodes [R0] for the nodal values ``p`` (shape ``(n_nodes,)`` or ``(n_nodes, k)``)."""
+        p = np.asarray(p, float)
+        if p.shape[0] != self.n_nodes:
+            raise ValueError(f"p must have one value per node ({self.n_nodes}), got shape {p.shape}")
+        if p.ndim == 2:
+            return np.column_stack([self(p[:, j]) for j in range(p.shape[1])])
+        nx, nz = self.shape
+        ncx, ncz = self._ncells
+        grid = np.zeros((nx, nz))
+        grid.ravel()[self.flat] = p
+        total = None
+        for mask, (ox, oz), fk in self._terms:
+            q = mask * grid[ox:ox + ncx, oz:oz + ncz]
+            term = fk * sfft.rfft2(q, s=self._pad)
+            total = term if total is None else total + term
+        w = sfft.irfft2(total, s=self._pad)
+        # (K * q)(i) = sum_c K(i - c) q(c): node i sits at index i of the padded result
+        return w[:nx, :nz].ravel()[self.flat]
+
+
+def grid_convolution(mesh: SupportMesh) -> GridConvolution:
+    """The :class:`GridConvolution` of ``mesh``, cached on the mesh (built once per mesh)."""
+    cache = mesh._cache
+    conv = cache.get("half_space_fft")
+    if conv is None:
+        conv = cache["half_space_fft"] = GridConvolution(mesh)
+    return conv
+
+
+def half_space_fft(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1") -> Compliance:
+    """Compliance of two elastic half-spaces under the film, applied by FFT on a uniform grid mesh.
+
+    The same map as :func:`bearingfe.elastic.half_space` (exact influence
+    coefficients, collocated at the nodes) without its dense matrix:
+    :attr:`Compliance.matrix` is None and :meth:`Compliance.apply` convolves
+    by FFT, ``O(N log N)``; the size limit of the dense compliance does not
+    apply, and the coupled solves take the matrix-free Newton-Krylov path.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        A P1 grid mesh with uniform lines (:func:`bearingfe.grid_mesh`) [R0].
+    scale : Scale
+    modulus : float, Material or (Material, Material)
+        As in :func:`bearingfe.elastic.half_space`.
+    element : {"P1"}
+
+    Returns
+    -------
+    Compliance
+        ``model="half-space-fft"``, ``matrix=None``.
+    """
+    if not isinstance(scale, Scale):
+        raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
+    if element != "P1":
+        raise ValueError(f"the FFT half-space is built for element 'P1' (nodes on the grid), got {element!r}; "
+                         "use the dense half_space for P2")
+    e_star = contact_modulus(modulus)
+    start = time.perf_counter()
+    conv = grid_convolution(mesh)
+    basis = operators(mesh, element).basis
+    if basis.N != conv.n_nodes:
+        raise ValueError("the FFT half-space needs the P1 dofs to be the mesh nodes")
+    kappa = 0.0 if math.isinf(e_star) else scale.pressure * scale.radius / (math.pi * e_star * scale.clearance)
+    pocket = kappa * _pocket_integrals(mesh.mesh.p, mesh.mesh, mesh.boundaries.get("inlet"))
+
+    def apply(p: np.ndarray) -> np.ndarray:
+        return kappa * conv(p) if kappa else np.zeros(np.shape(p))
+
+    return Compliance(mesh=mesh, element=element, model="half-space-fft", matrix=None, pocket=pocket,
+                      modulus=e_star, scale=scale, seconds=time.perf_counter() - start, operator=apply)
