@@ -97,26 +97,37 @@ class GridConvolution:
         shapes, which = np.unique(code.T, axis=0, return_inverse=True)
         which = np.asarray(which).ravel()
         ncx, ncz = nx - 1, nz - 1
-        px, pz = 2 * nx, 2 * nz                              # zero-padded: linear, not circular, convolution
+        # zero-padded to at least n + (n - 1) - 1 (linear, not circular, convolution), at a fast FFT length
+        px, pz = sfft.next_fast_len(2 * nx - 2, real=True), sfft.next_fast_len(2 * nz - 2, real=True)
         self._pad = (px, pz)
         # offsets m = i - c of node i from cell c, i in [0, n), c in [0, n - 1): m in [-(n - 2), n - 1]
         mx = np.arange(-(ncx - 1), nx)
         mz = np.arange(-(ncz - 1), nz)
         MX, MZ = np.meshgrid(mx, mz, indexing="ij")
         pts = np.array([MX.ravel() * hx, MZ.ravel() * hz])
-        self._terms = []                                     # (cells mask, node offset (ox, oz), kernel FFT)
+        # terms (cells mask, node offset) -> kernel; triangles of different shapes on the same cells (the two
+        # halves of every cell) share the masked window of a vertex offset: their kernels add up
+        masks, kernels = [], {}
         for s, shape in enumerate(shapes):
             offs = [(int(c) // 2, int(c) % 2) for c in shape]
             v = np.array([[o[0] * hx for o in offs], [o[1] * hz for o in offs]])[:, :, None]  # (2, 3, 1)
             K = _element_integrals(pts, v, "P1")[:, :, 0]   # (3, n_offsets)
-            mask = np.zeros((ncx, ncz))
+            mask = np.zeros((ncx, ncz), bool)
             sel = which == s
-            mask[cx[sel], cz[sel]] = 1.0
+            mask[cx[sel], cz[sel]] = True
+            m_id = next((i for i, other in enumerate(masks) if np.array_equal(other, mask)), None)
+            if m_id is None:
+                masks.append(mask)
+                m_id = len(masks) - 1
             for k in range(3):
-                kernel = np.zeros((px, pz))
+                key = (m_id, offs[k])
+                if key not in kernels:
+                    kernels[key] = np.zeros((px, pz))
                 # kernel[m mod pad] = K(m): negative offsets wrap to the end of the padded array
-                kernel[np.mod(MX, px), np.mod(MZ, pz)] = K[k].reshape(MX.shape)
-                self._terms.append((mask, offs[k], sfft.rfft2(kernel)))
+                kernels[key][np.mod(MX, px), np.mod(MZ, pz)] += K[k].reshape(MX.shape)
+        self._masks = [None if m.all() else m.astype(float) for m in masks]
+        self._keys = list(kernels)
+        self._kernels = sfft.rfft2(np.array([kernels[key] for key in self._keys]), axes=(1, 2))
         self._ncells = (ncx, ncz)
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
@@ -130,11 +141,12 @@ class GridConvolution:
         ncx, ncz = self._ncells
         grid = np.zeros((nx, nz))
         grid.ravel()[self.flat] = p
-        total = None
-        for mask, (ox, oz), fk in self._terms:
-            q = mask * grid[ox:ox + ncx, oz:oz + ncz]
-            term = fk * sfft.rfft2(q, s=self._pad)
-            total = term if total is None else total + term
+        q = np.zeros((len(self._keys), *self._pad))
+        for t, (m_id, (ox, oz)) in enumerate(self._keys):
+            window = grid[ox:ox + ncx, oz:oz + ncz]
+            mask = self._masks[m_id]
+            q[t, :ncx, :ncz] = window if mask is None else mask * window
+        total = np.einsum("tij,tij->ij", self._kernels, sfft.rfft2(q, axes=(1, 2)))
         w = sfft.irfft2(total, s=self._pad)
         # (K * q)(i) = sum_c K(i - c) q(c): node i sits at index i of the padded result
         return w[:nx, :nz].ravel()[self.flat]

@@ -349,12 +349,14 @@ def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, 
 
 
 def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
-                         rates_balance: bool = False):
+                         rates_balance: bool = False, system=None):
     """``v -> (dp/dw) v`` without forming ``dp/dw`` (:func:`pressure_sensitivity`'s products).
 
-    One sparse factorization of ``A_FF`` at the call; each product is a
-    sparse product and one solve with those factors. ``v`` of shape
-    ``(n_dofs,)`` or ``(n_dofs, k)``.
+    One sparse factorization of ``A_FF`` at the call (none when ``system``, the
+    :class:`~bearingfe.film.superposition.CondensedSystem` of the same film in
+    the direct form, already factors it: its interior is the free set); each
+    product is a sparse product and one solve with those factors. ``v`` of
+    shape ``(n_dofs,)`` or ``(n_dofs, k)``.
     """
     x = np.array(basis.global_coordinates())
     h = np.asarray(film.thickness(x[0], x[1]))
@@ -365,14 +367,17 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
     n = basis.N
     if not idx.size:
         return lambda v: np.zeros(np.shape(v))
-    lu = spla.splu(sp.csc_matrix(A[idx][:, idx]))
+    if system is not None and np.array_equal(np.asarray(system.interior), idx):
+        solve = system.solve
+    else:
+        solve = spla.splu(sp.csc_matrix(A[idx][:, idx])).solve
     BF = B.tocsr()[idx]
     U = L = M = None
     if rates_balance:
         shapes = film.rate_shapes(x[0], x[1])
         U = np.zeros((n, 2))
         for k in range(2):
-            U[idx, k] = -lu.solve(load_form.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
+            U[idx, k] = -solve(load_form.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
         cos = load_form.assemble(basis, f=np.cos(x[0]))
         sin = load_form.assemble(basis, f=np.sin(x[0]))
         L = np.vstack([cos, sin])
@@ -382,7 +387,7 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
         v = np.asarray(v, float)
         out = np.zeros(v.shape)
         bv = BF @ v
-        out[idx] = -lu.solve(np.asarray(bv))
+        out[idx] = -solve(np.asarray(bv))
         if U is not None:
             out = out - U @ np.linalg.solve(M, L @ out)
         return out
@@ -474,7 +479,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     weights = source_weights(wedge, squeeze, inlet_pressure)
     ops = operators(mesh, element)
     basis = ops.basis
-    warm = [None]
+    warm, last = [None], [None, None]
 
     def evaluate(w):
         try:
@@ -487,6 +492,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
         res = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm[0], solver=solver))
         if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
+        last[:] = [res, sup.system]  # the factorized film of the last state: the Krylov Jacobian's solves
         return compliance.deflection(res.pressure, inlet_pressure), res
 
     interior = np.zeros(basis.N, bool)
@@ -494,7 +500,8 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
 
     def jacobian(w, res):
         if not compliance.dense:
-            return _jacobian_operator(compliance, res, interior, cavitation)
+            return _jacobian_operator(compliance, res, interior, cavitation,
+                                      system=last[1] if last[0] is res else None)
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
@@ -528,12 +535,13 @@ def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool
 
 
 def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavitation: str,
-                       rates_balance: bool = False) -> spla.LinearOperator:
-    """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied)."""
+                       rates_balance: bool = False, system=None) -> spla.LinearOperator:
+    """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied); ``system``:
+    the film's factorized direct system at this state, if at hand (:func:`sensitivity_operator`)."""
     args = (res.basis, res.film, res.pressure, res.wedge)
     clipped = res.cavitated is not None and cavitation == "gumbel"
     free = interior if (res.cavitated is None or clipped) else interior & ~res.cavitated
-    S = sensitivity_operator(*args, free, rates_balance=rates_balance)
+    S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system)
 
     def matvec(v):
         s = S(np.ravel(v))
@@ -780,7 +788,7 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
                                       jacobians=built, residual=size)
     interior = np.zeros(basis.N, bool)
     interior[ops.interior] = True
-    warm = [None]
+    warm, last = [None], [None, None]
 
     def evaluate(w):
         try:
@@ -800,11 +808,13 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
                 warm[0] = res
         except np.linalg.LinAlgError as exc:
             raise ElasticError(f"no equilibrium rates on the deflected film: {exc}") from None
+        last[:] = [res, sup.system]
         return compliance.deflection(res.pressure, inlet_pressure), (sup, rates, res)
 
     def jacobian(w, payload):
         if not compliance.dense:
-            return _jacobian_operator(compliance, payload[2], interior, cavitation, rates_balance=True)
+            return _jacobian_operator(compliance, payload[2], interior, cavitation, rates_balance=True,
+                                      system=last[1] if last[0] is payload[2] else None)
         return compliance.matrix @ _sensitivity(payload[2], interior, cavitation, rates_balance=True)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
