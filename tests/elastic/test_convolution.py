@@ -17,7 +17,9 @@ import pytest
 import bearingfe as bf
 from bearingfe.core.limits import LimitError
 from bearingfe.elastic import (COMPLIANCES, ChordBalance, balance_load, combined_modulus, compliance_of,
-                               compliance_on, half_space, half_space_fft, rectangle_deflection, solve_elastic)
+                               compliance_on, half_space, half_space_fft, influence_matrix, rectangle_deflection,
+                               solve_elastic)
+from bearingfe.elastic.convolution import grid_convolution
 from bearingfe.reynolds import operators
 from tests.helpers import ROOT
 
@@ -41,6 +43,10 @@ def test_fft_product_is_the_dense_product(surface, size, size_z):
     assert np.max(np.abs(fft.apply(p) - ref)) <= 1e-10 * np.max(np.abs(ref))
     assert np.max(np.abs(fft.pocket - dense.pocket)) <= 1e-12 * max(1.0, np.max(np.abs(dense.pocket)))
     assert np.max(np.abs(fft.to_dense() - dense.matrix)) <= 1e-10 * np.max(dense.matrix)
+    # the pockets by FFT over the holes of the grid against the dense model's contour integral
+    holes, (_, pocket) = grid_convolution(mesh).holes(), influence_matrix(mesh)
+    assert np.max(np.abs(holes - pocket)) <= 1e-12 * max(1.0, np.max(pocket))
+    assert (np.max(pocket) > 0.1) == (surface is RECESS)
 
 
 def test_uniform_pressure_on_rectangle_against_love():
