@@ -20,6 +20,15 @@ term (pressure ``p_s`` over the holes) is the dense model's contour integral at
 each node, ``O(N x pocket facets)``.
 
 P1 elements only (the deflection is collocated at the grid nodes).
+
+Any other mesh (gmsh, curved P2): :func:`half_space_grid` transfers the pressure to an
+auxiliary uniform grid over the surface (the film pressure interpolated at the grid
+nodes in the film, ``p_s`` in the pockets, zero outside: a continuous field), convolves
+there by the same FFT and interpolates the deflection back to the film dofs. This is
+an approximation of the dense map, not the same numbers: its error falls like
+``spacing^2`` (on a 0.05 R0 gmsh mesh of the pump shoe with its 32 MPa pocket, P1: the
+deflection within 1.3 % of the dense one at ``spacing = size``, 0.35 % at the default
+``size/2``, 0.1 % at ``size/4``; the film force within 3e-4 at the default).
 """
 
 from __future__ import annotations
@@ -37,7 +46,7 @@ from ..core.scales import Scale
 from ..film import operators
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["GridConvolution", "grid_convolution", "half_space_fft"]
+__all__ = ["GridConvolution", "grid_convolution", "half_space_fft", "half_space_grid"]
 
 
 def _uniform_index(values: np.ndarray, what: str) -> tuple[np.ndarray, float, float, int]:
@@ -65,7 +74,7 @@ class GridConvolution:
 
     Parameters
     ----------
-    mesh : SupportMesh
+    mesh : SupportMesh or skfem.MeshTri1
         A triangular (P1) mesh whose nodes lie on uniform grid lines and
         whose triangles are half-cells of that grid, e.g.
         :func:`bearingfe.geometry.meshing.grid_mesh` of a plain surface.
@@ -76,8 +85,8 @@ class GridConvolution:
         A mesh off a uniform grid (non-uniform lines, curved or other triangles).
     """
 
-    def __init__(self, mesh: SupportMesh):
-        m = mesh.mesh
+    def __init__(self, mesh: SupportMesh | skfem.MeshTri1):
+        m = mesh.mesh if isinstance(mesh, SupportMesh) else mesh
         if not isinstance(m, skfem.MeshTri1):
             raise ValueError(f"the FFT half-space needs a straight P1 triangle mesh (grid_mesh), "
                              f"got {type(m).__name__}")
@@ -239,4 +248,81 @@ def half_space_fft(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1"
         return kappa * conv(p) if kappa else np.zeros(np.shape(p))
 
     return Compliance(mesh=mesh, element=element, model="half-space-fft", matrix=None, pocket=pocket,
+                      modulus=e_star, scale=scale, seconds=time.perf_counter() - start, operator=apply)
+
+
+def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1", *,
+                    spacing: float | None = None) -> Compliance:
+    """Compliance of two elastic half-spaces on any film mesh, through an auxiliary uniform grid (FFT).
+
+    Approximate (see the module notes): the pressure is interpolated to a
+    uniform grid over the mesh's bounding box (``p_s`` in the pockets of
+    ``mesh.surface``, zero outside the film), convolved there with the exact
+    cell kernels of :class:`GridConvolution` and interpolated back to the dofs.
+    ``O(G log G)`` per product for ``G`` grid nodes, no dense matrix, no size
+    limit; the error against :func:`bearingfe.elastic.half_space` falls like
+    ``spacing^2``.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        Any film mesh (gmsh, curved) [R0]; with pockets it needs its ``surface``.
+    scale : Scale
+    modulus : float, Material or (Material, Material)
+        As in :func:`bearingfe.elastic.half_space`.
+    element : {"P1", "P2"}
+    spacing : float, optional
+        Grid spacing [R0], > 0; default half the mesh's nominal size.
+
+    Returns
+    -------
+    Compliance
+        ``model="half-space-grid"``, ``matrix=None``.
+    """
+    from ..geometry.locate import containing_cells, probe_matrices, probes
+
+    if not isinstance(scale, Scale):
+        raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
+    if not isinstance(mesh, SupportMesh):
+        raise ValueError(f"mesh must be a bearingfe SupportMesh, got {type(mesh).__name__}")
+    e_star = contact_modulus(modulus)
+    start = time.perf_counter()
+    h = 0.5 * mesh.size if spacing is None else spacing
+    if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0):
+        raise ValueError(f"spacing must be a grid spacing in R0, > 0, got {spacing!r}")
+    m = mesh.mesh
+    lo, hi = m.p.min(axis=1), m.p.max(axis=1)
+    n = np.maximum(2, np.ceil((hi - lo) / h).astype(int) + 1)
+    if n[0] * n[1] > 50 * max(m.p.shape[1], 1000):
+        raise ValueError(f"spacing = {h:g} R0 makes a grid of {n[0] * n[1]} nodes for a mesh of {m.p.shape[1]}: "
+                         "choose a spacing near the mesh size")
+    grid = skfem.MeshTri1.init_tensor(np.linspace(lo[0], hi[0], n[0]), np.linspace(lo[1], hi[1], n[1]))
+    conv = GridConvolution(grid)
+    basis = operators(mesh, element).basis
+    X = grid.p
+    inside = containing_cells(m.p, m.t, X) >= 0
+    pockets = np.zeros(X.shape[1], bool)
+    if len(mesh.boundaries.get("inlet", ())):
+        if mesh.surface is None:
+            raise ValueError("half_space_grid needs mesh.surface to know its pockets (a mesh read from a file "
+                             "has none): use the dense half_space")
+        for shape in mesh.surface.inlets:
+            pockets |= np.asarray(shape.contains(X[0], X[1]), bool)
+    # by the exact shapes, not the straight triangles: a curved mesh's chords cut slivers of pocket and outline
+    inside &= ~pockets
+    if mesh.surface is not None and not mesh.surface.is_rectangular:
+        inside &= np.asarray(mesh.surface.outline.contains(X[0], X[1]), bool)  # on it: p = 0 anyway
+    rows = np.flatnonzero(inside)
+    T = probes(basis, X[:, rows]).tocoo()
+    import scipy.sparse as sp
+
+    to_grid = sp.csr_matrix((T.data, (rows[T.row], T.col)), shape=(X.shape[1], basis.N))
+    back = probe_matrices(skfem.Basis(grid, skfem.ElementTriP1()), basis.doflocs)[0]
+    kappa = 0.0 if math.isinf(e_star) else scale.pressure * scale.radius / (math.pi * e_star * scale.clearance)
+    pocket = kappa * (back @ conv(pockets.astype(float)))
+
+    def apply(p: np.ndarray) -> np.ndarray:
+        return kappa * (back @ conv(to_grid @ p)) if kappa else np.zeros(np.shape(p))
+
+    return Compliance(mesh=mesh, element=element, model="half-space-grid", matrix=None, pocket=pocket,
                       modulus=e_star, scale=scale, seconds=time.perf_counter() - start, operator=apply)
