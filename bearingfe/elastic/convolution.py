@@ -279,7 +279,7 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
     Compliance
         ``model="half-space-grid"``, ``matrix=None``.
     """
-    from ..geometry.locate import containing_cells, probe_matrices, probes
+    from ..geometry.locate import containing_cells, probe_matrices
 
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
@@ -313,7 +313,7 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
     if mesh.surface is not None and not mesh.surface.is_rectangular:
         inside &= np.asarray(mesh.surface.outline.contains(X[0], X[1]), bool)  # on it: p = 0 anyway
     rows = np.flatnonzero(inside)
-    T = probes(basis, X[:, rows]).tocoo()
+    T = probe_matrices(basis, X[:, rows])[0].tocoo()
     import scipy.sparse as sp
 
     to_grid = sp.csr_matrix((T.data, (rows[T.row], T.col)), shape=(X.shape[1], basis.N))
