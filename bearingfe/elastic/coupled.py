@@ -18,8 +18,9 @@ With a compliance held as its product only (``Compliance.matrix is None``, the
 FFT half-space of :mod:`bearingfe.elastic.convolution`) the Jacobian is never
 formed: the Newton step solves ``(I - C dp/dw) dw = F`` by GMRES, each product
 costing one FFT convolution and one solve with the factors of the film's
-Reynolds matrix ``A_FF`` (``dp/dw v = -A_FF^-1 B_F v``), one factorization per
-Jacobian. This is GMRES on the pressure form ``A + B_h C`` right-preconditioned
+Reynolds matrix ``A_FF`` (``dp/dw v = -A_FF^-1 B_F v``): the superposition's own
+factors when no dof is ruptured, else one factorization per Jacobian. The Jacobian is
+taken afresh at every step (full Newton, not the dense path's chord). This is GMRES on the pressure form ``A + B_h C`` right-preconditioned
 by the film's own factorization (``(A + B_h C) A^-1 = I + B_h C A^-1`` has the
 spectrum of ``I - C dp/dw``). Memory and time then grow like the film
 (``O(N log N)`` per product), and the dense-size cap does not apply. The GMRES
@@ -199,8 +200,8 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
     jacobian : callable
         ``jacobian(w, payload) -> dg/dw``: dense (n x n), or a
         :class:`scipy.sparse.linalg.LinearOperator` (its products only: the
-        step is then solved by GMRES, see the module notes, and ``reuse``
-        keeps no factors).
+        step is then solved by GMRES, see the module notes, the Jacobian is
+        taken afresh at every step, and ``reuse`` keeps no factors).
     w0 : ndarray
         Start (zero, or the deflection of a nearby state).
     tol : float
@@ -288,6 +289,8 @@ def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int,
         history.append(float(np.abs(F).max(initial=0.0)))
         if not fresh and history[-1] > 0.25 * history[-2]:
             lu = None
+        elif lu[0] is _KRYLOV and history[-1] > tol:
+            lu = None  # a matrix-free Jacobian costs no factorization of its own: take a fresh one (full Newton)
     if reuse is not None:
         reuse["lu"] = None if (lu is not None and lu[0] is _KRYLOV) else lu
     return Coupled(deflection=w, payload=payload, iterations=count, residual=history[-1],
