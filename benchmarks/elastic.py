@@ -517,7 +517,14 @@ pay at these sizes; the transient's Jacobian is dense anyway, so an FFT or hiera
 make it cheaper. Dense is used up to the `compliance` limit of
 `bearingfe.core.limits` (4000 dofs: a 122 MB matrix, about 1 GB in the transient); beyond it `half_space`,
 `block_compliance`, `solve_elastic`, `balance_load` and `simulate_elastic` refuse with a `LimitError` that
-names `BEARINGFE_MAX_COMPLIANCE` (raise it for one run if the memory is there).
+names `BEARINGFE_MAX_COMPLIANCE` (raise it for one run if the memory is there). The quasi-static solves
+need no dense matrix on a uniform grid: `bearingfe.elastic.half_space_fft` (P1 on `grid_mesh` with uniform
+lines, the `"half-space-fft"` row of `COMPLIANCES`) holds the same half-space as its FFT product, and
+`solve_elastic` and `balance_load` then run matrix-free (Newton-Krylov), with no size limit. On any
+other mesh (gmsh, curved P2) `half_space_grid` (`"half-space-grid"`) does the same through an auxiliary
+uniform grid, an approximation of the dense map of second order in the grid spacing. Their cost from 1e3
+to 1e5 unknowns, and the grid transfer's difference from the dense map, are the `elastic_fft` part of
+[benchmarks.md](benchmarks.md). `simulate_elastic` (the deflection's squeeze) still needs the dense matrix.
 """
 
 

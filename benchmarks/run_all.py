@@ -30,9 +30,11 @@ linear solvers; ``cavitation`` — the cavitating solves against the non-cavitat
 floor, 1e3 .. 3e5 unknowns (:mod:`benchmarks.cavitation_cost`; larger sizes by
 ``python -m benchmarks.cavitation_cost run --sizes 1e6``, merged);
 ``hard`` — hard cases; ``kinds`` — time and memory against the unknowns for every solver kind, fitted
-exponents and where each stops (:mod:`benchmarks.solver_kinds`); ``thrust`` — a six-pad tilting-pad thrust bearing's equilibrium at 1e-3 in load beside
-its floor (:mod:`benchmarks.thrust_speed`); ``thermal`` — the cost of a level-1 and a level-2 thermal solve against the
-isothermal one (:mod:`benchmarks.thermal_levels`). The operator cost floor is measured by
+exponents and where each stops (:mod:`benchmarks.solver_kinds`); ``thrust`` — a six-pad tilting-pad thrust bearing's
+equilibrium at 1e-3 in load beside its floor (:mod:`benchmarks.thrust_speed`); ``thermal`` — the cost of a level-1 and
+a level-2 thermal solve against the isothermal one (:mod:`benchmarks.thermal_levels`); ``elastic_fft`` — the film on
+the elastic half-space from 1e3 to 1e5 unknowns, dense compliance against its FFT product, beside the floor
+(:mod:`benchmarks.elastic_fft`). The operator cost floor is measured by
 ``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
 (linked, not rerun here).
 """
@@ -53,14 +55,14 @@ import numpy as np
 if __package__ in (None, ""):  # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks import (cavitation_cost, hard_cases, journal_case, journal_pads, journal_ross,  # noqa: E402
+from benchmarks import (cavitation_cost, elastic_fft, hard_cases, journal_case, journal_pads, journal_ross,  # noqa: E402
                         pump_revolution, scaling, solver_kinds, targets, thermal_levels, thrust_speed,
                         tilting_pad_speed, work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
 PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "tilting", "pump", "scene", "scaling",
-         "cavitation", "hard", "thermal", "thrust", "kinds")
+         "cavitation", "hard", "thermal", "elastic_fft", "thrust", "kinds")
 
 
 def _log(msg) -> None:
@@ -169,6 +171,10 @@ def part_cavitation(quick: bool) -> tuple[str, dict]:
     return cavitation_cost.report(rows)
 
 
+def part_elastic_fft(quick: bool) -> tuple[str, dict]:
+    return elastic_fft.report(elastic_fft.run(quick, log=_log))
+
+
 def part_hard(quick: bool) -> tuple[str, dict]:
     return hard_cases.report() + "\n", {}
 
@@ -176,7 +182,7 @@ def part_hard(quick: bool) -> tuple[str, dict]:
 RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal,
            "journal_pads": part_journal_pads, "journal_ross": part_journal_ross, "tilting": part_tilting,
            "pump": part_pump, "scene": part_scene, "scaling": part_scaling, "cavitation": part_cavitation,
-           "hard": part_hard, "thermal": thermal_levels.run,
+           "hard": part_hard, "thermal": thermal_levels.run, "elastic_fft": part_elastic_fft,
            "thrust": lambda quick: thrust_speed.report(thrust_speed.run(quick, log=_log)),
            "kinds": lambda quick: solver_kinds.report(solver_kinds.run(quick, log=_log))}
 TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
@@ -188,6 +194,7 @@ TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal
           "scaling": "Growth with the number of unknowns; linear solvers",
           "cavitation": "Cost of the cavitating solves (Swift-Stieber, Gumbel) up to 1e6 unknowns", "hard": "Hard cases",
           "thermal": "Thermal levels: cost of level 1 and level 2 against the isothermal solve",
+          "elastic_fft": "Elastic half-space support from 1e3 to 1e5 unknowns: dense against FFT",
           "thrust": "Thrust bearing: tilting-pad equilibrium at 1e-3 in load (six pads)",
           "kinds": "Every solver kind: time and memory against the unknowns, and where each stops"}
 

@@ -11,6 +11,7 @@ module           what it does
 ===============  ==================================================================
 ``compliance``   the :class:`Compliance` every model builds; contact modulus; size guard
 ``half_space``   two elastic half-spaces under the film, influence coefficients exact
+``convolution``  the half-space applied by FFT: exact on a uniform grid mesh, through a grid on any other
 ``block``        the shoe as a 3-D block held at its back; any body's openings as a compliance
 ``shoe``         the real shoe body (gmsh tetrahedra, seat, lining) and its :class:`ShoeBody`
 ``coupled``      the film opened by its own pressure: Newton, load balance, chord balance
@@ -24,13 +25,14 @@ from typing import Callable, Mapping
 
 from .compliance import Compliance, ElasticError, check_dense_size, combined_modulus, contact_modulus
 from .half_space import half_space, influence_matrix, rectangle_deflection
+from .convolution import GridConvolution, half_space_fft, half_space_grid
 from .block import block_compliance, body_compliance
 from .shoe import BODY_ORDERS, SHOE_BACKS, SHOE_SEATS, ShoeBody, ShoeMesh, condense, mesh_shoe, overlay, shoe_compliance
 from .coupled import (ChordBalance, DeflectedFilm, ElasticBalance, ElasticSolution, balance_load, newton,
                       pressure_sensitivity, solve_elastic)
 
 __all__ = ["COMPLIANCES", "NEEDS_BODY", "REBUILDS", "compliance_of", "compliance_on", "Compliance", "ElasticError", "body_compliance", "check_dense_size",
-           "combined_modulus", "contact_modulus", "half_space", "influence_matrix", "rectangle_deflection",
+           "combined_modulus", "contact_modulus", "half_space", "half_space_fft", "half_space_grid", "GridConvolution", "influence_matrix", "rectangle_deflection",
            "block_compliance", "BODY_ORDERS", "SHOE_BACKS", "SHOE_SEATS", "ShoeBody", "ShoeMesh", "condense",
            "mesh_shoe", "overlay", "shoe_compliance", "ChordBalance", "DeflectedFilm", "ElasticBalance",
            "ElasticSolution", "balance_load", "newton", "pressure_sensitivity", "solve_elastic"]
@@ -38,6 +40,14 @@ __all__ = ["COMPLIANCES", "NEEDS_BODY", "REBUILDS", "compliance_of", "compliance
 
 def _half_space(mesh, scale, shoe, counterpart, body, element):
     return half_space(mesh, scale, shoe if counterpart is None else (shoe, counterpart), element)
+
+
+def _half_space_fft(mesh, scale, shoe, counterpart, body, element):
+    return half_space_fft(mesh, scale, shoe if counterpart is None else (shoe, counterpart), element)
+
+
+def _half_space_grid(mesh, scale, shoe, counterpart, body, element):
+    return half_space_grid(mesh, scale, shoe if counterpart is None else (shoe, counterpart), element)
 
 
 def _block(mesh, scale, shoe, counterpart, body, element):
@@ -50,9 +60,14 @@ def _shoe(mesh, scale, shoe, counterpart, body, element):
 
 #: Elastic support models by name: ``build(mesh, scale, shoe, counterpart, body, element) -> Compliance``
 #: with the shoe's :class:`~bearingfe.core.machine.Material`, the counterpart's (None: rigid) and the
-#: shoe's :class:`ShoeBody` (the block and the shoe need it; the half-space ignores it).
+#: shoe's :class:`ShoeBody` (the block and the shoe need it; the half-space ignores it). ``"half-space-fft"``
+#: is the half-space on a uniform grid mesh (:func:`bearingfe.grid_mesh`, P1) held as its FFT product:
+#: no dense matrix and no size cap. ``"half-space-grid"``: the same on any mesh through an auxiliary uniform
+#: grid (approximate, error falling like the grid spacing squared; :func:`half_space_grid`).
 COMPLIANCES: Mapping[str, Callable[..., Compliance]] = MappingProxyType({
     "half-space": _half_space,
+    "half-space-fft": _half_space_fft,
+    "half-space-grid": _half_space_grid,
     "block": _block,
     "shoe": _shoe,
 })
@@ -65,6 +80,8 @@ NEEDS_BODY = ("block", "shoe")
 #: and the shoe need their bodies, which a compliance does not keep.
 REBUILDS: Mapping[str, Callable[[Compliance, object], Compliance]] = MappingProxyType({
     "half-space": lambda c, mesh: half_space(mesh, c.scale, c.modulus, c.element),
+    "half-space-fft": lambda c, mesh: half_space_fft(mesh, c.scale, c.modulus, c.element),
+    "half-space-grid": lambda c, mesh: half_space_grid(mesh, c.scale, c.modulus, c.element),
 })
 
 

@@ -2,14 +2,17 @@
 
 :class:`Compliance` is what every elastic model of :data:`bearingfe.elastic.COMPLIANCES`
 builds and what the coupled film (:mod:`bearingfe.elastic.coupled`) and the elastic
-transient take: ``w = C p + p_s c_pocket`` on the film dofs, in clearances. It is a
-dense matrix, so its size is guarded (:func:`check_dense_size`).
+transient take: ``w = C p + p_s c_pocket`` on the film dofs, in clearances. Most models hold
+``C`` as a dense matrix, so its size is guarded (:func:`check_dense_size`); the
+half-space on a uniform grid (:func:`bearingfe.elastic.convolution.half_space_fft`)
+holds only its product (:meth:`Compliance.apply`, an FFT convolution) and has no cap.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -64,8 +67,9 @@ class Compliance:
     model : str
         ``"half-space"``, ``"body"`` (the block of :func:`shoe_body`) or ``"shoe"``
         (:func:`bearingfe.elastic.shoe.shoe_compliance`).
-    matrix : ndarray, shape (n_dofs, n_dofs)
-        Deflection [c] per unit non-dimensional pressure.
+    matrix : ndarray, shape (n_dofs, n_dofs), or None
+        Deflection [c] per unit non-dimensional pressure; None for a
+        compliance held as its product only (``operator``).
     pocket : ndarray, shape (n_dofs,)
         Deflection [c] per unit pocket pressure.
     modulus : float
@@ -73,6 +77,9 @@ class Compliance:
     scale : Scale
     seconds : float
         Build time [s].
+    operator : callable, optional
+        ``operator(p) -> C p`` (``p`` of shape ``(n_dofs,)`` or ``(n_dofs, k)``)
+        when ``matrix`` is None (e.g. ``model="half-space-fft"``).
     """
 
     mesh: SupportMesh
@@ -83,10 +90,32 @@ class Compliance:
     modulus: float
     scale: Scale
     seconds: float
+    operator: Callable[[np.ndarray], np.ndarray] | None = None
+
+    def __post_init__(self) -> None:
+        if self.matrix is None and self.operator is None:
+            raise ValueError("a Compliance needs its matrix or its operator (the product C p)")
 
     @property
     def n_dofs(self) -> int:
-        return int(self.matrix.shape[1])
+        return int(np.shape(self.pocket)[0])
+
+    @property
+    def dense(self) -> bool:
+        """Whether :attr:`matrix` is held (else only the product :meth:`apply`)."""
+        return self.matrix is not None
+
+    def apply(self, pressure: np.ndarray) -> np.ndarray:
+        """``C p`` [c] for the nodal pressure(s) ``p`` [-], shape ``(n_dofs,)`` or ``(n_dofs, k)``."""
+        p = np.asarray(pressure, float)
+        return self.matrix @ p if self.matrix is not None else np.asarray(self.operator(p), float)
+
+    def to_dense(self) -> np.ndarray:
+        """The matrix ``C`` (for a compliance held as its product: ``C`` applied to the identity; small meshes)."""
+        if self.matrix is not None:
+            return self.matrix
+        check_dense_size(self.n_dofs)
+        return self.apply(np.eye(self.n_dofs))
 
     @property
     def basis_doflocs(self) -> np.ndarray:
@@ -98,7 +127,7 @@ class Compliance:
         p = np.asarray(pressure, float)
         if p.shape != (self.n_dofs,):
             raise ValueError(f"pressure must have one value per dof ({self.n_dofs}), got shape {p.shape}")
-        return self.matrix @ p + float(inlet_pressure) * self.pocket
+        return self.apply(p) + float(inlet_pressure) * self.pocket
 
 
 def contact_modulus(modulus) -> float:

@@ -11,6 +11,21 @@ soon as the film is thin where the pressure is high (``p ~ h^-2``: the
 classical EHD instability), which the pump reaches. Convergence test:
 ``max |C p(h_rigid + w) - w| <= tol`` (clearance units; default ``1e-8``)
 at the returned state; :class:`ElasticError` otherwise.
+
+Matrix-free (Newton-Krylov)
+---------------------------
+With a compliance held as its product only (``Compliance.matrix is None``, the
+FFT half-space of :mod:`bearingfe.elastic.convolution`) the Jacobian is never
+formed: the Newton step solves ``(I - C dp/dw) dw = F`` by GMRES, each product
+costing one FFT convolution and one solve with the factors of the film's
+Reynolds matrix ``A_FF`` (``dp/dw v = -A_FF^-1 B_F v``): the superposition's own
+factors when no dof is ruptured, else one factorization per Jacobian. The Jacobian is
+taken afresh at every step (full Newton, not the dense path's chord). This is GMRES on the pressure form ``A + B_h C`` right-preconditioned
+by the film's own factorization (``(A + B_h C) A^-1 = I + B_h C A^-1`` has the
+spectrum of ``I - C dp/dw``). Memory and time then grow like the film
+(``O(N log N)`` per product), and the dense-size cap does not apply. The GMRES
+tolerance is relative, ``min(1e-2, max |F|)`` (inexact Newton: superlinear
+near the answer); the convergence test is the same as the dense path's.
 The deflected film is a nodal field (its Laplacian is not a function), so
 the direct form of the Reynolds equation is used; any cavitation model
 works (the solve is called as a black box, warm-started from the previous
@@ -42,7 +57,7 @@ from ..geometry.meshing import SupportMesh
 from ..geometry.runner import require_along_phi
 
 __all__ = ["DeflectedFilm", "ElasticSolution", "solve_elastic", "balance_load", "ElasticBalance", "ChordBalance",
-           "pressure_sensitivity", "newton", "solve_rigid_h_min"]
+           "pressure_sensitivity", "sensitivity_operator", "newton", "solve_rigid_h_min"]
 
 # -- the deflected film ----------------------------------------------------------------------
 
@@ -161,6 +176,8 @@ class Coupled:
         The residual after each accepted step.
     jacobians : int
         Jacobians built (the others were reused).
+    krylov_iterations : int
+        GMRES iterations (Jacobian products) over all steps (matrix-free path; 0 for dense Jacobians).
     """
 
     deflection: np.ndarray
@@ -169,6 +186,7 @@ class Coupled:
     residual: float
     history: tuple[float, ...]
     jacobians: int = 0
+    krylov_iterations: int = 0
 
 
 def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
@@ -181,7 +199,10 @@ def newton(evaluate, jacobian, w0: np.ndarray, *, tol: float = TOLERANCE,
         ``evaluate(w) -> (g(w), payload)``; raises :class:`ElasticError` if
         the film closes at ``w`` (then the step is halved).
     jacobian : callable
-        ``jacobian(w, payload) -> dg/dw`` (dense, n x n).
+        ``jacobian(w, payload) -> dg/dw``: dense (n x n), or a
+        :class:`scipy.sparse.linalg.LinearOperator` (its products only: the
+        step is then solved by GMRES, see the module notes, the Jacobian is
+        taken afresh at every step, and ``reuse`` keeps no factors).
     w0 : ndarray
         Start (zero, or the deflection of a nearby state).
     tol : float
@@ -217,7 +238,7 @@ def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int,
     g, payload = evaluate(w)
     F = g - w
     history = [float(np.abs(F).max(initial=0.0))]
-    count, jacobians = 1, 0
+    count, jacobians, products = 1, 0, [0]
     lu = None if reuse is None else reuse.get("lu")
     if lu is not None and lu[0].shape[0] != w.size:
         lu = None
@@ -230,9 +251,16 @@ def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int,
                 "load (deflection much larger than the film): raise max_iterations or check the modulus")
         fresh = lu is None
         if fresh:
-            lu = sla.lu_factor(jacobian(w, payload) - np.eye(w.size), check_finite=False)
+            J = jacobian(w, payload)
+            if isinstance(J, spla.LinearOperator):
+                lu = (_KRYLOV, J)
+            else:
+                lu = sla.lu_factor(J - np.eye(w.size), check_finite=False)
             jacobians += 1
-        step = -sla.lu_solve(lu, F, check_finite=False)
+        if lu[0] is _KRYLOV:
+            step = _krylov_step(lu[1], F, history[-1], products)
+        else:
+            step = -sla.lu_solve(lu, F, check_finite=False)
         if not np.all(np.isfinite(step)):
             raise ElasticError("the Jacobian of the elastic film is singular (I - C dp/dw): no unique "
                                "deflection at this state")
@@ -262,10 +290,31 @@ def _newton(evaluate, jacobian, w0: np.ndarray, tol: float, max_iterations: int,
         history.append(float(np.abs(F).max(initial=0.0)))
         if not fresh and history[-1] > 0.25 * history[-2]:
             lu = None
+        elif lu[0] is _KRYLOV and history[-1] > tol:
+            lu = None  # a matrix-free Jacobian costs no factorization of its own: take a fresh one (full Newton)
     if reuse is not None:
-        reuse["lu"] = lu
+        reuse["lu"] = None if (lu is not None and lu[0] is _KRYLOV) else lu
     return Coupled(deflection=w, payload=payload, iterations=count, residual=history[-1],
-                   history=tuple(history), jacobians=jacobians)
+                   history=tuple(history), jacobians=jacobians, krylov_iterations=products[0])
+
+
+_KRYLOV = np.empty((0, 0))  # marks a matrix-free Jacobian in place of LU factors (its shape never matches)
+
+
+def _krylov_step(J: spla.LinearOperator, F: np.ndarray, residual: float, products: list) -> np.ndarray:
+    """The Newton step ``(dg/dw - I) s = -F`` by GMRES on the products of ``dg/dw`` (inexact Newton)."""
+    n = F.size
+
+    def matvec(v):
+        products[0] += 1
+        return J.matvec(v) - v
+
+    op = spla.LinearOperator((n, n), matvec=matvec, dtype=float)
+    rtol = min(1e-2, max(residual, 1e-12))
+    step, info = spla.gmres(op, -F, rtol=rtol, atol=0.0, restart=min(n, 60), maxiter=20)
+    if info < 0 or not np.all(np.isfinite(step)):
+        raise ElasticError("GMRES broke down on the elastic film's Jacobian (I - C dp/dw)")
+    return step  # info > 0 (not converged): the backtracking judges the step
 
 
 @BilinearForm
@@ -300,28 +349,54 @@ def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, 
     -------
     ndarray, shape (n_dofs, n_dofs)
     """
+    return sensitivity_operator(basis, film, pressure, wedge, free, rates_balance=rates_balance)(np.eye(basis.N))
+
+
+def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
+                         rates_balance: bool = False, system=None):
+    """``v -> (dp/dw) v`` without forming ``dp/dw`` (:func:`pressure_sensitivity`'s products).
+
+    One sparse factorization of ``A_FF`` at the call (none when ``system``, the
+    :class:`~bearingfe.film.superposition.CondensedSystem` of the same film in
+    the direct form, already factors it: its interior is the free set); each
+    product is a sparse product and one solve with those factors. ``v`` of
+    shape ``(n_dofs,)`` or ``(n_dofs, k)``.
+    """
     x = np.array(basis.global_coordinates())
     h = np.asarray(film.thickness(x[0], x[1]))
     gp = basis.interpolate(pressure).grad
     A = weighted_laplace.assemble(basis, c=h**3).tocsr()
     B = _film_sensitivity.assemble(basis, h2=h**2, gp0=gp[0], gp1=gp[1], wedge=np.full(h.shape, float(wedge)))
     idx = np.flatnonzero(free)
-    out = np.zeros((basis.N, basis.N))
+    n = basis.N
     if not idx.size:
-        return out
-    lu = spla.splu(sp.csc_matrix(A[idx][:, idx]))
-    out[idx] = -lu.solve(np.asarray(B.tocsr()[idx].todense()))
+        return lambda v: np.zeros(np.shape(v))
+    if system is not None and np.array_equal(np.asarray(system.interior), idx):
+        solve = system.solve
+    else:
+        solve = spla.splu(sp.csc_matrix(A[idx][:, idx])).solve
+    BF = B.tocsr()[idx]
+    U = L = M = None
     if rates_balance:
         shapes = film.rate_shapes(x[0], x[1])
-        U = np.zeros((basis.N, 2))
+        U = np.zeros((n, 2))
         for k in range(2):
-            U[idx, k] = -lu.solve(load_form.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
+            U[idx, k] = -solve(load_form.assemble(basis, f=12.0 * np.asarray(shapes[k]))[idx])
         cos = load_form.assemble(basis, f=np.cos(x[0]))
         sin = load_form.assemble(basis, f=np.sin(x[0]))
         L = np.vstack([cos, sin])
         M = L @ U
-        out = out - U @ np.linalg.solve(M, L @ out)
-    return out
+
+    def apply(v):
+        v = np.asarray(v, float)
+        out = np.zeros(v.shape)
+        bv = BF @ v
+        out[idx] = -solve(np.asarray(bv))
+        if U is not None:
+            out = out - U @ np.linalg.solve(M, L @ out)
+        return out
+
+    return apply
 
 
 @dataclass(frozen=True, eq=False)
@@ -344,6 +419,8 @@ class ElasticSolution:
     rigid_h_min : float
         Smallest film of the rigid surfaces at the same state [c].
     history : tuple of float
+    krylov_iterations : int
+        GMRES iterations (Jacobian products) of the matrix-free path; 0 with a dense compliance.
     """
 
     result: object
@@ -353,12 +430,14 @@ class ElasticSolution:
     max_deflection: float
     rigid_h_min: float
     history: tuple[float, ...]
+    krylov_iterations: int = 0
 
 
 def _check_compliance(compliance: Compliance, mesh: SupportMesh, element: str) -> None:
     if not isinstance(compliance, Compliance):
         raise ValueError(f"elastic must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
-    check_dense_size(compliance.n_dofs)
+    if compliance.dense:
+        check_dense_size(compliance.n_dofs)
     require_along_phi(mesh, "the elastic support")
     if compliance.mesh is not mesh:
         raise ValueError("elastic: the compliance was built on another mesh; build it on this one")
@@ -405,7 +484,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     weights = source_weights(wedge, squeeze, inlet_pressure)
     ops = operators(mesh, element)
     basis = ops.basis
-    warm = [None]
+    warm, last = [None], [None, None]
 
     def evaluate(w):
         try:
@@ -418,12 +497,16 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
         res = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm[0], solver=solver))
         if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
+        last[:] = [res, sup.system]  # the factorized film of the last state: the Krylov Jacobian's solves
         return compliance.deflection(res.pressure, inlet_pressure), res
 
     interior = np.zeros(basis.N, bool)
     interior[ops.interior] = True
 
     def jacobian(w, res):
+        if not compliance.dense:
+            return _jacobian_operator(compliance, res, interior, cavitation,
+                                      system=last[1] if last[0] is res else None)
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
@@ -432,7 +515,8 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     result = _checked(result, out.deflection, compliance, mesh, film)
     return ElasticSolution(result=result, deflection=out.deflection, iterations=out.iterations,
                            residual=out.residual, max_deflection=float(out.deflection.max(initial=0.0)),
-                           rigid_h_min=solve_rigid_h_min(film, basis), history=out.history)
+                           rigid_h_min=solve_rigid_h_min(film, basis), history=out.history,
+                           krylov_iterations=out.krylov_iterations)
 
 
 def _checked(result, deflection: np.ndarray, compliance: Compliance, mesh: SupportMesh, film: Film):
@@ -453,6 +537,25 @@ def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool
             S[res.cavitated] = 0.0
         return S
     return pressure_sensitivity(*args, interior & ~res.cavitated, rates_balance=rates_balance)
+
+
+def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavitation: str,
+                       rates_balance: bool = False, system=None) -> spla.LinearOperator:
+    """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied); ``system``:
+    the film's factorized direct system at this state, if at hand (:func:`sensitivity_operator`)."""
+    args = (res.basis, res.film, res.pressure, res.wedge)
+    clipped = res.cavitated is not None and cavitation == "gumbel"
+    free = interior if (res.cavitated is None or clipped) else interior & ~res.cavitated
+    S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system)
+
+    def matvec(v):
+        s = S(np.ravel(v))
+        if clipped:
+            s[res.cavitated] = 0.0
+        return compliance.apply(s)
+
+    n = compliance.n_dofs
+    return spla.LinearOperator((n, n), matvec=matvec, dtype=float)
 
 
 @dataclass(frozen=True, eq=False)
@@ -520,6 +623,9 @@ class ChordBalance:
     def __init__(self, compliance: Compliance, tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS):
         if not isinstance(compliance, Compliance):
             raise ValueError(f"compliance must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
+        if not compliance.dense:
+            raise ValueError(f"ChordBalance factors a dense Jacobian: it needs a dense compliance, got the "
+                             f"{compliance.model!r} product (balance_load takes it by Newton-Krylov)")
         if not (0 < tol < 1):
             raise ValueError(f"tol must be in (0, 1) [clearance], got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -666,7 +772,7 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
     basis = ops.basis
     opts = {} if solver is None else {"solver": solver}
     chord = None
-    if cavitation == "none" and reuse is not None:
+    if cavitation == "none" and reuse is not None and compliance.dense:  # the chord factors a dense Jacobian
         chord = reuse.get("chord")
         if not (isinstance(chord, ChordBalance) and chord.compliance is compliance and chord.tol == tol):
             chord = reuse["chord"] = ChordBalance(compliance, tol=tol, max_iterations=max_iterations)
@@ -687,7 +793,7 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
                                       jacobians=built, residual=size)
     interior = np.zeros(basis.N, bool)
     interior[ops.interior] = True
-    warm = [None]
+    warm, last = [None], [None, None]
 
     def evaluate(w):
         try:
@@ -707,9 +813,13 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
                 warm[0] = res
         except np.linalg.LinAlgError as exc:
             raise ElasticError(f"no equilibrium rates on the deflected film: {exc}") from None
+        last[:] = [res, sup.system]
         return compliance.deflection(res.pressure, inlet_pressure), (sup, rates, res)
 
     def jacobian(w, payload):
+        if not compliance.dense:
+            return _jacobian_operator(compliance, payload[2], interior, cavitation, rates_balance=True,
+                                      system=last[1] if last[0] is payload[2] else None)
         return compliance.matrix @ _sensitivity(payload[2], interior, cavitation, rates_balance=True)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)

@@ -472,6 +472,9 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
                            periodic_max_iter=periodic_max_iter)
     ElasticSqueeze.check(settings)
     positive("kappa", kappa), positive("deflection_atol", deflection_atol)
+    if not compliance.dense:
+        raise ValueError(f"simulate_elastic factors dense matrices of the compliance: it needs a dense one, got "
+                         f"the {compliance.model!r} product (the quasi-static simulate(elastic=...) takes it)")
     check_dense_size(compliance.n_dofs)
     ratio = balance_ratio(pump, compliance.mesh, element=compliance.element)
     if ratio >= 1.0:
