@@ -244,12 +244,7 @@ class _Profile(_Addable):
         s, h = self.knots()
         if self.extend:
             return np.full(np.shape(x), (h[1] - h[0]) / (s[1] - s[0]))
-        out = np.zeros(np.shape(x))
-        for k in range(len(s) - 1):
-            if s[k + 1] > s[k]:
-                inside = (x > s[k]) & (x < s[k + 1])
-                out = np.where(inside, (h[k + 1] - h[k]) / (s[k + 1] - s[k]), out)
-        return out
+        return _piecewise_slope(x, s, h)
 
     def gradient(self, phi, z):
         g = self._slope(self._s(phi, z)) + _zeros(phi, z)
@@ -522,13 +517,7 @@ class PolarProfileFilm(_Addable):
         return _interpolate(self._abscissa(phi, z), s, h)
 
     def _slope(self, x: np.ndarray) -> np.ndarray:
-        s, h = self.knots()
-        out = np.zeros(np.shape(x))
-        for k in range(len(s) - 1):
-            if s[k + 1] > s[k]:
-                inside = (x > s[k]) & (x < s[k + 1])
-                out = np.where(inside, (h[k + 1] - h[k]) / (s[k + 1] - s[k]), out)
-        return out
+        return _piecewise_slope(x, *self.knots())
 
     def gradient(self, phi, z):
         dx, dy, r, angle = self._polar(phi, z)
@@ -553,6 +542,16 @@ class PolarProfileFilm(_Addable):
 
     def minimum(self, phi_range: tuple[float, float]) -> float | None:
         return None
+
+
+def _piecewise_slope(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """Slope of the piecewise-linear ``h(s)`` at ``x`` (0 outside the knots and at a step)."""
+    out = np.zeros(np.shape(x))
+    for k in range(len(s) - 1):
+        if s[k + 1] > s[k]:
+            inside = (x > s[k]) & (x < s[k + 1])
+            out = np.where(inside, (h[k + 1] - h[k]) / (s[k + 1] - s[k]), out)
+    return out
 
 
 def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:

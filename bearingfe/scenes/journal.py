@@ -567,7 +567,7 @@ def _run_tilting(s: dict, label: str, out_dir: Path, tick: Callable) -> dict:
     summary["cost"]["seconds"]["output"] = time.perf_counter() - t0
     summary["table"] = _tilting_table(res, K, C, stability, summary["cost"])
     if thermal is not None:
-        summary["thermal"] = _tilting_thermal_summary(thermal, s["oil"])
+        summary["thermal"] = _thermal_summary(thermal, s["oil"])
         summary["table"][-1:-1] = _thermal_rows(summary["thermal"])
     summary["files"] = files + ["summary.json"]
     tick(3, steps, "summary")
@@ -585,28 +585,6 @@ def _tilting_thermal(s: dict, label: str, bearing, meshes):
     return build(label, "oil", tilting_pad_temperature, bearing, op["load"], op["speed_rad_s"],
                  lubricant_of(oil, label, "oil"), balance_of(oil, label, "oil"), meshes=meshes,
                  cavitation=solver["cavitation"])
-
-
-def _tilting_thermal_summary(t, oil: dict) -> dict:
-    """The tilting pads' heat balance in the summary, in the journal's terms (SI; temperatures in degC)."""
-    from ..thermal import celsius
-
-    def rel(new, old):
-        return (new - old) / old
-    return {
-        "model": "level 1: effective temperature from the heat balance of the loaded pads",
-        "effective_temperature_C": celsius(t.temperature), "supply_temperature_C": celsius(t.supply_temperature),
-        "inlet_temperature_C": celsius(t.heat.inlet), "outlet_temperature_C": celsius(t.heat.outlet),
-        "temperature_rise_K": t.heat.rise, "effective_viscosity_Pa_s": t.viscosity,
-        "supply_viscosity_Pa_s": t.supply_viscosity, "power_loss_W": t.friction_power,
-        "convected_power_W": t.heat.convected, "conducted_power_W": t.heat.conducted,
-        "leading_flow_m3s": t.leading_flow, "side_flow_m3s": t.side_flow, "supply_flow_m3s": t.heat.supply_flow,
-        "isothermal": {"at": "the supply temperature", "eccentricity": t.isothermal_eccentricity,
-                       "min_film_m": t.isothermal_min_film, "power_loss_W": t.isothermal_friction_power},
-        "moved": {"eccentricity": t.eccentricity - t.isothermal_eccentricity,
-                  "min_film": rel(t.min_film, t.isothermal_min_film),
-                  "power_loss": rel(t.friction_power, t.isothermal_friction_power)},
-        "evaluations": t.evaluations, "residual_K": t.residual, "oil": dict(oil)}
 
 
 def _tilting_table(r: dict, K, C, stability: dict, cost: dict) -> list:

@@ -155,6 +155,12 @@ class TiltingPadTemperature:
     evaluations : int
     residual : float
         [K].
+    density, specific_heat : float
+        Of the oil at ``T_eff`` [kg/m^3], [J/(kg K)].
+
+    The journal's names (:class:`~bearingfe.thermal.heat_balance.EffectiveTemperature`) are properties:
+    ``inlet_temperature``, ``outlet_temperature``, ``temperature_rise``, ``convected_power``,
+    ``conducted_power``, ``supply_flow``.
     """
 
     temperature: float
@@ -173,6 +179,33 @@ class TiltingPadTemperature:
     equilibrium: Any = field(repr=False)
     evaluations: int = 0
     residual: float = 0.0
+    density: float = 0.0
+    specific_heat: float = 0.0
+
+    # the names of :class:`~bearingfe.thermal.heat_balance.EffectiveTemperature` (one summary for both)
+    @property
+    def inlet_temperature(self) -> float:
+        return self.heat.inlet
+
+    @property
+    def outlet_temperature(self) -> float:
+        return self.heat.outlet
+
+    @property
+    def temperature_rise(self) -> float:
+        return self.heat.rise
+
+    @property
+    def convected_power(self) -> float:
+        return self.heat.convected
+
+    @property
+    def conducted_power(self) -> float:
+        return self.heat.conducted
+
+    @property
+    def supply_flow(self) -> float:
+        return self.heat.supply_flow
 
 
 def tilting_pad_temperature(bearing, load: float, speed: float, lubricant: Lubricant, balance: HeatBalance, *,
@@ -227,4 +260,5 @@ def tilting_pad_temperature(bearing, load: float, speed: float, lubricant: Lubri
         supply_viscosity=start.viscosity, friction_power=end.power, isothermal_friction_power=start.power,
         leading_flow=end.leading, side_flow=end.side, eccentricity=end.equilibrium.eps,
         isothermal_eccentricity=start.equilibrium.eps, min_film=h_min(end), isothermal_min_film=h_min(start),
-        equilibrium=end.equilibrium, evaluations=len(films), residual=residual)
+        equilibrium=end.equilibrium, evaluations=len(films), residual=residual,
+        density=lubricant.density_at(root), specific_heat=lubricant.specific_heat_at(root))
