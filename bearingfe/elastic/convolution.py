@@ -42,7 +42,7 @@ import scipy.sparse as sp
 import skfem
 
 from .compliance import Compliance, contact_modulus
-from .half_space import _element_integrals, _pocket_integrals
+from .half_space import element_integrals, pocket_integrals
 from ..core.scales import Scale
 from ..film import operators
 from ..geometry.meshing import SupportMesh
@@ -121,7 +121,7 @@ class GridConvolution:
         for s, shape in enumerate(shapes):
             offs = [(int(c) // 2, int(c) % 2) for c in shape]
             v = np.array([[o[0] * hx for o in offs], [o[1] * hz for o in offs]])[:, :, None]  # (2, 3, 1)
-            K = _element_integrals(pts, v, "P1")[:, :, 0]   # (3, n_offsets)
+            K = element_integrals(pts, v, "P1")[:, :, 0]   # (3, n_offsets)
             mask = np.zeros((ncx, ncz), bool)
             sel = which == s
             mask[cx[sel], cz[sel]] = True
@@ -138,7 +138,7 @@ class GridConvolution:
         # the cells with no triangle (the holes: pockets of a grid mesh) and the kernel of a whole cell
         self._holes = ~np.logical_or.reduce(masks)
         cell = np.array([[0.0, hx, hx, 0.0, hx, 0.0], [0.0, 0.0, hz, 0.0, hz, hz]]).reshape(2, 2, 3).transpose(0, 2, 1)
-        whole = _element_integrals(pts, cell, "P1").sum(axis=(0, 2))  # sum of the barycentric weights: 1
+        whole = element_integrals(pts, cell, "P1").sum(axis=(0, 2))  # sum of the barycentric weights: 1
         self._cell_kernel = np.zeros((px, pz))
         self._cell_kernel[np.mod(MX, px), np.mod(MZ, pz)] = whole.reshape(MX.shape)
         self._masks = [None if m.all() else m.astype(float) for m in masks]
@@ -192,7 +192,7 @@ def _pockets(conv: GridConvolution, mesh: SupportMesh) -> np.ndarray:
     """``int_pockets 1/|x_i - y| dA`` at the nodes: by FFT over the holes of the grid when they are the pockets.
 
     The dense model integrates along the contours of the ``inlet`` boundary
-    (:func:`bearingfe.elastic.half_space._pocket_integrals`, ``O(N x facets)``);
+    (:func:`bearingfe.elastic.half_space.pocket_integrals`, ``O(N x facets)``);
     on a grid mesh the pockets are whole cells left out, so the same integral is
     one convolution. Checked at a few nodes against the contour integral; where
     they differ (holes that are not pockets), the contour integral is used.
@@ -202,10 +202,10 @@ def _pockets(conv: GridConvolution, mesh: SupportMesh) -> np.ndarray:
         return np.zeros(conv.n_nodes)
     fast = conv.holes()
     probe = np.unique(np.linspace(0, conv.n_nodes - 1, 9).astype(int))
-    exact = _pocket_integrals(m.p[:, probe], m, facets)
+    exact = pocket_integrals(m.p[:, probe], m, facets)
     if np.max(np.abs(fast[probe] - exact)) <= 1e-9 * np.max(np.abs(exact)):
         return fast
-    return _pocket_integrals(m.p, m, facets)
+    return pocket_integrals(m.p, m, facets)
 
 
 def half_space_fft(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1") -> Compliance:

@@ -46,7 +46,7 @@ from ..core.scales import Scale
 from ..film import operators
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["influence_matrix", "rectangle_deflection", "half_space"]
+__all__ = ["influence_matrix", "rectangle_deflection", "half_space", "element_integrals", "pocket_integrals"]
 
 
 def _edge_moments(x: np.ndarray, a: np.ndarray, b: np.ndarray, order: int) -> list[np.ndarray]:
@@ -99,7 +99,7 @@ def _barycentric(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return c, g
 
 
-def _element_integrals(x: np.ndarray, v: np.ndarray, element: str) -> np.ndarray:
+def element_integrals(x: np.ndarray, v: np.ndarray, element: str) -> np.ndarray:
     """``int_T phi_k / |x - y| dA`` for observation points ``x`` (2, n) and straight triangles ``v`` (2, 3, k).
 
     Local basis in scikit-fem's order (P2: vertices, then edges 01, 12, 02).
@@ -137,7 +137,7 @@ def _element_integrals(x: np.ndarray, v: np.ndarray, element: str) -> np.ndarray
     return np.array(vertex + edges)
 
 
-def _pocket_integrals(x: np.ndarray, m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
+def pocket_integrals(x: np.ndarray, m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
     """``int_pockets 1/|x - y| dA`` from the pocket contours (chords of the inlet facets)."""
     if facets is None or len(facets) == 0:
         return np.zeros(x.shape[1])
@@ -184,10 +184,10 @@ def influence_matrix(mesh: SupportMesh, element: str = "P1", points: np.ndarray 
     select = [sp.csr_matrix((np.ones(nel), (np.arange(nel), dofs[k])), shape=(nel, basis.N))
               for k in range(dofs.shape[0])]
     for start in range(0, x.shape[1], rows):
-        block = _element_integrals(x[:, start:start + rows], v, element)
+        block = element_integrals(x[:, start:start + rows], v, element)
         for k, s in enumerate(select):
             G[start:start + rows] += (s.T @ block[k].T).T
-    pocket = _pocket_integrals(x, m, mesh.boundaries.get("inlet"))
+    pocket = pocket_integrals(x, m, mesh.boundaries.get("inlet"))
     return G, pocket
 
 

@@ -54,7 +54,7 @@ def test_dimple_page_rows_match_fresh_solves():
     assert DEPTH / H_MIN == 0.8
     # the coarsest grid row and the coarsest median-dual row (columns: friction 6, net load 8)
     for first, mesh, couette in (("| 50 |", grid_mesh(surface(), 1 / 50), "grid"),
-                                 ("| 0.02 |", mesh_surface(surface(), 0.02), "median")):
+                                 ("| 0.02 |", mesh_surface(surface(), 0.02, recess_size=0.02), "median")):
         res = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=P_C, couette=couette)
         row = next(line for line in text.splitlines() if line.startswith(first))
         cells = [c.strip() for c in row.strip("|").split("|")]
