@@ -132,10 +132,11 @@ def report(res: dict) -> tuple[str, dict]:
         lines.append(f"Cheapest within {TARGET:.0e} in load: **{c['element']}, pad size {c['size']}: "
                      f"{c['seconds']:.3g} s** (error {c['error']:.1e}), of which {c['meshing']:.3g} s gmsh. Floor "
                      f"(one film state of the pad: LU + 4 solves of its condensed matrix): {res['floor'] * 1e3:.3g} "
-                     f"ms, so the equilibrium costs {ratio:.3g} floors, {solving:.3g} without the meshing: Newton "
-                     f"takes four film solves a step (the finite-difference Jacobian over film, pitch and roll), "
-                     f"each with its own assembly, for five to seven steps from a cold start. An analytic "
-                     f"Jacobian from the superposition's unit fields would cut that by about three.")
+                     f"ms, so the equilibrium costs {ratio:.3g} floors, {solving:.3g} without the meshing: about 27 "
+                     f"film solves from a cold start (finite-difference Jacobians over film, pitch and roll, four "
+                     f"solves each, between Broyden steps of one solve), each with its own assembly and outputs, "
+                     f"about three times its factorization. An analytic Jacobian from pressure sensitivities would "
+                     f"cut the count by about three.")
         facts.update({"thrust_1e-03": c["seconds"], "thrust_1e-03_setting": f"{c['element']} {c['size']}",
                       "thrust_floor": res["floor"], "thrust_floors": ratio})
     return "\n".join(lines) + "\n", facts
