@@ -12,7 +12,6 @@ regenerates it and fails when the committed page differs. Run::
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 import tomllib
@@ -251,17 +250,9 @@ def page() -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="exit 1 if the committed page is stale")
-    args = parser.parse_args(argv)
-    text = page()
-    if args.check:
-        stale = not PAGE.is_file() or PAGE.read_text(encoding="utf-8") != text
-        print(f"{PAGE.relative_to(ROOT)}: {'stale' if stale else 'current'}")
-        return 1 if stale else 0
-    PAGE.write_text(text, encoding="utf-8")
-    print(f"wrote {PAGE.relative_to(ROOT)}")
-    return 0
+    from scripts.page_tool import page_main
+
+    return page_main(PAGE, page, __doc__.splitlines()[0], argv)
 
 
 if __name__ == "__main__":

@@ -104,6 +104,11 @@ def trajectory_plot(trajs, path=None, *, title: str | None = None):
     axes[2].set_ylim(bottom=0.0)
     for ax in (axes[2], axes[4]) if len(designs) == 1 else axes:
         ax.legend(loc="best", fontsize="small")
+    return _over_the_cycle(fig, axes, title, path)
+
+
+def _over_the_cycle(fig, axes, title: str | None, path):
+    """The shaft-angle axis of stacked curves over a revolution, the title, and the file."""
     axes[-1].set_xlabel("shaft angle beta [deg]")
     axes[-1].set_xticks(np.arange(0, 361, 45))
     if title:
@@ -165,11 +170,7 @@ def pocket_plot(trajs, scale, omega: float, path=None, *, title: str | None = No
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
         ax.legend(loc="best", fontsize="small")
-    axes[-1].set_xlabel("shaft angle beta [deg]")
-    axes[-1].set_xticks(np.arange(0, 361, 45))
-    if title:
-        fig.suptitle(textwrap.fill(title, 80))
-    return save(fig, path)
+    return _over_the_cycle(fig, axes, title, path)
 
 
 def orbit_plot(trajs, path=None, *, title: str | None = None):
