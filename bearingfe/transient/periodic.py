@@ -83,7 +83,9 @@ def _residual(run, y: np.ndarray) -> tuple[np.ndarray, float]:
 
 def _not_converged(name: str, iterations: int, residual: float, tol: float) -> RuntimeError:
     return RuntimeError(f"periodic start ({name}) did not converge in {iterations} revolutions "
-                        f"(last residual {residual:.3g} >= periodic_tol = {tol})")
+                        f"(last residual {residual:.3g} >= periodic_tol = {tol}): a revolution is only as "
+                        f"accurate as the integrator, so lower rtol (to periodic_tol / 10 or less) or raise "
+                        f"periodic_tol (a scene's [run] table has both)")
 
 
 def rate_jacobian(model, beta: float, y: np.ndarray, step: float = 1e-7) -> np.ndarray:

@@ -300,3 +300,26 @@ def test_the_orifice_fed_pocket_reports_its_pressure_leakage_and_power(tmp_path)
     assert [ln.get_label() for ln in flow.lines] == ["pocket: pocket into the film", "pocket: side",
                                                      "pocket: restrictor", "plain: side"]  # plain: no pocket
     np.testing.assert_allclose(flow.lines[2].get_ydata(), cols["flow_restrictor [m^3/s]"] * 6e4, rtol=1e-12)
+
+
+def test_periodic_tolerance_reaches_the_transient(monkeypatch):
+    """[run] periodic_tol (default the transient's 1e-6) is what the periodic start is asked for; a value that
+    is not a positive number is refused naming the field."""
+    import tomllib
+
+    import bearingfe.transient as transient
+    from bearingfe.scenes.pump import settings, simulate_design
+    from tests.helpers import ROOT
+
+    data = tomllib.loads((ROOT / "scenes" / "pump.toml").read_text())
+    assert settings(data, "pump.toml", ROOT / "scenes")["run"]["periodic_tol"] == 1e-6
+    data["run"]["periodic_tol"] = 1e-4
+    run = settings(data, "pump.toml", ROOT / "scenes")["run"]
+    seen = {}
+    monkeypatch.setattr(transient, "pump_mesh", lambda pump, size, order: None)
+    monkeypatch.setattr(transient, "simulate", lambda *a, **k: seen.update(k))
+    simulate_design(object(), run)
+    assert seen["periodic_tol"] == 1e-4 and seen["rtol"] == run["rtol"]
+    data["run"]["periodic_tol"] = -1.0
+    with pytest.raises(SceneError, match="periodic_tol"):
+        settings(data, "pump.toml", ROOT / "scenes")
