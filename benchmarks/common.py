@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import datetime
+import math
 import os
 import platform
 import resource
@@ -146,3 +147,28 @@ def time_at_error(times: Sequence[float], errors: Sequence[float], target: float
             w = (np.log(target) - a) / (b - a) if b != a else 1.0
             return float(np.exp(np.log(t[i - 1]) + w * (np.log(t[i]) - np.log(t[i - 1]))))
     return np.nan
+
+
+def laplace_floor(meshes, element: str, repeats: int = 5) -> float:
+    """Seconds of one film state on ``meshes`` (SupportMesh): the LU and four solves of each mesh's condensed
+    matrix (a Laplacian of its mesh and element, Dirichlet on its whole boundary: the pattern and size of the
+    film's matrix, ``factorize_splu_sym``), best of ``repeats``: what any method must spend at least once."""
+    import skfem
+    from skfem.models.poisson import laplace
+
+    from bearingfe.core.linalg import factorize_splu_sym
+
+    e = skfem.ElementTriP2() if element == "P2" else skfem.ElementTriP1()
+    systems = []
+    for m in meshes:
+        basis = skfem.Basis(m.mesh, e)
+        A = laplace.assemble(basis)
+        interior = basis.complement_dofs(basis.get_dofs())
+        systems.append(A[interior][:, interior].tocsc())
+    best = math.inf
+    for _ in range(repeats):
+        t = time.perf_counter()
+        for A in systems:
+            factorize_splu_sym(A)(np.ones((A.shape[0], 4)))
+        best = min(best, time.perf_counter() - t)
+    return best

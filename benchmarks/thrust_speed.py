@@ -20,12 +20,11 @@ import os
 import time
 import tomllib
 
-import numpy as np
 
 from bearingfe.bearings.thrust import solve_pad, tilting_equilibrium
 from bearingfe.core.scales import Scale
 
-from .common import ROOT, md_table
+from .common import ROOT, laplace_floor, md_table
 
 SCENE = ROOT / "scenes" / "thrust.toml"
 REF_SIZE = 0.0125
@@ -65,23 +64,8 @@ def load_error(run: dict, ref_mesh, ref: dict) -> float:
 def floor(element: str, size: float, repeats: int = 5) -> float:
     """Seconds of the LU and four solves of one pad's condensed matrix (a Laplacian of the pad's mesh and
     element, Dirichlet on the outline: the pattern and size of the film's matrix), best of ``repeats``."""
-    import skfem
-    from skfem.models.poisson import laplace
-
-    from bearingfe.core.linalg import factorize_splu_sym
-
     pad, _, _ = case()
-    mesh = pad.mesh(size, order=2 if element == "P2" else 1)
-    basis = skfem.Basis(mesh.mesh, skfem.ElementTriP2() if element == "P2" else skfem.ElementTriP1())
-    A = laplace.assemble(basis)
-    interior = basis.complement_dofs(basis.get_dofs())
-    A = A[interior][:, interior].tocsc()
-    best = math.inf
-    for _ in range(repeats):
-        t = time.perf_counter()
-        factorize_splu_sym(A)(np.ones((A.shape[0], 4)))
-        best = min(best, time.perf_counter() - t)
-    return best
+    return laplace_floor([pad.mesh(size, order=2 if element == "P2" else 1)], element, repeats)
 
 
 def run(quick: bool = False, log=print) -> dict:

@@ -29,7 +29,7 @@ from bearingfe.bearings import journal
 from bearingfe.bearings.tilting_pad import (TiltingPadBearing, pad_assembly_coefficients, tilting_pad_equilibrium,
                                             tilting_pad_meshes)
 
-from .common import DOCS, ROOT, md_table
+from .common import DOCS, ROOT, laplace_floor, md_table
 
 SCENE = ROOT / "scenes" / "journal_tilting.toml"
 REF_SIZE = 0.025
@@ -79,27 +79,8 @@ def floor(element: str, size: float, repeats: int = 5) -> float:
     """Seconds of one film state of every pad: the LU and four solves of each pad's condensed matrix
     (a Laplacian of the pad's mesh and element, Dirichlet on its edges: the pattern and size of the
     film's matrix), best of ``repeats``."""
-    import skfem
-    from skfem.models.poisson import laplace
-
-    from bearingfe.core.linalg import factorize_splu_sym
-
     bearing, *_ = case()
-    meshes = tilting_pad_meshes(bearing.geometry, size)
-    e = skfem.ElementTriP2() if element == "P2" else skfem.ElementTriP1()
-    systems = []
-    for m in meshes:
-        basis = skfem.Basis(m.mesh, e)
-        A = laplace.assemble(basis)
-        interior = basis.complement_dofs(basis.get_dofs())
-        systems.append(A[interior][:, interior].tocsc())
-    best = math.inf
-    for _ in range(repeats):
-        t = time.perf_counter()
-        for A in systems:
-            factorize_splu_sym(A)(np.ones((A.shape[0], 4)))
-        best = min(best, time.perf_counter() - t)
-    return best
+    return laplace_floor(tilting_pad_meshes(bearing.geometry, size), element, repeats)
 
 
 def run(quick: bool = False, log=print) -> dict:
