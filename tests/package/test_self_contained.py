@@ -3,7 +3,7 @@
 A reader of the package, its docs, benchmarks, scripts, examples, input files or tests has neither the
 project's issue tracker nor the folder of planning notes next to the checkout, so a reference to either is
 a dead link. The scan covers every text file under those folders (generated pages included: their
-generators are scanned too) and the README.
+generators are scanned too) and the files at the top of the checkout (README, pyproject.toml).
 """
 from __future__ import annotations
 
@@ -21,7 +21,7 @@ SHARED = re.compile(r"\.\./shared\b|/work/shared\b")
 
 
 def _texts():
-    files = [ROOT / "README.md"]
+    files = [p for p in ROOT.iterdir() if p.is_file() and p.suffix in SUFFIXES]
     for folder in FOLDERS:
         base = ROOT / folder
         if base.is_dir():
@@ -32,7 +32,7 @@ def _texts():
 
 def test_the_scan_sees_the_package():
     names = {p.relative_to(ROOT).as_posix() for p in _texts()}
-    assert {"README.md", "bearingfe/reynolds.py", "docs/index.md", "scenes/pump.toml"} <= names
+    assert {"README.md", "pyproject.toml", "bearingfe/reynolds.py", "docs/index.md", "scenes/pump.toml"} <= names
 
 
 def test_no_issue_numbers_and_no_planning_folder():
