@@ -12,31 +12,9 @@ summary quotes are stored in ``docs/benchmarks_parts/<part>.md`` and
 loaded machine, or after a change that concerns only them) and the page is
 rebuilt from the stored others; each part says when and on what it ran.
 
-Parts: ``precision`` — work-precision diagrams of (a) a smooth partial arc
-and (b) a rectangular recess at high inlet pressure against the FD
-reference, with the cost split; ``journal_c`` — (c) a full journal bearing
-at eccentricity 0.95 with cavitation (:mod:`benchmarks.journal_case`);
-``journal`` — journal equilibrium + 8 coefficients at eps 0.6, before and
-after the P2/warm-start path (:mod:`benchmarks.targets`); ``journal_pads`` — the same on pads and grooves, the
-structured rupture-refined path against gmsh (:mod:`benchmarks.journal_pads`); ``journal_ross`` — against ROSS
-on ROSS's plain-journal fixture (:mod:`benchmarks.journal_ross`; ``ROSS_PYTHON`` names the interpreter of an
-environment with ROSS, else its recorded run is reused); ``tilting`` — a
-five-pad tilting-pad bearing's equilibrium and reduced coefficients at 1e-3
-beside the plain bearing and the floor (:mod:`benchmarks.tilting_pad_speed`); ``pump`` — one
-pump revolution against its error (``benchmarks/pump_revolution.py``, which
-also writes ``docs/benchmarks_pump.md``); ``scene`` — the main scene end to
-end against its yardstick (SuperLU on a 90k-unknown Laplacian); ``scaling`` — growth with the unknowns and the
-linear solvers; ``cavitation`` — the cavitating solves against the non-cavitating one and the
-floor, 1e3 .. 3e5 unknowns (:mod:`benchmarks.cavitation_cost`; larger sizes by
-``python -m benchmarks.cavitation_cost run --sizes 1e6``, merged);
-``hard`` — hard cases; ``kinds`` — time and memory against the unknowns for every solver kind, fitted
-exponents and where each stops (:mod:`benchmarks.solver_kinds`); ``thrust`` — a six-pad tilting-pad thrust bearing's
-equilibrium at 1e-3 in load beside its floor (:mod:`benchmarks.thrust_speed`); ``thermal`` — the cost of a level-1 and
-a level-2 thermal solve against the isothermal one (:mod:`benchmarks.thermal_levels`); ``elastic_fft`` — the film on
-the elastic half-space from 1e3 to 1e5 unknowns, dense compliance against its FFT product, beside the floor
-(:mod:`benchmarks.elastic_fft`). The operator cost floor is measured by
-``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md``
-(linked, not rerun here).
+The parts, in the page's order, are the rows of :data:`PART_TABLE` (name, runner,
+title and what the part measures): a new part is one new row there. The operator cost floor is measured
+by ``benchmarks/operator_floor.py`` into ``docs/benchmarks_operator.md`` (linked, not rerun here).
 """
 
 from __future__ import annotations
@@ -49,6 +27,7 @@ import os
 import sys
 import time
 from pathlib import Path
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -61,8 +40,6 @@ from benchmarks import (cavitation_cost, elastic_fft, hard_cases, journal_case, 
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
-PARTS = ("precision", "journal_c", "journal", "journal_pads", "journal_ross", "tilting", "pump", "scene", "scaling",
-         "cavitation", "hard", "thermal", "elastic_fft", "thrust", "kinds")
 
 
 def _log(msg) -> None:
@@ -179,24 +156,62 @@ def part_hard(quick: bool) -> tuple[str, dict]:
     return hard_cases.report() + "\n", {}
 
 
-RUNNERS = {"precision": part_precision, "journal_c": part_journal_c, "journal": part_journal,
-           "journal_pads": part_journal_pads, "journal_ross": part_journal_ross, "tilting": part_tilting,
-           "pump": part_pump, "scene": part_scene, "scaling": part_scaling, "cavitation": part_cavitation,
-           "hard": part_hard, "thermal": thermal_levels.run, "elastic_fft": part_elastic_fft,
-           "thrust": lambda quick: thrust_speed.report(thrust_speed.run(quick, log=_log)),
-           "kinds": lambda quick: solver_kinds.report(solver_kinds.run(quick, log=_log))}
-TITLES = {"precision": "Speed against error: FEM and the FD reference", "journal_c": "Journal bearing with cavitation",
-          "journal": "Journal equilibrium and dynamic coefficients (eps 0.6)",
-          "journal_pads": "Journal equilibrium and coefficients on pads and grooves (structured path)",
-          "journal_ross": "Journal equilibrium and coefficients against ROSS",
-          "tilting": "Tilting-pad bearing: equilibrium and reduced coefficients (five pads)",
-          "pump": "One pump revolution (h_min error against time)", "scene": "The main scene end to end",
-          "scaling": "Growth with the number of unknowns; linear solvers",
-          "cavitation": "Cost of the cavitating solves (Swift-Stieber, Gumbel) up to 1e6 unknowns", "hard": "Hard cases",
-          "thermal": "Thermal levels: cost of level 1 and level 2 against the isothermal solve",
-          "elastic_fft": "Elastic half-space support from 1e3 to 1e5 unknowns: dense against FFT",
-          "thrust": "Thrust bearing: tilting-pad equilibrium at 1e-3 in load (six pads)",
-          "kinds": "Every solver kind: time and memory against the unknowns, and where each stops"}
+class Part(NamedTuple):
+    """One part of the page: its name (``--only``), the function that runs it, its section title and what it
+    measures."""
+
+    name: str
+    run: Callable[[bool], tuple[str, dict]]
+    title: str
+    measures: str
+
+
+#: The parts in the page's order.
+PART_TABLE: tuple[Part, ...] = (
+    Part("precision", part_precision, "Speed against error: FEM and the FD reference",
+         "work-precision diagrams of (a) a smooth partial arc and (b) a rectangular recess at high inlet pressure "
+         "against the FD reference, with the cost split"),
+    Part("journal_c", part_journal_c, "Journal bearing with cavitation",
+         "(c) a full journal bearing at eccentricity 0.95 with cavitation (benchmarks.journal_case)"),
+    Part("journal", part_journal, "Journal equilibrium and dynamic coefficients (eps 0.6)",
+         "journal equilibrium + 8 coefficients at eps 0.6, before and after the P2/warm-start path "
+         "(benchmarks.targets)"),
+    Part("journal_pads", part_journal_pads, "Journal equilibrium and coefficients on pads and grooves (structured path)",
+         "the same on pads and grooves, the structured rupture-refined path against gmsh (benchmarks.journal_pads)"),
+    Part("journal_ross", part_journal_ross, "Journal equilibrium and coefficients against ROSS",
+         "against ROSS on ROSS's plain-journal fixture (benchmarks.journal_ross; ROSS_PYTHON names the interpreter "
+         "of an environment with ROSS, else its recorded run is reused)"),
+    Part("tilting", part_tilting, "Tilting-pad bearing: equilibrium and reduced coefficients (five pads)",
+         "a five-pad tilting-pad bearing's equilibrium and reduced coefficients at 1e-3 beside the plain bearing "
+         "and the floor (benchmarks.tilting_pad_speed)"),
+    Part("pump", part_pump, "One pump revolution (h_min error against time)",
+         "one pump revolution against its error (benchmarks/pump_revolution.py, which also writes "
+         "docs/benchmarks_pump.md)"),
+    Part("scene", part_scene, "The main scene end to end",
+         "the main scene end to end against its yardstick (SuperLU on a 90k-unknown Laplacian)"),
+    Part("scaling", part_scaling, "Growth with the number of unknowns; linear solvers",
+         "growth with the unknowns and the linear solvers"),
+    Part("cavitation", part_cavitation, "Cost of the cavitating solves (Swift-Stieber, Gumbel) up to 1e6 unknowns",
+         "the cavitating solves against the non-cavitating one and the floor, 1e3 .. 3e5 unknowns "
+         "(benchmarks.cavitation_cost; larger sizes by python -m benchmarks.cavitation_cost run --sizes 1e6, merged)"),
+    Part("hard", part_hard, "Hard cases", "hard cases"),
+    Part("thermal", thermal_levels.run, "Thermal levels: cost of level 1 and level 2 against the isothermal solve",
+         "the cost of a level-1 and a level-2 thermal solve against the isothermal one (benchmarks.thermal_levels)"),
+    Part("elastic_fft", part_elastic_fft, "Elastic half-space support from 1e3 to 1e5 unknowns: dense against FFT",
+         "the film on the elastic half-space from 1e3 to 1e5 unknowns, dense compliance against its FFT product, "
+         "beside the floor (benchmarks.elastic_fft)"),
+    Part("thrust", lambda quick: thrust_speed.report(thrust_speed.run(quick, log=_log)),
+         "Thrust bearing: tilting-pad equilibrium at 1e-3 in load (six pads)",
+         "a six-pad tilting-pad thrust bearing's equilibrium at 1e-3 in load beside its floor "
+         "(benchmarks.thrust_speed)"),
+    Part("kinds", lambda quick: solver_kinds.report(solver_kinds.run(quick, log=_log)),
+         "Every solver kind: time and memory against the unknowns, and where each stops",
+         "time and memory against the unknowns for every solver kind, fitted exponents and where each stops "
+         "(benchmarks.solver_kinds)"),
+)
+PARTS = tuple(p.name for p in PART_TABLE)
+RUNNERS = {p.name: p.run for p in PART_TABLE}
+TITLES = {p.name: p.title for p in PART_TABLE}
 
 
 # -- storage and the page ------------------------------------------------------------------------
@@ -306,7 +321,8 @@ def targets_summary(facts: dict) -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small sizes only (a check of the scripts)")
-    ap.add_argument("--only", default=None, help=f"comma-separated parts to rerun (of {', '.join(PARTS)}); "
+    ap.add_argument("--only", default=None, help="comma-separated parts to rerun (of: " + "; ".join(
+                    f"{p.name}: {p.measures}" for p in PART_TABLE) + "); "
                     "the others are reused from docs/benchmarks_parts/")
     ap.add_argument("--output", default=str(DOCS / "benchmarks.md"))
     args = ap.parse_args(argv)
