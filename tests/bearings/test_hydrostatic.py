@@ -200,6 +200,29 @@ def test_jfo_balances_the_pad_through_the_front_door():
     assert res.film.cavitation == "jfo"
 
 
+def test_jfo_balances_a_cavitating_pad_and_conserves_its_mass():
+    # a tilted pad turning over an orifice-fed pocket: JFO ruptures 46 % of the film. The pocket pressure is
+    # found by the Newton-Broyden iteration on it (each evaluation one JFO solve): the orifice's flow equals
+    # the film's outflow from the pocket to the iteration's tolerance (1e-11 of the flow), and the finite-volume
+    # scheme conserves mass, so that flow leaves through the pad's edges to round-off (measured 1e-14 relative)
+    surface = Surface(arc=(-0.5, 0.5), half_width=0.3, inlets=(Circle((0.0, 0.0), 0.08),))
+    mesh = mesh_surface(surface, 0.05, inlet_size=0.02, order=1)
+    orf = Orifice(diameter=0.1e-3, discharge_coefficient=CD, density=RHO, supply_pressure=2e6)
+    res = solve_supplied(mesh, CosineFilm(0.8, 0.3), orf, SCALE, operating=OperatingPoint(wedge=1.0),
+                         cavitation="jfo", discretization=P1)
+    assert res.film.cavitation == "jfo"
+    assert 0.3 < res.film.cavitated_fraction < 0.6
+    pocket = res.pockets[0]
+    assert 0 < pocket.pressure < 2e6
+    assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+    edges = sum(v for k, v in res.film.flows.items() if k in ("side", "arc_start", "arc_end"))
+    assert SCALE.to_flow(edges) == pytest.approx(pocket.restrictor_flow, rel=1e-11)
+    # mass conservation moves the balance: on the Swift-Stieber film the pocket sits 30 % higher
+    ss = solve_supplied(mesh, CosineFilm(0.8, 0.3), orf, SCALE, operating=OperatingPoint(wedge=1.0),
+                        cavitation="reynolds", discretization=P1)
+    assert abs(ss.pockets[0].pressure - pocket.pressure) > 0.1 * pocket.pressure
+
+
 @pytest.mark.parametrize("cavitation", ["reynolds", "gumbel"])
 def test_a_wedge_under_cavitation_is_balanced_with_the_film(cavitation):
     # a tilted pad turning: the film ruptures where it diverges; the pocket pressure is iterated with the
