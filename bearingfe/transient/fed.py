@@ -32,8 +32,12 @@ orifice pump Anderson's and the fixed-point start stall at a residual of 5e-5 to
 ``rtol = 1e-5``, and reach ``periodic_tol = 1e-6`` with ``rtol = 1e-7``, measured). Where the compressed pocket outlasts the chamber's
 decompression it may press the shoe off harder than a film without tension can hold: the rates'
 Newton finds no state and the run ends ``"no-equilibrium"``, its message giving the pocket's
-force against the plunger load. The mass-conserving ``"jfo"`` model and the elastic support are
-not combined with a fed pocket.
+force against the plunger load.
+
+:class:`FedJFO` is the same pocket on the mass-conserving (JFO) film of
+:class:`~bearingfe.transient.jfo.JFO`: the pocket pressure is stepped by the film's backward Euler with
+the fill fraction, its rate equation solved at each step's end together with the load balance (the gap's
+volume change over the step, so the pocket's oil is conserved from step to step as the film's is).
 """
 
 from __future__ import annotations
@@ -44,15 +48,17 @@ import numpy as np
 
 from .base import NoEquilibrium
 from .cavitating import Cavitating
+from .jfo import JFO, JFOState
 from .rigid import Rigid
 from ..bearings.hydrostatic import PocketFilm, SupplyError, balance_pockets, pocket_flows
 from ..bearings.pump import EccentricPump
 from ..cavitation import CavitationError
 from ..core.linalg import DEFAULT_SOLVER
 from ..film import Superposition, source_weights
+from ..film.mesh_operators import operators
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["Fed", "FedCavitating"]
+__all__ = ["Fed", "FedCavitating", "FedJFO"]
 
 
 class Fed(Rigid):
@@ -205,3 +211,78 @@ class FedCavitating(Fed, Cavitating):
                 f"presses on its own area with {own:.3g} and through the film around it with {whole:.3g} times the "
                 f"plunger load; a film without tension ({self.cavitation!r}) takes the excess back only by "
                 "separating fast (the shoe lifting off), and the rates' Newton found no such state") from None
+
+
+class FedJFO(JFO):
+    """The fed pocket (:class:`Fed`) on the film with mass-conserving (JFO) rupture (:class:`~bearingfe.transient.jfo.JFO`).
+
+    The pocket pressure is the third entry of the state ``(gamma, delta, p_r)``, stepped by the same backward
+    Euler as the film's fill fraction: at each step the rates ``(gamma', delta', p_r')`` solve together the load
+    balance and the pocket's rate equation at the step's end,
+
+        V/K p_r' = Q_restrictor(p_r) - Q_film - (V_gap(y_{n+1}) - V_gap(y_n)) / dbeta,
+
+    with ``Q_film`` the JFO film's outflow from the pocket (its ``inlet`` flow) and the gap's volume change over
+    the step (the pocket's own mass, conserved from step to step as the film's is). Newton with a
+    forward-difference Jacobian on the three rates (the flow residual in units of the orifice's flow at the
+    discharge pressure and an empty pocket). The start is :class:`Fed`'s (the pocket balanced on the film
+    without rupture); the periodic start runs one revolution (film history and pocket pressure carried).
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        With ``shoe_supply`` and its ``pocket_volume`` (the pocket pressure a state).
+    mesh : SupportMesh
+        Straight-sided P1 mesh of ``pump.surface``.
+    formulation, element, solver, cavitation_pressure, tol, max_newton
+        As :class:`~bearingfe.transient.jfo.JFO`.
+    """
+
+    name = "fed jfo"
+    residual_note = " with the pocket's flow imbalance"
+
+    def __init__(self, pump: EccentricPump, mesh: SupportMesh, *, formulation: str = "pi", element: str = "P1",
+                 solver: str = DEFAULT_SOLVER, **options) -> None:
+        if pump.shoe_supply is not None and pump.shoe_supply.pocket_volume is None:
+            raise ValueError(f"{pump.name!r}: a pocket fed through a restrictor on the JFO film needs [shoe.supply] "
+                             "pocket_volume: its pressure is then a state of the backward-Euler steps, as the "
+                             "film's fill fraction is")
+        super().__init__(pump, mesh, formulation=formulation, element=element, solver=solver, **options)
+        self.rigid = Fed(pump, mesh, formulation=formulation, element=element, solver=solver)
+        self.restrictor = self.rigid.restrictor
+        self.compressibility = self.rigid.compressibility
+        #: int_pocket (1, cos phi, sin phi) dA [-]: the pocket's gap volume is gamma (cos delta, sin delta) . (mc, ms)
+        self.moments = np.asarray(operators(mesh, element).pocket_moments, float)
+        #: the residual's unit of flow: the restrictor's at the discharge pressure into an empty pocket [omega R0^2 c]
+        self.flow_unit = max(abs(self.rigid._law(0.0).flow(0.0)),
+                             abs(self.restrictor.law_at(pump.cycle.discharge, pump.scale).flow(0.0)), 1e-300)
+
+    def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
+        return float(y[2])
+
+    def _gap(self, y: np.ndarray) -> float:
+        """The pocket's gap volume beyond its concentric one [R0^2 c]."""
+        return float(y[0] * (math.cos(y[1]) * self.moments[1] + math.sin(y[1]) * self.moments[2]))
+
+    def gap_rate(self, dbeta: float, y: np.ndarray, rates: np.ndarray) -> float:
+        """``(V_gap(y) - V_gap(y - dbeta r)) / dbeta`` [omega R0^2 c]: the gap's change over the step ending at ``y``."""
+        return (self._gap(y) - self._gap(y - dbeta * np.asarray(rates, float))) / dbeta
+
+    def step_residual(self, beta, dbeta, state, r, warm_start, load, scale):
+        res, R = super().step_residual(beta, dbeta, state, r, warm_start, load, scale)
+        y = state.y + dbeta * r
+        p = float(y[2])
+        imbalance = self.rigid._law(beta).flow(p) - float(res.flows["inlet"]) - self.gap_rate(dbeta, y, r)
+        return res, np.append(R, (r[2] / self.compressibility - imbalance) / self.flow_unit)
+
+    def sample_extra(self, beta: float, state: JFOState) -> dict[str, float]:
+        """The pocket pressure [-], the restrictor's flow and the pocket gap's rate over the step [m^3/s]."""
+        before = [b for b in self.states if b < beta]
+        dbeta = beta - max(before) if before else 0.0
+        gap = self.gap_rate(dbeta, state.y, state.rates) if dbeta > 0 else float(
+            state.rates[0] * (math.cos(state.y[1]) * self.moments[1] + math.sin(state.y[1]) * self.moments[2])
+            + state.rates[1] * state.y[0] * (math.cos(state.y[1]) * self.moments[2]
+                                             - math.sin(state.y[1]) * self.moments[1]))
+        p, sc = float(state.y[2]), self.pump.scale
+        return {"inlet_pressure": p, "flow_restrictor": sc.to_flow(self.rigid._law(beta).flow(p)),
+                "flow_pocket_gap": sc.to_flow(gap)}

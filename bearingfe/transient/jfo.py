@@ -164,7 +164,8 @@ class JFO(Model):
     def smallest_film(self, beta: float, y: np.ndarray) -> float:
         return self.rigid.smallest_film(beta, y)
 
-    def _inlet_pressure(self, beta: float) -> float:
+    def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
+        """The pocket's pressure [-] at a state: the chamber's (0 without a pocket; a fed model carries its own)."""
         return float(self.pump.inlet_pressure(beta)) if self.mesh.has_inlet else 0.0
 
     def begin(self, beta0: float, y0: np.ndarray) -> None:
@@ -173,9 +174,9 @@ class JFO(Model):
         if self.carry is not None and np.array_equal(self.carry.y, y0):
             state = self.carry
         else:
-            rates = self.rigid.rates(beta0, y0)
-            result = solve_jfo(self.mesh, CosineFilm(*y0), wedge=float(self.pump.wedge(beta0)), squeeze=tuple(rates),
-                               inlet_pressure=self._inlet_pressure(beta0),
+            rates = np.asarray(self.rigid.rates(beta0, y0), float)
+            result = solve_jfo(self.mesh, CosineFilm(*y0[:2]), wedge=float(self.pump.wedge(beta0)),
+                               squeeze=tuple(rates[:2]), inlet_pressure=self.pocket_pressure(beta0, y0),
                                cavitation_pressure=self.cavitation_pressure)
             state = JFOState(np.array(y0, float), np.asarray(rates, float), result)
         self.states = {float(beta0): state}
@@ -190,47 +191,57 @@ class JFO(Model):
     def backward_euler(self, beta_old: float, state: JFOState, beta: float) -> JFOState:
         """One backward-Euler step from ``state`` at ``beta_old`` to ``beta``: the rates that balance the load
         there (Newton, forward-difference Jacobian), recorded as the accepted state at ``beta``."""
-        pump, mesh = self.pump, self.mesh
         dbeta = beta - beta_old
-        load = np.asarray(pump.load_vector(beta), float)
-        wedge, p_s = float(pump.wedge(beta)), self._inlet_pressure(beta)
+        load = np.asarray(self.pump.load_vector(beta), float)
         scale = max(float(np.hypot(*load)), 1e-300)
         y, prev = state.y, state.result
 
-        def force(r, warm_start):
-            gamma, delta = y + dbeta * r
-            if not (gamma >= 0 and self.rigid.smallest_film(beta, (gamma, delta)) > 0):
-                raise FilmClosed((float(gamma), float(delta)))
-            self.solves += 1
-            res = solve_jfo(mesh, CosineFilm(gamma, delta), wedge=wedge, inlet_pressure=p_s,
-                            cavitation_pressure=self.cavitation_pressure, dt=dbeta, previous=prev,
-                            warm_start=warm_start)
-            return res, res.force + load
+        def residual(r, warm_start):
+            return self.step_residual(beta, dbeta, state, r, warm_start, load, scale)
 
         r = np.asarray(state.rates, float)
-        res, R = force(r, prev)
+        m = r.size
+        res, R = residual(r, prev)
         for k in range(self.max_newton + 1):
-            if np.hypot(*R) <= self.tol * scale:
+            if np.linalg.norm(R) <= self.tol:
                 self.newton_iterations += k
                 accepted = JFOState(y + dbeta * r, r, res)
                 self.states[float(beta)] = accepted
                 return accepted
             if k == self.max_newton:
                 break
-            J = np.zeros((2, 2))
-            for j in range(2):
+            J = np.zeros((m, m))
+            for j in range(m):
                 h = 1e-6 * max(1.0, abs(r[j]))
-                d = np.zeros(2)
+                d = np.zeros(m)
                 d[j] = h
-                J[:, j] = (force(r + d, res)[1] - R) / h
+                J[:, j] = (residual(r + d, res)[1] - R) / h
             try:
                 step = -np.linalg.solve(J, R)
             except np.linalg.LinAlgError:
                 raise TrialRejected(f"JFO step to beta = {beta:.4f} rad: the Jacobian of the load balance in the "
                                     f"rates is singular") from None
-            r, res, R = self._line_search(force, r, step, res, R)
+            r, res, R = self._line_search(residual, r, step, res, R)
         raise TrialRejected(f"JFO step to beta = {beta:.4f} rad: Newton on the rates did not converge in "
-                            f"{self.max_newton} iterations (|force + load| / |load| = {np.hypot(*R) / scale:.3g})")
+                            f"{self.max_newton} iterations (residual {np.linalg.norm(R):.3g}: |force + load| / "
+                            f"|load|{self.residual_note})")
+
+    #: What the step's residual holds beyond the load balance (for the messages).
+    residual_note = ""
+
+    def step_residual(self, beta: float, dbeta: float, state: JFOState, r: np.ndarray, warm_start,
+                      load: np.ndarray, scale: float):
+        """``(JFO result, residual [-])`` of the backward-Euler step with rates ``r``: ``(force + load) / |load|``
+        of the film at ``y + dbeta r`` from the history of ``state``."""
+        y = state.y + dbeta * r
+        gamma, delta = y[:2]
+        if not (gamma >= 0 and self.rigid.smallest_film(beta, (gamma, delta)) > 0):
+            raise FilmClosed((float(gamma), float(delta)))
+        self.solves += 1
+        res = solve_jfo(self.mesh, CosineFilm(gamma, delta), wedge=float(self.pump.wedge(beta)),
+                        inlet_pressure=self.pocket_pressure(beta, y), cavitation_pressure=self.cavitation_pressure,
+                        dt=dbeta, previous=state.result, warm_start=warm_start)
+        return res, (res.force + load) / scale
 
     @staticmethod
     def _line_search(force, r, step, res, R):
@@ -244,7 +255,7 @@ class JFO(Model):
                     raise
                 t *= 0.5
                 continue
-            if np.hypot(*Rt) < (1 - 1e-4 * t) * np.hypot(*R) or t < 1e-3:
+            if np.linalg.norm(Rt) < (1 - 1e-4 * t) * np.linalg.norm(R) or t < 1e-3:
                 return r + t * step, trial, Rt
             t *= 0.5
 
@@ -255,8 +266,8 @@ class JFO(Model):
         after = min((b for b in self.states if b > beta), default=None)
         start = self.states[before]
         rates = self.states[after].rates if after is not None else start.rates
-        result = solve_jfo(self.mesh, CosineFilm(*y), wedge=float(self.pump.wedge(beta)),
-                           inlet_pressure=self._inlet_pressure(beta), cavitation_pressure=self.cavitation_pressure,
+        result = solve_jfo(self.mesh, CosineFilm(*y[:2]), wedge=float(self.pump.wedge(beta)),
+                           inlet_pressure=self.pocket_pressure(beta, y), cavitation_pressure=self.cavitation_pressure,
                            dt=beta - before, previous=start.result, warm_start=start.result)
         return JFOState(np.asarray(y, float), np.asarray(rates, float), result)
 
@@ -271,7 +282,12 @@ class JFO(Model):
         return {"gamma_rate": state.rates[0], "delta_rate": state.rates[1], "h_min": sc.to_thickness(res.h_min),
                 "friction_moment": sc.to_moment(res.friction), "flow_inlet": sc.to_flow(flows.get("inlet", 0.0)),
                 "flow_side": sc.to_flow(flows.get("side", 0.0)), "flow_arc": sc.to_flow(arc),
-                "flow_squeeze": sc.to_flow(flows["squeeze"]), "mass_balance": sc.to_flow(res.mass_balance)}
+                "flow_squeeze": sc.to_flow(flows["squeeze"]), "mass_balance": sc.to_flow(res.mass_balance),
+                **self.sample_extra(float(beta), state)}
+
+    def sample_extra(self, beta: float, state: JFOState) -> dict[str, float]:
+        """Columns a model adds to a sample (a fed pocket's); none here."""
+        return {}
 
     def samples(self, betas: np.ndarray, states: np.ndarray) -> dict[str, np.ndarray]:
         self.cavitated_fraction_max = 0.0

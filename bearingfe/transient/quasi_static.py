@@ -13,6 +13,7 @@ key of :data:`MODELS`      model                                                
 ``"jfo"``                  rigid film, mass-conserving rupture (history carried)      ``"jfo"`` (P1)
 ``"fed"``                  rigid film, pocket fed through the plunger's restrictor    ``pump.shoe_supply`` given
 ``"fed cavitating"``       the fed pocket on the film with Swift-Stieber or Gumbel    ``pump.shoe_supply``, ``"reynolds"``, ``"gumbel"``
+``"fed jfo"``              the fed pocket on the JFO film (pocket pressure stepped)   ``pump.shoe_supply``, ``"jfo"`` (P1)
 ``"quasi-static elastic"`` elastic support, deflection following the pressure         ``elastic=...``
 ``"elastic"``              elastic support with the squeeze of the deflection         :func:`~bearingfe.transient.elastic.simulate_elastic`
 =========================  =========================================================  ==========================
@@ -34,7 +35,7 @@ from .base import Model
 from .cavitating import Cavitating
 from .driver import run_transient
 from .elastic import ElasticSqueeze, QuasiStaticElastic
-from .fed import Fed, FedCavitating
+from .fed import Fed, FedCavitating, FedJFO
 from .jfo import JFO
 from .rigid import Rigid, balance_ratio, pump_mesh, steady_state
 from .settings import Integration
@@ -46,15 +47,18 @@ __all__ = ["simulate", "MODELS", "film_model", "pump_mesh", "steady_state", "bal
 MODELS: Mapping[str, type[Model]] = MappingProxyType({"rigid": Rigid, "cavitating": Cavitating, "jfo": JFO,
                                                       "quasi-static elastic": QuasiStaticElastic,
                                                       "elastic": ElasticSqueeze, "fed": Fed,
-                                                      "fed cavitating": FedCavitating})
+                                                      "fed cavitating": FedCavitating, "fed jfo": FedJFO})
 
 
 def _model_name(cavitation: str, elastic: Compliance | None, pump: EccentricPump | None = None) -> str:
     if pump is not None and pump.shoe_supply is not None:
-        if cavitation == "jfo" or elastic is not None:
+        if cavitation == "jfo" and elastic is not None:
+            raise ValueError("elastic: the JFO model runs on a rigid film; cavitation='jfo' does not take elastic=")
+        if cavitation == "jfo":
+            return "fed jfo"
+        if elastic is not None:
             raise ValueError(f"{pump.name!r} feeds its pocket through a restrictor ([shoe.supply]): the fed model "
-                             f"runs on the rigid film with cavitation 'none', 'reynolds' or 'gumbel', not "
-                             f"cavitation={cavitation!r}{' with elastic=' if elastic is not None else ''}")
+                             "runs on the rigid film, not with elastic=")
         return "fed" if cavitation == "none" else "fed cavitating"
     if elastic is not None:
         if cavitation == "jfo":
@@ -147,8 +151,9 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         revolution first and starts from its end (film history included).
         A pump whose shoe pocket is fed through the plunger's restrictor
         (``pump.shoe_supply``, ``[shoe.supply]``) runs the ``"fed"`` model
-        (:mod:`bearingfe.transient.fed`) with ``"none"``, ``"reynolds"`` or
-        ``"gumbel"`` (then its ``pocket_volume`` is needed), not ``"jfo"``.
+        (:mod:`bearingfe.transient.fed`) with ``"none"``; with ``"reynolds"``,
+        ``"gumbel"`` (``"fed cavitating"``) or ``"jfo"`` (``"fed jfo"``, the pocket
+        pressure stepped with the fill fraction) its ``pocket_volume`` is needed.
     method : {"LSODA", "Radau", "BDF", "RK23", "RK45"}
         scipy integrator, stepped with its own error control. LSODA (default)
         switches between Adams and BDF as the stiffness changes; on the
