@@ -78,11 +78,12 @@ from ..elastic import Compliance, ElasticError, balance_load, check_dense_size
 from ..film import CosineFilm, operators
 from .base import FilmClosed, Model, NoEquilibrium
 from .driver import run_transient
+from .fed import Fed
 from .rigid import Rigid, balance_ratio, scipy_stepper, steady_state
 from .settings import IMPLICIT_INTEGRATORS, Integration, positive
 from .trajectory import LiftOffError, Trajectory
 
-__all__ = ["simulate_elastic", "ElasticSqueeze", "QuasiStaticElastic", "BAUMGARTE"]
+__all__ = ["simulate_elastic", "ElasticSqueeze", "QuasiStaticElastic", "FedQuasiStaticElastic", "BAUMGARTE"]
 
 #: Default stabilization rate of the load balance [1/rad]: a load residual decays like exp(-kappa beta).
 BAUMGARTE = 50.0
@@ -136,7 +137,7 @@ class QuasiStaticElastic(Rigid):
         start = time.perf_counter()
         try:
             found = balance_load(self.mesh, CosineFilm(gamma, delta), self.compliance, pump.load_vector(beta),
-                                 wedge=float(pump.wedge(beta)), inlet_pressure=float(pump.inlet_pressure(beta)),
+                                 wedge=float(pump.wedge(beta)), inlet_pressure=self.pocket_pressure(beta, y),
                                  element=self.element, cavitation=self.cavitation, solver=self.solver,
                                  initial=self._w, reuse=self._reuse, full_result=full)
         except ElasticError as exc:
@@ -157,6 +158,66 @@ class QuasiStaticElastic(Rigid):
     def statistics(self, output, runs: Sequence) -> dict[str, float]:
         """The rigid model's counters and ``jacobians`` of the coupled Newton."""
         return dict(super().statistics(output, runs), jacobians=self.jacobians)
+
+
+class FedQuasiStaticElastic(QuasiStaticElastic):
+    """The quasi-static elastic support with the shoe pocket fed through the plunger's restrictor.
+
+    The state is ``(gamma, delta, p_r)`` as in :class:`~bearingfe.transient.fed.Fed`: at every state the
+    deflected film is balanced with the pocket at ``p_r`` (:meth:`QuasiStaticElastic.balance`), and the pocket
+    pressure follows ``V/K dp_r/dt = Q_restrictor - Q_film - dV/dt`` with ``Q_film`` the deflected film's outflow
+    from the pocket (its result's ``inlet`` flow) and ``dV/dt`` the rigid squeeze over the pocket (the
+    deflection's rate is left out of the pocket's gap as it is of the film's squeeze: quasi-static). The pocket
+    needs its ``pocket_volume`` (balanced at each instant it would need the coupled film solved inside the
+    pocket's balance). The start is :class:`~bearingfe.transient.fed.Fed`'s: the rigid steady state with the
+    pocket balanced on it; the first steps take the pocket to the deflected film's balance.
+
+    Parameters
+    ----------
+    pump : EccentricPump
+        With ``shoe_supply`` and its ``pocket_volume``.
+    compliance, cavitation, formulation, solver
+        As :class:`QuasiStaticElastic`.
+    """
+
+    name = "fed quasi-static elastic"
+    periodic_methods = Fed.periodic_methods
+    periodic_default = Fed.periodic_default
+
+    def __init__(self, pump: EccentricPump, compliance: Compliance, *, cavitation: str = "none",
+                 formulation: str = "pi", solver: str = DEFAULT_SOLVER) -> None:
+        if pump.shoe_supply is not None and pump.shoe_supply.pocket_volume is None:
+            raise ValueError(f"{pump.name!r}: a pocket fed through a restrictor on the elastic support needs "
+                             "[shoe.supply] pocket_volume: its pressure is then a state; balanced at each instant it "
+                             "would need the coupled film solved inside the pocket's balance")
+        super().__init__(pump, compliance, cavitation=cavitation, formulation=formulation, solver=solver)
+        self.fed = Fed(pump, compliance.mesh, formulation=formulation, element=compliance.element, solver=solver)
+        self.moments = np.asarray(operators(compliance.mesh, compliance.element).pocket_moments, float)
+
+    def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
+        return float(y[2])
+
+    def initial_state(self, settings) -> tuple[float, np.ndarray]:
+        return self.fed.initial_state(settings)
+
+    def _gap_rate(self, y: np.ndarray, rates: np.ndarray) -> float:
+        """``dV/dbeta = int_pocket dh_rigid/dbeta dA`` [omega R0^2 c]."""
+        _, mc, ms = self.moments
+        c, s = math.cos(y[1]), math.sin(y[1])
+        return float(rates[0] * (c * mc + s * ms) + rates[1] * y[0] * (c * ms - s * mc))
+
+    def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
+        rates, result = self.balance(beta, y, full=True)
+        p = float(y[2])
+        imbalance = self.fed._law(beta).flow(p) - float(result.flows["inlet"]) - self._gap_rate(y, rates)
+        return np.array([rates[0], rates[1], self.fed.compressibility * imbalance])
+
+    def sample_state(self, beta: float, y: np.ndarray):
+        """The elastic sample with the pocket pressure [-], the restrictor's flow and the pocket's gap rate [m^3/s]."""
+        rates, res, sup, more = super().sample_state(beta, y)
+        p, sc = float(y[2]), self.pump.scale
+        return rates, res, sup, dict(more, inlet_pressure=p, flow_restrictor=sc.to_flow(self.fed._law(beta).flow(p)),
+                                     flow_pocket_gap=sc.to_flow(self._gap_rate(y, rates)))
 
 
 class ElasticSqueeze(Model):

@@ -5,18 +5,19 @@ eq. 13-14, ``docs/formulations.md``); the film model (:data:`MODELS`) turns
 that balance into the rates of the shoe's state, and the one stepping loop
 (:mod:`bearingfe.transient.stepping`) integrates them:
 
-=========================  =========================================================  ==========================
-key of :data:`MODELS`      model                                                      :func:`simulate` with
-=========================  =========================================================  ==========================
-``"rigid"``                rigid film, the pressure may go negative (the paper's)     ``cavitation="none"``
-``"cavitating"``           rigid film, Swift-Stieber or Gumbel rupture                ``"reynolds"``, ``"gumbel"``
-``"jfo"``                  rigid film, mass-conserving rupture (history carried)      ``"jfo"`` (P1)
-``"fed"``                  rigid film, pocket fed through the plunger's restrictor    ``pump.shoe_supply`` given
-``"fed cavitating"``       the fed pocket on the film with Swift-Stieber or Gumbel    ``pump.shoe_supply``, ``"reynolds"``, ``"gumbel"``
-``"fed jfo"``              the fed pocket on the JFO film (pocket pressure stepped)   ``pump.shoe_supply``, ``"jfo"`` (P1)
-``"quasi-static elastic"`` elastic support, deflection following the pressure         ``elastic=...``
-``"elastic"``              elastic support with the squeeze of the deflection         :func:`~bearingfe.transient.elastic.simulate_elastic`
-=========================  =========================================================  ==========================
+================================  =========================================================  ==========================
+key of :data:`MODELS`             model                                                      :func:`simulate` with
+================================  =========================================================  ==========================
+``"rigid"``                       rigid film, the pressure may go negative (the paper's)     ``cavitation="none"``
+``"cavitating"``                  rigid film, Swift-Stieber or Gumbel rupture                ``"reynolds"``, ``"gumbel"``
+``"jfo"``                         rigid film, mass-conserving rupture (history carried)      ``"jfo"`` (P1)
+``"fed"``                         rigid film, pocket fed through the plunger's restrictor    ``pump.shoe_supply`` given
+``"fed cavitating"``              the fed pocket on the film with Swift-Stieber or Gumbel    ``pump.shoe_supply``, ``"reynolds"``, ``"gumbel"``
+``"fed jfo"``                     the fed pocket on the JFO film (pocket pressure stepped)   ``pump.shoe_supply``, ``"jfo"`` (P1)
+``"quasi-static elastic"``        elastic support, deflection following the pressure         ``elastic=...``
+``"fed quasi-static elastic"``    the fed pocket on the quasi-static elastic support         ``pump.shoe_supply``, ``elastic=...``
+``"elastic"``                     elastic support with the squeeze of the deflection         :func:`~bearingfe.transient.elastic.simulate_elastic`
+================================  =========================================================  ==========================
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ from ..reynolds import CAVITATION
 from .base import Model
 from .cavitating import Cavitating
 from .driver import run_transient
-from .elastic import ElasticSqueeze, QuasiStaticElastic
+from .elastic import ElasticSqueeze, FedQuasiStaticElastic, QuasiStaticElastic
 from .fed import Fed, FedCavitating, FedJFO
 from .jfo import JFO
 from .rigid import Rigid, balance_ratio, pump_mesh, steady_state
@@ -47,7 +48,8 @@ __all__ = ["simulate", "MODELS", "film_model", "pump_mesh", "steady_state", "bal
 MODELS: Mapping[str, type[Model]] = MappingProxyType({"rigid": Rigid, "cavitating": Cavitating, "jfo": JFO,
                                                       "quasi-static elastic": QuasiStaticElastic,
                                                       "elastic": ElasticSqueeze, "fed": Fed,
-                                                      "fed cavitating": FedCavitating, "fed jfo": FedJFO})
+                                                      "fed cavitating": FedCavitating, "fed jfo": FedJFO,
+                                                      "fed quasi-static elastic": FedQuasiStaticElastic})
 
 
 def _model_name(cavitation: str, elastic: Compliance | None, pump: EccentricPump | None = None) -> str:
@@ -57,8 +59,7 @@ def _model_name(cavitation: str, elastic: Compliance | None, pump: EccentricPump
         if cavitation == "jfo":
             return "fed jfo"
         if elastic is not None:
-            raise ValueError(f"{pump.name!r} feeds its pocket through a restrictor ([shoe.supply]): the fed model "
-                             "runs on the rigid film, not with elastic=")
+            return "fed quasi-static elastic"
         return "fed" if cavitation == "none" else "fed cavitating"
     if elastic is not None:
         if cavitation == "jfo":
@@ -71,8 +72,8 @@ def film_model(pump: EccentricPump, mesh: SupportMesh, *, cavitation: str, elast
                formulation: str, element: str, solver: str) -> Model:
     """The model of :data:`MODELS` that :func:`simulate`'s ``cavitation`` and ``elastic`` choose."""
     name = _model_name(cavitation, elastic, pump)
-    if name == "quasi-static elastic":
-        return QuasiStaticElastic(pump, elastic, cavitation=cavitation, formulation=formulation, solver=solver)
+    if name in ("quasi-static elastic", "fed quasi-static elastic"):
+        return MODELS[name](pump, elastic, cavitation=cavitation, formulation=formulation, solver=solver)
     if name in ("cavitating", "fed cavitating"):
         return MODELS[name](pump, mesh, cavitation=cavitation, formulation=formulation, element=element,
                             solver=solver)
