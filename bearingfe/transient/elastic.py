@@ -524,6 +524,10 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
     if not isinstance(compliance, Compliance):
         raise ValueError(f"compliance must be a bearingfe.elastic.Compliance, got {type(compliance).__name__}")
+    if pump.shoe_supply is not None:
+        raise ValueError(f"{pump.name!r} feeds its pocket through a restrictor ([shoe.supply]): the deflection squeeze "
+                         "model holds the pocket at the chamber pressure; bearingfe.simulate(elastic=...) runs the fed "
+                         "pocket on the quasi-static elastic support")
     if not math.isfinite(compliance.modulus):
         raise ValueError("compliance needs a finite modulus: on a rigid support (modulus inf) the pressure is "
                          "not a state; use bearingfe.simulate without elastic")

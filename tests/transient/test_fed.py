@@ -273,3 +273,10 @@ def test_the_fed_pocket_on_the_elastic_support_balances_its_flows(mesh):
     assert 3.0 < errors[0] / errors[1] < 5.0
     assert errors[1] < 7e-3
     assert tr.max_deflection.max() > 0.1 * ORIFICE.clearance
+
+
+def test_the_deflection_squeeze_model_refuses_a_fed_pocket(mesh):
+    # simulate_elastic holds the pocket at the chamber pressure: a fed pump is named, not silently run unfed
+    compliance = bf.elastic.half_space(mesh, ORIFICE.scale, 210e9, "P2")
+    with pytest.raises(ValueError, match="feeds its pocket through a restrictor"):
+        bf.transient.simulate_elastic(ORIFICE, compliance, 0.1)
