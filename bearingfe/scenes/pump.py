@@ -152,8 +152,8 @@ SPEC = {
                   "mesh_size": (positive_number, 0.08, "element size [R0]"),
                   "rtol": (positive_number, 1e-6, "relative tolerance of the integrator [-]"),
                   "periodic_tol": (positive_number, 1e-6,
-                                   "periodic start: largest change of (gamma, delta) over a revolution [-]; "
-                                   "a fed pocket on a cavitating film needs rtol <= periodic_tol / 10"),
+                                   "periodic start: largest change of (gamma, delta) over a revolution [-] (a fed "
+                                   "pocket on a cavitating film integrates the search at rtol <= periodic_tol / 10)"),
                   "frames": (integer(NONNEGATIVE), 12, "pressure fields in the PVD series"),
                   "cavitation": (choice(_cavitation_models), "none", "cavitation model"),
                   "element": (choice(ELEMENTS), "P2", "finite element (P2 on a curved mesh)")}),

@@ -12,13 +12,16 @@ import functools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 
 from ..geometry.surface import Circle, Surface
 from ..core.parameters import ELEMENTS
 from ..core.schema import one_of
+
+if TYPE_CHECKING:  # the transient is imported when a pump case runs
+    from ..transient.trajectory import CycleLosses
 
 __all__ = ["BASES", "RUNS", "FilmRuptured", "PumpCase", "PumpOutcome", "ShoeCase", "run_pump", "run_shoe"]
 
@@ -152,7 +155,9 @@ class PumpOutcome:
 
     ``h_min`` [m], ``flow_inlet`` [m^3/s] and ``friction_power`` [W] are
     arrays over the cycle; ``peak_pressure`` [Pa] is the largest film or
-    pocket pressure over a dozen states spread over the cycle.
+    pocket pressure over a dozen states spread over the cycle; ``losses`` the
+    run's leakage and mean power lost (friction, restrictor, film:
+    :func:`bearingfe.transient.trajectory.cycle_losses`, as the pump scene reports them).
     """
 
     h_min: np.ndarray
@@ -160,12 +165,14 @@ class PumpOutcome:
     friction_power: np.ndarray
     peak_pressure: float
     balance_ratio: float
+    losses: CycleLosses | None = None
 
 
 def run_pump(case: PumpCase) -> PumpOutcome:
     """Simulate one revolution of ``case.pump``; :class:`FilmRuptured` if the film closes, ``RuntimeError``
     if the run stops for another reason, ``LiftOffError`` if the shoe lifts off."""
     from ..transient import pump_mesh, simulate, state_result
+    from ..transient.trajectory import cycle_losses, power_columns
 
     pump = case.pump
     mesh = pump_mesh(pump, case.mesh_size, order=2 if case.element == "P2" else 1)
@@ -178,8 +185,8 @@ def run_pump(case: PumpCase) -> PumpOutcome:
     peak = max(float(state_result(pump, mesh, traj, k, case.cavitation, case.element).max_pressure)
                for k in frames) * pump.scale.pressure
     return PumpOutcome(h_min=traj.h_min, flow_inlet=traj.flow_inlet,
-                       friction_power=traj.friction_moment * pump.drive.omega, peak_pressure=peak,
-                       balance_ratio=traj.stats["balance_ratio"])
+                       friction_power=power_columns(traj, pump.scale, pump.drive.omega)["friction_power"],
+                       peak_pressure=peak, balance_ratio=traj.stats["balance_ratio"], losses=cycle_losses(traj, pump))
 
 
 #: Run functions by name: ``parameter object -> result``.

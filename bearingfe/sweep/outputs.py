@@ -37,11 +37,34 @@ def _flow_inlet(result) -> float:
 def _friction_loss(result) -> float:
     """Friction power: moment times journal speed (mean over the cycle).
 
+    Pump run: the run's :func:`~bearingfe.transient.trajectory.cycle_losses` (the pump scene's).
     Non-dimensional static result: ``friction * wedge`` [mu omega^2 R0^4 / c].
     """
+    if getattr(result, "losses", None) is not None:
+        return float(result.losses.friction_power)
     if hasattr(result, "friction_power"):
         return float(np.mean(result.friction_power))
     return float(result.friction * result.wedge)
+
+
+def _pumping_power(result) -> float:
+    """Hydraulic power lost through the pocket's restrictor and the film (mean over the cycle).
+
+    Pump run: ``restrictor_power + film_power`` of the run's
+    :func:`~bearingfe.transient.trajectory.cycle_losses` [W] (the pump scene's). Non-dimensional static
+    result: the pockets' outflow times their pressure, ``flows["inlet"] * inlet_pressure``
+    [mu omega^2 R0^4 / c] (the film's share of :func:`~bearingfe.transient.trajectory.power_columns`).
+    """
+    if getattr(result, "losses", None) is not None:
+        return float(result.losses.pumping_power)
+    if hasattr(result, "flows"):
+        return float(result.flows.get("inlet", 0.0) * result.inlet_pressure)
+    raise AttributeError(f"{type(result).__name__} has no pumping power (a pump run's losses or a film result)")
+
+
+def _total_power(result) -> float:
+    """Friction plus pumping power (mean over the cycle)."""
+    return _friction_loss(result) + _pumping_power(result)
 
 
 def _load(result) -> float:
@@ -55,6 +78,8 @@ OUTPUTS: dict[str, Callable[[Any], float]] = {
     "peak_pressure": _peak_pressure,
     "flow_inlet": _flow_inlet,
     "friction_loss": _friction_loss,
+    "pumping_power": _pumping_power,
+    "total_power": _total_power,
     "load": _load,
     "balance_ratio": lambda result: float(result.balance_ratio),
 }
@@ -65,10 +90,10 @@ STANDARD_OUTPUTS = ("h_min", "peak_pressure", "flow_inlet", "friction_loss")
 
 #: Units of the outputs by run: a pump run reduces SI arrays, a shoe run non-dimensional results.
 OUTPUT_UNITS: dict[str, dict[str, str]] = {
-    "pump": {"h_min": "m", "peak_pressure": "Pa", "flow_inlet": "m^3/s", "friction_loss": "W", "load": "N",
-             "balance_ratio": "-"},
-    "shoe": {"h_min": "-", "peak_pressure": "-", "flow_inlet": "-", "friction_loss": "-", "load": "-",
-             "balance_ratio": "-"},
+    "pump": {"h_min": "m", "peak_pressure": "Pa", "flow_inlet": "m^3/s", "friction_loss": "W", "pumping_power": "W",
+             "total_power": "W", "load": "N", "balance_ratio": "-"},
+    "shoe": {"h_min": "-", "peak_pressure": "-", "flow_inlet": "-", "friction_loss": "-", "pumping_power": "-",
+             "total_power": "-", "load": "-", "balance_ratio": "-"},
 }
 
 #: Units of the change builders' values (:data:`bearingfe.sweep.changes.CHANGES`) and the table's own columns.
@@ -83,6 +108,8 @@ SI_OUTPUTS: dict[str, tuple[str, str, Callable[[Any], float]]] = {
     "peak_pressure": ("peak_pressure_si", "Pa", lambda sc: sc.pressure),
     "flow_inlet": ("flow_inlet_si", "m^3/s", lambda sc: sc.flow),
     "friction_loss": ("friction_loss_si", "W", lambda sc: sc.power),
+    "pumping_power": ("pumping_power_si", "W", lambda sc: sc.power),
+    "total_power": ("total_power_si", "W", lambda sc: sc.power),
     "load": ("load_si", "N", lambda sc: sc.force),
 }
 

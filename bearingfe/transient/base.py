@@ -74,6 +74,9 @@ class Model(abc.ABC):
         Its measured-best periodic method.
     integrators : tuple of str or None
         The keys of :data:`bearingfe.transient.INTEGRATORS` it supports (None: all).
+    periodic_tied : bool
+        Its periodic search needs ``rtol`` tied to ``periodic_tol``
+        (:func:`bearingfe.transient.periodic.search_settings`).
     starts : tuple of str
         What its ``start`` may be besides ``"steady"`` and ``"periodic"``: ``"state"``
         (a given ``(gamma, delta)``), ``"trajectory"`` (a run to continue).
@@ -91,6 +94,7 @@ class Model(abc.ABC):
     periodic_methods: tuple[str, ...] = ()
     periodic_default: str = ""
     integrators: tuple[str, ...] | None = None
+    periodic_tied: bool = False
     starts: tuple[str, ...] = ("state",)
 
     pump: object

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core.checks import OutOfRangeWarning, check_elastic
 from .base import Model
-from .periodic import LOOSE_ATOL, LOOSE_RTOL, PERIODIC_METHODS
+from .periodic import LOOSE_ATOL, LOOSE_RTOL, PERIODIC_METHODS, search_settings
 from .settings import Integration
 from .stepping import integrate, states_at
 from .trajectory import Trajectory, make_trajectory
@@ -47,8 +47,10 @@ def run_transient(model: Model, settings: Integration, *, balance_ratio: float) 
     beta0, y0 = model.initial_state(settings)
     runs = []
 
+    search = search_settings(model, settings)
+
     def revolution(y: np.ndarray, loose: bool = False):
-        step = settings.loosened(LOOSE_RTOL, LOOSE_ATOL) if loose else settings
+        step = search.loosened(LOOSE_RTOL, LOOSE_ATOL) if loose else search
         runs.append(integrate(model, y, step.revolution_angles(beta0), step))
         return runs[-1]
 

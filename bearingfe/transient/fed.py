@@ -28,8 +28,10 @@ pressure, so the pocket needs its ``pocket_volume`` (``p_r`` a state; a pocket b
 instant would need the cavitated film solved inside its balance). Its start is the rigid model's,
 the pocket balanced on the film without rupture (the first steps take it to the cavitated
 balance; the periodic start converges it, but only to the integrator's accuracy: on the shipped
-orifice pump Anderson's and the fixed-point start stall at a residual of 5e-5 to 1.3e-4 with
-``rtol = 1e-5``, and reach ``periodic_tol = 1e-6`` with ``rtol = 1e-7``, measured). Where the compressed pocket outlasts the chamber's
+orifice pump Anderson's and the fixed-point start stall at a residual of 1.5e-5 to 1.3e-4 with
+``rtol = 1e-5``, and reach ``periodic_tol = 1e-6`` with ``rtol = 1e-7``, measured; so the model is
+``periodic_tied``: its search runs at ``rtol <= periodic_tol / 10`` by itself,
+:func:`bearingfe.transient.periodic.search_settings`). Where the compressed pocket outlasts the chamber's
 decompression it may press the shoe off harder than a film without tension can hold: the rates'
 Newton finds no state and the run ends ``"no-equilibrium"``, its message giving the pocket's
 force against the plunger load.
@@ -187,6 +189,8 @@ class FedCavitating(Fed, Cavitating):
     """
 
     name = "fed cavitating"
+    # its return map converges only to the integrator's accuracy: the periodic search ties rtol to periodic_tol
+    periodic_tied = True
 
     def __init__(self, pump: EccentricPump, mesh: SupportMesh, *, cavitation: str = "reynolds",
                  formulation: str = "pi", element: str = "P1", solver: str = DEFAULT_SOLVER) -> None:

@@ -186,7 +186,10 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         P1 would cost four times the unknowns).
     periodic_tol, periodic_max_iter
         Periodic start: tolerance on ``(gamma [-], delta [rad])`` and the
-        largest number of revolutions.
+        largest number of revolutions. A fed pocket on a cavitating film
+        (``"fed cavitating"``) integrates the search's revolutions at
+        ``rtol <= periodic_tol / 10`` by itself (its return map converges
+        only to its integrator's accuracy).
     periodic_method : {"newton", "fixed-point", "anderson", "one-revolution"}, optional
         :data:`bearingfe.transient.PERIODIC_METHODS`; default the model's
         own: ``"newton"`` (Newton shooting on the return map with the
@@ -199,7 +202,8 @@ def simulate(pump: EccentricPump, mesh: SupportMesh | None = None, revolutions: 
         Largest ``revolutions`` accepted (a guard against runaway work);
         default the ``revolutions`` limit of :mod:`bearingfe.core.limits` (100).
     elastic : Compliance, optional
-        Compliance of the support on ``mesh`` (:func:`bearingfe.elastic.half_space`):
+        Compliance of the support on ``mesh`` (:func:`bearingfe.elastic.half_space`;
+        with a fed pocket the ``"fed quasi-static elastic"`` model, ``pocket_volume`` needed):
         at every shaft angle the film ``h_rigid + w`` and the rates are found
         together (:func:`bearingfe.elastic.balance_load`, the direct form):
         without cavitation by a chord Newton from the last answer whose dense

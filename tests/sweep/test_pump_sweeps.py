@@ -22,7 +22,8 @@ def base():
 
 
 def test_pump_sweep_reports_what_simulate_gives(base, tmp_path):
-    table = sweep(base, [{"pocket_fraction": 0.06}], ["h_min", "flow_inlet", "friction_loss", "balance_ratio"],
+    table = sweep(base, [{"pocket_fraction": 0.06}], ["h_min", "flow_inlet", "friction_loss", "balance_ratio",
+                                                      "pumping_power", "total_power"],
                   run="pump", cache=tmp_path / "cache", max_workers=1)
     row = table.iloc[0]
     assert row["error"] is None or (isinstance(row["error"], float) and math.isnan(row["error"]))
@@ -35,6 +36,28 @@ def test_pump_sweep_reports_what_simulate_gives(base, tmp_path):
     assert row["friction_loss"] == pytest.approx(np.mean(traj.friction_moment) * design.pump.drive.omega,
                                                  rel=1e-9)
     assert row["balance_ratio"] == pytest.approx(bf.balance_ratio(design.pump, mesh), rel=1e-9)
+    # the power lost, as the pump scene reports it (cycle_losses: the pocket at the chamber pressure, so the
+    # pumping power is the film's inflow times that pressure, Q_film p_ch, and no restrictor loss)
+    from bearingfe.transient.trajectory import cycle_losses
+    losses = cycle_losses(traj, design.pump)
+    assert losses.restrictor_power == 0.0 and losses.pumping_power > 0
+    assert row["pumping_power"] == pytest.approx(losses.pumping_power, rel=1e-9)
+    assert row["pumping_power"] == pytest.approx(np.mean(traj.flow_inlet * traj.chamber_pressure), rel=1e-9)
+    assert row["total_power"] == pytest.approx(losses.total_power, rel=1e-9)
+    assert row["friction_loss"] == pytest.approx(losses.friction_power, rel=1e-9)
+
+
+def test_the_power_outputs_of_a_static_film():
+    # a film result: the pockets' outflow times their pressure (non-dimensional, power scale mu omega^2 R0^4 / c)
+    from bearingfe.sweep import OUTPUTS, csv_headers
+    from tests.helpers import ROOT
+    pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    mesh = bf.transient.pump_mesh(pump, 0.3)
+    res = bf.solve_reynolds(mesh, bf.CosineFilm(0.5, 3.0), wedge=1.0, inlet_pressure=0.4)
+    assert OUTPUTS["pumping_power"](res) == pytest.approx(res.flows["inlet"] * 0.4, rel=1e-14)
+    assert OUTPUTS["total_power"](res) == pytest.approx(res.friction + res.flows["inlet"] * 0.4, rel=1e-14)
+    assert csv_headers(["pumping_power", "total_power"], "pump") == {"pumping_power": "pumping_power [W]",
+                                                                     "total_power": "total_power [W]"}
 
 
 def test_pump_case_validation_names_the_field():
