@@ -211,6 +211,9 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
     check_limit("frames", s["run"]["frames"])
     pump = build(label, "pump", load_mechanism, path=s["mechanism"])
+    if s["elastic"]["enabled"] and s["elastic"]["dynamics"] == "squeeze" and pump.shoe_supply is not None:
+        raise SchemaError(f"{label}: [elastic] dynamics: 'squeeze' holds the pocket at the chamber pressure; the "
+                          "mechanism feeds it through a restrictor ([shoe.supply]): use dynamics = 'quasi-static'")
     designs = {"pocket": pump}
     if s["compare_plain"] and pump.surface.inlets:
         plain = Surface(arc=pump.surface.arc, half_width=pump.surface.half_width)

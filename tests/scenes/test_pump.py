@@ -70,6 +70,13 @@ def test_pump_scene_errors_name_the_field(tmp_path, scene_file):
     missing = scene_file("pump", name="missing.toml", pump={"mechanism": "nowhere.toml"})
     assert main(["run", str(missing), "--out", str(tmp_path / "o"), "--no-progress"]) == 2
     assert not (tmp_path / "o").exists()
+    # the deflection squeeze model holds the pocket at the chamber pressure: a fed pocket is refused before any run
+    fed = scene_file("pump", name="fed.toml", elastic={"enabled": True},
+                     pump={"mechanism": (ROOT / "mechanisms" / "eccentric_pump_orifice.toml").as_posix()})
+    with pytest.raises(SceneError, match=r"\[elastic\] dynamics: 'squeeze'.*quasi-static"):
+        from bearingfe.scenes.pump import run as run_pump_scene
+        data, label = load_scene(fed)
+        run_pump_scene(data, label, tmp_path / "f", base_dir=fed.parent)
 
 
 def _csv(path: Path) -> dict[str, np.ndarray]:
