@@ -76,7 +76,8 @@ from ..core import DEFAULT_SOLVER
 from ..core.linalg import dense_threads
 from ..elastic import Compliance, ElasticError, balance_load, check_dense_size
 from ..film import CosineFilm, operators
-from .base import FilmClosed, Model, NoEquilibrium
+from ..cavitation import CavitationError
+from .base import FilmClosed, Model, NoEquilibrium, TrialRejected
 from .driver import run_transient
 from .fed import Fed
 from .rigid import Rigid, balance_ratio, scipy_stepper, steady_state
@@ -145,6 +146,10 @@ class QuasiStaticElastic(Rigid):
                 raise FilmClosed((gamma, delta)) from None
             raise NoEquilibrium(f"no equilibrium of the elastic film at beta = {beta:.4f} rad "
                                 f"({math.degrees(beta) % 360:.1f} deg), gamma = {gamma:.4g}: {exc}") from None
+        except CavitationError as exc:  # the cavitated rates' Newton from a trial state: retaken shorter
+            raise TrialRejected(f"beta = {beta:.4f} rad ({math.degrees(beta) % 360:.1f} deg), gamma = {gamma:.4g}: "
+                                f"the cavitated film on the elastic support has no balancing rates there ({exc})") \
+                from None
         self.seconds += time.perf_counter() - start
         self.factorizations += found.iterations
         self.jacobians += found.jacobians
