@@ -48,7 +48,7 @@ import math
 
 import numpy as np
 
-from .base import NoEquilibrium
+from .base import NoEquilibrium, TrialRejected
 from .cavitating import Cavitating
 from .jfo import JFO, JFOState
 from .rigid import Rigid
@@ -203,7 +203,11 @@ class FedCavitating(Fed, Cavitating):
 
     def balancing_rates(self, sup: Superposition, load: np.ndarray, wedge: float, inlet_pressure: float):
         """The cavitated film's rates (:meth:`Cavitating.balancing_rates`); where its Newton finds none, a
-        :class:`~bearingfe.transient.base.NoEquilibrium` that gives the pocket's force against the load."""
+        :class:`~bearingfe.transient.base.NoEquilibrium` that gives the pocket's force against the load. A trial
+        state whose pocket pressure is below 0 (the film holds no tension) is rejected: retaken shorter."""
+        if inlet_pressure < 0:
+            raise TrialRejected(f"the pocket pressure of a trial state is below 0 ({inlet_pressure:.3g} [-]): a film "
+                                f"without tension ({self.cavitation!r}) cannot hold it")
         try:
             return super().balancing_rates(sup, load, wedge, inlet_pressure)
         except CavitationError:
@@ -273,9 +277,12 @@ class FedJFO(JFO):
         return (self._gap(y) - self._gap(y - dbeta * np.asarray(rates, float))) / dbeta
 
     def step_residual(self, beta, dbeta, state, r, warm_start, load, scale):
-        res, R = super().step_residual(beta, dbeta, state, r, warm_start, load, scale)
         y = state.y + dbeta * r
         p = float(y[2])
+        if p < self.cavitation_pressure:
+            raise TrialRejected(f"JFO step to beta = {beta:.4f} rad: a Newton iterate put the pocket below the cavity "
+                                f"pressure ({p:.3g} [-])")
+        res, R = super().step_residual(beta, dbeta, state, r, warm_start, load, scale)
         imbalance = self.rigid._law(beta).flow(p) - float(res.flows["inlet"]) - self.gap_rate(dbeta, y, r)
         return res, np.append(R, (r[2] / self.compressibility - imbalance) / self.flow_unit)
 

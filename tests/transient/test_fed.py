@@ -280,3 +280,14 @@ def test_the_deflection_squeeze_model_refuses_a_fed_pocket(mesh):
     compliance = bf.elastic.half_space(mesh, ORIFICE.scale, 210e9, "P2")
     with pytest.raises(ValueError, match="feeds its pocket through a restrictor"):
         bf.transient.simulate_elastic(ORIFICE, compliance, 0.1)
+
+
+def test_a_trial_state_with_the_pocket_below_zero_is_rejected_on_a_film_without_tension(mesh):
+    # a loose integrator's trial may overshoot the pocket pressure below 0: Swift-Stieber's film (p >= 0) has no
+    # state there, so the trial is retaken shorter (TrialRejected), not an error out of the run
+    from bearingfe.transient.base import TrialRejected
+    from bearingfe.transient.fed import FedCavitating
+    model = FedCavitating(ORIFICE, mesh, element="P2")
+    sup = model.superposition(0.5, 3.5)
+    with pytest.raises(TrialRejected, match="below 0"):
+        model.balancing_rates(sup, ORIFICE.load_vector(0.5), float(ORIFICE.wedge(0.5)), -0.01)
