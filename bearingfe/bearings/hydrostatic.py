@@ -47,7 +47,13 @@ iteration). The finite-volume scheme (``"jfo"``, recessed or periodic surfaces,
 a cavity pressure) and the elastic support hold all pockets at one pressure:
 there a surface with one pocket is balanced by the same iteration on
 :func:`bearingfe.solve_reynolds` (each evaluation one solve of that path), and
-a surface with several pockets is refused, naming why.
+a surface with several pockets is refused, naming why. Under JFO the film is
+linear in the pocket pressure only within a fixed cavitated set, so this is a
+Newton iteration on the pocket pressure (a secant started from the slope of two
+solves, Broyden-updated) around complete JFO solves, each finding its own
+cavitated set: no outer iteration on a frozen set. The restrictor's flow then
+equals the film's outflow to the iteration's tolerance, and the scheme carries
+that flow out through the edges to round-off.
 
 The support's stiffness :func:`supply_stiffness` is ``-dW/dh`` at fixed supply
 along a one-parameter family of films (the pad lifting off: ``UniformFilm(h)``),
