@@ -286,8 +286,13 @@ the sampling). Both need `pocket_volume`.
 ## Not yet
 
 - A pocket balanced at each instant (no `pocket_volume`) on a cavitating film, JFO or the elastic
-  support, the elastic support's deflection squeeze (`simulate_elastic`) with a fed pocket, and Newton
-  shooting for the three-state models (their periodic start is Anderson's, JFO's one revolution).
+  support, the elastic support's deflection squeeze (`simulate_elastic`) with a fed pocket (refused by
+  name), and Newton shooting for the three-state models (their periodic start is Anderson's, JFO's one
+  revolution).
+- The fed pocket on the elastic support with rupture: the Swift-Stieber run of the shipped orifice pump
+  (steel, coarse P2 mesh) stalls at 194.5 degrees, where the cavitated rates' Newton inside the coupled
+  balance stagnates at a relative force residual of about 1e-8, just above its tolerance; the run stops
+  as `"stalled"` saying so.
 - The dynamics of a fed support other than the pad moving normal to itself (a journal's or a tilted
   pad's coefficients with their pockets' pressures responding): `bf.supply_dynamics` takes the
   `UniformFilm` family only.
