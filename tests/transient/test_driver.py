@@ -73,7 +73,7 @@ def test_film_rupture_is_a_scipy_style_event():
 
 def test_every_model_of_the_table_keeps_the_contract():
     assert set(transient.MODELS) == {"rigid", "cavitating", "jfo", "quasi-static elastic", "elastic", "fed",
-                                     "fed cavitating"}
+                                     "fed cavitating", "fed jfo", "fed quasi-static elastic"}
     for name, model in transient.MODELS.items():
         assert issubclass(model, transient.Model) and model.name == name
         assert model.periodic_default in model.periodic_methods
@@ -82,8 +82,10 @@ def test_every_model_of_the_table_keeps_the_contract():
     assert transient.MODELS["rigid"].periodic_default == "newton"
     assert transient.MODELS["elastic"].periodic_default == "anderson"
     assert transient.MODELS["jfo"].periodic_default == "one-revolution"
-    assert transient.MODELS["fed"].periodic_default == transient.MODELS["fed cavitating"].periodic_default == "anderson"
-    for name in ("elastic", "jfo", "fed", "fed cavitating"):
+    assert transient.MODELS["fed"].periodic_default == transient.MODELS["fed cavitating"].periodic_default == \
+        transient.MODELS["fed quasi-static elastic"].periodic_default == "anderson"
+    assert transient.MODELS["fed jfo"].periodic_default == "one-revolution"
+    for name in ("elastic", "jfo", "fed", "fed cavitating", "fed jfo", "fed quasi-static elastic"):
         with pytest.raises(ValueError, match=f"periodic_method must be one of .* for the {name} model"):
             transient.MODELS[name].check(transient.Integration(start="periodic", periodic_method="newton"))
     with pytest.raises(ValueError, match="method must be one of .* for the elastic model"):
