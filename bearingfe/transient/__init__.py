@@ -23,7 +23,7 @@ module            what it does
 ``fed``           The rigid film with the pocket fed through the plunger's restrictor: its pressure a state;
                   with Swift-Stieber or Gumbel rupture (``FedCavitating``), with JFO (``FedJFO``).
 ``jfo``           The rigid film with JFO cavitation: backward Euler carrying the fill fraction.
-``elastic``       The elastic support: squeeze of the deflection (``simulate_elastic``), quasi-static.
+``elastic``       The elastic support: squeeze of the deflection (``simulate_elastic``), quasi-static (fed pocket too).
 ``quasi_static``  ``simulate``: the door of every model but the squeeze one; the ``MODELS`` table.
 ``results``       ``state_result``: the film of one sample, re-solved for pictures and fields.
 ================  ============================================================
@@ -32,7 +32,7 @@ module            what it does
 from __future__ import annotations
 
 from .base import FilmClosed, Model, NoEquilibrium, TrialRejected
-from .elastic import BAUMGARTE, ElasticSqueeze, QuasiStaticElastic, simulate_elastic
+from .elastic import BAUMGARTE, ElasticSqueeze, FedQuasiStaticElastic, QuasiStaticElastic, simulate_elastic
 from .fed import Fed, FedCavitating, FedJFO
 from .jfo import JFO
 from .cavitating import Cavitating
@@ -46,5 +46,5 @@ from .trajectory import STATUSES, LiftOffError, Trajectory
 
 __all__ = ["Trajectory", "simulate", "steady_state", "balance_ratio", "pump_mesh", "state_result", "LiftOffError",
            "INTEGRATORS", "IMPLICIT_INTEGRATORS", "STARTS", "STATUSES", "PERIODIC_METHODS", "PeriodicStart",
-           "MODELS", "Model", "Rigid", "Cavitating", "JFO", "Fed", "FedCavitating", "FedJFO", "QuasiStaticElastic", "ElasticSqueeze", "Integration",
+           "MODELS", "Model", "Rigid", "Cavitating", "JFO", "Fed", "FedCavitating", "FedJFO", "QuasiStaticElastic", "FedQuasiStaticElastic", "ElasticSqueeze", "Integration",
            "Run", "integrate", "TrialRejected", "FilmClosed", "NoEquilibrium", "simulate_elastic", "BAUMGARTE"]
