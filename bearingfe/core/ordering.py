@@ -1,0 +1,211 @@
+"""Fill-reducing orderings of symmetric sparsity patterns, found from the graph alone.
+
+SuperLU (scipy) orders by minimum degree or COLAMD; on the large 2-D meshes of
+this project nested dissection fills less (``O(n log n)`` entries in the factor
+against the faster-growing fill of minimum degree) and, unlike the orderings
+inside SuperLU, can be found without factorizing: the compiled path factors a
+fresh mesh's matrix once, in the order found here, instead of a first time to
+learn the order (:meth:`bearingfe.film.compiled.CompiledOperator.factorize_condensed`).
+
+:func:`nested_dissection` bisects the graph recursively with vertex separators,
+all the parts of one level at once (vectorized numpy and ``scipy.sparse.csgraph``):
+each connected part is split at the middle level of a breadth-first search from a
+pseudo-peripheral vertex (a level of a breadth-first search is a vertex separator);
+with vertex coordinates, at the median of its longer extent instead (recursive
+coordinate bisection; the separator is the side of the cut with fewer vertices
+next to the other side). Parts up to ``leaf`` vertices are ordered by their
+breadth-first position; separators come after the parts they separate, the
+deepest first.
+
+The permutation ``order`` is such that ``A[order][:, order]`` is factored with
+``permc_spec="NATURAL"`` (see :func:`bearingfe.core.linalg.factorize_splu_sym`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import breadth_first_order, connected_components
+
+__all__ = ["nested_dissection", "LEAF_SIZE", "ORDERINGS", "fill_reducing_order"]
+
+#: Parts of at most this many vertices are not split further (measured: the fill of the P1 and P2
+#: grid and gmsh matrices changes by a few per cent between 32 and 256; benchmarks/orderings.py).
+LEAF_SIZE = 16
+
+
+def _graph(pattern: sp.spmatrix) -> sp.csr_matrix:
+    """The adjacency of a square pattern: ``A + A^T`` structure without the diagonal, CSR, sorted."""
+    if not sp.issparse(pattern):
+        raise ValueError(f"pattern must be a scipy sparse matrix, got {type(pattern).__name__}")
+    if pattern.ndim != 2 or pattern.shape[0] != pattern.shape[1]:
+        raise ValueError(f"pattern must be square, got shape {pattern.shape}")
+    A = sp.csr_matrix(pattern)
+    A = sp.csr_matrix((np.ones(A.nnz, dtype=np.int8), A.indices, A.indptr), shape=A.shape)
+    G = (A + A.T).tocoo()
+    off = G.row != G.col
+    n = A.shape[0]
+    return sp.csr_matrix((np.ones(int(off.sum()), dtype=np.int8), (G.row[off], G.col[off])), shape=(n, n))
+
+
+def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = None,
+                      leaf: int = LEAF_SIZE) -> np.ndarray:
+    """A nested-dissection order of a symmetric sparsity pattern.
+
+    Parameters
+    ----------
+    pattern : scipy sparse matrix, shape (n, n)
+        Its structure (values ignored) is symmetrized: ``A + A^T``.
+    coordinates : array (d, n) or (n, d), optional
+        Vertex positions (any unit): parts are then cut at the median of their
+        longer extent (recursive coordinate bisection) instead of at the middle
+        of a breadth-first search from a pseudo-peripheral vertex.
+    leaf : int
+        Parts of at most this many vertices are not split (>= 2).
+
+    Returns
+    -------
+    order : int array (n,)
+        A permutation: ``A[order][:, order]`` is the reordered matrix (the vertex
+        eliminated k-th is ``order[k]``).
+    """
+    if not (isinstance(leaf, (int, np.integer)) and leaf >= 2):
+        raise ValueError(f"leaf must be an integer >= 2 (vertices), got {leaf!r}")
+    G = _graph(pattern)
+    n = G.shape[0]
+    xy = None
+    if coordinates is not None:
+        xy = np.asarray(coordinates, dtype=float)
+        if xy.ndim == 2 and xy.shape[0] == n and xy.shape[1] != n:
+            xy = xy.T
+        if xy.ndim != 2 or xy.shape[1] != n:
+            raise ValueError(f"coordinates must have shape (d, {n}) or ({n}, d), got {np.shape(coordinates)}")
+        if not np.all(np.isfinite(xy)):
+            raise ValueError("coordinates must be finite")
+    # the edges, each once (i < j) with coordinates, both ways (for the searches) without
+    rows = np.repeat(np.arange(n, dtype=np.int32), np.diff(G.indptr))
+    cols = G.indices.astype(np.int32)
+    if xy is not None:
+        upper = rows < cols
+        rows, cols = rows[upper], cols[upper]
+    active = np.ones(n, dtype=bool)
+    side = np.zeros(n, dtype=np.int8)
+    leaves: list[np.ndarray] = []
+    separators: list[np.ndarray] = []
+    # seq: the active vertices, each part contiguous; starts: where each part begins (and the end)
+    seq = np.arange(n, dtype=np.int64)
+    starts = np.array([0, n], dtype=np.int64)
+    while seq.size:
+        if xy is None:  # parts are the connected components (a level cut may leave several)
+            indptr = np.zeros(n + 1, dtype=np.int32)
+            np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
+            graph = sp.csr_matrix((np.ones(cols.size, dtype=np.int8), cols, indptr), shape=(n, n))
+            _, component = connected_components(graph, directed=True, connection="strong")
+            seq = seq[np.argsort(component[seq], kind="stable")]
+            cut = np.flatnonzero(np.diff(component[seq])) + 1
+            starts = np.concatenate([[0], cut, [seq.size]]).astype(np.int64)
+        size = np.diff(starts)
+        part = np.repeat(np.arange(size.size), size)
+        small = (size <= leaf)[part]
+        if small.any():
+            leaves.append(seq[small])
+            active[seq[small]] = False
+            seq = seq[~small]
+            size = size[size > leaf]
+            starts = np.concatenate([[0], np.cumsum(size)])
+            part = np.repeat(np.arange(size.size), size)
+        if not seq.size:
+            break
+        count = size.size
+        if xy is None:
+            value = _bfs_levels(indptr, cols, seq, starts, part, n).astype(float)
+            lo = np.zeros(count)
+            extent = np.maximum.reduceat(value, starts[:-1]) + 1.0
+        else:
+            low = np.stack([np.minimum.reduceat(c[seq], starts[:-1]) for c in xy])
+            high = np.stack([np.maximum.reduceat(c[seq], starts[:-1]) for c in xy])
+            axis = np.argmax(high - low, axis=0)
+            value = xy[axis[part], seq]
+            lo = low[axis, np.arange(count)]
+            extent = np.maximum((high - low)[axis, np.arange(count)], 1e-300) * (1.0 + 1e-9)
+        # sort within each part by its value: the key is the part plus the value scaled into [0, 1)
+        key = part + np.clip((value - lo[part]) / extent[part], 0.0, 1.0 - 1e-12)
+        sort = np.argsort(key, kind="stable")
+        seq, part = seq[sort], part[sort]
+        within = np.arange(seq.size) - starts[part]
+        right = within >= (size // 2)[part]
+        side[seq] = np.where(right, 2, 1)
+        # the vertices of a side that touch the other side (every edge joins two vertices of one
+        # part: the separators found so far are gone); per part the side with fewer is the separator
+        crossing = side[rows] != side[cols]
+        touching = np.zeros(n, dtype=bool)
+        touching[rows[crossing]] = True
+        touching[cols[crossing]] = True
+        t = touching[seq]
+        left_count = np.bincount(part[t & ~right], minlength=count)
+        right_count = np.bincount(part[t & right], minlength=count)
+        separator = t & (right == (right_count < left_count)[part])
+        separators.append(seq[separator])
+        active[seq[separator]] = False
+        side[seq] = 0
+        keep = ~separator
+        seq, label = seq[keep], 2 * part[keep] + right[keep]
+        cut = np.flatnonzero(np.diff(label)) + 1
+        starts = np.concatenate([[0], cut, [seq.size]]).astype(np.int64)
+        live = active[rows] & active[cols]
+        rows, cols = rows[live], cols[live]
+    return np.concatenate(leaves + separators[::-1]).astype(np.int64) if n else np.zeros(0, dtype=np.int64)
+
+
+def _last_per_label(labels: np.ndarray, order: np.ndarray, count: int) -> np.ndarray:
+    """For each label ``0..count-1``, the last vertex of ``order`` that carries it."""
+    position = np.full(count, -1, dtype=np.int64)
+    np.maximum.at(position, labels[order], np.arange(order.size, dtype=np.int64))
+    return order[position]
+
+
+def _bfs(indptr, indices, sources: np.ndarray, n: int):
+    """Breadth-first order and levels from several sources at once (a virtual vertex ``n`` joined to
+    every source); returns the order (sources first) and the level of each vertex in it."""
+    ptr = np.concatenate([indptr, [indptr[-1] + sources.size]])
+    idx = np.concatenate([indices, sources]).astype(np.int32)
+    graph = sp.csr_matrix((np.ones(idx.size, dtype=np.int8), idx, ptr.astype(np.int32)), shape=(n + 1, n + 1))
+    order, parent = breadth_first_order(graph, n, directed=True, return_predecessors=True)
+    order = order[1:]
+    position = np.empty(n + 1, dtype=np.int64)
+    position[order] = np.arange(order.size)
+    position[n] = -1
+    # parents' positions do not decrease along a breadth-first order: level L + 1 starts at the
+    # first vertex whose parent is at or after the start of level L
+    parent_position = position[parent[order]]
+    bounds = [0]
+    while True:
+        nxt = int(np.searchsorted(parent_position, bounds[-1], side="left"))
+        if nxt >= order.size:
+            break
+        bounds.append(nxt)
+    level = np.searchsorted(np.asarray(bounds), np.arange(order.size), side="right") - 1
+    return order, level
+
+
+def _bfs_levels(indptr, indices, seq, starts, part, n):
+    """Levels (per vertex of ``seq``) of a breadth-first search in each connected part from a
+    pseudo-peripheral vertex: the last vertex reached from the part's first vertex."""
+    order, _ = _bfs(indptr, indices, seq[starts[:-1]], n)
+    label = np.full(n, -1, dtype=np.int64)
+    label[seq] = part
+    far = _last_per_label(label, order, starts.size - 1)
+    order, level = _bfs(indptr, indices, far, n)
+    out = np.empty(n, dtype=np.int64)
+    out[order] = level
+    return out[seq]
+
+
+#: Orderings by name: ``"nd"`` (graph only), ``"nd_xy"`` (with coordinates).
+ORDERINGS = ("nd", "nd_xy")
+
+
+def fill_reducing_order(pattern: sp.spmatrix, coordinates: np.ndarray | None = None) -> np.ndarray:
+    """The default order of this package for a symmetric pattern: :func:`nested_dissection`
+    (by coordinates when given)."""
+    return nested_dissection(pattern, coordinates)
