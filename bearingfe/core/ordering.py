@@ -135,16 +135,24 @@ def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = Non
         within = np.arange(seq.size) - starts[part]
         right = within >= (size // 2)[part]
         side[seq] = np.where(right, 2, 1)
-        # the vertices of a side that touch the other side (every edge joins two vertices of one
-        # part: the separators found so far are gone); per part the side with fewer is the separator
+        # a separator covers every edge between the sides (every edge joins two vertices of one part:
+        # the separators found so far are gone). Three covers, per part the smallest: the vertices of
+        # the left side that touch the right, those of the right, and for each crossing edge its end
+        # with more crossing edges (thinner where the sides interlock, as P2 dofs do)
         crossing = side[rows] != side[cols]
+        r, c = rows[crossing], cols[crossing]
+        degree = np.bincount(r, minlength=n) + np.bincount(c, minlength=n)
         touching = np.zeros(n, dtype=bool)
-        touching[rows[crossing]] = True
-        touching[cols[crossing]] = True
-        t = touching[seq]
-        left_count = np.bincount(part[t & ~right], minlength=count)
-        right_count = np.bincount(part[t & right], minlength=count)
-        separator = t & (right == (right_count < left_count)[part])
+        touching[r] = True
+        touching[c] = True
+        greedy = np.zeros(n, dtype=bool)
+        take_r = degree[r] >= degree[c]
+        greedy[r[take_r]] = True
+        greedy[c[~take_r]] = True
+        t, g = touching[seq], greedy[seq]
+        candidates = np.stack([t & ~right, t & right, g])
+        sizes = np.stack([np.bincount(part[m], minlength=count) for m in candidates])
+        separator = candidates[np.argmin(sizes, axis=0)[part], np.arange(seq.size)]
         separators.append(seq[separator])
         active[seq[separator]] = False
         side[seq] = 0
