@@ -27,11 +27,16 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
-__all__ = ["nested_dissection", "LEAF_SIZE", "ORDERINGS", "fill_reducing_order"]
+__all__ = ["nested_dissection", "LEAF_SIZE", "NESTED_DISSECTION_FROM"]
 
 #: Parts of at most this many vertices are not split further (measured: the fill of the P1 and P2
 #: grid and gmsh matrices changes by a few per cent between 32 and 256; benchmarks/orderings.py).
 LEAF_SIZE = 16
+
+#: Unknowns from which the package orders by :func:`nested_dissection` instead of SuperLU's minimum
+#: degree on ``A^T + A``: from there on it filled less on the P1 and P2 matrices of ``grid_mesh`` and
+#: ``mesh_surface`` (benchmarks/orderings.py, docs/orderings.md).
+NESTED_DISSECTION_FROM = 50_000
 
 
 def _graph(pattern: sp.spmatrix) -> sp.csr_matrix:
@@ -208,12 +213,3 @@ def _bfs_levels(indptr, indices, seq, starts, part, n):
     out[order] = level
     return out[seq]
 
-
-#: Orderings by name: ``"nd"`` (graph only), ``"nd_xy"`` (with coordinates).
-ORDERINGS = ("nd", "nd_xy")
-
-
-def fill_reducing_order(pattern: sp.spmatrix, coordinates: np.ndarray | None = None) -> np.ndarray:
-    """The default order of this package for a symmetric pattern: :func:`nested_dissection`
-    (by coordinates when given)."""
-    return nested_dissection(pattern, coordinates)
