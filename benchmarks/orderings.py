@@ -65,9 +65,11 @@ def matrix(source: str, element: str, dofs: float):
     per = 4.0 if element == "P2" else 1.0
     surface = bf.Surface(arc=(-1.0, 1.0), half_width=0.5)
     if source == "grid":
-        mesh = bf.grid_mesh(surface, 1.0 / max(4, int(round(math.sqrt(dofs / per / 2.0))))).mesh
+        mesh = bf.grid_mesh(surface, 1.0 / max(4, int(round(math.sqrt(dofs / per / 2.0)))),
+                            max_elements=int(4 * dofs)).mesh
     else:
-        mesh = bf.mesh_surface(surface, math.sqrt(2 * 2.0 / (math.sqrt(3) * dofs / per))).mesh
+        mesh = bf.mesh_surface(surface, math.sqrt(2 * 2.0 / (math.sqrt(3) * dofs / per)),
+                               max_elements=int(4 * dofs)).mesh
     basis = skfem.Basis(mesh, skfem.ElementTriP2() if element == "P2" else skfem.ElementTriP1())
 
     @skfem.BilinearForm

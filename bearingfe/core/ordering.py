@@ -95,6 +95,7 @@ def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = Non
         rows, cols = rows[upper], cols[upper]
     active = np.ones(n, dtype=bool)
     side = np.zeros(n, dtype=np.int8)
+    ones = np.ones(cols.size + n) if xy is None else None
     leaves: list[np.ndarray] = []
     separators: list[np.ndarray] = []
     # seq: the active vertices, each part contiguous; starts: where each part begins (and the end)
@@ -102,9 +103,13 @@ def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = Non
     starts = np.array([0, n], dtype=np.int64)
     while seq.size:
         if xy is None:  # parts are the connected components (a level cut may leave several)
-            indptr = np.zeros(n + 1, dtype=np.int32)
-            np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
-            graph = sp.csr_matrix((np.ones(cols.size, dtype=np.int8), cols, indptr), shape=(n, n))
+            # the graph's CSR arrays with room for a virtual vertex n (the searches' sources)
+            indptr = np.zeros(n + 2, dtype=np.int32)
+            np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:n + 1])
+            indices = np.empty(cols.size + n, dtype=np.int32)
+            indices[:cols.size] = cols
+            graph_parts = (ones, indices, indptr)
+            graph = _csr(ones[:cols.size], cols, indptr[:n + 1], n)
             _, component = connected_components(graph, directed=True, connection="strong")
             seq = seq[np.argsort(component[seq], kind="stable")]
             cut = np.flatnonzero(np.diff(component[seq])) + 1
@@ -123,7 +128,7 @@ def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = Non
             break
         count = size.size
         if xy is None:
-            value = _bfs_levels(indptr, cols, seq, starts, part, n).astype(float)
+            value = _bfs_levels(graph_parts, seq, starts, part, n).astype(float)
             lo = np.zeros(count)
             extent = np.maximum.reduceat(value, starts[:-1]) + 1.0
         else:
@@ -177,12 +182,25 @@ def _last_per_label(labels: np.ndarray, order: np.ndarray, count: int) -> np.nda
     return order[position]
 
 
-def _bfs(indptr, indices, sources: np.ndarray, n: int):
+def _csr(data, indices, indptr, n: int) -> sp.csr_matrix:
+    """A CSR matrix from arrays known to be canonical (rows sorted, no duplicates): no checks, no copies."""
+    graph = sp.csr_matrix((data, indices, indptr), shape=(n, n), copy=False)
+    graph.has_sorted_indices = True
+    graph.has_canonical_format = True
+    return graph
+
+
+def _bfs(graph_parts, sources: np.ndarray, n: int):
     """Breadth-first order and levels from several sources at once (a virtual vertex ``n`` joined to
-    every source); returns the order (sources first) and the level of each vertex in it."""
-    ptr = np.concatenate([indptr, [indptr[-1] + sources.size]])
-    idx = np.concatenate([indices, sources]).astype(np.int32)
-    graph = sp.csr_matrix((np.ones(idx.size, dtype=np.int8), idx, ptr.astype(np.int32)), shape=(n + 1, n + 1))
+    every source); returns the order (sources first) and the level of each vertex in it.
+
+    ``graph_parts`` = (ones, indices, indptr) of the graph with room for the virtual vertex's row at
+    the end of ``indices`` (its entries are written here)."""
+    ones, indices, indptr = graph_parts
+    end = int(indptr[n - 1 + 1]) if n else 0
+    indices[end:end + sources.size] = sources
+    indptr[n + 1] = end + sources.size
+    graph = _csr(ones[:end + sources.size], indices[:end + sources.size], indptr, n + 1)
     order, parent = breadth_first_order(graph, n, directed=True, return_predecessors=True)
     order = order[1:]
     position = np.empty(n + 1, dtype=np.int64)
@@ -201,14 +219,14 @@ def _bfs(indptr, indices, sources: np.ndarray, n: int):
     return order, level
 
 
-def _bfs_levels(indptr, indices, seq, starts, part, n):
+def _bfs_levels(graph_parts, seq, starts, part, n):
     """Levels (per vertex of ``seq``) of a breadth-first search in each connected part from a
     pseudo-peripheral vertex: the last vertex reached from the part's first vertex."""
-    order, _ = _bfs(indptr, indices, seq[starts[:-1]], n)
+    order, _ = _bfs(graph_parts, seq[starts[:-1]], n)
     label = np.full(n, -1, dtype=np.int64)
     label[seq] = part
     far = _last_per_label(label, order, starts.size - 1)
-    order, level = _bfs(indptr, indices, far, n)
+    order, level = _bfs(graph_parts, far, n)
     out = np.empty(n, dtype=np.int64)
     out[order] = level
     return out[seq]
