@@ -21,8 +21,10 @@ Each measurement in its own process: ordering seconds, factorization seconds, ``
 and the peak memory ``VmHWM`` of the process above what it held before the ordering (the mesh and
 the matrix). The floor of the page is the factorization itself: the ordering is reported beside it.
 
-Run: ``PYTHONPATH=. python benchmarks/run_all.py --only orderings`` (about 15 minutes; ``--quick`` up
-to 1e5). Internal: ``python -m benchmarks.orderings one SOURCE ELEMENT DOFS ORDER``.
+Run: ``PYTHONPATH=. python benchmarks/run_all.py --only orderings`` (1e4 .. 3e5; ``--quick`` up to
+1e5); 1e6 unknowns apart: ``python -m benchmarks.orderings run 1e6 --case grid P1`` (rows merged into
+``docs/benchmarks_parts/orderings_runs.json``, from which the page is written). Internal:
+``python -m benchmarks.orderings one SOURCE ELEMENT DOFS ORDER``.
 """
 
 from __future__ import annotations
@@ -35,15 +37,15 @@ import sys
 import time
 from pathlib import Path
 
-from .common import ROOT, md_table
+from .common import DOCS, ROOT, md_table
 
 ORDERS = ("mmd", "nd", "nd_xy")
 CASES = (("grid", "P1"), ("gmsh", "P1"), ("grid", "P2"), ("gmsh", "P2"))
-SIZES = (1e4, 1e5, 3e5, 1e6)
+SIZES = (1e4, 1e5, 3e5)
 QUICK_SIZES = (1e4, 1e5)
-#: 1e6 unknowns for P1 only (meshing 1e6 P2 dofs with gmsh and factoring them three times is a
-#: quarter of an hour on this machine; the P1 cases show the trend).
-LARGEST = {("grid", "P2"): 3e5, ("gmsh", "P2"): 3e5}
+#: Every measurement is merged into this file as it ends; the page is written from it, so sizes run
+#: apart (``python -m benchmarks.orderings run 1e6``: 1e6 unknowns take many minutes each) join it.
+RUNS = DOCS / "benchmarks_parts" / "orderings_runs.json"
 TIMEOUT = 900.0
 
 
@@ -121,17 +123,30 @@ def _measure(source: str, element: str, dofs: float, order: str) -> dict:
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
-def run(quick: bool = False, log=print, sizes=None) -> dict:
+def _merge(rows: list[dict]) -> None:
+    old = json.loads(RUNS.read_text()) if RUNS.exists() else []
+    new = {(r["source"], r["element"], r["target"], r["order"]) for r in rows}
+    keep = [r for r in old if (r["source"], r["element"], r["target"], r["order"]) not in new]
+    order = {name: k for k, name in enumerate(ORDERS)}
+    cases = {case: k for k, case in enumerate(CASES)}
+    RUNS.parent.mkdir(parents=True, exist_ok=True)
+    RUNS.write_text(json.dumps(sorted(keep + rows, key=lambda r: (cases[(r["source"], r["element"])], r["target"],
+                                                                  order[r["order"]])), indent=1) + "\n")
+
+
+def run(quick: bool = False, log=print, sizes=None, cases=CASES, orders=ORDERS) -> dict:
+    """Measure each case, size and order in its own process; every row is merged into :data:`RUNS`
+    (a quick run only reports, it does not merge)."""
     load0 = os.getloadavg()[0]
     rows = []
-    for source, element in CASES:
+    for source, element in cases:
         for dofs in sizes or (QUICK_SIZES if quick else SIZES):
-            if dofs > LARGEST.get((source, element), math.inf):
-                continue
-            for order in ORDERS:
+            for order in orders:
                 r = _measure(source, element, dofs, order)
-                r.update(source=source, element=element, target=dofs, order=order)
+                r.update(source=source, element=element, target=dofs, order=order, load=os.getloadavg()[0])
                 rows.append(r)
+                if not quick:
+                    _merge([r])
                 log(f"orderings {source} {element} {dofs:.0e} {order}: " + (
                     r["error"] if "error" in r else
                     f"order {r['order_s']:.3g} s, factor {r['factor_s']:.3g} s, fill {r['fill']}, "
@@ -140,7 +155,8 @@ def run(quick: bool = False, log=print, sizes=None) -> dict:
 
 
 def report(res: dict) -> tuple[str, dict]:
-    rows = res["rows"]
+    """The part's page from the rows of this run and, unless quick, every row in :data:`RUNS`."""
+    rows = res["rows"] if res.get("quick") or not RUNS.exists() else json.loads(RUNS.read_text())
     lines = ["Each row in its own process; `fill` is nnz(L) + nnz(U) of SuperLU's factors, `factor` the "
              "numeric factorization (for `mmd` with its own ordering inside), `order` the nested dissection "
              "before it, `MiB` the rise of the process's peak memory (VmHWM) over what it held with the mesh "
@@ -171,8 +187,15 @@ def report(res: dict) -> tuple[str, dict]:
 if __name__ == "__main__":
     if len(sys.argv) == 6 and sys.argv[1] == "one":
         print(json.dumps(one(sys.argv[2], sys.argv[3], float(sys.argv[4]), sys.argv[5])))
-    elif len(sys.argv) >= 2 and sys.argv[1] == "run":
-        sizes = tuple(float(s) for s in sys.argv[2:]) or None
-        print(json.dumps(run(log=lambda s: print(s, file=sys.stderr, flush=True), sizes=sizes)))
+    elif len(sys.argv) >= 2 and sys.argv[1] == "run":  # rows merged into RUNS
+        import argparse
+
+        ap = argparse.ArgumentParser(prog="python -m benchmarks.orderings run")
+        ap.add_argument("sizes", nargs="+", type=float)
+        ap.add_argument("--case", nargs=2, metavar=("SOURCE", "ELEMENT"), default=None)
+        ap.add_argument("--orders", nargs="+", choices=ORDERS, default=ORDERS)
+        args = ap.parse_args(sys.argv[2:])
+        run(log=lambda s: print(s, file=sys.stderr, flush=True), sizes=tuple(args.sizes),
+            cases=(tuple(args.case),) if args.case else CASES, orders=tuple(args.orders))
     else:
         sys.exit("usage: python -m benchmarks.orderings one SOURCE ELEMENT DOFS ORDER | run [SIZES...]")
