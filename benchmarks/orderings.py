@@ -157,11 +157,14 @@ def run(quick: bool = False, log=print, sizes=None, cases=CASES, orders=ORDERS) 
 def report(res: dict) -> tuple[str, dict]:
     """The part's page from the rows of this run and, unless quick, every row in :data:`RUNS`."""
     rows = res["rows"] if res.get("quick") or not RUNS.exists() else json.loads(RUNS.read_text())
+    measured = [r["load"] for r in rows if "load" in r] or [res["load"]]
+    loads = (min(measured), max(measured))
     lines = ["Each row in its own process; `fill` is nnz(L) + nnz(U) of SuperLU's factors, `factor` the "
              "numeric factorization (for `mmd` with its own ordering inside), `order` the nested dissection "
              "before it, `MiB` the rise of the process's peak memory (VmHWM) over what it held with the mesh "
-             "and the matrix. Ratios are against `mmd` on the same matrix. Load average during the part: "
-             f"{res['load']:.2f} on 2 cores (times are noisy; fill is exact).", ""]
+             "and the matrix. Ratios are against `mmd` on the same matrix. Load average during the measurements: "
+             f"{loads[0]:.1f} to {loads[1]:.1f} on 2 cores (times are noisy, up to several times; fill is "
+             "exact).", ""]
     table, facts = [], {}
     keyed = {(r["source"], r["element"], r["target"], r["order"]): r for r in rows}
     for r in rows:
@@ -176,11 +179,30 @@ def report(res: dict) -> tuple[str, dict]:
         time_ratio = total / (base["order_s"] + base["factor_s"]) if ok and base else math.nan
         rise = r["peak_mib"] - r["before_mib"]
         table.append([f"{r['source']} {r['element']}", r["dofs"], r["order"], f"{r['order_s']:.3g}",
-                      f"{r['factor_s']:.3g}", f"{r['fill'] / 1e6:.3g}M", f"{fill_ratio:.2f}", f"{time_ratio:.2f}",
+                      f"{r['factor_s']:.3g}", r["fill"], "-" if math.isnan(fill_ratio) else f"{fill_ratio:.3f}",
+                      "-" if math.isnan(time_ratio) else f"{time_ratio:.2f}",
                       f"{rise:.0f}", ""])
         facts[f"{r['source']} {r['element']} {r['target']:.0e} {r['order']} fill ratio"] = fill_ratio
     lines += [md_table(["mesh", "dofs", "order", "order s", "factor s", "fill", "fill / mmd", "time / mmd",
                         "MiB", "note"], table), ""]
+    # the crossover: per mesh and order, the smallest measured size from which on it fills less than mmd
+    said = []
+    for source, element in CASES:
+        for order in ORDERS[1:]:
+            ratios = sorted((r["target"], r["fill"] / keyed[(r["source"], r["element"], r["target"], "mmd")]["fill"])
+                            for r in rows if (r["source"], r["element"], r["order"]) == (source, element, order)
+                            and "error" not in r and "error" not in keyed.get(
+                                (r["source"], r["element"], r["target"], "mmd"), {"error": 1}))
+            if not ratios:
+                continue
+            start = None
+            for target, ratio in reversed(ratios):
+                if ratio >= 1.0:
+                    break
+                start = target
+            said.append(f"{source} {element} {order} " + (f"from ~{start:.0e}" if start is not None else "never"))
+            facts[f"{source} {element} {order} fills less from"] = start
+    lines += ["Fills less than `mmd` at this and every larger measured size: " + "; ".join(said) + ".", ""]
     return "\n".join(lines) + "\n", facts
 
 
