@@ -164,7 +164,8 @@ def report(res: dict) -> tuple[str, dict]:
              "before it, `MiB` the rise of the process's peak memory (VmHWM) over what it held with the mesh "
              "and the matrix. Ratios are against `mmd` on the same matrix. Load average during the measurements: "
              f"{loads[0]:.1f} to {loads[1]:.1f} on 2 cores (times are noisy, up to several times; fill is "
-             "exact).", ""]
+             "exact). Rows of 1e6 unknowns are measured apart (`python -m benchmarks.orderings run 1e6 --case grid "
+             "P1`) and merged.", ""]
     table, facts = [], {}
     keyed = {(r["source"], r["element"], r["target"], r["order"]): r for r in rows}
     for r in rows:

@@ -36,8 +36,8 @@ LEAF_SIZE = 16
 #: Unknowns from which the package orders by :func:`nested_dissection` (by the dofs' coordinates)
 #: instead of SuperLU's minimum degree on ``A^T + A``. Measured (benchmarks/orderings.py, fill of
 #: SuperLU's factors against minimum degree's): P1 0.92 (gmsh) and 1.05 (grid) at 1e4 unknowns, 0.80
-#: and 0.88 at 1e5, 0.80 at 3e5, 0.73 at 1e6; P2 1.13 (gmsh) and 1.08 (grid) at 1e4, 1.02 and 0.83
-#: at 1e5. From here on it also spares the compiled path the factorization that finds minimum
+#: and 0.88 at 1e5, 0.74 and 0.80 at 3e5, 0.73 (grid) at 1e6; P2 1.13 (gmsh) and 1.08 (grid) at 1e4,
+#: 1.02 and 0.83 at 1e5, 0.93 and 0.74 at 3e5. From here on it also spares the compiled path the factorization that finds minimum
 #: degree's order: the first solve on a fresh 1e5-unknown mesh took 0.68x (P1) and 0.44x (P2) the time.
 NESTED_DISSECTION_FROM = 50_000
 
