@@ -1,4 +1,4 @@
-"""Fill-reducing orderings of symmetric sparsity patterns, found from the graph alone.
+"""Fill-reducing orderings of symmetric sparsity patterns, found without factorizing (nested dissection).
 
 SuperLU (scipy) orders by minimum degree or COLAMD; on the large 2-D meshes of
 this project nested dissection fills less (``O(n log n)`` entries in the factor
