@@ -35,6 +35,7 @@ if __package__ in (None, ""):  # run as a script: make the repository root impor
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks import (cavitation_cost, elastic_fft, hard_cases, journal_case, journal_pads, journal_ross,  # noqa: E402
+                        orderings,
                         pump_revolution, scaling, solver_kinds, targets, thermal_levels, thrust_speed,
                         tilting_pad_speed, work_precision)
 from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
@@ -208,6 +209,11 @@ PART_TABLE: tuple[Part, ...] = (
          "Every solver kind: time and memory against the unknowns, and where each stops",
          "time and memory against the unknowns for every solver kind, fitted exponents and where each stops "
          "(benchmarks.solver_kinds)"),
+    Part("orderings", lambda quick: orderings.report(orderings.run(quick, log=_log)),
+         "Fill-reducing orderings: minimum degree against nested dissection, 1e4 to 1e6 unknowns",
+         "SuperLU's minimum degree against nested dissection (graph alone, and by the dofs' coordinates) on P1 and "
+         "P2 matrices of grid and gmsh meshes: fill, ordering and factorization time, peak memory "
+         "(benchmarks.orderings)"),
 )
 PARTS = tuple(p.name for p in PART_TABLE)
 RUNNERS = {p.name: p.run for p in PART_TABLE}

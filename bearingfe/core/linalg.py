@@ -15,6 +15,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .ordering import NESTED_DISSECTION_FROM, nested_dissection
+
 __all__ = ["DEFAULT_SOLVER", "LINEAR_SOLVERS", "get_linear_solver", "available_solvers", "PatternFactorizer", "factorize_splu",
            "factorize_splu_sym", "factorize_splu_small", "SMALL_PANELS_UP_TO", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy", "dense_threads"]
 
@@ -84,16 +86,43 @@ def _columns(b: np.ndarray) -> np.ndarray:
     return np.asarray(b, dtype=float).reshape(b.shape[0], -1)
 
 
-def factorize_splu_sym(A: sp.spmatrix) -> Solve:
-    """SuperLU in symmetric mode: minimum degree on ``A^T + A``, no pivoting.
+def factorize_splu_sym(A: sp.spmatrix, coordinates: np.ndarray | None = None) -> Solve:
+    """SuperLU in symmetric mode, no pivoting: minimum degree on ``A^T + A``, or nested dissection.
 
     Valid for the symmetric positive definite condensed systems (diagonal
-    pivots are safe); on this project's meshes it fills ~30 % less than
-    COLAMD and factors 1.3-1.5x faster (``docs/benchmarks.md``).
+    pivots are safe); on this project's meshes minimum degree fills ~30 % less
+    than COLAMD and factors 1.3-1.5x faster (``docs/benchmarks.md``).
+
+    Parameters
+    ----------
+    A : sparse matrix (n, n)
+        Symmetric positive definite.
+    coordinates : array (2, n), optional
+        Positions of the unknowns (the dofs' coordinates, any unit). Given, and
+        from :data:`~bearingfe.core.ordering.NESTED_DISSECTION_FROM` unknowns on,
+        the order is :func:`~bearingfe.core.ordering.nested_dissection` by them,
+        which fills less there (docs/benchmarks.md, part ``orderings``). Without
+        coordinates minimum degree is kept: nested dissection from the graph
+        alone fills less from ~1e5 P1 unknowns too, but finding it costs more
+        than it saves in one factorization (measured up to 3e5 unknowns).
     """
-    lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+    A = sp.csc_matrix(A)
+    if coordinates is None or A.shape[0] < NESTED_DISSECTION_FROM:
+        lu = spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        return lu.solve
+    return _splu_in_order(A, nested_dissection(A, coordinates))
+
+
+def _splu_in_order(A: sp.csc_matrix, order: np.ndarray) -> Solve:
+    """SuperLU (symmetric mode, no pivoting) of ``A[order][:, order]`` in that order, solving for ``A``."""
+    lu = spla.splu(A[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
                    options={"SymmetricMode": True})
-    return lu.solve
+    inverse = np.argsort(order)
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
+
+    return solve
 
 
 def factorize_splu_small(A: sp.spmatrix) -> Solve:

@@ -43,6 +43,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from .flows import named_flows, outflow, ruptured_elements
 from .forms import FilmAt, along, couette_source, film_at, film_flux, shear, unknown_scale
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
+from ..core.ordering import NESTED_DISSECTION_FROM, nested_dissection
 from ..geometry.runner import is_along_phi, velocity_at
 
 __all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "interpolation_maps"]
@@ -396,33 +397,20 @@ class CompiledOperator:
     def factorize_condensed(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
         """Numeric factorization of ``A[I, I]``: banded Cholesky where the pattern's half-bandwidth
         in the reverse Cuthill-McKee order is at most :data:`_BAND_MAX` (small meshes), else SuperLU
-        (symmetric mode) in a fill-reducing order found once for the pattern (minimum degree on
-        ``A^T + A``, as ``factorize_splu_sym``). A matrix that is not positive definite in floating
-        point goes to SuperLU.
+        (symmetric mode) in a fill-reducing order found once for the pattern (:meth:`_order`). A
+        matrix that is not positive definite in floating point goes to SuperLU.
 
         Every film, the first included, is factored in that order from the same matrix object,
-        so a film's numbers do not depend on the films solved on the mesh before it (the
-        factorization that finds the order rounds differently and is not used for solves)."""
+        so a film's numbers do not depend on the films solved on the mesh before it."""
         band = self._band_plan()
         if band is not None:
             solve = _band_cholesky(band, data)
             if solve is not None:
                 return solve
             # not positive definite in floating point: SuperLU (diagonal pivots) as for wider bands
-        (sel, idx, ptr), _ = self._blocks()
         n = self.interior.size
         if "order" not in self._lazy:
-            # the small panels change the supernodes, not the order (perm_c is the same): faster here too
-            lu = spla.splu(sp.csc_matrix((data[sel], idx, ptr), shape=(n, n)), permc_spec="MMD_AT_PLUS_A",
-                           diag_pivot_thresh=0.0, options={"SymmetricMode": True},
-                           **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
-            order = np.argsort(lu.perm_c)
-            carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
-            permuted = carrier[order][:, order].tocsc()
-            permuted.sort_indices()
-            # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
-            # matrix object is kept and only its values change (SuperLU copies them when it factors)
-            self._lazy["order"] = (order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted)
+            self._lazy["order"] = self._order(data)
         order, inverse, psel, template = self._lazy["order"]
         with self._lock:  # one matrix object per mesh: fill and factor it in one go (threads)
             template.data[:] = data[psel]
@@ -433,6 +421,32 @@ class CompiledOperator:
             return lu.solve(np.asarray(b, dtype=float)[order])[inverse]
 
         return solve
+
+    def _order(self, data: np.ndarray):
+        """The fill-reducing order of ``A[I, I]`` and the kept matrix object it is factored in.
+
+        From :data:`~bearingfe.core.ordering.NESTED_DISSECTION_FROM` unknowns on: nested dissection
+        by the interior dofs' coordinates (:func:`~bearingfe.core.ordering.nested_dissection`), found
+        from the pattern alone, so a fresh mesh's first film costs one factorization. Below: minimum
+        degree on ``A^T + A``, which fills less there, read off a first factorization of ``data``
+        (that factorization rounds differently and is not used for solves)."""
+        (sel, idx, ptr), _ = self._blocks()
+        n = self.interior.size
+        if n >= NESTED_DISSECTION_FROM:
+            pattern = sp.csr_matrix((np.ones(sel.size, dtype=np.int8), idx, ptr), shape=(n, n))
+            order = nested_dissection(pattern, np.asarray(self._basis.doflocs)[:, self.interior])
+        else:
+            # the small panels change the supernodes, not the order (perm_c is the same): faster here too
+            lu = spla.splu(sp.csc_matrix((data[sel], idx, ptr), shape=(n, n)), permc_spec="MMD_AT_PLUS_A",
+                           diag_pivot_thresh=0.0, options={"SymmetricMode": True},
+                           **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
+            order = np.argsort(lu.perm_c)
+        carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
+        permuted = carrier[order][:, order].tocsc()
+        permuted.sort_indices()
+        # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
+        # matrix object is kept and only its values change (SuperLU copies them when it factors)
+        return order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted
 
     @property
     def banded(self) -> bool:
