@@ -1106,7 +1106,7 @@ def _auto_couette(mesh: SupportMesh) -> str:
 
 #: Unknowns from which a cold grid solve (``couette="grid"`` on ``grid_mesh``) starts from the cavity of the
 #: same problem on the grid with every other line (nested iteration, recursively down to fewer unknowns).
-NESTED_MIN = 4000
+NESTED_MIN = 15000
 
 
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
