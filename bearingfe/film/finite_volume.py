@@ -675,46 +675,18 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
 #: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
 LOW_RANK_SWITCHES = 24
-class _PatternLU:
-    """SuperLU (COLAMD) of matrices of one sparsity pattern: the column ordering of the first
-    factorization is kept and the later ones are factored in it (no COLAMD again). The active-set
-    matrices take each column from the Poiseuille or the Couette operator, so their pattern lies within
-    the union pattern the first ordering was computed on (it is computed on that union)."""
-
-    def __init__(self, union: sp.spmatrix):
-        import scipy.sparse.linalg as spla
-
-        self._splu = spla.splu
-        pattern = sp.csc_matrix(union, copy=True)
-        pattern.data = np.ones_like(pattern.data)
-        pattern = pattern + sp.eye(pattern.shape[0], format="csc")
-        self.order = None
-        self.union = pattern
-
-    def __call__(self, A: sp.spmatrix):
-        if self.order is None:   # COLAMD of the union pattern, once
-            lu = self._splu(self.union, permc_spec="COLAMD")
-            self.order = np.argsort(lu.perm_c)
-        order = self.order
-        lu = self._splu(sp.csc_matrix(A)[:, order], permc_spec="NATURAL")
-
-        def solve(b):
-            y = np.asarray(lu.solve(np.asarray(b, float)), float)
-            x = np.empty_like(y)
-            x[order] = y
-            return x
-
-        return solve
-
-
 class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
     A set that differs from the last factorized one in ``k <= LOW_RANK_SWITCHES`` columns is solved
     by Sherman-Morrison-Woodbury on that factorization (``k`` extra triangular solves, cached per
     column while the factorization lives), accepted with its residual at a fresh factorization's
-    accuracy; larger changes, or a residual that is not at round-off, refactorize (with the default
-    SuperLU in the column ordering of the first factorization: :class:`_PatternLU`). GMRES preconditioned
+    accuracy; larger changes, or a residual that is not at round-off, refactorize.
+
+    Measured and left out (the dimpled slider of docs/jfo_dimples.md, 2e4 .. 1e5 unknowns): keeping the
+    first factorization's COLAMD column ordering for the later sets (SuperLU with ``NATURAL`` on the
+    permuted columns) saves COLAMD but the row pivoting of the changed sets fills in far more (a
+    factorization went from 0.07 s to 1.6 s at 2.2e4 unknowns). GMRES preconditioned
     with the last factorization was measured in its place for the moderate changes (50 .. 2,000 switched
     unknowns of the dimpled slider at 1e4 .. 4e4 unknowns): ``M0^-1 M`` is the identity plus a change of
     rank ``k`` whose eigenvalues do not cluster (the switched columns change from the Poiseuille to the
@@ -723,7 +695,7 @@ class _SetSolver:
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize):
         self.K, self.G = K.tocsc(), G.tocsc()
-        self.factorize = _PatternLU(abs(self.K) + abs(self.G)) if factorize is factorize_splu else factorize
+        self.factorize = factorize
         self.solve = None
         self.base = None
         self.z: dict[int, np.ndarray] = {}

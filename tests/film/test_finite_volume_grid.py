@@ -259,17 +259,3 @@ def test_nested_start_from_coarser_grids_gives_the_cold_solution(monkeypatch, ca
     assert nested.cost["factorizations"] <= cold.cost["factorizations"]
     assert abs(nested.mass_balance) < 1e-12 and nested.cost["active_set_residual"] < 1e-12
 
-
-def test_refactorizations_in_the_first_ordering_match_a_fresh_ordering():
-    # the default SuperLU keeps the first factorization's column ordering (_PatternLU); any other
-    # factorization callable orders each matrix afresh: same sets, same solution to round-off
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-
-    mesh = grid_mesh(_dimpled(), 1 / 50)
-    fixed = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
-    fresh = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05,
-                      solver=lambda A: spla.splu(sp.csc_matrix(A), permc_spec="COLAMD").solve)
-    assert fixed.cost["factorizations"] >= 2 and np.array_equal(fixed.cavitated, fresh.cavitated)
-    assert np.abs(fixed.pressure - fresh.pressure).max() < 1e-10 * np.abs(fresh.pressure).max()
-    assert np.abs(fixed.theta - fresh.theta).max() < 1e-10
