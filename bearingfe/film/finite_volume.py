@@ -61,7 +61,11 @@ Optim. 13 (2003) 865; for JFO see Woloszynski et al., Tribol. Lett. 58:18
 cavitated set ``theta`` (``p = p_c``); nodes with ``P < 0`` move to the cavity,
 nodes with ``theta > 1`` back to the full film, until the sets stop
 changing. A warm start (the cavity of a previous solution) usually ends it in
-one or two linear solves. The equations and their derivation are in
+one or two linear solves; a cold solve with the grid flux on a ``grid_mesh`` of
+:data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on
+the grid with every other line (nested iteration, recursively), which halves
+the fine-level factorizations (measured 4 against 7-8 on the dimpled slider at
+1e5 and 3.6e5 unknowns). The equations and their derivation are in
 ``docs/jfo.md``.
 """
 
@@ -620,6 +624,7 @@ class _Solution:
     cavity: np.ndarray
     iterations: int
     residual: float
+    factorizations: int = 0       # new factorizations of the active-set matrices
 
 
 @dataclass(frozen=True, eq=False)
@@ -674,19 +679,27 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
 #: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
 LOW_RANK_SWITCHES = 24
-
-
 class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
     A set that differs from the last factorized one in ``k <= LOW_RANK_SWITCHES`` columns is solved
     by Sherman-Morrison-Woodbury on that factorization (``k`` extra triangular solves, cached per
-    column while the factorization lives), with the residual checked against a fresh factorization's
+    column while the factorization lives), accepted with its residual at a fresh factorization's
     accuracy; larger changes, or a residual that is not at round-off, refactorize.
+
+    Measured and left out (the dimpled slider of docs/jfo_dimples.md, 2e4 .. 1e5 unknowns): keeping the
+    first factorization's COLAMD column ordering for the later sets (SuperLU with ``NATURAL`` on the
+    permuted columns) saves COLAMD but the row pivoting of the changed sets fills in far more (a
+    factorization went from 0.07 s to 1.6 s at 2.2e4 unknowns). GMRES preconditioned
+    with the last factorization was measured in its place for the moderate changes (50 .. 2,000 switched
+    unknowns of the dimpled slider at 1e4 .. 4e4 unknowns): ``M0^-1 M`` is the identity plus a change of
+    rank ``k`` whose eigenvalues do not cluster (the switched columns change from the Poiseuille to the
+    Couette operator), so it needed 30 to over 60 iterations to round-off, more than a factorization costs.
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize):
-        self.K, self.G, self.factorize = K.tocsc(), G.tocsc(), factorize
+        self.K, self.G = K.tocsc(), G.tocsc()
+        self.factorize = factorize
         self.solve = None
         self.base = None
         self.z: dict[int, np.ndarray] = {}
@@ -760,7 +773,8 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
                                "or a squeeze rate no oil film can follow)")
             res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
-                             residual=float(np.abs(res).max(initial=0.0)) / scale)
+                             residual=float(np.abs(res).max(initial=0.0)) / scale,
+                             factorizations=solver.factorizations)
         key = np.packbits(new).tobytes()
         if key in seen:
             error = JFOError(f"JFO active-set iteration cycles after {it} iterations "
@@ -1066,6 +1080,101 @@ def _auto_couette(mesh: SupportMesh) -> str:
     return "grid"
 
 
+#: Unknowns from which a cold grid solve (``couette="grid"`` on ``grid_mesh``) starts from the cavity of the
+#: same problem on the grid with every other line (nested iteration, recursively down to fewer unknowns).
+NESTED_MIN = 15000
+
+
+def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
+    """The grid mesh of ``mesh.surface`` on every other grid line of ``mesh`` (the outline's and the
+    pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen."""
+    from ..geometry import meshing
+
+    surface = mesh.surface
+    if mesh.source != "grid" or surface is None or not surface.is_rectangular:
+        return None
+    pockets = tuple(meshing._axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets))
+    a1, a2 = surface.arc
+    a = surface.half_width
+    lines = []
+    for axis, keep in ((0, [a1, a2] + [x for r in pockets for x in r[:2]]),
+                       (1, [-a, a] + [z for r in pockets for z in r[2:]])):
+        u = np.unique(mesh.mesh.p[axis])
+        if u.size < 9:
+            return None
+        tol = 1e-9 * float(np.ptp(u))
+        must = u[np.min(np.abs(u[:, None] - np.array(keep)[None, :]), axis=1) <= tol]
+        lines.append(np.unique(np.concatenate([u[::2], must])))
+    return meshing._grid_on_lines(surface, lines[0], lines[1], pockets, None)
+
+
+def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float,
+                   couette: str, cavitation: str, factorize: Factorize, tol: float, max_iterations: int,
+                   ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
+    """Cavity to start a cold grid solve from: the converged cavity on the coarser grid
+    (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
+    bilinear interpolation of ``P`` (full film) and ``theta - 1`` (cavity); None where there is no coarser
+    grid (or it fails: the caller starts cold)."""
+    coarse = _coarser_grid(mesh)
+    if coarse is None:
+        return None, {}
+    try:
+        _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
+                                                            couette, cavitation, factorize, tol, max_iterations,
+                                                            None, time.perf_counter())
+    except JFOError:
+        return None, {}
+    # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
+    # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
+    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, csol.p - p_c)
+    cp = cops.basis.doflocs
+    lines = [np.unique(cp[0]), np.unique(cp[1])]
+    values = np.zeros((lines[0].size, lines[1].size))   # nodes in pockets (holes) stay 0: no fine node reads them
+    values[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = d
+    fine = ops.basis.doflocs[:, unk.rep]
+    k = [np.clip(np.searchsorted(u, c, side="right") - 1, 0, u.size - 2) for u, c in zip(lines, fine)]
+    t = [np.clip((c - u[i]) / (u[i + 1] - u[i]), 0.0, 1.0) for u, c, i in zip(lines, fine, k)]
+    value = ((1 - t[0]) * (1 - t[1]) * values[k[0], k[1]] + t[0] * (1 - t[1]) * values[k[0] + 1, k[1]]
+             + (1 - t[0]) * t[1] * values[k[0], k[1] + 1] + t[0] * t[1] * values[k[0] + 1, k[1] + 1])
+    info = dict(info)
+    info["nested_levels"] = info.get("nested_levels", 0.0) + 1.0
+    info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
+    return value < 0.0, info
+
+def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
+                     previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
+                     max_iterations: int, warm_start, start: float):
+    """Assembly and the complementarity solve of :func:`solve_jfo` (inputs checked, ``couette`` resolved).
+    Returns the time the assembly ended, the operators, system, unknowns, solution, the number of upwinded
+    segments and the costs of a nested start."""
+    ops = operators(mesh, "P1")
+    system = _assemble(ops, mesh, film, wedge, sq, dt, previous, couette)
+    t1 = time.perf_counter()
+    p_fixed = np.zeros(ops.n_dofs)
+    p_fixed[ops.inlet] = inlet_pressure
+    unk = _unknowns(mesh, ops)
+    cavity = _warm_cavity(warm_start, ops, unk)
+    upwinded, nested = 0, {}
+    if cavitation == "none":
+        sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
+    else:
+        if (cavity is None and dt is None and cavitation == "jfo" and couette == "grid"
+                and unk.rep.size >= NESTED_MIN):
+            cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
+                                            factorize, tol, max_iterations, ops, unk)
+        if cavity is None:
+            cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
+        if couette == "streamline" and cavitation == "jfo":
+            system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
+                                                      max_iterations, ops)
+        else:
+            solve = active_set if cavitation == "jfo" else _obstacle
+            sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+        if couette == "limited" and cavitation == "jfo":
+            system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
+    return t1, ops, system, unk, sol, upwinded, nested
+
+
 @takes(OperatingPoint, Discretization)
 def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
               inlet_pressure: float = 0.0, cavitation_pressure: float = 0.0, element: str = "P1",
@@ -1176,30 +1285,15 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         raise ValueError(f"couette='grid' carries the oil along phi only; the mesh's runner is {mesh.runner!r}: "
                          "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
-    ops = operators(mesh, "P1")
     p_c = float(cavitation_pressure)
-    system = _assemble(ops, mesh, film, float(wedge), sq, dt, previous, couette)
-    t1 = time.perf_counter()
-    p_fixed = np.zeros(ops.n_dofs)
-    p_fixed[ops.inlet] = inlet_pressure
-    unk = _unknowns(mesh, ops)
-    cavity = _warm_cavity(warm_start, ops, unk)
-    if cavitation == "none":
-        sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
-    else:
-        if cavity is None:
-            cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
-        if couette == "streamline" and cavitation == "jfo":
-            system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
-                                                      max_iterations, ops)
-        else:
-            solve = active_set if cavitation == "jfo" else _obstacle
-            sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
-        if couette == "limited" and cavitation == "jfo":
-            system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
+    t1, ops, system, unk, sol, upwinded, nested = _complementarity(
+        mesh, film, float(wedge), sq, float(inlet_pressure), p_c, dt, previous, couette, cavitation, factorize,
+        tol, max_iterations, warm_start, start)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
     free[ops.interior] = True
+    p_fixed = np.zeros(ops.n_dofs)
+    p_fixed[ops.inlet] = inlet_pressure
     p = np.where(free, unk.S @ sol.p, p_fixed)
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
@@ -1208,6 +1302,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         cost["upwinded_segments"] = float(upwinded)
     result = _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
                      cavitated, sol, cost, start, cavitation)
+    if nested:   # counts of the nested start (coarser grids): not times, so after the postprocess time
+        result = dataclasses.replace(result, cost=MappingProxyType({**result.cost, **nested}))
     # a static solve notes its film's resolution (the smooth film: recess steps lie on element edges)
     return result if dt is not None else note_resolution(result, mesh, film, stacklevel=3)
 
@@ -1246,7 +1342,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         elif system.couette == "streamline" and mesh.surface is not None and mesh.surface.recesses:
             notes += (RECESS_JFO_NOTE,)
     cost = dict(cost, postprocess=time.perf_counter() - start - sum(cost.values()), dofs=float(ops.n_dofs),
-                mesh_operators=ops.seconds, active_set_residual=sol.residual)
+                mesh_operators=ops.seconds, active_set_residual=sol.residual, factorizations=float(sol.factorizations))
     return ReynoldsResult(
         basis=basis, pressure=p, film=film, wedge=wedge, squeeze=sq, inlet_pressure=inlet_pressure,
         formulation="direct", element="P1", force=force, integral=integral, h_min=h_min,
