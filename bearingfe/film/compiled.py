@@ -104,7 +104,8 @@ def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     keys = rows.astype(np.int64) * n + cols
     unique, position = np.unique(keys.ravel(), return_inverse=True)
     indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
-    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape)
+    index = np.int32 if unique.size < 2**31 else np.int64  # positions in the pattern: half the bytes
+    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape).astype(index)
 
 
 def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
@@ -116,7 +117,8 @@ def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray,
     twin = np.searchsorted(keys, lo * n + hi)
     upper = rows <= indices
     rank = np.cumsum(upper) - 1
-    return rank[twin], int(upper.sum())
+    rank = rank[twin]
+    return rank.astype(np.int32) if rank.size < 2**31 else rank, int(upper.sum())
 
 
 def _pair_values(basis, kind: str) -> tuple[list[tuple[int, int]], np.ndarray]:
@@ -172,12 +174,190 @@ def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind:
     return Scatter(values=values, rows=rows, n_upper=n_upper)
 
 
+def _release(basis) -> None:
+    """Drop a basis's per-point arrays if it can rebuild them (:class:`~bearingfe.film.mesh_operators.LeanCellBasis`)."""
+    release = getattr(basis, "release", None)
+    if release is not None:
+        release()
+
+
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
     """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
     carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
     block = carrier[rows][:, cols].tocsr()
     block.sort_indices()
     return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+
+
+class _AffineMaps:
+    """The interpolation maps ``E``, ``G_phi``, ``G_z`` of an H1 element on affine cells, kept per element.
+
+    On an affine cell the basis functions' values at the quadrature points are the reference element's
+    (the same on every cell) and their gradients are the reference gradients through the cell's constant
+    inverse Jacobian: ``grad phi_i = J^-T grad_ref phi_i``. So the maps need, besides the element's dofs,
+    ``n_cells x 4`` Jacobian entries and a few reference tables, instead of ``3 x n_bfun`` floats (and
+    indices) per quadrature point; their products are the same sums in another order (round-off).
+
+    Arrays: ``dofs`` ``(n_cells, n_bfun)``, ``phi`` ``(n_bfun, n_points)``, ``dphi`` ``(2, n_bfun, n_points)``
+    (reference gradient ``m`` of basis function ``i`` at point ``q``), ``inv`` ``(2, 2, n_cells)``
+    (``d xi_m / d x_k``), ``dx`` ``(n_cells, n_points)``.
+    """
+
+    def __init__(self, basis, dx: np.ndarray) -> None:
+        dofs = np.asarray(basis.element_dofs)
+        self.n = int(basis.N)
+        self.dofs = np.ascontiguousarray(dofs.T.astype(np.int32 if self.n < 2**31 - 1 else np.int64))
+        X = basis.X
+        phi, dphi = zip(*(basis.elem.lbasis(X, i) for i in range(dofs.shape[0])))
+        self.phi = np.array([np.broadcast_to(p, X.shape[1:]) for p in phi], dtype=float)          # (nb, Q)
+        self.dphi = np.array([np.broadcast_to(g, X.shape) for g in dphi], dtype=float).transpose(1, 0, 2).copy()
+        self.inv = np.ascontiguousarray(basis.mapping.invA)                                     # (2, 2, C)
+        self.dx = dx
+        self.shape = dx.shape
+
+    @staticmethod
+    def applies(basis) -> bool:
+        """Whether ``basis`` is an H1 (identity-transformed) element on affine cells in 2-D."""
+        from skfem.element import ElementH1
+        from skfem.mapping import MappingAffine
+        return (isinstance(basis.elem, ElementH1) and type(basis.mapping) is MappingAffine
+                and basis.mesh.dim() == 2 and getattr(basis, "tind", None) is None)
+
+    # -- dofs -> points ---------------------------------------------------------------
+
+    def _columns(self, u: np.ndarray, one) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        if u.ndim == 1:
+            return one(u).ravel()
+        return np.stack([one(u[:, s]).ravel() for s in range(u.shape[1])], axis=1)
+
+    def values(self, u: np.ndarray) -> np.ndarray:
+        """``E @ u`` for ``u`` of shape ``(n_dofs,)`` or ``(n_dofs, S)``: values at the points, ``(n_q[, S])``."""
+        return self._columns(u, lambda v: np.einsum("ci,iq->cq", v[self.dofs], self.phi))
+
+    def gradient(self, u: np.ndarray, k: int) -> np.ndarray:
+        """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
+        def one(v):
+            local = v[self.dofs]
+            return (self.inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
+                    + self.inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
+        return self._columns(u, one)
+
+    # -- points -> dofs ---------------------------------------------------------------
+
+    def _scatter(self, local: np.ndarray) -> np.ndarray:
+        return np.bincount(self.dofs.ravel(), weights=local.ravel(), minlength=self.n)
+
+    def _integrals(self, w: np.ndarray, one) -> np.ndarray:
+        w = np.asarray(w, dtype=float)
+        if w.ndim == 1:
+            return self._scatter(one(w.reshape(self.shape)))
+        return np.stack([self._scatter(one(w[:, s].reshape(self.shape))) for s in range(w.shape[1])], axis=1)
+
+    def integrate_value(self, w: np.ndarray) -> np.ndarray:
+        """``E^T @ w``: point values ``(n_q[, S])`` -> their sums against each basis function ``(n_dofs[, S])``."""
+        return self._integrals(w, lambda v: np.einsum("cq,iq->ci", v, self.phi))
+
+    def integrate_gradient(self, w: np.ndarray, k: int) -> np.ndarray:
+        """``G_k^T @ w``."""
+        return self._integrals(w, lambda v: (np.einsum("cq,iq->ci", v, self.dphi[0]) * self.inv[0, k][:, None]
+                                             + np.einsum("cq,iq->ci", v, self.dphi[1]) * self.inv[1, k][:, None]))
+
+    def sparse(self) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``E``, ``G_phi``, ``G_z`` as sparse matrices ``(n_q, n_dofs)`` (for the rarer paths that take them)."""
+        C, Q = self.shape
+        nb = self.phi.shape[0]
+        sort = np.argsort(self.dofs, axis=1, kind="stable")
+        cols = np.take_along_axis(self.dofs, sort, axis=1)
+        indices = np.broadcast_to(cols[:, None, :], (C, Q, nb)).ravel().astype(np.int32)
+        indptr = np.arange(0, C * Q * nb + 1, nb, dtype=np.int64)
+        value = np.broadcast_to(self.phi.T[None], (C, Q, nb))
+        grads = [(self.inv[0, k][:, None, None] * self.dphi[0].T[None]
+                  + self.inv[1, k][:, None, None] * self.dphi[1].T[None]) for k in range(2)]
+        out = []
+        for v in (value, *grads):
+            v = np.take_along_axis(np.broadcast_to(v, (C, Q, nb)), np.broadcast_to(sort[:, None, :], (C, Q, nb)), axis=2)
+            m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(C * Q, self.n))
+            m.has_sorted_indices = True
+            out.append(m)
+        return tuple(out)
+
+
+class _SparseMaps:
+    """The interpolation maps as sparse matrices (any element and mapping: curved cells)."""
+
+    def __init__(self, basis, dx: np.ndarray) -> None:
+        self.E, self.Gx, self.Gz = _interpolation(basis, basis.N)
+        self.shape = dx.shape
+
+    def values(self, u):
+        return self.E @ u
+
+    def gradient(self, u, k: int):
+        return (self.Gx, self.Gz)[k] @ u
+
+    def integrate_value(self, w):
+        return self.E.T @ w
+
+    def integrate_gradient(self, w, k: int):
+        return (self.Gx, self.Gz)[k].T @ w
+
+    def sparse(self):
+        return self.E, self.Gx, self.Gz
+
+
+@dataclass(frozen=True, eq=False)
+class _AffineScatter:
+    """``c -> S @ c`` (see :class:`Scatter`) on affine cells: ``grad phi_i . grad phi_j = sum_mn M_mn
+    dphi_i,m dphi_j,n`` with the cell's constant ``M = J^-1 J^-T`` (stiff), ``phi_i phi_j`` the reference
+    element's (mass): per film one contraction of ``dx c`` with reference tables and ``n_cells x 3``
+    cell constants, no per-point pair values kept."""
+
+    tables: np.ndarray     # (r, n_pairs, n_points): reference products (r = 3 stiff: mn = 00, 11, 01 + 10; 1 mass)
+    cells: np.ndarray      # (r, n_cells): M_00, M_11, M_01 (stiff) or ones (mass)
+    dx: np.ndarray         # (n_cells, n_points)
+    rows: np.ndarray       # (n_pairs * n_cells,): the upper entry each pair of each cell adds to
+    n_upper: int
+
+    def per_pair(self, c: np.ndarray) -> np.ndarray:
+        """``int c (pair product)`` per local pair and cell, ``(n_pairs, n_cells)``."""
+        w = self.dx * np.reshape(c, self.dx.shape)
+        const = bool(np.all(self.tables == self.tables[:, :, :1]))
+        if const:  # P1: the reference gradients are constants
+            t = np.einsum("c,rp->rpc", w.sum(axis=1), self.tables[:, :, 0])
+        else:
+            t = np.einsum("cq,rpq->rpc", w, self.tables)
+        return np.einsum("rpc,rc->pc", t, self.cells)
+
+    def __matmul__(self, c: np.ndarray) -> np.ndarray:
+        return np.bincount(self.rows, weights=self.per_pair(c).ravel(), minlength=self.n_upper)
+
+    def tocsr(self) -> sp.csr_matrix:
+        """``S`` as a sparse matrix ``(n_upper, n_q)``."""
+        n_cells, n_points = self.dx.shape
+        values = np.einsum("rpq,rc->pcq", self.tables, self.cells) * self.dx
+        cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+        n_pairs = values.shape[0]
+        return sp.csr_matrix((values.ravel(), (np.repeat(self.rows, n_points), np.tile(cols.ravel(), n_pairs))),
+                             shape=(self.n_upper, n_cells * n_points))
+
+
+def _affine_scatter(maps: _AffineMaps, position: np.ndarray, twins: np.ndarray, n_upper: int,
+                    kind: str) -> _AffineScatter:
+    nb = maps.phi.shape[0]
+    pairs = [(i, j) for i in range(nb) for j in range(i, nb)]
+    I, J = np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
+    if kind == "stiff":
+        d = maps.dphi
+        tables = np.stack([d[0, I] * d[0, J], d[1, I] * d[1, J], d[0, I] * d[1, J] + d[1, I] * d[0, J]])
+        inv = maps.inv
+        cells = np.stack([inv[0, 0] ** 2 + inv[0, 1] ** 2, inv[1, 0] ** 2 + inv[1, 1] ** 2,
+                          inv[0, 0] * inv[1, 0] + inv[0, 1] * inv[1, 1]])
+    else:
+        tables = (maps.phi[I] * maps.phi[J])[None]
+        cells = np.ones((1, maps.shape[0]))
+    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()
+    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows, n_upper=n_upper)
 
 
 @dataclass(frozen=True, eq=False)
@@ -232,11 +412,9 @@ class CompiledOperator:
     inlet: np.ndarray
     x: np.ndarray                  # (2, n_q) quadrature points
     dx: np.ndarray                 # (n_q,) weights
-    value: sp.csr_matrix           # E: (n_q, n_dofs)
-    grad: tuple[sp.csr_matrix, sp.csr_matrix]
+    maps: object                   # E, G_phi, G_z: _AffineMaps (per element) or _SparseMaps (curved cells)
     indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
     indices: np.ndarray
-    loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
     groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
     group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
     corners: tuple                 # facet data of the corner dofs (see _corner_terms)
@@ -262,7 +440,30 @@ class CompiledOperator:
     @property
     def points(self) -> np.ndarray:
         """The quadrature points shaped as the basis has them, ``(2, n_cells, n_points)``."""
-        return self.x.reshape(2, *np.shape(self._basis.dx))
+        return self.x.reshape(2, *self.maps.shape)
+
+    @property
+    def value(self) -> sp.csr_matrix:
+        """``E``: dofs -> values at the points, a sparse ``(n_q, n_dofs)`` matrix (built on first use: the
+        film solves use the per-element :attr:`maps`; the elastic and dynamic paths take the matrix)."""
+        return self._get("sparse_maps", self.maps.sparse)[0]
+
+    @property
+    def grad(self) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi, G_z)``: dofs -> gradient components at the points (sparse, built on first use)."""
+        return self._get("sparse_maps", self.maps.sparse)[1:]
+
+    @property
+    def loads(self) -> np.ndarray:
+        """``(3, n_q)``: ``cos phi dx``, ``sin phi dx``, ``dx`` (built on first use)."""
+        return self._get("loads", lambda: np.array([self.angles[0].ravel() * self.dx,
+                                                    self.angles[1].ravel() * self.dx, self.dx]))
+
+    def _load_moments(self, p: np.ndarray) -> np.ndarray:
+        """``loads @ p`` without the ``(3, n_q)`` table: ``int p (cos phi, sin phi, 1)``."""
+        pdx = p * (self.dx if p.ndim == 1 else self.dx[:, None])
+        cos, sin = self.angles[0].ravel(), self.angles[1].ravel()
+        return np.array([cos @ pdx, sin @ pdx, pdx.sum(axis=0)])
 
     @property
     def nnz(self) -> int:
@@ -276,12 +477,19 @@ class CompiledOperator:
     @property
     def stiffness_scatter(self) -> Scatter:
         """``S_stiff``: ``A.data = (S_stiff @ c)[twins]`` for ``int c grad u . grad v``."""
-        return self._get("stiff", lambda: _scatter(self._basis, self._position, *self.twins, "stiff"))
+        return self._get("stiff", lambda: self._scatter("stiff"))
 
     @property
     def mass_scatter(self) -> Scatter:
         """``S_mass``: ``A.data = (S_mass @ c)[twins]`` for ``int c u v``."""
-        return self._get("mass", lambda: _scatter(self._basis, self._position, *self.twins, "mass"))
+        return self._get("mass", lambda: self._scatter("mass"))
+
+    def _scatter(self, kind: str):
+        if isinstance(self.maps, _AffineMaps):
+            return _affine_scatter(self.maps, self._position, *self.twins, kind)
+        out = _scatter(self._basis, self._position, *self.twins, kind)
+        _release(self._basis)  # the per-point arrays it needed: rebuilt on the next use
+        return out
 
     @property
     def twins(self) -> tuple[np.ndarray, int]:
@@ -314,9 +522,10 @@ class CompiledOperator:
         """``int c u . grad v`` for every basis function ``v``: the conservative Couette load of a density
         ``c`` at the points (:func:`bearingfe.film.forms.couette_source`; ``int c dv/dphi`` for ``u = e_phi``)."""
         u = self.runner_at
+        m = self.maps
         if u is None:
-            return self.transposed_phi_gradient @ (self.dx * c)
-        return self.transposed_phi_gradient @ (self.dx * c * u[0]) + self.transposed_z_gradient @ (self.dx * c * u[1])
+            return m.integrate_gradient(self.dx * c, 0)
+        return m.integrate_gradient(self.dx * c * u[0], 0) + m.integrate_gradient(self.dx * c * u[1], 1)
 
     @property
     def sources(self) -> sp.csr_matrix:
@@ -466,8 +675,8 @@ class CompiledOperator:
     def pressure(self, u: np.ndarray, h: np.ndarray, dh: np.ndarray, pi: np.ndarray):
         """``p`` and ``grad p`` at the points for unknowns ``u`` (``(n_dofs, S)``), films
         ``h``, ``dh`` (``(n_q, S)``, ``(2, n_q, S)``) and a mask of pi-form samples ``(S,)``."""
-        value = self.value @ u
-        gradient = np.stack([self.grad[0] @ u, self.grad[1] @ u])
+        value = self.maps.values(u)
+        gradient = np.stack([self.maps.gradient(u, 0), self.maps.gradient(u, 1)])
         s = np.where(pi, h**-1.5, 1.0)
         p = s * value
         dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
@@ -492,14 +701,15 @@ class CompiledOperator:
         pointwise = 6.0 * h**-1.5 * along(u, (hx, hz))
         absolute_value, absolute_phi, absolute_z = self._absolute_maps()
         I = self.interior
-        wedge = (self.couette_load(c) - self.transposed_value @ (dx * pointwise))[I]
+        m = self.maps
+        wedge = (self.couette_load(c) - m.integrate_value(dx * pointwise))[I]
         if u is None:
             couette_size = absolute_phi @ (dx * np.abs(c))
         else:
             couette_size = absolute_phi @ (dx * np.abs(c * u[0])) + absolute_z @ (dx * np.abs(c * u[1]))
         wedge_size = (couette_size + absolute_value @ (dx * np.abs(pointwise)))[I]
-        laplace = (self.transposed_value @ (dx * lap) + self.transposed_phi_gradient @ (dx * hx)
-                   + self.grad[1].T @ (dx * hz))[I]
+        laplace = (m.integrate_value(dx * lap) + m.integrate_gradient(dx * hx, 0)
+                   + m.integrate_gradient(dx * hz, 1))[I]
         laplace_size = (absolute_value @ (dx * np.abs(lap)) + absolute_phi @ (dx * np.abs(hx))
                         + absolute_z @ (dx * np.abs(hz)))[I]
         tiny = 1e-300
@@ -521,8 +731,8 @@ class CompiledOperator:
 
     def field_loads(self, at: FilmAt, formulation: str, u: np.ndarray) -> tuple[np.ndarray, float]:
         """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field (pockets not included)."""
-        p = unknown_scale(at.h.ravel(), formulation) * (self.value @ u)
-        values = self.loads @ p
+        p = unknown_scale(at.h.ravel(), formulation) * self.maps.values(u)
+        values = self._load_moments(p)
         return values[:2].copy(), float(values[2])
 
     def outputs(self, states: Sequence, u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
@@ -571,7 +781,8 @@ class CompiledOperator:
         flows = named_flows(self.groups, residual, squeeze)
         balance = flows["inlet"] - outflow(flows) - flows["squeeze"]
         if cavitated is not None:
-            r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
+            m = self.maps
+            r = m.integrate_gradient(qx, 0) + m.integrate_gradient(qz, 1) - m.integrate_value(qh)
             cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
             source = self._ruptured_source(u, cavitated, wedge, along(direction, dh), hdot)
             corrected = named_flows(self.groups, residual + self.group_maps[2] @ (source * dxc), squeeze)
@@ -588,7 +799,7 @@ class CompiledOperator:
     def _ruptured_source(self, u, cavitated, wedge, dh_along, hdot) -> np.ndarray:
         """``wedge/2 u . grad h + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
         ruptured = ruptured_elements(self._basis.element_dofs, u, cavitated)  # (n_cells, S)
-        n_points = self._basis.dx.shape[1]
+        n_points = self.maps.shape[1]
         mask = np.repeat(ruptured, n_points, axis=0)
         return np.where(mask, 0.5 * wedge * dh_along + hdot, 0.0)
 
@@ -643,13 +854,12 @@ class CompiledSystem:
             at, co = self.at, self.co
             s = unknown_scale(self.h, self.formulation)
             sdx = s * co.dx
-            fields = np.empty((self.h.size, 6))
-            fields[:, 0] = 0.0  # the wedge column is in divergence form: added below through G_phi^T
-            fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
-            fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
-            fields[:, 3:] = (co.loads * s).T
-            self._weights = co.transposed_value @ fields
-            self._weights[:, 0] = co.couette_load(couette_source(self.h, self.formulation))
+            integrate = co.maps.integrate_value  # one point field at a time: no (n_q, 6) table
+            cos, sin = co.angles[0].ravel(), co.angles[1].ravel()
+            self._weights = np.column_stack([
+                co.couette_load(couette_source(self.h, self.formulation)),  # in divergence form, through G_phi^T
+                integrate(12.0 * sdx * at.shapes[0].ravel()), integrate(12.0 * sdx * at.shapes[1].ravel()),
+                integrate(cos * sdx), integrate(sin * sdx), integrate(sdx)])
         return self._weights
 
     def rhs(self, lift: np.ndarray) -> np.ndarray:
@@ -673,12 +883,12 @@ class CompiledSystem:
 def compile_operator(ops) -> CompiledOperator:
     """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
     basis, n = ops.basis, ops.n_dofs
-    E, Gx, Gz = _interpolation(basis, n)
+    cell_dx = np.asarray(basis.dx)
+    maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
     indptr, indices, position = _pattern(basis.element_dofs, n)
-    dx = np.asarray(basis.dx).ravel()
+    dx = cell_dx.ravel()
     x = np.asarray(ops.x).reshape(2, -1)
     I = ops.interior
-    loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
     groups = tuple(ops.flow_groups)
     A = np.zeros((len(groups), n))
     corner_dofs = set()
@@ -693,7 +903,8 @@ def compile_operator(ops) -> CompiledOperator:
             A[k, dofs[corner]] = w[corner]
     # sparse: only the points of the elements next to a group are non-zero (and a sparse product
     # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
-    group_maps = tuple(sp.csr_matrix((G @ A.T).T) for G in (Gx, Gz, E))
+    group_maps = tuple(sp.csr_matrix(np.asarray(apply(A.T)).T) for apply in
+                       (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
     corners: tuple = ()
     lazy: dict = {}
     if ops.facet_groups and corner_dofs:
@@ -721,7 +932,8 @@ def compile_operator(ops) -> CompiledOperator:
         corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
         lazy["corner_weights"] = weights_of
-    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
-                            indptr=indptr, indices=indices, loads=loads, groups=groups,
+    _release(basis)  # the per-point arrays of the basis: the maps keep what they need
+    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, maps=maps,
+                            indptr=indptr, indices=indices, groups=groups,
                             group_maps=group_maps, corners=corners, _basis=basis, _position=position,
                             _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)
