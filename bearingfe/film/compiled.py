@@ -229,6 +229,8 @@ class _AffineMaps:
         u = np.asarray(u, dtype=float)
         if u.ndim == 1:
             return one(u).ravel()
+        if u.shape[1] == 1:
+            return one(u[:, 0]).reshape(-1, 1)
         return np.stack([one(u[:, s]).ravel() for s in range(u.shape[1])], axis=1)
 
     def values(self, u: np.ndarray) -> np.ndarray:
@@ -676,7 +678,10 @@ class CompiledOperator:
         """``p`` and ``grad p`` at the points for unknowns ``u`` (``(n_dofs, S)``), films
         ``h``, ``dh`` (``(n_q, S)``, ``(2, n_q, S)``) and a mask of pi-form samples ``(S,)``."""
         value = self.maps.values(u)
-        gradient = np.stack([self.maps.gradient(u, 0), self.maps.gradient(u, 1)])
+        gradient = np.empty((2, *value.shape))
+        gradient[0], gradient[1] = self.maps.gradient(u, 0), self.maps.gradient(u, 1)
+        if not np.any(pi):  # direct form: p = u (no temporaries of the chain rule)
+            return value, gradient
         s = np.where(pi, h**-1.5, 1.0)
         p = s * value
         dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
@@ -738,10 +743,10 @@ class CompiledOperator:
     def outputs(self, states: Sequence, u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
                 cavitated: np.ndarray | None = None) -> FilmFlows:
         """Flows, mass balance and friction of ``S`` film states ``(film, at, formulation)`` at once."""
-        h = np.stack([at.h.ravel() for _, at, _ in states], axis=1)
-        dh = np.stack([np.stack([at.dh[0].ravel(), at.dh[1].ravel()]) for _, at, _ in states], axis=2)
-        shapes = np.stack([np.stack([at.shapes[0].ravel(), at.shapes[1].ravel()]) for _, at, _ in states], axis=2)
-        hdot = weights[1] * shapes[0] + weights[2] * shapes[1]
+        h = _columns([at.h.ravel() for _, at, _ in states])  # one state: views, no copies
+        dh = np.stack([_columns([at.dh[k].ravel() for _, at, _ in states]) for k in range(2)])
+        hdot = (weights[1] * _columns([at.shapes[0].ravel() for _, at, _ in states])
+                + weights[2] * _columns([at.shapes[1].ravel() for _, at, _ in states]))
         pi = np.array([formulation == "pi" for _, _, formulation in states])
         return self.field_outputs(u, [film for film, _, _ in states], h, dh, hdot, weights, np.asarray(sliding, float),
                                   pi, cavitated)
@@ -828,6 +833,11 @@ class CompiledOperator:
                 member = w > 0
                 out[k] = np.sum(direct[name][member] - w[member, None] * shared[member], axis=0)
         return out
+
+
+def _columns(fields: Sequence[np.ndarray]) -> np.ndarray:
+    """Point fields of ``S`` states as the columns of an ``(n_q, S)`` array (a view for one state)."""
+    return fields[0][:, None] if len(fields) == 1 else np.stack(fields, axis=1)
 
 
 class CompiledSystem:
