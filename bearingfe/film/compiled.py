@@ -164,14 +164,23 @@ class Scatter:
                              shape=(self.n_upper, n_cells * n_points))
 
 
-def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> Scatter:
+def _upper_rows(position: np.ndarray, twins: np.ndarray) -> np.ndarray:
+    """For every local pair ``i <= j`` of every cell, the upper-triangle entry it adds to, ``(n_pairs, n_cells)``."""
+    nb = int(round(np.sqrt(position.shape[0])))
+    return twins[position[[i * nb + j for i in range(nb) for j in range(i, nb)]]]
+
+
+def _scatter(basis, rows: np.ndarray, n_upper: int, kind: str) -> Scatter:
     """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
     (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
-    triangle, and the lower one copies it."""
-    nb = len(basis.basis)
-    pairs, values = _pair_values(basis, kind)
-    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()  # (n_pairs * n_cells,)
-    return Scatter(values=values, rows=rows, n_upper=n_upper)
+    triangle (``rows``, :func:`_upper_rows`), and the lower one copies it."""
+    _, values = _pair_values(basis, kind)
+    return Scatter(values=values, rows=rows.ravel(), n_upper=n_upper)
+
+
+def _points(basis) -> np.ndarray:
+    """The quadrature points of ``basis``, ``(2, n_cells, n_points)`` (scikit-fem's ``global_coordinates``)."""
+    return np.asarray(basis.mapping.F(basis.X, tind=basis.tind))
 
 
 def _release(basis) -> None:
@@ -344,8 +353,7 @@ class _AffineScatter:
                              shape=(self.n_upper, n_cells * n_points))
 
 
-def _affine_scatter(maps: _AffineMaps, position: np.ndarray, twins: np.ndarray, n_upper: int,
-                    kind: str) -> _AffineScatter:
+def _affine_scatter(maps: _AffineMaps, rows: np.ndarray, n_upper: int, kind: str) -> _AffineScatter:
     nb = maps.phi.shape[0]
     pairs = [(i, j) for i in range(nb) for j in range(i, nb)]
     I, J = np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
@@ -358,8 +366,7 @@ def _affine_scatter(maps: _AffineMaps, position: np.ndarray, twins: np.ndarray, 
     else:
         tables = (maps.phi[I] * maps.phi[J])[None]
         cells = np.ones((1, maps.shape[0]))
-    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()
-    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows, n_upper=n_upper)
+    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows.ravel(), n_upper=n_upper)
 
 
 @dataclass(frozen=True, eq=False)
@@ -412,7 +419,6 @@ class CompiledOperator:
     n_dofs: int
     interior: np.ndarray
     inlet: np.ndarray
-    x: np.ndarray                  # (2, n_q) quadrature points
     dx: np.ndarray                 # (n_q,) weights
     maps: object                   # E, G_phi, G_z: _AffineMaps (per element) or _SparseMaps (curved cells)
     indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
@@ -421,7 +427,7 @@ class CompiledOperator:
     group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
     corners: tuple                 # facet data of the corner dofs (see _corner_terms)
     _basis: object = field(repr=False)
-    _position: np.ndarray = field(repr=False)
+    _rows: np.ndarray = field(repr=False)  # (n_pairs, n_cells): the upper entry each local pair i <= j adds to
     _lazy: dict = field(default_factory=dict, repr=False)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     runner: object = None          # the mesh's runner if not the original one (bearingfe.geometry.runner)
@@ -437,7 +443,16 @@ class CompiledOperator:
     @property
     def angles(self) -> tuple[np.ndarray, np.ndarray]:
         """``cos phi`` and ``sin phi`` at the quadrature points (for :func:`bearingfe.film.forms.film_at`)."""
-        return self._get("angles", lambda: (np.cos(self.points[0]), np.sin(self.points[0])))
+        def build():
+            phi = self.points[0] if "x" in self._lazy else _points(self._basis)[0]  # no points kept for this
+            return np.cos(phi), np.sin(phi)
+        return self._get("angles", build)
+
+    @property
+    def x(self) -> np.ndarray:
+        """The quadrature points, ``(2, n_q)`` (built on first use: a film evaluated from the angles of the
+        points, :attr:`angles`, never needs them)."""
+        return self._get("x", lambda: _points(self._basis).reshape(2, -1))
 
     @property
     def points(self) -> np.ndarray:
@@ -488,8 +503,8 @@ class CompiledOperator:
 
     def _scatter(self, kind: str):
         if isinstance(self.maps, _AffineMaps):
-            return _affine_scatter(self.maps, self._position, *self.twins, kind)
-        out = _scatter(self._basis, self._position, *self.twins, kind)
+            return _affine_scatter(self.maps, self._rows, self.twins[1], kind)
+        out = _scatter(self._basis, self._rows, self.twins[1], kind)
         _release(self._basis)  # the per-point arrays it needed: rebuilt on the next use
         return out
 
@@ -728,6 +743,8 @@ class CompiledOperator:
 
     def film_at(self, film) -> FilmAt:
         """The film's fields at the quadrature points (trigonometric values of the points computed once)."""
+        if getattr(film, "fields_from_angles", None) is not None:  # the angles are all it needs
+            return film_at(film, None, self.angles)
         return film_at(film, self.points, self.angles)
 
     def system(self, at: FilmAt, formulation: str) -> "CompiledSystem":
@@ -897,7 +914,6 @@ def compile_operator(ops) -> CompiledOperator:
     maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
     indptr, indices, position = _pattern(basis.element_dofs, n)
     dx = cell_dx.ravel()
-    x = np.asarray(ops.x).reshape(2, -1)
     I = ops.interior
     groups = tuple(ops.flow_groups)
     A = np.zeros((len(groups), n))
@@ -917,6 +933,11 @@ def compile_operator(ops) -> CompiledOperator:
                        (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
     corners: tuple = ()
     lazy: dict = {}
+    if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
+        lazy["x"] = np.asarray(ops.x).reshape(2, -1)
+    lazy["twins"] = _twins(indptr, indices, n)
+    upper = _upper_rows(position, lazy["twins"][0])
+    del position
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
         fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
@@ -943,7 +964,7 @@ def compile_operator(ops) -> CompiledOperator:
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
         lazy["corner_weights"] = weights_of
     _release(basis)  # the per-point arrays of the basis: the maps keep what they need
-    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, maps=maps,
+    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, dx=dx, maps=maps,
                             indptr=indptr, indices=indices, groups=groups,
-                            group_maps=group_maps, corners=corners, _basis=basis, _position=position,
+                            group_maps=group_maps, corners=corners, _basis=basis, _rows=upper,
                             _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)

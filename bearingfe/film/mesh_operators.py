@@ -64,11 +64,16 @@ class Operators:
 
     @property
     def x(self) -> np.ndarray:
-        """Quadrature-point coordinates, shape (2, n_elements, n_points)."""
-        return self._x
+        """Quadrature-point coordinates, shape (2, n_elements, n_points) (built on first use; the same array as
+        the compiled operator's points)."""
+        def build():
+            compiled = self._lazy.get(("assembly", "compiled"))
+            if compiled is not None:
+                return compiled.points
+            return np.array(self.basis.mapping.F(self.basis.X, tind=self.basis.tind))
+        return self._get("x", build)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "_x", np.array(self.basis.mapping.F(self.basis.X, tind=self.basis.tind)))
         object.__setattr__(self, "_lazy", {})
 
     def _get(self, name: str, build):
