@@ -533,6 +533,8 @@ class CompiledOperator:
     @property
     def runner_at(self) -> tuple[np.ndarray, np.ndarray] | None:
         """The runner's velocity ``u`` at the points, or None for the original runner (``e_phi``)."""
+        if self.runner is None:  # the original runner: no points needed
+            return None
         return self._get("runner_at", lambda: velocity_at(self.runner, self.x))
 
     def couette_load(self, c: np.ndarray) -> np.ndarray:
@@ -910,7 +912,7 @@ class CompiledSystem:
 def compile_operator(ops) -> CompiledOperator:
     """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
     basis, n = ops.basis, ops.n_dofs
-    cell_dx = np.asarray(basis.dx)
+    cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
     maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
     indptr, indices, position = _pattern(basis.element_dofs, n)
     dx = cell_dx.ravel()
