@@ -329,12 +329,12 @@ class _AffineScatter:
     dx: np.ndarray         # (n_cells, n_points)
     rows: np.ndarray       # (n_pairs * n_cells,): the upper entry each pair of each cell adds to
     n_upper: int
+    constant: bool = False  # the tables do not vary over the points (P1 stiffness)
 
     def per_pair(self, c: np.ndarray) -> np.ndarray:
         """``int c (pair product)`` per local pair and cell, ``(n_pairs, n_cells)``."""
         w = self.dx * np.reshape(c, self.dx.shape)
-        const = bool(np.all(self.tables == self.tables[:, :, :1]))
-        if const:  # P1: the reference gradients are constants
+        if self.constant:  # P1: the reference gradients are constants
             t = np.einsum("c,rp->rpc", w.sum(axis=1), self.tables[:, :, 0])
         else:
             t = np.einsum("cq,rpq->rpc", w, self.tables)
@@ -366,7 +366,8 @@ def _affine_scatter(maps: _AffineMaps, rows: np.ndarray, n_upper: int, kind: str
     else:
         tables = (maps.phi[I] * maps.phi[J])[None]
         cells = np.ones((1, maps.shape[0]))
-    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows.ravel(), n_upper=n_upper)
+    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows.ravel(), n_upper=n_upper,
+                          constant=bool(np.all(tables == tables[:, :, :1])))
 
 
 @dataclass(frozen=True, eq=False)
