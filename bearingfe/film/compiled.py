@@ -223,6 +223,8 @@ class _AffineMaps:
         self.inv = np.ascontiguousarray(basis.mapping.invA)                                     # (2, 2, C)
         self.dx = dx
         self.shape = dx.shape
+        #: the reference gradients do not vary over the points (P1): the gradients are per-cell constants
+        self.constant_gradients = bool(np.all(self.dphi == self.dphi[:, :, :1]))
 
     @staticmethod
     def applies(basis) -> bool:
@@ -250,6 +252,10 @@ class _AffineMaps:
         """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
         def one(v):
             local = v[self.dofs]
+            if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
+                g = (self.inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
+                     + self.inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
+                return np.broadcast_to(g[:, None], self.shape)
             return (self.inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
                     + self.inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
         return self._columns(u, one)
@@ -764,10 +770,14 @@ class CompiledOperator:
                 cavitated: np.ndarray | None = None) -> FilmFlows:
         """Flows, mass balance and friction of ``S`` film states ``(film, at, formulation)`` at once."""
         h = _columns([at.h.ravel() for _, at, _ in states])  # one state: views, no copies
-        dh = np.stack([_columns([at.dh[k].ravel() for _, at, _ in states]) for k in range(2)])
-        hdot = (weights[1] * _columns([at.shapes[0].ravel() for _, at, _ in states])
-                + weights[2] * _columns([at.shapes[1].ravel() for _, at, _ in states]))
         pi = np.array([formulation == "pi" for _, _, formulation in states])
+        # the film's gradient enters the pi form's pressure and the ruptured source only
+        dh = (np.stack([_columns([at.dh[k].ravel() for _, at, _ in states]) for k in range(2)])
+              if pi.any() or cavitated is not None else None)
+        hdot = np.zeros(h.shape)
+        for k in (1, 2):  # the squeeze rates' shapes (a rate that is zero in every state adds nothing)
+            if np.any(weights[k]):
+                hdot += weights[k] * _columns([at.shapes[k - 1].ravel() for _, at, _ in states])
         return self.field_outputs(u, [film for film, _, _ in states], h, dh, hdot, weights, np.asarray(sliding, float),
                                   pi, cavitated)
 
@@ -784,7 +794,8 @@ class CompiledOperator:
             For the facet fluxes of the corner dofs.
         h, dh, hdot : ndarray
             Film thickness, its gradient and ``dh/dt`` at the points, shapes
-            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``.
+            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``; ``dh`` may be None if no sample is in the pi
+            form and ``cavitated`` is None (it is not needed then).
         weights : ndarray, shape (4, S)
             Unit-source weights; the wedge is ``weights[0]``.
         sliding : ndarray, shape (S,)
@@ -796,9 +807,9 @@ class CompiledOperator:
         wedge = weights[0]
         dp = self.pressure(u, h, dh, pi)[1]
         direction = self._direction(self.runner_at)
-        q0, q1 = film_flux(h, dp, wedge, direction=direction)
         dxc = self.dx[:, None]
         friction = np.sum(shear(h, dp, sliding, direction=direction) * dxc, axis=0)
+        q0, q1 = film_flux(h, dp, wedge, direction=direction)
         del dp  # the point fields are few at a time: on 1e6 unknowns each is 0.1 GB
         q0 *= dxc  # the fluxes are this function's own arrays: weighted in place
         q1 *= dxc
