@@ -5,10 +5,10 @@ fields at the quadrature points (``h^3`` or ``D``, the sources, ``h`` and its
 gradient). What does not depend on the film is built once per
 ``(mesh, element)``:
 
-- the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
-  (gradients) from dofs to the ``n_q`` quadrature points;
+- the interpolation maps ``E`` (values) and ``G_phi``, ``G_z``
+  (gradients) from dofs to the ``n_q`` quadrature points (:attr:`CompiledOperator.maps`);
 - the sparsity pattern of the system matrix and the scatters
-  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``, :class:`Scatter`; both
+  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``; both
   forms are symmetric) such that the matrix of a film is ``A.data =
   (S_stiff @ h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 -
   S_mass @ D)[twins]`` (pi form), with the index maps that cut out the
@@ -20,6 +20,15 @@ gradient). What does not depend on the film is built once per
   ``dx``), to the source vectors (``E^T dx`` on the interior dofs) and to the
   boundary flows of each outflow group (three dense ``n_groups x n_q``
   matrices, plus the facet maps of the corner dofs).
+
+On affine cells (straight-sided meshes, P1 and P2) the maps and scatters are kept per element
+(:class:`_AffineMaps`, :class:`_AffineScatter`): the reference element's values and gradients at
+the points, each cell's inverse Jacobian and its dofs; a product runs over the cells and scatter-adds.
+That is a few hundred bytes per cell instead of the per-point matrices (about 1.5 kB per P1 cell),
+and the mesh's basis then drops its own per-point arrays
+(:class:`~bearingfe.film.mesh_operators.LeanCellBasis`). Curved cells keep the sparse per-point
+maps (:class:`_SparseMaps`, :class:`Scatter`). The sparse ``E``, ``G`` and the load table are built
+on first use for the paths that take them as matrices (elastic, dynamic coefficients).
 
 A film state then costs sparse mat-vecs, one numeric factorization and the
 solves; flows and friction of many states (a trajectory) are dense
