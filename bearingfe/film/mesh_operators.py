@@ -149,8 +149,9 @@ class LeanCellBasis(skfem.CellBasis):
     (:meth:`release`): the same numbers as scikit-fem's, without holding them for the life of the mesh.
 
     The compiled maps (:mod:`bearingfe.film.compiled`) keep what they need per element and release
-    them; a rarer path that asks for them (the reference assembly, ``interpolate``, a facet basis)
-    rebuilds them once. On a P1 mesh they are about 15 floats per quadrature point (90 per element).
+    them; a rarer path that asks for them (the reference assembly, ``interpolate``) rebuilds them once.
+    They are ``2 n_bfun + 1`` floats per quadrature point (the gradients and the weight; the values are
+    broadcast): 7 for P1, 13 for P2.
     """
 
     def __init__(self, mesh: skfem.Mesh, elem: skfem.Element, mapping=None, intorder: int | None = None) -> None:
