@@ -193,7 +193,8 @@ def _points(basis) -> np.ndarray:
 
 
 def _release(basis) -> None:
-    """Drop a basis's per-point arrays if it can rebuild them (:class:`~bearingfe.film.mesh_operators.LeanCellBasis`)."""
+    """Drop a basis's per-point arrays if it can rebuild them
+    (:class:`~bearingfe.film.mesh_operators.LeanCellBasis`)."""
     release = getattr(basis, "release", None)
     if release is not None:
         release()
@@ -302,7 +303,8 @@ class _AffineMaps:
                   + self.inv[1, k][:, None, None] * self.dphi[1].T[None]) for k in range(2)]
         out = []
         for v in (value, *grads):
-            v = np.take_along_axis(np.broadcast_to(v, (C, Q, nb)), np.broadcast_to(sort[:, None, :], (C, Q, nb)), axis=2)
+            v = np.take_along_axis(np.broadcast_to(v, (C, Q, nb)), np.broadcast_to(sort[:, None, :], (C, Q, nb)),
+                                   axis=2)
             m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(C * Q, self.n))
             m.has_sorted_indices = True
             out.append(m)

@@ -101,7 +101,8 @@ def _array_bytes(obj, seen: set) -> int:
             return 0
         seen.add(id(base))
         return base.nbytes
-    if id(obj) in seen or isinstance(obj, (str, bytes, int, float, type)) or callable(obj) and not hasattr(obj, "__dict__"):
+    plain = isinstance(obj, (str, bytes, int, float, type)) or callable(obj) and not hasattr(obj, "__dict__")
+    if id(obj) in seen or plain:
         return 0
     seen.add(id(obj))
     if isinstance(obj, (tuple, list)):
@@ -109,7 +110,7 @@ def _array_bytes(obj, seen: set) -> int:
     if isinstance(obj, dict):
         return sum(_array_bytes(x, seen) for x in obj.values())
     if hasattr(obj, "data") and hasattr(obj, "indices"):  # scipy sparse
-        return sum(_array_bytes(getattr(obj, a), seen) for a in ("data", "indices", "indptr", "offsets") if hasattr(obj, a))
+        return sum(_array_bytes(getattr(obj, a), seen) for a in ("data", "indices", "indptr") if hasattr(obj, a))
     if hasattr(obj, "__dict__") and not isinstance(obj, (skfem.Mesh, skfem.CellBasis)):
         return sum(_array_bytes(x, seen) for x in vars(obj).values())
     return 0
