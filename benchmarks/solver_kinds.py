@@ -16,12 +16,18 @@ kind                    what is timed
                         gmsh sector mesh of the same unknowns
 ======================  =============================================================================
 
+The linear P1 solve also runs at 1e6 unknowns, against a budget of 4 GiB for the whole process. Where the
+memory of a linear solve goes: the same solve at 1e5 and 3e5 unknowns (P1 and P2; P1 also at 1e6) with a mark after each
+stage (mesh, the operators and basis, the compiled maps, the film at the quadrature points, the matrix
+values, the right sides, the factorization, the solves, the result), the process's resident memory after it
+and its peak during it (``VmHWM`` reset between the marks).
+
 The exponent ``b`` of ``time ~ n^b`` and ``memory ~ n^b`` is fitted over the sizes at and above 1e4 unknowns
 (below, fixed costs dominate). Where a kind stops on this machine kind: the first size that failed or
 timed out, and the size at which the fitted growth would reach the machine's memory or a minute.
 
 Run: ``PYTHONPATH=. python benchmarks/run_all.py --only kinds`` (a few minutes; ``--quick`` up to 1e4).
-Internal: ``python -m benchmarks.solver_kinds one KIND DOFS``.
+Internal: ``python -m benchmarks.solver_kinds one KIND DOFS`` and ``... stages ELEMENT DOFS``.
 """
 
 from __future__ import annotations
@@ -39,11 +45,15 @@ import numpy as np
 from .common import IMG, ROOT, loglog_plot, md_table
 
 KINDS = ("linear P1", "linear P2", "swift-stieber P1", "gumbel P1", "jfo P1", "thrust pad P1")
-SIZES = (1e3, 1e4, 1e5, 3e5)
+SIZES = (1e3, 1e4, 1e5, 3e5, 1e6)
 #: Largest size per kind where it is smaller than the last of SIZES: the tilting pad's cold Newton (about
 #: 30 film solves with finite-difference Jacobians) takes minutes beyond 1e5 unknowns (part ``thrust`` has its
-#: cost at the accuracy a design needs).
-LARGEST = {"thrust pad P1": 1e5}
+#: cost at the accuracy a design needs); 1e6 unknowns is the linear P1 solve's memory goal (``BUDGET_MIB``).
+LARGEST = {"thrust pad P1": 1e5, "linear P2": 3e5, "swift-stieber P1": 3e5, "gumbel P1": 3e5, "jfo P1": 3e5}
+#: The memory a linear P1 solve of 1e6 unknowns should fit in (the whole process) [MiB].
+BUDGET_MIB = 4096.0
+#: Sizes of the memory breakdown of a linear solve (``stages``), per element (P1 also at the goal's size).
+STAGE_SIZES = {"P1": (1e5, 3e5, 1e6), "P2": (1e5, 3e5)}
 QUICK_SIZES = (1e3, 1e4)
 TIMEOUT = 300.0
 #: A minute: the time the "where it stops" column projects to.
@@ -75,8 +85,7 @@ def one(kind: str, dofs: float) -> dict:
         perf = bf.tilting_equilibrium(pad, mesh, scale, 20e3, cavitation="reynolds")
         seconds = time.perf_counter() - t
         return {"seconds": seconds, "peak_mib": _status("VmHWM"), "dofs": int(perf.pad.result.basis.N)}
-    n = max(4, int(round(math.sqrt(dofs / per / 2.0))))
-    mesh = bf.grid_mesh(bf.Surface(arc=(-1.0, 1.0), half_width=0.5), 1.0 / n)
+    mesh = _grid(dofs, per)
     film = bf.CosineFilm(0.6, math.pi + 0.3)
     cavitation = {"linear": "none", "swift-stieber": "reynolds", "gumbel": "gumbel", "jfo": "jfo"}[kind.split()[0]]
     t = time.perf_counter()
@@ -85,10 +94,66 @@ def one(kind: str, dofs: float) -> dict:
     return {"seconds": seconds, "peak_mib": _status("VmHWM"), "dofs": int(res.basis.N)}
 
 
-def _measure(kind: str, dofs: float, timeout: float) -> dict:
+def _grid(dofs: float, per: float):
+    """``grid_mesh`` of the arc with about ``dofs`` unknowns (``per`` unknowns per vertex)."""
+    import bearingfe as bf
+
+    n = max(4, int(round(math.sqrt(dofs / per / 2.0))))
+    return bf.grid_mesh(bf.Surface(arc=(-1.0, 1.0), half_width=0.5), 1.0 / n, max_elements=4 * n * n + 1000)
+
+
+def stages(element: str, dofs: float) -> dict:
+    """Resident memory after, and peak during, each stage of a cold linear direct solve [MiB] (this process).
+
+    The stages are marked by wrapping the compiled path's steps in this process only; the peak of a stage is
+    ``VmHWM`` after resetting it at the previous mark (``/proc/self/clear_refs``)."""
+    import bearingfe as bf
+    from bearingfe.film import compiled, superposition
+    from bearingfe.film.mesh_operators import operators
+
+    marks = []
+
+    def mark(name: str) -> None:
+        marks.append({"stage": name, "rss": _status("VmRSS"), "peak": _status("VmHWM")})
+        Path("/proc/self/clear_refs").write_text("5")
+
+    def after(name: str, f):
+        def wrapped(*args, **kwargs):
+            out = f(*args, **kwargs)
+            mark(name)
+            return out
+        return wrapped
+
+    def before(name: str, f):
+        def wrapped(*args, **kwargs):
+            mark(name)
+            return f(*args, **kwargs)
+        return wrapped
+
+    C, S = compiled.CompiledOperator, compiled.CompiledSystem
+    C.film_at = after("film at the points", C.film_at)
+    C.system = after("matrix values", C.system)
+    S.rhs = after("right sides", S.rhs)
+    S.factorize = after("factorization", S.factorize)
+    S.unit_loads = before("solves", S.unit_loads)
+    superposition.build_result = after("result (flows, friction)", superposition.build_result)
+    mark("imports")
+    per = 4.0 if element == "P2" else 1.0
+    mesh = _grid(dofs, per)
+    mark("mesh")
+    ops = operators(mesh, element)
+    mark("operators (basis, dofs)")
+    co = ops.compiled
+    mark("compiled maps")
+    del co
+    res = bf.solve_reynolds(mesh, bf.CosineFilm(0.6, math.pi + 0.3), formulation="direct", element=element)
+    return {"element": element, "dofs": int(res.basis.N), "marks": marks}
+
+
+def _measure(kind: str, dofs: float, timeout: float, mode: str = "one") -> dict:
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     try:
-        r = subprocess.run([sys.executable, "-m", "benchmarks.solver_kinds", "one", kind, str(dofs)],
+        r = subprocess.run([sys.executable, "-m", "benchmarks.solver_kinds", mode, kind, str(dofs)],
                            capture_output=True, text=True, timeout=timeout, cwd=ROOT, env=env)
     except subprocess.TimeoutExpired:
         return {"error": f"timeout after {timeout:.0f} s"}
@@ -124,8 +189,16 @@ def run(quick: bool = False, log=print) -> dict:
             failed = "error" in r
             log(f"kinds {kind} {dofs:.0e}: " + (r["error"] if failed else
                                                f"{r['seconds']:.3g} s, {r['peak_mib']:.0f} MiB, {r['dofs']} dofs"))
+    breakdown = []
+    for element in ("P1", "P2"):
+        for dofs in (QUICK_SIZES[-1:] if quick else STAGE_SIZES[element]):
+            r = _measure(element, dofs, TIMEOUT, mode="stages")
+            r.update(element=element, target=dofs)
+            breakdown.append(r)
+            log(f"kinds stages {element} {dofs:.0e}: " + r.get("error", f"{len(r.get('marks', []))} marks"))
     memory = _machine_memory()
-    return dict(rows=rows, baseline=base, memory_mib=memory, load=(load0 + os.getloadavg()[0]) / 2, quick=quick)
+    return dict(rows=rows, baseline=base, memory_mib=memory, load=(load0 + os.getloadavg()[0]) / 2, quick=quick,
+                breakdown=breakdown)
 
 
 def _machine_memory() -> float:
@@ -134,6 +207,28 @@ def _machine_memory() -> float:
         return kb / 1024.0
     except (OSError, StopIteration, ValueError):
         return math.nan
+
+
+def _breakdown(runs: list) -> list[str]:
+    """The memory breakdown table of the linear solves (``stages``)."""
+    ok = [r for r in runs if "error" not in r]
+    if not ok:
+        return [f"Memory breakdown: {r['element']} ~{r['target']:.0e}: {r['error']}" for r in runs] + [""]
+    names = list(dict.fromkeys(m["stage"] for r in ok for m in r["marks"] if m["stage"] != "imports"))
+    head = ["stage"] + [f"{r['element']} {r['dofs']}: after / peak MiB" for r in ok]
+    table = []
+    for name in names:
+        row = [name]
+        for r in ok:
+            m = next((m for m in r["marks"] if m["stage"] == name), None)
+            row.append("-" if m is None else f"{m['rss']:.0f} / {m['peak']:.0f}")
+        table.append(row)
+    top = [f"{r['element']} {r['dofs']}: {max(m['peak'] for m in r['marks']):.0f} MiB at the "
+           f"{max(r['marks'], key=lambda m: m['peak'])['stage']} "
+           f"({max(m['peak'] for m in r['marks']) * 2**20 / r['dofs']:.0f} bytes per unknown)" for r in ok]
+    return ["Where the memory of a linear direct solve goes: the process's resident memory after each stage and "
+            "its peak during it (each run in its own process, the stages marked in the compiled path). Largest "
+            "peaks: " + "; ".join(top) + ".", "", md_table(head, table), ""]
 
 
 def _fit(n, y) -> tuple[float, float]:
@@ -154,6 +249,18 @@ def report(res: dict) -> tuple[str, dict]:
                         "-" if "error" in r else f"{r['seconds']:.3g}",
                         "-" if "error" in r else f"{r['peak_mib']:.0f}", r.get("error", "")] for r in rows]), ""]
     fits, facts, series_t, series_m = [], {}, {}, {}
+    goal = next((r for r in rows if r["kind"] == "linear P1" and r["target"] >= 1e6), None)
+    if goal is not None:
+        if "error" in goal:
+            lines += [f"Linear P1 at 1e6 unknowns: {goal['error']}.", ""]
+        else:
+            fits_budget = goal["peak_mib"] <= BUDGET_MIB
+            lines += [f"Linear P1 at {goal['dofs']} unknowns: peak {goal['peak_mib']:.0f} MiB of the process, "
+                      f"{'within' if fits_budget else 'over'} the budget of {BUDGET_MIB:.0f} MiB (4 GiB); "
+                      f"{goal['seconds']:.3g} s.", ""]
+            facts["linear P1 1e6 peak MiB"] = goal["peak_mib"]
+            facts["linear P1 1e6 within 4 GiB"] = bool(fits_budget)
+    lines += _breakdown(res.get("breakdown", []))
     for kind in KINDS:
         ok = [r for r in rows if r["kind"] == kind and "error" not in r]
         big = [r for r in ok if r["dofs"] >= 0.9e4]
@@ -190,5 +297,7 @@ def report(res: dict) -> tuple[str, dict]:
 if __name__ == "__main__":
     if len(sys.argv) == 4 and sys.argv[1] == "one":
         print(json.dumps(one(sys.argv[2], float(sys.argv[3]))))
+    elif len(sys.argv) == 4 and sys.argv[1] == "stages":
+        print(json.dumps(stages(sys.argv[2], float(sys.argv[3]))))
     else:
-        sys.exit("usage: python -m benchmarks.solver_kinds one KIND DOFS")
+        sys.exit("usage: python -m benchmarks.solver_kinds one KIND DOFS | stages ELEMENT DOFS")

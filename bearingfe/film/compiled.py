@@ -5,10 +5,10 @@ fields at the quadrature points (``h^3`` or ``D``, the sources, ``h`` and its
 gradient). What does not depend on the film is built once per
 ``(mesh, element)``:
 
-- the interpolation matrices ``E`` (values) and ``G_phi``, ``G_z``
-  (gradients) from dofs to the ``n_q`` quadrature points;
+- the interpolation maps ``E`` (values) and ``G_phi``, ``G_z``
+  (gradients) from dofs to the ``n_q`` quadrature points (:attr:`CompiledOperator.maps`);
 - the sparsity pattern of the system matrix and the scatters
-  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``, :class:`Scatter`; both
+  ``S_stiff``, ``S_mass`` (upper triangle ``x n_q``; both
   forms are symmetric) such that the matrix of a film is ``A.data =
   (S_stiff @ h^3)[twins]`` (direct form) or ``A.data = (S_stiff @ 1 -
   S_mass @ D)[twins]`` (pi form), with the index maps that cut out the
@@ -20,6 +20,15 @@ gradient). What does not depend on the film is built once per
   ``dx``), to the source vectors (``E^T dx`` on the interior dofs) and to the
   boundary flows of each outflow group (three dense ``n_groups x n_q``
   matrices, plus the facet maps of the corner dofs).
+
+On affine cells (straight-sided meshes, P1 and P2) the maps and scatters are kept per element
+(:class:`_AffineMaps`, :class:`_AffineScatter`): the reference element's values and gradients at
+the points, each cell's inverse Jacobian and its dofs; a product runs over the cells and scatter-adds.
+That is a few hundred bytes per cell instead of the per-point matrices (about 1.5 kB per P1 cell),
+and the mesh's basis then drops its own per-point arrays
+(:class:`~bearingfe.film.mesh_operators.LeanCellBasis`). Curved cells keep the sparse per-point
+maps (:class:`_SparseMaps`, :class:`Scatter`). The sparse ``E``, ``G`` and the load table are built
+on first use for the paths that take them as matrices (elastic, dynamic coefficients).
 
 A film state then costs sparse mat-vecs, one numeric factorization and the
 solves; flows and friction of many states (a trajectory) are dense
@@ -105,7 +114,8 @@ def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     keys = rows.astype(np.int64) * n + cols
     unique, position = np.unique(keys.ravel(), return_inverse=True)
     indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
-    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape)
+    index = np.int32 if unique.size < 2**31 else np.int64  # positions in the pattern: half the bytes
+    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape).astype(index)
 
 
 def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
@@ -117,7 +127,8 @@ def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray,
     twin = np.searchsorted(keys, lo * n + hi)
     upper = rows <= indices
     rank = np.cumsum(upper) - 1
-    return rank[twin], int(upper.sum())
+    rank = rank[twin]
+    return rank.astype(np.int32) if rank.size < 2**31 else rank, int(upper.sum())
 
 
 def _pair_values(basis, kind: str) -> tuple[list[tuple[int, int]], np.ndarray]:
@@ -163,14 +174,31 @@ class Scatter:
                              shape=(self.n_upper, n_cells * n_points))
 
 
-def _scatter(basis, position: np.ndarray, twins: np.ndarray, n_upper: int, kind: str) -> Scatter:
+def _upper_rows(position: np.ndarray, twins: np.ndarray) -> np.ndarray:
+    """For every local pair ``i <= j`` of every cell, the upper-triangle entry it adds to, ``(n_pairs, n_cells)``."""
+    nb = int(round(np.sqrt(position.shape[0])))
+    return twins[position[[i * nb + j for i in range(nb) for j in range(i, nb)]]]
+
+
+def _scatter(basis, rows: np.ndarray, n_upper: int, kind: str) -> Scatter:
     """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
     (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
-    triangle, and the lower one copies it."""
-    nb = len(basis.basis)
-    pairs, values = _pair_values(basis, kind)
-    rows = twins[position[[i * nb + j for i, j in pairs]]].ravel()  # (n_pairs * n_cells,)
-    return Scatter(values=values, rows=rows, n_upper=n_upper)
+    triangle (``rows``, :func:`_upper_rows`), and the lower one copies it."""
+    _, values = _pair_values(basis, kind)
+    return Scatter(values=values, rows=rows.ravel(), n_upper=n_upper)
+
+
+def _points(basis) -> np.ndarray:
+    """The quadrature points of ``basis``, ``(2, n_cells, n_points)`` (scikit-fem's ``global_coordinates``)."""
+    return np.asarray(basis.mapping.F(basis.X, tind=basis.tind))
+
+
+def _release(basis) -> None:
+    """Drop a basis's per-point arrays if it can rebuild them
+    (:class:`~bearingfe.film.mesh_operators.LeanCellBasis`)."""
+    release = getattr(basis, "release", None)
+    if release is not None:
+        release()
 
 
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
@@ -179,6 +207,185 @@ def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
     block = carrier[rows][:, cols].tocsr()
     block.sort_indices()
     return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+
+
+class _AffineMaps:
+    """The interpolation maps ``E``, ``G_phi``, ``G_z`` of an H1 element on affine cells, kept per element.
+
+    On an affine cell the basis functions' values at the quadrature points are the reference element's
+    (the same on every cell) and their gradients are the reference gradients through the cell's constant
+    inverse Jacobian: ``grad phi_i = J^-T grad_ref phi_i``. So the maps need, besides the element's dofs,
+    ``n_cells x 4`` Jacobian entries and a few reference tables, instead of ``3 x n_bfun`` floats (and
+    indices) per quadrature point; their products are the same sums in another order (round-off).
+
+    Arrays: ``dofs`` ``(n_cells, n_bfun)``, ``phi`` ``(n_bfun, n_points)``, ``dphi`` ``(2, n_bfun, n_points)``
+    (reference gradient ``m`` of basis function ``i`` at point ``q``), ``inv`` ``(2, 2, n_cells)``
+    (``d xi_m / d x_k``), ``dx`` ``(n_cells, n_points)``.
+    """
+
+    def __init__(self, basis, dx: np.ndarray) -> None:
+        dofs = np.asarray(basis.element_dofs)
+        self.n = int(basis.N)
+        self.dofs = np.ascontiguousarray(dofs.T.astype(np.int32 if self.n < 2**31 - 1 else np.int64))
+        X = basis.X
+        phi, dphi = zip(*(basis.elem.lbasis(X, i) for i in range(dofs.shape[0])))
+        self.phi = np.array([np.broadcast_to(p, X.shape[1:]) for p in phi], dtype=float)          # (nb, Q)
+        self.dphi = np.array([np.broadcast_to(g, X.shape) for g in dphi], dtype=float).transpose(1, 0, 2).copy()
+        self.inv = np.ascontiguousarray(basis.mapping.invA)                                     # (2, 2, C)
+        self.dx = dx
+        self.shape = dx.shape
+        #: the reference gradients do not vary over the points (P1): the gradients are per-cell constants
+        self.constant_gradients = bool(np.all(self.dphi == self.dphi[:, :, :1]))
+
+    @staticmethod
+    def applies(basis) -> bool:
+        """Whether ``basis`` is an H1 (identity-transformed) element on affine cells in 2-D."""
+        from skfem.element import ElementH1
+        from skfem.mapping import MappingAffine
+        return (isinstance(basis.elem, ElementH1) and type(basis.mapping) is MappingAffine
+                and basis.mesh.dim() == 2 and getattr(basis, "tind", None) is None)
+
+    # -- dofs -> points ---------------------------------------------------------------
+
+    def _columns(self, u: np.ndarray, one) -> np.ndarray:
+        u = np.asarray(u, dtype=float)
+        if u.ndim == 1:
+            return one(u).ravel()
+        if u.shape[1] == 1:
+            return one(u[:, 0]).reshape(-1, 1)
+        return np.stack([one(u[:, s]).ravel() for s in range(u.shape[1])], axis=1)
+
+    def values(self, u: np.ndarray) -> np.ndarray:
+        """``E @ u`` for ``u`` of shape ``(n_dofs,)`` or ``(n_dofs, S)``: values at the points, ``(n_q[, S])``."""
+        return self._columns(u, lambda v: np.einsum("ci,iq->cq", v[self.dofs], self.phi))
+
+    def gradient(self, u: np.ndarray, k: int) -> np.ndarray:
+        """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
+        def one(v):
+            local = v[self.dofs]
+            if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
+                g = (self.inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
+                     + self.inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
+                return np.broadcast_to(g[:, None], self.shape)
+            return (self.inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
+                    + self.inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
+        return self._columns(u, one)
+
+    # -- points -> dofs ---------------------------------------------------------------
+
+    def _scatter(self, local: np.ndarray) -> np.ndarray:
+        return np.bincount(self.dofs.ravel(), weights=local.ravel(), minlength=self.n)
+
+    def _integrals(self, w: np.ndarray, one) -> np.ndarray:
+        w = np.asarray(w, dtype=float)
+        if w.ndim == 1:
+            return self._scatter(one(w.reshape(self.shape)))
+        return np.stack([self._scatter(one(w[:, s].reshape(self.shape))) for s in range(w.shape[1])], axis=1)
+
+    def integrate_value(self, w: np.ndarray) -> np.ndarray:
+        """``E^T @ w``: point values ``(n_q[, S])`` -> their sums against each basis function ``(n_dofs[, S])``."""
+        return self._integrals(w, lambda v: np.einsum("cq,iq->ci", v, self.phi))
+
+    def integrate_gradient(self, w: np.ndarray, k: int) -> np.ndarray:
+        """``G_k^T @ w``."""
+        return self._integrals(w, lambda v: (np.einsum("cq,iq->ci", v, self.dphi[0]) * self.inv[0, k][:, None]
+                                             + np.einsum("cq,iq->ci", v, self.dphi[1]) * self.inv[1, k][:, None]))
+
+    def sparse(self) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``E``, ``G_phi``, ``G_z`` as sparse matrices ``(n_q, n_dofs)`` (for the rarer paths that take them)."""
+        C, Q = self.shape
+        nb = self.phi.shape[0]
+        sort = np.argsort(self.dofs, axis=1, kind="stable")
+        cols = np.take_along_axis(self.dofs, sort, axis=1)
+        indices = np.broadcast_to(cols[:, None, :], (C, Q, nb)).ravel().astype(np.int32)
+        indptr = np.arange(0, C * Q * nb + 1, nb, dtype=np.int64)
+        value = np.broadcast_to(self.phi.T[None], (C, Q, nb))
+        grads = [(self.inv[0, k][:, None, None] * self.dphi[0].T[None]
+                  + self.inv[1, k][:, None, None] * self.dphi[1].T[None]) for k in range(2)]
+        out = []
+        for v in (value, *grads):
+            v = np.take_along_axis(np.broadcast_to(v, (C, Q, nb)), np.broadcast_to(sort[:, None, :], (C, Q, nb)),
+                                   axis=2)
+            m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(C * Q, self.n))
+            m.has_sorted_indices = True
+            out.append(m)
+        return tuple(out)
+
+
+class _SparseMaps:
+    """The interpolation maps as sparse matrices (any element and mapping: curved cells)."""
+
+    def __init__(self, basis, dx: np.ndarray) -> None:
+        self.E, self.Gx, self.Gz = _interpolation(basis, basis.N)
+        self.shape = dx.shape
+
+    def values(self, u):
+        return self.E @ u
+
+    def gradient(self, u, k: int):
+        return (self.Gx, self.Gz)[k] @ u
+
+    def integrate_value(self, w):
+        return self.E.T @ w
+
+    def integrate_gradient(self, w, k: int):
+        return (self.Gx, self.Gz)[k].T @ w
+
+    def sparse(self):
+        return self.E, self.Gx, self.Gz
+
+
+@dataclass(frozen=True, eq=False)
+class _AffineScatter:
+    """``c -> S @ c`` (see :class:`Scatter`) on affine cells: ``grad phi_i . grad phi_j = sum_mn M_mn
+    dphi_i,m dphi_j,n`` with the cell's constant ``M = J^-1 J^-T`` (stiff), ``phi_i phi_j`` the reference
+    element's (mass): per film one contraction of ``dx c`` with reference tables and ``n_cells x 3``
+    cell constants, no per-point pair values kept."""
+
+    tables: np.ndarray     # (r, n_pairs, n_points): reference products (r = 3 stiff: mn = 00, 11, 01 + 10; 1 mass)
+    cells: np.ndarray      # (r, n_cells): M_00, M_11, M_01 (stiff) or ones (mass)
+    dx: np.ndarray         # (n_cells, n_points)
+    rows: np.ndarray       # (n_pairs * n_cells,): the upper entry each pair of each cell adds to
+    n_upper: int
+    constant: bool = False  # the tables do not vary over the points (P1 stiffness)
+
+    def per_pair(self, c: np.ndarray) -> np.ndarray:
+        """``int c (pair product)`` per local pair and cell, ``(n_pairs, n_cells)``."""
+        w = self.dx * np.reshape(c, self.dx.shape)
+        if self.constant:  # P1: the reference gradients are constants
+            t = np.einsum("c,rp->rpc", w.sum(axis=1), self.tables[:, :, 0])
+        else:
+            t = np.einsum("cq,rpq->rpc", w, self.tables)
+        return np.einsum("rpc,rc->pc", t, self.cells)
+
+    def __matmul__(self, c: np.ndarray) -> np.ndarray:
+        return np.bincount(self.rows, weights=self.per_pair(c).ravel(), minlength=self.n_upper)
+
+    def tocsr(self) -> sp.csr_matrix:
+        """``S`` as a sparse matrix ``(n_upper, n_q)``."""
+        n_cells, n_points = self.dx.shape
+        values = np.einsum("rpq,rc->pcq", self.tables, self.cells) * self.dx
+        cols = np.arange(n_cells * n_points).reshape(n_cells, n_points)
+        n_pairs = values.shape[0]
+        return sp.csr_matrix((values.ravel(), (np.repeat(self.rows, n_points), np.tile(cols.ravel(), n_pairs))),
+                             shape=(self.n_upper, n_cells * n_points))
+
+
+def _affine_scatter(maps: _AffineMaps, rows: np.ndarray, n_upper: int, kind: str) -> _AffineScatter:
+    nb = maps.phi.shape[0]
+    pairs = [(i, j) for i in range(nb) for j in range(i, nb)]
+    I, J = np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
+    if kind == "stiff":
+        d = maps.dphi
+        tables = np.stack([d[0, I] * d[0, J], d[1, I] * d[1, J], d[0, I] * d[1, J] + d[1, I] * d[0, J]])
+        inv = maps.inv
+        cells = np.stack([inv[0, 0] ** 2 + inv[0, 1] ** 2, inv[1, 0] ** 2 + inv[1, 1] ** 2,
+                          inv[0, 0] * inv[1, 0] + inv[0, 1] * inv[1, 1]])
+    else:
+        tables = (maps.phi[I] * maps.phi[J])[None]
+        cells = np.ones((1, maps.shape[0]))
+    return _AffineScatter(tables=tables, cells=cells, dx=maps.dx, rows=rows.ravel(), n_upper=n_upper,
+                          constant=bool(np.all(tables == tables[:, :, :1])))
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,18 +438,15 @@ class CompiledOperator:
     n_dofs: int
     interior: np.ndarray
     inlet: np.ndarray
-    x: np.ndarray                  # (2, n_q) quadrature points
     dx: np.ndarray                 # (n_q,) weights
-    value: sp.csr_matrix           # E: (n_q, n_dofs)
-    grad: tuple[sp.csr_matrix, sp.csr_matrix]
+    maps: object                   # E, G_phi, G_z: _AffineMaps (per element) or _SparseMaps (curved cells)
     indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
     indices: np.ndarray
-    loads: np.ndarray              # (3, n_q): cos phi dx, sin phi dx, dx
     groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
     group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
     corners: tuple                 # facet data of the corner dofs (see _corner_terms)
     _basis: object = field(repr=False)
-    _position: np.ndarray = field(repr=False)
+    _rows: np.ndarray = field(repr=False)  # (n_pairs, n_cells): the upper entry each local pair i <= j adds to
     _lazy: dict = field(default_factory=dict, repr=False)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
     runner: object = None          # the mesh's runner if not the original one (bearingfe.geometry.runner)
@@ -258,12 +462,44 @@ class CompiledOperator:
     @property
     def angles(self) -> tuple[np.ndarray, np.ndarray]:
         """``cos phi`` and ``sin phi`` at the quadrature points (for :func:`bearingfe.film.forms.film_at`)."""
-        return self._get("angles", lambda: (np.cos(self.points[0]), np.sin(self.points[0])))
+        def build():
+            phi = self.points[0] if "x" in self._lazy else _points(self._basis)[0]  # no points kept for this
+            return np.cos(phi), np.sin(phi)
+        return self._get("angles", build)
+
+    @property
+    def x(self) -> np.ndarray:
+        """The quadrature points, ``(2, n_q)`` (built on first use: a film evaluated from the angles of the
+        points, :attr:`angles`, never needs them)."""
+        return self._get("x", lambda: _points(self._basis).reshape(2, -1))
 
     @property
     def points(self) -> np.ndarray:
         """The quadrature points shaped as the basis has them, ``(2, n_cells, n_points)``."""
-        return self.x.reshape(2, *np.shape(self._basis.dx))
+        return self.x.reshape(2, *self.maps.shape)
+
+    @property
+    def value(self) -> sp.csr_matrix:
+        """``E``: dofs -> values at the points, a sparse ``(n_q, n_dofs)`` matrix (built on first use: the
+        film solves use the per-element :attr:`maps`; the elastic and dynamic paths take the matrix)."""
+        return self._get("sparse_maps", self.maps.sparse)[0]
+
+    @property
+    def grad(self) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi, G_z)``: dofs -> gradient components at the points (sparse, built on first use)."""
+        return self._get("sparse_maps", self.maps.sparse)[1:]
+
+    @property
+    def loads(self) -> np.ndarray:
+        """``(3, n_q)``: ``cos phi dx``, ``sin phi dx``, ``dx`` (built on first use)."""
+        return self._get("loads", lambda: np.array([self.angles[0].ravel() * self.dx,
+                                                    self.angles[1].ravel() * self.dx, self.dx]))
+
+    def _load_moments(self, p: np.ndarray) -> np.ndarray:
+        """``loads @ p`` without the ``(3, n_q)`` table: ``int p (cos phi, sin phi, 1)``."""
+        pdx = p * (self.dx if p.ndim == 1 else self.dx[:, None])
+        cos, sin = self.angles[0].ravel(), self.angles[1].ravel()
+        return np.array([cos @ pdx, sin @ pdx, pdx.sum(axis=0)])
 
     @property
     def nnz(self) -> int:
@@ -277,12 +513,19 @@ class CompiledOperator:
     @property
     def stiffness_scatter(self) -> Scatter:
         """``S_stiff``: ``A.data = (S_stiff @ c)[twins]`` for ``int c grad u . grad v``."""
-        return self._get("stiff", lambda: _scatter(self._basis, self._position, *self.twins, "stiff"))
+        return self._get("stiff", lambda: self._scatter("stiff"))
 
     @property
     def mass_scatter(self) -> Scatter:
         """``S_mass``: ``A.data = (S_mass @ c)[twins]`` for ``int c u v``."""
-        return self._get("mass", lambda: _scatter(self._basis, self._position, *self.twins, "mass"))
+        return self._get("mass", lambda: self._scatter("mass"))
+
+    def _scatter(self, kind: str):
+        if isinstance(self.maps, _AffineMaps):
+            return _affine_scatter(self.maps, self._rows, self.twins[1], kind)
+        out = _scatter(self._basis, self._rows, self.twins[1], kind)
+        _release(self._basis)  # the per-point arrays it needed: rebuilt on the next use
+        return out
 
     @property
     def twins(self) -> tuple[np.ndarray, int]:
@@ -309,15 +552,18 @@ class CompiledOperator:
     @property
     def runner_at(self) -> tuple[np.ndarray, np.ndarray] | None:
         """The runner's velocity ``u`` at the points, or None for the original runner (``e_phi``)."""
+        if self.runner is None:  # the original runner: no points needed
+            return None
         return self._get("runner_at", lambda: velocity_at(self.runner, self.x))
 
     def couette_load(self, c: np.ndarray) -> np.ndarray:
         """``int c u . grad v`` for every basis function ``v``: the conservative Couette load of a density
         ``c`` at the points (:func:`bearingfe.film.forms.couette_source`; ``int c dv/dphi`` for ``u = e_phi``)."""
         u = self.runner_at
+        m = self.maps
         if u is None:
-            return self.transposed_phi_gradient @ (self.dx * c)
-        return self.transposed_phi_gradient @ (self.dx * c * u[0]) + self.transposed_z_gradient @ (self.dx * c * u[1])
+            return m.integrate_gradient(self.dx * c, 0)
+        return m.integrate_gradient(self.dx * c * u[0], 0) + m.integrate_gradient(self.dx * c * u[1], 1)
 
     @property
     def sources(self) -> sp.csr_matrix:
@@ -480,8 +726,11 @@ class CompiledOperator:
     def pressure(self, u: np.ndarray, h: np.ndarray, dh: np.ndarray, pi: np.ndarray):
         """``p`` and ``grad p`` at the points for unknowns ``u`` (``(n_dofs, S)``), films
         ``h``, ``dh`` (``(n_q, S)``, ``(2, n_q, S)``) and a mask of pi-form samples ``(S,)``."""
-        value = self.value @ u
-        gradient = np.stack([self.grad[0] @ u, self.grad[1] @ u])
+        value = self.maps.values(u)
+        gradient = np.empty((2, *value.shape))
+        gradient[0], gradient[1] = self.maps.gradient(u, 0), self.maps.gradient(u, 1)
+        if not np.any(pi):  # direct form: p = u (no temporaries of the chain rule)
+            return value, gradient
         s = np.where(pi, h**-1.5, 1.0)
         p = s * value
         dp = s * gradient - np.where(pi, 1.5 * p / h, 0.0) * dh
@@ -506,14 +755,15 @@ class CompiledOperator:
         pointwise = 6.0 * h**-1.5 * along(u, (hx, hz))
         absolute_value, absolute_phi, absolute_z = self._absolute_maps()
         I = self.interior
-        wedge = (self.couette_load(c) - self.transposed_value @ (dx * pointwise))[I]
+        m = self.maps
+        wedge = (self.couette_load(c) - m.integrate_value(dx * pointwise))[I]
         if u is None:
             couette_size = absolute_phi @ (dx * np.abs(c))
         else:
             couette_size = absolute_phi @ (dx * np.abs(c * u[0])) + absolute_z @ (dx * np.abs(c * u[1]))
         wedge_size = (couette_size + absolute_value @ (dx * np.abs(pointwise)))[I]
-        laplace = (self.transposed_value @ (dx * lap) + self.transposed_phi_gradient @ (dx * hx)
-                   + self.grad[1].T @ (dx * hz))[I]
+        laplace = (m.integrate_value(dx * lap) + m.integrate_gradient(dx * hx, 0)
+                   + m.integrate_gradient(dx * hz, 1))[I]
         laplace_size = (absolute_value @ (dx * np.abs(lap)) + absolute_phi @ (dx * np.abs(hx))
                         + absolute_z @ (dx * np.abs(hz)))[I]
         tiny = 1e-300
@@ -527,6 +777,8 @@ class CompiledOperator:
 
     def film_at(self, film) -> FilmAt:
         """The film's fields at the quadrature points (trigonometric values of the points computed once)."""
+        if getattr(film, "fields_from_angles", None) is not None:  # the angles are all it needs
+            return film_at(film, None, self.angles)
         return film_at(film, self.points, self.angles)
 
     def system(self, at: FilmAt, formulation: str) -> "CompiledSystem":
@@ -535,18 +787,22 @@ class CompiledOperator:
 
     def field_loads(self, at: FilmAt, formulation: str, u: np.ndarray) -> tuple[np.ndarray, float]:
         """Force ``int p (cos phi, sin phi)`` and ``int p`` of an unknown field (pockets not included)."""
-        p = unknown_scale(at.h.ravel(), formulation) * (self.value @ u)
-        values = self.loads @ p
+        p = unknown_scale(at.h.ravel(), formulation) * self.maps.values(u)
+        values = self._load_moments(p)
         return values[:2].copy(), float(values[2])
 
     def outputs(self, states: Sequence, u: np.ndarray, weights: np.ndarray, sliding: np.ndarray,
                 cavitated: np.ndarray | None = None) -> FilmFlows:
         """Flows, mass balance and friction of ``S`` film states ``(film, at, formulation)`` at once."""
-        h = np.stack([at.h.ravel() for _, at, _ in states], axis=1)
-        dh = np.stack([np.stack([at.dh[0].ravel(), at.dh[1].ravel()]) for _, at, _ in states], axis=2)
-        shapes = np.stack([np.stack([at.shapes[0].ravel(), at.shapes[1].ravel()]) for _, at, _ in states], axis=2)
-        hdot = weights[1] * shapes[0] + weights[2] * shapes[1]
+        h = _columns([at.h.ravel() for _, at, _ in states])  # one state: views, no copies
         pi = np.array([formulation == "pi" for _, _, formulation in states])
+        # the film's gradient enters the pi form's pressure and the ruptured source only
+        dh = (np.stack([_columns([at.dh[k].ravel() for _, at, _ in states]) for k in range(2)])
+              if pi.any() or cavitated is not None else None)
+        hdot = np.zeros(h.shape)
+        for k in (1, 2):  # the squeeze rates' shapes (a rate that is zero in every state adds nothing)
+            if np.any(weights[k]):
+                hdot += weights[k] * _columns([at.shapes[k - 1].ravel() for _, at, _ in states])
         return self.field_outputs(u, [film for film, _, _ in states], h, dh, hdot, weights, np.asarray(sliding, float),
                                   pi, cavitated)
 
@@ -563,7 +819,8 @@ class CompiledOperator:
             For the facet fluxes of the corner dofs.
         h, dh, hdot : ndarray
             Film thickness, its gradient and ``dh/dt`` at the points, shapes
-            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``.
+            ``(n_q, S)``, ``(2, n_q, S)``, ``(n_q, S)``; ``dh`` may be None if no sample is in the pi
+            form and ``cavitated`` is None (it is not needed then).
         weights : ndarray, shape (4, S)
             Unit-source weights; the wedge is ``weights[0]``.
         sliding : ndarray, shape (S,)
@@ -573,19 +830,23 @@ class CompiledOperator:
             Ruptured dofs (see :mod:`bearingfe.film.reference`).
         """
         wedge = weights[0]
-        _, dp = self.pressure(u, h, dh, pi)
+        dp = self.pressure(u, h, dh, pi)[1]
         direction = self._direction(self.runner_at)
-        q0, q1 = film_flux(h, dp, wedge, direction=direction)
         dxc = self.dx[:, None]
-        qx, qz, qh = q0 * dxc, q1 * dxc, hdot * dxc
+        friction = np.sum(shear(h, dp, sliding, direction=direction) * dxc, axis=0)
+        q0, q1 = film_flux(h, dp, wedge, direction=direction)
+        del dp  # the point fields are few at a time: on 1e6 unknowns each is 0.1 GB
+        q0 *= dxc  # the fluxes are this function's own arrays: weighted in place
+        q1 *= dxc
+        qx, qz, qh = q0, q1, hdot * dxc
         residual = self.group_maps[0] @ qx + self.group_maps[1] @ qz - self.group_maps[2] @ qh
         residual = residual + self._corner_terms(u, films, wedge, pi)
-        friction = np.sum(shear(h, dp, sliding, direction=direction) * dxc, axis=0)
         squeeze = np.sum(qh, axis=0)
         flows = named_flows(self.groups, residual, squeeze)
         balance = flows["inlet"] - outflow(flows) - flows["squeeze"]
         if cavitated is not None:
-            r = self.grad[0].T @ qx + self.grad[1].T @ qz - self.value.T @ qh
+            m = self.maps
+            r = m.integrate_gradient(qx, 0) + m.integrate_gradient(qz, 1) - m.integrate_value(qh)
             cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
             source = self._ruptured_source(u, cavitated, wedge, along(direction, dh), hdot)
             corrected = named_flows(self.groups, residual + self.group_maps[2] @ (source * dxc), squeeze)
@@ -602,7 +863,7 @@ class CompiledOperator:
     def _ruptured_source(self, u, cavitated, wedge, dh_along, hdot) -> np.ndarray:
         """``wedge/2 u . grad h + dh/dt`` in the ruptured elements (zero elsewhere), at the points."""
         ruptured = ruptured_elements(self._basis.element_dofs, u, cavitated)  # (n_cells, S)
-        n_points = self._basis.dx.shape[1]
+        n_points = self.maps.shape[1]
         mask = np.repeat(ruptured, n_points, axis=0)
         return np.where(mask, 0.5 * wedge * dh_along + hdot, 0.0)
 
@@ -633,6 +894,11 @@ class CompiledOperator:
         return out
 
 
+def _columns(fields: Sequence[np.ndarray]) -> np.ndarray:
+    """Point fields of ``S`` states as the columns of an ``(n_q, S)`` array (a view for one state)."""
+    return fields[0][:, None] if len(fields) == 1 else np.stack(fields, axis=1)
+
+
 class CompiledSystem:
     """One film state's system from the compiled maps: mat-vecs on the pattern, one numeric factorization
     (see :class:`bearingfe.film.assembly.FilmSystem`)."""
@@ -657,13 +923,12 @@ class CompiledSystem:
             at, co = self.at, self.co
             s = unknown_scale(self.h, self.formulation)
             sdx = s * co.dx
-            fields = np.empty((self.h.size, 6))
-            fields[:, 0] = 0.0  # the wedge column is in divergence form: added below through G_phi^T
-            fields[:, 1] = 12.0 * sdx * at.shapes[0].ravel()
-            fields[:, 2] = 12.0 * sdx * at.shapes[1].ravel()
-            fields[:, 3:] = (co.loads * s).T
-            self._weights = co.transposed_value @ fields
-            self._weights[:, 0] = co.couette_load(couette_source(self.h, self.formulation))
+            integrate = co.maps.integrate_value  # one point field at a time: no (n_q, 6) table
+            cos, sin = co.angles[0].ravel(), co.angles[1].ravel()
+            self._weights = np.column_stack([
+                co.couette_load(couette_source(self.h, self.formulation)),  # in divergence form, through G_phi^T
+                integrate(12.0 * sdx * at.shapes[0].ravel()), integrate(12.0 * sdx * at.shapes[1].ravel()),
+                integrate(cos * sdx), integrate(sin * sdx), integrate(sdx)])
         return self._weights
 
     def rhs(self, lift: np.ndarray) -> np.ndarray:
@@ -687,12 +952,11 @@ class CompiledSystem:
 def compile_operator(ops) -> CompiledOperator:
     """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
     basis, n = ops.basis, ops.n_dofs
-    E, Gx, Gz = _interpolation(basis, n)
+    cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
+    maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
     indptr, indices, position = _pattern(basis.element_dofs, n)
-    dx = np.asarray(basis.dx).ravel()
-    x = np.asarray(ops.x).reshape(2, -1)
+    dx = cell_dx.ravel()
     I = ops.interior
-    loads = np.array([np.cos(x[0]) * dx, np.sin(x[0]) * dx, dx])
     groups = tuple(ops.flow_groups)
     A = np.zeros((len(groups), n))
     corner_dofs = set()
@@ -707,9 +971,15 @@ def compile_operator(ops) -> CompiledOperator:
             A[k, dofs[corner]] = w[corner]
     # sparse: only the points of the elements next to a group are non-zero (and a sparse product
     # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
-    group_maps = tuple(sp.csr_matrix((G @ A.T).T) for G in (Gx, Gz, E))
+    group_maps = tuple(sp.csr_matrix(np.asarray(apply(A.T)).T) for apply in
+                       (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
     corners: tuple = ()
     lazy: dict = {}
+    if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
+        lazy["x"] = np.asarray(ops.x).reshape(2, -1)
+    lazy["twins"] = _twins(indptr, indices, n)
+    upper = _upper_rows(position, lazy["twins"][0])
+    del position
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
         fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
@@ -735,7 +1005,8 @@ def compile_operator(ops) -> CompiledOperator:
         corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
         lazy["corner_weights"] = weights_of
-    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, x=x, dx=dx, value=E, grad=(Gx, Gz),
-                            indptr=indptr, indices=indices, loads=loads, groups=groups,
-                            group_maps=group_maps, corners=corners, _basis=basis, _position=position,
+    _release(basis)  # the per-point arrays of the basis: the maps keep what they need
+    return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, dx=dx, maps=maps,
+                            indptr=indptr, indices=indices, groups=groups,
+                            group_maps=group_maps, corners=corners, _basis=basis, _rows=upper,
                             _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)

@@ -26,7 +26,7 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["Operators", "operators", "facet_basis", "quadrature_order"]
+__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,7 +42,7 @@ class Operators:
 
     mesh: SupportMesh
     element: str
-    basis: skfem.CellBasis
+    basis: skfem.CellBasis  # a LeanCellBasis: its per-point arrays are built on first use
     outer: np.ndarray
     inlet: np.ndarray
     interior: np.ndarray
@@ -64,11 +64,16 @@ class Operators:
 
     @property
     def x(self) -> np.ndarray:
-        """Quadrature-point coordinates, shape (2, n_elements, n_points)."""
-        return self._x
+        """Quadrature-point coordinates, shape (2, n_elements, n_points) (built on first use; the same array as
+        the compiled operator's points)."""
+        def build():
+            compiled = self._lazy.get(("assembly", "compiled"))
+            if compiled is not None:
+                return compiled.points
+            return np.array(self.basis.mapping.F(self.basis.X, tind=self.basis.tind))
+        return self._get("x", build)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "_x", np.array(self.basis.global_coordinates()))
         object.__setattr__(self, "_lazy", {})
 
     def _get(self, name: str, build):
@@ -138,10 +143,59 @@ def quadrature_order(element: str) -> int:
     return 6 if element == "P2" else 4
 
 
+class LeanCellBasis(skfem.CellBasis):
+    """A :class:`skfem.CellBasis` whose per-point arrays (the basis functions' values and gradients at the
+    quadrature points, ``basis``, and the weights ``dx``) are computed on first use and can be dropped
+    (:meth:`release`): the same numbers as scikit-fem's, without holding them for the life of the mesh.
+
+    The compiled maps (:mod:`bearingfe.film.compiled`) keep what they need per element and release
+    them; a rarer path that asks for them (the reference assembly, ``interpolate``) rebuilds them once.
+    They are ``2 n_bfun + 1`` floats per quadrature point (the gradients and the weight; the values are
+    broadcast): 7 for P1, 13 for P2.
+    """
+
+    def __init__(self, mesh: skfem.Mesh, elem: skfem.Element, mapping=None, intorder: int | None = None) -> None:
+        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder, None, mesh.refdom)
+        self.tind = None
+        self.nelems = mesh.nelements
+
+    @property
+    def basis(self) -> list:
+        if self.__dict__.get("_values") is None:
+            self.__dict__["_values"] = [self.elem.gbasis(self.mapping, self.X, j, tind=self.tind)
+                                        for j in range(self.Nbfun)]
+        return self.__dict__["_values"]
+
+    @basis.setter
+    def basis(self, value: list) -> None:
+        self.__dict__["_values"] = value
+
+    @property
+    def dx(self) -> np.ndarray:
+        if self.__dict__.get("_dx") is None:
+            self.__dict__["_dx"] = (np.abs(self.mapping.detDF(self.X, tind=self.tind))
+                                    * np.broadcast_to(self.W, (self.nelems, self.W.shape[-1])))
+        return self.__dict__["_dx"]
+
+    @dx.setter
+    def dx(self, value: np.ndarray) -> None:
+        self.__dict__["_dx"] = value
+
+    @property
+    def quadrature_shape(self) -> tuple[int, int]:
+        """``(n_cells, n_points)``: the shape of ``dx`` (without building it)."""
+        return (int(self.nelems), int(np.shape(self.W)[-1]))
+
+    def release(self) -> None:
+        """Drop the per-point arrays (rebuilt on the next use)."""
+        self.__dict__["_values"] = self.__dict__["_dx"] = None
+        self._global_coordinates = self._mesh_parameters = None
+
+
 def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     start = time.perf_counter()
     m = mesh.mesh
-    basis = skfem.Basis(m, ELEMENTS[element](), mapping=mapping(m), intorder=quadrature_order(element))
+    basis = LeanCellBasis(m, ELEMENTS[element](), mapping=mapping(m), intorder=quadrature_order(element))
     bnd = mesh.boundaries
     if "outer" not in bnd:
         raise ValueError("mesh has no boundary named 'outer'")
