@@ -45,7 +45,7 @@ def test_the_largest_peaks_follow_the_breakdown():
     for j, column in enumerate(head[1:], start=1):
         name = column.split(":")[0]  # e.g. "P1 101025"
         peaks = {r[0]: float(r[j].split("/")[1]) for r in rows if r[j] != "-"}
-        match = re.search(re.escape(name) + r": (\d+) MiB at the ([^(]+) \((\d+) bytes per unknown\)", text)
+        match = re.search(re.escape(name) + r": (\d+) MiB at the (.+?) \((\d+) bytes per unknown\)", text)
         assert match, name
         assert float(match[1]) == max(peaks.values())
         assert peaks[match[2].strip()] == max(peaks.values())

@@ -27,11 +27,13 @@ step, another rate) moves them by ``1e-6`` or more.
 The periodic residual is a difference of two states of order 1: it is compared to ``1e-12`` absolute
 (the long run's to :data:`LONG_RUN_RTOL` absolute: measured 4e-9 apart on another scipy build).
 
-Counters: the right sides, steps, Jacobians and Newton iterations are compared exactly. The
+Counters: the right sides, steps, Jacobians and Newton iterations are compared exactly (re-pinned when the
+round-off of the film maps changes: the quasi-static elastic run took 14 Jacobians instead of 13 once the
+compiled maps summed per element). The
 ``factorizations`` of the rigid and quasi-static elastic runs count cache misses of film states keyed
 by their exact floating-point values (and chord-Newton residuals), which round-off of ``1e-13`` can
 turn into a hit or a miss: they are compared to :data:`FACTORIZATION_RTOL` (measured: 211 -> 212,
-635 -> 636, 625 -> 615 on another scipy build).
+635 -> 636, 625 -> 615 on another scipy build; re-pinned to 609 with the per-element maps).
 """
 
 from __future__ import annotations
@@ -762,7 +764,7 @@ EXPECTED: dict = {'rigid defaults': {'status': 'completed',
                                                          8.49991230029882e-06,
                                                          8.708685565482495e-06,
                                                          8.708142762906367e-06]},
-                          'counters': {'nfev': 95, 'factorizations': 625, 'steps': 45, 'jacobians': 13},
+                          'counters': {'nfev': 95, 'factorizations': 625, 'steps': 45, 'jacobians': 14},
                           'state': {'max_pressure': 1.086497744840672,
                                     'force': [0.42084957769123116, -4.382574598366107e-12],
                                     'h_min': 1.0317285808977168,
