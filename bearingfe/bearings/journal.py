@@ -585,7 +585,7 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         rhs[:, 0] -= dA_p[0][fp.interior]
         rhs[:, 1] -= dA_p[1][fp.interior]
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
-        U = fp.problem.solve_fixed(rhs, active)
+        U = fp.solve_fixed(rhs, active)
         u = np.zeros((co.n_dofs, 4))
         u[fp.interior] = U
         dF += co.loads[:2] @ (co.value @ u)

@@ -124,7 +124,7 @@ def _rate_jacobian(sup: Superposition, fp: FilmProblem, res: ReynoldsResult, mod
             J[:, k - 1] = sup.loads(np.where(keep, sup.fields[:, k], 0.0))[0]
         return J
     active = res.cavitated[fp.interior]
-    U = fp.problem.solve_fixed(fp.rhs[:, 1:3], active)
+    U = fp.solve_fixed(fp.rhs[:, 1:3], active)
     J = np.zeros((2, 2))
     for k in range(2):
         u = np.zeros(sup.operators.n_dofs)

@@ -7,6 +7,24 @@ posed on the superposition's own condensed matrix and started with its
 factorization of the full film. The multiplier is the nodal residual of the
 Reynolds equation: zero where the film is full, non-negative where it ruptured.
 
+On quadratic (P2) elements the condition is imposed on the Bernstein
+coefficients of the unknown: its values at the vertices and, on each edge
+between two free vertices, ``2 u_mid - (u_a + u_b) / 2``. A quadratic with
+non-negative Bernstein coefficients is non-negative on the whole element,
+and the coefficients of a refined mesh are convex combinations of the
+coarse ones, so the discrete sets are nested under refinement: a
+conforming discretization of the variational inequality (on the edges
+that touch the Dirichlet outline the midside value is bounded as on P1,
+which keeps the constraint's reaction off the outline's flows). Bounding
+only the nodal values everywhere lets the quadratic dip below zero between
+the nodes next to the free boundary, and the load then converged
+irregularly at the 1e-5 level (a journal at eps 0.6 changed by +1e-5,
++5.5e-5, -7e-6 under three refinements), which an error estimate from one
+refinement cannot follow. Cavitated dofs are those whose coefficient is
+held at zero (on an edge next to the free boundary, the nodal pressure can
+be positive there); ``u = S v`` maps the coefficients ``v`` back to the
+nodal unknowns (:func:`bernstein_change`).
+
 Warm starts: the rupture set of a previous solution on the same mesh (the
 previous time step), or of a solution on another mesh of the same surface
 (nested iteration: a new dof is ruptured if it lies in a ruptured element of the
@@ -21,33 +39,39 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
+import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
 from ..core.linalg import DEFAULT_SOLVER, Factorize, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
-from ..film.flows import ruptured_elements
+from ..film.flows import bernstein_edges, ruptured_elements
 from ..geometry.locate import containing_cells
 
 if TYPE_CHECKING:
     from .models import ModelOptions
 
-__all__ = ["FilmProblem", "obstacle_problem", "solve_swift_stieber", "warm_mask"]
+__all__ = ["FilmProblem", "bernstein_change", "obstacle_problem", "solve_swift_stieber", "warm_mask"]
 
 @dataclass(frozen=True, eq=False)
 class FilmProblem:
     """The complementarity problem of a film state on its condensed system.
 
+    The constrained unknowns ``v`` are the nodal unknowns on P1 and the Bernstein coefficients on
+    P2: ``u[I] = change @ v``.
+
     Attributes
     ----------
     problem : ObstacleProblem
-        On ``sup.system.matrix`` (no reassembly); its cache starts with the
-        superposition's own factorization of the full-film set.
+        ``v >= 0`` on ``change^T A[I, I] change`` (on P1 ``sup.system.matrix`` itself, no
+        reassembly); its cache starts with the superposition's own factorization of the full-film set.
     interior, boundary : ndarray of int
     rhs : ndarray, shape (n_interior, 4)
-        Unit right sides of the condensed system.
+        Unit right sides of the condensed system (of the nodal unknowns).
     lift : ndarray, shape (n_dofs, 4)
         Dirichlet data of the unit sources.
+    change : sparse matrix or None
+        ``S[I, I]`` of :func:`bernstein_change` (None: ``v = u``).
     """
 
     problem: ObstacleProblem
@@ -55,6 +79,53 @@ class FilmProblem:
     boundary: np.ndarray
     rhs: np.ndarray
     lift: np.ndarray
+    change: sp.csr_matrix | None = None
+
+    def unknowns(self, v: np.ndarray) -> np.ndarray:
+        """The interior nodal unknowns from the constrained ones."""
+        return v if self.change is None else self.change @ v
+
+    def right_side(self, weights: np.ndarray) -> np.ndarray:
+        """The right side of the problem in ``v`` at the operating point ``weights``."""
+        b = self.rhs @ weights
+        return b if self.change is None else self.change.T @ b
+
+    def solve_fixed(self, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
+        """Interior nodal unknowns of ``A[I, I] u = rhs`` with ``v = 0`` on ``active`` (a fixed rupture set:
+        the linearization); ``rhs`` of the nodal equations, one or several columns."""
+        if self.change is None:
+            return self.problem.solve_fixed(rhs, active)
+        return self.change @ self.problem.solve_fixed(self.change.T @ rhs, active)
+
+
+def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """The interior nodal unknowns of a P2 basis from their constrained coefficients, ``u = S v``, and back.
+
+    On an edge of :func:`bernstein_edges`, ``u_mid = v_mid / 2 + (v_a + v_b) / 4`` (a quadratic's value at
+    the edge's middle from its Bernstein coefficients), so ``v_mid = 2 u_mid - (u_a + u_b) / 2``; every
+    other dof keeps its nodal value. No coefficient reads a Dirichlet dof.
+
+    Returns
+    -------
+    (S, T) : sparse matrices, shape (n_interior, n_interior)
+        ``u[I] = S v`` and its inverse ``v = T u[I]``.
+    """
+    free = np.zeros(int(basis.N), bool)
+    free[interior] = True
+    middle, a, b = bernstein_edges(basis, free)
+    position = np.full(int(basis.N), -1)
+    position[interior] = np.arange(interior.size)
+    m, a, b = position[middle], position[a], position[b]
+    n, ones = interior.size, np.ones(middle.size)
+    plain = np.setdiff1d(np.arange(n), m)
+    rows = np.concatenate([plain, m, m, m])
+    cols = np.concatenate([plain, m, a, b])
+
+    def matrix(mid: float, ends: float) -> sp.csr_matrix:
+        return sp.csr_matrix((np.concatenate([np.ones(plain.size), mid * ones, ends * ones, ends * ones]),
+                              (rows, cols)), shape=(n, n))
+
+    return matrix(0.5, 0.25), matrix(2.0, -0.5)
 
 
 _PROBLEMS: "weakref.WeakKeyDictionary[Superposition, FilmProblem]" = weakref.WeakKeyDictionary()
@@ -68,11 +139,22 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
         return cached
     system = sup.system
     factorize = get_linear_solver(solver)
-    problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
-    if factorize is system.factorize:
-        problem.add_factorization(np.ones(problem.n, bool), system.solve)
-    fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
-                     lift=system.lift)
+    if sup.operators.element != "P2":
+        problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
+        if factorize is system.factorize:
+            problem.add_factorization(np.ones(problem.n, bool), system.solve)
+        fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
+                         lift=system.lift)
+    else:
+        S, T = bernstein_change(sup.operators.basis, system.interior)
+        problem = ObstacleProblem((S.T @ system.matrix @ S).tocsr(), factorize, tol=tol,
+                                  max_iterations=max_iterations)
+        if factorize is system.factorize:
+            # (S^T A S)^-1 = T A^-1 T^T: the full film's factorization serves the coefficients too
+            problem.add_factorization(np.ones(problem.n, bool),
+                                      lambda r, solve=system.solve, T=T: T @ solve(T.T @ r))
+        fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
+                         lift=system.lift, change=S)
     _PROBLEMS[sup] = fp
     return fp
 
@@ -121,7 +203,7 @@ def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: "Model
     """
     t0 = time.perf_counter()
     fp = obstacle_problem(sup, options.solver, tol=options.tol, max_iterations=options.max_iterations)
-    b = fp.rhs @ weights
+    b = fp.right_side(weights)
     start = warm_mask(fp, sup, weights, options.warm_start)
     cost = {}
     notes = ()
@@ -153,6 +235,7 @@ def solve_swift_stieber(sup: Superposition, weights: np.ndarray, options: "Model
     cavitated[fp.interior] = sol.active
     cost.update({"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations),
                  "cavitation_krylov_iterations": float(fp.problem.krylov_iterations - krylov)})
-    res = build_result(sup, sup.system.full(sol.u, weights), weights, options.sliding, cavitation="reynolds",
+    res = build_result(sup, sup.system.full(fp.unknowns(sol.u), weights), weights,
+                       options.sliding, cavitation="reynolds",
                        iterations=sol.iterations, cavitated=cavitated, extra_cost=cost)
     return replace(res, notes=res.notes + notes) if notes else res

@@ -15,7 +15,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["named_flows", "outflow", "ruptured_elements", "NOT_OUTFLOWS", "EDGE_GROUPS", "edge_groups"]
+__all__ = ["named_flows", "outflow", "ruptured_elements", "sink_dofs", "bernstein_edges", "NOT_OUTFLOWS", "EDGE_GROUPS", "edge_groups"]
 
 #: Named outline edges a flow leaves through, when the mesh has them: the rectangle's ``side`` (both
 #: ``z = +-a``), ``arc_start``, ``arc_end``; an annular sector's (a thrust pad's) ``arc_start``,
@@ -62,3 +62,50 @@ def ruptured_elements(element_dofs: np.ndarray, u: np.ndarray, cavitated: np.nda
     ``cavitated`` are per dof, with optional trailing sample axes.
     """
     return np.all(u[element_dofs] == 0.0, axis=0) & np.any(cavitated[element_dofs], axis=0)
+
+
+def sink_dofs(basis, cavitated: np.ndarray, interior: np.ndarray) -> np.ndarray:
+    """The dofs whose nodal residuals make up the flow the full film hands to the ruptured zone.
+
+    On P1 the ruptured dofs themselves: the residual vanishes at every other unknown. On P2 the
+    Swift-Stieber condition holds on Bernstein coefficients of the edges between free vertices
+    (:func:`bernstein_edges`): the multiplier of a ruptured edge
+    coefficient ``v_mid = 2 u_mid - (u_a + u_b) / 2`` also shows in the nodal residuals of the edge's ends,
+    so those (free) vertices are added; the rows of that change of basis sum to one, so the sum is the
+    multipliers'. ``cavitated`` is per dof, with optional trailing sample axes; ``interior`` the unknowns.
+    """
+    if np.asarray(basis.facet_dofs).shape[0] != 1 or np.asarray(basis.nodal_dofs).shape[0] != 1:
+        return cavitated
+    free = np.zeros(int(basis.N), bool)
+    free[interior] = True
+    middle, a, b = bernstein_edges(basis, free)
+    cut = np.asarray(cavitated, bool)[middle]
+    sink = np.array(cavitated, bool, copy=True)
+    np.logical_or.at(sink, a, cut)
+    np.logical_or.at(sink, b, cut)
+    return sink
+
+
+def bernstein_edges(basis, free: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The edges of a P2 basis whose coefficient is a Bernstein one: both ends and the middle free.
+
+    The Swift-Stieber condition on P2 holds on these coefficients
+    (:mod:`bearingfe.cavitation.swift_stieber`), and their multipliers enter the flow into the
+    ruptured zone (:func:`sink_dofs`).
+
+    Parameters
+    ----------
+    basis : skfem.CellBasis
+        A P2 basis (one dof per vertex and per edge).
+    free : ndarray of bool, shape (n_dofs,)
+        The dofs that are unknowns (not Dirichlet).
+
+    Returns
+    -------
+    (middle, a, b) : ndarrays of int
+        The edges' midside dofs and their end dofs.
+    """
+    nodal, edge = np.asarray(basis.nodal_dofs[0]), np.asarray(basis.facet_dofs[0])
+    a, b = (nodal[k] for k in basis.mesh.facets)
+    keep = free[edge] & free[a] & free[b]
+    return edge[keep], a[keep], b[keep]
