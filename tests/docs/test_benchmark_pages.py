@@ -65,3 +65,14 @@ def test_target_verdicts_follow_the_measured_numbers():
         if goal == "within 0.1 %":
             error = float(re.search(r"error ([\d.e+-]+)", measured)[1])
             assert verdict == ("met" if error < 1e-3 else "NOT met"), what
+
+
+def test_the_scaling_page_is_the_kinds_part():
+    # docs/scaling.md is written by benchmarks/run_all.py from the stored part `kinds` (OWN_PAGES): the same text
+    # under its own heading, so the page and the benchmark page's section cannot drift apart
+    from benchmarks.run_all import OWN_PAGES, own_page
+
+    page_name, heading = OWN_PAGES["kinds"]
+    stored = (DOCS / "benchmarks_parts" / "kinds.md").read_text()
+    assert (DOCS / page_name).read_text() == own_page("kinds", heading, stored)
+    assert "time exponent" in stored and "where it stops" in stored and "scaling_kinds_time.png" in stored
