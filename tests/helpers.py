@@ -168,3 +168,17 @@ def _value(value) -> str:
     if isinstance(value, Mapping):
         return "{" + ", ".join(f"{_key(k)} = {_value(v)}" for k, v in value.items()) + "}"
     raise TypeError(f"no TOML form for {value!r} ({type(value).__name__})")
+
+
+def markdown_table(text: str, header_start: str) -> tuple[list[str], list[list[str]]]:
+    """The header cells and the rows of cells of the first Markdown table whose header line starts with
+    ``header_start`` (a generated page's table, read back by the tests that check its sentences)."""
+    lines = text.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith(header_start))
+    head = [c.strip() for c in lines[start].strip("|").split("|")]
+    rows = []
+    for line in lines[start + 2:]:
+        if not line.startswith("|"):
+            break
+        rows.append([c.strip() for c in line.strip("|").split("|")])
+    return head, rows

@@ -10,20 +10,13 @@ wrongly fails here (timings themselves are never asserted).
 import re
 
 import pytest
-from tests.helpers import ROOT
+from tests.helpers import ROOT, markdown_table
 
 DOCS = ROOT / "docs"
 
 
 def _rows(text: str, header_start: str) -> list[list[str]]:
-    lines = text.splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith(header_start))
-    rows = []
-    for line in lines[start + 2:]:
-        if not line.startswith("|"):
-            break
-        rows.append([c.strip() for c in line.strip("|").split("|")])
-    return rows
+    return markdown_table(text, header_start)[1]
 
 
 def test_pump_page_names_its_cheapest_run_within_a_tenth_of_a_percent():

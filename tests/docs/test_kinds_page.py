@@ -8,26 +8,14 @@ memory are never asserted, only that the sentences follow the tables).
 
 import re
 
-from tests.helpers import ROOT
+from tests.helpers import ROOT, markdown_table
 
 PAGE = ROOT / "docs" / "benchmarks_parts" / "kinds.md"
 
 
-def _table(text: str, header_start: str) -> tuple[list[str], list[list[str]]]:
-    lines = text.splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith(header_start))
-    head = [c.strip() for c in lines[start].strip("|").split("|")]
-    rows = []
-    for line in lines[start + 2:]:
-        if not line.startswith("|"):
-            break
-        rows.append([c.strip() for c in line.strip("|").split("|")])
-    return head, rows
-
-
 def test_the_4_gib_verdict_follows_the_table():
     text = PAGE.read_text()
-    _, rows = _table(text, "| kind | dofs |")
+    _, rows = markdown_table(text, "| kind | dofs |")
     largest = [r for r in rows if r[0] == "linear P1" and r[1].isdigit() and int(r[1]) >= 9e5 and r[3] != "-"]
     assert largest, "the linear P1 solve must have run at 1e6 unknowns"
     match = re.search(r"Linear P1 at (\d+) unknowns: peak (\d+) MiB of the process, (within|over) the budget of "
@@ -40,7 +28,7 @@ def test_the_4_gib_verdict_follows_the_table():
 
 def test_the_largest_peaks_follow_the_breakdown():
     text = PAGE.read_text()
-    head, rows = _table(text, "| stage |")
+    head, rows = markdown_table(text, "| stage |")
     assert len(head) >= 3 and len(rows) >= 8  # P1 and P2 at two sizes; mesh .. result
     for j, column in enumerate(head[1:], start=1):
         name = column.split(":")[0]  # e.g. "P1 101025"

@@ -8,20 +8,13 @@ fills in the same table (timings themselves are never asserted).
 
 import re
 
-from tests.helpers import ROOT
+from tests.helpers import ROOT, markdown_table
 
 PART = ROOT / "docs" / "benchmarks_parts" / "orderings.md"
 
 
 def _table():
-    lines = PART.read_text().splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith("| mesh | dofs | order"))
-    rows = []
-    for line in lines[start + 2:]:
-        if not line.startswith("|"):
-            break
-        rows.append([c.strip() for c in line.strip("|").split("|")])
-    return rows
+    return markdown_table(PART.read_text(), "| mesh | dofs | order")[1]
 
 
 def test_fill_ratios_and_crossovers_follow_the_table():
