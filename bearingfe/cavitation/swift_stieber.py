@@ -139,22 +139,15 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
         return cached
     system = sup.system
     factorize = get_linear_solver(solver)
-    if sup.operators.element != "P2":
-        problem = ObstacleProblem(system.matrix, factorize, tol=tol, max_iterations=max_iterations)
-        if factorize is system.factorize:
-            problem.add_factorization(np.ones(problem.n, bool), system.solve)
-        fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
-                         lift=system.lift)
-    else:
-        S, T = bernstein_change(sup.operators.basis, system.interior)
-        problem = ObstacleProblem((S.T @ system.matrix @ S).tocsr(), factorize, tol=tol,
-                                  max_iterations=max_iterations)
-        if factorize is system.factorize:
-            # (S^T A S)^-1 = T A^-1 T^T: the full film's factorization serves the coefficients too
-            problem.add_factorization(np.ones(problem.n, bool),
-                                      lambda r, solve=system.solve, T=T: T @ solve(T.T @ r))
-        fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
-                         lift=system.lift, change=S)
+    S, T = bernstein_change(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
+    A = system.matrix if S is None else (S.T @ system.matrix @ S).tocsr()
+    problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations)
+    if factorize is system.factorize:
+        # the full film's factorization starts the cache; on P2 (S^T A S)^-1 = T A^-1 T^T
+        solve = system.solve if S is None else (lambda r, solve=system.solve: T @ solve(T.T @ r))
+        problem.add_factorization(np.ones(problem.n, bool), solve)
+    fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
+                     lift=system.lift, change=S)
     _PROBLEMS[sup] = fp
     return fp
 
