@@ -49,7 +49,7 @@ import scipy.sparse.linalg as spla
 from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from .flows import named_flows, outflow, ruptured_elements, sink_dofs
+from .flows import named_flows, outflow, ruptured_elements
 from .forms import FilmAt, along, couette_source, film_at, film_flux, shear, unknown_scale
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
 from ..core.ordering import NESTED_DISSECTION_FROM, nested_dissection
@@ -847,7 +847,7 @@ class CompiledOperator:
         if cavitated is not None:
             m = self.maps
             r = m.integrate_gradient(qx, 0) + m.integrate_gradient(qz, 1) - m.integrate_value(qh)
-            cavitation = np.sum(np.where(sink_dofs(self._basis, cavitated, self.interior), r, 0.0), axis=0)
+            cavitation = np.sum(np.where(cavitated, r, 0.0), axis=0)
             source = self._ruptured_source(u, cavitated, wedge, along(direction, dh), hdot)
             corrected = named_flows(self.groups, residual + self.group_maps[2] @ (source * dxc), squeeze)
             corrected["cavitation"] = (cavitation + (corrected["inlet"] - flows["inlet"])

@@ -72,7 +72,8 @@ def sink_dofs(basis, cavitated: np.ndarray, interior: np.ndarray) -> np.ndarray:
     (:func:`bernstein_edges`): the multiplier of a ruptured edge
     coefficient ``v_mid = 2 u_mid - (u_a + u_b) / 2`` also shows in the nodal residuals of the edge's ends,
     so those (free) vertices are added; the rows of that change of basis sum to one, so the sum is the
-    multipliers'. ``cavitated`` is per dof, with optional trailing sample axes; ``interior`` the unknowns.
+    multipliers'. For the Swift-Stieber model only (:func:`bearingfe.film.result.build_result`): another
+    model's residuals at those vertices are not multipliers. ``cavitated`` is per dof; ``interior`` the unknowns.
     """
     if np.asarray(basis.facet_dofs).shape[0] != 1 or np.asarray(basis.nodal_dofs).shape[0] != 1:
         return cavitated

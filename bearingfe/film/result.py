@@ -23,6 +23,7 @@ import skfem
 from ..core.checks import ResolutionWarning
 from .compiled import FilmFlows
 from .estimate import ERROR_TOLERANCE, LoadError, load_error
+from .flows import sink_dofs
 from .forms import unknown_scale
 from .thickness import Film
 from ..geometry.locate import probes
@@ -77,8 +78,12 @@ def build_result(sup: "Superposition", u: np.ndarray, weights: np.ndarray, slidi
     ops = sup.operators
     wedge, inlet_pressure = float(weights[0]), float(weights[3])
     sliding = wedge if sliding is None else float(sliding)
+    # the Swift-Stieber multipliers' dofs (on P2 also the ends of ruptured Bernstein edges): their residuals
+    # are the flow into the ruptured zone; the other models' flows take the ruptured dofs as they are
+    sink = None if cavitated is None else (sink_dofs(ops.basis, cavitated, ops.interior)
+                                           if cavitation == "reynolds" else cavitated)
     out = film_outputs([sup], u[:, None], np.asarray(weights, float)[:, None], np.array([sliding]),
-                       None if cavitated is None else cavitated[:, None])
+                       None if sink is None else sink[:, None])
     flows = {k: float(v[0]) for k, v in out.flows.items()}
     balance, friction = float(out.mass_balance[0]), float(out.friction[0])
     if cavitated is None:
