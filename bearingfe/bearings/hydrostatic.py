@@ -109,7 +109,8 @@ from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
 __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
-           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
+           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_pressures", "pocket_film", "pocket_flows",
+           "solve_pocket_state",
            "balance_pockets",
            "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics"]
 
@@ -373,6 +374,44 @@ def pocket_names(mesh: SupportMesh) -> tuple[str, ...]:
     return ("inlet",) if mesh.has_inlet else ()
 
 
+def pocket_pressures(mesh: SupportMesh, inlet_pressure) -> float | tuple[float, ...]:
+    """The front door's ``inlet_pressure`` read against the mesh's pockets [-].
+
+    A number is returned as a float (every pocket at it); a sequence (one value per pocket, in the order
+    of :func:`pocket_names`) or a mapping ``name -> value`` (every pocket named once) as a tuple in
+    :func:`pocket_names` order.
+
+    Raises
+    ------
+    ValueError
+        The mesh has no pockets, a sequence of the wrong length, a mapping with unknown or missing names,
+        or a value that is not a finite number.
+    """
+    if isinstance(inlet_pressure, (int, float, np.number)) and not isinstance(inlet_pressure, bool):
+        return float(inlet_pressure)
+    names = pocket_names(mesh)
+    if not names:
+        raise ValueError("inlet_pressure: one value per pocket was given but the mesh has no pockets "
+                         "('inlet' boundaries)")
+    if isinstance(inlet_pressure, Mapping):
+        given = set(inlet_pressure)
+        if given != set(names):
+            unknown, missing = sorted(map(str, given - set(names))), sorted(set(names) - given)
+            raise ValueError(f"inlet_pressure: a mapping must name every pocket once ({', '.join(names)}); "
+                             f"unknown {unknown}, missing {missing}")
+        values = [inlet_pressure[n] for n in names]
+    else:
+        try:
+            values = list(inlet_pressure)
+        except TypeError:
+            raise ValueError(f"inlet_pressure must be a number, one value per pocket ({', '.join(names)}) or a "
+                             f"mapping name -> value, got {type(inlet_pressure).__name__}") from None
+        if len(values) != len(names):
+            raise ValueError(f"inlet_pressure must give one value per pocket ({len(names)}: {', '.join(names)}), "
+                             f"got {len(values)}")
+    return tuple(finite(f"inlet_pressure[{n!r}]", v) for n, v in zip(names, values))
+
+
 def _pocket_mesh(mesh: SupportMesh, name: str, names: Sequence[str]) -> SupportMesh:
     """The mesh with only pocket ``name`` as its ``inlet`` (the other pockets join the outline at 0):
     the same dofs, so its unit inlet field is pocket ``name``'s and its ``inlet`` flow is that pocket's."""
@@ -450,6 +489,28 @@ def pocket_film(mesh: SupportMesh, film: Film, discretization: Discretization = 
     if any(s.formulation != whole.formulation for s in pockets):  # the film decides it: cannot happen
         raise RuntimeError("the pockets' film states chose different formulations")
     return PocketFilm(whole=whole, pockets=pockets)
+
+
+def solve_pocket_state(pf: PocketFilm, names: Sequence[str], pressures: np.ndarray, operating: OperatingPoint,
+                       cavitation: str, options: ModelOptions) -> ReynoldsResult:
+    """The film of ``pf`` with each pocket at its own pressure [-], under a cavitation model.
+
+    The inlet column of :meth:`PocketFilm.state` holds the pockets at their pressures (weight 1); the
+    result's loads count each pocket at its own pressure, its ``flows`` hold each pocket's film outflow
+    under its name beside the total ``"inlet"``, and its ``inlet_pressure`` is the largest pocket pressure.
+    """
+    p = np.asarray(pressures, float)
+    weights = np.array([operating.wedge, *operating.squeeze, 1.0])
+    res = solve_model(pf.state(p), weights, cavitation, options)
+    u = _unknown(pf.whole, res)
+    cav = None if res.cavitated is None else res.cavitated[:, None]
+    q = pocket_flows(pf, u[:, None], weights[:, None], cav)[:, 0]
+    if res.cavitated is not None:  # the model's loads count the pockets at the column's unit weight
+        force, integral = pf.whole.loads(u, 0.0)
+        moments = pf.pocket_moments(p)
+        res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
+    flows = MappingProxyType({**res.flows, **{n: float(qk) for n, qk in zip(names, q)}})
+    return dataclasses.replace(res, flows=flows, inlet_pressure=float(np.max(p)))
 
 
 def pocket_flows(pf: PocketFilm, u: np.ndarray, weights: np.ndarray,
