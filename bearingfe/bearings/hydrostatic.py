@@ -43,15 +43,18 @@ linear in the pocket pressures: the same Newton iteration runs with the film's
 linear conductance as its first Jacobian and Broyden updates, each evaluation
 a cavitation solve on the film state whose pocket column carries the pockets
 at their current pressures (one factorization per pocket for the whole
-iteration). The finite-volume scheme (``"jfo"``, recessed or periodic surfaces,
-a cavity pressure) and the elastic support hold all pockets at one pressure:
-there a surface with one pocket is balanced by the same iteration on
-:func:`bearingfe.solve_reynolds` (each evaluation one solve of that path), and
-a surface with several pockets is refused, naming why. Under JFO the film is
-linear in the pocket pressure only within a fixed cavitated set, so this is a
-Newton iteration on the pocket pressure (a secant started from the slope of two
-solves, Broyden-updated) around complete JFO solves, each finding its own
-cavitated set: no outer iteration on a frozen set. The restrictor's flow then
+iteration). On the finite-volume scheme (``"jfo"``, recessed or periodic
+surfaces, a cavity pressure) and the elastic support the pockets are balanced
+by the same iteration on :func:`bearingfe.solve_reynolds`, each evaluation one
+solve of that path with every pocket at its own pressure (``inlet_pressure``
+one value per pocket; the result books each pocket's outflow under its name).
+Under JFO the film is linear in the pocket pressures only within a fixed
+cavitated set, so this is a Newton iteration on the ``n`` pocket pressures (the
+starting Jacobian from ``n + 1`` solves, Broyden-updated) around complete JFO
+solves, each finding its own cavitated set: no outer iteration on a frozen set.
+On the elastic support each pocket loads the surface with its own pressure
+(:func:`bearingfe.elastic.coupled.pocket_deflections`: the half-space's opening
+under each pocket). The restrictor's flow then
 equals the film's outflow to the iteration's tolerance, and the scheme carries
 that flow out through the edges to round-off.
 
@@ -741,11 +744,11 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     cavitation : str
         A model of :data:`bearingfe.cavitation.MODELS`. ``"none"`` solves the pockets exactly by
         superposition; ``"reynolds"`` and ``"gumbel"`` iterate them with the film (Newton-Broyden);
-        a model or surface that needs the finite-volume scheme takes a surface with one pocket (see the
-        module docstring).
+        a model or surface that needs the finite-volume scheme is balanced on
+        :func:`bearingfe.solve_reynolds` (see the module docstring).
     elastic : Compliance, optional
-        An elastic support (:func:`bearingfe.half_space`): the one pocket of the surface is balanced on
-        the coupled film of :func:`bearingfe.solve_reynolds`.
+        An elastic support (:func:`bearingfe.half_space`; several pockets need the half-space's opening per
+        pocket): the pockets are balanced on the coupled film of :func:`bearingfe.solve_reynolds`.
 
     Returns
     -------
@@ -754,8 +757,7 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     Raises
     ------
     ValueError
-        A bad argument (no pockets, the wrong number of supplies, a non-zero ``inlet_pressure``,
-        several supplies where the solver holds one pocket pressure).
+        A bad argument (no pockets, the wrong number of supplies, a non-zero ``inlet_pressure``).
     SupplyError
         No admissible pocket pressures.
     """
@@ -861,32 +863,44 @@ def _listed(p: np.ndarray) -> str:
 
 
 def _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation, elastic):
-    """One pocket balanced on :func:`bearingfe.solve_reynolds` (the finite-volume scheme, the elastic support)."""
-    if len(laws) > 1:
-        why = ("the elastic support" if elastic is not None else
-               f"the finite-volume scheme (cavitation={cavitation!r}, a recessed or periodic surface)")
-        raise ValueError(f"{why} holds every pocket at one pressure: restrictors are balanced there for a "
-                         f"surface with one pocket, this one has {len(laws)}")
+    """The pockets balanced on :func:`bearingfe.solve_reynolds` (the finite-volume scheme, the elastic support),
+    each evaluation one solve with every pocket at its own pressure."""
+    names = pocket_names(mesh)
+    n = len(laws)
     last: dict = {}
 
-    def solve_at(p: float) -> ReynoldsResult:
-        if last.get("p") != p:
-            last.update(p=p, result=solve_reynolds(mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
-                                                   inlet_pressure=p, sliding=operating.sliding,
-                                                   cavitation=cavitation, discretization=discretization,
-                                                   elastic=elastic))
+    def solve_at(p: np.ndarray) -> ReynoldsResult:
+        key = tuple(float(v) for v in p)
+        if last.get("key") != key:
+            warm = last.get("result")
+            warm = warm if warm is not None and warm.cavitated is not None and elastic is None else None
+            last.update(key=key, result=solve_reynolds(
+                mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
+                inlet_pressure=key[0] if n == 1 else key, sliding=operating.sliding, cavitation=cavitation,
+                discretization=discretization, elastic=elastic, warm_start=warm))
         return last["result"]
 
-    def film_flow(p):
-        return np.array([solve_at(float(max(p[0], 0.0))).flows["inlet"]])
+    def flows_of(res: ReynoldsResult) -> np.ndarray:
+        return np.array([res.flows["inlet"]]) if n == 1 else np.array([res.flows[name] for name in names])
 
-    # the Jacobian's start: the slope of two solves (Broyden corrects it)
-    law = laws[0]
-    ref = law.supply if law.kind != "flow" else 1.0
-    slope = (film_flow(np.array([ref]))[0] - film_flow(np.array([0.0]))[0]) / ref
-    p = balance_pockets(laws, film_flow, np.array([[max(slope, 1e-300)]]))
-    res = solve_at(float(p[0]))
-    return res, p, np.array([float(res.flows["inlet"])])
+    def film_flow(p):
+        return flows_of(solve_at(np.maximum(p, 0.0)))
+
+    # the Jacobian's start: n + 1 solves (the free pockets' columns; Broyden corrects them)
+    base = np.array([law.supply if law.kind == "pressure" else 0.0 for law in laws])
+    q_base = film_flow(base)
+    G = np.eye(n)
+    for k, law in enumerate(laws):
+        if law.kind == "pressure":
+            continue
+        ref = law.supply if law.kind != "flow" and law.supply > 0 else 1.0
+        p = base.copy()
+        p[k] = ref
+        G[:, k] = (film_flow(p) - q_base) / ref
+        G[k, k] = max(G[k, k], 1e-300)
+    p = balance_pockets(laws, film_flow, G)
+    res = solve_at(p)
+    return res, p, flows_of(res)
 
 
 # -- the pockets' compressibility ------------------------------------------------------------------

@@ -379,9 +379,101 @@ def test_an_elastic_pad_is_balanced_on_the_coupled_film(pads):
     assert pocket.pressure < 0.99 * rigid.pockets[0].pressure
 
 
-def test_several_pockets_on_the_finite_volume_scheme_are_refused(twin):
-    with pytest.raises(ValueError, match="holds every pocket at one pressure"):
-        solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
+# -- several pockets on the finite-volume scheme and on the elastic support ---------------------------
+
+@pytest.fixture(scope="module")
+def twin_p1():
+    # a turning pad with two pockets side by side along phi (straight-sided: the finite-volume scheme's mesh)
+    surface = Surface(arc=(-0.6, 0.6), half_width=0.3, inlets=(Circle((-0.25, 0.0), 0.07), Circle((0.25, 0.0), 0.07)))
+    return mesh_surface(surface, 0.05, inlet_size=0.02, order=1)
+
+
+def test_each_pocket_at_its_own_pressure_through_the_front_door(twin_p1):
+    # one value per pocket (a sequence in pocket order or a mapping): the same film on the Galerkin and the
+    # finite-volume paths; equal values are the scalar's film to round-off; each pocket's outflow is booked
+    # under its name and they add up to the total
+    film = CosineFilm(0.3, 0.3)
+    for cavitation in ("none", "jfo"):
+        seq = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(2.0, 5.0), cavitation=cavitation,
+                             discretization=P1)
+        named = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure={"inlet_1": 5.0, "inlet_0": 2.0},
+                               cavitation=cavitation, discretization=P1)
+        assert seq.integral == named.integral and seq.inlet_pressure == 5.0
+        assert seq.flows["inlet_0"] + seq.flows["inlet_1"] == pytest.approx(seq.flows["inlet"], rel=1e-12)
+        assert seq.flows["inlet_0"] < seq.flows["inlet_1"]
+        same = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(3.0, 3.0), cavitation=cavitation,
+                              discretization=P1)
+        ref = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=3.0, cavitation=cavitation, discretization=P1)
+        assert same.integral == pytest.approx(ref.integral, rel=1e-12)
+        np.testing.assert_allclose(same.force, ref.force, rtol=1e-12)
+        assert same.flows["inlet"] == pytest.approx(ref.flows["inlet"], rel=1e-12)
+    fe = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(2.0, 5.0), discretization=P1)
+    # the two schemes differ by their discretizations only (no rupture): 1e-7 on this mesh
+    assert seq.integral == pytest.approx(fe.integral, rel=1e-6)
+
+
+@pytest.mark.parametrize("value, fragment", [((1.0,), "one value per pocket"), ((1.0, 2.0, 3.0), "one value per pocket"),
+                                             ({"inlet_0": 1.0}, "missing"), ({"inlet_0": 1.0, "inlet_1": 1.0, "x": 1.0}, "unknown"),
+                                             ((1.0, math.nan), "inlet_pressure")])
+def test_a_bad_pressure_per_pocket_is_named(twin_p1, value, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        solve_reynolds(twin_p1, UniformFilm(1.0), wedge=0.0, inlet_pressure=value, discretization=P1)
+
+
+def test_two_pockets_under_jfo_without_rupture_are_the_galerkin_balance(twin_p1):
+    # two orifices of different bores over a turning, tilted pad (8 MPa supply): no node ruptures, so the JFO
+    # balance (finite-volume fluxes, the n-pocket Newton-Broyden iteration on solve_reynolds) and the Galerkin one
+    # (superposition of the pockets' unit fields) differ by their discretizations only: measured 1.1e-7 and
+    # 2.7e-8 in the pocket pressures and 9e-7 in the load on this mesh (the one-pocket test's order); the bounds
+    # leave a factor 4
+    op = OperatingPoint(wedge=1.0)
+    orfs = [Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=8e6) for d in (0.15e-3, 0.25e-3)]
+    jfo = solve_supplied(twin_p1, CosineFilm(0.15, 0.3), orfs, SCALE, operating=op, cavitation="jfo", discretization=P1)
+    fe = solve_supplied(twin_p1, CosineFilm(0.15, 0.3), orfs, SCALE, operating=op, discretization=P1)
+    assert jfo.film.cavitation == "jfo" and jfo.film.cavitated_fraction == 0.0
+    np.testing.assert_allclose(jfo.pressures, fe.pressures, rtol=5e-7)
+    assert jfo.load == pytest.approx(fe.load, rel=4e-6)
+    assert jfo.pressures[0] < jfo.pressures[1] < 8e6  # the smaller bore feeds less: its pocket sits lower
+    for pocket in jfo.pockets:
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+
+
+def test_two_pockets_under_jfo_with_rupture_each_balance_their_flow(twin_p1):
+    # a strongly tilted pad at a 2 MPa supply: JFO ruptures part of the film. Each pocket's orifice flow equals its
+    # own film outflow to the iteration's tolerance (1e-11 of the largest restrictor flow), and the scheme carries
+    # all of it out through the pad's edges to round-off
+    op = OperatingPoint(wedge=1.0)
+    orfs = [Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=2e6) for d in (0.1e-3, 0.15e-3)]
+    res = solve_supplied(twin_p1, CosineFilm(0.8, 0.3), orfs, SCALE, operating=op, cavitation="jfo", discretization=P1)
+    assert res.film.cavitated_fraction > 0.2
+    for pocket in res.pockets:
+        assert 0 < pocket.pressure < 2e6
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+    edges = sum(v for k, v in res.film.flows.items() if k in ("side", "arc_start", "arc_end"))
+    assert SCALE.to_flow(edges) == pytest.approx(sum(p.restrictor_flow for p in res.pockets), rel=1e-11)
+
+
+def test_two_pockets_on_the_elastic_support_tend_to_the_rigid_balance(twin_p1):
+    # each pocket's opening is the half-space's over its own contour (the two add up to the compliance's
+    # opening under both); as E* grows the balance tends to the rigid one as 1/E* (the opening is C p, a
+    # perturbation of the film of order 1/E*: measured 2.3e-2 and 2.3e-3 of the pocket pressures at 2e11 and 2e12 Pa)
+    from bearingfe import half_space
+    from bearingfe.elastic.coupled import pocket_deflections
+    caps = [capillary_for(0.4), capillary_for(0.6)]
+    film = CosineFilm(0.3, 0.3)
+    op = OperatingPoint(wedge=1.0)
+    rigid = solve_supplied(twin_p1, film, caps, SCALE, operating=op, discretization=P1)
+    gaps = []
+    for modulus in (2e11, 2e12):
+        compliance = half_space(twin_p1, SCALE, modulus, "P1")
+        columns = pocket_deflections(compliance, pocket_names(twin_p1))
+        np.testing.assert_allclose(columns.sum(axis=1), compliance.pocket, rtol=1e-12, atol=1e-15)
+        soft = solve_supplied(twin_p1, film, caps, SCALE, operating=op, discretization=P1, elastic=compliance)
+        for pocket in soft.pockets:
+            assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+        gaps.append(np.max(np.abs(soft.pressures / rigid.pressures - 1)))
+    assert 1e-3 < gaps[1] < 1e-2  # measured 2.3e-3 at E* = 2e12 Pa
+    assert gaps[0] / gaps[1] == pytest.approx(10.0, rel=0.1)  # first order in 1/E*
 
 
 # -- the pump's shoe fed from its chamber ([shoe.supply]) -----------------------------------------------
