@@ -115,7 +115,8 @@ __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary"
            "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_pressures", "pocket_film", "pocket_flows",
            "solve_pocket_state",
            "balance_pockets",
-           "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics"]
+           "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics", "DisplacedJournal",
+           "JournalDynamics", "journal_dynamics"]
 
 
 class SupplyError(RuntimeError):
@@ -1212,3 +1213,203 @@ def supply_dynamics(mesh: SupportMesh, h: float, supplies: Sequence[Supply] | Su
     return SupportDynamics(result=dataclasses.replace(balanced, pockets=pockets), frequencies=omega,
                            stiffness=stiffness, damping=damping, squeeze_damping=float(B), film_stiffness=-dW_dh,
                            pressure_response=response)
+
+
+# -- dynamics of a journal displaced in the plane: its pockets responding ------------------------------------
+
+@dataclass(frozen=True)
+class DisplacedJournal:
+    """The film of a journal whose centre is displaced by ``(x, y)`` [c]: ``h = 1 - x cos phi - y sin phi``.
+
+    The same film as ``CosineFilm(hypot(x, y), atan2(-y, -x))``; its squeeze shapes are those of the
+    centre's velocity in the plane, ``dh/dx = -cos phi``, ``dh/dy = -sin phi`` (defined at the centred
+    journal too, where ``CosineFilm``'s ``phi0`` is not).
+    """
+
+    x: float
+    y: float
+    smooth: ClassVar[bool] = True
+
+    def thickness(self, phi, z):
+        phi = np.asarray(phi, float)
+        return 1.0 - self.x * np.cos(phi) - self.y * np.sin(phi) + 0.0 * np.asarray(z, float)
+
+    def gradient(self, phi, z):
+        phi = np.asarray(phi, float)
+        dphi = self.x * np.sin(phi) - self.y * np.cos(phi) + 0.0 * np.asarray(z, float)
+        return dphi, np.zeros_like(dphi)
+
+    def laplacian(self, phi, z):
+        phi = np.asarray(phi, float)
+        return self.x * np.cos(phi) + self.y * np.sin(phi) + 0.0 * np.asarray(z, float)
+
+    def rate_shapes(self, phi, z):
+        phi = np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+        return -np.cos(phi), -np.sin(phi)
+
+    def minimum(self, phi_range):
+        return None
+
+
+@dataclass(frozen=True)
+class JournalDynamics:
+    """Stiffness and damping of a journal on a fed support, its pockets responding, linearised [SI].
+
+    The film's force on the journal is ``-force`` (``force = int p (cos phi, sin phi) dA``, from the journal's
+    centre into the film); the coefficients are ``K_ij + i omega C_ij = d force_i / d x_j`` for a harmonic motion
+    ``x = x_hat exp(i omega t)`` of the journal's centre, i.e. the film's force on the journal is
+    ``-K x - C dx/dt`` for a slow motion.
+
+    Attributes
+    ----------
+    result : SuppliedResult
+        The balanced support at the displacement.
+    frequencies : ndarray, shape (F,)
+        Angular frequencies [rad/s] (0: the limit of slow motion).
+    stiffness : ndarray, shape (F, 2, 2)
+        ``Re Z`` [N/m], rows the force's ``(x, y)``, columns the displacement's.
+    damping : ndarray, shape (F, 2, 2)
+        ``Im Z / omega`` [N s/m] (at ``omega = 0`` the limit ``d Im Z / d omega``).
+    squeeze_damping : ndarray, shape (2, 2)
+        The film's own damping with every pocket held at its pressure (a rigid supply) [N s/m].
+    film_stiffness : ndarray, shape (2, 2)
+        The stiffness with every pocket held at its pressure [N/m].
+    pressure_response : ndarray, shape (F, n, 2), complex
+        ``dp_r / dx_j`` of each pocket [Pa/m].
+    """
+
+    result: SuppliedResult
+    frequencies: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    squeeze_damping: np.ndarray
+    film_stiffness: np.ndarray
+    pressure_response: np.ndarray
+
+
+def journal_dynamics(mesh: SupportMesh, displacement: Sequence[float], supplies: Sequence[Supply] | Supply,
+                     scale: Scale, *, frequencies: Sequence[float] = (0.0,),
+                     volumes: Sequence[float] | float | None = None, bulk_modulus: float = 1.5e9,
+                     step: float = 1e-3, operating: OperatingPoint = OperatingPoint(wedge=0.0),
+                     discretization: Discretization = Discretization()) -> JournalDynamics:
+    r"""The 2x2 stiffness and damping of a journal on a fed support, each pocket responding through its restrictor.
+
+    The linear film of a journal displaced by ``x = (x, y)`` [c] (:class:`DisplacedJournal`) moving at ``v``, with
+    each pocket's rate equation ``V/K dp_r/dt = Q_restrictor(p_r) - Q_film(x, p, v) - dV_r/dt`` (``dV_r/dt =
+    int_pocket dh/dt dA``, the pocket's own gap), linearised at the balance (:func:`solve_supplied`) for a
+    harmonic motion ``x = x_hat exp(i omega t)`` as :func:`supply_dynamics` does for the pad::
+
+        (i omega V/K + k_r + G) dp = -(dQ/dx + i omega (q_v + m)) x_hat,
+        Z = d force/d x_hat = dF/dx + a dp/x_hat + i omega B,
+
+    one superposition column per pocket and per direction of the squeeze (``q_v`` the pockets' outflow and ``B``
+    the film's force per unit velocity of the centre, ``a`` the force per unit pocket pressure, ``m`` the pockets'
+    gap rate per unit velocity), ``dQ/dx`` and ``dF/dx`` at fixed pockets by central differences of films at
+    ``x +- step`` in each direction. Prescribed pockets keep ``dp = 0`` (the damping is then ``B``, the film's
+    own); ``V -> inf`` holds every fed pocket at its balanced pressure at any ``omega > 0``; at ``omega -> 0`` the
+    stiffness is the slope of the balanced force against the displacement at fixed supply.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        The support surface with its pockets (a pad of a multi-pad journal: rotate and add the pads).
+    displacement : (float, float)
+        The journal centre's displacement ``(x, y)`` [c] in the surface's frame (``phi = 0`` along x).
+    supplies, scale, discretization
+        As :func:`solve_supplied` (no cavitation, rigid surfaces: the film is linear).
+    frequencies : sequence of float
+        Angular frequencies of the motion [rad/s], >= 0.
+    volumes : float or sequence of float, optional
+        Each pocket's oil volume [m^3], > 0; default none (incompressible pockets).
+    bulk_modulus : float
+        The oil's bulk modulus ``K`` [Pa], > 0.
+    step : float
+        The difference step [c], in (0, 0.1].
+    operating : OperatingPoint
+        Its wedge (a turning journal: a hybrid support); squeeze and inlet pressure must be 0.
+
+    Returns
+    -------
+    JournalDynamics
+    """
+    try:
+        x0, y0 = (float(v) for v in displacement)
+    except (TypeError, ValueError):
+        raise ValueError(f"displacement must be a pair (x, y) [c], got {displacement!r}") from None
+    if not (math.isfinite(x0) and math.isfinite(y0)) or math.hypot(x0, y0) + step >= 1.0:
+        raise ValueError(f"displacement must be finite with |(x, y)| + step < 1 [c], got {displacement!r}")
+    step = in_range("step", step, Range(0.0, 0.1, lo_open=True))
+    if any(operating.squeeze) or operating.inlet_pressure != 0.0:
+        raise ValueError("operating: the squeeze and the inlet pressure must be 0 (the motion and the supplies "
+                         "set them)")
+    omega = np.asarray(frequencies, float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
+        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
+    names = pocket_names(mesh)
+    laws = _laws(names, supplies, scale)
+    n = len(laws)
+    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
+    if volumes is None:
+        vol = np.zeros(n)
+    else:
+        vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
+        for k, v in enumerate(vol):
+            positive(f"volumes[{k}]", v, "m^3")
+    wedge = operating.wedge
+    balanced = solve_supplied(mesh, DisplacedJournal(x0, y0), supplies, scale, operating=operating,
+                              discretization=discretization)
+    p0 = np.array([scale.from_pressure(p) for p in balanced.pressures])
+
+    def linear(x: float, y: float):
+        """Per pocket: outflow of the motion (n,), per unit velocity (n, 2), per unit pocket pressure (n, n); the
+        force of the motion (2,), per unit velocity (2, 2), per unit pocket pressure (2, n); the pockets'
+        moments (n, 3) [non-dimensional]."""
+        pf = pocket_film(mesh, DisplacedJournal(x, y), discretization)
+        whole = pf.whole
+        U = np.column_stack([wedge * whole.fields[:, 0], whole.fields[:, 1], whole.fields[:, 2]]
+                            + [s.fields[:, 3] for s in pf.pockets])
+        W = np.zeros((4, n + 3))
+        W[0, 0], W[1, 1], W[2, 2] = wedge, 1.0, 1.0
+        W[3, 3:] = 1.0
+        flows = pocket_flows(pf, U, W)
+        forces = np.column_stack([s.forces[:, 3] for s in pf.pockets])
+        moments = np.array([s.operators.pocket_moments for s in pf.pockets])
+        return flows[:, 0], flows[:, 1:3], flows[:, 3:], wedge * whole.forces[:, 0], whole.forces[:, 1:3], forces, moments
+
+    _, q_v, G, _, f_v, a, moments = linear(x0, y0)
+    dQ, dF = np.zeros((n, 2)), np.zeros((2, 2))
+    for j in range(2):
+        e = np.eye(2)[j] * step
+        q_u, _, G_u, f_u, _, a_u, _ = linear(x0 + e[0], y0 + e[1])
+        q_d, _, G_d, f_d, _, a_d, _ = linear(x0 - e[0], y0 - e[1])
+        dQ[:, j] = ((q_u + G_u @ p0) - (q_d + G_d @ p0)) / (2 * step)
+        dF[:, j] = ((f_u + a_u @ p0) - (f_d + a_d @ p0)) / (2 * step)
+    # SI: pressures [Pa], flows [m^3/s], displacements [m], velocities [m/s] (time scale 1/omega of the scale)
+    P, Q, F = scale.pressure, scale.flow, scale.force
+    c, t = scale.clearance, 1.0 / scale.speed
+    G_si = G * Q / P
+    dQ_si = dQ * Q / c
+    dF_si = dF * F / c
+    demand = (q_v - moments[:, 1:3]) * Q * t / c  # the film's outflow and the pocket's gap per unit velocity [m^3]
+    a_si = a * F / P  # [N/Pa]
+    B = f_v * F * t / c  # [N s/m]
+    free = np.array([law.kind != "pressure" for law in laws])
+    k_r = np.array([-law.slope(pk) if law.kind != "pressure" else 0.0 for law, pk in zip(laws, p0)]) * Q / P
+    if not np.all(np.isfinite(k_r)):
+        raise SupplyError("an orifice at its supply pressure (no pressure drop) has no linearisation: its flow's "
+                          "slope is infinite")
+    idx = np.flatnonzero(free)
+    response = np.zeros((omega.size, n, 2), complex)  # dp/dx_hat [Pa/m]
+    slope = np.zeros((n, 2))  # d(Im dp/x_hat)/d omega at omega = 0
+    if idx.size:
+        S0 = np.diag(k_r[idx]) + G_si[np.ix_(idx, idx)]
+        D, M, Gam = dQ_si[idx], demand[idx], np.diag(vol[idx] / bulk)
+        slope[idx] = -np.linalg.solve(S0, M) + np.linalg.solve(S0, Gam @ np.linalg.solve(S0, D))
+        for i, w in enumerate(omega):
+            response[i, idx] = np.linalg.solve(S0 + 1j * w * Gam, -(D + 1j * w * M))
+    Z = dF_si[None] + np.einsum("in,fnj->fij", a_si, response) + 1j * omega[:, None, None] * B[None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        damping = np.where(omega[:, None, None] > 0, Z.imag / np.where(omega > 0, omega, 1.0)[:, None, None],
+                           (B + a_si @ slope)[None])
+    return JournalDynamics(result=balanced, frequencies=omega, stiffness=Z.real, damping=damping,
+                           squeeze_damping=B, film_stiffness=dF_si, pressure_response=response)

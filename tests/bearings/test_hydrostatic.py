@@ -705,3 +705,73 @@ def test_two_fed_pockets_share_the_dynamics(twin):
     mixed = supply_dynamics(twin, 1.0, [PrescribedPressure(0.5 * PS), cap], SCALE, discretization=P2)
     held, fed = mixed.result.pockets
     assert held.damping[0] == 0.0 and held.stiffness[0] == 0.0 and fed.damping[0] > 0
+
+
+# -- a journal's stiffness and damping with its pockets responding (journal_dynamics) ---------------------------
+
+JOURNAL_AT = (0.2, -0.1)  # the journal centre's displacement [c] over the twin-pocket pad
+
+
+def journal_caps():
+    return [Capillary(diameter=0.3e-3, length=20e-3, supply_pressure=5e6),
+            Capillary(diameter=0.3e-3, length=30e-3, supply_pressure=5e6)]
+
+
+def test_journal_stiffness_of_slow_motion_is_the_slope_of_the_balanced_force(twin_p1):
+    # omega -> 0: the linearised support's stiffness is d(force)/d(x, y) of the balanced support at fixed supply;
+    # the reference is a central difference of solve_supplied at x +- 1e-3 c in each direction, whose truncation
+    # error is O(1e-6) relative (the force's curvature over 1e-3 c; measured 1.8e-6 against the linearisation)
+    from bearingfe.bearings.hydrostatic import DisplacedJournal, journal_dynamics
+    caps = journal_caps()
+    dyn = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(0.0,), volumes=1e-7, discretization=P1)
+    de, x0 = 1e-3, np.array(JOURNAL_AT)
+    slope = np.zeros((2, 2))
+    for j in range(2):
+        e = np.eye(2)[j] * de
+        up = solve_supplied(twin_p1, DisplacedJournal(*(x0 + e)), caps, SCALE, discretization=P1)
+        down = solve_supplied(twin_p1, DisplacedJournal(*(x0 - e)), caps, SCALE, discretization=P1)
+        slope[:, j] = (up.force - down.force) / (2 * de * SCALE.clearance)
+    np.testing.assert_allclose(dyn.stiffness[0], slope, rtol=2e-5, atol=2e-5 * np.abs(slope).max())
+    # the restrictors make the support stiff: the pockets' response is most of it (the held film alone is softer)
+    assert dyn.stiffness[0][0, 0] > 5 * abs(dyn.film_stiffness[0, 0])
+
+
+def test_journal_damping_with_held_pockets_is_the_films_squeeze(twin_p1):
+    # prescribed pockets (a rigid supply): no pocket responds, the stiffness is the held film's and the damping the
+    # film's own squeeze at every frequency; the reference is the front door's journal film (CosineFilm) with each
+    # pocket held at its pressure and a unit squeeze rate: its force per unit gamma_rate and phi0_rate is the damping
+    # applied to the centre's velocity -(cos phi0, sin phi0) and gamma (sin phi0, -cos phi0) (round-off)
+    from bearingfe.bearings.hydrostatic import journal_dynamics
+    held = journal_dynamics(twin_p1, JOURNAL_AT, journal_caps(), SCALE, discretization=P1)
+    pres = [PrescribedPressure(p) for p in held.result.pressures]
+    rigid = journal_dynamics(twin_p1, JOURNAL_AT, pres, SCALE, frequencies=(0.0, 100.0, 1e4), discretization=P1)
+    for k in range(3):
+        np.testing.assert_allclose(rigid.damping[k], rigid.squeeze_damping, rtol=1e-12)
+        np.testing.assert_allclose(rigid.stiffness[k], rigid.film_stiffness, rtol=1e-12)
+    gamma, phi0 = math.hypot(*JOURNAL_AT), math.atan2(-JOURNAL_AT[1], -JOURNAL_AT[0])
+    pockets = tuple(SCALE.from_pressure(p) for p in held.result.pressures)
+    film = CosineFilm(gamma, phi0)
+    at_rest = solve_reynolds(twin_p1, film, wedge=0.0, inlet_pressure=pockets, discretization=P1).force
+    per_time = SCALE.force / SCALE.speed / SCALE.clearance  # damping unit [N s/m]
+    for rates, velocity in (((1.0, 0.0), -np.array([math.cos(phi0), math.sin(phi0)])),
+                            ((0.0, 1.0), gamma * np.array([math.sin(phi0), -math.cos(phi0)]))):
+        moved = solve_reynolds(twin_p1, film, wedge=0.0, squeeze=rates, inlet_pressure=pockets, discretization=P1)
+        np.testing.assert_allclose(rigid.squeeze_damping / per_time @ velocity, moved.force - at_rest, rtol=1e-9)
+
+
+def test_journal_pockets_of_infinite_volume_are_held(twin_p1):
+    # V -> inf: the compressible pockets cannot change their pressure at omega > 0, the rigid-pocket limit; the
+    # difference is of order (k_r + G) K / (omega V) (1e-9 here: V = 1000 m^3)
+    from bearingfe.bearings.hydrostatic import journal_dynamics
+    caps = journal_caps()
+    big = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(100.0, 1000.0), volumes=1e3,
+                           discretization=P1)
+    for k in range(2):
+        np.testing.assert_allclose(big.stiffness[k], big.film_stiffness, rtol=1e-6,
+                                   atol=1e-6 * np.abs(big.film_stiffness).max())
+        np.testing.assert_allclose(big.damping[k], big.squeeze_damping, rtol=1e-6,
+                                   atol=1e-6 * np.abs(big.squeeze_damping).max())
+    # a small pocket responds: slow motion draws on it, adding damping (the restrictor's share)
+    small = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(0.0,), volumes=1e-9, discretization=P1)
+    assert small.damping[0][0, 0] > 1.1 * small.squeeze_damping[0, 0]
+    assert np.abs(small.pressure_response[0]).max() > 0
