@@ -188,7 +188,10 @@ class FedQuasiStaticElastic(QuasiStaticElastic):
     deflection's rate is left out of the pocket's gap as it is of the film's squeeze: quasi-static). The pocket
     needs its ``pocket_volume`` (balanced at each instant it would need the coupled film solved inside the
     pocket's balance). The start is :class:`~bearingfe.transient.fed.Fed`'s: the rigid steady state with the
-    pocket balanced on it; the first steps take the pocket to the deflected film's balance.
+    pocket balanced on it; the first steps take the pocket to the deflected film's balance. Under rupture, a
+    state where the pocket and the elements around its contour push harder than the load even with the film
+    ruptured everywhere else (:attr:`least`) has no balancing rates: the run ends ``"no-equilibrium"`` saying so
+    (the shoe lifts off; on the shipped orifice pump on steel at 194.6 deg).
 
     Parameters
     ----------
