@@ -302,7 +302,7 @@ the sampling). Both need `pocket_volume`.
   0.72 [-] at 195 degrees) and completes. Whether a finer mesh at the pocket's contour carries the elastic
   run through is not measured.
 - A tilted pad's coefficients with its pockets' pressures responding: `bf.supply_dynamics` takes the pad
-  moving normal to itself, `journal_dynamics` a journal's centre moving in the plane (its 2x2 stiffness
+  moving normal to itself, `bf.journal_dynamics` a journal's centre moving in the plane (its 2x2 stiffness
   and damping, each pocket through its restrictor and its compressible oil; example 04), both on the
   linear film (no cavitation, rigid surfaces).
 - Several pockets at different pressures on an elastic support other than the half-space (the shoe body,

@@ -20,7 +20,7 @@ Checks (printed, and asserted):
    (``A_eff = W/p_r`` of one concentric pad; Rowe, *Hydrostatic, Aerostatic and Hybrid Bearing
    Design*, 2012, ch. 5) is printed next to the computed one: the curved pads are about 19 % softer.
 4. The journal's 2x2 stiffness and damping at the smallest eccentricity with each recess responding
-   through its capillary and its compressible oil (:func:`bearingfe.bearings.hydrostatic.journal_dynamics`,
+   through its capillary and its compressible oil (:func:`bearingfe.journal_dynamics`,
    recesses 0.5 mm deep), at a few frequencies of the motion: at omega -> 0 the stiffness along the
    load axis is the one of check 2 (1e-4: the two difference steps), and the damping falls from the slow
    motion's (the restrictors' share) towards the held recesses' squeeze film as the pockets' oil stiffens.
@@ -141,7 +141,7 @@ def dynamics(mesh, cap, e: float, volume: float):
     for centre in CENTRES:
         c, s = math.cos(centre), math.sin(centre)
         rot = np.array([[c, -s], [s, c]])  # pad frame -> global
-        dyn = bf.bearings.hydrostatic.journal_dynamics(mesh, rot.T @ shift, cap, SCALE, frequencies=FREQUENCIES,
+        dyn = bf.journal_dynamics(mesh, rot.T @ shift, cap, SCALE, frequencies=FREQUENCIES,
                                                        volumes=volume, step=min(1e-3, e / 2), discretization=DISC)
         K += rot @ dyn.stiffness @ rot.T
         C += rot @ dyn.damping @ rot.T

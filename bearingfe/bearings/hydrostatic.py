@@ -71,7 +71,9 @@ linearisation at the balance (``V / (K (Kc + G))`` for a capillary-fed pocket).
 :func:`supply_dynamics` linearises the same rate equation with the pad in motion
 (``UniformFilm(h)`` moving normal to itself, the pocket's own gap opening with it)
 and gives the dynamic stiffness and damping at each frequency, in all and per
-pocket. The pump's shoe pocket may be fed from the chamber through a
+pocket; :func:`journal_dynamics` does the same for a journal's centre moving in
+the plane (:class:`DisplacedJournal`: its 2x2 stiffness and damping, one
+superposition column per pocket and per direction of the squeeze). The pump's shoe pocket may be fed from the chamber through a
 :class:`Restrictor` in the plunger (``[shoe.supply]`` of the machine file;
 :meth:`bearingfe.EccentricPump.pocket_supply`), carried by the pump transient's
 ``"fed"`` model (:mod:`bearingfe.transient.fed`).
