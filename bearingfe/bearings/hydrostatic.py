@@ -393,8 +393,9 @@ def pocket_pressures(mesh: SupportMesh, inlet_pressure) -> float | tuple[float, 
         The mesh has no pockets, a sequence of the wrong length, a mapping with unknown or missing names,
         or a value that is not a finite number.
     """
-    if isinstance(inlet_pressure, (int, float, np.number)) and not isinstance(inlet_pressure, bool):
-        return float(inlet_pressure)
+    if not isinstance(inlet_pressure, (Mapping, str)) and np.ndim(inlet_pressure) == 0:
+        return finite("inlet_pressure", inlet_pressure.item() if isinstance(inlet_pressure, np.ndarray)
+                      else inlet_pressure)
     names = pocket_names(mesh)
     if not names:
         raise ValueError("inlet_pressure: one value per pocket was given but the mesh has no pockets "

@@ -393,7 +393,7 @@ def test_each_pocket_at_its_own_pressure_through_the_front_door(twin_p1):
     # finite-volume paths; equal values are the scalar's film to round-off; each pocket's outflow is booked
     # under its name and they add up to the total
     film = CosineFilm(0.3, 0.3)
-    for cavitation in ("none", "jfo"):
+    for cavitation in ("none", "reynolds", "jfo"):
         seq = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(2.0, 5.0), cavitation=cavitation,
                              discretization=P1)
         named = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure={"inlet_1": 5.0, "inlet_0": 2.0},
