@@ -236,14 +236,16 @@ class FedQuasiStaticElastic(QuasiStaticElastic):
         :class:`~bearingfe.transient.base.NoEquilibrium` that says so (the shoe lifts off)."""
         try:
             return super().balance(beta, y, full)
-        except TrialRejected:
+        except TrialRejected as exc:
             if self.cavitation == "none":
                 raise
             load = np.asarray(self.pump.load_vector(beta), float)
             size = max(float(np.linalg.norm(load)), 1e-300)
             least = float(y[2]) * float(self.least @ (-load / size))
-            if least <= size:
-                raise
+            if least <= size:  # near it the balancing rates of separation grow without bound: say how near
+                raise TrialRejected(f"{exc}; the pocket with the elements around its contour pushes with "
+                                    f"{least / size:.4g} times the plunger load even with the film ruptured "
+                                    "everywhere else (1: the shoe lifts off)") from None
             sc = self.pump.scale
             own = float(y[2]) * float(self.moments[1:] @ (-load / size))
             raise NoEquilibrium(
