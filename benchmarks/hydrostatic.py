@@ -295,12 +295,13 @@ the sampling). Both need `pocket_volume`.
   name), and Newton shooting for the three-state models (their periodic start is Anderson's, JFO's one
   revolution).
 - The fed pocket on the elastic support with rupture through a whole revolution of the shipped orifice
-  pump: on steel the Swift-Stieber run (coarse P2 meshes, sizes 0.3 and 0.15) ends `"no-equilibrium"` at
-  194.6 degrees, where the compressed pocket (21 MPa) outlasts the chamber's decompression and the pocket
-  with the elements around its contour pushes 1.027 (1.004) times the falling plunger load even with the
-  film ruptured everywhere else; the rigid fed model's pocket has vented further by then (0.55 against
-  0.72 [-] at 195 degrees) and completes. Whether a finer mesh at the pocket's contour carries the elastic
-  run through is not measured.
+  pump: on steel the Swift-Stieber run reaches the shoe's lift-off at 194.6 degrees, where the compressed
+  pocket (21 MPa) outlasts the chamber's decompression and the pocket with the elements around its contour
+  pushes about as hard as the falling plunger load even with the film ruptured everywhere else (1.021 times
+  on the P2 mesh of size 0.3: the run ends `"no-equilibrium"` saying so; 0.999 on size 0.15, where the
+  separating rates that balance it grow without bound and the run stops `"stalled"`, its message giving
+  that ratio). The quasi-static model has no state past lift-off; the rigid fed model's pocket has vented
+  further by then (0.55 against 0.72 [-] at 195 degrees) and completes.
 - A tilted pad's coefficients with its pockets' pressures responding: `bf.supply_dynamics` takes the pad
   moving normal to itself, `bf.journal_dynamics` a journal's centre moving in the plane (its 2x2 stiffness
   and damping, each pocket through its restrictor and its compressible oil; example 04), both on the
