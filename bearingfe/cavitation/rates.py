@@ -165,7 +165,8 @@ def rates_for_load(sup: Superposition, load, wedge: float = 1.0, inlet_pressure:
                                 residual=norm)
         if found is None:
             raise CavitationError(f"rates_for_load: no step lowers |force + load| = {norm:.3g} (scale {scale:.3g}) "
-                                  "on the cavitated film (gamma = 0 leaves phi0_rate undetermined)")
+                                  "on the cavitated film (its force responds to the rates in one direction only, "
+                                  "or gamma = 0 leaves phi0_rate undetermined)")
         rates, res, R = found
     raise CavitationError(f"rates_for_load: Newton did not converge in {max_newton} steps "
                           f"(|force + load| = {np.linalg.norm(R):.3g}, scale {scale:.3g})")
