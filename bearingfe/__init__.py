@@ -92,7 +92,8 @@ _NAMES = {
     "bearings.tilting_pad": ('TiltingPadBearing', 'TiltingPadGeometry'),
     "bearings.thrust": ('SliderPad', 'ThrustPad', 'pad_for_load', 'tilting_equilibrium'),
     "bearings.hydrostatic": ('Capillary', 'ConstantFlow', 'Orifice', 'PrescribedPressure', 'SupplyError',
-                             'pocket_transient', 'solve_supplied', 'supply_dynamics', 'supply_stiffness'),
+                             'journal_dynamics', 'pocket_transient', 'solve_supplied', 'supply_dynamics',
+                             'supply_stiffness'),
     "thermal": ('ConstantViscosity', 'Lubricant', 'ThermalError', 'VogelViscosity', 'WaltherViscosity'),
     "transient": ('LiftOffError', 'Trajectory', 'balance_ratio', 'simulate', 'steady_state'),
 }
@@ -130,7 +131,7 @@ __all__ = [
     "CavitationError", "JFOError", "jfo", "solve_jfo", "DynamicCoefficients", "Groove", "JournalBearing", "ResolutionWarning", "cavitation",
     "film_graded_size", "journal", "TiltingPadBearing", "TiltingPadGeometry", "tilting_pad", "stability",
     "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SupplyError", "hydrostatic", "pocket_transient", "solve_supplied",
-    "supply_dynamics", "supply_stiffness",
+    "supply_dynamics", "supply_stiffness", "journal_dynamics",
     "EccentricPump", "LiftOffError", "PressureCycle", "Trajectory", "balance_ratio", "pump", "simulate",
     "steady_state", "transient",
     "Circle", "CoercivityError", "CosineFilm", "ProfileFilm", "StepFilm", "SumFilm", "TaperFilm",

@@ -111,6 +111,12 @@ def discretization_for(mesh: SupportMesh, cavitation: str, cavitation_pressure: 
 
 def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
                           options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
+    if isinstance(operating.inlet_pressure, tuple):  # each pocket at its own pressure: one unit field per pocket
+        from .bearings.hydrostatic import pocket_film, pocket_names, solve_pocket_state
+
+        pf = pocket_film(mesh, film, discretization, on_indefinite)
+        result = solve_pocket_state(pf, pocket_names(mesh), operating.inlet_pressure, operating, cavitation, options)
+        return note_resolution(result, mesh, film, stacklevel=4)
     sup = superpose(mesh, film, formulation=discretization.formulation, element=discretization.element,
                     solver=discretization.solver, on_indefinite=on_indefinite)
     result = solve_model(sup, operating.weights, cavitation, options)
@@ -183,7 +189,7 @@ class RefinedSolve:
 
 @takes(OperatingPoint, Discretization)
 def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0, 0.0),
-                   inlet_pressure: float = 0.0, formulation: str = "pi", element: str = "P1",
+                   inlet_pressure=0.0, formulation: str = "pi", element: str = "P1",
                    cavitation: str = "none", sliding: float | None = None,
                    solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
                    warm_start=None, cavitation_pressure: float = 0.0,
@@ -202,8 +208,12 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         journal turning under a fixed shoe) [-].
     squeeze : (float, float)
         ``(gamma_rate, phi0_rate)`` per radian of shaft turn.
-    inlet_pressure : float
-        Pocket pressure ``p_s`` [-].
+    inlet_pressure : float, sequence of float or mapping
+        Pocket pressure ``p_s`` [-]: one for every pocket, or one per pocket (a sequence in the order of
+        :func:`bearingfe.bearings.hydrostatic.pocket_names`, or a mapping ``name -> value`` naming each
+        pocket once). With one per pocket the result's ``flows`` hold each pocket's film outflow under its
+        name (``"inlet_0"``, ...) beside the total ``"inlet"``, its loads count each pocket at its pressure,
+        and its ``inlet_pressure`` is the largest of them.
     formulation : {"pi", "direct"}
     element : {"P1", "P2"}
     cavitation : str
@@ -281,10 +291,15 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     """
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
-    check_operating_point(wedge, squeeze, inlet_pressure, cavitation_pressure)
+    if not isinstance(inlet_pressure, (int, float)):  # one value per pocket, read against the mesh's pockets
+        from .bearings.hydrostatic import pocket_pressures
+
+        inlet_pressure = pocket_pressures(mesh, inlet_pressure)
+    largest = max(inlet_pressure, key=abs) if isinstance(inlet_pressure, tuple) else inlet_pressure
+    check_operating_point(wedge, squeeze, largest, cavitation_pressure)
     operating = OperatingPoint(wedge=wedge, squeeze=squeeze, inlet_pressure=inlet_pressure, sliding=sliding)
     discretization = Discretization(element=element, formulation=formulation, solver=solver)
-    if inlet_pressure != 0.0 and not mesh.has_inlet:
+    if largest != 0.0 and not mesh.has_inlet:
         raise ValueError("inlet_pressure is non-zero but the mesh has no 'inlet' boundary (no pocket)")
     options = ModelOptions(sliding=sliding, warm_start=warm_start, solver=solver,
                            cavitation_pressure=float(cavitation_pressure))

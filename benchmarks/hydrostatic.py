@@ -155,12 +155,17 @@ as `q0_j + sum_k G_jk p_k` (the consistent flux residual over each pocket's cont
 Capillaries and constant flows are then a linear system, orifices a quadratic one in `s` with
 `p_r = p_s - s |s|` (`s < 0`: back-flow from a pocket pumped above its supply), solved by Newton; no
 solution with `p_r >= 0` is an error that names the pocket. Under Swift-Stieber or Gumbel cavitation the same iteration runs on the cavitated film
-(the linear `G` as the first Jacobian, Broyden updates). The finite-volume scheme (JFO, recessed and
-periodic surfaces) and the elastic support hold all pockets at one pressure: a one-pocket surface is
-balanced there through `bf.solve_reynolds`, several pockets are refused. Under JFO the film is linear in
-the pocket pressure only within a fixed cavitated set, so the balance is a Newton iteration on the
-pocket pressure (Broyden-updated secant, started from the slope of two solves), each evaluation a full
-JFO solve that finds its own cavitated set: on a tilted pad turning over an orifice-fed pocket (46 % of
+(the linear `G` as the first Jacobian, Broyden updates). On the finite-volume scheme (JFO, recessed and
+periodic surfaces) and the elastic support the pockets are balanced through `bf.solve_reynolds`, whose
+`inlet_pressure` takes one value per pocket (a sequence in pocket order or a mapping name -> value; the
+result books each pocket's outflow under its name). Under JFO the film is linear in the pocket pressures
+only within a fixed cavitated set, so the balance is a Newton iteration on the `n` pocket pressures
+(Broyden-updated, its first Jacobian from `n + 1` solves), each evaluation a full JFO solve that finds its
+own cavitated set: two orifice-fed pockets over a turning pad without rupture sit where the Galerkin
+balance puts them to the discretizations' difference (1.1e-7 in the pocket pressures), and with rupture
+each pocket's orifice flow equals its own film outflow to 1e-9; on the elastic (half-space) support each
+pocket loads the surface with its own pressure, and the balance tends to the rigid one as `1/E*`. On a
+single pocket: on a tilted pad turning over an orifice-fed pocket (46 % of
 the film ruptured) the orifice's flow equals the film's outflow to 1e-9, and that flow leaves through
 the pad's edges to round-off (the scheme conserves mass); without rupture the JFO balance is the
 Galerkin one to 1e-9 at rest, and on a turning pad to the difference of the two Couette
@@ -289,16 +294,20 @@ the sampling). Both need `pocket_volume`.
   support, the elastic support's deflection squeeze (`simulate_elastic`) with a fed pocket (refused by
   name), and Newton shooting for the three-state models (their periodic start is Anderson's, JFO's one
   revolution).
-- The fed pocket on the elastic support with rupture: the Swift-Stieber run of the shipped orifice pump
-  (steel, coarse P2 mesh) stalls at 194.5 degrees, where the cavitated rates' Newton inside the coupled
-  balance stagnates at a relative force residual of about 1e-8, just above its tolerance; the run stops
-  as `"stalled"` saying so.
-- The dynamics of a fed support other than the pad moving normal to itself (a journal's or a tilted
-  pad's coefficients with their pockets' pressures responding): `bf.supply_dynamics` takes the
-  `UniformFilm` family only.
-- Several pockets at different pressures on the finite-volume scheme (JFO, recessed or periodic
-  surfaces, e.g. a periodic multi-recess journal) or with the elastic support: those paths hold every
-  pocket at one pressure, and a surface with several pockets is refused there.
+- The fed pocket on the elastic support with rupture through a whole revolution of the shipped orifice
+  pump: on steel the Swift-Stieber run reaches the shoe's lift-off at 194.6 degrees, where the compressed
+  pocket (21 MPa) outlasts the chamber's decompression and the pocket with the elements around its contour
+  pushes about as hard as the falling plunger load even with the film ruptured everywhere else (1.021 times
+  on the P2 mesh of size 0.3: the run ends `"no-equilibrium"` saying so; 0.999 on size 0.15, where the
+  separating rates that balance it grow without bound and the run stops `"stalled"`, its message giving
+  that ratio). The quasi-static model has no state past lift-off; the rigid fed model's pocket has vented
+  further by then (0.55 against 0.72 [-] at 195 degrees) and completes.
+- A tilted pad's coefficients with its pockets' pressures responding: `bf.supply_dynamics` takes the pad
+  moving normal to itself, `bf.journal_dynamics` a journal's centre moving in the plane (its 2x2 stiffness
+  and damping, each pocket through its restrictor and its compressible oil; example 04), both on the
+  linear film (no cavitation, rigid surfaces).
+- Several pockets at different pressures on an elastic support other than the half-space (the shoe body,
+  the FFT half-space): their compliance gives the opening under all pockets at once, not per pocket.
 """
 
 

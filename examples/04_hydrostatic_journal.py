@@ -19,6 +19,11 @@ Checks (printed, and asserted):
    flat-pad estimate of two opposed pads' stiffness ``2 A_eff 3 beta (1 - beta) p_s / c``
    (``A_eff = W/p_r`` of one concentric pad; Rowe, *Hydrostatic, Aerostatic and Hybrid Bearing
    Design*, 2012, ch. 5) is printed next to the computed one: the curved pads are about 19 % softer.
+4. The journal's 2x2 stiffness and damping at the smallest eccentricity with each recess responding
+   through its capillary and its compressible oil (:func:`bearingfe.journal_dynamics`,
+   recesses 0.5 mm deep), at a few frequencies of the motion: at omega -> 0 the stiffness along the
+   load axis is the one of check 2 (1e-4: the two difference steps), and the damping falls from the slow
+   motion's (the restrictors' share) towards the held recesses' squeeze film as the pockets' oil stiffens.
 
 Set BEARINGFE_QUICK=1 for a coarse mesh and BEARINGFE_OUT for the output directory (default
 ``examples/output/04_hydrostatic_journal/``, next to this file).
@@ -47,6 +52,9 @@ ECCENTRICITY = np.linspace(0.05, 0.6, 4 if QUICK else 12)
 #: two recesses) and the film pushes it back towards 90 deg
 LOAD_AXIS = math.pi / 2
 CENTRES = [math.pi / 4 + k * math.pi / 2 for k in range(4)]
+#: frequencies of the journal's motion for its dynamic coefficients [rad/s]
+FREQUENCIES = (0.0, 100.0, 1000.0, 10000.0)
+DEPTH = 0.5e-3  # recess depth [m]: its oil volume is its area times this
 
 
 def pad_mesh() -> bf.SupportMesh:
@@ -107,6 +115,38 @@ def main() -> None:
         print(f"e = {e:.2f}: load {w:8.1f} N, flow {q * 6e4:.4f} l/min, stiffness {k / 1e6:6.2f} N/um, "
               f"beta {np.round(b, 3)}")
     draw(ECCENTRICITY, load, flow, stiff, ratios, OUT / "hydrostatic_journal.png")
+    volume = DEPTH * recess_area(mesh)
+    K, C, B = dynamics(mesh, cap, ECCENTRICITY[0], volume)
+    axis = np.array([math.cos(LOAD_AXIS), math.sin(LOAD_AXIS)])
+    print(f"journal at e = {ECCENTRICITY[0]:.2f}, recesses of {volume * 1e6:.3f} cm^3: held recesses' squeeze "
+          f"damping {axis @ B @ axis / 1e3:.2f} N s/mm along the load axis")
+    for w, k, c in zip(FREQUENCIES, K, C):
+        print(f"  omega {w:7.0f} rad/s: K_xx {k[0, 0] / 1e6:7.2f}, K_yy {k[1, 1] / 1e6:7.2f}, K_xy {k[0, 1] / 1e6:6.2f} "
+              f"N/um; C_xx {c[0, 0] / 1e3:7.2f}, C_yy {c[1, 1] / 1e3:7.2f} N s/mm")
+    assert abs(axis @ K[0] @ axis / stiff[0] - 1) < 1e-4
+
+
+def recess_area(mesh: bf.SupportMesh) -> float:
+    """The recess's area [m^2] (the mesh's hole: its pocket moment)."""
+    from bearingfe.film import operators
+    return float(operators(mesh, "P2").pocket_moments[0]) * SCALE.radius**2
+
+
+def dynamics(mesh, cap, e: float, volume: float):
+    """The journal's stiffness [N/m] and damping [N s/m] (F, 2, 2) at eccentricity ``e`` away from LOAD_AXIS, each
+    recess responding, and the held recesses' squeeze damping (2, 2): the four pads' coefficients turned into the
+    journal's frame and added."""
+    K, C, B = np.zeros((len(FREQUENCIES), 2, 2)), np.zeros((len(FREQUENCIES), 2, 2)), np.zeros((2, 2))
+    shift = -e * np.array([math.cos(LOAD_AXIS), math.sin(LOAD_AXIS)])  # the journal's centre [c]
+    for centre in CENTRES:
+        c, s = math.cos(centre), math.sin(centre)
+        rot = np.array([[c, -s], [s, c]])  # pad frame -> global
+        dyn = bf.journal_dynamics(mesh, rot.T @ shift, cap, SCALE, frequencies=FREQUENCIES,
+                                                       volumes=volume, step=min(1e-3, e / 2), discretization=DISC)
+        K += rot @ dyn.stiffness @ rot.T
+        C += rot @ dyn.damping @ rot.T
+        B += rot @ dyn.squeeze_damping @ rot.T
+    return K, C, B
 
 
 def draw(e, load, flow, stiff, ratios, path: Path) -> None:

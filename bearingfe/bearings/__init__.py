@@ -23,7 +23,7 @@ _NAMES = {
     "journal": ("DynamicCoefficients", "Groove", "JournalBearing", "equilibrium", "dynamic_coefficients"),
     "hydrostatic": ("SUPPLIES", "Capillary", "ConstantFlow", "Orifice", "PrescribedPressure", "SuppliedResult",
                     "SupplyError", "SupportDynamics", "pocket_transient", "solve_supplied", "supply_dynamics",
-                    "supply_stiffness"),
+                    "supply_stiffness", "JournalDynamics", "journal_dynamics"),
     "pump": ("EccentricPump", "PressureCycle"),
     "stability": ("RotorModes", "log_decrement_map", "lund_threshold", "rotor_modes", "threshold_speed"),
     "tilting_pad": ("PadAssemblyCoefficients", "TiltingPadBearing", "TiltingPadEquilibrium", "TiltingPadGeometry",

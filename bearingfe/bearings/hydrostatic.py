@@ -43,15 +43,18 @@ linear in the pocket pressures: the same Newton iteration runs with the film's
 linear conductance as its first Jacobian and Broyden updates, each evaluation
 a cavitation solve on the film state whose pocket column carries the pockets
 at their current pressures (one factorization per pocket for the whole
-iteration). The finite-volume scheme (``"jfo"``, recessed or periodic surfaces,
-a cavity pressure) and the elastic support hold all pockets at one pressure:
-there a surface with one pocket is balanced by the same iteration on
-:func:`bearingfe.solve_reynolds` (each evaluation one solve of that path), and
-a surface with several pockets is refused, naming why. Under JFO the film is
-linear in the pocket pressure only within a fixed cavitated set, so this is a
-Newton iteration on the pocket pressure (a secant started from the slope of two
-solves, Broyden-updated) around complete JFO solves, each finding its own
-cavitated set: no outer iteration on a frozen set. The restrictor's flow then
+iteration). On the finite-volume scheme (``"jfo"``, recessed or periodic
+surfaces, a cavity pressure) and the elastic support the pockets are balanced
+by the same iteration on :func:`bearingfe.solve_reynolds`, each evaluation one
+solve of that path with every pocket at its own pressure (``inlet_pressure``
+one value per pocket; the result books each pocket's outflow under its name).
+Under JFO the film is linear in the pocket pressures only within a fixed
+cavitated set, so this is a Newton iteration on the ``n`` pocket pressures (the
+starting Jacobian from ``n + 1`` solves, Broyden-updated) around complete JFO
+solves, each finding its own cavitated set: no outer iteration on a frozen set.
+On the elastic support each pocket loads the surface with its own pressure
+(:func:`bearingfe.elastic.coupled.pocket_deflections`: the half-space's opening
+under each pocket). The restrictor's flow then
 equals the film's outflow to the iteration's tolerance, and the scheme carries
 that flow out through the edges to round-off.
 
@@ -68,7 +71,9 @@ linearisation at the balance (``V / (K (Kc + G))`` for a capillary-fed pocket).
 :func:`supply_dynamics` linearises the same rate equation with the pad in motion
 (``UniformFilm(h)`` moving normal to itself, the pocket's own gap opening with it)
 and gives the dynamic stiffness and damping at each frequency, in all and per
-pocket. The pump's shoe pocket may be fed from the chamber through a
+pocket; :func:`journal_dynamics` does the same for a journal's centre moving in
+the plane (:class:`DisplacedJournal`: its 2x2 stiffness and damping, one
+superposition column per pocket and per direction of the squeeze). The pump's shoe pocket may be fed from the chamber through a
 :class:`Restrictor` in the plunger (``[shoe.supply]`` of the machine file;
 :meth:`bearingfe.EccentricPump.pocket_supply`), carried by the pump transient's
 ``"fed"`` model (:mod:`bearingfe.transient.fed`).
@@ -109,9 +114,11 @@ from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
 __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
-           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_film", "pocket_flows",
+           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_pressures", "pocket_film", "pocket_flows",
+           "solve_pocket_state",
            "balance_pockets",
-           "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics"]
+           "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics", "DisplacedJournal",
+           "JournalDynamics", "journal_dynamics"]
 
 
 class SupplyError(RuntimeError):
@@ -373,6 +380,45 @@ def pocket_names(mesh: SupportMesh) -> tuple[str, ...]:
     return ("inlet",) if mesh.has_inlet else ()
 
 
+def pocket_pressures(mesh: SupportMesh, inlet_pressure) -> float | tuple[float, ...]:
+    """The front door's ``inlet_pressure`` read against the mesh's pockets [-].
+
+    A number is returned as a float (every pocket at it); a sequence (one value per pocket, in the order
+    of :func:`pocket_names`) or a mapping ``name -> value`` (every pocket named once) as a tuple in
+    :func:`pocket_names` order.
+
+    Raises
+    ------
+    ValueError
+        The mesh has no pockets, a sequence of the wrong length, a mapping with unknown or missing names,
+        or a value that is not a finite number.
+    """
+    if not isinstance(inlet_pressure, (Mapping, str)) and np.ndim(inlet_pressure) == 0:
+        return finite("inlet_pressure", inlet_pressure.item() if isinstance(inlet_pressure, np.ndarray)
+                      else inlet_pressure)
+    names = pocket_names(mesh)
+    if not names:
+        raise ValueError("inlet_pressure: one value per pocket was given but the mesh has no pockets "
+                         "('inlet' boundaries)")
+    if isinstance(inlet_pressure, Mapping):
+        given = set(inlet_pressure)
+        if given != set(names):
+            unknown, missing = sorted(map(str, given - set(names))), sorted(set(names) - given)
+            raise ValueError(f"inlet_pressure: a mapping must name every pocket once ({', '.join(names)}); "
+                             f"unknown {unknown}, missing {missing}")
+        values = [inlet_pressure[n] for n in names]
+    else:
+        try:
+            values = list(inlet_pressure)
+        except TypeError:
+            raise ValueError(f"inlet_pressure must be a number, one value per pocket ({', '.join(names)}) or a "
+                             f"mapping name -> value, got {type(inlet_pressure).__name__}") from None
+        if len(values) != len(names):
+            raise ValueError(f"inlet_pressure must give one value per pocket ({len(names)}: {', '.join(names)}), "
+                             f"got {len(values)}")
+    return tuple(finite(f"inlet_pressure[{n!r}]", v) for n, v in zip(names, values))
+
+
 def _pocket_mesh(mesh: SupportMesh, name: str, names: Sequence[str]) -> SupportMesh:
     """The mesh with only pocket ``name`` as its ``inlet`` (the other pockets join the outline at 0):
     the same dofs, so its unit inlet field is pocket ``name``'s and its ``inlet`` flow is that pocket's."""
@@ -450,6 +496,28 @@ def pocket_film(mesh: SupportMesh, film: Film, discretization: Discretization = 
     if any(s.formulation != whole.formulation for s in pockets):  # the film decides it: cannot happen
         raise RuntimeError("the pockets' film states chose different formulations")
     return PocketFilm(whole=whole, pockets=pockets)
+
+
+def solve_pocket_state(pf: PocketFilm, names: Sequence[str], pressures: np.ndarray, operating: OperatingPoint,
+                       cavitation: str, options: ModelOptions) -> ReynoldsResult:
+    """The film of ``pf`` with each pocket at its own pressure [-], under a cavitation model.
+
+    The inlet column of :meth:`PocketFilm.state` holds the pockets at their pressures (weight 1); the
+    result's loads count each pocket at its own pressure, its ``flows`` hold each pocket's film outflow
+    under its name beside the total ``"inlet"``, and its ``inlet_pressure`` is the largest pocket pressure.
+    """
+    p = np.asarray(pressures, float)
+    weights = np.array([operating.wedge, *operating.squeeze, 1.0])
+    res = solve_model(pf.state(p), weights, cavitation, options)
+    u = _unknown(pf.whole, res)
+    cav = None if res.cavitated is None else res.cavitated[:, None]
+    q = pocket_flows(pf, u[:, None], weights[:, None], cav)[:, 0]
+    if res.cavitated is not None:  # the model's loads count the pockets at the column's unit weight
+        force, integral = pf.whole.loads(u, 0.0)
+        moments = pf.pocket_moments(p)
+        res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
+    flows = MappingProxyType({**res.flows, **{n: float(qk) for n, qk in zip(names, q)}})
+    return dataclasses.replace(res, flows=flows, inlet_pressure=float(np.max(p)))
 
 
 def pocket_flows(pf: PocketFilm, u: np.ndarray, weights: np.ndarray,
@@ -680,11 +748,11 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     cavitation : str
         A model of :data:`bearingfe.cavitation.MODELS`. ``"none"`` solves the pockets exactly by
         superposition; ``"reynolds"`` and ``"gumbel"`` iterate them with the film (Newton-Broyden);
-        a model or surface that needs the finite-volume scheme takes a surface with one pocket (see the
-        module docstring).
+        a model or surface that needs the finite-volume scheme is balanced on
+        :func:`bearingfe.solve_reynolds` (see the module docstring).
     elastic : Compliance, optional
-        An elastic support (:func:`bearingfe.half_space`): the one pocket of the surface is balanced on
-        the coupled film of :func:`bearingfe.solve_reynolds`.
+        An elastic support (:func:`bearingfe.half_space`; several pockets need the half-space's opening per
+        pocket): the pockets are balanced on the coupled film of :func:`bearingfe.solve_reynolds`.
 
     Returns
     -------
@@ -693,8 +761,7 @@ def solve_supplied(mesh: SupportMesh, film: Film, supplies: Sequence[Supply] | S
     Raises
     ------
     ValueError
-        A bad argument (no pockets, the wrong number of supplies, a non-zero ``inlet_pressure``,
-        several supplies where the solver holds one pocket pressure).
+        A bad argument (no pockets, the wrong number of supplies, a non-zero ``inlet_pressure``).
     SupplyError
         No admissible pocket pressures.
     """
@@ -800,32 +867,44 @@ def _listed(p: np.ndarray) -> str:
 
 
 def _solve_pockets_front_door(mesh, film, laws, operating, discretization, cavitation, elastic):
-    """One pocket balanced on :func:`bearingfe.solve_reynolds` (the finite-volume scheme, the elastic support)."""
-    if len(laws) > 1:
-        why = ("the elastic support" if elastic is not None else
-               f"the finite-volume scheme (cavitation={cavitation!r}, a recessed or periodic surface)")
-        raise ValueError(f"{why} holds every pocket at one pressure: restrictors are balanced there for a "
-                         f"surface with one pocket, this one has {len(laws)}")
+    """The pockets balanced on :func:`bearingfe.solve_reynolds` (the finite-volume scheme, the elastic support),
+    each evaluation one solve with every pocket at its own pressure."""
+    names = pocket_names(mesh)
+    n = len(laws)
     last: dict = {}
 
-    def solve_at(p: float) -> ReynoldsResult:
-        if last.get("p") != p:
-            last.update(p=p, result=solve_reynolds(mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
-                                                   inlet_pressure=p, sliding=operating.sliding,
-                                                   cavitation=cavitation, discretization=discretization,
-                                                   elastic=elastic))
+    def solve_at(p: np.ndarray) -> ReynoldsResult:
+        key = tuple(float(v) for v in p)
+        if last.get("key") != key:
+            warm = last.get("result")
+            warm = warm if warm is not None and warm.cavitated is not None and elastic is None else None
+            last.update(key=key, result=solve_reynolds(
+                mesh, film, wedge=operating.wedge, squeeze=operating.squeeze,
+                inlet_pressure=key[0] if n == 1 else key, sliding=operating.sliding, cavitation=cavitation,
+                discretization=discretization, elastic=elastic, warm_start=warm))
         return last["result"]
 
-    def film_flow(p):
-        return np.array([solve_at(float(max(p[0], 0.0))).flows["inlet"]])
+    def flows_of(res: ReynoldsResult) -> np.ndarray:
+        return np.array([res.flows["inlet"]]) if n == 1 else np.array([res.flows[name] for name in names])
 
-    # the Jacobian's start: the slope of two solves (Broyden corrects it)
-    law = laws[0]
-    ref = law.supply if law.kind != "flow" else 1.0
-    slope = (film_flow(np.array([ref]))[0] - film_flow(np.array([0.0]))[0]) / ref
-    p = balance_pockets(laws, film_flow, np.array([[max(slope, 1e-300)]]))
-    res = solve_at(float(p[0]))
-    return res, p, np.array([float(res.flows["inlet"])])
+    def film_flow(p):
+        return flows_of(solve_at(np.maximum(p, 0.0)))
+
+    # the Jacobian's start: n + 1 solves (the free pockets' columns; Broyden corrects them)
+    base = np.array([law.supply if law.kind == "pressure" else 0.0 for law in laws])
+    q_base = film_flow(base)
+    G = np.eye(n)
+    for k, law in enumerate(laws):
+        if law.kind == "pressure":
+            continue
+        ref = law.supply if law.kind != "flow" and law.supply > 0 else 1.0
+        p = base.copy()
+        p[k] = ref
+        G[:, k] = (film_flow(p) - q_base) / ref
+        G[k, k] = max(G[k, k], 1e-300)
+    p = balance_pockets(laws, film_flow, G)
+    res = solve_at(p)
+    return res, p, flows_of(res)
 
 
 # -- the pockets' compressibility ------------------------------------------------------------------
@@ -1137,3 +1216,203 @@ def supply_dynamics(mesh: SupportMesh, h: float, supplies: Sequence[Supply] | Su
     return SupportDynamics(result=dataclasses.replace(balanced, pockets=pockets), frequencies=omega,
                            stiffness=stiffness, damping=damping, squeeze_damping=float(B), film_stiffness=-dW_dh,
                            pressure_response=response)
+
+
+# -- dynamics of a journal displaced in the plane: its pockets responding ------------------------------------
+
+@dataclass(frozen=True)
+class DisplacedJournal:
+    """The film of a journal whose centre is displaced by ``(x, y)`` [c]: ``h = 1 - x cos phi - y sin phi``.
+
+    The same film as ``CosineFilm(hypot(x, y), atan2(-y, -x))``; its squeeze shapes are those of the
+    centre's velocity in the plane, ``dh/dx = -cos phi``, ``dh/dy = -sin phi`` (defined at the centred
+    journal too, where ``CosineFilm``'s ``phi0`` is not).
+    """
+
+    x: float
+    y: float
+    smooth: ClassVar[bool] = True
+
+    def thickness(self, phi, z):
+        phi = np.asarray(phi, float)
+        return 1.0 - self.x * np.cos(phi) - self.y * np.sin(phi) + 0.0 * np.asarray(z, float)
+
+    def gradient(self, phi, z):
+        phi = np.asarray(phi, float)
+        dphi = self.x * np.sin(phi) - self.y * np.cos(phi) + 0.0 * np.asarray(z, float)
+        return dphi, np.zeros_like(dphi)
+
+    def laplacian(self, phi, z):
+        phi = np.asarray(phi, float)
+        return self.x * np.cos(phi) + self.y * np.sin(phi) + 0.0 * np.asarray(z, float)
+
+    def rate_shapes(self, phi, z):
+        phi = np.asarray(phi, float) + 0.0 * np.asarray(z, float)
+        return -np.cos(phi), -np.sin(phi)
+
+    def minimum(self, phi_range):
+        return None
+
+
+@dataclass(frozen=True)
+class JournalDynamics:
+    """Stiffness and damping of a journal on a fed support, its pockets responding, linearised [SI].
+
+    The film's force on the journal is ``-force`` (``force = int p (cos phi, sin phi) dA``, from the journal's
+    centre into the film); the coefficients are ``K_ij + i omega C_ij = d force_i / d x_j`` for a harmonic motion
+    ``x = x_hat exp(i omega t)`` of the journal's centre, i.e. the film's force on the journal is
+    ``-K x - C dx/dt`` for a slow motion.
+
+    Attributes
+    ----------
+    result : SuppliedResult
+        The balanced support at the displacement.
+    frequencies : ndarray, shape (F,)
+        Angular frequencies [rad/s] (0: the limit of slow motion).
+    stiffness : ndarray, shape (F, 2, 2)
+        ``Re Z`` [N/m], rows the force's ``(x, y)``, columns the displacement's.
+    damping : ndarray, shape (F, 2, 2)
+        ``Im Z / omega`` [N s/m] (at ``omega = 0`` the limit ``d Im Z / d omega``).
+    squeeze_damping : ndarray, shape (2, 2)
+        The film's own damping with every pocket held at its pressure (a rigid supply) [N s/m].
+    film_stiffness : ndarray, shape (2, 2)
+        The stiffness with every pocket held at its pressure [N/m].
+    pressure_response : ndarray, shape (F, n, 2), complex
+        ``dp_r / dx_j`` of each pocket [Pa/m].
+    """
+
+    result: SuppliedResult
+    frequencies: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    squeeze_damping: np.ndarray
+    film_stiffness: np.ndarray
+    pressure_response: np.ndarray
+
+
+def journal_dynamics(mesh: SupportMesh, displacement: Sequence[float], supplies: Sequence[Supply] | Supply,
+                     scale: Scale, *, frequencies: Sequence[float] = (0.0,),
+                     volumes: Sequence[float] | float | None = None, bulk_modulus: float = 1.5e9,
+                     step: float = 1e-3, operating: OperatingPoint = OperatingPoint(wedge=0.0),
+                     discretization: Discretization = Discretization()) -> JournalDynamics:
+    r"""The 2x2 stiffness and damping of a journal on a fed support, each pocket responding through its restrictor.
+
+    The linear film of a journal displaced by ``x = (x, y)`` [c] (:class:`DisplacedJournal`) moving at ``v``, with
+    each pocket's rate equation ``V/K dp_r/dt = Q_restrictor(p_r) - Q_film(x, p, v) - dV_r/dt`` (``dV_r/dt =
+    int_pocket dh/dt dA``, the pocket's own gap), linearised at the balance (:func:`solve_supplied`) for a
+    harmonic motion ``x = x_hat exp(i omega t)`` as :func:`supply_dynamics` does for the pad::
+
+        (i omega V/K + k_r + G) dp = -(dQ/dx + i omega (q_v + m)) x_hat,
+        Z = d force/d x_hat = dF/dx + a dp/x_hat + i omega B,
+
+    one superposition column per pocket and per direction of the squeeze (``q_v`` the pockets' outflow and ``B``
+    the film's force per unit velocity of the centre, ``a`` the force per unit pocket pressure, ``m`` the pockets'
+    gap rate per unit velocity), ``dQ/dx`` and ``dF/dx`` at fixed pockets by central differences of films at
+    ``x +- step`` in each direction. Prescribed pockets keep ``dp = 0`` (the damping is then ``B``, the film's
+    own); ``V -> inf`` holds every fed pocket at its balanced pressure at any ``omega > 0``; at ``omega -> 0`` the
+    stiffness is the slope of the balanced force against the displacement at fixed supply.
+
+    Parameters
+    ----------
+    mesh : SupportMesh
+        The support surface with its pockets (a pad of a multi-pad journal: rotate and add the pads).
+    displacement : (float, float)
+        The journal centre's displacement ``(x, y)`` [c] in the surface's frame (``phi = 0`` along x).
+    supplies, scale, discretization
+        As :func:`solve_supplied` (no cavitation, rigid surfaces: the film is linear).
+    frequencies : sequence of float
+        Angular frequencies of the motion [rad/s], >= 0.
+    volumes : float or sequence of float, optional
+        Each pocket's oil volume [m^3], > 0; default none (incompressible pockets).
+    bulk_modulus : float
+        The oil's bulk modulus ``K`` [Pa], > 0.
+    step : float
+        The difference step [c], in (0, 0.1].
+    operating : OperatingPoint
+        Its wedge (a turning journal: a hybrid support); squeeze and inlet pressure must be 0.
+
+    Returns
+    -------
+    JournalDynamics
+    """
+    try:
+        x0, y0 = (float(v) for v in displacement)
+    except (TypeError, ValueError):
+        raise ValueError(f"displacement must be a pair (x, y) [c], got {displacement!r}") from None
+    if not (math.isfinite(x0) and math.isfinite(y0)) or math.hypot(x0, y0) + step >= 1.0:
+        raise ValueError(f"displacement must be finite with |(x, y)| + step < 1 [c], got {displacement!r}")
+    step = in_range("step", step, Range(0.0, 0.1, lo_open=True))
+    if any(operating.squeeze) or operating.inlet_pressure != 0.0:
+        raise ValueError("operating: the squeeze and the inlet pressure must be 0 (the motion and the supplies "
+                         "set them)")
+    omega = np.asarray(frequencies, float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
+        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
+    names = pocket_names(mesh)
+    laws = _laws(names, supplies, scale)
+    n = len(laws)
+    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
+    if volumes is None:
+        vol = np.zeros(n)
+    else:
+        vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
+        for k, v in enumerate(vol):
+            positive(f"volumes[{k}]", v, "m^3")
+    wedge = operating.wedge
+    balanced = solve_supplied(mesh, DisplacedJournal(x0, y0), supplies, scale, operating=operating,
+                              discretization=discretization)
+    p0 = np.array([scale.from_pressure(p) for p in balanced.pressures])
+
+    def linear(x: float, y: float):
+        """Per pocket: outflow of the motion (n,), per unit velocity (n, 2), per unit pocket pressure (n, n); the
+        force of the motion (2,), per unit velocity (2, 2), per unit pocket pressure (2, n); the pockets'
+        moments (n, 3) [non-dimensional]."""
+        pf = pocket_film(mesh, DisplacedJournal(x, y), discretization)
+        whole = pf.whole
+        U = np.column_stack([wedge * whole.fields[:, 0], whole.fields[:, 1], whole.fields[:, 2]]
+                            + [s.fields[:, 3] for s in pf.pockets])
+        W = np.zeros((4, n + 3))
+        W[0, 0], W[1, 1], W[2, 2] = wedge, 1.0, 1.0
+        W[3, 3:] = 1.0
+        flows = pocket_flows(pf, U, W)
+        forces = np.column_stack([s.forces[:, 3] for s in pf.pockets])
+        moments = np.array([s.operators.pocket_moments for s in pf.pockets])
+        return flows[:, 0], flows[:, 1:3], flows[:, 3:], wedge * whole.forces[:, 0], whole.forces[:, 1:3], forces, moments
+
+    _, q_v, G, _, f_v, a, moments = linear(x0, y0)
+    dQ, dF = np.zeros((n, 2)), np.zeros((2, 2))
+    for j in range(2):
+        e = np.eye(2)[j] * step
+        q_u, _, G_u, f_u, _, a_u, _ = linear(x0 + e[0], y0 + e[1])
+        q_d, _, G_d, f_d, _, a_d, _ = linear(x0 - e[0], y0 - e[1])
+        dQ[:, j] = ((q_u + G_u @ p0) - (q_d + G_d @ p0)) / (2 * step)
+        dF[:, j] = ((f_u + a_u @ p0) - (f_d + a_d @ p0)) / (2 * step)
+    # SI: pressures [Pa], flows [m^3/s], displacements [m], velocities [m/s] (time scale 1/omega of the scale)
+    P, Q, F = scale.pressure, scale.flow, scale.force
+    c, t = scale.clearance, 1.0 / scale.speed
+    G_si = G * Q / P
+    dQ_si = dQ * Q / c
+    dF_si = dF * F / c
+    demand = (q_v - moments[:, 1:3]) * Q * t / c  # the film's outflow and the pocket's gap per unit velocity [m^3]
+    a_si = a * F / P  # [N/Pa]
+    B = f_v * F * t / c  # [N s/m]
+    free = np.array([law.kind != "pressure" for law in laws])
+    k_r = np.array([-law.slope(pk) if law.kind != "pressure" else 0.0 for law, pk in zip(laws, p0)]) * Q / P
+    if not np.all(np.isfinite(k_r)):
+        raise SupplyError("an orifice at its supply pressure (no pressure drop) has no linearisation: its flow's "
+                          "slope is infinite")
+    idx = np.flatnonzero(free)
+    response = np.zeros((omega.size, n, 2), complex)  # dp/dx_hat [Pa/m]
+    slope = np.zeros((n, 2))  # d(Im dp/x_hat)/d omega at omega = 0
+    if idx.size:
+        S0 = np.diag(k_r[idx]) + G_si[np.ix_(idx, idx)]
+        D, M, Gam = dQ_si[idx], demand[idx], np.diag(vol[idx] / bulk)
+        slope[idx] = -np.linalg.solve(S0, M) + np.linalg.solve(S0, Gam @ np.linalg.solve(S0, D))
+        for i, w in enumerate(omega):
+            response[i, idx] = np.linalg.solve(S0 + 1j * w * Gam, -(D + 1j * w * M))
+    Z = dF_si[None] + np.einsum("in,fnj->fij", a_si, response) + 1j * omega[:, None, None] * B[None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        damping = np.where(omega[:, None, None] > 0, Z.imag / np.where(omega > 0, omega, 1.0)[:, None, None],
+                           (B + a_si @ slope)[None])
+    return JournalDynamics(result=balanced, frequencies=omega, stiffness=Z.real, damping=damping,
+                           squeeze_damping=B, film_stiffness=dF_si, pressure_response=response)

@@ -58,8 +58,10 @@ class OperatingPoint:
         a journal turning under a fixed shoe); finite.
     squeeze : (float, float)
         ``(gamma_rate, phi0_rate)`` per radian of shaft turn; finite.
-    inlet_pressure : float
-        Pocket pressure ``p_s`` [-]; finite (non-zero needs pockets).
+    inlet_pressure : float or tuple of float
+        Pocket pressure ``p_s`` [-]; finite (non-zero needs pockets). A tuple holds each pocket at its
+        own pressure, in the order of :func:`bearingfe.bearings.hydrostatic.pocket_names` (the front door,
+        :func:`bearingfe.solve_reynolds`, makes it from a sequence or a mapping ``name -> value``).
     sliding : float, optional
         Sliding speed for the Couette shear [-]; default ``wedge``.
 
@@ -71,7 +73,7 @@ class OperatingPoint:
 
     wedge: float = 1.0
     squeeze: tuple[float, float] = (0.0, 0.0)
-    inlet_pressure: float = 0.0
+    inlet_pressure: float | tuple[float, ...] = 0.0
     sliding: float | None = None
 
     def __post_init__(self) -> None:
@@ -85,13 +87,20 @@ class OperatingPoint:
             raise ValueError(f"{own}.squeeze must be a pair (gamma_rate, phi0_rate) of finite numbers, "
                              f"got {self.squeeze!r}")
         object.__setattr__(self, "squeeze", tuple(finite(f"{own}.squeeze[{k}]", r) for k, r in enumerate(rates)))
-        object.__setattr__(self, "inlet_pressure", finite(f"{own}.inlet_pressure", self.inlet_pressure))
+        if isinstance(self.inlet_pressure, tuple):  # one pressure per pocket
+            object.__setattr__(self, "inlet_pressure", tuple(finite(f"{own}.inlet_pressure[{k}]", v)
+                                                             for k, v in enumerate(self.inlet_pressure)))
+        else:
+            object.__setattr__(self, "inlet_pressure", finite(f"{own}.inlet_pressure", self.inlet_pressure))
         if self.sliding is not None:
             object.__setattr__(self, "sliding", finite(f"{own}.sliding", self.sliding))
 
     @property
     def weights(self) -> np.ndarray:
-        """Weights of the unit sources ``(wedge, gamma_rate, phi0_rate, inlet)``."""
+        """Weights of the unit sources ``(wedge, gamma_rate, phi0_rate, inlet)``; with one pressure per pocket
+        the inlet column holds the pockets at their pressures (weight 1)."""
+        if isinstance(self.inlet_pressure, tuple):
+            return np.array([self.wedge, *self.squeeze, 1.0])
         return np.array([self.wedge, *self.squeeze, self.inlet_pressure])
 
 

@@ -56,7 +56,7 @@ from ..geometry.locate import probe_matrices
 from ..geometry.meshing import SupportMesh
 from ..geometry.runner import require_along_phi
 
-__all__ = ["DeflectedFilm", "ElasticSolution", "solve_elastic", "balance_load", "ElasticBalance", "ChordBalance",
+__all__ = ["DeflectedFilm", "ElasticSolution", "solve_elastic", "pocket_deflections", "balance_load", "ElasticBalance", "ChordBalance",
            "pressure_sensitivity", "sensitivity_operator", "newton", "solve_rigid_h_min"]
 
 # -- the deflected film ----------------------------------------------------------------------
@@ -385,7 +385,9 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
         cos = load_form.assemble(basis, f=np.cos(x[0]))
         sin = load_form.assemble(basis, f=np.sin(x[0]))
         L = np.vstack([cos, sin])
-        M = L @ U
+        # the rates keep the force: (L U)^-1, or its pseudo-inverse where the free film's force responds to the
+        # rates in one direction only (most of a fed shoe's film ruptured: the rates across it are not moved)
+        M = np.linalg.pinv(L @ U, rcond=1e-12)
 
     def apply(v):
         v = np.asarray(v, float)
@@ -393,7 +395,7 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
         bv = BF @ v
         out[idx] = -solve(np.asarray(bv))
         if U is not None:
-            out = out - U @ np.linalg.solve(M, L @ out)
+            out = out - U @ (M @ (L @ out))
         return out
 
     return apply
@@ -480,24 +482,45 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     _check_compliance(compliance, mesh, element)
     if cavitation not in MODELS:
         raise ValueError(f"cavitation must be one of {tuple(MODELS)}, got {cavitation!r}")
-    check_operating_point(wedge, squeeze, inlet_pressure)
-    weights = source_weights(wedge, squeeze, inlet_pressure)
+    pockets = inlet_pressure if isinstance(inlet_pressure, tuple) else None  # one pressure per pocket
+    check_operating_point(wedge, squeeze, max(pockets, key=abs) if pockets else inlet_pressure)
+    weights = source_weights(wedge, squeeze, 1.0 if pockets else inlet_pressure)
     ops = operators(mesh, element)
     basis = ops.basis
     warm, last = [None], [None, None]
+    if pockets:
+        from ..bearings.hydrostatic import pocket_film, pocket_names, solve_pocket_state
+
+        names = pocket_names(mesh)
+        columns = pocket_deflections(compliance, names)
+        if len(pockets) != len(names):
+            raise ValueError(f"inlet_pressure must give one value per pocket ({len(names)}: {', '.join(names)}), "
+                             f"got {len(pockets)}")
+        opening = columns @ np.asarray(pockets, float)
 
     def evaluate(w):
+        options = ModelOptions(sliding=sliding, warm_start=warm[0], solver=solver)
+        deflected = DeflectedFilm(film, basis, w)
         try:
-            sup = superpose(mesh, DeflectedFilm(film, basis, w), formulation="direct", element=element,
-                            solver=solver)
+            if pockets:  # one unit field per pocket: each pocket at its own pressure
+                pf = pocket_film(mesh, deflected, Discretization(element=element, formulation="direct", solver=solver))
+                sup = pf.whole
+            else:
+                sup = superpose(mesh, deflected, formulation="direct", element=element, solver=solver)
         except ValueError as exc:
             if "h_min" in str(exc):
                 raise ElasticError(str(exc)) from None
             raise
-        res = solve_model(sup, weights, cavitation, ModelOptions(sliding=sliding, warm_start=warm[0], solver=solver))
+        if pockets:
+            res = solve_pocket_state(pf, names, pockets, OperatingPoint(wedge=wedge, squeeze=tuple(weights[1:3])),
+                                     cavitation, options)
+        else:
+            res = solve_model(sup, weights, cavitation, options)
         if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
         last[:] = [res, sup.system]  # the factorized film of the last state: the Krylov Jacobian's solves
+        if pockets:
+            return compliance.apply(np.asarray(res.pressure, float)) + opening, res
         return compliance.deflection(res.pressure, inlet_pressure), res
 
     interior = np.zeros(basis.N, bool)
@@ -517,6 +540,35 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
                            residual=out.residual, max_deflection=float(out.deflection.max(initial=0.0)),
                            rigid_h_min=solve_rigid_h_min(film, basis), history=out.history,
                            krylov_iterations=out.krylov_iterations)
+
+
+def pocket_deflections(compliance: Compliance, names) -> np.ndarray:
+    """The film opening [c] under each pocket at unit pressure, the others at 0: shape ``(n_dofs, n)``.
+
+    The compliance carries the opening under every pocket at once (``compliance.pocket``); one pocket's own
+    is the half-space's integral over that pocket's contour (:func:`bearingfe.elastic.half_space.pocket_integrals`),
+    so pockets at different pressures are taken on the half-space (and rigid) supports only.
+
+    Raises
+    ------
+    ValueError
+        Several pockets on a compliance model whose opening per pocket is not known.
+    """
+    names = tuple(names)
+    if len(names) == 1:
+        return np.asarray(compliance.pocket, float)[:, None]
+    if compliance.model != "half-space":
+        raise ValueError(f"elastic: pockets at different pressures need each pocket's own opening, which the "
+                         f"{compliance.model!r} compliance does not give; use half_space() or one pressure")
+    from .half_space import pocket_integrals
+
+    ops = operators(compliance.mesh, compliance.element)
+    m = compliance.mesh.mesh
+    kappa = (0.0 if math.isinf(compliance.modulus) else
+             compliance.scale.pressure * compliance.scale.radius / (math.pi * compliance.modulus
+                                                                     * compliance.scale.clearance))
+    return np.column_stack([kappa * pocket_integrals(ops.basis.doflocs, m, compliance.mesh.boundaries[n])
+                            for n in names])
 
 
 def _checked(result, deflection: np.ndarray, compliance: Compliance, mesh: SupportMesh, film: Film):

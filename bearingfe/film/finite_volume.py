@@ -961,8 +961,10 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
 
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
-           p: np.ndarray, theta: np.ndarray, created: bool = False) -> tuple[dict[str, float], float]:
-    """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative)."""
+           p: np.ndarray, theta: np.ndarray, created: bool = False,
+           pockets: bool = False) -> tuple[dict[str, float], float]:
+    """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative); with
+    ``pockets`` also each pocket's own inflow under its name (not counted again in the balance)."""
     basis = ops.basis
     storage = system.storage * theta + system.source
     balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
@@ -985,12 +987,50 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
         value += float(np.sum(direct[k][cd] + (outflow[cd] - shared[cd]) / count[cd]))
         flows[k] = value
     flows["inlet"] = -float(np.sum(outflow[ops.inlet])) if ops.inlet.size else 0.0
+    own = {name: -float(np.sum(outflow[d])) for name, d in _pocket_dofs(mesh, ops).items()} if pockets else {}
     flows["squeeze"] = float(np.sum(storage))
     if created:  # Swift-Stieber: the oil the ruptured zone creates (negative: flows into the film)
         flows["cavitation"] = -float(np.sum(balance_rest[ops.interior]))
     total_out = sum(v for k, v in flows.items() if k not in ("inlet", "squeeze"))
     # = minus the sum of the interior dofs' residuals: zero to solver tolerance
-    return flows, flows["inlet"] - total_out - flows["squeeze"]
+    return {**flows, **own}, flows["inlet"] - total_out - flows["squeeze"]
+
+
+def _pressures(inlet_pressure):
+    """The pocket pressure as a float, or one per pocket as a tuple of floats."""
+    return tuple(map(float, inlet_pressure)) if isinstance(inlet_pressure, tuple) else float(inlet_pressure)
+
+
+def _pocket_dofs(mesh: SupportMesh, ops: Operators) -> dict[str, np.ndarray]:
+    """The dofs of each pocket's contour, by name (:func:`bearingfe.bearings.hydrostatic.pocket_names`)."""
+    from ..bearings.hydrostatic import pocket_names
+
+    return {name: ops.basis.get_dofs(mesh.boundaries[name]).all() for name in pocket_names(mesh)}
+
+
+def _pocket_values(mesh: SupportMesh, ops: Operators, inlet_pressure) -> np.ndarray:
+    """The Dirichlet values: 0 on the outline, the pocket pressure (or each pocket's own) on the pockets."""
+    p_fixed = np.zeros(ops.n_dofs)
+    if not isinstance(inlet_pressure, tuple):
+        p_fixed[ops.inlet] = inlet_pressure
+        return p_fixed
+    dofs = _pocket_dofs(mesh, ops)
+    if len(dofs) != len(inlet_pressure):
+        raise ValueError(f"inlet_pressure must give one value per pocket ({len(dofs)}: {', '.join(dofs)}), "
+                         f"got {len(inlet_pressure)}")
+    for d, value in zip(dofs.values(), inlet_pressure):
+        p_fixed[d] = value
+    return p_fixed
+
+
+def _pocket_loads(mesh: SupportMesh, ops: Operators, inlet_pressure) -> np.ndarray:
+    """``(int p, int p cos, int p sin)`` over the pockets (holes of the mesh) at their pressures."""
+    if not isinstance(inlet_pressure, tuple):
+        return inlet_pressure * ops.pocket_moments
+    from .mesh_operators import _pocket_moments
+
+    return sum(value * _pocket_moments(ops.basis, mesh.boundaries[name])
+               for name, value in zip(_pocket_dofs(mesh, ops), inlet_pressure))
 
 
 # -- public entry point --------------------------------------------------------------------
@@ -1011,6 +1051,8 @@ def _check_inputs(mesh, film, element, wedge, squeeze, inlet_pressure, cavitatio
             raise ValueError
     except (TypeError, ValueError):
         raise ValueError(f"squeeze must be a pair (gamma_rate, phi0_rate), got {squeeze!r}") from None
+    pockets = inlet_pressure if isinstance(inlet_pressure, tuple) else (inlet_pressure,)
+    inlet_pressure = min(pockets) if min(pockets) < 0 else max(pockets, key=abs)  # the one the checks need
     values = [float(wedge), *sq, float(inlet_pressure), float(cavitation_pressure)]
     if not np.all(np.isfinite(values)):
         raise ValueError(f"wedge, squeeze, inlet_pressure and cavitation_pressure must be finite, got {values}")
@@ -1150,8 +1192,7 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     ops = operators(mesh, "P1")
     system = _assemble(ops, mesh, film, wedge, sq, dt, previous, couette)
     t1 = time.perf_counter()
-    p_fixed = np.zeros(ops.n_dofs)
-    p_fixed[ops.inlet] = inlet_pressure
+    p_fixed = _pocket_values(mesh, ops, inlet_pressure)
     unk = _unknowns(mesh, ops)
     cavity = _warm_cavity(warm_start, ops, unk)
     upwinded, nested = 0, {}
@@ -1287,18 +1328,17 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     p_c = float(cavitation_pressure)
     t1, ops, system, unk, sol, upwinded, nested = _complementarity(
-        mesh, film, float(wedge), sq, float(inlet_pressure), p_c, dt, previous, couette, cavitation, factorize,
+        mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation, factorize,
         tol, max_iterations, warm_start, start)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
     free[ops.interior] = True
-    p_fixed = np.zeros(ops.n_dofs)
-    p_fixed[ops.inlet] = inlet_pressure
+    p_fixed = _pocket_values(mesh, ops, inlet_pressure)
     p = np.where(free, unk.S @ sol.p, p_fixed)
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
     cost = {"assembly": t1 - start, "cavitation": t2 - t1}
-    result = _result(mesh, ops, film, system, float(wedge), sq, float(inlet_pressure), p_c, sliding, p, theta,
+    result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p, theta,
                      cavitated, sol, cost, start, cavitation)
     # counts, not times: added after the postprocess time (the time left over from the timed entries)
     counts = dict(nested, **({"upwinded_segments": float(upwinded)}
@@ -1312,7 +1352,8 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
             cost, start, model) -> ReynoldsResult:
     basis = ops.basis
-    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds")
+    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
+                            pockets=isinstance(inlet_pressure, tuple))
     x, dx = ops.x, basis.dx
     pq = basis.interpolate(p)
     dp = pq.grad
@@ -1330,10 +1371,12 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         speed2 = 1.0 if u is None else u[0] ** 2 + u[1] ** 2
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
-    pm = ops.pocket_moments
+    pm = _pocket_loads(mesh, ops, inlet_pressure)
     force = np.array([np.sum(np.array(pq) * np.cos(x[0]) * dx), np.sum(np.array(pq) * np.sin(x[0]) * dx)])
-    force = force + inlet_pressure * pm[1:]
-    integral = float(np.sum(np.array(pq) * dx) + inlet_pressure * pm[0])
+    force = force + pm[1:]
+    integral = float(np.sum(np.array(pq) * dx) + pm[0])
+    if isinstance(inlet_pressure, tuple):
+        inlet_pressure = max(inlet_pressure)
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
     first_order_unstructured = system.couette == "median" and mesh.source not in ALIGNED_SOURCES

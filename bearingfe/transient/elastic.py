@@ -136,11 +136,24 @@ class QuasiStaticElastic(Rigid):
             raise FilmClosed((gamma, delta))
         pump = self.pump
         start = time.perf_counter()
+
+        def solve(initial, reuse):
+            return balance_load(self.mesh, CosineFilm(gamma, delta), self.compliance, pump.load_vector(beta),
+                                wedge=float(pump.wedge(beta)), inlet_pressure=self.pocket_pressure(beta, y),
+                                element=self.element, cavitation=self.cavitation, solver=self.solver,
+                                initial=initial, reuse=reuse, full_result=full)
+
         try:
-            found = balance_load(self.mesh, CosineFilm(gamma, delta), self.compliance, pump.load_vector(beta),
-                                 wedge=float(pump.wedge(beta)), inlet_pressure=self.pocket_pressure(beta, y),
-                                 element=self.element, cavitation=self.cavitation, solver=self.solver,
-                                 initial=self._w, reuse=self._reuse, full_result=full)
+            try:
+                found = solve(self._w, self._reuse)
+            except (ElasticError, CavitationError) as exc:
+                if self._w is None or self.cavitation == "none" or "h_min" in str(exc):
+                    raise
+                # under rupture the deflection's Newton from the last state's may pass through films whose rupture
+                # set leaves the rates' force one direction only (the orifice pump's fed pocket on steel at
+                # 194.5 deg): once more from the undeflected film, the Jacobian's factors dropped
+                self._reuse.clear()
+                found = solve(None, self._reuse)
         except ElasticError as exc:
             if "h_min" in str(exc):
                 raise FilmClosed((gamma, delta)) from None
@@ -175,7 +188,10 @@ class FedQuasiStaticElastic(QuasiStaticElastic):
     deflection's rate is left out of the pocket's gap as it is of the film's squeeze: quasi-static). The pocket
     needs its ``pocket_volume`` (balanced at each instant it would need the coupled film solved inside the
     pocket's balance). The start is :class:`~bearingfe.transient.fed.Fed`'s: the rigid steady state with the
-    pocket balanced on it; the first steps take the pocket to the deflected film's balance.
+    pocket balanced on it; the first steps take the pocket to the deflected film's balance. Under rupture, a
+    state where the pocket and the elements around its contour push harder than the load even with the film
+    ruptured everywhere else (:attr:`least`) has no balancing rates: the run ends ``"no-equilibrium"`` saying so
+    (the shoe lifts off; on the shipped orifice pump on steel at 194.6 deg).
 
     Parameters
     ----------
@@ -197,13 +213,47 @@ class FedQuasiStaticElastic(QuasiStaticElastic):
                              "would need the coupled film solved inside the pocket's balance")
         super().__init__(pump, compliance, cavitation=cavitation, formulation=formulation, solver=solver)
         self.fed = Fed(pump, compliance.mesh, formulation=formulation, element=compliance.element, solver=solver)
-        self.moments = np.asarray(operators(compliance.mesh, compliance.element).pocket_moments, float)
+        ops = operators(compliance.mesh, compliance.element)
+        self.moments = np.asarray(ops.pocket_moments, float)
+        #: the force per unit pocket pressure of the film that holds no pressure outside its pocket's contour on this
+        #: mesh (every free dof at 0): the pocket on its own area and the elements around it, where the pressure
+        #: falls from the pocket's to 0 [-]. A film without tension pushes at least this hard.
+        x = np.array(ops.basis.global_coordinates())
+        from ..film.forms import load as load_form
+        cos = load_form.assemble(ops.basis, f=np.cos(x[0]))
+        sin = load_form.assemble(ops.basis, f=np.sin(x[0]))
+        self.least = np.array([cos[ops.inlet].sum(), sin[ops.inlet].sum()]) + self.moments[1:]
 
     def pocket_pressure(self, beta: float, y: np.ndarray) -> float:
         return float(y[2])
 
     def initial_state(self, settings) -> tuple[float, np.ndarray]:
         return self.fed.initial_state(settings)
+
+    def balance(self, beta: float, y: np.ndarray, full: bool = True):
+        """:meth:`QuasiStaticElastic.balance`; where a film without tension has no balancing rates because the pocket
+        and the elements around it alone push harder than the load (:attr:`least`), a
+        :class:`~bearingfe.transient.base.NoEquilibrium` that says so (the shoe lifts off)."""
+        try:
+            return super().balance(beta, y, full)
+        except TrialRejected as exc:
+            if self.cavitation == "none":
+                raise
+            load = np.asarray(self.pump.load_vector(beta), float)
+            size = max(float(np.linalg.norm(load)), 1e-300)
+            least = float(y[2]) * float(self.least @ (-load / size))
+            if least <= size:  # near it the balancing rates of separation grow without bound: say how near
+                raise TrialRejected(f"{exc}; the pocket with the elements around its contour pushes with "
+                                    f"{least / size:.4g} times the plunger load even with the film ruptured "
+                                    "everywhere else (1: the shoe lifts off)") from None
+            sc = self.pump.scale
+            own = float(y[2]) * float(self.moments[1:] @ (-load / size))
+            raise NoEquilibrium(
+                f"no film without tension carries the load at beta = {beta:.4f} rad ({math.degrees(beta) % 360:.1f} "
+                f"deg): the pocket at {sc.to_pressure(float(y[2])) / 1e6:.4g} MPa pushes with {least / size:.4g} times "
+                f"the plunger load even with the film ruptured everywhere outside it ({own / size:.4g} on its own "
+                "area, the rest on the elements around its contour, where the pressure falls to 0 over one element: "
+                "a finer mesh there lowers it); the shoe lifts off") from None
 
     def _gap_rate(self, y: np.ndarray, rates: np.ndarray) -> float:
         """``dV/dbeta = int_pocket dh_rigid/dbeta dA`` [omega R0^2 c]."""

@@ -379,9 +379,101 @@ def test_an_elastic_pad_is_balanced_on_the_coupled_film(pads):
     assert pocket.pressure < 0.99 * rigid.pockets[0].pressure
 
 
-def test_several_pockets_on_the_finite_volume_scheme_are_refused(twin):
-    with pytest.raises(ValueError, match="holds every pocket at one pressure"):
-        solve_supplied(twin, UniformFilm(1.0), capillary_for(0.5), SCALE, discretization=P1, cavitation="jfo")
+# -- several pockets on the finite-volume scheme and on the elastic support ---------------------------
+
+@pytest.fixture(scope="module")
+def twin_p1():
+    # a turning pad with two pockets side by side along phi (straight-sided: the finite-volume scheme's mesh)
+    surface = Surface(arc=(-0.6, 0.6), half_width=0.3, inlets=(Circle((-0.25, 0.0), 0.07), Circle((0.25, 0.0), 0.07)))
+    return mesh_surface(surface, 0.05, inlet_size=0.02, order=1)
+
+
+def test_each_pocket_at_its_own_pressure_through_the_front_door(twin_p1):
+    # one value per pocket (a sequence in pocket order or a mapping): the same film on the Galerkin and the
+    # finite-volume paths; equal values are the scalar's film to round-off; each pocket's outflow is booked
+    # under its name and they add up to the total
+    film = CosineFilm(0.3, 0.3)
+    for cavitation in ("none", "reynolds", "jfo"):
+        seq = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(2.0, 5.0), cavitation=cavitation,
+                             discretization=P1)
+        named = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure={"inlet_1": 5.0, "inlet_0": 2.0},
+                               cavitation=cavitation, discretization=P1)
+        assert seq.integral == named.integral and seq.inlet_pressure == 5.0
+        assert seq.flows["inlet_0"] + seq.flows["inlet_1"] == pytest.approx(seq.flows["inlet"], rel=1e-12)
+        assert seq.flows["inlet_0"] < seq.flows["inlet_1"]
+        same = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(3.0, 3.0), cavitation=cavitation,
+                              discretization=P1)
+        ref = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=3.0, cavitation=cavitation, discretization=P1)
+        assert same.integral == pytest.approx(ref.integral, rel=1e-12)
+        np.testing.assert_allclose(same.force, ref.force, rtol=1e-12)
+        assert same.flows["inlet"] == pytest.approx(ref.flows["inlet"], rel=1e-12)
+    fe = solve_reynolds(twin_p1, film, wedge=1.0, inlet_pressure=(2.0, 5.0), discretization=P1)
+    # the two schemes differ by their discretizations only (no rupture): 1e-7 on this mesh
+    assert seq.integral == pytest.approx(fe.integral, rel=1e-6)
+
+
+@pytest.mark.parametrize("value, fragment", [((1.0,), "one value per pocket"), ((1.0, 2.0, 3.0), "one value per pocket"),
+                                             ({"inlet_0": 1.0}, "missing"), ({"inlet_0": 1.0, "inlet_1": 1.0, "x": 1.0}, "unknown"),
+                                             ((1.0, math.nan), "inlet_pressure")])
+def test_a_bad_pressure_per_pocket_is_named(twin_p1, value, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        solve_reynolds(twin_p1, UniformFilm(1.0), wedge=0.0, inlet_pressure=value, discretization=P1)
+
+
+def test_two_pockets_under_jfo_without_rupture_are_the_galerkin_balance(twin_p1):
+    # two orifices of different bores over a turning, tilted pad (8 MPa supply): no node ruptures, so the JFO
+    # balance (finite-volume fluxes, the n-pocket Newton-Broyden iteration on solve_reynolds) and the Galerkin one
+    # (superposition of the pockets' unit fields) differ by their discretizations only: measured 1.1e-7 and
+    # 2.7e-8 in the pocket pressures and 9e-7 in the load on this mesh (the one-pocket test's order); the bounds
+    # leave a factor 4
+    op = OperatingPoint(wedge=1.0)
+    orfs = [Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=8e6) for d in (0.15e-3, 0.25e-3)]
+    jfo = solve_supplied(twin_p1, CosineFilm(0.15, 0.3), orfs, SCALE, operating=op, cavitation="jfo", discretization=P1)
+    fe = solve_supplied(twin_p1, CosineFilm(0.15, 0.3), orfs, SCALE, operating=op, discretization=P1)
+    assert jfo.film.cavitation == "jfo" and jfo.film.cavitated_fraction == 0.0
+    np.testing.assert_allclose(jfo.pressures, fe.pressures, rtol=5e-7)
+    assert jfo.load == pytest.approx(fe.load, rel=4e-6)
+    assert jfo.pressures[0] < jfo.pressures[1] < 8e6  # the smaller bore feeds less: its pocket sits lower
+    for pocket in jfo.pockets:
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+
+
+def test_two_pockets_under_jfo_with_rupture_each_balance_their_flow(twin_p1):
+    # a strongly tilted pad at a 2 MPa supply: JFO ruptures part of the film. Each pocket's orifice flow equals its
+    # own film outflow to the iteration's tolerance (1e-11 of the largest restrictor flow), and the scheme carries
+    # all of it out through the pad's edges to round-off
+    op = OperatingPoint(wedge=1.0)
+    orfs = [Orifice(diameter=d, discharge_coefficient=CD, density=RHO, supply_pressure=2e6) for d in (0.1e-3, 0.15e-3)]
+    res = solve_supplied(twin_p1, CosineFilm(0.8, 0.3), orfs, SCALE, operating=op, cavitation="jfo", discretization=P1)
+    assert res.film.cavitated_fraction > 0.2
+    for pocket in res.pockets:
+        assert 0 < pocket.pressure < 2e6
+        assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-9)
+    edges = sum(v for k, v in res.film.flows.items() if k in ("side", "arc_start", "arc_end"))
+    assert SCALE.to_flow(edges) == pytest.approx(sum(p.restrictor_flow for p in res.pockets), rel=1e-11)
+
+
+def test_two_pockets_on_the_elastic_support_tend_to_the_rigid_balance(twin_p1):
+    # each pocket's opening is the half-space's over its own contour (the two add up to the compliance's
+    # opening under both); as E* grows the balance tends to the rigid one as 1/E* (the opening is C p, a
+    # perturbation of the film of order 1/E*: measured 2.3e-2 and 2.3e-3 of the pocket pressures at 2e11 and 2e12 Pa)
+    from bearingfe import half_space
+    from bearingfe.elastic.coupled import pocket_deflections
+    caps = [capillary_for(0.4), capillary_for(0.6)]
+    film = CosineFilm(0.3, 0.3)
+    op = OperatingPoint(wedge=1.0)
+    rigid = solve_supplied(twin_p1, film, caps, SCALE, operating=op, discretization=P1)
+    gaps = []
+    for modulus in (2e11, 2e12):
+        compliance = half_space(twin_p1, SCALE, modulus, "P1")
+        columns = pocket_deflections(compliance, pocket_names(twin_p1))
+        np.testing.assert_allclose(columns.sum(axis=1), compliance.pocket, rtol=1e-12, atol=1e-15)
+        soft = solve_supplied(twin_p1, film, caps, SCALE, operating=op, discretization=P1, elastic=compliance)
+        for pocket in soft.pockets:
+            assert pocket.restrictor_flow == pytest.approx(pocket.film_flow, rel=1e-8)
+        gaps.append(np.max(np.abs(soft.pressures / rigid.pressures - 1)))
+    assert 1e-3 < gaps[1] < 1e-2  # measured 2.3e-3 at E* = 2e12 Pa
+    assert gaps[0] / gaps[1] == pytest.approx(10.0, rel=0.1)  # first order in 1/E*
 
 
 # -- the pump's shoe fed from its chamber ([shoe.supply]) -----------------------------------------------
@@ -613,3 +705,73 @@ def test_two_fed_pockets_share_the_dynamics(twin):
     mixed = supply_dynamics(twin, 1.0, [PrescribedPressure(0.5 * PS), cap], SCALE, discretization=P2)
     held, fed = mixed.result.pockets
     assert held.damping[0] == 0.0 and held.stiffness[0] == 0.0 and fed.damping[0] > 0
+
+
+# -- a journal's stiffness and damping with its pockets responding (journal_dynamics) ---------------------------
+
+JOURNAL_AT = (0.2, -0.1)  # the journal centre's displacement [c] over the twin-pocket pad
+
+
+def journal_caps():
+    return [Capillary(diameter=0.3e-3, length=20e-3, supply_pressure=5e6),
+            Capillary(diameter=0.3e-3, length=30e-3, supply_pressure=5e6)]
+
+
+def test_journal_stiffness_of_slow_motion_is_the_slope_of_the_balanced_force(twin_p1):
+    # omega -> 0: the linearised support's stiffness is d(force)/d(x, y) of the balanced support at fixed supply;
+    # the reference is a central difference of solve_supplied at x +- 1e-3 c in each direction, whose truncation
+    # error is O(1e-6) relative (the force's curvature over 1e-3 c; measured 1.8e-6 against the linearisation)
+    from bearingfe.bearings.hydrostatic import DisplacedJournal, journal_dynamics
+    caps = journal_caps()
+    dyn = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(0.0,), volumes=1e-7, discretization=P1)
+    de, x0 = 1e-3, np.array(JOURNAL_AT)
+    slope = np.zeros((2, 2))
+    for j in range(2):
+        e = np.eye(2)[j] * de
+        up = solve_supplied(twin_p1, DisplacedJournal(*(x0 + e)), caps, SCALE, discretization=P1)
+        down = solve_supplied(twin_p1, DisplacedJournal(*(x0 - e)), caps, SCALE, discretization=P1)
+        slope[:, j] = (up.force - down.force) / (2 * de * SCALE.clearance)
+    np.testing.assert_allclose(dyn.stiffness[0], slope, rtol=2e-5, atol=2e-5 * np.abs(slope).max())
+    # the restrictors make the support stiff: the pockets' response is most of it (the held film alone is softer)
+    assert dyn.stiffness[0][0, 0] > 5 * abs(dyn.film_stiffness[0, 0])
+
+
+def test_journal_damping_with_held_pockets_is_the_films_squeeze(twin_p1):
+    # prescribed pockets (a rigid supply): no pocket responds, the stiffness is the held film's and the damping the
+    # film's own squeeze at every frequency; the reference is the front door's journal film (CosineFilm) with each
+    # pocket held at its pressure and a unit squeeze rate: its force per unit gamma_rate and phi0_rate is the damping
+    # applied to the centre's velocity -(cos phi0, sin phi0) and gamma (sin phi0, -cos phi0) (round-off)
+    from bearingfe.bearings.hydrostatic import journal_dynamics
+    held = journal_dynamics(twin_p1, JOURNAL_AT, journal_caps(), SCALE, discretization=P1)
+    pres = [PrescribedPressure(p) for p in held.result.pressures]
+    rigid = journal_dynamics(twin_p1, JOURNAL_AT, pres, SCALE, frequencies=(0.0, 100.0, 1e4), discretization=P1)
+    for k in range(3):
+        np.testing.assert_allclose(rigid.damping[k], rigid.squeeze_damping, rtol=1e-12)
+        np.testing.assert_allclose(rigid.stiffness[k], rigid.film_stiffness, rtol=1e-12)
+    gamma, phi0 = math.hypot(*JOURNAL_AT), math.atan2(-JOURNAL_AT[1], -JOURNAL_AT[0])
+    pockets = tuple(SCALE.from_pressure(p) for p in held.result.pressures)
+    film = CosineFilm(gamma, phi0)
+    at_rest = solve_reynolds(twin_p1, film, wedge=0.0, inlet_pressure=pockets, discretization=P1).force
+    per_time = SCALE.force / SCALE.speed / SCALE.clearance  # damping unit [N s/m]
+    for rates, velocity in (((1.0, 0.0), -np.array([math.cos(phi0), math.sin(phi0)])),
+                            ((0.0, 1.0), gamma * np.array([math.sin(phi0), -math.cos(phi0)]))):
+        moved = solve_reynolds(twin_p1, film, wedge=0.0, squeeze=rates, inlet_pressure=pockets, discretization=P1)
+        np.testing.assert_allclose(rigid.squeeze_damping / per_time @ velocity, moved.force - at_rest, rtol=1e-9)
+
+
+def test_journal_pockets_of_infinite_volume_are_held(twin_p1):
+    # V -> inf: the compressible pockets cannot change their pressure at omega > 0, the rigid-pocket limit; the
+    # difference is of order (k_r + G) K / (omega V) (1e-9 here: V = 1000 m^3)
+    from bearingfe.bearings.hydrostatic import journal_dynamics
+    caps = journal_caps()
+    big = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(100.0, 1000.0), volumes=1e3,
+                           discretization=P1)
+    for k in range(2):
+        np.testing.assert_allclose(big.stiffness[k], big.film_stiffness, rtol=1e-6,
+                                   atol=1e-6 * np.abs(big.film_stiffness).max())
+        np.testing.assert_allclose(big.damping[k], big.squeeze_damping, rtol=1e-6,
+                                   atol=1e-6 * np.abs(big.squeeze_damping).max())
+    # a small pocket responds: slow motion draws on it, adding damping (the restrictor's share)
+    small = journal_dynamics(twin_p1, JOURNAL_AT, caps, SCALE, frequencies=(0.0,), volumes=1e-9, discretization=P1)
+    assert small.damping[0][0, 0] > 1.1 * small.squeeze_damping[0, 0]
+    assert np.abs(small.pressure_response[0]).max() > 0
