@@ -112,7 +112,8 @@ def discretization_for(mesh: SupportMesh, cavitation: str, cavitation_pressure: 
 def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization: Discretization, cavitation: str,
                           options: ModelOptions, on_indefinite: str, compliance=None) -> ReynoldsResult:
     if isinstance(operating.inlet_pressure, tuple):  # each pocket at its own pressure: one unit field per pocket
-        from .bearings.hydrostatic import pocket_film, pocket_names, solve_pocket_state
+        from .cavitation.models import solve_pocket_state
+        from .film.pockets import pocket_film, pocket_names
 
         pf = pocket_film(mesh, film, discretization, on_indefinite)
         result = solve_pocket_state(pf, pocket_names(mesh), operating.inlet_pressure, operating, cavitation, options)
@@ -210,7 +211,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
         ``(gamma_rate, phi0_rate)`` per radian of shaft turn.
     inlet_pressure : float, sequence of float or mapping
         Pocket pressure ``p_s`` [-]: one for every pocket, or one per pocket (a sequence in the order of
-        :func:`bearingfe.bearings.hydrostatic.pocket_names`, or a mapping ``name -> value`` naming each
+        :func:`bearingfe.film.pockets.pocket_names`, or a mapping ``name -> value`` naming each
         pocket once). With one per pocket the result's ``flows`` hold each pocket's film outflow under its
         name (``"inlet_0"``, ...) beside the total ``"inlet"``, its loads count each pocket at its pressure,
         and its ``inlet_pressure`` is the largest of them.
@@ -292,7 +293,7 @@ def solve_reynolds(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION}, got {cavitation!r}")
     if not isinstance(inlet_pressure, (int, float)):  # one value per pocket, read against the mesh's pockets
-        from .bearings.hydrostatic import pocket_pressures
+        from .film.pockets import pocket_pressures
 
         inlet_pressure = pocket_pressures(mesh, inlet_pressure)
     largest = max(inlet_pressure, key=abs) if isinstance(inlet_pressure, tuple) else inlet_pressure

@@ -110,12 +110,12 @@ from ..core.scales import Scale
 from ..core.schema import Range, finite, in_range, positive
 from ..elastic import Compliance
 from ..film import Film, ReynoldsResult, Superposition, film_outputs, superpose
+from ..film.pockets import PocketFilm, pocket_film, pocket_flows, pocket_names, pocket_unknown
 from ..geometry.meshing import SupportMesh
 from ..reynolds import discretization_for, solve_reynolds
 
 __all__ = ["SUPPLIES", "Supply", "Restrictor", "PrescribedPressure", "Capillary", "Orifice", "ConstantFlow", "Law", "SupplyError",
-           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient", "PocketFilm", "pocket_names", "pocket_pressures", "pocket_film", "pocket_flows",
-           "solve_pocket_state",
+           "PocketState", "SuppliedResult", "SupportStiffness", "PocketTransient", "pocket_transient",
            "balance_pockets",
            "solve_supplied", "supply_stiffness", "SupportDynamics", "supply_dynamics", "DisplacedJournal",
            "JournalDynamics", "journal_dynamics"]
@@ -369,170 +369,6 @@ class Restrictor:
 
 
 # -- pockets of a mesh and their film flows ------------------------------------------------------
-
-def pocket_names(mesh: SupportMesh) -> tuple[str, ...]:
-    """The mesh's pockets, one boundary name each: ``inlet_0``, ``inlet_1``, ... (meshes of
-    :func:`bearingfe.mesh_surface`), or the one ``inlet`` of a mesh read from a file; () without pockets."""
-    bnd = mesh.boundaries
-    named = sorted((n for n in bnd if n.startswith("inlet_") and n[6:].isdigit()), key=lambda n: int(n[6:]))
-    if named:
-        return tuple(named)
-    return ("inlet",) if mesh.has_inlet else ()
-
-
-def pocket_pressures(mesh: SupportMesh, inlet_pressure) -> float | tuple[float, ...]:
-    """The front door's ``inlet_pressure`` read against the mesh's pockets [-].
-
-    A number is returned as a float (every pocket at it); a sequence (one value per pocket, in the order
-    of :func:`pocket_names`) or a mapping ``name -> value`` (every pocket named once) as a tuple in
-    :func:`pocket_names` order.
-
-    Raises
-    ------
-    ValueError
-        The mesh has no pockets, a sequence of the wrong length, a mapping with unknown or missing names,
-        or a value that is not a finite number.
-    """
-    if not isinstance(inlet_pressure, (Mapping, str)) and np.ndim(inlet_pressure) == 0:
-        return finite("inlet_pressure", inlet_pressure.item() if isinstance(inlet_pressure, np.ndarray)
-                      else inlet_pressure)
-    names = pocket_names(mesh)
-    if not names:
-        raise ValueError("inlet_pressure: one value per pocket was given but the mesh has no pockets "
-                         "('inlet' boundaries)")
-    if isinstance(inlet_pressure, Mapping):
-        given = set(inlet_pressure)
-        if given != set(names):
-            unknown, missing = sorted(map(str, given - set(names))), sorted(set(names) - given)
-            raise ValueError(f"inlet_pressure: a mapping must name every pocket once ({', '.join(names)}); "
-                             f"unknown {unknown}, missing {missing}")
-        values = [inlet_pressure[n] for n in names]
-    else:
-        try:
-            values = list(inlet_pressure)
-        except TypeError:
-            raise ValueError(f"inlet_pressure must be a number, one value per pocket ({', '.join(names)}) or a "
-                             f"mapping name -> value, got {type(inlet_pressure).__name__}") from None
-        if len(values) != len(names):
-            raise ValueError(f"inlet_pressure must give one value per pocket ({len(names)}: {', '.join(names)}), "
-                             f"got {len(values)}")
-    return tuple(finite(f"inlet_pressure[{n!r}]", v) for n, v in zip(names, values))
-
-
-def _pocket_mesh(mesh: SupportMesh, name: str, names: Sequence[str]) -> SupportMesh:
-    """The mesh with only pocket ``name`` as its ``inlet`` (the other pockets join the outline at 0):
-    the same dofs, so its unit inlet field is pocket ``name``'s and its ``inlet`` flow is that pocket's."""
-    if len(names) == 1:
-        return mesh
-    key = ("pocket mesh", name)
-    if key not in mesh._cache:
-        bnd = mesh.boundaries
-        others = [np.asarray(bnd[n]) for n in names if n != name]
-        new = dict(bnd, inlet=np.asarray(bnd[name]), outer=np.union1d(bnd["outer"], np.concatenate(others)))
-        mesh._cache[key] = SupportMesh(mesh=_with_boundaries(mesh.mesh, new), surface=mesh.surface,
-                                       size=mesh.size, source=mesh.source)
-    return mesh._cache[key]
-
-
-def _with_boundaries(m, boundaries: Mapping[str, np.ndarray]):
-    """A scikit-fem mesh with its boundaries replaced (``with_boundaries`` only adds to them)."""
-    return dataclasses.replace(m, _boundaries={k: np.asarray(v) for k, v in boundaries.items()})
-
-
-@dataclass(frozen=True, eq=False)
-class PocketFilm:
-    """The film of a support with its pockets as unknowns: one unit field per pocket (linear models).
-
-    Attributes
-    ----------
-    whole : Superposition
-        The film state with all pockets as its ``inlet``.
-    pockets : tuple of Superposition
-        One per pocket: its ``inlet`` column is that pocket at unit pressure, the others at 0.
-    """
-
-    whole: Superposition
-    pockets: tuple[Superposition, ...]
-
-    def state(self, pressures: np.ndarray) -> Superposition:
-        """The film state whose ``inlet`` column holds every pocket at its pressure (weight 1)."""
-        p = np.asarray(pressures, float)
-        fields = self.whole.fields.copy()
-        fields[:, 3] = sum(pk * s.fields[:, 3] for pk, s in zip(p, self.pockets))
-        whole = self.whole.system
-        system = dataclasses.replace(
-            whole, build_matrix=lambda: whole.matrix,  # the matrix does not depend on the pocket data: built once
-            rhs=_column(self.whole.system.rhs, sum(pk * s.system.rhs[:, 3] for pk, s in zip(p, self.pockets))),
-            lift=_column(self.whole.system.lift, sum(pk * s.system.lift[:, 3] for pk, s in zip(p, self.pockets))))
-        forces = _column(self.whole.forces, sum(pk * s.forces[:, 3] for pk, s in zip(p, self.pockets)))
-        integrals = self.whole.integrals.copy()
-        integrals[3] = sum(pk * s.integrals[3] for pk, s in zip(p, self.pockets))
-        return dataclasses.replace(self.whole, fields=fields, forces=forces, integrals=integrals, system=system)
-
-    def pocket_moments(self, pressures: np.ndarray) -> np.ndarray:
-        """``(area, int cos, int sin)`` of the pockets weighted by their pressures."""
-        return sum(pk * s.operators.pocket_moments for pk, s in zip(np.asarray(pressures, float), self.pockets))
-
-
-def _column(a: np.ndarray, values) -> np.ndarray:
-    out = a.copy()
-    out[..., 3] = values
-    return out
-
-
-def pocket_film(mesh: SupportMesh, film: Film, discretization: Discretization = Discretization(),
-                on_indefinite: str = "fallback") -> PocketFilm:
-    """The unit fields of each pocket of ``mesh`` (:class:`PocketFilm`): one factorization per pocket."""
-    names = pocket_names(mesh)
-    if not names:
-        raise ValueError("the mesh has no pockets ('inlet' boundaries): nothing to feed")
-
-    def sup(m: SupportMesh) -> Superposition:
-        return superpose(m, film, formulation=discretization.formulation, element=discretization.element,
-                         solver=discretization.solver, on_indefinite=on_indefinite)
-
-    whole = sup(mesh)
-    pockets = tuple(whole if len(names) == 1 else sup(_pocket_mesh(mesh, n, names)) for n in names)
-    if any(s.formulation != whole.formulation for s in pockets):  # the film decides it: cannot happen
-        raise RuntimeError("the pockets' film states chose different formulations")
-    return PocketFilm(whole=whole, pockets=pockets)
-
-
-def solve_pocket_state(pf: PocketFilm, names: Sequence[str], pressures: np.ndarray, operating: OperatingPoint,
-                       cavitation: str, options: ModelOptions) -> ReynoldsResult:
-    """The film of ``pf`` with each pocket at its own pressure [-], under a cavitation model.
-
-    The inlet column of :meth:`PocketFilm.state` holds the pockets at their pressures (weight 1); the
-    result's loads count each pocket at its own pressure, its ``flows`` hold each pocket's film outflow
-    under its name beside the total ``"inlet"``, and its ``inlet_pressure`` is the largest pocket pressure.
-    """
-    p = np.asarray(pressures, float)
-    weights = np.array([operating.wedge, *operating.squeeze, 1.0])
-    res = solve_model(pf.state(p), weights, cavitation, options)
-    u = _unknown(pf.whole, res)
-    cav = None if res.cavitated is None else res.cavitated[:, None]
-    q = pocket_flows(pf, u[:, None], weights[:, None], cav)[:, 0]
-    if res.cavitated is not None:  # the model's loads count the pockets at the column's unit weight
-        force, integral = pf.whole.loads(u, 0.0)
-        moments = pf.pocket_moments(p)
-        res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
-    flows = MappingProxyType({**res.flows, **{n: float(qk) for n, qk in zip(names, q)}})
-    return dataclasses.replace(res, flows=flows, inlet_pressure=float(np.max(p)))
-
-
-def pocket_flows(pf: PocketFilm, u: np.ndarray, weights: np.ndarray,
-                 cavitated: np.ndarray | None = None) -> np.ndarray:
-    """Film outflow of each pocket [omega R0^2 c] of unknown fields ``u`` (n_dofs, S) at source weights
-    (4, S): the consistent flux residual summed over each pocket's contour (:mod:`bearingfe.film.flows`).
-
-    Returns shape ``(n_pockets, S)``.
-    """
-    u = np.asarray(u, float)
-    weights = np.asarray(weights, float)
-    S = u.shape[1]
-    cav = None if cavitated is None else np.asarray(cavitated)  # the shear speed is no part of the flows
-    return np.array([film_outputs([s] * S, u, weights, weights[0], cav).flows["inlet"] for s in pf.pockets])
-
 
 # -- the balance of the pockets ----------------------------------------------------------------
 
@@ -824,7 +660,7 @@ def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, o
     else:
         def film_flow(p):
             res = solve_at(np.maximum(p, 0.0))
-            u = _unknown(pf.whole, res)
+            u = pocket_unknown(pf.whole, res)
             return pocket_flows(pf, u[:, None], weights[:, None],
                                 None if res.cavitated is None else res.cavitated[:, None])[:, 0]
 
@@ -832,7 +668,7 @@ def _solve_pockets_fe(mesh, film, laws, operating, discretization, cavitation, o
     res = solve_at(p)
     q = film_flow(p)
     if res.cavitated is not None:  # the model's loads count the pockets at the column's unit weight
-        force, integral = pf.whole.loads(_unknown(pf.whole, res), 0.0)
+        force, integral = pf.whole.loads(pocket_unknown(pf.whole, res), 0.0)
         moments = pf.pocket_moments(p)
         res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
     unresolved = check_resolution(mesh, film, stacklevel=4)  # as the front door's finite-element path does
@@ -852,14 +688,6 @@ def _linear_film(pf: PocketFilm, operating: OperatingPoint) -> tuple[np.ndarray,
     W[3, 1:] = 1.0
     flows = pocket_flows(pf, U, W)
     return flows[:, 0], flows[:, 1:]
-
-
-def _unknown(sup: Superposition, res: ReynoldsResult) -> np.ndarray:
-    """The unknown (``p`` or ``Pi``) of a result on its film state's dofs."""
-    if sup.formulation == "direct":
-        return np.asarray(res.pressure, float)
-    loc = sup.operators.basis.doflocs
-    return np.asarray(res.pressure, float) * np.asarray(sup.film.thickness(loc[0], loc[1])) ** 1.5
 
 
 def _listed(p: np.ndarray) -> str:

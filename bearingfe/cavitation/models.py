@@ -91,9 +91,10 @@ superposition of the new film.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Callable, Mapping
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -103,9 +104,10 @@ from .swift_stieber import solve_swift_stieber
 from ..core.linalg import DEFAULT_SOLVER, Factorize
 from ..core.parameters import OperatingPoint, takes
 from ..film import ReynoldsResult, Superposition, build_result, source_weights
+from ..film.pockets import PocketFilm, pocket_flows, pocket_unknown
 
 __all__ = ["ModelOptions", "ModelSolver", "CavitationModel", "MODELS", "CAVITATION", "solve_model", "solve_cavitating",
-           "solve_linear", "solve_gumbel"]
+           "solve_linear", "solve_gumbel", "solve_pocket_state"]
 
 
 @dataclass(frozen=True)
@@ -263,3 +265,25 @@ def solve_cavitating(sup: Superposition, wedge: float = 1.0, squeeze=(0.0, 0.0),
 
 
 _CAVITATING = tuple(name for name in MODELS if name != "none")
+
+
+def solve_pocket_state(pf: PocketFilm, names: Sequence[str], pressures: np.ndarray, operating: OperatingPoint,
+                       cavitation: str, options: ModelOptions) -> ReynoldsResult:
+    """The film of ``pf`` with each pocket at its own pressure [-], under a cavitation model.
+
+    The inlet column of :meth:`PocketFilm.state` holds the pockets at their pressures (weight 1); the
+    result's loads count each pocket at its own pressure, its ``flows`` hold each pocket's film outflow
+    under its name beside the total ``"inlet"``, and its ``inlet_pressure`` is the largest pocket pressure.
+    """
+    p = np.asarray(pressures, float)
+    weights = np.array([operating.wedge, *operating.squeeze, 1.0])
+    res = solve_model(pf.state(p), weights, cavitation, options)
+    u = pocket_unknown(pf.whole, res)
+    cav = None if res.cavitated is None else res.cavitated[:, None]
+    q = pocket_flows(pf, u[:, None], weights[:, None], cav)[:, 0]
+    if res.cavitated is not None:  # the model's loads count the pockets at the column's unit weight
+        force, integral = pf.whole.loads(u, 0.0)
+        moments = pf.pocket_moments(p)
+        res = dataclasses.replace(res, force=force + moments[1:], integral=integral + moments[0])
+    flows = MappingProxyType({**res.flows, **{n: float(qk) for n, qk in zip(names, q)}})
+    return dataclasses.replace(res, flows=flows, inlet_pressure=float(np.max(p)))

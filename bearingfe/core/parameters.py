@@ -60,7 +60,7 @@ class OperatingPoint:
         ``(gamma_rate, phi0_rate)`` per radian of shaft turn; finite.
     inlet_pressure : float or tuple of float
         Pocket pressure ``p_s`` [-]; finite (non-zero needs pockets). A tuple holds each pocket at its
-        own pressure, in the order of :func:`bearingfe.bearings.hydrostatic.pocket_names` (the front door,
+        own pressure, in the order of :func:`bearingfe.film.pockets.pocket_names` (the front door,
         :func:`bearingfe.solve_reynolds`, makes it from a sequence or a mapping ``name -> value``).
     sliding : float, optional
         Sliding speed for the Couette shear [-]; default ``wedge``.

@@ -489,7 +489,8 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     basis = ops.basis
     warm, last = [None], [None, None]
     if pockets:
-        from ..bearings.hydrostatic import pocket_film, pocket_names, solve_pocket_state
+        from ..cavitation.models import solve_pocket_state
+        from ..film.pockets import pocket_film, pocket_names
 
         names = pocket_names(mesh)
         columns = pocket_deflections(compliance, names)

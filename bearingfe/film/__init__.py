@@ -13,6 +13,7 @@ module            what it does
 ``result``        The result of one film state and the one place that builds it.
 ``estimate``      How far a solve's load is from converged: the once-refined comparison (Richardson).
 ``flows``         Named film flows, written once for every discretization and every transient.
+``pockets``       The pockets as unknowns: their names, one pressure per pocket, one unit field per pocket.
 ``fd``            Finite-difference reference solver of the Reynolds equation (paper 004's method).
 ``finite_volume`` Mass-conserving cavitation: the Jakobsson-Floberg-Olsson (JFO) model in Elrod-Adams p-theta form.
 ``polar_fd``      Finite-difference reference of a thrust pad's film on a polar grid (an independent check of the FEM).

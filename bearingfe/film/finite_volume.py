@@ -89,7 +89,7 @@ from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
-from .mesh_operators import Operators, operators
+from .mesh_operators import Operators, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
 __all__ = ["JFOError", "solve_jfo", "FVSystem", "FVUnknowns", "active_set", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
@@ -1002,8 +1002,8 @@ def _pressures(inlet_pressure):
 
 
 def _pocket_dofs(mesh: SupportMesh, ops: Operators) -> dict[str, np.ndarray]:
-    """The dofs of each pocket's contour, by name (:func:`bearingfe.bearings.hydrostatic.pocket_names`)."""
-    from ..bearings.hydrostatic import pocket_names
+    """The dofs of each pocket's contour, by name (:func:`bearingfe.film.pockets.pocket_names`)."""
+    from .pockets import pocket_names
 
     return {name: ops.basis.get_dofs(mesh.boundaries[name]).all() for name in pocket_names(mesh)}
 
@@ -1027,9 +1027,7 @@ def _pocket_loads(mesh: SupportMesh, ops: Operators, inlet_pressure) -> np.ndarr
     """``(int p, int p cos, int p sin)`` over the pockets (holes of the mesh) at their pressures."""
     if not isinstance(inlet_pressure, tuple):
         return inlet_pressure * ops.pocket_moments
-    from .mesh_operators import _pocket_moments
-
-    return sum(value * _pocket_moments(ops.basis, mesh.boundaries[name])
+    return sum(value * pocket_moments(ops.basis, mesh.boundaries[name])
                for name, value in zip(_pocket_dofs(mesh, ops), inlet_pressure))
 
 

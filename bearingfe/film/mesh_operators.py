@@ -26,7 +26,7 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh
 
-__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis"]
+__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis", "pocket_moments"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,7 +216,7 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         mesh=mesh, element=element, basis=basis,
         outer=outer, inlet=inlet, interior=interior, flow_groups=MappingProxyType(groups),
         facet_groups=MappingProxyType(facet_groups),
-        pocket_moments=_pocket_moments(basis, bnd.get("inlet")),
+        pocket_moments=pocket_moments(basis, bnd.get("inlet")),
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
 
@@ -268,7 +268,7 @@ def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> sk
                             quadrature=_LINE_RULES[intorder])
 
 
-def _pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
+def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """Area and first trigonometric moments of the pocket regions.
 
     The pockets are holes in the mesh, so their integrals come from the

@@ -9,7 +9,7 @@ leaves it into the film, fills the pocket's growing gap, or compresses its oil::
     V/K dp_r/dt = Q_restrictor(p_ch - p_r) - Q_film - dV/dt,     dV/dt = int_pocket dh/dt dA,
 
 with ``Q_film`` the film's outflow from the pocket (linear in the superposition's sources: one
-flux per unit field, :func:`bearingfe.bearings.hydrostatic.pocket_flows`) and ``dh/dt`` the
+flux per unit field, :func:`bearingfe.film.pockets.pocket_flows`) and ``dh/dt`` the
 shoe's squeeze over the pocket (``dh/dgamma = cos(phi - delta)``, ``dh/ddelta = gamma sin(phi -
 delta)``, integrated from the pocket's moments). With the restrictor's ``pocket_volume`` the
 state is ``(gamma, delta, p_r)`` [-, rad, -] and ``p_r`` has this rate equation
@@ -52,7 +52,8 @@ from .base import NoEquilibrium, TrialRejected
 from .cavitating import Cavitating
 from .jfo import JFO, JFOState
 from .rigid import Rigid
-from ..bearings.hydrostatic import PocketFilm, SupplyError, balance_pockets, pocket_flows
+from ..bearings.hydrostatic import SupplyError, balance_pockets
+from ..film.pockets import PocketFilm, pocket_flows
 from ..bearings.pump import EccentricPump
 from ..cavitation import CavitationError
 from ..core.linalg import DEFAULT_SOLVER

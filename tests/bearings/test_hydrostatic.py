@@ -27,8 +27,8 @@ import pytest
 from bearingfe import (Circle, CosineFilm, Discretization, OperatingPoint, Scale, Surface, UniformFilm, load_mechanism,
                        mesh_surface, solve_reynolds)
 from bearingfe.bearings.hydrostatic import (SUPPLIES, Capillary, ConstantFlow, Orifice, PrescribedPressure, Restrictor,
-                                            SupplyError, pocket_film, pocket_flows, pocket_names, solve_supplied,
-                                            supply_stiffness)
+                                            SupplyError, solve_supplied, supply_stiffness)
+from bearingfe.film.pockets import pocket_film, pocket_flows, pocket_names
 from bearingfe.core.schema import SchemaError
 from tests.helpers import ROOT
 
