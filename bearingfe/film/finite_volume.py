@@ -1283,6 +1283,28 @@ def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     return meshing._grid_on_lines(surface, lines[0], lines[1], pockets, None)
 
 
+#: A cold solve on an unstructured mesh (``couette`` ``"streamline"``, ``"median"`` or ``"limited"``) of
+#: :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of the
+#: surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested).
+NESTED_UNSTRUCTURED = True
+
+
+def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
+    """A ``grid_mesh`` of ``mesh.surface`` with about a quarter of ``mesh``'s nodes (cells twice the mean
+    spacing), for the nested start of an unstructured mesh; None where there is no such grid (no surface,
+    an outline or pockets a grid cannot follow, a runner not along ``phi``)."""
+    from ..geometry.meshing import grid_mesh
+
+    surface = mesh.surface
+    if surface is None or mesh.source == "grid" or not surface.is_rectangular or not is_along_phi(mesh.runner):
+        return None
+    area = surface.area - surface.inlet_area
+    try:
+        return grid_mesh(surface, 2.0 * math.sqrt(area / mesh.n_nodes))
+    except ValueError:
+        return None
+
+
 def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float,
                    couette: str, cavitation: str, factorize: Factorize, tol: float, max_iterations: int,
                    ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
@@ -1290,12 +1312,12 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
     bilinear interpolation of ``P`` (full film) and ``theta - 1`` (cavity); None where there is no coarser
     grid (or it fails: the caller starts cold)."""
-    coarse = _coarser_grid(mesh)
+    coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
-                                                            couette, cavitation, factorize, tol, max_iterations,
+                                                            "grid", cavitation, factorize, tol, max_iterations,
                                                             None, time.perf_counter())
     except JFOError:
         return None, {}
@@ -1333,8 +1355,8 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
-        if (cavity is None and dt is None and cavitation == "jfo" and couette == "grid"
-                and unk.rep.size >= NESTED_MIN):
+        if (cavity is None and dt is None and cavitation == "jfo" and unk.rep.size >= NESTED_MIN
+                and (couette == "grid" or NESTED_UNSTRUCTURED)):
             cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
