@@ -473,41 +473,67 @@ def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
 def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
     """``int f phi_i`` for every node."""
     fw = f_q * cells.dx
-    return sum(np.bincount(cells.t[a], weights=fw @ cells.lam[a], minlength=cells.n) for a in range(3))
+    return sum(np.bincount(cells.t[a], weights=_weighted(fw, cells.lam[a]), minlength=cells.n) for a in range(3))
+
+
+def _weighted(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """``values @ weights`` for a few columns, by columns: no threaded BLAS call (whose threads wait for
+    each other on a busy machine) for a product this thin."""
+    out = values[:, 0] * weights[0]
+    for q in range(1, weights.size):
+        out = out + values[:, q] * weights[q]
+    return out
 
 
 def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A P1 field's values at the quadrature points ``(n_triangles, n_points)`` and its gradient
     ``(2, n_triangles)`` (constant per triangle)."""
     ut = u[cells.t]
-    g = cells.grad
-    return ut.T @ cells.lam, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
+    g, lam = cells.grad, cells.lam
+    values = ut[0][:, None] * lam[0] + ut[1][:, None] * lam[1] + ut[2][:, None] * lam[2]
+    return values, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
 
 
-def _recess_depth(surface, phi, z, buckets: int = 4096) -> np.ndarray:
-    """``surface.recess_depth`` with each recess's test only on the points inside its bounding box: the
-    points are sorted once into ``buckets`` strips along ``phi`` (a linear-time sort of small integers),
-    each recess takes the strips its box spans. The same values at a fraction of the cost on many
-    recesses."""
+def _recess_depth(surface, phi, z) -> np.ndarray:
+    """``surface.recess_depth`` with each recess's test only on the points inside its bounding box
+    (:func:`_recess_plan`): the same values at a fraction of the cost on many recesses."""
     phi, z = np.broadcast_arrays(np.asarray(phi, float), np.asarray(z, float))
+    plan = _recess_plan(surface, phi)
+    return surface.recess_depth(phi, z) if plan is None else _planned_depth(plan, phi, z)
+
+
+def _recess_plan(surface, phi, buckets: int = 4096):
+    """Per recess, the points whose ``phi`` lies in its bounding box's range: the points sorted once into
+    ``buckets`` strips along ``phi`` (a linear-time sort of small integers), each recess takes the strips
+    its box spans. None where the plain test is as cheap (few recesses or points)."""
     recesses = surface.recesses
+    phi = np.asarray(phi, float)
     if len(recesses) < 4 or phi.size < 4096:
-        return surface.recess_depth(phi, z)
-    fp, fz = phi.ravel(), z.ravel()
+        return None
+    fp = phi.ravel()
     lo_phi, hi_phi = float(fp.min()), float(fp.max())
     width = (hi_phi - lo_phi) / buckets or 1.0
     key = np.clip(((fp - lo_phi) / width).astype(np.int64), 0, buckets - 1).astype(np.int16)
     order = np.argsort(key, kind="stable")
     starts = np.searchsorted(key[order], np.arange(buckets + 1))
-    sp_, sz = fp[order], fz[order]
-    out = np.zeros(fp.size)
+    plan = []
     for r, (lo, hi) in zip(recesses, _recess_boxes(surface)):
         k0 = int(np.clip(math.floor((lo[0] - lo_phi) / width), 0, buckets - 1))
         k1 = int(np.clip(math.floor((hi[0] - lo_phi) / width), 0, buckets - 1))
-        a, b = starts[k0], starts[k1 + 1]
-        keep = np.flatnonzero((sz[a:b] >= lo[1]) & (sz[a:b] <= hi[1])) + a
-        out[order[keep]] += r.depth * r.shape.contains(sp_[keep], sz[keep])
-    return out.reshape(phi.shape)
+        idx = order[starts[k0]:starts[k1 + 1]]
+        plan.append((r, lo, hi, np.sort(idx)))
+    return plan
+
+
+def _planned_depth(plan, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """The recess depth at the points of a :func:`_recess_plan` (same ``phi``; any ``z``)."""
+    fp, fz = np.ravel(phi), np.ravel(z)
+    out = np.zeros(fp.size)
+    for r, lo, hi, idx in plan:
+        zi = fz[idx]
+        keep = idx[(zi >= lo[1]) & (zi <= hi[1])]
+        out[keep] += r.depth * r.shape.contains(fp[keep], fz[keep])
+    return out.reshape(np.shape(phi))
 
 
 _BOXES: dict = {}
@@ -573,9 +599,11 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     seg, k = np.nonzero(da != db)
     if seg.size:
         aa, bb, xc, dA = a[seg, k].copy(), b[seg, k].copy(), x[seg], da[seg, k]
+        plan = _recess_plan(surface, xc)   # the points keep their phi: which recess boxes they meet, once
         for _ in range(bisections):
             c = 0.5 * (aa + bb)
-            left = _recess_depth(surface, xc, c) == dA
+            depth = surface.recess_depth(xc, c) if plan is None else _planned_depth(plan, xc, c)
+            left = depth == dA
             aa, bb = np.where(left, c, aa), np.where(left, bb, c)
         c = 0.5 * (aa + bb)
         piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
@@ -835,13 +863,16 @@ def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factor
         scale = float(np.abs(M.data).max(initial=0.0))
         lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
                        options={"SymmetricMode": True})
-        fallback = []
+        fallback, checked = [], []
 
         def solve(b: np.ndarray) -> np.ndarray:
             b = np.asarray(b, dtype=float)
             if fallback:
                 return fallback[0](b)
             x = lu.solve(b[order])[inverse]
+            if checked:   # the factorization's first solve was at round-off
+                return x
+            checked.append(True)
             r = M @ x - b
             bound = 1e-10 * (scale * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
             if not np.abs(r).max(initial=0.0) <= bound:   # also NaN: pivots too small for this set
