@@ -65,8 +65,17 @@ one or two linear solves; a cold solve with the grid flux on a ``grid_mesh`` of
 :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on
 the grid with every other line (nested iteration, recursively), which halves
 the fine-level factorizations (measured 4 against 7-8 on the dimpled slider at
-1e5 and 3.6e5 unknowns). The equations and their derivation are in
-``docs/jfo.md``.
+1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of as many
+unknowns starts from the cavity of the same problem on a ``grid_mesh`` of its
+surface with about a quarter of its nodes (grid flux; measured 4, 4 and 2
+fine-level factorizations against 9, 8 and 6 on the pocket pad, the dimple and
+the grooved journal of docs/jfo_gmsh.md at 2.3e4-4.7e4 nodes). Where the
+discrete complementarity problem has more than one solution (the streamline
+flux is not positive; seen once, at a node on a recess contour) a different
+start may end on the other one, the two apart by far less than the
+discretization error. The active-set matrices are factored in a
+nested-dissection order found once per mesh (:data:`ORDERED_FROM`). The
+equations and their derivation are in ``docs/jfo.md``.
 """
 
 from __future__ import annotations
@@ -901,6 +910,9 @@ class _SetSolver:
     unknowns of the dimpled slider at 1e4 .. 4e4 unknowns): ``M0^-1 M`` is the identity plus a change of
     rank ``k`` whose eigenvalues do not cluster (the switched columns change from the Poiseuille to the
     Couette operator), so it needed 30 to over 60 iterations to round-off, more than a factorization costs.
+    What is kept instead (:func:`_ordered_splu`): one nested-dissection order of the unknowns applied to rows
+    and columns alike, with diagonal pivots preferred (SuperLU's symmetric mode): the changed sets then
+    pivot little and fill like the first, about half COLAMD's factorization time.
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
