@@ -530,7 +530,7 @@ def _recess_plan(surface, phi, buckets: int = 4096):
         k0 = int(np.clip(math.floor((lo[0] - lo_phi) / width), 0, buckets - 1))
         k1 = int(np.clip(math.floor((hi[0] - lo_phi) / width), 0, buckets - 1))
         idx = order[starts[k0]:starts[k1 + 1]]
-        plan.append((r, lo, hi, np.sort(idx)))
+        plan.append((r, lo, hi, idx))
     return plan
 
 
