@@ -65,8 +65,17 @@ one or two linear solves; a cold solve with the grid flux on a ``grid_mesh`` of
 :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on
 the grid with every other line (nested iteration, recursively), which halves
 the fine-level factorizations (measured 4 against 7-8 on the dimpled slider at
-1e5 and 3.6e5 unknowns). The equations and their derivation are in
-``docs/jfo.md``.
+1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of as many
+unknowns starts from the cavity of the same problem on a ``grid_mesh`` of its
+surface with about a quarter of its nodes (grid flux; measured 4, 4 and 2
+fine-level factorizations against 9, 8 and 6 on the pocket pad, the dimple and
+the grooved journal of docs/jfo_gmsh.md at 2.3e4-4.7e4 nodes). Where the
+discrete complementarity problem has more than one solution (the streamline
+flux is not positive; seen once, at a node on a recess contour) a different
+start may end on the other one, the two apart by far less than the
+discretization error. The active-set matrices are factored in a
+nested-dissection order found once per mesh (:data:`ORDERED_FROM`). The
+equations and their derivation are in ``docs/jfo.md``.
 """
 
 from __future__ import annotations
@@ -77,12 +86,14 @@ import time
 import weakref
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from .thickness import Film
-from .forms import along, load, weighted_laplace
+from .forms import along
 from .flows import edge_groups
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, factorize_splu, get_linear_solver
@@ -219,8 +230,9 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
             or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
                          "nodes on the lines of a rectangular grid, each cell split into two triangles")
-    xs = np.array([p[0, kx == k][0] for k in range(nx)])
-    ys = np.array([p[1, ky == k][0] for k in range(ny)])
+    xs = np.empty(nx)
+    ys = np.empty(ny)
+    xs[kx[::-1]], ys[ky[::-1]] = p[0, ::-1], p[1, ::-1]   # each grid line at its first node's coordinate
     inside = cells == 2
     ylo = np.concatenate([[ys[0]], 0.5 * (ys[:-1] + ys[1:])])
     yhi = np.concatenate([0.5 * (ys[:-1] + ys[1:]), [ys[-1]]])
@@ -398,7 +410,7 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
     depth = np.empty(t.shape)
     for a in range(3):
         q = p[:, t[a]] + 1e-6 * (g - p[:, t[a]])   # just inside the triangle: its side of a step
-        depth[a] = surface.recess_depth(q[0], q[1])
+        depth[a] = _recess_depth(surface, q[0], q[1])
     deepest = np.zeros(m.nvertices)
     np.maximum.at(deepest, t.ravel(), depth.ravel())
     h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
@@ -423,6 +435,138 @@ def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.n
     return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
 
 
+# -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
+
+@dataclass(frozen=True, eq=False)
+class _Cells:
+    """What the P1 integrals of the scheme need, per mesh: the triangles, the gradients of their
+    barycentric functions (constant per triangle), the barycentric coordinates of the reference
+    quadrature points and the quadrature weights (the basis's own points and weights)."""
+
+    t: np.ndarray      # (3, n_triangles)
+    grad: np.ndarray   # (2, 3, n_triangles): d lambda_k / d (phi, z)
+    lam: np.ndarray    # (3, n_points): lambda_k at the reference quadrature points
+    dx: np.ndarray     # (n_triangles, n_points)
+    n: int             # nodes (dofs)
+
+
+_CELLS: "weakref.WeakKeyDictionary[SupportMesh, _Cells]" = weakref.WeakKeyDictionary()
+
+
+def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
+    if mesh in _CELLS:
+        return _CELLS[mesh]
+    m = mesh.mesh
+    p, t = m.p, m.t[:3]
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    grad = np.array([[y[1] - y[2], y[2] - y[0], y[0] - y[1]], [x[2] - x[1], x[0] - x[2], x[1] - x[0]]]) / det
+    X = np.asarray(ops.basis.X)
+    cells = _Cells(t=t, grad=grad, lam=np.array([1.0 - X[0] - X[1], X[0], X[1]]), dx=np.asarray(ops.basis.dx),
+                   n=int(m.nvertices))
+    _CELLS[mesh] = cells
+    return cells
+
+
+def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
+    """``int c grad phi_i . grad phi_j`` (P1: the gradients are constant on a triangle, so each triangle
+    contributes ``int_T c`` times their products)."""
+    g, t = cells.grad, cells.t
+    w = np.sum(c_q * cells.dx, axis=1)
+    rows = np.repeat(t, 3, axis=0).ravel()
+    cols = np.tile(t, (3, 1)).ravel()
+    vals = (w * (g[0][:, None] * g[0][None, :] + g[1][:, None] * g[1][None, :])).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(cells.n, cells.n))
+
+
+def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
+    """``int f phi_i`` for every node."""
+    fw = f_q * cells.dx
+    return sum(np.bincount(cells.t[a], weights=_weighted(fw, cells.lam[a]), minlength=cells.n) for a in range(3))
+
+
+def _weighted(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """``values @ weights`` for a few columns, by columns: no threaded BLAS call (whose threads wait for
+    each other on a busy machine) for a product this thin."""
+    out = values[:, 0] * weights[0]
+    for q in range(1, weights.size):
+        out = out + values[:, q] * weights[q]
+    return out
+
+
+def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A P1 field's values at the quadrature points ``(n_triangles, n_points)`` and its gradient
+    ``(2, n_triangles)`` (constant per triangle)."""
+    ut = u[cells.t]
+    g, lam = cells.grad, cells.lam
+    values = ut[0][:, None] * lam[0] + ut[1][:, None] * lam[1] + ut[2][:, None] * lam[2]
+    return values, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
+
+
+def _recess_depth(surface, phi, z) -> np.ndarray:
+    """``surface.recess_depth`` with each recess's test only on the points inside its bounding box
+    (:func:`_recess_plan`): the same values at a fraction of the cost on many recesses."""
+    phi, z = np.broadcast_arrays(np.asarray(phi, float), np.asarray(z, float))
+    plan = _recess_plan(surface, phi)
+    return surface.recess_depth(phi, z) if plan is None else _planned_depth(plan, phi, z)
+
+
+def _recess_plan(surface, phi, buckets: int = 4096):
+    """Per recess, the points whose ``phi`` lies in its bounding box's range: the points sorted once into
+    ``buckets`` strips along ``phi`` (a linear-time sort of small integers), each recess takes the strips
+    its box spans. None where the plain test is as cheap (few recesses or points)."""
+    recesses = surface.recesses
+    phi = np.asarray(phi, float)
+    if len(recesses) < 4 or phi.size < 4096:
+        return None
+    fp = phi.ravel()
+    lo_phi, hi_phi = float(fp.min()), float(fp.max())
+    width = (hi_phi - lo_phi) / buckets or 1.0
+    key = np.clip(((fp - lo_phi) / width).astype(np.int64), 0, buckets - 1).astype(np.int16)
+    order = np.argsort(key, kind="stable")
+    starts = np.searchsorted(key[order], np.arange(buckets + 1))
+    plan = []
+    for r, (lo, hi) in zip(recesses, _recess_boxes(surface)):
+        k0 = int(np.clip(math.floor((lo[0] - lo_phi) / width), 0, buckets - 1))
+        k1 = int(np.clip(math.floor((hi[0] - lo_phi) / width), 0, buckets - 1))
+        idx = order[starts[k0]:starts[k1 + 1]]
+        plan.append((r, lo, hi, idx))
+    return plan
+
+
+def _planned_depth(plan, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """The recess depth at the points of a :func:`_recess_plan` (same ``phi``; any ``z``)."""
+    fp, fz = np.ravel(phi), np.ravel(z)
+    out = np.zeros(fp.size)
+    for r, lo, hi, idx in plan:
+        zi = fz[idx]
+        keep = idx[(zi >= lo[1]) & (zi <= hi[1])]
+        out[keep] += r.depth * r.shape.contains(fp[keep], fz[keep])
+    return out.reshape(np.shape(phi))
+
+
+_BOXES: dict = {}
+
+
+def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size, as
+    :func:`_near_recess`)."""
+    key = id(surface)
+    hit = _BOXES.get(key)
+    if hit is not None and hit[0] is surface:
+        return hit[1]
+    boxes = []
+    for r in surface.recesses:
+        b = r.shape.boundary()
+        lo, hi = b.min(axis=1), b.max(axis=1)
+        pad = 0.01 * (hi - lo) + 1e-12
+        boxes.append((lo - pad, hi + pad))
+    if len(_BOXES) > 64:
+        _BOXES.clear()
+    _BOXES[key] = (surface, boxes)
+    return boxes
+
+
 # -- film with recesses --------------------------------------------------------------
 
 def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
@@ -430,7 +574,7 @@ def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) ->
     h = np.asarray(film.thickness(phi, z), dtype=float) + 0.0 * phi
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):
-        h = h + surface.recess_depth(phi, z)
+        h = h + _recess_depth(surface, phi, z)
     return h
 
 
@@ -458,15 +602,17 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
     an eighth of a cell). All segments and sub-intervals are bisected together."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
-    d = surface.recess_depth(x[:, None] + 0.0 * z, z)
+    d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
     piece = np.where(da == db, da * (b - a), 0.0)
     seg, k = np.nonzero(da != db)
     if seg.size:
         aa, bb, xc, dA = a[seg, k].copy(), b[seg, k].copy(), x[seg], da[seg, k]
+        plan = _recess_plan(surface, xc)   # the points keep their phi: which recess boxes they meet, once
         for _ in range(bisections):
             c = 0.5 * (aa + bb)
-            left = surface.recess_depth(xc, c) == dA
+            depth = surface.recess_depth(xc, c) if plan is None else _planned_depth(plan, xc, c)
+            left = depth == dA
             aa, bb = np.where(left, c, aa), np.where(left, bb, c)
         c = 0.5 * (aa + bb)
         piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
@@ -520,8 +666,8 @@ def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, s
     t = m.t[:3]
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
-    dep_q = surface.recess_depth(x[0][near], x[1][near])
-    dep_v = surface.recess_depth(px[:, near], pz[:, near])
+    dep_q = _recess_depth(surface, x[0][near], x[1][near])
+    dep_v = _recess_depth(surface, px[:, near], pz[:, near])
     cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
     if cut.size == 0:
         return h_q, inv_q, h3_q
@@ -575,7 +721,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
     h_q, inv_h_q, h3_q = _cell_means(mesh, film, x, h_q)
-    K = weighted_laplace.assemble(basis, c=h3_q / 12.0).tocsr()
+    cells = _cells(mesh, ops)
+    K = _stiffness(cells, h3_q / 12.0)
     rec = None
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)
@@ -601,13 +748,13 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     else:
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
-    area = load.assemble(basis, f=np.ones_like(h_q))
-    storage = load.assemble(basis, f=hdot_q)
+    area = _load(cells, np.ones_like(h_q))
+    storage = _load(cells, hdot_q)
     source = np.zeros(n)
     if dt is not None:
-        H = load.assemble(basis, f=h_q)
+        H = _load(cells, h_q)
         px = previous.film
-        H_old = load.assemble(basis, f=_thickness(mesh, px, x[0], x[1]))
+        H_old = _load(cells, _thickness(mesh, px, x[0], x[1]))
         storage = storage + H / dt
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
@@ -634,9 +781,22 @@ class FVUnknowns:
     S: sp.csr_matrix        # (n_dofs, m): full = S @ reduced (zero rows on fixed dofs)
     rep: np.ndarray         # (m,) a dof of each unknown
     fixed: np.ndarray       # dofs with given pressure and theta = 1
+    coordinates: np.ndarray | None = None   # (2, m) positions of the unknowns (for a fill-reducing order)
+    _order: dict = dataclasses.field(default_factory=dict, repr=False)   # the order, found once
+
+
+_UNKNOWNS: "weakref.WeakKeyDictionary[SupportMesh, FVUnknowns]" = weakref.WeakKeyDictionary()
 
 
 def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
+    """The unknowns of ``mesh`` (cached on it, with the fill-reducing order found for them)."""
+    unk = _UNKNOWNS.get(mesh)
+    if unk is None or unk.S.shape[0] != ops.n_dofs:
+        unk = _UNKNOWNS[mesh] = _build_unknowns(mesh, ops)
+    return unk
+
+
+def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
     n, I = ops.n_dofs, ops.interior
     rep_of = np.arange(n)
     start, end = periodic_pairs(mesh)
@@ -644,7 +804,8 @@ def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
     reps = np.unique(rep_of[I])
     cols = np.searchsorted(reps, rep_of[I])
     S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
-    return FVUnknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I))
+    return FVUnknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I),
+                      coordinates=np.asarray(ops.basis.doflocs)[:, reps])
 
 
 def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
@@ -679,6 +840,60 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
 #: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
 LOW_RANK_SWITCHES = 24
+#: Unknowns from which the active-set matrices are factored in a nested-dissection order of the unknowns'
+#: coordinates (:func:`bearingfe.core.ordering.nested_dissection`), found once per mesh, with diagonal
+#: pivots preferred (SuperLU's symmetric mode, threshold :data:`PIVOT_THRESHOLD`) instead of SuperLU's
+#: COLAMD with partial pivoting. Measured on the converged active-set matrix (load 2.7 on 2 cores): 0.13 s
+#: against 0.28 s at 4.4e4 unknowns (gmsh, streamline flux), 0.48 s against 0.89 s at 1.6e5 (grid flux),
+#: the order found in 0.06 s and 0.29 s.
+ORDERED_FROM = 5000
+#: Threshold of the partial pivoting of the ordered factorization (a diagonal pivot is kept while it is
+#: at least this fraction of its column's largest entry).
+PIVOT_THRESHOLD = 0.01
+
+
+def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factorize:
+    """SuperLU of the active-set matrices in the nested-dissection order of ``unk`` (from
+    :data:`ORDERED_FROM` unknowns on, else COLAMD); the order is found once and kept on ``unk``. A solve whose
+    residual is not at round-off falls back to COLAMD with partial pivoting."""
+    m = K.shape[0]
+    if m < ORDERED_FROM or unk.coordinates is None:
+        return factorize_splu
+    order = unk._order.get("order")
+    if order is None or order.size != m:
+        from ..core.ordering import nested_dissection
+
+        pattern = (abs(K) + abs(G)).tocsr()
+        order = unk._order["order"] = nested_dissection(pattern, unk.coordinates)
+    inverse = np.argsort(order)
+
+    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
+        M = sp.csc_matrix(M)
+        scale = float(np.abs(M.data).max(initial=0.0))
+        lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
+                       options={"SymmetricMode": True})
+        fallback, checked = [], []
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            b = np.asarray(b, dtype=float)
+            if fallback:
+                return fallback[0](b)
+            x = lu.solve(b[order])[inverse]
+            if checked:   # the factorization's first solve was at round-off
+                return x
+            checked.append(True)
+            r = M @ x - b
+            bound = 1e-10 * (scale * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
+            if not np.abs(r).max(initial=0.0) <= bound:   # also NaN: pivots too small for this set
+                fallback.append(factorize_splu(M))
+                return fallback[0](b)
+            return x
+
+        return solve
+
+    return factorize
+
+
 class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
@@ -695,11 +910,16 @@ class _SetSolver:
     unknowns of the dimpled slider at 1e4 .. 4e4 unknowns): ``M0^-1 M`` is the identity plus a change of
     rank ``k`` whose eigenvalues do not cluster (the switched columns change from the Poiseuille to the
     Couette operator), so it needed 30 to over 60 iterations to round-off, more than a factorization costs.
+    What is kept instead (:func:`_ordered_splu`): one nested-dissection order of the unknowns applied to rows
+    and columns alike, with diagonal pivots preferred (SuperLU's symmetric mode): the changed sets then
+    pivot little and fill like the first, about half COLAMD's factorization time.
     """
 
-    def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize):
+    def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
         self.K, self.G = K.tocsc(), G.tocsc()
         self.factorize = factorize
+        if factorize is factorize_splu and unk is not None:
+            self.factorize = _ordered_splu(unk, self.K, self.G)
         self.solve = None
         self.base = None
         self.z: dict[int, np.ndarray] = {}
@@ -754,7 +974,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
-    solver = _SetSolver(KII, GcII, factorize)
+    solver = _SetSolver(KII, GcII, factorize, unk)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - GII @ full.astype(float)
@@ -917,7 +1137,11 @@ def _box_fill(mesh: SupportMesh, film: Film, system: FVSystem, theta: np.ndarray
     t = (np.arange(samples) + 0.5) / samples
     X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
     Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
-    h = _thickness(mesh, film, X, Z)
+    h = np.asarray(film.thickness(X, Z), dtype=float) + 0.0 * X
+    surface = mesh.surface
+    if surface is not None and getattr(surface, "recesses", ()):   # the depth only in boxes near a recess
+        near = np.flatnonzero(_near_recess(surface, b[0], b[1], b[2], b[3]))
+        h[near] += _recess_depth(surface, X[near], Z[near])
     cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
     fill = np.minimum(1.0, cc / h)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
@@ -925,12 +1149,6 @@ def _box_fill(mesh: SupportMesh, film: Film, system: FVSystem, theta: np.ndarray
 
 
 # -- flows ------------------------------------------------------------------------------
-
-def _group_dofs(mesh: SupportMesh, basis) -> dict[str, np.ndarray]:
-    bnd = mesh.boundaries
-    names = edge_groups(bnd)
-    return {k: basis.get_dofs(bnd[k]).all() for k in names}
-
 
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
                 facets: np.ndarray) -> np.ndarray:
@@ -969,11 +1187,11 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     storage = system.storage * theta + system.source
     balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
     outflow = -balance_rest   # what leaves a boundary dof's cell through the boundary
-    groups = _group_dofs(mesh, basis)
+    groups = {k: ops.flow_groups[k][0] for k in edge_groups(mesh.boundaries)}
     count = np.zeros(basis.N)
     for d in groups.values():
         count[d] += 1
-    grad_p = np.asarray(basis.interpolate(p).grad)[:, :, 0]
+    grad_p = _interpolate(_cells(mesh, ops), p)[1]
     direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, mesh.boundaries[k]) for k in groups}
     corner = count > 1
     shared = np.zeros(basis.N)
@@ -1148,6 +1366,28 @@ def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     return meshing._grid_on_lines(surface, lines[0], lines[1], pockets, None)
 
 
+#: A cold solve on an unstructured mesh (``couette`` ``"streamline"``, ``"median"`` or ``"limited"``) of
+#: :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of the
+#: surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested).
+NESTED_UNSTRUCTURED = True
+
+
+def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
+    """A ``grid_mesh`` of ``mesh.surface`` with about a quarter of ``mesh``'s nodes (cells twice the mean
+    spacing), for the nested start of an unstructured mesh; None where there is no such grid (no surface,
+    an outline or pockets a grid cannot follow, a runner not along ``phi``)."""
+    from ..geometry.meshing import grid_mesh
+
+    surface = mesh.surface
+    if surface is None or mesh.source == "grid" or not surface.is_rectangular or not is_along_phi(mesh.runner):
+        return None
+    area = surface.area - surface.inlet_area
+    try:
+        return grid_mesh(surface, 2.0 * math.sqrt(area / mesh.n_nodes))
+    except ValueError:
+        return None
+
+
 def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float,
                    couette: str, cavitation: str, factorize: Factorize, tol: float, max_iterations: int,
                    ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
@@ -1155,12 +1395,12 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
     bilinear interpolation of ``P`` (full film) and ``theta - 1`` (cavity); None where there is no coarser
     grid (or it fails: the caller starts cold)."""
-    coarse = _coarser_grid(mesh)
+    coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
-                                                            couette, cavitation, factorize, tol, max_iterations,
+                                                            "grid", cavitation, factorize, tol, max_iterations,
                                                             None, time.perf_counter())
     except JFOError:
         return None, {}
@@ -1197,8 +1437,8 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
-        if (cavity is None and dt is None and cavitation == "jfo" and couette == "grid"
-                and unk.rep.size >= NESTED_MIN):
+        if (cavity is None and dt is None and cavitation == "jfo" and unk.rep.size >= NESTED_MIN
+                and (couette == "grid" or NESTED_UNSTRUCTURED)):
             cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
@@ -1352,10 +1592,11 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     basis = ops.basis
     flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
                             pockets=isinstance(inlet_pressure, tuple))
-    x, dx = ops.x, basis.dx
-    pq = basis.interpolate(p)
-    dp = pq.grad
-    theta_q = np.array(basis.interpolate(theta))
+    cells = _cells(mesh, ops)
+    x, dx = ops.x, cells.dx
+    pq, dp = _interpolate(cells, p)
+    dp = dp[:, :, None]
+    theta_q = _interpolate(cells, theta)[0]
     sliding = wedge if sliding is None else float(sliding)
     area = system.area
     emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
