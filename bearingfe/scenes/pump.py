@@ -232,9 +232,11 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(done, steps, f"simulating: {', '.join(designs)}")
     # the designs are independent: on two free cores each in its own process (the same results); the picture
     # modules load in a thread of this process meanwhile (after the fork: a child must not inherit the import)
+    # the plainest design (the cheapest run: fewest pockets) here, as this process shares its time with that thread
     loading = []
-    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()],
-                                           after_fork=(lambda: loading.append(preload())) if pictures else None)))
+    order = sorted(designs, key=lambda n: len(designs[n].surface.inlets))
+    rigid = dict(zip(order, in_processes([lambda p=designs[n]: simulate_design(p, run) for n in order],
+                                         after_fork=(lambda: loading.append(preload())) if pictures else None)))
     for name, p in designs.items():
         meshes[name], runs[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
