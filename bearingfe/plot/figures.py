@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "save", "preload"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "save", "preload"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100
@@ -42,6 +42,17 @@ def frame(fig, *, top: float, bottom: float, left: float = 0.8, right: float = 0
         raise ValueError(f"figure of {w:.3g} x {h:.3g} in too small for its margins and gaps")
     return fig.add_gridspec(nrows, ncols, left=left / w, right=1.0 - right / w, top=1.0 - top / h,
                             bottom=bottom / h, wspace=wgap / width, hspace=hgap / height, **kwargs)
+
+
+def title(ax, text: str, **kwargs):
+    """Title ``ax`` with ``text`` at the top edge of the axes (matplotlib's default place), fixed there.
+
+    Matplotlib otherwise moves an axes title above whatever is drawn over the axes at every draw, which
+    measures the tick labels of the axes (and of its twins) first; the pictures here have nothing above
+    their axes (no top ticks, no offset text), so the fixed title lands where the measured one would,
+    without the measuring. ``kwargs`` go to ``ax.set_title``.
+    """
+    return ax.set_title(text, y=1.0, **kwargs)
 
 
 def save(fig, path):

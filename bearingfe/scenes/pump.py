@@ -464,7 +464,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
-    from ..plot.figures import frame, save
+    from ..plot.figures import frame, save, title as set_title
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
     fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
@@ -484,7 +484,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     ax.set_ylabel("smallest film [um]")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
-    ax.set_title("smallest film over the cycle")
+    set_title(ax, "smallest film over the cycle")
     for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
         maps.field_axes(fig.add_subplot(maps_grid[0, j]), panel)
     table = fig.add_subplot(frame(fig, top=8.2, bottom=0.2, left=0.8, right=0.5)[0, 0])
@@ -504,7 +504,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     if "plain" in runs:
         ratio, row = _film_ratio(runs["pocket"], runs["plain"], "")
         gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
-        table.set_title(f"smallest film pocket/plain: {gain}", fontsize="medium")
+        set_title(table, f"smallest film pocket/plain: {gain}", fontsize="medium")
     fig.suptitle(s["title"])
     return save(fig, path)
 
