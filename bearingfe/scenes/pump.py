@@ -202,9 +202,9 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                    base_dir: Path | None = None) -> dict:
     """Simulate the pump (and its plain-shoe twin, and both on an elastic support), draw and write the results."""
     from ..geometry.surface import Surface
-    from ..io.writers import write_csv, write_json, write_pvd
+    from ..io.writers import write_csv, write_json
     from ..mechanisms.files import load_mechanism
-    from ..transient import simulate, simulate_elastic, state_result
+    from ..transient import simulate, simulate_elastic
     from ..transient.trajectory import report_columns
 
     s = settings(data, label, base_dir)
@@ -265,19 +265,15 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
     for thread in loading:  # loaded before the pictures fork
         thread.join()
-    # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
-    order = sorted(pictures, key=_COST_ORDER.index)
-    drawn = dict(zip(order, in_processes([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
-                                         for name in order])))
-    files += [f for name in pictures for f in drawn[name]]
+    # the pictures and the PVD frames, shared among the processes by their measured cost (the dearest first,
+    # each to the least loaded process; this process is one of them)
+    jobs = {name: (lambda name=name: _draw(name, pumps, runs, states, s, out_dir)) for name in pictures}
     if run["frames"] > 0:
-        main = runs["pocket"]
-        frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
-        results = [state_result(pump, meshes["pocket"], main, k, run["cavitation"], run["element"])
-                   for k in frames]
-        write_pvd(results, main.t[frames], out_dir / "pressure.pvd", scale=pump.scale,
-                  angles=np.degrees(main.beta[frames]))
-        files.append("pressure.pvd")
+        jobs["frames"] = lambda: _frames(pump, meshes["pocket"], runs["pocket"], run, out_dir)
+    groups = _shares(list(jobs), _workers(len(jobs)))
+    done_jobs = in_processes([lambda g=g: [jobs[name]() for name in g] for g in groups])
+    drawn = {name: written for g, out in zip(groups, done_jobs) for name, written in zip(g, out)}
+    files += [f for name in (*pictures, "frames") if name in drawn for f in drawn[name]]
     summary = _summary(s, runs, balance, meshes, time.perf_counter() - start, pumps, states)
     if s["thermal"]["enabled"]:
         tick(done, steps, "thermal: level-1 heat balance over the cycle")
@@ -296,8 +292,40 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 PERIODIC_TOL = 1e-6
 
 
-#: The pictures from the dearest to draw to the cheapest (how :func:`run` shares them among processes).
-_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "pocket", "orbit")
+#: Relative cost of each picture and of the PVD frames (measured on the shipped scene: how :func:`run` shares
+#: them among processes).
+_COSTS = {"pressure": 9.0, "film": 7.0, "deflection": 7.0, "summary": 7.0, "trajectory": 4.0, "pocket": 3.0,
+          "orbit": 2.0, "frames": 2.0}
+
+
+def _workers(jobs: int) -> int:
+    """The processes :func:`bearingfe.core.parallel.in_processes` would use for ``jobs`` jobs."""
+    from ..core import parallel
+
+    return max(1, min(jobs, parallel.cores() if parallel.PROCESSES is None else int(parallel.PROCESSES)))
+
+
+def _shares(names: list[str], workers: int) -> list[list[str]]:
+    """``names`` in ``workers`` groups of about equal cost (:data:`_COSTS`): the dearest first, each to the
+    group with the least cost so far (the first group: this process)."""
+    groups: list[list[str]] = [[] for _ in range(max(1, workers))]
+    load = [0.0] * len(groups)
+    for name in sorted(names, key=lambda n: -_COSTS.get(n, 1.0)):
+        k = load.index(min(load))
+        groups[k].append(name)
+        load[k] += _COSTS.get(name, 1.0)
+    return [g for g in groups if g]
+
+
+def _frames(pump, mesh, traj, run: dict, out_dir: Path) -> list[str]:
+    """The PVD series of the pocket design: ``run["frames"]`` pressure fields spread over the run."""
+    from ..io.writers import write_pvd
+    from ..transient import state_result
+
+    frames = np.unique(np.linspace(0, traj.beta.size - 1, int(run["frames"])).astype(int))
+    results = [state_result(pump, mesh, traj, k, run["cavitation"], run["element"]) for k in frames]
+    write_pvd(results, traj.t[frames], out_dir / "pressure.pvd", scale=pump.scale, angles=np.degrees(traj.beta[frames]))
+    return ["pressure.pvd"]
 
 
 def simulate_design(pump, run: dict):
