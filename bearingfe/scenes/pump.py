@@ -65,7 +65,7 @@ film's (the pocket's outflow times the pocket pressure, dropped to the
 surroundings); the total is friction plus pumping. Then each set limit with ``ok`` or ``VIOLATED``
 (:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
 summary). When the process may use two cores, the designs' rigid runs and
-then the pictures are shared with a forked process
+then the pictures and the PVD frames are shared with a forked process
 (:func:`bearingfe.core.parallel.in_processes`; the results are the same).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
@@ -259,8 +259,10 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
         cols = report_columns(traj, pump.scale, pump.drive.omega)
         files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
     pumps = {name: designs[name.removesuffix("_elastic")] for name in runs}
+    solved: dict = {name: {} for name in runs}  # the film states re-solved, by sample (the PVD frames reuse them)
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
-                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
+                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None,
+                            solved[name])
               for name, traj in runs.items()}
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
     for thread in loading:  # loaded before the pictures fork
@@ -269,7 +271,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     # each to the least loaded process; this process is one of them)
     jobs = {name: (lambda name=name: _draw(name, pumps, runs, states, s, out_dir)) for name in pictures}
     if run["frames"] > 0:
-        jobs["frames"] = lambda: _frames(pump, meshes["pocket"], runs["pocket"], run, out_dir)
+        jobs["frames"] = lambda: _frames(pump, meshes["pocket"], runs["pocket"], run, out_dir, solved["pocket"])
     groups = _shares(list(jobs), _workers(len(jobs)))
     done_jobs = in_processes([lambda g=g: [jobs[name]() for name in g] for g in groups])
     drawn = {name: written for g, out in zip(groups, done_jobs) for name, written in zip(g, out)}
@@ -292,10 +294,10 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 PERIODIC_TOL = 1e-6
 
 
-#: Relative cost of each picture and of the PVD frames (measured on the shipped scene: how :func:`run` shares
-#: them among processes).
-_COSTS = {"pressure": 9.0, "film": 7.0, "deflection": 7.0, "summary": 7.0, "trajectory": 4.0, "pocket": 3.0,
-          "orbit": 2.0, "frames": 2.0}
+#: Relative cost of each picture and of the PVD frames (measured on the shipped scene, orbit = 2: how
+#: :func:`run` shares them among processes; the frames reuse the states already solved).
+_COSTS = {"pressure": 7.0, "film": 6.9, "deflection": 6.9, "summary": 6.6, "trajectory": 4.2, "pocket": 2.9,
+          "orbit": 2.0, "frames": 0.4}
 
 
 def _workers(jobs: int) -> int:
@@ -317,13 +319,15 @@ def _shares(names: list[str], workers: int) -> list[list[str]]:
     return [g for g in groups if g]
 
 
-def _frames(pump, mesh, traj, run: dict, out_dir: Path) -> list[str]:
-    """The PVD series of the pocket design: ``run["frames"]`` pressure fields spread over the run."""
+def _frames(pump, mesh, traj, run: dict, out_dir: Path, solved: dict) -> list[str]:
+    """The PVD series of the pocket design: ``run["frames"]`` pressure fields spread over the run (the
+    states :func:`_states` re-solved, ``solved`` by sample, are not solved again)."""
     from ..io.writers import write_pvd
     from ..transient import state_result
 
     frames = np.unique(np.linspace(0, traj.beta.size - 1, int(run["frames"])).astype(int))
-    results = [state_result(pump, mesh, traj, k, run["cavitation"], run["element"]) for k in frames]
+    results = [solved[k] if k in solved else state_result(pump, mesh, traj, k, run["cavitation"], run["element"])
+               for k in frames]
     write_pvd(results, traj.t[frames], out_dir / "pressure.pvd", scale=pump.scale, angles=np.degrees(traj.beta[frames]))
     return ["pressure.pvd"]
 
@@ -401,15 +405,19 @@ STATES = {"loaded": "most loaded", "thinnest": "thinnest film"}
 PEAK_SAMPLES = 12
 
 
-def _states(pump, mesh, traj, run: dict, compliance=None) -> dict:
+def _states(pump, mesh, traj, run: dict, compliance=None, solved: dict | None = None) -> dict:
     """The pictured film states of a run (most loaded: the largest plunger force; thinnest film), re-solved,
-    with their SI figures, and the run's peak pressure over them and :data:`PEAK_SAMPLES` more."""
+    with their SI figures, and the run's peak pressure over them and :data:`PEAK_SAMPLES` more. The film
+    results are kept in ``solved`` by sample, if given (of a rigid run: the PVD frames' states)."""
     from ..transient import state_result
 
     elastic = compliance if traj.max_deflection is not None else None
 
     def solve(k):
-        return state_result(pump, mesh, traj, int(k), run["cavitation"], run["element"], elastic=elastic)
+        res = state_result(pump, mesh, traj, int(k), run["cavitation"], run["element"], elastic=elastic)
+        if solved is not None and elastic is None:
+            solved[int(k)] = res
+        return res
 
     sc = pump.scale
     out = {}

@@ -333,8 +333,8 @@ def test_periodic_tolerance_reaches_the_transient(monkeypatch):
 
 
 def test_pictures_and_frames_are_shared_by_cost():
-    # the shipped scene's work on two processes: the dearest first, each to the least loaded share, so the
-    # two shares' costs (pump._COSTS, measured) differ by at most the cheapest job's; every job once
+    # the shipped scene's work on two processes: the dearest first, each to the least loaded share; every
+    # job once, and no single job moved from the dearer share to the other would finish them sooner
     from bearingfe.scenes.pump import _COSTS, _shares
 
     names = ["trajectory", "orbit", "pocket", "pressure", "film", "summary", "frames"]
@@ -342,7 +342,9 @@ def test_pictures_and_frames_are_shared_by_cost():
     assert sorted(n for g in groups for n in g) == sorted(names)
     assert groups[0][0] == "pressure"  # the dearest, in this process
     costs = [sum(_COSTS[n] for n in g) for g in groups]
-    assert abs(costs[0] - costs[1]) <= min(_COSTS[n] for n in names)
+    dear = int(np.argmax(costs))
+    for n in groups[dear]:
+        assert max(costs[dear] - _COSTS[n], costs[1 - dear] + _COSTS[n]) >= max(costs)
     assert _shares(names, 1) == [sorted(names, key=lambda n: -_COSTS[n])]  # one process: all, dearest first
     assert _shares(["orbit"], 2) == [["orbit"]]  # no empty share
 
