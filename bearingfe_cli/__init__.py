@@ -12,23 +12,38 @@ from __future__ import annotations
 
 import signal
 import sys
-from typing import Sequence
+from typing import NoReturn, Sequence
 
-__all__ = ["main"]
+__all__ = ["main", "command"]
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Import and run :func:`bearingfe.cli.main`; 130 with one line if interrupted while importing."""
+    run = _load("main")
+    return run(argv) if callable(run) else run
+
+
+def command(argv: Sequence[str] | None = None) -> NoReturn:
+    """The console script: import and run :func:`bearingfe.cli.command` (which ends the process with the
+    exit code); 130 with one line if interrupted while importing."""
+    run = _load("command")
+    if not callable(run):
+        sys.exit(run)
+    run(argv)
+
+
+def _load(name: str):
+    """``bearingfe.cli.<name>``, or the exit code 130 if the import was interrupted."""
     def stop(signum, frame):
         raise KeyboardInterrupt
 
     before = signal.signal(signal.SIGTERM, stop) if hasattr(signal, "SIGTERM") else None
     try:
-        from bearingfe.cli import main as run
+        from bearingfe import cli
     except KeyboardInterrupt:
         print("bearingfe: interrupted", file=sys.stderr)
         return 130
     finally:
         if before is not None:
             signal.signal(signal.SIGTERM, before)
-    return run(argv)
+    return getattr(cli, name)

@@ -161,3 +161,25 @@ def test_validate_prints_table(capsys):
 def test_usage_error_returns_2(capsys):
     assert main(["run"]) == 2
     assert main([]) == 2
+
+
+def test_the_command_ends_with_the_exit_code_and_all_its_output(tmp_path, scene_file):
+    # `python -m bearingfe.cli` is `command()`: after `run` the process ends without the interpreter's
+    # teardown, so the printed table must be complete (flushed) into a pipe, the files in place, and the
+    # exit code the command's; a failing run, and a command other than run, end with theirs
+    import subprocess
+    import sys
+
+    scene = scene_file("reynolds", SMALL)
+    out = tmp_path / "out"
+    env_cmd = [sys.executable, "-m", "bearingfe.cli"]
+    done = subprocess.run([*env_cmd, "run", str(scene), "--out", str(out), "--no-progress"], cwd=ROOT,
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.rstrip().splitlines()[-1].startswith("seconds")  # the table's last row
+    assert {"pressure.png", "summary.json"} <= {p.name for p in out.iterdir()}
+    bad = subprocess.run([*env_cmd, "run", str(tmp_path / "missing.toml"), "--out", str(out)], cwd=ROOT,
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "scene file not found" in bad.stderr
+    version = subprocess.run([*env_cmd, "--version"], cwd=ROOT, capture_output=True, text=True)
+    assert version.returncode == 0 and version.stdout.strip() == f"bearingfe {bearingfe.__version__}"

@@ -318,6 +318,9 @@ class _SparseMaps:
     def __init__(self, basis, dx: np.ndarray) -> None:
         self.E, self.Gx, self.Gz = _interpolation(basis, basis.N)
         self.shape = dx.shape
+        # the transposes, made once: views on the same arrays (no copy); ``E.T`` per call costs more than
+        # the product itself (a film state integrates several fields)
+        self._transposed = (self.E.T, self.Gx.T, self.Gz.T)
 
     def values(self, u):
         return self.E @ u
@@ -326,10 +329,10 @@ class _SparseMaps:
         return (self.Gx, self.Gz)[k] @ u
 
     def integrate_value(self, w):
-        return self.E.T @ w
+        return self._transposed[0] @ w
 
     def integrate_gradient(self, w, k: int):
-        return (self.Gx, self.Gz)[k].T @ w
+        return self._transposed[1 + k] @ w
 
     def sparse(self):
         return self.E, self.Gx, self.Gz

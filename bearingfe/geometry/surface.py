@@ -663,7 +663,44 @@ def _crossing_matrix(p: np.ndarray, q: np.ndarray) -> np.ndarray:
 
 
 def _polylines_cross(p: np.ndarray, q: np.ndarray) -> bool:
-    return bool(_crossing_matrix(p, q).any())
+    """Whether an edge of closed polyline ``p`` properly crosses one of ``q``: :func:`_crossing_matrix`
+    on the pairs of edges whose bounding circles meet (the only ones that can cross; the same test on
+    each pair, so the same answer without the full matrix of fine outlines)."""
+    if p.shape[1] * q.shape[1] <= _DENSE_PAIRS:
+        return bool(_crossing_matrix(p, q).any())
+    (pm, ph), (qm, qh) = _edge_circles(p), _edge_circles(q)
+    i, j = _close_pairs(qm, pm, (ph + qh.max()) * (1.0 + 1e-9))
+    if i.size == 0:
+        return False
+    p0, p1 = _segments(p)
+    q0, q1 = _segments(q)
+    P0, P1, Q0, Q1 = p0[:, i], p1[:, i], q0[:, j], q1[:, j]
+    d1, d2 = _cross(P0, P1, Q0), _cross(P0, P1, Q1)
+    d3, d4 = _cross(Q0, Q1, P0), _cross(Q0, Q1, P1)
+    return bool(np.any((d1 * d2 < 0) & (d3 * d4 < 0)))
+
+
+#: Point-edge or edge-edge pairs up to which the layout checks take every pair (a dense array), beyond
+#: which they first keep the pairs that can matter (a k-d tree): the same numbers, much less work.
+_DENSE_PAIRS = 4096
+
+
+def _edge_circles(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Midpoints ``(2, n)`` and half lengths ``(n,)`` of the edges of a closed polyline."""
+    a, b = _segments(xy)
+    return 0.5 * (a + b), 0.5 * np.hypot(b[0] - a[0], b[1] - a[1])
+
+
+def _close_pairs(points: np.ndarray, centres: np.ndarray, radii) -> tuple[np.ndarray, np.ndarray]:
+    """Indices ``(i, j)`` of every centre ``i`` and point ``j`` at most ``radii[i]`` apart (``radii``
+    a number or one per centre)."""
+    from scipy.spatial import cKDTree
+
+    lists = cKDTree(points.T).query_ball_point(centres.T, np.broadcast_to(radii, centres.shape[1:]))
+    counts = np.fromiter((len(v) for v in lists), dtype=np.intp, count=len(lists))
+    i = np.repeat(np.arange(len(lists)), counts)
+    j = np.fromiter((k for v in lists for k in v), dtype=np.intp, count=int(counts.sum()))
+    return i, j
 
 
 def _self_intersects(xy: np.ndarray) -> bool:
@@ -684,8 +721,29 @@ def _points_to_segments(points: np.ndarray, xy: np.ndarray) -> np.ndarray:
     return dist.min(axis=1)
 
 
+def _nearest_to_segments(points: np.ndarray, xy: np.ndarray) -> float:
+    """``_points_to_segments(points, xy).min()``, evaluated on the point-edge pairs that can hold it.
+
+    Any point is at most ``bound`` (the distance from the edges' start vertices to the nearest point) from
+    some edge, and a point within ``bound`` of an edge is within ``bound + half length`` of its midpoint:
+    only those pairs are evaluated, with the same arithmetic as :func:`_points_to_segments`, so the
+    smallest distance is the same number."""
+    if points.shape[1] * xy.shape[1] <= _DENSE_PAIRS:
+        return float(_points_to_segments(points, xy).min())
+    from scipy.spatial import cKDTree
+
+    a, b = _segments(xy)
+    bound = float(cKDTree(points.T).query(a.T)[0].min())
+    mid, half = _edge_circles(xy)
+    seg, pts = _close_pairs(points, mid, (bound + half) * (1.0 + 1e-9) + 1e-300)
+    d = (b - a)[:, seg]
+    pa = points[:, pts] - a[:, seg]
+    t = np.clip((pa[0] * d[0] + pa[1] * d[1]) / np.maximum((d * d).sum(0), 1e-300), 0.0, 1.0)
+    return float(np.hypot(pa[0] - t * d[0], pa[1] - t * d[1]).min())
+
+
 def _polyline_distance(p: np.ndarray, q: np.ndarray) -> float:
-    return float(min(_points_to_segments(p, q).min(), _points_to_segments(q, p).min()))
+    return float(min(_nearest_to_segments(p, q), _nearest_to_segments(q, p)))
 
 
 def _points_in_polygon(xy: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -20,7 +20,7 @@ from typing import Mapping
 
 import numpy as np
 
-from .figures import frame, save
+from .figures import frame, save, title as set_title
 
 __all__ = ["TRAJECTORY_FIELDS", "DESIGN_COLORS", "designs_of", "trajectory_plot", "orbit_plot", "pocket_plot"]
 
@@ -206,7 +206,7 @@ def orbit_plot(trajs, path=None, *, title: str | None = None):
     ax.set_ylabel("gamma sin(delta) [-]")
     ax.grid(True, alpha=0.3)
     fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncols=2, fontsize="small")
-    ax.set_title("orbit of the shoe-bore centre", fontsize="medium")
+    set_title(ax, "orbit of the shoe-bore centre", fontsize="medium")
     if title:
         fig.suptitle(textwrap.fill(title, 60))
     return save(fig, path)

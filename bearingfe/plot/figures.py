@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "save", "preload"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "save", "preload"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100
@@ -44,6 +44,17 @@ def frame(fig, *, top: float, bottom: float, left: float = 0.8, right: float = 0
                             bottom=bottom / h, wspace=wgap / width, hspace=hgap / height, **kwargs)
 
 
+def title(ax, text: str, **kwargs):
+    """Title ``ax`` with ``text`` at the top edge of the axes (matplotlib's default place), fixed there.
+
+    Matplotlib otherwise moves an axes title above whatever is drawn over the axes at every draw, which
+    measures the tick labels of the axes (and of its twins) first; the pictures here have nothing above
+    their axes (no top ticks, no offset text), so the fixed title lands where the measured one would,
+    without the measuring. ``kwargs`` go to ``ax.set_title``.
+    """
+    return ax.set_title(text, y=1.0, **kwargs)
+
+
 def save(fig, path):
     """Save ``fig`` at :data:`DPI` (format from the suffix; PNGs at :data:`PNG_COMPRESSION`); returns ``fig``."""
     if path is not None:
@@ -53,8 +64,9 @@ def save(fig, path):
 
 
 def preload():
-    """Import matplotlib's figure machinery (figure, triangulations, the Agg backend) in a background thread;
-    returns the thread (join it before the process forks or draws).
+    """Import matplotlib's figure machinery (figure, triangulations, the Agg backend), PIL's image formats and
+    this package's picture modules in a background thread; returns the thread (join it before the process
+    forks or draws).
 
     The import costs about half a second; a scene starts it while its physics runs in the main thread
     (which spends much of its time in compiled code that releases the interpreter), so the pictures, and the
@@ -66,6 +78,12 @@ def preload():
         import matplotlib.figure  # noqa: F401
         import matplotlib.tri  # noqa: F401
         from matplotlib.backends import backend_agg  # noqa: F401
+        from matplotlib import _qhull, _tri  # noqa: F401  (the triangulations' compiled helpers, else on first use)
+        from PIL import Image
+
+        from . import curves, fields, maps  # noqa: F401  (fields: its numpy part; pyvista loads on use)
+
+        Image.preinit()  # the image formats PIL registers on its first save
 
     thread = threading.Thread(target=load, name="bearingfe-preload-pictures", daemon=True)
     thread.start()

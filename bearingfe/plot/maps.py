@@ -23,7 +23,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .figures import frame, save
+from .figures import frame, save, title as set_title
 
 __all__ = ["FIELDS", "DISPLAY_TRIANGLES", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
 
@@ -157,7 +157,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         ax.set_xlabel("phi [deg]")
         ax.set_ylabel(f"z [{unit}]")
     if panel.title:
-        ax.set_title(panel.title, fontsize="medium")
+        set_title(ax, panel.title, fontsize="medium")
     if colorbar:
         bar = ax.figure.colorbar(mappable, ax=ax, shrink=0.9)
         bar.set_label(f"{symbol} [{panel.unit}]")

@@ -23,11 +23,11 @@ module        scene kind
 
 from __future__ import annotations
 
+import importlib
+from collections.abc import Iterator
 from pathlib import Path
-from types import MappingProxyType
 from typing import Callable, Mapping
 
-from . import journal, pump, reynolds, thrust
 from ..core.schema import SchemaError, choice, read_toml
 
 __all__ = ["SceneError", "SCENES", "SETTINGS", "load_scene", "run_scene"]
@@ -35,20 +35,37 @@ __all__ = ["SceneError", "SCENES", "SETTINGS", "load_scene", "run_scene"]
 #: The error of a malformed scene file (every input file's :class:`~bearingfe.core.schema.SchemaError`).
 SceneError = SchemaError
 
+#: Scene kind -> the module of this package that runs it (its ``run``, ``settings`` and ``SPEC``).
+_KINDS = ("reynolds", "pump", "journal", "thrust")
+
+
+class _ByKind(Mapping):
+    """A read-only table ``kind -> <scene module>.<attribute>`` that imports a kind's module when that kind
+    is first looked up: running one scene does not import the others (the journal's and the thrust
+    bearing's solvers, the thermal models), which shortens the command line's start."""
+
+    def __init__(self, attribute: str) -> None:
+        self._attribute = attribute
+
+    def __getitem__(self, kind: str) -> Callable[..., dict]:
+        if kind not in _KINDS:
+            raise KeyError(kind)
+        return getattr(importlib.import_module(f"{__name__}.{kind}"), self._attribute)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(_KINDS)
+
+    def __len__(self) -> int:
+        return len(_KINDS)
+
+    def __repr__(self) -> str:
+        return f"<scene kinds {', '.join(_KINDS)}: {self._attribute}>"
+
+
 #: Scene kinds and their runners: ``run(data, label, out_dir, progress, base_dir) -> summary``.
-SCENES: Mapping[str, Callable[..., dict]] = MappingProxyType({
-    "reynolds": reynolds.run,
-    "pump": pump.run,
-    "journal": journal.run,
-    "thrust": thrust.run,
-})
+SCENES: Mapping[str, Callable[..., dict]] = _ByKind("run")
 #: Scene kinds and the readers of their files: ``settings(data, label, base_dir) -> settings``.
-SETTINGS: Mapping[str, Callable[..., dict]] = MappingProxyType({
-    "reynolds": reynolds.settings,
-    "pump": pump.settings,
-    "journal": journal.settings,
-    "thrust": thrust.settings,
-})
+SETTINGS: Mapping[str, Callable[..., dict]] = _ByKind("settings")
 
 
 def load_scene(path: str | Path) -> tuple[dict, str]:

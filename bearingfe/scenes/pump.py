@@ -65,7 +65,7 @@ film's (the pocket's outflow times the pocket pressure, dropped to the
 surroundings); the total is friction plus pumping. Then each set limit with ``ok`` or ``VIOLATED``
 (:data:`bearingfe.core.schema.LIMITS`; ``results.<design>.limits`` in the
 summary). When the process may use two cores, the designs' rigid runs and
-then the pictures are shared with a forked process
+then the pictures and the PVD frames are shared with a forked process
 (:func:`bearingfe.core.parallel.in_processes`; the results are the same).
 
 With ``[elastic] enabled`` every design is run again on the elastic support
@@ -202,9 +202,9 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
                    base_dir: Path | None = None) -> dict:
     """Simulate the pump (and its plain-shoe twin, and both on an elastic support), draw and write the results."""
     from ..geometry.surface import Surface
-    from ..io.writers import write_csv, write_json, write_pvd
+    from ..io.writers import write_csv, write_json
     from ..mechanisms.files import load_mechanism
-    from ..transient import simulate, simulate_elastic, state_result
+    from ..transient import simulate, simulate_elastic
     from ..transient.trajectory import report_columns
 
     s = settings(data, label, base_dir)
@@ -232,9 +232,11 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     tick(done, steps, f"simulating: {', '.join(designs)}")
     # the designs are independent: on two free cores each in its own process (the same results); the picture
     # modules load in a thread of this process meanwhile (after the fork: a child must not inherit the import)
+    # the plainest design (the cheapest run: fewest pockets) here, as this process shares its time with that thread
     loading = []
-    rigid = dict(zip(designs, in_processes([lambda p=p: simulate_design(p, run) for p in designs.values()],
-                                           after_fork=(lambda: loading.append(preload())) if pictures else None)))
+    order = sorted(designs, key=lambda n: len(designs[n].surface.inlets))
+    rigid = dict(zip(order, in_processes([lambda p=designs[n]: simulate_design(p, run) for n in order],
+                                         after_fork=(lambda: loading.append(preload())) if pictures else None)))
     for name, p in designs.items():
         meshes[name], runs[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
@@ -257,25 +259,23 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
         cols = report_columns(traj, pump.scale, pump.drive.omega)
         files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
     pumps = {name: designs[name.removesuffix("_elastic")] for name in runs}
+    solved: dict = {name: {} for name in runs}  # the film states re-solved, by sample (the PVD frames reuse them)
     states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
-                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None)
+                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None,
+                            solved[name])
               for name, traj in runs.items()}
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
     for thread in loading:  # loaded before the pictures fork
         thread.join()
-    # dearest first (measured), dealt round-robin to the processes: the field maps go to different ones
-    order = sorted(pictures, key=_COST_ORDER.index)
-    drawn = dict(zip(order, in_processes([lambda name=name: _draw(name, pumps, runs, states, s, out_dir)
-                                         for name in order])))
-    files += [f for name in pictures for f in drawn[name]]
+    # the pictures and the PVD frames, shared among the processes by their measured cost (the dearest first,
+    # each to the least loaded process; this process is one of them)
+    jobs = {name: (lambda name=name: _draw(name, pumps, runs, states, s, out_dir)) for name in pictures}
     if run["frames"] > 0:
-        main = runs["pocket"]
-        frames = np.unique(np.linspace(0, main.beta.size - 1, int(run["frames"])).astype(int))
-        results = [state_result(pump, meshes["pocket"], main, k, run["cavitation"], run["element"])
-                   for k in frames]
-        write_pvd(results, main.t[frames], out_dir / "pressure.pvd", scale=pump.scale,
-                  angles=np.degrees(main.beta[frames]))
-        files.append("pressure.pvd")
+        jobs["frames"] = lambda: _frames(pump, meshes["pocket"], runs["pocket"], run, out_dir, solved["pocket"])
+    groups = _shares(list(jobs), _workers(len(jobs)))
+    done_jobs = in_processes([lambda g=g: [jobs[name]() for name in g] for g in groups])
+    drawn = {name: written for g, out in zip(groups, done_jobs) for name, written in zip(g, out)}
+    files += [f for name in (*pictures, "frames") if name in drawn for f in drawn[name]]
     summary = _summary(s, runs, balance, meshes, time.perf_counter() - start, pumps, states)
     if s["thermal"]["enabled"]:
         tick(done, steps, "thermal: level-1 heat balance over the cycle")
@@ -294,8 +294,42 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 PERIODIC_TOL = 1e-6
 
 
-#: The pictures from the dearest to draw to the cheapest (how :func:`run` shares them among processes).
-_COST_ORDER = ("pressure", "film", "deflection", "trajectory", "summary", "pocket", "orbit")
+#: Relative cost of each picture and of the PVD frames (measured on the shipped scene, orbit = 2: how
+#: :func:`run` shares them among processes; the frames reuse the states already solved).
+_COSTS = {"pressure": 7.0, "film": 6.9, "deflection": 6.9, "summary": 6.6, "trajectory": 4.2, "pocket": 2.9,
+          "orbit": 2.0, "frames": 0.4}
+
+
+def _workers(jobs: int) -> int:
+    """The processes :func:`bearingfe.core.parallel.in_processes` would use for ``jobs`` jobs."""
+    from ..core import parallel
+
+    return max(1, min(jobs, parallel.cores() if parallel.PROCESSES is None else int(parallel.PROCESSES)))
+
+
+def _shares(names: list[str], workers: int) -> list[list[str]]:
+    """``names`` in ``workers`` groups of about equal cost (:data:`_COSTS`): the dearest first, each to the
+    group with the least cost so far (the first group: this process)."""
+    groups: list[list[str]] = [[] for _ in range(max(1, workers))]
+    load = [0.0] * len(groups)
+    for name in sorted(names, key=lambda n: -_COSTS.get(n, 1.0)):
+        k = load.index(min(load))
+        groups[k].append(name)
+        load[k] += _COSTS.get(name, 1.0)
+    return [g for g in groups if g]
+
+
+def _frames(pump, mesh, traj, run: dict, out_dir: Path, solved: dict) -> list[str]:
+    """The PVD series of the pocket design: ``run["frames"]`` pressure fields spread over the run (the
+    states :func:`_states` re-solved, ``solved`` by sample, are not solved again)."""
+    from ..io.writers import write_pvd
+    from ..transient import state_result
+
+    frames = np.unique(np.linspace(0, traj.beta.size - 1, int(run["frames"])).astype(int))
+    results = [solved[k] if k in solved else state_result(pump, mesh, traj, k, run["cavitation"], run["element"])
+               for k in frames]
+    write_pvd(results, traj.t[frames], out_dir / "pressure.pvd", scale=pump.scale, angles=np.degrees(traj.beta[frames]))
+    return ["pressure.pvd"]
 
 
 def simulate_design(pump, run: dict):
@@ -371,15 +405,19 @@ STATES = {"loaded": "most loaded", "thinnest": "thinnest film"}
 PEAK_SAMPLES = 12
 
 
-def _states(pump, mesh, traj, run: dict, compliance=None) -> dict:
+def _states(pump, mesh, traj, run: dict, compliance=None, solved: dict | None = None) -> dict:
     """The pictured film states of a run (most loaded: the largest plunger force; thinnest film), re-solved,
-    with their SI figures, and the run's peak pressure over them and :data:`PEAK_SAMPLES` more."""
+    with their SI figures, and the run's peak pressure over them and :data:`PEAK_SAMPLES` more. The film
+    results are kept in ``solved`` by sample, if given (of a rigid run: the PVD frames' states)."""
     from ..transient import state_result
 
     elastic = compliance if traj.max_deflection is not None else None
 
     def solve(k):
-        return state_result(pump, mesh, traj, int(k), run["cavitation"], run["element"], elastic=elastic)
+        res = state_result(pump, mesh, traj, int(k), run["cavitation"], run["element"], elastic=elastic)
+        if solved is not None and elastic is None:
+            solved[int(k)] = res
+        return res
 
     sc = pump.scale
     out = {}
@@ -462,7 +500,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
-    from ..plot.figures import frame, save
+    from ..plot.figures import frame, save, title as set_title
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
     fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
@@ -482,7 +520,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     ax.set_ylabel("smallest film [um]")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
-    ax.set_title("smallest film over the cycle")
+    set_title(ax, "smallest film over the cycle")
     for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
         maps.field_axes(fig.add_subplot(maps_grid[0, j]), panel)
     table = fig.add_subplot(frame(fig, top=8.2, bottom=0.2, left=0.8, right=0.5)[0, 0])
@@ -502,7 +540,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     if "plain" in runs:
         ratio, row = _film_ratio(runs["pocket"], runs["plain"], "")
         gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
-        table.set_title(f"smallest film pocket/plain: {gain}", fontsize="medium")
+        set_title(table, f"smallest film pocket/plain: {gain}", fontsize="medium")
     fig.suptitle(s["title"])
     return save(fig, path)
 

@@ -330,3 +330,37 @@ def test_periodic_tolerance_reaches_the_transient(monkeypatch):
     data["run"]["periodic_tol"] = -1.0
     with pytest.raises(SceneError, match="periodic_tol"):
         settings(data, "pump.toml", ROOT / "scenes")
+
+
+def test_pictures_and_frames_are_shared_by_cost():
+    # the shipped scene's work on two processes: the dearest first, each to the least loaded share; every
+    # job once, and no single job moved from the dearer share to the other would finish them sooner
+    from bearingfe.scenes.pump import _COSTS, _shares
+
+    names = ["trajectory", "orbit", "pocket", "pressure", "film", "summary", "frames"]
+    groups = _shares(names, 2)
+    assert sorted(n for g in groups for n in g) == sorted(names)
+    assert groups[0][0] == "pressure"  # the dearest, in this process
+    costs = [sum(_COSTS[n] for n in g) for g in groups]
+    dear = int(np.argmax(costs))
+    for n in groups[dear]:
+        assert max(costs[dear] - _COSTS[n], costs[1 - dear] + _COSTS[n]) >= max(costs)
+    assert _shares(names, 1) == [sorted(names, key=lambda n: -_COSTS[n])]  # one process: all, dearest first
+    assert _shares(["orbit"], 2) == [["orbit"]]  # no empty share
+
+
+def test_scene_kinds_import_their_module_on_first_use():
+    # running one kind must not import the others' modules (the command line's start); the table still
+    # lists every kind and gives each module's own runner
+    import subprocess
+    import sys
+
+    code = ("import sys; from bearingfe.scenes import SCENES, SETTINGS; import bearingfe.scenes.pump as p; "
+            "assert SCENES['pump'] is p.run and SETTINGS['pump'] is p.settings; "
+            "print(sorted(SCENES), [m for m in ('journal', 'thrust', 'reynolds') if 'bearingfe.scenes.' + m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True).stdout
+    assert out.strip() == "['journal', 'pump', 'reynolds', 'thrust'] []"
+    from bearingfe.scenes import SCENES
+
+    with pytest.raises(KeyError):
+        SCENES["nonsense"]
