@@ -196,21 +196,30 @@ class JournalBearing:
 
     def surfaces(self) -> tuple[Surface, ...]:
         """Support surfaces of the pads in the bearing frame (full bearing: one
-        arc ``(0, 2 pi)`` in the frame of the line of largest film)."""
-        a = self.half_width
-        if self.periodic:
-            seam = self._seam()
-            pockets = tuple(Rectangle((_wrap_into(g.angle, seam), 0.0), (g.width, 2 * a * g.length_fraction))
-                            for g in self.grooves)
-            return (Surface(arc=(seam, seam + 2 * math.pi), half_width=a, inlets=pockets, periodic=True),)
-        if self.pads is None:
-            return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
-        out = []
-        for start, end in self.pads:
-            pockets = tuple(Rectangle((_wrap_into(g.angle, start), 0.0), (g.width, 2 * a * g.length_fraction))
-                            for g in self.grooves if start < _wrap_into(g.angle, start) < end)
-            out.append(Surface(arc=(start, end), half_width=a, inlets=pockets))
-        return tuple(out)
+        arc ``(0, 2 pi)`` in the frame of the line of largest film).
+
+        Made once per bearing (cached): checking a surface's layout costs
+        milliseconds, and the structured path meshes the pads at every remesh."""
+        return _surfaces(self)
+
+
+@lru_cache(maxsize=64)
+def _surfaces(bearing: JournalBearing) -> tuple[Surface, ...]:
+    """:meth:`JournalBearing.surfaces` (the bearing is frozen and hashable)."""
+    a = bearing.half_width
+    if bearing.periodic:
+        seam = bearing._seam()
+        pockets = tuple(Rectangle((_wrap_into(g.angle, seam), 0.0), (g.width, 2 * a * g.length_fraction))
+                        for g in bearing.grooves)
+        return (Surface(arc=(seam, seam + 2 * math.pi), half_width=a, inlets=pockets, periodic=True),)
+    if bearing.pads is None:
+        return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
+    out = []
+    for start, end in bearing.pads:
+        pockets = tuple(Rectangle((_wrap_into(g.angle, start), 0.0), (g.width, 2 * a * g.length_fraction))
+                        for g in bearing.grooves if start < _wrap_into(g.angle, start) < end)
+        out.append(Surface(arc=(start, end), half_width=a, inlets=pockets))
+    return tuple(out)
 
 
 def _wrap_into(angle: float, start: float) -> float:
