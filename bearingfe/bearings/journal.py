@@ -973,8 +973,7 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
     for _ in range(3):
         e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
         ms = default_min_size(size, e) if min_size is None else min_size
-        films = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
-        meshes = (_joined(films),)  # one system for all pads (a periodic film: the one mesh)
+        meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
         xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton)
         k_total += k
         e_new = float(np.hypot(*xy))
@@ -983,7 +982,7 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
                                      and moved <= 0.5 * math.sqrt(1 - e_new))):
             break
     if rupture_size is not None:
-        films, meshes, state = _refine_rupture(bearing, films, *meshes, state, tuple(xy), rupture_size, opts)
+        meshes, state = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts)
         xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state)
         k_total += k
     return xy, state, k_total, res, meshes
@@ -1096,67 +1095,28 @@ CORNER_REACH = 1.5
 CORNER_SIZE = 1.0
 
 
-def _refine_rupture(bearing: JournalBearing, meshes: tuple, joined: SupportMesh, state: "_State", at,
-                    rupture_size: float, opts: "_Solves") -> tuple[tuple, tuple, "_State"]:
+def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
+                    opts: "_Solves") -> tuple[tuple, "_State"]:
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
     front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
     longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
-    ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the
-    elements within :data:`RUPTURE_REACH` diameters of a front element are split :data:`RUPTURE_SPLITS`
-    times, then one solve with the journal at ``at`` (mesh frame) started from the previous level's rupture
-    sets (nested iteration).
-
-    ``meshes``: the films (one per pad); ``state``: their solution on ``joined``, :func:`_joined` of them (one
-    system for all films). Returns the refined films, ``(joined,)`` of them (the mesh the solution is on, its
-    operators built) and the solution."""
+    ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
+    from the previous level's rupture sets (nested iteration)."""
     levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
     for _ in range(levels):
-        (res,) = state.results
-        front = _front_elements(res)
-        ends = np.cumsum([0] + [m.n_elements for m in meshes])
-        pressure = np.asarray(res.pressure)[res.basis.element_dofs]
-        peaks = [max(float(pressure[:, a:b].max()), 0.0) for a, b in zip(ends[:-1], ends[1:])]
+        peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
-        refined = [_refined_at_front(bearing, mesh, front[a:b], size, CORNER_SIZE * rupture_size)
-                   for mesh, a, b, size in zip(meshes, ends[:-1], ends[1:], sizes)]
+        refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
+                   for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
-            return meshes, (joined,), state
+            return meshes, state
         meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
-        joined = _joined(meshes)
-        start = (_nearest_rupture(res, np.asarray(operators(joined, opts.element).basis.doflocs)),)
-        state = opts.solve(bearing, (joined,), *at, start=start)
+        start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
+                      for mesh, res in zip(meshes, state.results))
+        state = opts.solve(bearing, meshes, *at, start=start)
     raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
                        f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
-
-
-def _joined(meshes: tuple) -> SupportMesh:
-    """The films of several pads as one mesh (its pieces disconnected), so that one Galerkin system, one
-    factorization per active-set iteration and one set of compiled maps serve all pads: the system is block
-    diagonal, so its solution is each film's. Its elements are those of ``meshes`` in order (film ``k``'s
-    are ``sum(n_elements of films before it)`` on); its named boundaries are the films' under the same
-    names. One film: that mesh itself."""
-    if len(meshes) == 1:
-        return meshes[0]
-    ps, ts, offset = [], [], 0
-    for m in meshes:
-        ps.append(m.mesh.p)
-        ts.append(m.mesh.t + offset)
-        offset += m.mesh.nvertices
-    joined = skfem.MeshTri1(np.hstack(ps), np.hstack(ts))
-    nv = joined.nvertices
-    facets = np.sort(joined.facets, axis=0)
-    keys = facets[0].astype(np.int64) * nv + facets[1]
-    order = np.argsort(keys)
-    named: dict[str, list] = {}
-    offset = 0
-    for m in meshes:
-        for name, f in m.boundaries.items():
-            ends = np.sort(m.mesh.facets[:, f], axis=0).astype(np.int64) + offset
-            named.setdefault(name, []).append(order[np.searchsorted(keys, ends[0] * nv + ends[1], sorter=order)])
-        offset += m.mesh.nvertices
-    boundaries = {name: np.sort(np.concatenate(f)) for name, f in named.items()}
-    return SupportMesh(mesh=joined.with_boundaries(boundaries), surface=None, size=max(m.size for m in meshes),
-                       source="structured")
 
 
 def _corners(shape) -> list[tuple[float, float]]:
@@ -1166,13 +1126,13 @@ def _corners(shape) -> list[tuple[float, float]]:
     return [(x0, z0), (x1, z0), (x0, z1), (x1, z1)]
 
 
-def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, front: np.ndarray,
+def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
                       rupture_size: float, corner_size: float = 0.0) -> SupportMesh | None:
-    """One level of :func:`_refine_rupture` on one film (``front``: its elements that hold the front, as
-    :func:`_front_elements` finds them), or None if its front already lies in elements no longer than
-    ``rupture_size`` (or it has no front)."""
+    """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
+    longer than ``rupture_size`` (or it has no front)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
+    front = _front_elements(res)
     diameters = cell_diameters(m)
     if math.isfinite(rupture_size) and front.any() and diameters[front].max() > rupture_size * (1 + 1e-9):
         centres = m.p[:, m.t].mean(axis=1)[:, front].T
@@ -1227,7 +1187,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
     if rupture_size is not None:
-        _, meshes, state = _refine_rupture(bearing, meshes, *meshes, state, (-eps, 0.0), rupture_size, opts)
+        meshes, state = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts)
         eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
         k_total += k
     F = state.force
