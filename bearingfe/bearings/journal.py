@@ -809,12 +809,21 @@ class Equilibrium:
     bearing: JournalBearing | None = field(repr=False, compare=False, default=None)
 
 
+def _short_force(eps: float, a: float) -> np.ndarray:
+    """:func:`short_bearing_force` at zero velocity in closed form (the first guesses need it a dozen times;
+    the quadrature costs a millisecond each): ``int_0^pi sin cos / h^3 = -2 eps / (1 - eps^2)^2`` and
+    ``int_0^pi sin^2 / h^3 = pi / (2 (1 - eps^2)^(3/2))`` give ``(-8 a^3 eps^2 / (1 - eps^2)^2,
+    2 pi a^3 eps / (1 - eps^2)^(3/2))``."""
+    q = 1.0 - eps * eps
+    return np.array([-8.0 * a**3 * eps * eps / q**2, 2.0 * math.pi * a**3 * eps / q**1.5])
+
+
 def _short_eps(load: float, a: float) -> float:
     """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess."""
     from scipy.optimize import brentq
 
     def f(e):
-        return np.hypot(*short_bearing_force(e, a)) - load
+        return float(np.hypot(*_short_force(e, a))) - load
     if f(0.99) < 0:
         capacity = load + f(EPS_MAX)
         if load > 2.0 * capacity:  # the short bearing overestimates a finite one: this load needs eps > EPS_MAX
@@ -967,7 +976,7 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
     first_tol = tol if rupture_size is None else max(tol, COARSE_TOL)
     # first guess: the short bearing's attitude (its force turned onto the load), not the load line itself
     e = float(np.hypot(*xy))
-    F = short_bearing_force(e, bearing.half_width)
+    F = _short_force(e, bearing.half_width)
     xy = _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
     k_total = 0
     for _ in range(3):
@@ -982,7 +991,14 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
                                      and moved <= 0.5 * math.sqrt(1 - e_new))):
             break
     if rupture_size is not None:
-        meshes, state = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts)
+        def step(state, at):
+            R = state.force - load
+            if np.hypot(*R) <= tol * np.hypot(*load):
+                return None
+            return tuple(_xy_step(np.asarray(at), _linearized(state)[0], R))
+        meshes, state, at, k = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts, step)
+        xy = np.asarray(at)
+        k_total += k
         xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state)
         k_total += k
     return xy, state, k_total, res, meshes
@@ -1000,13 +1016,7 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first:
         res = float(np.hypot(*R) / w)
         if res <= tol:
             return xy, state, k, res
-        K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
-        step = -np.linalg.solve(K, R)
-        # keep inside the clearance: at most half way to the eccentricity limit per step
-        t = 1.0
-        while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
-            t *= 0.5
-        xy = xy + t * step
+        xy = _xy_step(xy, _stiffness(bearing, meshes, state, xy, opts.cavitation), R)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
@@ -1073,12 +1083,29 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
         res = abs(wf - w) / w
         if res <= tol:
             return eps, state, k, res
-        K = _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation)
-        dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
-        new = eps - (wf - w) / dw
-        eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+        eps = _eps_step(eps, F, _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation), w)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative load residual {res:.3g})")
+
+
+def _eps_step(eps: float, F: np.ndarray, K: np.ndarray, w: float) -> float:
+    """One Newton step on ``|F|(eps) = w`` (full bearing, mesh frame) with the stiffness ``K = dF/d(x, y)``,
+    kept within half the way to ``EPS_MAX`` and to half ``eps``."""
+    wf = float(np.hypot(*F))
+    dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
+    new = eps - (wf - w) / dw
+    return float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+
+
+def _xy_step(xy: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
+    """One Newton step on ``F(x, y) = load`` (residual ``R = F - load``, stiffness ``K = dF/d(x, y)``), kept
+    inside the clearance: at most half way to the eccentricity limit."""
+    e = float(np.hypot(*xy))
+    step = -np.linalg.solve(K, R)
+    t = 1.0
+    while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
+        t *= 0.5
+    return xy + t * step
 
 
 #: Rupture refinement: elements within this many front-element diameters of the front are split ...
@@ -1096,21 +1123,31 @@ CORNER_SIZE = 1.0
 
 
 def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
-                    opts: "_Solves") -> tuple[tuple, "_State"]:
+                    opts: "_Solves", step=None) -> tuple[tuple, "_State", tuple, int]:
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
     front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
     longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
     ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
-    from the previous level's rupture sets (nested iteration)."""
+    from the previous level's rupture sets (nested iteration).
+
+    ``step(state, at)``: the next position (a Newton step of the equilibrium on the level's mesh) or None if
+    ``state`` is in equilibrium to the tolerance; each level is then solved at the position stepped from the
+    previous level's solution, so that the last level's is in equilibrium but for that level's change (the
+    Newton that follows on the finest meshes starts there, one refined solve closer). Returns the refined
+    meshes, their solution, its position and the number of steps taken."""
     levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
+    steps = 0
     for _ in range(levels):
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
         refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
                    for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
-            return meshes, state
+            return meshes, state, at, steps
+        moved = step(state, at) if step is not None else None
+        if moved is not None:
+            at, steps = moved, steps + 1
         meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
         start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
                       for mesh, res in zip(meshes, state.results))
@@ -1187,7 +1224,13 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
     if rupture_size is not None:
-        meshes, state = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts)
+        def step(state, at):
+            if abs(float(np.hypot(*state.force)) - w) <= tol * w:
+                return None
+            return (-_eps_step(-at[0], state.force, _linearized(state)[0], w), 0.0)
+        meshes, state, at, k = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts, step)
+        eps = -at[0]
+        k_total += k
         eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
         k_total += k
     F = state.force
