@@ -1105,8 +1105,8 @@ class _Mesher:
 #: Force-balance tolerance of the Newton iteration on the mesh that :func:`equilibrium` then refines
 #: around the rupture front (each refinement level takes a Newton step before its solve and the finest
 #: meshes' Newton goes on to ``tol``: the coarse position only has to put the front within the refinement's
-#: reach; 1e-2 instead of 1e-3 saved a coarse step on pads and left the plain cases' errors unchanged).
-COARSE_TOL = 1e-2
+#: reach; 5e-2 instead of 1e-3 saved two coarse steps on pads and left the plain cases' errors unchanged).
+COARSE_TOL = 5e-2
 
 
 def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int,
