@@ -892,7 +892,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         ``rupture_size`` (on a pad whose largest pressure is a fraction
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
         lightly loaded pad's front weighs less on the coefficients; so is a
-        stretch of front whose surroundings, within about 1 rad along ``phi``, carry
+        stretch of front whose surroundings, within 1 in ``(phi, z)``, carry
         less than half the largest pressure, with ``f`` their largest
         pressure's fraction: the reformation side of a supply groove's
         ruptured zone), each level's solve a Newton step on from the level
@@ -1161,9 +1161,9 @@ RUPTURE_SPLITS = 2
 #: ``rupture_size * min(1 / f, RUPTURE_LIGHT)``: the lightly loaded pad of a two-groove bearing (f = 0.01)
 #: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients).
 RUPTURE_LIGHT = 4.0
-#: A stretch of front whose surroundings (the dofs within about LOCAL_REACH [rad] of it along phi) carry less
-#: than LOCAL_LIGHT of the bearing's largest pressure is refined as a lightly loaded film is (the reformation
-#: side of a supply groove's ruptured zone, at about the supply pressure).
+#: A stretch of front whose surroundings (the dofs within LOCAL_REACH [-] of it) carry less than LOCAL_LIGHT of
+#: the bearing's largest pressure is refined as a lightly loaded film is (the reformation side of a supply
+#: groove's ruptured zone, at about the supply pressure).
 LOCAL_LIGHT = 0.5
 LOCAL_REACH = 1.0
 #: Supply pockets: elements within this many of their diameters of a pocket corner are split ...
@@ -1221,14 +1221,17 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     longer than ``rupture_size`` (or it has no front). ``top``: the bearing's largest pressure; a stretch of
     front whose surroundings (within :data:`LOCAL_REACH`) carry less than :data:`LOCAL_LIGHT` of it is refined
     to ``base min(top / p_local, RUPTURE_LIGHT)`` only, as a lightly loaded film is (``base``: the bearing's
-    ``rupture_size``, of which the film's is a multiple; ``p_local``: :func:`_local_peak`)."""
+    ``rupture_size``, of which the film's is a multiple)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
     target = np.full(int(front.sum()), rupture_size)
-    if front.any() and top > 0 and diameters[front].max() > rupture_size * (1 + 1e-9):
-        local = _local_peak(res, m.p[0, m.t].mean(axis=0)[front]) / top
+    if front.any() and top > 0 and LOCAL_LIGHT > 0:
+        p = np.asarray(res.pressure)
+        centres = m.p[:, m.t].mean(axis=1)[:, front].T
+        local = np.array([p[i].max() for i in cKDTree(np.asarray(res.basis.doflocs).T).query_ball_point(
+            centres, LOCAL_REACH)]) / top
         light = local < LOCAL_LIGHT
         base = rupture_size if base is None else base
         target[light] = np.maximum(base * np.minimum(1 / np.maximum(local[light], 1e-300), RUPTURE_LIGHT),
@@ -1262,21 +1265,6 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     if bearing.raimondi_boyd:
         return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width)
     return name_surface_boundaries(m, mesh.surface, source="structured")
-
-
-def _local_peak(res: ReynoldsResult, phi: np.ndarray) -> np.ndarray:
-    """Largest pressure of ``res`` within :data:`LOCAL_REACH` along ``phi`` of each of the points ``phi``
-    (over the film's width): the dofs' pressures binned by ``phi`` in quarters of the reach, the largest of
-    the bins within reach (a reach of at most 5/4 of it: O(dofs), where a ball search per front element cost
-    tens of milliseconds)."""
-    x, p = np.asarray(res.basis.doflocs)[0], np.asarray(res.pressure)
-    width = LOCAL_REACH / 4
-    lo = float(x.min())
-    bins = np.full(int((x.max() - lo) // width) + 1, -np.inf)
-    np.maximum.at(bins, ((x - lo) // width).astype(int), p)
-    k = np.clip(((phi - lo) // width).astype(int), 0, bins.size - 1)
-    window = np.lib.stride_tricks.sliding_window_view(np.pad(bins, 4, constant_values=-np.inf), 9)
-    return window.max(axis=1)[k]
 
 
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0) -> np.ndarray:
