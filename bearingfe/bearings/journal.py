@@ -891,12 +891,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
-        lightly loaded pad's front weighs less on the coefficients; so is a
-        stretch of front whose surroundings, within 1 in ``(phi, z)``, carry
-        less than half the largest pressure, with ``f`` their largest
-        pressure's fraction: the reformation side of a supply groove's
-        ruptured zone), each level's solve a Newton step on from the level
-        before; then Newton to ``tol`` on
+        lightly loaded pad's front weighs less on the coefficients); then Newton to ``tol`` on
         those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
@@ -1161,11 +1156,6 @@ RUPTURE_SPLITS = 2
 #: ``rupture_size * min(1 / f, RUPTURE_LIGHT)``: the lightly loaded pad of a two-groove bearing (f = 0.01)
 #: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients).
 RUPTURE_LIGHT = 4.0
-#: A stretch of front whose surroundings (the dofs within LOCAL_REACH [-] of it) carry less than LOCAL_LIGHT of
-#: the bearing's largest pressure is refined as a lightly loaded film is (the reformation side of a supply
-#: groove's ruptured zone, at about the supply pressure).
-LOCAL_LIGHT = 0.5
-LOCAL_REACH = 1.0
 #: Supply pockets: elements within this many of their diameters of a pocket corner are split ...
 CORNER_REACH = 1.5
 #: ... until they are no longer than this times ``rupture_size`` (graded towards the corner).
@@ -1191,7 +1181,7 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
     for _ in range(levels):
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
-        refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size, max(peaks), rupture_size)
+        refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
                    for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
             return meshes, state, at, steps
@@ -1215,36 +1205,22 @@ def _corners(shape) -> list[tuple[float, float]]:
 
 
 def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
-                      rupture_size: float, corner_size: float = 0.0, top: float = 0.0,
-                      base: float | None = None) -> SupportMesh | None:
+                      rupture_size: float, corner_size: float = 0.0) -> SupportMesh | None:
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
-    longer than ``rupture_size`` (or it has no front). ``top``: the bearing's largest pressure; a stretch of
-    front whose surroundings (within :data:`LOCAL_REACH`) carry less than :data:`LOCAL_LIGHT` of it is refined
-    to ``base min(top / p_local, RUPTURE_LIGHT)`` only, as a lightly loaded film is (``base``: the bearing's
-    ``rupture_size``, of which the film's is a multiple)."""
+    longer than ``rupture_size`` (or it has no front)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
-    target = np.full(int(front.sum()), rupture_size)
-    if front.any() and top > 0 and LOCAL_LIGHT > 0:
-        p = np.asarray(res.pressure)
-        centres = m.p[:, m.t].mean(axis=1)[:, front].T
-        local = np.array([p[i].max() for i in cKDTree(np.asarray(res.basis.doflocs).T).query_ball_point(
-            centres, LOCAL_REACH)]) / top
-        light = local < LOCAL_LIGHT
-        base = rupture_size if base is None else base
-        target[light] = np.maximum(base * np.minimum(1 / np.maximum(local[light], 1e-300), RUPTURE_LIGHT),
-                                   rupture_size)
-    if math.isfinite(rupture_size) and front.any() and np.any(diameters[front] > target * (1 + 1e-9)):
+    if math.isfinite(rupture_size) and front.any() and diameters[front].max() > rupture_size * (1 + 1e-9):
         centres = m.p[:, m.t].mean(axis=1)[:, front].T
         reach = RUPTURE_REACH * diameters[front]
         for _ in range(RUPTURE_SPLITS):
             d = cell_diameters(m)
-            need = np.full(m.nelements, np.inf)
-            for hits, size in zip(cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach), target):
-                need[hits] = np.minimum(need[hits], size)
-            marked = np.flatnonzero(d > need * (1 + 1e-9))
+            near = np.zeros(m.nelements, bool)
+            for hits in cKDTree(m.p[:, m.t].mean(axis=1).T).query_ball_point(centres, reach):
+                near[hits] = True
+            marked = np.flatnonzero(near & (d > rupture_size * (1 + 1e-9)))
             if not marked.size:
                 break
             m = m.refined(marked)
