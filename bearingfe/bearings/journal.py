@@ -891,8 +891,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
-        lightly loaded pad's front weighs less on the coefficients); then Newton to ``tol`` on
-        those meshes (the returned ``meshes``, which
+        lightly loaded pad's front weighs less on the coefficients), each
+        level solved at a Newton step on from the level before; then Newton
+        to ``tol`` on those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
         well the mesh resolves the front (the pressure gradient has a kink

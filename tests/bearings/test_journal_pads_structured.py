@@ -109,38 +109,6 @@ def test_rupture_refined_pads_take_as_few_newton_steps_as_the_full_bearing(refin
     assert eq.newton_iterations <= (7 if name == "supply_groove" else 4), name
 
 
-def test_supply_groove_reformation_front_is_refined_as_a_light_one():
-    # the front before the pocket (phi about 1.3, pressures there about the supply pressure 0.5, a quarter of
-    # the largest 1.9) is refined to rupture_size x min(1.9/0.5, 4) only; the rupture front behind the thinnest
-    # film (phi about -0.45) to rupture_size. The largest element on each front, in elements holding it
-    from bearingfe.bearings.journal import _front_elements
-    from bearingfe.geometry.locate import cell_diameters
-    eq, _ = solved("supply_groove")
-    res = eq.state.results[0]
-    front = _front_elements(res)
-    m = res.basis.mesh
-    phi = m.p[0, m.t].mean(axis=0)
-    d = cell_diameters(m)
-    main, reform = front & (phi < 0.5), front & (phi > 0.5)
-    assert main.any() and reform.any()
-    assert d[main].max() <= 0.04 * (1 + 1e-9)
-    assert d[reform].max() > 0.08
-
-
-def test_local_peak_is_the_windowed_largest_pressure(refined):
-    # _local_peak bins the dofs by phi in quarters of LOCAL_REACH and takes the 9 bins around a point: it lies
-    # between the brute-force largest pressure within LOCAL_REACH and within 1.25 LOCAL_REACH + a bin
-    from bearingfe.bearings.journal import LOCAL_REACH, _local_peak
-    _, eq, _, _, _ = refined
-    res = eq.state.results[-1]
-    x, p = np.asarray(res.basis.doflocs)[0], np.asarray(res.pressure)
-    at = np.linspace(x.min(), x.max(), 37)
-    got = _local_peak(res, at)
-    inner = np.array([p[np.abs(x - a) <= LOCAL_REACH].max() for a in at])
-    outer = np.array([p[np.abs(x - a) <= 1.5 * LOCAL_REACH].max() for a in at])
-    assert np.all(got >= inner) and np.all(got <= outer)
-
-
 def test_short_bearing_guess_in_closed_form():
     # Ocvirk: w = 2 a^3 eps/(1-eps^2)^2 sqrt(pi^2 (1-eps^2) + 16 eps^2), attitude tan = pi sqrt(1-eps^2)/(4 eps);
     # the quadrature of short_bearing_force agrees to its midpoint-rule error (n = 4000: 4e-5 at eps 0.995)
