@@ -997,24 +997,16 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
     F = _short_force(e, bearing.half_width)
     xy = _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
     k_total = 0
-    for attempt in range(3):
+    for _ in range(3):
         e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
         ms = default_min_size(size, e) if min_size is None else min_size
         meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
-
-        def regrade(at, e=e, phi0=phi0) -> bool:
-            """Whether the meshes' grading is off at ``at``: the thinnest film's element size changed by
-            more than 10 % or the thinnest film moved by more than half the element size there."""
-            e_new = float(np.hypot(*at))
-            moved = abs(_angle_between(phi0, math.atan2(-at[1], -at[0])))
-            return min_size is None and not (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= 0.1
-                                             and moved <= 0.5 * math.sqrt(1 - e_new))
-        # a Newton step that lands where these meshes are graded wrong leaves them at once (remeshed there)
-        # rather than converging on them first and solving again on the new ones
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton,
-                                       leave=regrade if attempt < 2 else None)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton)
         k_total += k
-        if state is not None and not regrade(xy):
+        e_new = float(np.hypot(*xy))
+        moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
+        if (min_size is not None or (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= 0.1
+                                     and moved <= 0.5 * math.sqrt(1 - e_new))):
             break
     if rupture_size is not None:
         def step(state, at):
@@ -1030,10 +1022,8 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
     return xy, state, k_total, res, meshes
 
 
-def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None,
-               leave=None):
-    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made.
-    ``leave(xy)``: True if the next position needs other meshes, returned unsolved (state None)."""
+def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None):
+    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made."""
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
@@ -1046,8 +1036,6 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first:
             return xy, state, k, res
         K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
         xy = _polar_step(xy, state.force, K, load)
-        if leave is not None and leave(xy):
-            return xy, None, k + 1, res
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
