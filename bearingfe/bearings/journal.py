@@ -818,12 +818,14 @@ def _short_force(eps: float, a: float) -> np.ndarray:
     return np.array([-8.0 * a**3 * eps * eps / q**2, 2.0 * math.pi * a**3 * eps / q**1.5])
 
 
-def _short_eps(load: float, a: float) -> float:
-    """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess."""
+def _short_eps(load: float, a: float, closed_form: bool = True) -> float:
+    """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess. ``closed_form``:
+    from :func:`_short_force`, else from the quadrature of :func:`short_bearing_force` (the gmsh path's guess
+    as it was: see :func:`_eps_step`)."""
     from scipy.optimize import brentq
 
     def f(e):
-        return float(np.hypot(*_short_force(e, a))) - load
+        return float(np.hypot(*(_short_force(e, a) if closed_form else short_bearing_force(e, a)))) - load
     if f(0.99) < 0:
         capacity = load + f(EPS_MAX)
         if load > 2.0 * capacity:  # the short bearing overestimates a finite one: this load needs eps > EPS_MAX
@@ -922,7 +924,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     opts = _Solves(cavitation=cavitation, element=element,
                    warm=bool(warm_start) and cavitation in ("reynolds", "jfo"))
     w = float(np.hypot(*load))
-    eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
+    eps = min(max(_short_eps(w, bearing.half_width, closed_form=structured), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
     if bearing.raimondi_boyd:
         mesher = _Mesher(bearing, size, min_size, order, structured)
@@ -1001,7 +1003,7 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
         e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
         ms = default_min_size(size, e) if min_size is None else min_size
         meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton, polar=True)
         k_total += k
         e_new = float(np.hypot(*xy))
         moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
@@ -1017,13 +1019,15 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
         meshes, state, at, k = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts, step)
         xy = np.asarray(at)
         k_total += k
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state, polar=True)
         k_total += k
     return xy, state, k_total, res, meshes
 
 
-def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None):
-    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made."""
+def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None,
+               polar: bool = False):
+    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made;
+    ``polar``: :func:`_polar_step` steps, else plain ones (see :func:`_eps_step`)."""
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
@@ -1035,7 +1039,7 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first:
         if res <= tol:
             return xy, state, k, res
         K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
-        xy = _polar_step(xy, state.force, K, load)
+        xy = _polar_step(xy, state.force, K, load, plain=not polar)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
@@ -1094,7 +1098,7 @@ COARSE_TOL = 5e-2
 
 
 def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int,
-                first: "_State | None" = None):
+                first: "_State | None" = None, log: bool = False):
     """Newton on ``|F|(eps) = w`` on fixed meshes: ``(eps, state, steps, residual)``; ``first``: the solution
     at ``eps`` on these meshes if already made."""
     for k in range(max_newton + 1):
@@ -1104,33 +1108,43 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
         res = abs(wf - w) / w
         if res <= tol:
             return eps, state, k, res
-        eps = _eps_step(eps, F, _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation), w)
+        eps = _eps_step(eps, F, _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation), w, log)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative load residual {res:.3g})")
 
 
-def _eps_step(eps: float, F: np.ndarray, K: np.ndarray, w: float) -> float:
+def _eps_step(eps: float, F: np.ndarray, K: np.ndarray, w: float, log: bool = True) -> float:
     """One Newton step on ``log |F|(eps) = log w`` (full bearing, mesh frame; the magnitude part of
-    :func:`_polar_step`) with the stiffness ``K = dF/d(x, y)``, kept within half the way to ``EPS_MAX`` and
-    to half ``eps``."""
+    :func:`_polar_step`), or on ``|F|(eps) = w`` (``log=False``), with the stiffness ``K = dF/d(x, y)``, kept
+    within half the way to ``EPS_MAX`` and to half ``eps``.
+
+    The gmsh paths keep the plain steps and the first guess by quadrature: their meshes are graded at the
+    converged eccentricity rounded to 9 digits, so another iteration path (the same root to 1e-9) gives other
+    gmsh meshes and moves their results by the mesh-to-mesh scatter (up to 5e-4 on the recorded
+    coefficients of part ``journal``); the structured paths take the log (polar) steps and the closed-form
+    guess."""
     wf = float(np.hypot(*F))
     dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
-    new = eps - math.log(wf / w) * wf / dw
+    new = eps - (math.log(wf / w) * wf if log else wf - w) / dw
     return float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
 
 
-def _polar_step(xy: np.ndarray, F: np.ndarray, K: np.ndarray, load: np.ndarray) -> np.ndarray:
+def _polar_step(xy: np.ndarray, F: np.ndarray, K: np.ndarray, load: np.ndarray, plain: bool = False) -> np.ndarray:
     """One Newton step on the force balance ``F(x, y) = load`` in polar form, ``log |F| = log |load|`` and
     ``arg F = arg load`` (the same root; Jacobian from the stiffness ``K = dF/d(x, y)``), kept inside the
     clearance: at most half way to the eccentricity limit. The load grows about as ``eps / (1 - eps^2)^2``,
     far from linear in ``(x, y)``: from the short-bearing guess the plain step overshot (two_groove_ld1:
-    1.84 -> 3.72 -> 3.10 -> 3.0016 against a load of 3), the polar one does not (1.84 -> 3.09 -> 3.0001)."""
-    f2 = float(F @ F)
-    J = np.vstack([F @ K, F[0] * K[1] - F[1] * K[0]]) / f2
-    R = np.array([math.log(math.sqrt(f2) / float(np.hypot(*load))),
-                  _angle_between(math.atan2(load[1], load[0]), math.atan2(F[1], F[0]))])
+    1.84 -> 3.72 -> 3.10 -> 3.0016 against a load of 3), the polar one does not (1.84 -> 3.09 -> 3.0001).
+    ``plain``: the plain step on ``F - load`` (see :func:`_eps_step`)."""
+    if plain:
+        step = -np.linalg.solve(K, F - load)
+    else:
+        f2 = float(F @ F)
+        J = np.vstack([F @ K, F[0] * K[1] - F[1] * K[0]]) / f2
+        R = np.array([math.log(math.sqrt(f2) / float(np.hypot(*load))),
+                      _angle_between(math.atan2(load[1], load[0]), math.atan2(F[1], F[0]))])
+        step = -np.linalg.solve(J, R)
     e = float(np.hypot(*xy))
-    step = -np.linalg.solve(J, R)
     t = 1.0
     while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
         t *= 0.5
@@ -1248,7 +1262,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
     for _ in range(3):
         meshes = mesher(eps)
         eps_start = eps
-        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton)
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton, log=mesher.structured)
         k_total += k
         if mesher.min_size is not None or not mesher.remesh(eps_start, eps):
             break
@@ -1262,7 +1276,8 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         meshes, state, at, k = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts, step)
         eps = -at[0]
         k_total += k
-        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state,
+                                         log=mesher.structured)
         k_total += k
     F = state.force
     # mesh frame -> bearing frame: rotate so that F points along the load
