@@ -196,21 +196,30 @@ class JournalBearing:
 
     def surfaces(self) -> tuple[Surface, ...]:
         """Support surfaces of the pads in the bearing frame (full bearing: one
-        arc ``(0, 2 pi)`` in the frame of the line of largest film)."""
-        a = self.half_width
-        if self.periodic:
-            seam = self._seam()
-            pockets = tuple(Rectangle((_wrap_into(g.angle, seam), 0.0), (g.width, 2 * a * g.length_fraction))
-                            for g in self.grooves)
-            return (Surface(arc=(seam, seam + 2 * math.pi), half_width=a, inlets=pockets, periodic=True),)
-        if self.pads is None:
-            return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
-        out = []
-        for start, end in self.pads:
-            pockets = tuple(Rectangle((_wrap_into(g.angle, start), 0.0), (g.width, 2 * a * g.length_fraction))
-                            for g in self.grooves if start < _wrap_into(g.angle, start) < end)
-            out.append(Surface(arc=(start, end), half_width=a, inlets=pockets))
-        return tuple(out)
+        arc ``(0, 2 pi)`` in the frame of the line of largest film).
+
+        Made once per bearing (cached): checking a surface's layout costs
+        milliseconds, and the structured path meshes the pads at every remesh."""
+        return _surfaces(self)
+
+
+@lru_cache(maxsize=64)
+def _surfaces(bearing: JournalBearing) -> tuple[Surface, ...]:
+    """:meth:`JournalBearing.surfaces` (the bearing is frozen and hashable)."""
+    a = bearing.half_width
+    if bearing.periodic:
+        seam = bearing._seam()
+        pockets = tuple(Rectangle((_wrap_into(g.angle, seam), 0.0), (g.width, 2 * a * g.length_fraction))
+                        for g in bearing.grooves)
+        return (Surface(arc=(seam, seam + 2 * math.pi), half_width=a, inlets=pockets, periodic=True),)
+    if bearing.pads is None:
+        return (Surface(arc=(0.0, 2 * math.pi), half_width=a),)
+    out = []
+    for start, end in bearing.pads:
+        pockets = tuple(Rectangle((_wrap_into(g.angle, start), 0.0), (g.width, 2 * a * g.length_fraction))
+                        for g in bearing.grooves if start < _wrap_into(g.angle, start) < end)
+        out.append(Surface(arc=(start, end), half_width=a, inlets=pockets))
+    return tuple(out)
 
 
 def _wrap_into(angle: float, start: float) -> float:
@@ -800,12 +809,23 @@ class Equilibrium:
     bearing: JournalBearing | None = field(repr=False, compare=False, default=None)
 
 
-def _short_eps(load: float, a: float) -> float:
-    """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess."""
+def _short_force(eps: float, a: float) -> np.ndarray:
+    """:func:`short_bearing_force` at zero velocity in closed form (the first guesses need it a dozen times;
+    the quadrature costs a millisecond each): ``int_0^pi sin cos / h^3 = -2 eps / (1 - eps^2)^2`` and
+    ``int_0^pi sin^2 / h^3 = pi / (2 (1 - eps^2)^(3/2))`` give ``(-8 a^3 eps^2 / (1 - eps^2)^2,
+    2 pi a^3 eps / (1 - eps^2)^(3/2))``."""
+    q = 1.0 - eps * eps
+    return np.array([-8.0 * a**3 * eps * eps / q**2, 2.0 * math.pi * a**3 * eps / q**1.5])
+
+
+def _short_eps(load: float, a: float, closed_form: bool = True) -> float:
+    """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess. ``closed_form``:
+    from :func:`_short_force`, else from the quadrature of :func:`short_bearing_force` (the gmsh path's guess
+    as it was: see :func:`_eps_step`)."""
     from scipy.optimize import brentq
 
     def f(e):
-        return np.hypot(*short_bearing_force(e, a)) - load
+        return float(np.hypot(*(_short_force(e, a) if closed_form else short_bearing_force(e, a)))) - load
     if f(0.99) < 0:
         capacity = load + f(EPS_MAX)
         if load > 2.0 * capacity:  # the short bearing overestimates a finite one: this load needs eps > EPS_MAX
@@ -873,8 +893,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
-        lightly loaded pad's front weighs less on the coefficients); then Newton to ``tol`` on
-        those meshes (the returned ``meshes``, which
+        lightly loaded pad's front weighs less on the coefficients), each
+        level solved at a Newton step on from the level before; then Newton
+        to ``tol`` on those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
         linearized on the converged rupture set; their error is set by how
         well the mesh resolves the front (the pressure gradient has a kink
@@ -903,7 +924,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
     opts = _Solves(cavitation=cavitation, element=element,
                    warm=bool(warm_start) and cavitation in ("reynolds", "jfo"))
     w = float(np.hypot(*load))
-    eps = min(max(_short_eps(w, bearing.half_width), 0.05), 0.95)
+    eps = min(max(_short_eps(w, bearing.half_width, closed_form=structured), 0.05), 0.95)
     theta_load = math.atan2(load[1], load[0])
     if bearing.raimondi_boyd:
         mesher = _Mesher(bearing, size, min_size, order, structured)
@@ -936,14 +957,31 @@ class _Solves:
     warm: bool
     previous: _State | None = None
     iterations: int = 0
+    at: tuple | None = None  # the journal position of ``previous`` (mesh frame)
 
     def solve(self, bearing: JournalBearing, meshes, x: float, y: float, start=None) -> _State:
-        """``start``: rupture masks (one per pad) to start from instead of the previous state."""
+        """``start``: rupture masks (one per pad) to start from instead of the previous state. The previous
+        state's rupture sets are turned with the line of centres (:func:`_turn`) when it turned."""
         warm = start if start is not None else self.previous if self.warm else None
+        if start is None and warm is not None and self.at is not None and self.cavitation == "reynolds":
+            turn = _turn(self.at, (x, y))
+            if turn and all(r.basis.mesh is m.mesh for r, m in zip(warm.results, meshes)):
+                warm = tuple(_nearest_rupture(r, np.asarray(r.basis.doflocs), turn) for r in warm.results)
         state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element, warm_start=warm)
         self.iterations += sum(r.iterations for r in state.results)
-        self.previous = state
+        self.previous, self.at = state, (float(x), float(y))
         return state
+
+
+def _turn(old, new) -> float:
+    """Angle [rad] by which the line of centres turned from the journal position ``old`` to ``new`` (mesh
+    frame; 0 if either is centred). Pads are solved in the bearing frame, where the ruptured zone turns with
+    the line of centres: a rupture set carried over turned by it starts the active-set iteration nearer the
+    answer (on two_groove's coarse Newton steps, 1 or 2 iterations instead of 2 or 3); the full bearing's mesh
+    frame turns with it already (its turn is 0)."""
+    if not (np.hypot(*old) > 0 and np.hypot(*new) > 0):
+        return 0.0
+    return _angle_between(math.atan2(-old[1], -old[0]), math.atan2(-new[1], -new[0]))
 
 
 def _angle_between(a: float, b: float) -> float:
@@ -958,14 +996,14 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
     first_tol = tol if rupture_size is None else max(tol, COARSE_TOL)
     # first guess: the short bearing's attitude (its force turned onto the load), not the load line itself
     e = float(np.hypot(*xy))
-    F = short_bearing_force(e, bearing.half_width)
+    F = _short_force(e, bearing.half_width)
     xy = _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
     k_total = 0
     for _ in range(3):
         e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
         ms = default_min_size(size, e) if min_size is None else min_size
         meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton)
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton, polar=True)
         k_total += k
         e_new = float(np.hypot(*xy))
         moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
@@ -973,14 +1011,23 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
                                      and moved <= 0.5 * math.sqrt(1 - e_new))):
             break
     if rupture_size is not None:
-        meshes, state = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts)
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state)
+        def step(state, at):
+            R = state.force - load
+            if np.hypot(*R) <= tol * np.hypot(*load):
+                return None
+            return tuple(_polar_step(np.asarray(at), state.force, _linearized(state)[0], load))
+        meshes, state, at, k = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts, step)
+        xy = np.asarray(at)
+        k_total += k
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, tol, max_newton, first=state, polar=True)
         k_total += k
     return xy, state, k_total, res, meshes
 
 
-def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None):
-    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made."""
+def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None,
+               polar: bool = False):
+    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made;
+    ``polar``: :func:`_polar_step` steps, else plain ones (see :func:`_eps_step`)."""
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
@@ -992,12 +1039,7 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first:
         if res <= tol:
             return xy, state, k, res
         K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
-        step = -np.linalg.solve(K, R)
-        # keep inside the clearance: at most half way to the eccentricity limit per step
-        t = 1.0
-        while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
-            t *= 0.5
-        xy = xy + t * step
+        xy = _polar_step(xy, state.force, K, load, plain=not polar)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
 
@@ -1049,12 +1091,14 @@ class _Mesher:
 
 
 #: Force-balance tolerance of the Newton iteration on the mesh that :func:`equilibrium` then refines
-#: around the rupture front (the refined mesh's Newton goes on to ``tol``).
-COARSE_TOL = 1e-3
+#: around the rupture front (each refinement level takes a Newton step before its solve and the finest
+#: meshes' Newton goes on to ``tol``: the coarse position only has to put the front within the refinement's
+#: reach; 5e-2 instead of 1e-3 saved two coarse steps on pads and left the plain cases' errors unchanged).
+COARSE_TOL = 5e-2
 
 
 def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: float, max_newton: int,
-                first: "_State | None" = None):
+                first: "_State | None" = None, log: bool = False):
     """Newton on ``|F|(eps) = w`` on fixed meshes: ``(eps, state, steps, residual)``; ``first``: the solution
     at ``eps`` on these meshes if already made."""
     for k in range(max_newton + 1):
@@ -1064,12 +1108,47 @@ def _newton_eps(bearing, meshes, eps: float, w: float, opts: "_Solves", tol: flo
         res = abs(wf - w) / w
         if res <= tol:
             return eps, state, k, res
-        K = _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation)
-        dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
-        new = eps - (wf - w) / dw
-        eps = float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+        eps = _eps_step(eps, F, _stiffness(bearing, meshes, state, (-eps, 0.0), opts.cavitation), w, log)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative load residual {res:.3g})")
+
+
+def _eps_step(eps: float, F: np.ndarray, K: np.ndarray, w: float, log: bool = True) -> float:
+    """One Newton step on ``log |F|(eps) = log w`` (full bearing, mesh frame; the magnitude part of
+    :func:`_polar_step`), or on ``|F|(eps) = w`` (``log=False``), with the stiffness ``K = dF/d(x, y)``, kept
+    within half the way to ``EPS_MAX`` and to half ``eps``.
+
+    The gmsh paths keep the plain steps and the first guess by quadrature: their meshes are graded at the
+    converged eccentricity rounded to 9 digits, so another iteration path (the same root to 1e-9) gives other
+    gmsh meshes and moves their results by the mesh-to-mesh scatter (up to 5e-4 on the recorded
+    coefficients of part ``journal``); the structured paths take the log (polar) steps and the closed-form
+    guess."""
+    wf = float(np.hypot(*F))
+    dw = float(F @ (-K[:, 0])) / wf  # journal moves along -x as eps grows
+    new = eps - (math.log(wf / w) * wf if log else wf - w) / dw
+    return float(min(max(new, 0.5 * eps), 0.5 * (eps + EPS_MAX)))
+
+
+def _polar_step(xy: np.ndarray, F: np.ndarray, K: np.ndarray, load: np.ndarray, plain: bool = False) -> np.ndarray:
+    """One Newton step on the force balance ``F(x, y) = load`` in polar form, ``log |F| = log |load|`` and
+    ``arg F = arg load`` (the same root; Jacobian from the stiffness ``K = dF/d(x, y)``), kept inside the
+    clearance: at most half way to the eccentricity limit. The load grows about as ``eps / (1 - eps^2)^2``,
+    far from linear in ``(x, y)``: from the short-bearing guess the plain step overshot (two_groove_ld1:
+    1.84 -> 3.72 -> 3.10 -> 3.0016 against a load of 3), the polar one does not (1.84 -> 3.09 -> 3.0001).
+    ``plain``: the plain step on ``F - load`` (see :func:`_eps_step`)."""
+    if plain:
+        step = -np.linalg.solve(K, F - load)
+    else:
+        f2 = float(F @ F)
+        J = np.vstack([F @ K, F[0] * K[1] - F[1] * K[0]]) / f2
+        R = np.array([math.log(math.sqrt(f2) / float(np.hypot(*load))),
+                      _angle_between(math.atan2(load[1], load[0]), math.atan2(F[1], F[0]))])
+        step = -np.linalg.solve(J, R)
+    e = float(np.hypot(*xy))
+    t = 1.0
+    while np.hypot(*(xy + t * step)) > max(e, 0.5 * (e + EPS_MAX)):
+        t *= 0.5
+    return xy + t * step
 
 
 #: Rupture refinement: elements within this many front-element diameters of the front are split ...
@@ -1087,23 +1166,34 @@ CORNER_SIZE = 1.0
 
 
 def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at, rupture_size: float,
-                    opts: "_Solves") -> tuple[tuple, "_State"]:
+                    opts: "_Solves", step=None) -> tuple[tuple, "_State", tuple, int]:
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
     front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
     longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
     ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
-    from the previous level's rupture sets (nested iteration)."""
+    from the previous level's rupture sets (nested iteration).
+
+    ``step(state, at)``: the next position (a Newton step of the equilibrium on the level's mesh) or None if
+    ``state`` is in equilibrium to the tolerance; each level is then solved at the position stepped from the
+    previous level's solution, so that the last level's is in equilibrium but for that level's change (the
+    Newton that follows on the finest meshes starts there, one refined solve closer). Returns the refined
+    meshes, their solution, its position and the number of steps taken."""
     levels = 8 + 2 * math.ceil(math.log2(max(max(m.size for m in meshes) / rupture_size, 1.0)))
+    steps = 0
     for _ in range(levels):
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
         refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size)
                    for mesh, res, size in zip(meshes, state.results, sizes)]
         if all(r is None for r in refined):
-            return meshes, state
+            return meshes, state, at, steps
+        moved = step(state, at) if step is not None else None
+        turn = 0.0
+        if moved is not None:
+            at, steps, turn = moved, steps + 1, _turn(at, moved)
         meshes = tuple(mesh if r is None else r for mesh, r in zip(meshes, refined))
-        start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
+        start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs), turn)
                       for mesh, res in zip(meshes, state.results))
         state = opts.solve(bearing, meshes, *at, start=start)
     raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
@@ -1156,10 +1246,11 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     return name_surface_boundaries(m, mesh.surface, source="structured")
 
 
-def _nearest_rupture(res: ReynoldsResult, points: np.ndarray) -> np.ndarray:
+def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0) -> np.ndarray:
     """Rupture mask at ``points`` (shape (2, n)): the state of the nearest dof of ``res`` (its front is
-    then off by at most half the dof spacing)."""
-    nearest = cKDTree(np.asarray(res.basis.doflocs).T).query(points.T)[1]
+    then off by at most half the dof spacing); ``turn``: that of ``res`` turned by this angle along ``phi``
+    (the state at ``phi - turn``)."""
+    nearest = cKDTree(np.asarray(res.basis.doflocs).T).query((points - np.array([[turn], [0.0]])).T)[1]
     return np.asarray(res.cavitated, bool)[nearest]
 
 
@@ -1171,15 +1262,22 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
     for _ in range(3):
         meshes = mesher(eps)
         eps_start = eps
-        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton)
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, first_tol, max_newton, log=mesher.structured)
         k_total += k
         if mesher.min_size is not None or not mesher.remesh(eps_start, eps):
             break
         if eps >= EPS_MAX * 0.999:
             raise RuntimeError(f"equilibrium needs eps > {EPS_MAX}: the load is too large for this bearing")
     if rupture_size is not None:
-        meshes, state = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts)
-        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state)
+        def step(state, at):
+            if abs(float(np.hypot(*state.force)) - w) <= tol * w:
+                return None
+            return (-_eps_step(-at[0], state.force, _linearized(state)[0], w), 0.0)
+        meshes, state, at, k = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts, step)
+        eps = -at[0]
+        k_total += k
+        eps, state, k, res = _newton_eps(bearing, meshes, eps, w, opts, tol, max_newton, first=state,
+                                         log=mesher.structured)
         k_total += k
     F = state.force
     # mesh frame -> bearing frame: rotate so that F points along the load

@@ -10,6 +10,7 @@ measure. The periodic grooved film: the Richardson extrapolation of ``docs/jfo_g
 ``grooved_journal``, grids up to 309,222 nodes).
 """
 
+import functools
 import math
 
 import numpy as np
@@ -71,11 +72,17 @@ def test_structured_meshes_cover_each_pad_with_its_groove_as_a_pocket():
     assert all(mm.source == "grid" for mm in two)
 
 
+@functools.lru_cache(maxsize=None)
+def solved(name: str):
+    """Equilibrium and coefficients of a reference case at size 0.2, rupture_size 0.04 (made once)."""
+    eq = equilibrium(REFERENCES[name][0], (0.0, -1.0), element="P2", structured=True, size=0.2, rupture_size=0.04)
+    return eq, dynamic_coefficients(eq)
+
+
 @pytest.fixture(scope="module", params=sorted(REFERENCES))
 def refined(request):
-    bearing, ref, tolerance = REFERENCES[request.param]
-    eq = equilibrium(bearing, (0.0, -1.0), element="P2", structured=True, size=0.2, rupture_size=0.04)
-    return request.param, eq, dynamic_coefficients(eq), ref, tolerance
+    _, ref, tolerance = REFERENCES[request.param]
+    return (request.param, *solved(request.param), ref, tolerance)
 
 
 def test_rupture_refined_pads_meet_the_1e3_target(refined):
@@ -92,6 +99,42 @@ def test_rupture_refined_pads_meet_the_1e3_target(refined):
         m = eq.meshes[0].mesh
         inlet = m.p[:, m.facets[:, eq.meshes[0].boundaries["inlet"]]]
         assert inlet[0].min() == pytest.approx(D(110)) and inlet[0].max() == pytest.approx(D(130))
+
+
+def test_rupture_refined_pads_take_as_few_newton_steps_as_the_full_bearing(refined):
+    # the polar Newton from the short-bearing guess, the coarse tolerance 5e-2 and a Newton step before each
+    # refinement level's solve: 4 steps on two_groove and partial_arc (the full bearing of the same L/D and
+    # load takes 4 at this setting); the supply groove (first guess at half its load) 7. Before them: 5 and 8
+    name, eq, _, _, _ = refined
+    assert eq.newton_iterations <= (7 if name == "supply_groove" else 4), name
+
+
+def test_short_bearing_guess_in_closed_form():
+    # Ocvirk: w = 2 a^3 eps/(1-eps^2)^2 sqrt(pi^2 (1-eps^2) + 16 eps^2), attitude tan = pi sqrt(1-eps^2)/(4 eps);
+    # the quadrature of short_bearing_force agrees to its midpoint-rule error (n = 4000: 4e-5 at eps 0.995)
+    from bearingfe.bearings.journal import _short_force, short_bearing_force
+    for eps in (1e-6, 0.3, 0.6, 0.9, 0.995):
+        F = _short_force(eps, 0.5)
+        w = 2 * 0.125 * eps / (1 - eps**2) ** 2 * math.sqrt(math.pi**2 * (1 - eps**2) + 16 * eps**2)
+        assert np.hypot(*F) == pytest.approx(w, rel=1e-12)
+        assert math.atan2(F[1], -F[0]) == pytest.approx(math.atan(math.pi * math.sqrt(1 - eps**2) / (4 * eps)),
+                                                          rel=1e-12)
+        assert np.abs(F - short_bearing_force(eps, 0.5)).max() <= 5e-5 * np.abs(F).max()
+
+
+def test_turned_warm_start_gives_the_same_solution():
+    # the rupture set carried to the next Newton position turned with the line of centres (pads, bearing frame)
+    # starts the active-set iteration; the solution is that of a cold start to round-off
+    from bearingfe.bearings.journal import _Solves
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    opts = _Solves(cavitation="reynolds", element="P2", warm=True)
+    opts.solve(TWO_GROOVE, meshes, 0.40, -0.42)
+    warm = opts.solve(TWO_GROOVE, meshes, 0.43, -0.44)  # the line of centres turned by 0.9 degrees
+    cold = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2")
+    for a, b in zip(warm.results, cold.results):
+        assert np.array_equal(a.cavitated, b.cavitated)
+        assert np.abs(a.pressure - b.pressure).max() <= 1e-12 * np.abs(b.pressure).max()
+    assert sum(r.iterations for r in warm.results) < sum(r.iterations for r in cold.results)
 
 
 def test_unrefined_structured_pads_miss_it():
