@@ -227,7 +227,7 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
     runs, meshes, balance, compliances = {}, {}, {}, {}
     done = 0
     from ..core.parallel import in_processes
-    from ..plot.figures import preload
+    from ..plot import preload
 
     tick(done, steps, f"simulating: {', '.join(designs)}")
     # the designs are independent: on two free cores each in its own process (the same results); the picture

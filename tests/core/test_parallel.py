@@ -57,10 +57,10 @@ def test_after_fork_runs_here_once_after_the_children_exist(tmp_path):
 
 
 def test_preload_loads_the_picture_modules_without_drawing():
-    """figures.preload imports matplotlib's figure machinery in a thread; no pyplot state."""
+    """plot.preload imports matplotlib's figure machinery in a thread; no pyplot state."""
     import sys
 
-    from bearingfe.plot.figures import preload
+    from bearingfe.plot import preload
 
     preload().join()
     assert "matplotlib.figure" in sys.modules and "matplotlib.backends.backend_agg" in sys.modules
