@@ -141,7 +141,10 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     factorize = get_linear_solver(solver)
     S, T = bernstein_change(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
     A = system.matrix if S is None else (S.T @ system.matrix @ S).tocsr()
-    problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations)
+    # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
+    order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
+    problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations,
+                              order=order if order is not None and len(order) == A.shape[0] else None)
     if factorize is system.factorize:
         # the full film's factorization starts the cache; on P2 (S^T A S)^-1 = T A^-1 T^T
         solve = system.solve if S is None else (lambda r, solve=system.solve: T @ solve(T.T @ r))

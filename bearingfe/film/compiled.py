@@ -668,6 +668,15 @@ class CompiledOperator:
 
         return solve
 
+    @property
+    def condensed_order(self) -> np.ndarray | None:
+        """The fill-reducing order of ``A[I, I]`` its SuperLU factorizations use (positions in the interior
+        dofs), or None if none was needed yet (banded Cholesky). The order restricted to a subset of the
+        dofs is a good order of that subset's block (its fill is part of the whole block's): the
+        cavitation models factor their free sets in it."""
+        found = self._lazy.get("order")
+        return None if found is None else found[0]
+
     def _order(self, data: np.ndarray):
         """The fill-reducing order of ``A[I, I]`` and the kept matrix object it is factored in.
 
