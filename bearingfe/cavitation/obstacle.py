@@ -26,7 +26,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.linalg as sla
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
@@ -141,7 +143,11 @@ class ObstacleProblem:
     def _factor(self, free: np.ndarray):
         idx = np.flatnonzero(free)
         factorize = self.factorize
-        if not idx.size:
+        default = factorize is factorize_splu_sym or factorize is factorize_splu_small
+        solve = _factor_banded(self.A[idx][:, idx]) if default and 0 < idx.size <= BANDED_UP_TO else None
+        if solve is not None:
+            pass
+        elif not idx.size:
             solve = lambda b: np.zeros_like(b)  # noqa: E731
         elif factorize is factorize_splu_sym and self.order is not None:
             solve = _factor_in_order(self.A, free, self.order)
@@ -181,7 +187,7 @@ class ObstacleProblem:
         """
         key = np.packbits(free).tobytes()
         solve = self._cache.get(key)
-        if solve is None and self.reuse:
+        if solve is None and self.reuse and np.count_nonzero(free) > DIRECT_UP_TO:
             if not self._low_memory and (self._reference is None
                                          or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n):
                 # far from the last factorization: factorize this set, the reference of the next ones
@@ -293,6 +299,42 @@ class ObstacleProblem:
         raise CavitationError(
             f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
+
+
+#: Free sets up to this many unknowns are factored, not solved by CG: a (banded) factorization costs less than
+#: the ten or twenty CG steps of a set there (each mostly interpreter time).
+DIRECT_UP_TO = 1500
+#: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
+#: the half-bandwidth is at most :data:`BAND_MAX` (measured: 0.21 ms against 0.68 ms for SuperLU at 509
+#: unknowns, 0.66 against 2.1 ms at 1,572, ordering and extraction included; the solves cost the same).
+BANDED_UP_TO = 5000
+BAND_MAX = 40
+
+
+def _factor_banded(M: sp.spmatrix):
+    """Banded Cholesky (LAPACK) of a symmetric positive definite ``M`` in the reverse Cuthill-McKee order,
+    or None if the half-bandwidth exceeds :data:`BAND_MAX` or ``M`` is not positive definite in floating
+    point (the caller then uses SuperLU)."""
+    M = sp.csr_matrix(M)
+    perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
+    P = M[perm][:, perm].tocoo()
+    offset = P.row - P.col
+    kd = int(np.abs(offset).max(initial=0))
+    if kd > BAND_MAX:
+        return None
+    lower = offset >= 0
+    band = np.zeros((kd + 1, M.shape[0]))
+    band[offset[lower], P.col[lower]] = P.data[lower]
+    try:
+        factor = sla.cholesky_banded(band, lower=True, check_finite=False)
+    except np.linalg.LinAlgError:
+        return None
+    inverse = np.argsort(perm)
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        return sla.cho_solve_banded((factor, True), np.asarray(b, dtype=float)[perm], check_finite=False)[inverse]
+
+    return solve
 
 
 def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray):

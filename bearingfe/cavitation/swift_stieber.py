@@ -129,6 +129,18 @@ def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr
 
 
 _PROBLEMS: "weakref.WeakKeyDictionary[Superposition, FilmProblem]" = weakref.WeakKeyDictionary()
+_CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _change_of(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """:func:`bernstein_change`, kept per basis: it depends on the mesh and its Dirichlet dofs, not on the
+    film, so every film state of a mesh shares it (0.5 ms of 1e3 unknowns' 8 ms cavitating solve)."""
+    key = np.asarray(interior).tobytes()
+    cached = _CHANGES.get(basis)
+    if cached is None or cached[0] != key:
+        cached = (key, *bernstein_change(basis, interior))
+        _CHANGES[basis] = cached
+    return cached[1], cached[2]
 
 
 def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,
@@ -139,7 +151,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
         return cached
     system = sup.system
     factorize = get_linear_solver(solver)
-    S, T = bernstein_change(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
+    S, T = _change_of(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
     A = system.matrix if S is None else (S.T @ system.matrix @ S).tocsr()
     # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
     order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
