@@ -12,11 +12,16 @@ previous solution with the same set costs one back-substitution.
 Consecutive active sets differ by a layer or two of dofs along the free
 boundary, so a new set is solved by conjugate gradients preconditioned with the
 last factorization (exact on the common dofs, diagonal on the newly freed ones),
-to a loose step on intermediate sets and to ``tol / 100`` once the set has
-settled; a set far from the last factorization (a tenth of the dofs) or whose
-iteration would cost more than a factorization is factorized instead
-(``reuse=False``: a factorization per set, the plain method). Nothing here
-knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
+started from the last iterate: to a loose step on intermediate sets, and to
+``tol / 100`` once a set has settled (then every later set at once); a set far
+from the last factorization (a tenth of the dofs) or whose iteration would cost
+more than a factorization is factorized instead (``reuse=False``: a
+factorization per set, the plain method). Free sets of up to
+:data:`DIRECT_UP_TO` unknowns are always factorized, and up to
+:data:`BANDED_UP_TO` by banded Cholesky when their band is narrow; larger ones
+in the caller's fill-reducing ``order`` (the full film's) restricted to the set.
+Nothing here knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses
+the problem.
 """
 
 from __future__ import annotations
