@@ -12,11 +12,16 @@ previous solution with the same set costs one back-substitution.
 Consecutive active sets differ by a layer or two of dofs along the free
 boundary, so a new set is solved by conjugate gradients preconditioned with the
 last factorization (exact on the common dofs, diagonal on the newly freed ones),
-to a loose step on intermediate sets and to ``tol / 100`` once the set has
-settled; a set far from the last factorization (a tenth of the dofs) or whose
-iteration would cost more than a factorization is factorized instead
-(``reuse=False``: a factorization per set, the plain method). Nothing here
-knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses the problem.
+started from the last iterate: to a loose step on intermediate sets, and to
+``tol / 100`` once a set has settled (then every later set at once); a set far
+from the last factorization (a tenth of the dofs) or whose iteration would cost
+more than a factorization is factorized instead (``reuse=False``: a
+factorization per set, the plain method). Free sets of up to
+:data:`DIRECT_UP_TO` unknowns are always factorized, and up to
+:data:`BANDED_UP_TO` by banded Cholesky when their band is narrow; larger ones
+in the caller's fill-reducing ``order`` (the full film's) restricted to the set.
+Nothing here knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses
+the problem.
 """
 
 from __future__ import annotations
@@ -26,6 +31,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.linalg as sla
+import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
@@ -89,6 +97,11 @@ class ObstacleProblem:
         Cap on active-set iterations; beyond it :class:`CavitationError`.
     cache_size : int
         Number of factorizations (one per active set) kept.
+    order : ndarray of int, optional
+        A fill-reducing elimination order of ``A`` (e.g. the one its full-film factorization used):
+        with the default solver a free set is then factored in this order restricted to it, which
+        skips finding an order and fills less than minimum degree on the set (measured at 1e5 P1
+        unknowns: 0.19 s against 0.49 s, and 30 % faster solves). Default: the solver's own order.
     reuse : bool
         Solve on a new free set by conjugate gradients preconditioned with
         the last factorization (of a nearby free set) instead of factorizing
@@ -98,7 +111,8 @@ class ObstacleProblem:
     """
 
     def __init__(self, A: sp.spmatrix, factorize: Factorize, *, tol: float = TOLERANCE,
-                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4, reuse: bool = True) -> None:
+                 max_iterations: int = MAX_ITERATIONS, cache_size: int = 4, reuse: bool = True,
+                 order: np.ndarray | None = None) -> None:
         if not (0 < tol < 1e-2):
             raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -109,6 +123,11 @@ class ObstacleProblem:
         self.tol = float(tol)
         self.max_iterations = max_iterations
         self.reuse = bool(reuse)
+        if order is not None:
+            order = np.asarray(order, np.int64)
+            if order.shape != (self.n,) or not np.array_equal(np.sort(order), np.arange(self.n)):
+                raise ValueError(f"order must be a permutation of the {self.n} unknowns")
+        self.order = order
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
@@ -129,9 +148,18 @@ class ObstacleProblem:
     def _factor(self, free: np.ndarray):
         idx = np.flatnonzero(free)
         factorize = self.factorize
-        if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
-            factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
-        solve = factorize(self.A[idx][:, idx]) if idx.size else (lambda b: np.zeros_like(b))
+        default = factorize is factorize_splu_sym or factorize is factorize_splu_small
+        solve = _factor_banded(self.A[idx][:, idx]) if default and 0 < idx.size <= BANDED_UP_TO else None
+        if solve is not None:
+            pass
+        elif not idx.size:
+            solve = lambda b: np.zeros_like(b)  # noqa: E731
+        elif factorize is factorize_splu_sym and self.order is not None:
+            solve = _factor_in_order(self.A, free, self.order)
+        else:
+            if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
+                factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
+            solve = factorize(self.A[idx][:, idx])
         self._reference = (free.copy(), solve)
         self._store(np.packbits(free).tobytes(), solve)
         self.factorization_count += 1
@@ -164,7 +192,7 @@ class ObstacleProblem:
         """
         key = np.packbits(free).tobytes()
         solve = self._cache.get(key)
-        if solve is None and self.reuse:
+        if solve is None and self.reuse and np.count_nonzero(free) > DIRECT_UP_TO:
             if not self._low_memory and (self._reference is None
                                          or np.count_nonzero(self._reference[0] != free) > 0.1 * self.n):
                 # far from the last factorization: factorize this set, the reference of the next ones
@@ -237,14 +265,19 @@ class ObstacleProblem:
         scale_b = float(np.abs(b).max(initial=0.0))
         loose = LOOSE * self.tol  # intermediate sets need only the signs of the clear cases
         exact = True
+        settled = False  # a set was solved to the tolerance on settling: from then on every set is
         u = np.zeros(self.n)
         for it in range(1, self.max_iterations + 1):
             free = ~active
             u_previous = u
             u = np.zeros(self.n)
             if free.any():
-                x0 = u_previous[free] if not exact else None
-                u[free], _, exact = self._solve_free(free, b[free], loose, x0)
+                # from the last iterate (zero on the newly freed dofs); solved to the tolerance at once once
+                # settled (measured: 333 CG steps in all on eight cases from 1e3 to 1e5 unknowns against 453
+                # for a loose solve and a restarted tight one on each set, the same sets)
+                x0 = u_previous[free] if it > 1 else None
+                u[free], _, exact = self._solve_free(free, b[free], None if settled else loose, x0)
+                exact = exact or settled
             if not np.all(np.isfinite(u)):
                 raise CavitationError("the linear solve on the full-film set returned non-finite values "
                                       "(singular operator: is the film region connected to a p = 0 edge?)")
@@ -257,7 +290,7 @@ class ObstacleProblem:
                 u[free], _, exact = self._solve_free(free, b[free], None, u[free])
                 lam, new_active = self._next_set(u, b, active, free, scale_b)
                 key = np.packbits(new_active).tobytes()
-                exact = True
+                exact = settled = True
             if np.array_equal(new_active, active):
                 return ObstacleSolution(u=u, multiplier=lam, active=active, iterations=it,
                                         factorizations=self.factorization_count - made)
@@ -271,6 +304,59 @@ class ObstacleProblem:
         raise CavitationError(
             f"cavitation active-set iteration did not converge in {self.max_iterations} iterations "
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
+
+
+#: Free sets up to this many unknowns are factored, not solved by CG: a (banded) factorization costs less than
+#: the ten or twenty CG steps of a set there (each mostly interpreter time).
+DIRECT_UP_TO = 1500
+#: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
+#: the half-bandwidth is at most :data:`BAND_MAX` (measured: 0.21 ms against 0.68 ms for SuperLU at 509
+#: unknowns, 0.66 against 2.1 ms at 1,572, ordering and extraction included; the solves cost the same).
+BANDED_UP_TO = 5000
+BAND_MAX = 40
+
+
+def _factor_banded(M: sp.spmatrix):
+    """Banded Cholesky (LAPACK) of a symmetric positive definite ``M`` in the reverse Cuthill-McKee order,
+    or None if the half-bandwidth exceeds :data:`BAND_MAX` or ``M`` is not positive definite in floating
+    point (the caller then uses SuperLU)."""
+    M = sp.csr_matrix(M)
+    perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
+    P = M[perm][:, perm].tocoo()
+    offset = P.row - P.col
+    kd = int(np.abs(offset).max(initial=0))
+    if kd > BAND_MAX:
+        return None
+    lower = offset >= 0
+    band = np.zeros((kd + 1, M.shape[0]))
+    band[offset[lower], P.col[lower]] = P.data[lower]
+    try:
+        factor = sla.cholesky_banded(band, lower=True, check_finite=False)
+    except np.linalg.LinAlgError:
+        return None
+    inverse = np.argsort(perm)
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        return sla.cho_solve_banded((factor, True), np.asarray(b, dtype=float)[perm], check_finite=False)[inverse]
+
+    return solve
+
+
+def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray):
+    """SuperLU (symmetric mode, no pivoting, as :func:`factorize_splu_sym`) of ``A[free][:, free]`` in
+    ``order`` restricted to the free set; returns the solve of ``A[free][:, free]``."""
+    position = np.cumsum(free) - 1
+    sub = position[order[free[order]]]  # the free block's order (positions among the free dofs)
+    chosen = np.flatnonzero(free)[sub]
+    lu = spla.splu(A[chosen][:, chosen].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                   options={"SymmetricMode": True},
+                   **({"panel_size": 1, "relax": 1} if sub.size <= SMALL_PANELS_UP_TO else {}))
+    inverse = np.argsort(sub)
+
+    def solve(b: np.ndarray) -> np.ndarray:
+        return lu.solve(np.asarray(b, dtype=float)[sub])[inverse]
+
+    return solve
 
 
 #: An inexact (conjugate-gradient) solve whose next set differs in at most this many dofs, or this fraction
@@ -334,13 +420,15 @@ class _Krylov:
         new = free & ~ref_free
         self.new = pos[np.flatnonzero(new)]
         self.new_diag = problem._diag[np.flatnonzero(new)]
+        self._t = np.zeros(self.ref_n)  # the preconditioner's right side, zero off the common dofs
+        self._matrix = None  # A[free][:, free], extracted on the first product
         self.rtol = 1e-2 * problem.tol
         self.last_iterations = 0
         self.cap = None
         self._last = None
 
     def _precondition(self, r: np.ndarray) -> np.ndarray:
-        t = np.zeros(self.ref_n)
+        t = self._t
         t[self.ref_common] = r[self.common]
         s = np.asarray(self.ref_solve(t)).reshape(-1)
         z = np.empty_like(r)
@@ -349,9 +437,11 @@ class _Krylov:
         return z
 
     def _matvec(self, x: np.ndarray) -> np.ndarray:
-        full = np.zeros(self.problem.n)
-        full[self.idx] = x
-        return (self.problem.A @ full)[self.idx]
+        # the free rows and columns once, not a product with the whole matrix per step (the same sums in the
+        # same order: the left-out columns multiply zeros)
+        if self._matrix is None:
+            self._matrix = self.problem.A[self.idx][:, self.idx].tocsr()
+        return self._matrix @ x
 
     def __call__(self, b: np.ndarray, rtol: float | None = None, x0: np.ndarray | None = None) -> np.ndarray:
         b = np.asarray(b, float)
