@@ -923,6 +923,22 @@ class SupportDynamics:
     pressure_response: np.ndarray
 
 
+def _dynamics_inputs(mesh: SupportMesh, supplies, scale: Scale, frequencies, volumes, bulk_modulus):
+    """The checked inputs of a linearised fed support: frequencies [rad/s], the pockets' laws, their volumes
+    [m^3] (0: incompressible) and the bulk modulus [Pa]."""
+    omega = np.asarray(frequencies, float).reshape(-1)
+    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
+        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
+    laws = _laws(pocket_names(mesh), supplies, scale)
+    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
+    if volumes is None:
+        return omega, laws, np.zeros(len(laws)), bulk
+    vol = np.broadcast_to(np.asarray(volumes, float), (len(laws),)).copy()
+    for k, v in enumerate(vol):
+        positive(f"volumes[{k}]", v, "m^3")
+    return omega, laws, vol, bulk
+
+
 def supply_dynamics(mesh: SupportMesh, h: float, supplies: Sequence[Supply] | Supply, scale: Scale, *,
                     frequencies: Sequence[float] = (0.0,), volumes: Sequence[float] | float | None = None,
                     bulk_modulus: float = 1.5e9, step: float = 1e-3,
@@ -975,19 +991,8 @@ def supply_dynamics(mesh: SupportMesh, h: float, supplies: Sequence[Supply] | Su
     step = in_range("step", step, Range(0.0, 0.1, lo_open=True))
     if h <= step:
         raise ValueError(f"h must be larger than step = {step:g} [c], got {h!r}")
-    omega = np.asarray(frequencies, float).reshape(-1)
-    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
-        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
-    names = pocket_names(mesh)
-    laws = _laws(names, supplies, scale)
+    omega, laws, vol, bulk = _dynamics_inputs(mesh, supplies, scale, frequencies, volumes, bulk_modulus)
     n = len(laws)
-    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
-    if volumes is None:
-        vol = np.zeros(n)
-    else:
-        vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
-        for k, v in enumerate(vol):
-            positive(f"volumes[{k}]", v, "m^3")
     balanced = solve_supplied(mesh, UniformFilm(h), supplies, scale, discretization=discretization)
     p0 = np.array([scale.from_pressure(p) for p in balanced.pressures])
 
@@ -1173,19 +1178,8 @@ def journal_dynamics(mesh: SupportMesh, displacement: Sequence[float], supplies:
     if any(operating.squeeze) or operating.inlet_pressure != 0.0:
         raise ValueError("operating: the squeeze and the inlet pressure must be 0 (the motion and the supplies "
                          "set them)")
-    omega = np.asarray(frequencies, float).reshape(-1)
-    if omega.size == 0 or not np.all(np.isfinite(omega)) or np.any(omega < 0):
-        raise ValueError(f"frequencies must be finite numbers >= 0 [rad/s], got {frequencies!r}")
-    names = pocket_names(mesh)
-    laws = _laws(names, supplies, scale)
+    omega, laws, vol, bulk = _dynamics_inputs(mesh, supplies, scale, frequencies, volumes, bulk_modulus)
     n = len(laws)
-    bulk = positive("bulk_modulus", bulk_modulus, "Pa")
-    if volumes is None:
-        vol = np.zeros(n)
-    else:
-        vol = np.broadcast_to(np.asarray(volumes, float), (n,)).copy()
-        for k, v in enumerate(vol):
-            positive(f"volumes[{k}]", v, "m^3")
     wedge = operating.wedge
     balanced = solve_supplied(mesh, DisplacedJournal(x0, y0), supplies, scale, operating=operating,
                               discretization=discretization)
