@@ -85,6 +85,14 @@ def peak_rss_mib() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
+def proc_status_mib(key: str) -> float:
+    """A memory line of ``/proc/self/status`` (``VmHWM``: the peak, ``VmRSS``: now) [MiB]; NaN if absent."""
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith(key + ":"):
+            return int(line.split()[1]) / 1024.0
+    return math.nan
+
+
 def md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
     """A GitHub-markdown table; floats printed with 3 significant digits."""
     def fmt(v):

@@ -35,9 +35,8 @@ import os
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-from .common import DOCS, ROOT, md_table
+from .common import DOCS, ROOT, md_table, proc_status_mib
 
 ORDERS = ("mmd", "nd", "nd_xy")
 CASES = (("grid", "P1"), ("gmsh", "P1"), ("grid", "P2"), ("gmsh", "P2"))
@@ -47,13 +46,6 @@ QUICK_SIZES = (1e4, 1e5)
 #: apart (``python -m benchmarks.orderings run 1e6``: 1e6 unknowns take many minutes each) join it.
 RUNS = DOCS / "benchmarks_parts" / "orderings_runs.json"
 TIMEOUT = 900.0
-
-
-def _status(key: str) -> float:
-    for line in Path("/proc/self/status").read_text().splitlines():
-        if line.startswith(key + ":"):
-            return int(line.split()[1]) / 1024.0
-    return math.nan
 
 
 def matrix(source: str, element: str, dofs: float):
@@ -92,7 +84,7 @@ def one(source: str, element: str, dofs: float, order: str) -> dict:
     from bearingfe.core.ordering import nested_dissection
 
     A, xy = matrix(source, element, dofs)
-    before = _status("VmHWM")
+    before = proc_status_mib("VmHWM")
     options = dict(diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     t0 = time.perf_counter()
     if order == "mmd":
@@ -108,7 +100,7 @@ def one(source: str, element: str, dofs: float, order: str) -> dict:
     x = lu.solve(b) if perm is None else lu.solve(b[perm])[np.argsort(perm)]
     residual = float(np.linalg.norm(A @ x - b) / np.linalg.norm(b))
     return {"dofs": int(A.shape[0]), "order_s": t1 - t0, "factor_s": t2 - t1, "fill": int(lu.L.nnz + lu.U.nnz),
-            "peak_mib": _status("VmHWM"), "before_mib": before, "residual": residual}
+            "peak_mib": proc_status_mib("VmHWM"), "before_mib": before, "residual": residual}
 
 
 def _measure(source: str, element: str, dofs: float, order: str) -> dict:

@@ -25,17 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import IMG, ROOT, loglog_plot, md_table
+from .common import IMG, ROOT, loglog_plot, md_table, proc_status_mib
 
 AREA = 2.0  # plain arc (-1, 1) x (-0.5, 0.5)
-
-
-def _status(key: str) -> float:
-    """VmRSS / VmHWM of this process [MiB]."""
-    for line in Path("/proc/self/status").read_text().splitlines():
-        if line.startswith(key + ":"):
-            return int(line.split()[1]) / 1024.0
-    return math.nan
 
 
 def build(element: str, dofs: float, path: str) -> dict:
@@ -68,7 +60,7 @@ def build(element: str, dofs: float, path: str) -> dict:
     sp.save_npz(path + "_A2.npz", A2)
     np.save(path + "_b.npy", rhs)
     return {"element": element, "dofs": int(ops.n_dofs), "unknowns": int(I.size), "nnz": int(AI.nnz),
-            "meshing": t1 - t0, "operators": t2 - t1, "assembly": t3 - t2, "peak_mib": _status("VmHWM")}
+            "meshing": t1 - t0, "operators": t2 - t1, "assembly": t3 - t2, "peak_mib": proc_status_mib("VmHWM")}
 
 
 def factor(solver: str, path: str) -> dict:
@@ -81,14 +73,14 @@ def factor(solver: str, path: str) -> dict:
     b = np.load(path + "_b.npy")
     if solver in ("pardiso", "cholmod", "cholespy", "amg"):
         LINEAR_SOLVERS[solver](sp.identity(4, format="csc"))  # library load outside the timing
-    rss0 = _status("VmRSS")
+    rss0 = proc_status_mib("VmRSS")
     t0 = time.perf_counter()
     solve = LINEAR_SOLVERS[solver](A)
     t1 = time.perf_counter()
     x = solve(b)
     t2 = time.perf_counter()
     out = {"solver": solver, "factorization": t1 - t0, "solve": t2 - t1,
-           "residual": float(np.abs(A @ x - b).max() / np.abs(b).max()), "memory_mib": _status("VmHWM") - rss0}
+           "residual": float(np.abs(A @ x - b).max() / np.abs(b).max()), "memory_mib": proc_status_mib("VmHWM") - rss0}
     del solve
     if solver in PatternFactorizer.BACKENDS:
         fac = PatternFactorizer(solver)

@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import IMG, ROOT, loglog_plot, md_table
+from .common import IMG, ROOT, loglog_plot, md_table, proc_status_mib
 
 KINDS = ("linear P1", "linear P2", "swift-stieber P1", "gumbel P1", "jfo P1", "thrust pad P1")
 SIZES = (1e3, 1e4, 1e5, 3e5, 1e6)
@@ -58,13 +58,6 @@ QUICK_SIZES = (1e3, 1e4)
 TIMEOUT = 300.0
 #: A minute: the time the "where it stops" column projects to.
 MINUTE = 60.0
-
-
-def _status(key: str) -> float:
-    for line in Path("/proc/self/status").read_text().splitlines():
-        if line.startswith(key + ":"):
-            return int(line.split()[1]) / 1024.0
-    return math.nan
 
 
 def one(kind: str, dofs: float) -> dict:
@@ -84,14 +77,14 @@ def one(kind: str, dofs: float) -> dict:
         t = time.perf_counter()
         perf = bf.tilting_equilibrium(pad, mesh, scale, 20e3, cavitation="reynolds")
         seconds = time.perf_counter() - t
-        return {"seconds": seconds, "peak_mib": _status("VmHWM"), "dofs": int(perf.pad.result.basis.N)}
+        return {"seconds": seconds, "peak_mib": proc_status_mib("VmHWM"), "dofs": int(perf.pad.result.basis.N)}
     mesh = _grid(dofs, per)
     film = bf.CosineFilm(0.6, math.pi + 0.3)
     cavitation = {"linear": "none", "swift-stieber": "reynolds", "gumbel": "gumbel", "jfo": "jfo"}[kind.split()[0]]
     t = time.perf_counter()
     res = bf.solve_reynolds(mesh, film, formulation="direct", element=element, cavitation=cavitation)
     seconds = time.perf_counter() - t
-    return {"seconds": seconds, "peak_mib": _status("VmHWM"), "dofs": int(res.basis.N)}
+    return {"seconds": seconds, "peak_mib": proc_status_mib("VmHWM"), "dofs": int(res.basis.N)}
 
 
 def _grid(dofs: float, per: float):
@@ -114,7 +107,7 @@ def stages(element: str, dofs: float) -> dict:
     marks = []
 
     def mark(name: str) -> None:
-        marks.append({"stage": name, "rss": _status("VmRSS"), "peak": _status("VmHWM")})
+        marks.append({"stage": name, "rss": proc_status_mib("VmRSS"), "peak": proc_status_mib("VmHWM")})
         Path("/proc/self/clear_refs").write_text("5")
 
     def after(name: str, f):
@@ -165,7 +158,7 @@ def _measure(kind: str, dofs: float, timeout: float, mode: str = "one") -> dict:
 def _baseline() -> float:
     """Peak memory of a process that imported the package and nothing else [MiB]."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    code = "import bearingfe, bearingfe.reynolds; from benchmarks.solver_kinds import _status; print(_status('VmHWM'))"
+    code = "import bearingfe, bearingfe.reynolds; from benchmarks.common import proc_status_mib; print(proc_status_mib('VmHWM'))"
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, env=env)
     return float(r.stdout.strip().splitlines()[-1])
 

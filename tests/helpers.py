@@ -170,11 +170,13 @@ def _value(value) -> str:
     raise TypeError(f"no TOML form for {value!r} ({type(value).__name__})")
 
 
-def markdown_table(text: str, header_start: str) -> tuple[list[str], list[list[str]]]:
+def markdown_table(text: str, header_start: str, *, after: str | None = None) -> tuple[list[str], list[list[str]]]:
     """The header cells and the rows of cells of the first Markdown table whose header line starts with
-    ``header_start`` (a generated page's table, read back by the tests that check its sentences)."""
+    ``header_start`` (a generated page's table, read back by the tests that check its sentences); with
+    ``after``, of the first table below the first line that starts with ``after`` (a heading)."""
     lines = text.splitlines()
-    start = next(i for i, line in enumerate(lines) if line.startswith(header_start))
+    begin = 0 if after is None else next(i for i, line in enumerate(lines) if line.startswith(after))
+    start = next(i for i in range(begin, len(lines)) if lines[i].startswith(header_start))
     head = [c.strip() for c in lines[start].strip("|").split("|")]
     rows = []
     for line in lines[start + 2:]:
