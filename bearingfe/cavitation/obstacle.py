@@ -150,13 +150,11 @@ class ObstacleProblem:
         factorize = self.factorize
         default = factorize is factorize_splu_sym or factorize is factorize_splu_small
         solve = _factor_banded(self.A[idx][:, idx]) if default and 0 < idx.size <= BANDED_UP_TO else None
-        if solve is not None:
-            pass
-        elif not idx.size:
+        if solve is None and not idx.size:
             solve = lambda b: np.zeros_like(b)  # noqa: E731
-        elif factorize is factorize_splu_sym and self.order is not None:
+        elif solve is None and factorize is factorize_splu_sym and self.order is not None:
             solve = _factor_in_order(self.A, free, self.order)
-        else:
+        elif solve is None:
             if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
                 factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
             solve = factorize(self.A[idx][:, idx])
