@@ -49,15 +49,21 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from contextlib import nullcontext
 from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
+import scipy.sparse as sp
 import skfem
 from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
-from ..cavitation import obstacle_problem, solve_cavitating
+from ..cavitation import ObstacleProblem, obstacle_problem, solve_cavitating
+from ..cavitation.swift_stieber import warm_mask
+from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
+from ..film import build_result
+from ..film.superposition import source_weights
 from ..film.thickness import CosineFilm
 from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
@@ -463,6 +469,7 @@ class _State:
     sups: tuple
     force: np.ndarray          # on the shoe/bore = applied load on the journal at equilibrium
     rotation: float            # mesh frame -> bearing frame angle
+    joined: "_Joined | None" = None  # the pads' joined obstacle problem, when they were solved as one
 
 
 def _check_eps(eps: float) -> float:
@@ -495,10 +502,21 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     results, sups, force = [], [], np.zeros(2)
     warm = ((None,) * len(meshes) if warm_start is None else
             warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
+    squeeze = (gamma_rate, phi0_rate)
+    joined = None
+    if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
+            and not any(m.needs_finite_volumes for m in meshes)):
+        # several Galerkin films from rupture sets: one active-set iteration over all of them
+        sups = [superpose(mesh, film, formulation="direct", element=element) for mesh in meshes]
+        results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure if m.has_inlet
+                                                              else 0.0) for m in meshes], warm)
+        force = np.sum([res.force for res in results], axis=0)
+        return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation,
+                      joined=joined)
     for mesh, previous in zip(meshes, warm):
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
         if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
-            res = solve_jfo(mesh, film, wedge=1.0, squeeze=(gamma_rate, phi0_rate), inlet_pressure=ps,
+            res = solve_jfo(mesh, film, wedge=1.0, squeeze=squeeze, inlet_pressure=ps,
                             cavitation=cavitation, warm_start=previous)
             results.append(res)
             sups.append(None)
@@ -506,13 +524,69 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             continue
         sup = superpose(mesh, film, formulation="direct", element=element)
         if cavitation == "none":
-            res = sup.combine(1.0, (gamma_rate, phi0_rate), ps)
+            res = sup.combine(1.0, squeeze, ps)
         else:
-            res = solve_cavitating(sup, 1.0, (gamma_rate, phi0_rate), ps, model=cavitation, warm_start=previous)
+            res = solve_cavitating(sup, 1.0, squeeze, ps, model=cavitation, warm_start=previous)
         results.append(res)
         sups.append(sup)
         force += res.force
     return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation)
+
+
+@dataclass(frozen=True, eq=False)
+class _Joined:
+    """The obstacle problems of several films as one block-diagonal problem (:func:`_solve_joined`)."""
+
+    problem: ObstacleProblem
+    films: tuple  # the films' FilmProblem, in the order of the blocks
+    offsets: np.ndarray  # block k holds the unknowns offsets[k]:offsets[k + 1]
+
+    def split(self, v: np.ndarray) -> list[np.ndarray]:
+        return [v[a:b] for a, b in zip(self.offsets[:-1], self.offsets[1:])]
+
+    def solve_fixed(self, rhs: list[np.ndarray], active: list[np.ndarray]) -> list[np.ndarray]:
+        """:meth:`FilmProblem.solve_fixed` of every film at once (one factorization of the joined free set):
+        the interior nodal unknowns per film."""
+        b = np.concatenate([r if fp.change is None else fp.change.T @ r for fp, r in zip(self.films, rhs)])
+        v = self.problem.solve_fixed(b, np.concatenate(active))
+        return [fp.unknowns(x) for fp, x in zip(self.films, self.split(v))]
+
+
+def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
+    """Swift-Stieber solutions of several films (pads of one bearing) by one primal-dual active-set iteration on
+    their block-diagonal system: one factorization of the joined free set per iteration and one count of
+    iterations (the largest any film needs, not their sum); one :class:`ReynoldsResult` per film.
+
+    ``warm``: one warm start per film (a result on any mesh of its surface, or a rupture mask of its dofs);
+    the full-film start of every film is its superposition's own factorization (as for one film)."""
+    t0 = time.perf_counter()
+    films = tuple(obstacle_problem(sup) for sup in sups)
+    sizes = [fp.problem.n for fp in films]
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    orders = [fp.problem.order for fp in films]
+    order = (np.concatenate([o + a for o, a in zip(orders, offsets)]) if all(o is not None for o in orders)
+             else None)
+    problem = ObstacleProblem(sp.block_diag([fp.problem.A for fp in films], format="csr"), films[0].problem.factorize,
+                              tol=films[0].problem.tol, max_iterations=films[0].problem.max_iterations, order=order)
+    joined = _Joined(problem=problem, films=films, offsets=offsets)
+
+    def full_film(b, joined=joined):
+        return np.concatenate([fp.problem.solve_fixed(x, np.zeros(x.shape[0], bool))
+                               for fp, x in zip(films, joined.split(b))])
+
+    problem.add_factorization(np.ones(problem.n, bool), full_film)
+    b = np.concatenate([fp.right_side(w) for fp, w in zip(films, weights)])
+    start = np.concatenate([warm_mask(fp, sup, w, s) for fp, sup, w, s in zip(films, sups, weights, warm)])
+    with dense_threads(1) if problem.n <= SMALL_PANELS_UP_TO else nullcontext():
+        sol = problem.solve(b, start)
+    cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
+    results = []
+    for fp, sup, w, v, active in zip(films, sups, weights, joined.split(sol.u), joined.split(sol.active)):
+        cavitated = np.zeros(sup.operators.n_dofs, bool)
+        cavitated[fp.interior] = active
+        results.append(build_result(sup, sup.system.full(fp.unknowns(v), w), w, None, cavitation="reynolds",
+                                    iterations=sol.iterations, cavitated=cavitated, extra_cost=cost))
+    return results, joined
 
 
 def position_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation: str, *,
@@ -575,6 +649,7 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     loads are mat-vecs; no form assembly per Newton step.
     """
     dF = np.zeros((2, 4))
+    systems = []
     for res, sup in zip(state.results, state.sups):
         if res.cavitation == "gumbel":
             raise ValueError("linearization is defined for cavitation='reynolds' or 'none'")
@@ -594,7 +669,12 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         rhs[:, 0] -= dA_p[0][fp.interior]
         rhs[:, 1] -= dA_p[1][fp.interior]
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
-        U = fp.solve_fixed(rhs, active)
+        systems.append((co, fp, rhs, active))
+    if state.joined is not None:  # the films' perturbations on one factorization of the joined free set
+        solved = state.joined.solve_fixed([r for _, _, r, _ in systems], [a for _, _, _, a in systems])
+    else:
+        solved = [fp.solve_fixed(rhs, active) for _, fp, rhs, active in systems]
+    for (co, fp, _, _), U in zip(systems, solved):
         u = np.zeros((co.n_dofs, 4))
         u[fp.interior] = U
         dF += co.loads[:2] @ (co.value @ u)
@@ -968,7 +1048,8 @@ class _Solves:
             if turn and all(r.basis.mesh is m.mesh for r, m in zip(warm.results, meshes)):
                 warm = tuple(_nearest_rupture(r, np.asarray(r.basis.doflocs), turn) for r in warm.results)
         state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element, warm_start=warm)
-        self.iterations += sum(r.iterations for r in state.results)
+        # solved as one (joined): one active-set iteration for all films, each result carries its count
+        self.iterations += state.results[0].iterations if state.joined else sum(r.iterations for r in state.results)
         self.previous, self.at = state, (float(x), float(y))
         return state
 
