@@ -16,8 +16,8 @@ import math
 import numpy as np
 import pytest
 
-from bearingfe.bearings.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, position_state,
-                                        structured_meshes)
+from bearingfe.bearings.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, force_derivatives,
+                                        position_state, structured_meshes)
 
 D = math.radians
 TWO_GROOVE = JournalBearing(0.5, pads=((D(10), D(170)), (D(190), D(350))))
@@ -177,3 +177,28 @@ def test_bad_structured_options_for_pads():
         structured_meshes(TWO_GROOVE, 0.0)
     with pytest.raises(ValueError, match="min_size must be in"):
         structured_meshes(TWO_GROOVE, 0.2, min_size=0.5)
+
+
+def test_pads_solved_as_one_give_each_pads_own_solution():
+    # two_groove's pads from rupture sets are solved by one active-set iteration on their block-diagonal system
+    # (one result per pad); each pad solved alone from the same start gives the same rupture set and pressure
+    # to round-off, the force and its derivatives (one factorization of the joined free set) are their sums,
+    # and the joined iteration count is the largest pad's, not the sum
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    start = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    joined = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
+    assert joined.joined is not None and len(joined.results) == 2
+    alone = [position_state(TWO_GROOVE, (mesh,), 0.43, -0.44, "reynolds", element="P2", warm_start=(res,))
+             for mesh, res in zip(meshes, start.results)]
+    assert all(a.joined is None for a in alone)
+    for j, (a,) in zip(joined.results, (a.results for a in alone)):
+        assert j.basis.mesh is a.basis.mesh and np.array_equal(j.cavitated, a.cavitated)
+        assert np.abs(j.pressure - a.pressure).max() <= 1e-12 * np.abs(a.pressure).max()
+    assert np.allclose(joined.force, sum(a.force for a in alone), rtol=1e-12, atol=0)
+    dFx, dFv = force_derivatives(joined)
+    alone_dFx = sum(force_derivatives(a)[0] for a in alone)
+    alone_dFv = sum(force_derivatives(a)[1] for a in alone)
+    assert np.abs(dFx - alone_dFx).max() <= 1e-10 * np.abs(alone_dFx).max()
+    assert np.abs(dFv - alone_dFv).max() <= 1e-10 * np.abs(alone_dFv).max()
+    assert joined.results[0].iterations == joined.results[1].iterations
+    assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
