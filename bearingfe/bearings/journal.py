@@ -953,7 +953,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         over): the active-set iteration then only corrects the free boundary
         by the step's motion. ``False`` starts every solve afresh (where the
         linear solution is negative); the answers agree to the active-set
-        tolerance.
+        tolerance. The Galerkin films of several pads started from rupture
+        sets are solved as one (one active-set iteration on their
+        block-diagonal system), with one result per pad.
     structured : bool
         Mesh with :func:`structured_meshes` (graded tensor-product meshes,
         no gmsh) instead of :func:`journal_mesh`: the full bearing's
