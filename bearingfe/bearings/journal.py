@@ -50,7 +50,7 @@ import math
 import time
 import warnings
 from contextlib import nullcontext
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -59,7 +59,7 @@ import skfem
 from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
-from ..cavitation import ObstacleProblem, obstacle_problem, solve_cavitating
+from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
 from ..cavitation.swift_stieber import warm_mask
 from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
 from ..film import build_result
@@ -503,16 +503,21 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     warm = ((None,) * len(meshes) if warm_start is None else
             warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
     squeeze = (gamma_rate, phi0_rate)
-    joined = None
+    notes = ()
     if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
             and not any(m.needs_finite_volumes for m in meshes)):
         # several Galerkin films from rupture sets: one active-set iteration over all of them
         sups = [superpose(mesh, film, formulation="direct", element=element) for mesh in meshes]
-        results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure if m.has_inlet
-                                                              else 0.0) for m in meshes], warm)
-        force = np.sum([res.force for res in results], axis=0)
-        return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force, rotation=rotation,
-                      joined=joined)
+        try:
+            results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure
+                                                                  if m.has_inlet else 0.0) for m in meshes], warm)
+        except CavitationError as exc:  # pad by pad, each with the fallbacks of solve_cavitating
+            notes = (f"cavitation: the pads' joined active-set iteration failed ({exc}); solved pad by pad",)
+            sups = []
+        else:
+            force = np.sum([res.force for res in results], axis=0)
+            return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force,
+                          rotation=rotation, joined=joined)
     for mesh, previous in zip(meshes, warm):
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
         if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
@@ -527,6 +532,8 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             res = sup.combine(1.0, squeeze, ps)
         else:
             res = solve_cavitating(sup, 1.0, squeeze, ps, model=cavitation, warm_start=previous)
+        if notes:
+            res = replace(res, notes=res.notes + notes)
         results.append(res)
         sups.append(sup)
         force += res.force

@@ -202,3 +202,25 @@ def test_pads_solved_as_one_give_each_pads_own_solution():
     assert np.abs(dFv - alone_dFv).max() <= 1e-10 * np.abs(alone_dFv).max()
     assert joined.results[0].iterations == joined.results[1].iterations
     assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
+
+
+def test_a_failed_joined_iteration_falls_back_to_pad_by_pad(monkeypatch):
+    # should the pads' joined active-set iteration fail (CavitationError), every pad is solved on its own (with
+    # solve_cavitating's fallbacks), the results say so, and the solution is the joined one to round-off
+    import bearingfe.bearings.journal as journal
+    from bearingfe.cavitation import CavitationError, ObstacleProblem
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    start = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    joined = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
+
+    class Failing(ObstacleProblem):
+        def solve(self, b, active=None):
+            raise CavitationError("forced")
+
+    monkeypatch.setattr(journal, "ObstacleProblem", Failing)
+    fallback = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
+    assert fallback.joined is None
+    for a, b in zip(fallback.results, joined.results):
+        assert any("solved pad by pad" in note for note in a.notes)
+        assert np.array_equal(a.cavitated, b.cavitated)
+        assert np.abs(a.pressure - b.pressure).max() <= 1e-12 * np.abs(b.pressure).max()
