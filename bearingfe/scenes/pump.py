@@ -507,7 +507,7 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
 
     from ..plot import maps
     from ..plot.curves import DESIGN_COLORS
-    from ..plot.figures import frame, save, title as set_title
+    from ..plot.figures import frame, ruled_table, save, title as set_title
 
     rigid = [n for n in runs if not n.endswith("_elastic")]
     fig = Figure(figsize=(8.27, 11.69))  # A4 portrait; bands from the top [in]: curves, maps, table
@@ -531,19 +531,10 @@ def _summary_page(pumps: dict, runs: dict, states: dict, s: dict, path: Path):
     for j, panel in enumerate(_panels("pressure", rigid, pumps, states)[0]):
         maps.field_axes(fig.add_subplot(maps_grid[0, j]), panel)
     table = fig.add_subplot(frame(fig, top=8.2, bottom=0.2, left=0.8, right=0.5)[0, 0])
-    table.axis("off")
     names = list(runs)
-    cells = table.table(cellText=_comparison(runs, pumps, states, s["limits"]), colLabels=["", *names, "unit"],
-                        loc="upper center", cellLoc="center",
-                        colWidths=[0.4] + [0.5 / (len(names) + 1)] * len(names) + [0.1])
-    cells.auto_set_font_size(False)
-    cells.set_fontsize(9)
-    cells.scale(1.0, 1.4)
-    for (row, col), cell in cells.get_celld().items():
-        if col == 0:
-            cell.set_text_props(ha="left")
-        if cell.get_text().get_text() == "VIOLATED":
-            cell.set_text_props(color="red", weight="bold")
+    ruled_table(table, _comparison(runs, pumps, states, s["limits"]), ["", *names, "unit"],
+                [0.4] + [0.5 / (len(names) + 1)] * len(names) + [0.1], fontsize=9,
+                emphasis=lambda text: {"color": "red", "weight": "bold"} if text == "VIOLATED" else None)
     if "plain" in runs:
         ratio, row = _film_ratio(runs["pocket"], runs["plain"], "")
         gain = f"{(ratio - 1) * 100:+.0f} %" if ratio is not None else row[0]
