@@ -129,6 +129,14 @@ def coarse_run(tmp_path_factory):
     return out, json.loads((out / "summary.json").read_text()), printed.getvalue(), figures
 
 
+def test_the_run_releases_the_objects_it_froze_for_the_collector(coarse_run):
+    """The run freezes the objects alive before its forks (gc.freeze) and unfreezes them at its end: none is
+    left out of the collector's reach after it."""
+    import gc
+
+    assert gc.get_freeze_count() == 0
+
+
 def test_trajectory_csv_headers_carry_units_and_si_values(coarse_run):
     out, summary, _, _ = coarse_run
     cols = _csv(out / "trajectory_pocket.csv")
