@@ -218,11 +218,14 @@ def run(data: dict, label: str, out_dir: Path, progress: Callable | None = None,
 
 def _run(data: dict, label: str, out_dir: Path, progress: Callable | None, base_dir: Path | None,
          freeze: Callable[[], None]) -> dict:
-    from ..geometry.surface import Surface
-    from ..io.writers import write_csv, write_json
-    from ..mechanisms.files import load_mechanism
-    from ..transient import simulate, simulate_elastic
-    from ..transient.trajectory import report_columns
+    from ..core.lazy import without_collections
+
+    with without_collections():  # the modules of the run load with the collector off
+        from ..geometry.surface import Surface
+        from ..io.writers import write_csv, write_json
+        from ..mechanisms.files import load_mechanism
+        from ..transient import simulate, simulate_elastic
+        from ..transient.trajectory import report_columns
 
     s = settings(data, label, base_dir)
     check_limit("revolutions", s["run"]["revolutions"])  # before any work (simulate checks it, too)
