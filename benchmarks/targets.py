@@ -305,7 +305,7 @@ def scene_report(res: dict) -> tuple[str, dict]:
             f"it), of which "
             f"{res['inner']:.2f} s inside the scene "
             f"(the rest: Python's start and the imports; when two cores are free the designs run in two forked "
-            f"processes while the first loads the picture modules, then the pictures are drawn in two). "
+            f"processes while the command's own loads the picture modules, then the pictures are drawn in two). "
             f"Periodic start: "
             + ", ".join(f"{k} {v} revolutions" for k, v in res["periodic"].items())
             + f" (+ the output revolution); film ratio pocket/plain {res['film_ratio']:.4f}.\n")
