@@ -23,18 +23,29 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import gc
 import os
 import re
 import shutil
 import signal
 import sys
-from .core.tempdirs import private_tempdir
 import threading
 import warnings
 from pathlib import Path
 from typing import NoReturn, Sequence
 
 from .version import __version__
+
+# the package's modules (numpy, scipy, scikit-fem) load with the collector off: their objects live as long as
+# the process, and its passes over them while they load are wasted (bearingfe.core.lazy.without_collections,
+# not importable before them)
+_collecting = gc.isenabled()
+gc.disable()
+try:
+    from .core.tempdirs import private_tempdir
+finally:
+    if _collecting:
+        gc.enable()
 
 __all__ = ["main", "command"]
 
@@ -248,10 +259,14 @@ def _printable(text: str) -> str:
 # -- run --------------------------------------------------------------------------
 
 def _run(args) -> int:
-    from .io.outfolder import output_folder
-    from .scenes import load_scene, run_scene
+    from .core.lazy import without_collections
 
-    load_scene(args.scene)  # fail on the scene file before touching the output directory
+    with without_collections():  # the scene kind's modules load with the collector off
+        from .io.outfolder import output_folder
+        from .scenes import SCENES, load_scene, run_scene
+
+        data, _ = load_scene(args.scene)  # fail on the scene file before touching the output directory
+        SCENES[data["kind"]]
     with output_folder(args.out, force=args.force, keep=[args.scene]) as work:
         with _progress(not args.no_progress) as tick:
             summary = run_scene(args.scene, work, tick)

@@ -304,8 +304,9 @@ def scene_report(res: dict) -> tuple[str, dict]:
             f"{res.get('warmup', math.nan):.2f} s that compiles the bytecode, kept as an installed package keeps "
             f"it), of which "
             f"{res['inner']:.2f} s inside the scene "
-            f"(the rest: Python's start and the imports; the designs and the pictures run in two processes when "
-            f"two cores are free). Periodic start: "
+            f"(the rest: Python's start and the imports; when two cores are free the designs run in two forked "
+            f"processes while the command's own loads the picture modules, then the pictures are drawn in two). "
+            f"Periodic start: "
             + ", ".join(f"{k} {v} revolutions" for k, v in res["periodic"].items())
             + f" (+ the output revolution); film ratio pocket/plain {res['film_ratio']:.4f}.\n")
     return text, dict(scene=res["wall"], scene_inner=res["inner"], scene_best=res["best"],

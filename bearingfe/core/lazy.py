@@ -4,12 +4,15 @@ A package table (``{module: (name, ...)}``) gives the package its module-level
 ``__getattr__`` and ``__dir__``: ``package.name`` imports ``package.module`` the
 first time it is asked for and keeps the name, so a program that never asks for
 a solver never pays for importing it (the main scene starts faster).
+:func:`without_collections` keeps the garbage collector off while modules load.
 """
 
 from __future__ import annotations
 
+import contextlib
+import gc
 import importlib
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 
 
 def lazy_names(package: str, table: Mapping[str, tuple[str, ...]],
@@ -55,3 +58,20 @@ def lazy_names(package: str, table: Mapping[str, tuple[str, ...]],
         return sorted(set(namespace) | set(origin))
 
     return __getattr__, __dir__, list(origin)
+
+
+@contextlib.contextmanager
+def without_collections() -> Iterator[None]:
+    """No cyclic garbage collection inside the ``with`` block (the collector's state is restored after it).
+
+    For imports: a module's objects live as long as the process, so the collector's passes over them while
+    they load find nothing to free; on the main scene's start (numpy, scipy, scikit-fem, the scene's modules)
+    they were a sixth of the imports' time (90 ms of 570).
+    """
+    collecting = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if collecting:
+            gc.enable()

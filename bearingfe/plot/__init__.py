@@ -21,11 +21,19 @@ def preload():
 
     The import costs about half a second; a scene starts it while its physics runs in the main thread
     (which spends much of its time in compiled code that releases the interpreter), so the pictures, and the
-    processes forked to draw them, find the modules loaded. Nothing is drawn and no global state is set.
+    processes forked to draw them, find the modules loaded. Nothing is drawn and no global state is set (the
+    garbage collector is off while the modules load, :func:`bearingfe.core.lazy.without_collections`, and
+    restored after).
     """
     import threading
 
     def load() -> None:
+        from ..core.lazy import without_collections
+
+        with without_collections():  # the modules live as long as the process: nothing to collect meanwhile
+            _load()
+
+    def _load() -> None:
         import matplotlib.figure  # noqa: F401
         import matplotlib.tri  # noqa: F401
         from matplotlib.backends import backend_agg  # noqa: F401

@@ -25,7 +25,7 @@ import numpy as np
 
 from .figures import frame, save, title as set_title
 
-__all__ = ["FIELDS", "DISPLAY_TRIANGLES", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
+__all__ = ["FIELDS", "DISPLAY_TRIANGLES", "MAP_TICKS", "TICK_STEPS", "Panel", "refinements", "sampled", "field_axes", "field_panels"]
 
 #: Field kind -> (symbol, colour map, pocket colour or None: the pockets carry the inlet pressure).
 FIELDS = {"pressure": ("p", "viridis", None), "film": ("h", "plasma", "lightgrey"),
@@ -55,6 +55,12 @@ class Panel:
     true_aspect: bool = True
     plane: bool = False
 
+
+#: Most intervals between the ticks of a map's axes and colour bar (matplotlib's ``MaxNLocator``), at the
+#: :data:`TICK_STEPS` multiples (the defaults draw about seven per axis; every tick is drawn and costs about 1 ms).
+MAP_TICKS = 4
+#: Tick spacings a map's axes may take, times a power of ten.
+TICK_STEPS = (1, 2, 2.5, 5, 10)
 
 #: Display triangles aimed at: a P2 field is refined while its display mesh stays below this.
 DISPLAY_TRIANGLES = 20000
@@ -158,8 +164,12 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         ax.set_ylabel(f"z [{unit}]")
     if panel.title:
         set_title(ax, panel.title, fontsize="medium")
+    from matplotlib.ticker import MaxNLocator
+
+    for axis in (ax.xaxis, ax.yaxis):  # a map is read by its colours: a few ticks place it (each costs ~1 ms)
+        axis.set_major_locator(MaxNLocator(MAP_TICKS, steps=TICK_STEPS))
     if colorbar:
-        bar = ax.figure.colorbar(mappable, ax=ax, shrink=0.9)
+        bar = ax.figure.colorbar(mappable, ax=ax, shrink=0.9, ticks=MaxNLocator(MAP_TICKS, steps=TICK_STEPS))
         bar.set_label(f"{symbol} [{panel.unit}]")
     return mappable
 

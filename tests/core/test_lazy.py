@@ -32,3 +32,30 @@ def test_the_pump_shoe_does_not_import_the_journal_solvers():
             "print(int('bearingfe.bearings.journal' in sys.modules), int('bearingfe.bearings.tilting_pad' in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ["0", "0"]
+
+
+def test_without_collections_keeps_the_collector_off_inside_and_restores_its_state():
+    import gc
+
+    from bearingfe.core.lazy import without_collections
+
+    assert gc.isenabled()  # pytest runs with the collector on
+    with pytest.raises(RuntimeError):
+        with without_collections():
+            assert not gc.isenabled()
+            raise RuntimeError  # an import that fails restores it too
+    assert gc.isenabled()
+    gc.disable()
+    try:  # a collector that was off stays off
+        with without_collections():
+            assert not gc.isenabled()
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
+
+
+def test_the_command_line_leaves_the_collector_on_after_its_imports():
+    # bearingfe.cli loads the package with the collector off and turns it back on
+    out = subprocess.run([sys.executable, "-c", "import gc, bearingfe.cli; print(gc.isenabled())"],
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "True"

@@ -95,8 +95,12 @@ def test_both_designs_are_drawn_each_with_its_smallest_film(tmp_path):
     assert [m.get_ydata()[0] for m in markers] == pytest.approx([0.2e6, 0.2e6 / 1.5])
     assert [m.get_xdata()[0] for m in markers] == pytest.approx([90.0, 90.0])
     assert markers[1].get_label() == "plain: min 1.33e+05 um at 90 deg"
-    for ax in fig.axes:  # every panel: one line per design (the flow panel two), and a legend
-        assert ax.get_legend() is not None
+    # legends: the designs' names in their colours on the top panel, the film's markers, the flows' styles
+    top = fig.axes[0].get_legend()
+    assert [t.get_text() for t in top.get_texts()] == ["pocket", "plain"]
+    assert [h.get_color() for h in top.legend_handles] == ["tab:blue", "tab:orange"]
+    assert fig.axes[2].get_legend() is not None and fig.axes[4].get_legend() is not None
+    assert fig.axes[1].get_legend() is None and fig.axes[3].get_legend() is None
     assert len(fig.axes[0].lines) == 2 and len(fig.axes[4].lines) == 4
     assert {ln.get_color() for ln in fig.axes[0].lines} == {"tab:blue", "tab:orange"}
 

@@ -32,3 +32,26 @@ def test_save_writes_a_png_at_the_package_resolution(tmp_path):
     assert figures.save(fig, tmp_path / "a.png") is fig
     assert Image.open(tmp_path / "a.png").size == (2 * figures.DPI, figures.DPI)
 
+
+
+def test_ruled_table_places_one_text_per_cell_on_its_row():
+    """Rows of 0.25 in in an axes 2.5 in high: row i's middle at 1 - (i + 1/2) / 10 of the axes (arithmetic);
+    the first column left-aligned at its edge plus the pad, the others centred; emphasis on body cells only."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(4.0, 3.0))
+    ax = fig.add_subplot(figures.frame(fig, top=0.25, bottom=0.25, left=0.5, right=0.5)[0, 0])
+    texts = figures.ruled_table(ax, [["a", "1", "x"], ["b", "bad", "y"]], ["", "v", "u"], [0.5, 0.25, 0.25],
+                                row_height=0.25, pad=0.01,
+                                emphasis=lambda t: {"color": "red"} if t in ("bad", "v") else None)
+    assert [t.get_text() for t in texts] == ["", "v", "u", "a", "1", "x", "b", "bad", "y"]
+    for k, t in enumerate(texts):
+        row, col = divmod(k, 3)
+        x, y = t.get_position()
+        assert y == pytest.approx(1.0 - (row + 0.5) * 0.1)
+        assert (x, t.get_ha()) == ((pytest.approx(0.01), "left") if col == 0 else
+                                   (pytest.approx((0.5, 0.625, 0.875)[col]), "center"))
+    assert texts[7].get_color() == "red" and texts[1].get_color() != "red"  # the header keeps its colour
+    (rules,) = ax.lines  # one polyline: 4 row rules and 4 column rules, each 2 points and a break
+    assert len(rules.get_xdata()) == 3 * (4 + 4)
+    assert not ax.axison

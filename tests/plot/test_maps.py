@@ -79,3 +79,21 @@ def test_panels_have_titles_units_colour_bars_and_the_zero_line(tmp_path):
     legend = maps[0].get_legend()
     assert legend is not None and [t.get_text() for t in legend.get_texts()] == ["p = 0"]
     assert fig._suptitle.get_text() == "comparison"
+
+
+def test_map_axes_and_colour_bars_draw_a_few_ticks_at_round_steps():
+    """At most MAP_TICKS intervals on each axis and colour bar, spaced 1, 2, 2.5 or 5 times a power of ten
+    (matplotlib's MaxNLocator): the map of -28.6..28.6 deg by -20..20 mm draws -20, 0, 20 on both axes."""
+    from bearingfe.plot.maps import MAP_TICKS
+
+    res = _result(n=6)
+    fig = field_panels([[Panel(res, "pressure", 29.45, "MPa", radius=0.05, title="p")]])
+    fig.canvas.draw()
+    (ax,), bars = [a for a in fig.axes if a.get_title()], [a for a in fig.axes if not a.get_title()]
+    for axis in (ax.xaxis, ax.yaxis, bars[0].yaxis):
+        lo, hi = sorted(axis.get_view_interval())
+        ticks = [t for t in axis.get_ticklocs() if lo - 1e-9 <= t <= hi + 1e-9]
+        assert 2 <= len(ticks) <= MAP_TICKS + 1
+        step = np.diff(ticks)[0] / 10.0 ** np.floor(np.log10(np.diff(ticks)[0]))
+        assert any(step == pytest.approx(s) for s in (1, 2, 2.5, 5))
+    assert list(ax.get_xticks()[(ax.get_xticks() >= -28.6) & (ax.get_xticks() <= 28.6)]) == [-20.0, 0.0, 20.0]
