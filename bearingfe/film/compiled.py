@@ -69,12 +69,15 @@ _SMALL_PANELS_UP_TO = 20000
 
 #: Largest half-bandwidth (in the reverse Cuthill-McKee order) factored by banded Cholesky
 #: (LAPACK ``dpbtrf``, lower storage) instead of SuperLU. Up to 31 LAPACK runs its unblocked
-#: column algorithm, whose only BLAS calls are a scale and a rank-one update of unit-stride vectors
-#: of length <= 31 (no threads); wider bands go blocked, into threaded BLAS-3 kernels, which on a
-#: busy machine cost milliseconds. Measured on the pump's P2 shoe mesh of 0.2 R0 (214 unknowns,
-#: half-bandwidth 31): factorization and four solves 2x faster than SuperLU's, one pump revolution
-#: 20-25 % faster; the solutions agree to round-off (tests/test_compiled.py).
-_BAND_MAX = 31
+#: column algorithm (rank-one updates of unit-stride vectors, no threads); from 32 it goes blocked
+#: with 32-wide blocks, whose BLAS-3 kernels are then too small to be threaded. Measured on the
+#: pump's P2 shoe mesh of 0.2 R0 (214 unknowns, half-bandwidth 31): factorization and four solves 2x
+#: faster than SuperLU's, one pump revolution 20-25 % faster; the main scene's pocket mesh has 34
+#: (SuperLU 98 us a factorization, banded 30 us). ``dpbtrf`` at 300 unknowns on a loaded machine
+#: (load 4, 2,000 factorizations each): half-bandwidth 34 68 us median, 36 71 us, 40 82-84 us, with
+#: occasional scheduler stalls of 2-4 ms at every width. Wider bands keep SuperLU (its fill-reducing
+#: order wins as the band grows). The solutions agree to round-off (tests/film/test_compiled.py).
+_BAND_MAX = 40
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
