@@ -912,7 +912,13 @@ class _SetSolver:
     Couette operator), so it needed 30 to over 60 iterations to round-off, more than a factorization costs.
     What is kept instead (:func:`_ordered_splu`): one nested-dissection order of the unknowns applied to rows
     and columns alike, with diagonal pivots preferred (SuperLU's symmetric mode): the changed sets then
-    pivot little and fill like the first, about half COLAMD's factorization time.
+    pivot little and fill like the first, about half COLAMD's factorization time. Also measured and left out
+    (the dimpled slider at 1.6e5 and 3.6e5 unknowns, converged matrix, best of 2-5 interleaved on a loaded
+    machine): SuperLU's ``relax`` (1 .. 64: no change in fill or time) and ``panel_size`` (1 .. 32: within
+    +-15 % noise, no trend at 3.6e5), ``Equil=False`` (same), SuperLU's own ``MMD_AT_PLUS_A`` in symmetric
+    mode (30 % less fill, slower), and solving the Woodbury columns as one block of right sides (SuperLU's
+    triangular solves cost the same per column either way: 0.015-0.018 s per column for 1, 8 and 40 columns
+    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves.
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
