@@ -408,7 +408,7 @@ def main(argv=None) -> None:
         f"{orders['median_load']:.2f}, friction {orders['median_friction']:.2f}. "
         "The grid flux carries theta between phi-neighbours only, with the film of each face integrated "
         "exactly over the two cells it joins, so a dimple cut through the cells is seen at its true position "
-        "(no staircase, `tests/test_jfo_grid.py`). The friction and the cavitated fraction take the fill "
+        "(no staircase, `tests/film/test_finite_volume_grid.py`). The friction and the cavitated fraction take the fill "
         "inside each emptied box from the flux through its downstream face (`min(1, theta_i hbar_i / h)`, the "
         "oil flux being constant along phi in a cavity): the box on a rupture step keeps its upstream part "
         "full, and the cavitated fraction is within a few 1e-3 of its limit from the coarsest grid. The load "
