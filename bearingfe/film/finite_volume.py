@@ -939,16 +939,16 @@ class _SetSolver:
         self.factorizations += 1
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        M = self.matrix(cav)
         if self.solve is not None:
             J = np.flatnonzero(cav != self.base)
             if 0 < J.size <= LOW_RANK_SWITCHES:
-                y = self._woodbury(J, rhs)
-                if y is not None and np.abs(M @ y - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
+                y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
+                if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
+                                            - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
                     return y
             elif J.size == 0:
                 return np.asarray(self.solve(rhs), float)
-        self._refactorize(cav, M)
+        self._refactorize(cav, self.matrix(cav))
         return np.asarray(self.solve(rhs), float)
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
