@@ -94,6 +94,85 @@ def run_ours(cells, couette: str, repeat: int = 1) -> list[dict]:
     return rows
 
 
+def stages(n: int) -> dict:
+    """Where a cold solve on the n x n grid spends its time: mesh, assembly, the nested start (every coarse
+    level: its mesh, assembly and active set), the fine active set (nested-dissection order, factorizations,
+    Sherman-Morrison-Woodbury steps, the rest: matrices, solves, set updates) and the postprocessing; and the
+    yardstick, one factorization + solve of the converged fine matrix in the same order (what each fine
+    factorization costs at best). Timed by wrapping the solver's internals (benchmark only)."""
+    from bearingfe.film import finite_volume as fv
+
+    shape, film = surface(), UniformFilm(1.0)
+    t0 = time.perf_counter()
+    mesh = bf.grid_mesh(shape, 1.0 / n, max_elements=10**7)
+    t_mesh = time.perf_counter() - t0
+    events, inside = [], []
+    originals = {name: getattr(fv, name) for name in ("_nested_cavity", "_ordered_splu")}
+    set_solver = {name: getattr(fv._SetSolver, name) for name in ("_refactorize", "_woodbury")}
+
+    def timed(kind, f):
+        def wrapper(*args, **kwargs):   # the fine level's events; a nested start's own ones go to its total
+            outer, t = "nested" not in inside, time.perf_counter()
+            inside.append(kind)
+            try:
+                return f(*args, **kwargs)
+            finally:
+                inside.pop()
+                if outer:
+                    events.append((kind, time.perf_counter() - t))
+        return wrapper
+
+    try:
+        fv._nested_cavity = timed("nested", originals["_nested_cavity"])
+        fv._ordered_splu = timed("order", originals["_ordered_splu"])
+        fv._SetSolver._refactorize = timed("factorization", set_solver["_refactorize"])
+        fv._SetSolver._woodbury = timed("woodbury", set_solver["_woodbury"])
+        t0 = time.perf_counter()
+        res = solve_jfo(mesh, film, cavitation_pressure=P_C, couette="grid")
+        t_solve = time.perf_counter() - t0
+    finally:
+        for name, f in originals.items():
+            setattr(fv, name, f)
+        for name, f in set_solver.items():
+            setattr(fv._SetSolver, name, f)
+    total = {k: sum(t for kind, t in events if kind == k) for k in ("nested", "order", "factorization", "woodbury")}
+    count = {k: sum(1 for kind, _ in events if kind == k) for k in ("factorization", "woodbury")}
+    # the yardstick: the converged fine matrix, ordered as the solver orders it, factorized and solved once
+    ops = fv.operators(mesh, "P1")
+    unk = fv._unknowns(mesh, ops)
+    system = fv._assemble(ops, mesh, film, 1.0, (0.0, 0.0), None, None, "grid")
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), P_C)
+    cav = (unk.S.T @ res.cavitated.astype(float)) > 0.5
+    solver = fv._SetSolver(K, G, originals["_ordered_splu"](unk, K.tocsc(), G.tocsc()))
+    M = solver.matrix(cav)
+    yard = math.inf
+    for _ in range(2):
+        t = time.perf_counter()
+        solver.factorize(M)(-b)
+        yard = min(yard, time.perf_counter() - t)
+    fine = res.cost["cavitation"] - total["nested"] - total["order"] - total["factorization"] - total["woodbury"]
+    return dict(n=n, nodes=mesh.n_nodes, mesh=t_mesh, solve=t_solve, assembly=res.cost["assembly"],
+                nested=total["nested"], levels=int(res.cost.get("nested_levels", 0)),
+                coarse_iterations=int(res.cost.get("coarse_iterations", 0)), order=total["order"],
+                factorization=total["factorization"], factorizations=count["factorization"],
+                woodbury=total["woodbury"], woodbury_steps=count["woodbury"], rest=fine,
+                postprocess=res.cost["postprocess"], iterations=res.iterations, yardstick=yard)
+
+
+def _stage_table(rows) -> str:
+    def cell(r, key, count=None):
+        return f"{r[key]:.2f}" + (f" ({r[count]})" if count else "")
+
+    return md_table(["cells per side", "nodes", "mesh [s]", "solve [s]", "assembly", "nested start (levels, coarse "
+                     "steps)", "fine ND order", "fine factorizations (count)", "Woodbury (steps)", "rest of the fine "
+                     "active set", "postprocess", "yardstick: 1 factorization + solve", "solve / yardstick"],
+                    [[str(r["n"]), str(r["nodes"]), cell(r, "mesh"), cell(r, "solve"), cell(r, "assembly"),
+                      f"{r['nested']:.2f} ({r['levels']}, {r['coarse_iterations']})", cell(r, "order"),
+                      cell(r, "factorization", "factorizations"), cell(r, "woodbury", "woodbury_steps"),
+                      cell(r, "rest"), cell(r, "postprocess"), cell(r, "yardstick"),
+                      f"{r['solve'] / r['yardstick']:.1f}"] for r in rows])
+
+
 def fbns_grid(n: int, max_iterations: int = 200) -> dict:
     """FBNS-type reference scheme on n x n cells (see the module docstring); non-dimensional units of
     :mod:`bearingfe` (lengths in L, film in h_min, pressure in mu U L / h_min^2)."""
@@ -230,6 +309,7 @@ def main(argv=None) -> None:
     start, load = time.perf_counter(), OtherLoad()
     grid = run_ours(timed, "grid", repeat=2) + run_ours(fine, "grid")
     median = run_ours(sizes, "median")
+    profile = [stages(n) for n in ((50,) if args.quick else (400, 600))]
     fbns = []
     for n in fbns_cells:
         fbns.append(fbns_grid(n))
@@ -287,6 +367,18 @@ def main(argv=None) -> None:
         "of the full-film matrix of the same unknowns: what one Reynolds solve costs); `solve / floor` divides "
         "the cold JFO solve (assembly, nested start, active set, postprocessing) by it.",
         "",
+        "## Where the time goes",
+        "",
+        _stage_table(profile),
+        "",
+        "One cold solve per grid, its stages timed inside the solver (seconds; the solve is assembly + nested "
+        "start + fine active set + postprocess). `nested start`: every coarser grid on every other line, each "
+        "with its own mesh, assembly and active set, stopped once a step switches at most 0.5 % of its nodes; "
+        "its cavity carried to the fine grid. `fine factorizations`: SuperLU of the fine active-set matrices in "
+        "one nested-dissection order (`fine ND order`, found once per mesh); `Woodbury`: steps solved by a "
+        "low-rank update of the last factorization; `rest`: matrices, solves, set updates. `yardstick`: one "
+        "factorization and solve of the converged fine matrix in the same order (best of two).",
+        "",
         "## FBNS-type reference scheme (cell-wise film, first-order upwind; benchmark only)",
         "",
         _table(fbns, "cells per side"),
@@ -316,7 +408,7 @@ def main(argv=None) -> None:
         f"{orders['median_load']:.2f}, friction {orders['median_friction']:.2f}. "
         "The grid flux carries theta between phi-neighbours only, with the film of each face integrated "
         "exactly over the two cells it joins, so a dimple cut through the cells is seen at its true position "
-        "(no staircase, `tests/test_jfo_grid.py`). The friction and the cavitated fraction take the fill "
+        "(no staircase, `tests/film/test_finite_volume_grid.py`). The friction and the cavitated fraction take the fill "
         "inside each emptied box from the flux through its downstream face (`min(1, theta_i hbar_i / h)`, the "
         "oil flux being constant along phi in a cavity): the box on a rupture step keeps its upstream part "
         "full, and the cavitated fraction is within a few 1e-3 of its limit from the coarsest grid. The load "

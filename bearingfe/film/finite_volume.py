@@ -912,7 +912,13 @@ class _SetSolver:
     Couette operator), so it needed 30 to over 60 iterations to round-off, more than a factorization costs.
     What is kept instead (:func:`_ordered_splu`): one nested-dissection order of the unknowns applied to rows
     and columns alike, with diagonal pivots preferred (SuperLU's symmetric mode): the changed sets then
-    pivot little and fill like the first, about half COLAMD's factorization time.
+    pivot little and fill like the first, about half COLAMD's factorization time. Also measured and left out
+    (the dimpled slider at 1.6e5 and 3.6e5 unknowns, converged matrix, best of 2-5 interleaved on a loaded
+    machine): SuperLU's ``relax`` (1 .. 64: no change in fill or time) and ``panel_size`` (1 .. 32: within
+    +-15 % noise, no trend at 3.6e5), ``Equil=False`` (same), SuperLU's own ``MMD_AT_PLUS_A`` in symmetric
+    mode (30 % less fill, slower), and solving the Woodbury columns as one block of right sides (SuperLU's
+    triangular solves cost the same per column either way: 0.015-0.018 s per column for 1, 8 and 40 columns
+    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves.
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
@@ -933,16 +939,16 @@ class _SetSolver:
         self.factorizations += 1
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        M = self.matrix(cav)
         if self.solve is not None:
             J = np.flatnonzero(cav != self.base)
             if 0 < J.size <= LOW_RANK_SWITCHES:
-                y = self._woodbury(J, rhs)
-                if y is not None and np.abs(M @ y - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
+                y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
+                if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
+                                            - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
                     return y
             elif J.size == 0:
                 return np.asarray(self.solve(rhs), float)
-        self._refactorize(cav, M)
+        self._refactorize(cav, self.matrix(cav))
         return np.asarray(self.solve(rhs), float)
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
@@ -964,10 +970,12 @@ class _SetSolver:
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
-                negative: bool = False) -> _Solution:
+                negative: bool = False, rough: int = 0) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
     ``fixed``: one solve on the given sets (no sign tests); ``negative``: return a converged cavity with
-    ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again). A cycle raises
+    ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again); ``rough``: return
+    the solution of the last set once the next one differs from it in at most this many unknowns (a nested
+    start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
@@ -986,8 +994,8 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         theta = np.where(cav, y, 1.0)
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
-        if np.array_equal(new, cav):
-            if theta.min(initial=1.0) < -tol and not negative:
+        if np.array_equal(new, cav) or (rough and np.count_nonzero(new != cav) <= rough):
+            if theta.min(initial=1.0) < -tol and not (negative or rough):
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
@@ -1341,6 +1349,18 @@ def _auto_couette(mesh: SupportMesh) -> str:
 #: Unknowns from which a cold grid solve (``couette="grid"`` on ``grid_mesh``) starts from the cavity of the
 #: same problem on the grid with every other line (nested iteration, recursively down to fewer unknowns).
 NESTED_MIN = 15000
+#: A nested start's coarse level stops its active-set iteration once a step would switch at most this
+#: fraction of its nodes (the finer level's own steps move the cavity by more: its discretization shifts
+#: the fronts by a cell): a rough coarse cavity, not a converged one.
+NESTED_ROUGH = 0.005
+#: Weight of the full-film ``P / max P`` against the cavity's ``theta - 1`` in the sign carried from a nested
+#: start's coarse level (see :func:`_nested_cavity`). ``P`` is small beside ``theta - 1`` (non-dimensional
+#: 1e-3 .. 1e-2 against 0.1 .. 1 on the dimpled slider): unscaled, a fine node between a full and a cavitated
+#: coarse node falls in the cavity, while the finer grid's cavity is the smaller one (its fronts move
+#: inwards by about a coarse cell). Measured on the dimpled slider of docs/jfo_dimples.md (grid flux,
+#: 200x200, 400x400 and 600x600 cells, rough coarse levels): fine factorizations 3, 3, 3 at weights 3, 10
+#: and 30; 3, 4, 4 at 1e-4 (about the unscaled start); 3, 3, 4 at 1; 4, 4, 4 at 100.
+NESTED_P_WEIGHT = 10.0
 
 
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
@@ -1393,20 +1413,23 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
                    ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
     """Cavity to start a cold grid solve from: the converged cavity on the coarser grid
     (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
-    bilinear interpolation of ``P`` (full film) and ``theta - 1`` (cavity); None where there is no coarser
-    grid (or it fails: the caller starts cold)."""
+    bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
+    (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
+    stops its iteration early (:data:`NESTED_ROUGH`)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
                                                             "grid", cavitation, factorize, tol, max_iterations,
-                                                            None, time.perf_counter())
+                                                            None, time.perf_counter(),
+                                                            rough=int(NESTED_ROUGH * coarse.n_nodes))
     except JFOError:
         return None, {}
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
     # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
-    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, csol.p - p_c)
+    P = csol.p - p_c
+    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, NESTED_P_WEIGHT * P / (np.abs(P).max(initial=0.0) or 1.0))
     cp = cops.basis.doflocs
     lines = [np.unique(cp[0]), np.unique(cp[1])]
     values = np.zeros((lines[0].size, lines[1].size))   # nodes in pockets (holes) stay 0: no fine node reads them
@@ -1423,8 +1446,9 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
-                     max_iterations: int, warm_start, start: float):
-    """Assembly and the complementarity solve of :func:`solve_jfo` (inputs checked, ``couette`` resolved).
+                     max_iterations: int, warm_start, start: float, rough: int = 0):
+    """Assembly and the complementarity solve of :func:`solve_jfo` (inputs checked, ``couette`` resolved);
+    ``rough`` as in :func:`active_set` (the grid flux only: a nested start's coarse level).
     Returns the time the assembly ended, the operators, system, unknowns, solution, the number of upwinded
     segments and the costs of a nested start."""
     ops = operators(mesh, "P1")
@@ -1446,9 +1470,10 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
         if couette == "streamline" and cavitation == "jfo":
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
                                                       max_iterations, ops)
+        elif cavitation == "jfo":
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough)
         else:
-            solve = active_set if cavitation == "jfo" else _obstacle
-            sol = solve(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
+            sol = _obstacle(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
         if couette == "limited" and cavitation == "jfo":
             system, sol = _limited_solve(system, unk, p_fixed, p_c, sol, factorize, tol, max_iterations, ops)
     return t1, ops, system, unk, sol, upwinded, nested

@@ -259,3 +259,20 @@ def test_nested_start_from_coarser_grids_gives_the_cold_solution(monkeypatch, ca
     assert nested.cost["factorizations"] <= cold.cost["factorizations"]
     assert abs(nested.mass_balance) < 1e-12 and nested.cost["active_set_residual"] < 1e-12
 
+
+
+def test_rough_coarse_levels_give_the_converged_answer_in_fewer_coarse_steps(monkeypatch):
+    # a nested start's coarse levels stop once a step switches at most NESTED_ROUGH of their nodes: the
+    # fine level still converges to the same complementarity solution (to round-off: the discrete LCP's
+    # solution does not depend on the start), with fewer coarse steps (measured 2 against 3 here)
+    import bearingfe.film.finite_volume as jfo
+
+    mesh, options = grid_mesh(_dimpled(), 1 / 130), dict(cavitation_pressure=-0.05)
+    rough = solve_jfo(mesh, UniformFilm(1.0), **options)
+    monkeypatch.setattr(jfo, "NESTED_ROUGH", 0.0)
+    converged = solve_jfo(mesh, UniformFilm(1.0), **options)
+    assert rough.cost["nested_levels"] >= 1 and converged.cost["nested_levels"] == rough.cost["nested_levels"]
+    assert rough.cost["coarse_iterations"] < converged.cost["coarse_iterations"]
+    assert np.array_equal(rough.cavitated, converged.cavitated)
+    assert np.abs(rough.pressure - converged.pressure).max() < 1e-10 * np.abs(converged.pressure).max()
+    assert np.abs(rough.theta - converged.theta).max() < 1e-10
