@@ -507,7 +507,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
             and not any(m.needs_finite_volumes for m in meshes)):
         # several Galerkin films from rupture sets: one active-set iteration over all of them
-        sups = [superpose(mesh, film, formulation="direct", element=element) for mesh in meshes]
+        sups = [superpose(mesh, film, formulation="direct", element=element, lazy=True) for mesh in meshes]
         try:
             results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure
                                                                   if m.has_inlet else 0.0) for m in meshes], warm)
@@ -527,7 +527,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             sups.append(None)
             force += res.force
             continue
-        sup = superpose(mesh, film, formulation="direct", element=element)
+        sup = superpose(mesh, film, formulation="direct", element=element, lazy=True)
         if cavitation == "none":
             res = sup.combine(1.0, squeeze, ps)
         else:
