@@ -507,7 +507,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
     if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
             and not any(m.needs_finite_volumes for m in meshes)):
         # several Galerkin films from rupture sets: one active-set iteration over all of them
-        sups = [superpose(mesh, film, formulation="direct", element=element) for mesh in meshes]
+        sups = [superpose(mesh, film, formulation="direct", element=element, lazy=True) for mesh in meshes]
         try:
             results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure
                                                                   if m.has_inlet else 0.0) for m in meshes], warm)
@@ -527,7 +527,7 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             sups.append(None)
             force += res.force
             continue
-        sup = superpose(mesh, film, formulation="direct", element=element)
+        sup = superpose(mesh, film, formulation="direct", element=element, lazy=True)
         if cavitation == "none":
             res = sup.combine(1.0, squeeze, ps)
         else:
@@ -559,6 +559,20 @@ class _Joined:
         return [fp.unknowns(x) for fp, x in zip(self.films, self.split(v))]
 
 
+def _block_diagonal(blocks) -> sp.csr_matrix:
+    """The block-diagonal CSR matrix of square CSR blocks, by concatenating their arrays (``sp.block_diag``
+    goes through COO and costs about a millisecond more per Newton step at a few hundred unknowns)."""
+    blocks = [sp.csr_matrix(b) for b in blocks]
+    sizes = np.array([b.shape[0] for b in blocks])
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    nnz = np.concatenate([[0], np.cumsum([b.nnz for b in blocks])])
+    indptr = np.concatenate([[0]] + [b.indptr[1:] + z for b, z in zip(blocks, nnz[:-1])])
+    indices = np.concatenate([b.indices + o for b, o in zip(blocks, offsets[:-1])])
+    data = np.concatenate([b.data for b in blocks])
+    n = int(offsets[-1])
+    return sp.csr_matrix((data, indices, indptr), shape=(n, n))
+
+
 def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
     """Swift-Stieber solutions of several films (pads of one bearing) by one primal-dual active-set iteration on
     their block-diagonal system: one factorization of the joined free set per iteration and one count of
@@ -573,7 +587,7 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
     orders = [fp.problem.order for fp in films]
     order = (np.concatenate([o + a for o, a in zip(orders, offsets)]) if all(o is not None for o in orders)
              else None)
-    problem = ObstacleProblem(sp.block_diag([fp.problem.A for fp in films], format="csr"), films[0].problem.factorize,
+    problem = ObstacleProblem(_block_diagonal([fp.problem.A for fp in films]), films[0].problem.factorize,
                               tol=films[0].problem.tol, max_iterations=films[0].problem.max_iterations, order=order)
     joined = _Joined(problem=problem, films=films, offsets=offsets)
 
@@ -592,7 +606,7 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
         cavitated = np.zeros(sup.operators.n_dofs, bool)
         cavitated[fp.interior] = active
         results.append(build_result(sup, sup.system.full(fp.unknowns(v), w), w, None, cavitation="reynolds",
-                                    iterations=sol.iterations, cavitated=cavitated, extra_cost=cost))
+                                    iterations=sol.iterations, cavitated=cavitated, extra_cost=cost, lazy=True))
     return results, joined
 
 
@@ -650,10 +664,9 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
     differentiating the discrete equation on the fixed rupture sets.
 
-    Assembled from the compiled maps of the mesh (:mod:`bearingfe.film.compiled`):
-    the derivative matrices are the stiffness scatter applied to their
-    coefficients at the quadrature points, the source integrals and the
-    loads are mat-vecs; no form assembly per Newton step.
+    By the per-element maps of the mesh (:mod:`bearingfe.film.compiled`): the derivative
+    matrices applied to ``p``, the source integrals and the loads are mat-vecs at the
+    quadrature points; no matrix is assembled per Newton step.
     """
     dF = np.zeros((2, 4))
     systems = []
@@ -661,20 +674,21 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         if res.cavitation == "gumbel":
             raise ValueError("linearization is defined for cavitation='reynolds' or 'none'")
         co = sup.operators.compiled
+        m, dx = co.maps, co.dx
         phi = co.x[0]
         h = np.asarray(sup.at.h, float).reshape(-1)
         hx, hy = -np.cos(phi), -np.sin(phi)
         p = res.pressure
         # A(h) p = int 6 h dv/dphi - int 12 dh/dt v (the wedge in conservative form); differentiate in
-        # x, y, xdot, ydot. dA/dx is the direct-form matrix of the coefficient 3 h^2 dh/dx, i.e. of the
-        # "film" cbrt(3 h^2 dh/dx); the wedge source's derivative is -int 6 (dh/dx) dv/dphi
-        dA_p = [co.matrix(co.matrix_data("direct", np.cbrt(3 * h**2 * c), None)) @ p for c in (hx, hy)]
-        sources = np.column_stack([co.phi_sources @ (-6.0 * hx), co.phi_sources @ (-6.0 * hy),
-                                   co.sources @ (12.0 * hx), co.sources @ (12.0 * hy)])
+        # x, y, xdot, ydot. dA/dx p = int 3 h^2 dh/dx grad p . grad v; the wedge source's derivative is
+        # -int 6 (dh/dx) dv/dphi. All by the per-element maps (mat-vecs, no matrix assembled)
+        grad_p = (m.gradient(p, 0).ravel(), m.gradient(p, 1).ravel())
+        weights = (3.0 * dx * h**2) * np.stack([hx, hy])  # (2, n_q): dx 3 h^2 dh/d(x, y)
+        dA_p = m.integrate_gradient((weights * grad_p[0]).T, 0) + m.integrate_gradient((weights * grad_p[1]).T, 1)
+        wedge = m.integrate_gradient((6.0 * dx * np.stack([hx, hy])).T, 0)  # int 6 dh/d(x, y) dv/dphi
+        squeeze = m.integrate_value((-12.0 * dx * np.stack([hx, hy])).T)  # -int 12 dh/d(x, y) v
         fp = obstacle_problem(sup)
-        rhs = -sources
-        rhs[:, 0] -= dA_p[0][fp.interior]
-        rhs[:, 1] -= dA_p[1][fp.interior]
+        rhs = np.column_stack([wedge - dA_p, squeeze])[fp.interior]
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
         systems.append((co, fp, rhs, active))
     if state.joined is not None:  # the films' perturbations on one factorization of the joined free set
@@ -684,7 +698,8 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     for (co, fp, _, _), U in zip(systems, solved):
         u = np.zeros((co.n_dofs, 4))
         u[fp.interior] = U
-        dF += co.loads[:2] @ (co.value @ u)
+        # int p' (cos phi, sin phi) of the four perturbations (einsum's loops: no threaded BLAS wait)
+        dF += np.einsum("kq,qs->ks", co.loads[:2], co.maps.values(u))
     return dF[:, :2], dF[:, 2:]
 
 

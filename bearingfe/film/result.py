@@ -50,7 +50,7 @@ def pressure_dofs(ops: "Operators", film: Film, u: np.ndarray, formulation: str)
 
 def build_result(sup: "Superposition", u: np.ndarray, weights: np.ndarray, sliding: float | None = None, *,
                  cavitation: str = "none", iterations: int = 0, cavitated: np.ndarray | None = None,
-                 extra_cost: Mapping[str, float] | None = None) -> "ReynoldsResult":
+                 extra_cost: Mapping[str, float] | None = None, lazy: bool = False) -> "ReynoldsResult":
     """The :class:`ReynoldsResult` of an unknown field ``u`` of a film state.
 
     Parameters
@@ -73,31 +73,52 @@ def build_result(sup: "Superposition", u: np.ndarray, weights: np.ndarray, slidi
         :mod:`bearingfe.film.reference`) and the loads are integrated from ``u``.
     extra_cost : mapping, optional
         Model wall times merged into ``cost``.
+    lazy : bool
+        Compute ``flows``, ``mass_balance`` and ``friction`` on their first use (the pressure, force and
+        ``int p`` at once): for a caller that needs only the force and the rupture set of most of its
+        results (a Newton iteration's intermediate states). Same values either way.
     """
     start = time.perf_counter()
     ops = sup.operators
     wedge, inlet_pressure = float(weights[0]), float(weights[3])
     sliding = wedge if sliding is None else float(sliding)
-    # the Swift-Stieber multipliers' dofs (on P2 also the ends of ruptured Bernstein edges): their residuals
-    # are the flow into the ruptured zone; the other models' flows take the ruptured dofs as they are
-    sink = None if cavitated is None else (sink_dofs(ops.basis, cavitated, ops.interior)
-                                           if cavitation == "reynolds" else cavitated)
-    out = film_outputs([sup], u[:, None], np.asarray(weights, float)[:, None], np.array([sliding]),
-                       None if sink is None else sink[:, None])
-    flows = {k: float(v[0]) for k, v in out.flows.items()}
-    balance, friction = float(out.mass_balance[0]), float(out.friction[0])
     if cavitated is None:
         force, integral = sup.forces @ weights, float(sup.integrals @ weights)
     else:
         force, integral = sup.loads(u, inlet_pressure)
-    cost = dict(sup.cost, **(extra_cost or {}), postprocess=time.perf_counter() - start)
-    return ReynoldsResult(
+    cost = dict(sup.cost, **(extra_cost or {}))
+
+    def outputs() -> dict:
+        t = time.perf_counter()
+        # the Swift-Stieber multipliers' dofs (on P2 also the ends of ruptured Bernstein edges): their residuals
+        # are the flow into the ruptured zone; the other models' flows take the ruptured dofs as they are
+        sink = None if cavitated is None else (sink_dofs(ops.basis, cavitated, ops.interior)
+                                               if cavitation == "reynolds" else cavitated)
+        out = film_outputs([sup], u[:, None], np.asarray(weights, float)[:, None], np.array([sliding]),
+                           None if sink is None else sink[:, None])
+        if "postprocess" in cost:  # computed after the result was made (lazy): its time added
+            cost["postprocess"] += time.perf_counter() - t
+        return dict(flows=MappingProxyType({k: float(v[0]) for k, v in out.flows.items()}),
+                    mass_balance=float(out.mass_balance[0]), friction=float(out.friction[0]))
+
+    done = {} if lazy else outputs()
+    res = ReynoldsResult(
         basis=ops.basis, pressure=pressure_dofs(ops, sup.film, u, sup.formulation), film=sup.film,
         wedge=wedge, squeeze=(float(weights[1]), float(weights[2])), inlet_pressure=inlet_pressure,
         formulation=sup.formulation, element=ops.element, force=force, integral=integral,
-        h_min=sup.h_min, flows=MappingProxyType(flows), mass_balance=float(balance), friction=friction,
-        coercivity=sup.coercivity, notes=sup.notes, cost=MappingProxyType(cost),
+        h_min=sup.h_min, flows=done.get("flows"), mass_balance=done.get("mass_balance"),
+        friction=done.get("friction"), coercivity=sup.coercivity, notes=sup.notes, cost=MappingProxyType(cost),
         cavitation=cavitation, iterations=int(iterations), cavitated=cavitated, runner=runner_of(ops.mesh))
+    cost["postprocess"] = time.perf_counter() - start
+    if lazy:
+        for name in _DEFERRED:  # no instance values: ReynoldsResult.__getattr__ computes them on first use
+            del res.__dict__[name]
+        res.__dict__["_outputs"] = outputs
+    return res
+
+
+#: The outputs a lazy :func:`build_result` computes on their first use.
+_DEFERRED = ("flows", "mass_balance", "friction")
 
 
 def runner_of(mesh) -> object:
@@ -237,6 +258,20 @@ class ReynoldsResult:
     refined: Callable[["ReynoldsResult"], tuple["ReynoldsResult", float, float]] | None = dataclasses.field(
         default=None, repr=False)
     _estimates: dict = dataclasses.field(default_factory=dict, init=False, repr=False)
+
+    def __getattr__(self, name: str):
+        # only reached for an attribute missing from the instance: the outputs of a lazy build_result
+        outputs = self.__dict__.get("_outputs")
+        if name not in _DEFERRED or outputs is None:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        self.__dict__.update(outputs())
+        del self.__dict__["_outputs"]
+        return self.__dict__[name]
+
+    def __getstate__(self) -> dict:
+        for name in _DEFERRED:  # a lazy result's outputs computed before copying or pickling
+            getattr(self, name)
+        return self.__dict__
 
     def estimate_load_error(self, tolerance: float = ERROR_TOLERANCE) -> LoadError:
         """How far the load is from converged: the same solve on the mesh refined once (lazy).

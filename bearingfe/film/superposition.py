@@ -140,14 +140,14 @@ class Superposition:
     assembly : str
         The assembly that built it: a key of :data:`bearingfe.film.assembly.ASSEMBLIES`
         (``"compiled"``; ``"reference"`` is the test oracle).
+    unit_solutions : callable
+        ``() -> (fields, forces, integrals)``: called once, on the first use of one of them
+        (at once unless :func:`superpose` was called with ``lazy=True``).
     """
 
     operators: Operators
     film: Film
     formulation: str
-    fields: np.ndarray
-    forces: np.ndarray
-    integrals: np.ndarray
     h_min: float
     coercivity: float
     notes: tuple[str, ...]
@@ -155,6 +155,23 @@ class Superposition:
     at: FilmAt = field(repr=False)
     system: CondensedSystem = field(repr=False)
     assembly: str = "compiled"
+    unit_solutions: Callable[[], tuple[np.ndarray, np.ndarray, np.ndarray]] = field(repr=False, default=None)
+
+    @cached_property
+    def _units(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        return self.unit_solutions()
+
+    @property
+    def fields(self) -> np.ndarray:
+        return self._units[0]
+
+    @property
+    def forces(self) -> np.ndarray:
+        return self._units[1]
+
+    @property
+    def integrals(self) -> np.ndarray:
+        return self._units[2]
 
     @takes(OperatingPoint)
     def coefficients(self, wedge: float = 1.0, inlet_pressure: float = 0.0) -> np.ndarray:
@@ -243,7 +260,7 @@ def source_weights(wedge, squeeze, inlet_pressure) -> np.ndarray:
 @takes(Discretization)
 def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element: str = "P1",
               solver: str | Factorize = DEFAULT_SOLVER, on_indefinite: str = "fallback",
-              assembly: str = "compiled") -> Superposition:
+              assembly: str = "compiled", lazy: bool = False) -> Superposition:
     """Factorize the Reynolds operator of a film state once and solve four unit problems.
 
     Parameters
@@ -266,6 +283,11 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
         film-independent maps of :mod:`bearingfe.film.compiled`: sparse mat-vecs per
         film) or ``"reference"`` (scikit-fem form assembly per film, the test
         oracle). Same numbers to round-off.
+    lazy : bool
+        Defer the factorization and the four unit solutions to their first use (``fields``,
+        ``forces``, ``integrals``, ``system.solve``; ``cost`` gets ``factorization`` and ``solve``
+        then): for a caller that needs only the system, e.g. a cavitating solve from a warm
+        rupture set, which factorizes its own free sets. Same numbers either way.
     discretization : Discretization, optional
         ``formulation``, ``element`` and ``solver`` in one object
         (:class:`bearingfe.core.parameters.Discretization`) instead of the keywords.
@@ -313,23 +335,47 @@ def superpose(mesh: SupportMesh, film: Film, *, formulation: str = "pi", element
     g = _lift(ops, film, formulation)
     rhs = system.rhs(g)
     t1 = time.perf_counter()
-    solve = system.factorize(factorize)
-    t2 = time.perf_counter()
+    cost = {"assembly": t1 - t0, "dofs": float(ops.n_dofs), "mesh_operators": ops.seconds}
+    solve = _Deferred(lambda: system.factorize(factorize), cost)
     I, B = ops.interior, ops.boundary
-    U = np.zeros((ops.n_dofs, 4))
-    U[B] = g[B]
-    U[I] = np.asarray(solve(rhs)).reshape(I.size, 4)
-    t3 = time.perf_counter()
-    forces, integrals = system.unit_loads(U)
-    forces[:, 3] += ops.pocket_moments[1:]  # pockets at unit pressure
-    integrals[3] += ops.pocket_moments[0]
-    cost = {"assembly": t1 - t0, "factorization": t2 - t1, "solve": t3 - t2, "dofs": float(ops.n_dofs),
-            "mesh_operators": ops.seconds}
+
+    def unit_solutions():
+        solve.made()
+        t2 = time.perf_counter()
+        U = np.zeros((ops.n_dofs, 4))
+        U[B] = g[B]
+        U[I] = np.asarray(solve(rhs)).reshape(I.size, 4)
+        cost["solve"] = time.perf_counter() - t2
+        forces, integrals = system.unit_loads(U)
+        forces[:, 3] += ops.pocket_moments[1:]  # pockets at unit pressure
+        integrals[3] += ops.pocket_moments[0]
+        return U, forces, integrals
+
     condensed = CondensedSystem(rhs=rhs, lift=g, interior=I, boundary=B, factorize=factorize, solve=solve,
                                 build_matrix=system.condensed_matrix)
-    return Superposition(operators=ops, film=film, formulation=formulation, fields=U, forces=forces,
-                         integrals=integrals, h_min=h_min, coercivity=coercivity, notes=tuple(notes),
-                         cost=MappingProxyType(cost), at=at, system=condensed, assembly=assembly)
+    sup = Superposition(operators=ops, film=film, formulation=formulation, h_min=h_min, coercivity=coercivity,
+                        notes=tuple(notes), cost=MappingProxyType(cost), at=at, system=condensed,
+                        assembly=assembly, unit_solutions=unit_solutions)
+    if not lazy:
+        sup.fields  # noqa: B018 (the factorization and the unit solutions now)
+    return sup
+
+
+class _Deferred:
+    """A factorization made on its first use (its wall time into ``cost["factorization"]``)."""
+
+    def __init__(self, make: Callable[[], Solve], cost: dict):
+        self._make, self._solve, self._cost = make, None, cost
+
+    def made(self) -> Solve:
+        if self._solve is None:
+            t = time.perf_counter()
+            self._solve = self._make()
+            self._cost["factorization"] = time.perf_counter() - t
+        return self._solve
+
+    def __call__(self, b):
+        return (self._solve or self.made())(b)
 
 
 _FILM_TYPES: set[type] = set()

@@ -224,3 +224,29 @@ def test_a_failed_joined_iteration_falls_back_to_pad_by_pad(monkeypatch):
         assert any("solved pad by pad" in note for note in a.notes)
         assert np.array_equal(a.cavitated, b.cavitated)
         assert np.abs(a.pressure - b.pressure).max() <= 1e-12 * np.abs(b.pressure).max()
+
+
+def test_warm_newton_step_skips_the_full_film_work():
+    # a Newton step from warm rupture sets needs only each film's system: no full-film factorization and unit
+    # solutions (superpose(..., lazy=True)), results whose flows and friction wait for their first use
+    # (build_result(..., lazy=True)) and are then those of an eager result; the linearization by the
+    # per-element maps equals forward differences of the force on the same rupture sets (slope 1e-4 steps,
+    # agreement to 1e-3 of the largest entry: the difference quotient's truncation)
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    start = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    joined = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
+    assert joined.joined is not None
+    assert all("factorization" not in sup.cost for sup in joined.sups)
+    assert all("flows" not in res.__dict__ for res in joined.results)
+    from bearingfe.film import build_result
+    for res, sup in zip(joined.results, joined.sups):
+        eager = build_result(sup, res.pressure, np.array([1.0, 0.0, 0.0, 0.0]), None, cavitation="reynolds",
+                             cavitated=res.cavitated)
+        assert res.friction == eager.friction and dict(res.flows) == dict(eager.flows)
+    assert all("factorization" not in sup.cost for sup in joined.sups)
+    dFx, _ = force_derivatives(joined)
+    step = 1e-4
+    fd = np.column_stack([(position_state(TWO_GROOVE, meshes, 0.43 + dx, -0.44 + dy, "reynolds", element="P2",
+                                          warm_start=joined).force - joined.force) / step
+                          for dx, dy in ((step, 0.0), (0.0, step))])
+    assert np.abs(fd - dFx).max() <= 1e-3 * np.abs(dFx).max()
