@@ -596,24 +596,44 @@ def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
 
 
 def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
-                 bisections: int = 30) -> np.ndarray:
+                 bisections: int = 30, sections: int = 32) -> np.ndarray:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
-    crossing of a recess contour located by bisection (30 halvings: to 1e-9 of a sub-interval) in
+    crossing of a recess contour located to ``2**-bisections`` of a sub-interval (1e-9 for 30) in
     ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
-    an eighth of a cell). All segments and sub-intervals are bisected together."""
+    an eighth of a cell). The sub-intervals a contour crosses are searched together, recess by recess
+    (only the crossed recess's own test), each round testing ``sections - 1`` points of every bracket at
+    once and keeping the part where the test changes: ``log2(sections)`` halvings per round."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
     piece = np.where(da == db, da * (b - a), 0.0)
     seg, k = np.nonzero(da != db)
     if seg.size:
-        aa, bb, xc, dA = a[seg, k].copy(), b[seg, k].copy(), x[seg], da[seg, k]
-        plan = _recess_plan(surface, xc)   # the points keep their phi: which recess boxes they meet, once
-        for _ in range(bisections):
-            c = 0.5 * (aa + bb)
-            depth = surface.recess_depth(xc, c) if plan is None else _planned_depth(plan, xc, c)
-            left = depth == dA
-            aa, bb = np.where(left, c, aa), np.where(left, bb, c)
+        aa, bb, dA, xs = a[seg, k].copy(), b[seg, k].copy(), da[seg, k], x[seg]
+        groups, owned = [], np.zeros(seg.size, bool)
+        for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
+            cand = np.flatnonzero(~owned & (xs >= blo[0]) & (xs <= bhi[0]) & (bb >= blo[1]) & (aa <= bhi[1]))
+            if cand.size:
+                inside = r.shape.contains(xs[cand], aa[cand])
+                crossed = inside != r.shape.contains(xs[cand], bb[cand])
+                cand, inside = cand[crossed], inside[crossed]
+                if cand.size:
+                    owned[cand] = True
+                    groups.append((cand, lambda px, pz, r=r, inside=inside: r.shape.contains(px, pz) == inside[:, None]))
+        rest = np.flatnonzero(~owned)   # not one recess's crossing (none should be left): the surface's depth
+        if rest.size:
+            groups.append((rest, lambda px, pz, dA=dA[rest]: surface.recess_depth(px, pz) == dA[:, None]))
+        halvings = max(1, int(round(math.log2(sections))))
+        fractions = np.arange(1, sections) / sections
+        rows, px = np.arange(seg.size), xs[:, None]
+        for _ in range(-(-bisections // halvings)):
+            c = aa[:, None] + (bb - aa)[:, None] * fractions
+            left = np.empty(c.shape, bool)
+            for idx, same_side in groups:
+                left[idx] = same_side(px[idx], c[idx])
+            first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
+            aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
+                      np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
         c = 0.5 * (aa + bb)
         piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
     return piece.sum(axis=1)
@@ -629,29 +649,61 @@ def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo
     exactly); the recess depth by the midpoint rule on ``lines`` lines in ``phi``, each line
     integral exact in ``z`` (:func:`_line_recess`), where the outer lines and the middle line
     disagree (a recess contour crosses the rectangle), else by the middle line."""
-    g, w = _GAUSS
-    mean = np.zeros_like(x0)
-    for gx, wx in zip(g, w):
-        x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
-        for gz, wz in zip(g, w):
-            z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
-            mean += 0.25 * wx * wz * (hi - lo) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    mean = _face_smooth(film, x0, x1, lo, hi)
     surface = mesh.surface
     if surface is None or not surface.recesses:
         return mean
+    return mean + _face_recess(surface, x0, x1, lo, hi, lines)
+
+
+def _face_smooth(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The film part of :func:`_face_film`: 3 x 3 Gauss points per rectangle, one call of the film."""
+    g, w = _GAUSS
+    gx, gz = np.repeat(g, 3)[:, None], np.tile(g, 3)[:, None]
+    x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
+    z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
+    terms = (0.25 * np.outer(w, w).ravel()[:, None] * (hi - lo)) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    mean = np.zeros_like(x0)
+    for term in terms:   # summed in the order of the points
+        mean += term
+    return mean
+
+
+def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                 lines: int = 8) -> np.ndarray:
+    """The recess part of :func:`_face_film` (film-independent): the mean over ``x0 < phi < x1`` of
+    ``int depth dz`` on ``lo < z < hi``, by the midpoint rule on ``lines`` lines where the outer and the
+    middle lines disagree, else by the middle line."""
+    out = np.zeros_like(x0)
     near = np.flatnonzero(_near_recess(surface, x0, x1, lo, hi))
     x0, x1, lo, hi = x0[near], x1[near], lo[near], hi[near]
     def lines_at(ks, idx):   # line integrals on the lines ks of the rectangles idx, shape (len(ks), len(idx))
         x = np.concatenate([x0[idx] + (k + 0.5) / lines * (x1[idx] - x0[idx]) for k in ks])
         return _line_recess(surface, x, np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))).reshape(len(ks), -1)
 
-    first, middle, last = lines_at((0, lines // 2, lines - 1), np.arange(near.size))
+    outer = (0, lines // 2, lines - 1)
+    first, middle, last = lines_at(outer, np.arange(near.size))
     cut = np.flatnonzero((first != middle) | (middle != last))
     depth = middle
-    if cut.size:
-        depth[cut] = lines_at(range(lines), cut).mean(axis=0)
-    mean[near] += depth
-    return mean
+    if cut.size:   # the lines not sampled yet, with the three that were
+        others = [k for k in range(lines) if k not in outer]
+        depth[cut] = (lines_at(others, cut).sum(axis=0) + first[cut] + middle[cut] + last[cut]) / lines
+    out[near] = depth
+    return out
+
+
+_FACE_RECESS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
+    """:func:`_face_film` of the box faces ``g`` of ``mesh``, the recess part found once per mesh."""
+    surface = mesh.surface
+    if surface is None or not surface.recesses:
+        return _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
+    depth = _FACE_RECESS.get(mesh)
+    if depth is None:
+        depth = _FACE_RECESS[mesh] = _face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    return _face_smooth(film, g.x0, g.x1, g.lo, g.hi) + depth
 
 
 def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, subdivisions: int = 8):
@@ -727,7 +779,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)
         fi, fj = g.i, g.j
-        face_film = _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
+        face_film = _grid_face_film(mesh, film, g)
         f = 0.5 * wedge * face_film
     else:                   # median dual: one segment per (triangle, edge)
         d = _dual(mesh)
