@@ -226,7 +226,7 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     tri_ok = (np.ptp(kx[t], axis=0) == 1) & (np.ptp(ky[t], axis=0) == 1)
     if np.all(tri_ok):
         np.add.at(cells, (kx[t].min(axis=0), ky[t].min(axis=0)), 1)
-    if (nx < 2 or ny < 2 or np.unique(np.stack([kx, ky]), axis=1).shape[1] != p.shape[1] or not np.all(tri_ok)
+    if (nx < 2 or ny < 2 or np.bincount(kx * ny + ky, minlength=nx * ny).max() > 1 or not np.all(tri_ok)
             or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
                          "nodes on the lines of a rectangular grid, each cell split into two triangles")
@@ -706,6 +706,27 @@ def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
     return _face_smooth(film, g.x0, g.x1, g.lo, g.hi) + depth
 
 
+_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
+    """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses."""
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None
+    depth = _DEPTHS.get(mesh)
+    if depth is None or depth.shape != x.shape[1:]:
+        depth = _DEPTHS[mesh] = _recess_depth(surface, x[0], x[1])
+    return depth
+
+
+def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
+    """:func:`_thickness` at the quadrature points ``x`` of ``mesh``, the recess depth found once per mesh."""
+    h = np.asarray(film.thickness(x[0], x[1]), dtype=float) + 0.0 * x[0]
+    depth = _quadrature_depth(mesh, x)
+    return h if depth is None else h + depth
+
+
 def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, subdivisions: int = 8):
     """``h``, ``1/h`` and ``h^3`` at the quadrature points, replaced on the triangles a recess contour
     cuts (a grid mesh) by their means over ``subdivisions**2`` sub-triangle centroids: the P1
@@ -714,27 +735,44 @@ def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, s
     surface = mesh.surface
     if mesh.source != "grid" or surface is None or not surface.recesses:
         return h_q, inv_q, h3_q
+    cut, pts, depth = _cut_cells(mesh, x, subdivisions)
+    if cut.size == 0:
+        return h_q, inv_q, h3_q
+    hh = np.asarray(film.thickness(pts[0], pts[1]), dtype=float) + 0.0 * pts[0] + depth   # as _thickness
+    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
+    h_q[cut] = hh.mean(axis=1)[:, None]
+    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
+    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
+    return h_q, inv_q, h3_q
+
+
+_CUTS: "weakref.WeakKeyDictionary[SupportMesh, tuple]" = weakref.WeakKeyDictionary()
+
+
+def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
+    """The triangles of a grid mesh a recess contour cuts, the centroids of their ``subdivisions**2``
+    sub-triangles ``(2, n_cut, n_sub)`` and the recess depth there (film-independent: found once per mesh)."""
+    hit = _CUTS.get(mesh)
+    if hit is not None and hit[0] == subdivisions:
+        return hit[1]
+    surface = mesh.surface
     m = mesh.mesh
     t = m.t[:3]
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
-    dep_q = _recess_depth(surface, x[0][near], x[1][near])
+    dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _recess_depth(surface, px[:, near], pz[:, near])
     cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
-    if cut.size == 0:
-        return h_q, inv_q, h3_q
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
     lam += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n - 1) for j in range(n - 1 - i)]
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    hh = _thickness(mesh, film, pts[0], pts[1])
-    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
-    h_q[cut] = hh.mean(axis=1)[:, None]
-    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
-    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
-    return h_q, inv_q, h3_q
+    depth = _recess_depth(surface, pts[0], pts[1]) if cut.size else np.zeros(pts.shape[1:])
+    out = (cut, pts, depth)
+    _CUTS[mesh] = (subdivisions, out)
+    return out
 
 
 
@@ -768,7 +806,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
               couette: str = "median") -> FVSystem:
     basis = ops.basis
     x = ops.x
-    h_q = _thickness(mesh, film, x[0], x[1])
+    h_q = _film_q(mesh, film, x)
     if not np.all(h_q > 0):
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
@@ -806,7 +844,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     if dt is not None:
         H = _load(cells, h_q)
         px = previous.film
-        H_old = _load(cells, _thickness(mesh, px, x[0], x[1]))
+        H_old = _load(cells, _film_q(mesh, px, x))
         storage = storage + H / dt
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
@@ -849,19 +887,36 @@ def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
 
 
 def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
-    n, I = ops.n_dofs, ops.interior
-    rep_of = np.arange(n)
+    n, I = ops.n_dofs, ops.interior   # I sorted, without repeats
     start, end = periodic_pairs(mesh)
-    rep_of[end] = start
-    reps = np.unique(rep_of[I])
-    cols = np.searchsorted(reps, rep_of[I])
+    if start.size:
+        rep_of = np.arange(n)
+        rep_of[end] = start
+        reps = np.unique(rep_of[I])
+        cols = np.searchsorted(reps, rep_of[I])
+    else:   # each interior dof its own unknown
+        reps, cols = I, np.arange(I.size)
     S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
-    return FVUnknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I),
-                      coordinates=np.asarray(ops.basis.doflocs)[:, reps])
+    fixed = np.ones(n, bool)
+    fixed[I] = False
+    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps])
+
+
+_REDUCED: "weakref.WeakKeyDictionary[FVSystem, tuple]" = weakref.WeakKeyDictionary()
 
 
 def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
-    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b``."""
+    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b`` (the last ones kept
+    on the system: the first guess of the cavity and the active set condense the same)."""
+    hit = _REDUCED.get(system)
+    if hit is not None and hit[0] is unk and hit[2] == p_c and np.array_equal(hit[1], p_fixed):
+        return hit[3]
+    out = _condensed(system, unk, p_fixed, p_c)
+    _REDUCED[system] = (unk, p_fixed.copy(), p_c, out)
+    return out
+
+
+def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
     K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
     St = unk.S.T.tocsr()
     p0 = np.full(p_fixed.size, p_c)
