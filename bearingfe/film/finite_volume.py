@@ -372,23 +372,24 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndar
     nt = t.shape[1]
     x, y = p[0][t], p[1][t]
     det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
-    gx = np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det          # d lambda_k / d phi
-    tri = np.arange(d.i.size) % nt
-    xs, ys = d.midpoint
-    gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
+    # segments are ordered edge-pair major (median_dual): segment e * nt + k lies in triangle k, so the
+    # per-triangle arrays broadcast over the pairs as (3 nodes, 1, n_triangles) against (3 pairs, n_triangles)
+    gx = (np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det)[:, None, :]     # d lambda_k / d phi
+    gy = (np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det)[:, None, :]
+    xs, ys = d.midpoint.reshape(2, 3, nt)
     nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
-    lam = gx[:, tri] * (xs - x[nxt][:, tri]) + gy[:, tri] * (ys - y[nxt][:, tri])
+    lam = gx * (xs - x[nxt][:, None, :]) + gy * (ys - y[nxt][:, None, :])
     if np.ndim(direction) == 0:
-        rate = -direction * gx[:, tri]                 # d lambda / d tau along the upstream ray
+        rate = np.broadcast_to(-direction * gx, lam.shape)   # d lambda / d tau along the upstream ray
     else:
-        rate = -(direction[0] * gx[:, tri] + direction[1] * gy[:, tri])
+        rate = -(direction[0].reshape(3, nt) * gx + direction[1].reshape(3, nt) * gy)
     with np.errstate(divide="ignore", invalid="ignore"):
         tau = np.where(rate < 0, -lam / rate, np.inf)
     step = np.min(tau, axis=0)
     step = np.where(np.isfinite(step), step, 0.0)
     w = np.clip(lam + rate * step, 0.0, None)
     w /= w.sum(axis=0)
-    return t[:, tri], w
+    return np.tile(t, (1, 3)), w.reshape(3, 3 * nt)
 
 
 @dataclass(frozen=True, eq=False)
