@@ -327,33 +327,6 @@ def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
     return (E @ R).tocsr()
 
 
-# -- sparse matrices of fixed patterns ------------------------------------------------------------------
-
-@dataclass(frozen=True, eq=False)
-class _Pattern:
-    """The CSR pattern of the matrices summed from values at fixed ``(row, col)`` pairs (duplicates summed):
-    found once, each matrix then only its ``data`` (one ``bincount``) instead of a COO sort per matrix."""
-
-    indptr: np.ndarray
-    indices: np.ndarray
-    slot: np.ndarray       # position in ``data`` of each pair
-    shape: tuple[int, int]
-
-    def matrix(self, values: np.ndarray) -> sp.csr_matrix:
-        data = np.bincount(self.slot, weights=np.ravel(values), minlength=self.indices.size)
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=self.shape)
-
-
-def _pattern(rows: np.ndarray, cols: np.ndarray, shape: tuple[int, int]) -> _Pattern:
-    """The :class:`_Pattern` of the pairs ``(rows, cols)`` (flattened, in that order)."""
-    key = np.ravel(rows).astype(np.int64) * shape[1] + np.ravel(cols)
-    unique, slot = np.unique(key, return_inverse=True)
-    row = unique // shape[1]
-    indptr = np.concatenate([[0], np.cumsum(np.bincount(row, minlength=shape[0]))])
-    return _Pattern(indptr=indptr, indices=(unique % shape[1]).astype(np.int32), slot=np.ravel(slot),
-                    shape=shape)
-
-
 # -- streamline upwind values of theta on the median dual ---------------------------------------------
 
 def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndarray, np.ndarray]:
@@ -411,13 +384,12 @@ class _Streamline:
         w[0] += np.where(upwinded, 1.0, 0.0)
         nodes = self.nodes.copy()
         nodes[0] = np.where(upwinded, self.up, nodes[0])
-        pattern = _streamline_pattern(n, self.d, nodes)
-        C = _streamline_flux(pattern, self.flux, w)
+        C = _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
         if self.scale is None:
             return C, None
         s = self.scale.copy()
         s[0] = np.where(upwinded, self.up_scale, s[0])
-        return C, _streamline_flux(pattern, self.flux, w * s)
+        return C, _streamline_flux(n, self.d, self.flux, nodes, w * s).tocsr()
 
 
 def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
@@ -456,17 +428,12 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
 STREAMLINE_PASSES = 8
 
 
-def _streamline_pattern(n: int, d: _Dual, nodes: np.ndarray) -> _Pattern:
-    """The pattern of :func:`_streamline_flux` for the foot nodes ``nodes`` (3, n_segments)."""
+def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
+    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
     rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
-    return _pattern(rows, np.concatenate([nodes.ravel(), nodes.ravel()]), (n, n))
-
-
-def _streamline_flux(pattern: _Pattern, f: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
-    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``), on the
-    :func:`_streamline_pattern` of the segments and their foot nodes."""
-    fw = (f * w).ravel()
-    return pattern.matrix(np.concatenate([fw, -fw]))
+    cols = np.concatenate([nodes.ravel(), nodes.ravel()])
+    vals = np.concatenate([(f * w).ravel(), -(f * w).ravel()])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
@@ -482,7 +449,6 @@ class _Cells:
     lam: np.ndarray    # (3, n_points): lambda_k at the reference quadrature points
     dx: np.ndarray     # (n_triangles, n_points)
     n: int             # nodes (dofs)
-    cache: dict = dataclasses.field(default_factory=dict, repr=False)   # the stiffness pattern, found once
 
 
 _CELLS: "weakref.WeakKeyDictionary[SupportMesh, _Cells]" = weakref.WeakKeyDictionary()
@@ -508,10 +474,10 @@ def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
     contributes ``int_T c`` times their products)."""
     g, t = cells.grad, cells.t
     w = np.sum(c_q * cells.dx, axis=1)
-    pattern = cells.cache.get("stiffness")
-    if pattern is None:
-        pattern = cells.cache["stiffness"] = _pattern(np.repeat(t, 3, axis=0), np.tile(t, (3, 1)), (cells.n, cells.n))
-    return pattern.matrix(w * (g[0][:, None] * g[0][None, :] + g[1][:, None] * g[1][None, :]))
+    rows = np.repeat(t, 3, axis=0).ravel()
+    cols = np.tile(t, (3, 1)).ravel()
+    vals = (w * (g[0][:, None] * g[0][None, :] + g[1][:, None] * g[1][None, :])).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(cells.n, cells.n))
 
 
 def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
