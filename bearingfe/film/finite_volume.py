@@ -550,8 +550,8 @@ _BOXES: dict = {}
 
 
 def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size, as
-    :func:`_near_recess`)."""
+    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size and 1e-12), found once
+    per surface (:func:`_near_recess`, :func:`_recess_plan`, :func:`_line_recess`)."""
     key = id(surface)
     hit = _BOXES.get(key)
     if hit is not None and hit[0] is surface:
@@ -585,13 +585,10 @@ _GAUSS = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 
 
 def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
     """Mask of the rectangles ``[x0, x1] x [z0, z1]`` that overlap the bounding box of a recess (with a
-    margin of 1 % of its size): elsewhere the recess depth is zero and need not be sampled."""
+    margin of 1 % of its size, :func:`_recess_boxes`): elsewhere the recess depth is zero and need not be
+    sampled."""
     near = np.zeros(np.shape(x0), bool)
-    for r in surface.recesses:
-        b = r.shape.boundary()
-        lo, hi = b.min(axis=1), b.max(axis=1)
-        pad = 0.01 * (hi - lo)
-        lo, hi = lo - pad, hi + pad
+    for lo, hi in _recess_boxes(surface):   # found once per surface
         near |= (x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1])
     return near
 
@@ -1288,9 +1285,10 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
            p: np.ndarray, theta: np.ndarray, created: bool = False,
-           pockets: bool = False) -> tuple[dict[str, float], float]:
+           pockets: bool = False, grad_p: np.ndarray | None = None) -> tuple[dict[str, float], float]:
     """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative); with
-    ``pockets`` also each pocket's own inflow under its name (not counted again in the balance)."""
+    ``pockets`` also each pocket's own inflow under its name (not counted again in the balance).
+    ``grad_p``: the P1 gradient of ``p`` per triangle, if the caller has it."""
     basis = ops.basis
     storage = system.storage * theta + system.source
     balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
@@ -1299,8 +1297,12 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     count = np.zeros(basis.N)
     for d in groups.values():
         count[d] += 1
-    grad_p = _interpolate(_cells(mesh, ops), p)[1]
-    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, mesh.boundaries[k]) for k in groups}
+    if grad_p is None:
+        grad_p = _interpolate(_cells(mesh, ops), p)[1]
+    # the direct facet fluxes count at the corner dofs only: each group's facets that touch one (the same
+    # sums, in the same order, as over all its facets)
+    none = np.zeros(0, np.int64)
+    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, ops.facet_groups.get(k, none)) for k in groups}
     corner = count > 1
     shared = np.zeros(basis.N)
     for k in groups:
@@ -1698,11 +1700,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
             cost, start, model) -> ReynoldsResult:
     basis = ops.basis
-    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
-                            pockets=isinstance(inlet_pressure, tuple))
     cells = _cells(mesh, ops)
     x, dx = ops.x, cells.dx
     pq, dp = _interpolate(cells, p)
+    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
+                            pockets=isinstance(inlet_pressure, tuple), grad_p=dp)
     dp = dp[:, :, None]
     theta_q = _interpolate(cells, theta)[0]
     sliding = wedge if sliding is None else float(sliding)
