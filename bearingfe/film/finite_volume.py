@@ -365,6 +365,20 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndar
     return np.tile(t, (1, 3)), w.reshape(3, 3 * nt)
 
 
+_WEIGHTS: "weakref.WeakKeyDictionary[SupportMesh, dict]" = weakref.WeakKeyDictionary()
+
+
+def _aligned_weights(mesh: SupportMesh, d: _Dual, sign: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_streamline_weights` for sliding along ``sign * e_phi``, found once per mesh and sign (read-only
+    arrays: the flux's callers copy before they change them)."""
+    per_mesh = _WEIGHTS.setdefault(mesh, {})
+    if sign not in per_mesh:
+        nodes, w = _streamline_weights(mesh, d, sign)
+        nodes.flags.writeable = w.flags.writeable = False
+        per_mesh[sign] = (nodes, w)
+    return per_mesh[sign]
+
+
 @dataclass(frozen=True, eq=False)
 class _Streamline:
     """The streamline flux's pieces: segments, their fluxes ``f``, foot nodes and weights, upwind nodes."""
@@ -829,7 +843,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     C_cavity = None
     if couette == "streamline":
         sign = math.copysign(1.0, wedge)
-        nodes, w = _streamline_weights(mesh, d, sign if u is None else (sign * u[0], sign * u[1]))
+        nodes, w = (_aligned_weights(mesh, d, sign) if u is None
+                    else _streamline_weights(mesh, d, (sign * u[0], sign * u[1])))
         scale, up_scale = _contour_scales(mesh, film, d, f)
         rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
         C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
