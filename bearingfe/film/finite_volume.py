@@ -226,7 +226,7 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     tri_ok = (np.ptp(kx[t], axis=0) == 1) & (np.ptp(ky[t], axis=0) == 1)
     if np.all(tri_ok):
         np.add.at(cells, (kx[t].min(axis=0), ky[t].min(axis=0)), 1)
-    if (nx < 2 or ny < 2 or np.unique(np.stack([kx, ky]), axis=1).shape[1] != p.shape[1] or not np.all(tri_ok)
+    if (nx < 2 or ny < 2 or np.bincount(kx * ny + ky, minlength=nx * ny).max() > 1 or not np.all(tri_ok)
             or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
                          "nodes on the lines of a rectangular grid, each cell split into two triangles")
@@ -345,23 +345,38 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndar
     nt = t.shape[1]
     x, y = p[0][t], p[1][t]
     det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
-    gx = np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det          # d lambda_k / d phi
-    tri = np.arange(d.i.size) % nt
-    xs, ys = d.midpoint
-    gy = np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det
+    # segments are ordered edge-pair major (median_dual): segment e * nt + k lies in triangle k, so the
+    # per-triangle arrays broadcast over the pairs as (3 nodes, 1, n_triangles) against (3 pairs, n_triangles)
+    gx = (np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det)[:, None, :]     # d lambda_k / d phi
+    gy = (np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det)[:, None, :]
+    xs, ys = d.midpoint.reshape(2, 3, nt)
     nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
-    lam = gx[:, tri] * (xs - x[nxt][:, tri]) + gy[:, tri] * (ys - y[nxt][:, tri])
+    lam = gx * (xs - x[nxt][:, None, :]) + gy * (ys - y[nxt][:, None, :])
     if np.ndim(direction) == 0:
-        rate = -direction * gx[:, tri]                 # d lambda / d tau along the upstream ray
+        rate = np.broadcast_to(-direction * gx, lam.shape)   # d lambda / d tau along the upstream ray
     else:
-        rate = -(direction[0] * gx[:, tri] + direction[1] * gy[:, tri])
+        rate = -(direction[0].reshape(3, nt) * gx + direction[1].reshape(3, nt) * gy)
     with np.errstate(divide="ignore", invalid="ignore"):
         tau = np.where(rate < 0, -lam / rate, np.inf)
     step = np.min(tau, axis=0)
     step = np.where(np.isfinite(step), step, 0.0)
     w = np.clip(lam + rate * step, 0.0, None)
     w /= w.sum(axis=0)
-    return t[:, tri], w
+    return np.tile(t, (1, 3)), w.reshape(3, 3 * nt)
+
+
+_WEIGHTS: "weakref.WeakKeyDictionary[SupportMesh, dict]" = weakref.WeakKeyDictionary()
+
+
+def _aligned_weights(mesh: SupportMesh, d: _Dual, sign: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_streamline_weights` for sliding along ``sign * e_phi``, found once per mesh and sign (read-only
+    arrays: the flux's callers copy before they change them)."""
+    per_mesh = _WEIGHTS.setdefault(mesh, {})
+    if sign not in per_mesh:
+        nodes, w = _streamline_weights(mesh, d, sign)
+        nodes.flags.writeable = w.flags.writeable = False
+        per_mesh[sign] = (nodes, w)
+    return per_mesh[sign]
 
 
 @dataclass(frozen=True, eq=False)
@@ -549,8 +564,8 @@ _BOXES: dict = {}
 
 
 def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size, as
-    :func:`_near_recess`)."""
+    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size and 1e-12), found once
+    per surface (:func:`_near_recess`, :func:`_recess_plan`, :func:`_line_recess`)."""
     key = id(surface)
     hit = _BOXES.get(key)
     if hit is not None and hit[0] is surface:
@@ -584,36 +599,53 @@ _GAUSS = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 
 
 def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
     """Mask of the rectangles ``[x0, x1] x [z0, z1]`` that overlap the bounding box of a recess (with a
-    margin of 1 % of its size): elsewhere the recess depth is zero and need not be sampled."""
+    margin of 1 % of its size, :func:`_recess_boxes`): elsewhere the recess depth is zero and need not be
+    sampled."""
     near = np.zeros(np.shape(x0), bool)
-    for r in surface.recesses:
-        b = r.shape.boundary()
-        lo, hi = b.min(axis=1), b.max(axis=1)
-        pad = 0.01 * (hi - lo)
-        lo, hi = lo - pad, hi + pad
+    for lo, hi in _recess_boxes(surface):   # found once per surface
         near |= (x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1])
     return near
 
 
 def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
-                 bisections: int = 30) -> np.ndarray:
+                 bisections: int = 30, sections: int = 32) -> np.ndarray:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
-    crossing of a recess contour located by bisection (30 halvings: to 1e-9 of a sub-interval) in
+    crossing of a recess contour located to ``2**-bisections`` of a sub-interval (1e-9 for 30) in
     ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
-    an eighth of a cell). All segments and sub-intervals are bisected together."""
+    an eighth of a cell). The sub-intervals a contour crosses are searched together, recess by recess
+    (only the crossed recess's own test), each round testing ``sections - 1`` points of every bracket at
+    once and keeping the part where the test changes: ``log2(sections)`` halvings per round."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
     piece = np.where(da == db, da * (b - a), 0.0)
     seg, k = np.nonzero(da != db)
     if seg.size:
-        aa, bb, xc, dA = a[seg, k].copy(), b[seg, k].copy(), x[seg], da[seg, k]
-        plan = _recess_plan(surface, xc)   # the points keep their phi: which recess boxes they meet, once
-        for _ in range(bisections):
-            c = 0.5 * (aa + bb)
-            depth = surface.recess_depth(xc, c) if plan is None else _planned_depth(plan, xc, c)
-            left = depth == dA
-            aa, bb = np.where(left, c, aa), np.where(left, bb, c)
+        aa, bb, dA, xs = a[seg, k].copy(), b[seg, k].copy(), da[seg, k], x[seg]
+        groups, owned = [], np.zeros(seg.size, bool)
+        for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
+            cand = np.flatnonzero(~owned & (xs >= blo[0]) & (xs <= bhi[0]) & (bb >= blo[1]) & (aa <= bhi[1]))
+            if cand.size:
+                inside = r.shape.contains(xs[cand], aa[cand])
+                crossed = inside != r.shape.contains(xs[cand], bb[cand])
+                cand, inside = cand[crossed], inside[crossed]
+                if cand.size:
+                    owned[cand] = True
+                    groups.append((cand, lambda px, pz, r=r, inside=inside: r.shape.contains(px, pz) == inside[:, None]))
+        rest = np.flatnonzero(~owned)   # not one recess's crossing (none should be left): the surface's depth
+        if rest.size:
+            groups.append((rest, lambda px, pz, dA=dA[rest]: surface.recess_depth(px, pz) == dA[:, None]))
+        halvings = max(1, int(round(math.log2(sections))))
+        fractions = np.arange(1, sections) / sections
+        rows, px = np.arange(seg.size), xs[:, None]
+        for _ in range(-(-bisections // halvings)):
+            c = aa[:, None] + (bb - aa)[:, None] * fractions
+            left = np.empty(c.shape, bool)
+            for idx, same_side in groups:
+                left[idx] = same_side(px[idx], c[idx])
+            first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
+            aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
+                      np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
         c = 0.5 * (aa + bb)
         piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
     return piece.sum(axis=1)
@@ -629,29 +661,82 @@ def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo
     exactly); the recess depth by the midpoint rule on ``lines`` lines in ``phi``, each line
     integral exact in ``z`` (:func:`_line_recess`), where the outer lines and the middle line
     disagree (a recess contour crosses the rectangle), else by the middle line."""
-    g, w = _GAUSS
-    mean = np.zeros_like(x0)
-    for gx, wx in zip(g, w):
-        x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
-        for gz, wz in zip(g, w):
-            z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
-            mean += 0.25 * wx * wz * (hi - lo) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    mean = _face_smooth(film, x0, x1, lo, hi)
     surface = mesh.surface
     if surface is None or not surface.recesses:
         return mean
+    return mean + _face_recess(surface, x0, x1, lo, hi, lines)
+
+
+def _face_smooth(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The film part of :func:`_face_film`: 3 x 3 Gauss points per rectangle, one call of the film."""
+    g, w = _GAUSS
+    gx, gz = np.repeat(g, 3)[:, None], np.tile(g, 3)[:, None]
+    x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
+    z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
+    terms = (0.25 * np.outer(w, w).ravel()[:, None] * (hi - lo)) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    mean = np.zeros_like(x0)
+    for term in terms:   # summed in the order of the points
+        mean += term
+    return mean
+
+
+def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                 lines: int = 8) -> np.ndarray:
+    """The recess part of :func:`_face_film` (film-independent): the mean over ``x0 < phi < x1`` of
+    ``int depth dz`` on ``lo < z < hi``, by the midpoint rule on ``lines`` lines where the outer and the
+    middle lines disagree, else by the middle line."""
+    out = np.zeros_like(x0)
     near = np.flatnonzero(_near_recess(surface, x0, x1, lo, hi))
     x0, x1, lo, hi = x0[near], x1[near], lo[near], hi[near]
     def lines_at(ks, idx):   # line integrals on the lines ks of the rectangles idx, shape (len(ks), len(idx))
         x = np.concatenate([x0[idx] + (k + 0.5) / lines * (x1[idx] - x0[idx]) for k in ks])
         return _line_recess(surface, x, np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))).reshape(len(ks), -1)
 
-    first, middle, last = lines_at((0, lines // 2, lines - 1), np.arange(near.size))
+    outer = (0, lines // 2, lines - 1)
+    first, middle, last = lines_at(outer, np.arange(near.size))
     cut = np.flatnonzero((first != middle) | (middle != last))
     depth = middle
-    if cut.size:
-        depth[cut] = lines_at(range(lines), cut).mean(axis=0)
-    mean[near] += depth
-    return mean
+    if cut.size:   # the lines not sampled yet, with the three that were
+        others = [k for k in range(lines) if k not in outer]
+        depth[cut] = (lines_at(others, cut).sum(axis=0) + first[cut] + middle[cut] + last[cut]) / lines
+    out[near] = depth
+    return out
+
+
+_FACE_RECESS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
+    """:func:`_face_film` of the box faces ``g`` of ``mesh``, the recess part found once per mesh."""
+    surface = mesh.surface
+    if surface is None or not surface.recesses:
+        return _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
+    depth = _FACE_RECESS.get(mesh)
+    if depth is None:
+        depth = _FACE_RECESS[mesh] = _face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    return _face_smooth(film, g.x0, g.x1, g.lo, g.hi) + depth
+
+
+_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
+    """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses."""
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None
+    depth = _DEPTHS.get(mesh)
+    if depth is None or depth.shape != x.shape[1:]:
+        depth = _DEPTHS[mesh] = _recess_depth(surface, x[0], x[1])
+    return depth
+
+
+def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
+    """:func:`_thickness` at the quadrature points ``x`` of ``mesh``, the recess depth found once per mesh."""
+    h = np.asarray(film.thickness(x[0], x[1]), dtype=float) + 0.0 * x[0]
+    depth = _quadrature_depth(mesh, x)
+    return h if depth is None else h + depth
 
 
 def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, subdivisions: int = 8):
@@ -662,27 +747,44 @@ def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, s
     surface = mesh.surface
     if mesh.source != "grid" or surface is None or not surface.recesses:
         return h_q, inv_q, h3_q
+    cut, pts, depth = _cut_cells(mesh, x, subdivisions)
+    if cut.size == 0:
+        return h_q, inv_q, h3_q
+    hh = np.asarray(film.thickness(pts[0], pts[1]), dtype=float) + 0.0 * pts[0] + depth   # as _thickness
+    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
+    h_q[cut] = hh.mean(axis=1)[:, None]
+    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
+    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
+    return h_q, inv_q, h3_q
+
+
+_CUTS: "weakref.WeakKeyDictionary[SupportMesh, tuple]" = weakref.WeakKeyDictionary()
+
+
+def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
+    """The triangles of a grid mesh a recess contour cuts, the centroids of their ``subdivisions**2``
+    sub-triangles ``(2, n_cut, n_sub)`` and the recess depth there (film-independent: found once per mesh)."""
+    hit = _CUTS.get(mesh)
+    if hit is not None and hit[0] == subdivisions:
+        return hit[1]
+    surface = mesh.surface
     m = mesh.mesh
     t = m.t[:3]
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
-    dep_q = _recess_depth(surface, x[0][near], x[1][near])
+    dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _recess_depth(surface, px[:, near], pz[:, near])
     cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
-    if cut.size == 0:
-        return h_q, inv_q, h3_q
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
     lam += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n - 1) for j in range(n - 1 - i)]
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    hh = _thickness(mesh, film, pts[0], pts[1])
-    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
-    h_q[cut] = hh.mean(axis=1)[:, None]
-    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
-    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
-    return h_q, inv_q, h3_q
+    depth = _recess_depth(surface, pts[0], pts[1]) if cut.size else np.zeros(pts.shape[1:])
+    out = (cut, pts, depth)
+    _CUTS[mesh] = (subdivisions, out)
+    return out
 
 
 
@@ -716,7 +818,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
               couette: str = "median") -> FVSystem:
     basis = ops.basis
     x = ops.x
-    h_q = _thickness(mesh, film, x[0], x[1])
+    h_q = _film_q(mesh, film, x)
     if not np.all(h_q > 0):
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
@@ -727,7 +829,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)
         fi, fj = g.i, g.j
-        face_film = _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
+        face_film = _grid_face_film(mesh, film, g)
         f = 0.5 * wedge * face_film
     else:                   # median dual: one segment per (triangle, edge)
         d = _dual(mesh)
@@ -741,7 +843,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     C_cavity = None
     if couette == "streamline":
         sign = math.copysign(1.0, wedge)
-        nodes, w = _streamline_weights(mesh, d, sign if u is None else (sign * u[0], sign * u[1]))
+        nodes, w = (_aligned_weights(mesh, d, sign) if u is None
+                    else _streamline_weights(mesh, d, (sign * u[0], sign * u[1])))
         scale, up_scale = _contour_scales(mesh, film, d, f)
         rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
         C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
@@ -754,7 +857,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     if dt is not None:
         H = _load(cells, h_q)
         px = previous.film
-        H_old = _load(cells, _thickness(mesh, px, x[0], x[1]))
+        H_old = _load(cells, _film_q(mesh, px, x))
         storage = storage + H / dt
         source = -previous.theta * H_old / dt
     grid = dict(faces=g, face_film=face_film / (g.hi - g.lo)) if couette == "grid" else {}
@@ -797,19 +900,36 @@ def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
 
 
 def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
-    n, I = ops.n_dofs, ops.interior
-    rep_of = np.arange(n)
+    n, I = ops.n_dofs, ops.interior   # I sorted, without repeats
     start, end = periodic_pairs(mesh)
-    rep_of[end] = start
-    reps = np.unique(rep_of[I])
-    cols = np.searchsorted(reps, rep_of[I])
+    if start.size:
+        rep_of = np.arange(n)
+        rep_of[end] = start
+        reps = np.unique(rep_of[I])
+        cols = np.searchsorted(reps, rep_of[I])
+    else:   # each interior dof its own unknown
+        reps, cols = I, np.arange(I.size)
     S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
-    return FVUnknowns(S=S, rep=reps, fixed=np.setdiff1d(np.arange(n), I),
-                      coordinates=np.asarray(ops.basis.doflocs)[:, reps])
+    fixed = np.ones(n, bool)
+    fixed[I] = False
+    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps])
+
+
+_REDUCED: "weakref.WeakKeyDictionary[FVSystem, tuple]" = weakref.WeakKeyDictionary()
 
 
 def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
-    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b``."""
+    """Condensed matrices and the fixed part ``b`` of the residual ``K P + G theta + b`` (the last ones kept
+    on the system: the first guess of the cavity and the active set condense the same)."""
+    hit = _REDUCED.get(system)
+    if hit is not None and hit[0] is unk and hit[2] == p_c and np.array_equal(hit[1], p_fixed):
+        return hit[3]
+    out = _condensed(system, unk, p_fixed, p_c)
+    _REDUCED[system] = (unk, p_fixed.copy(), p_c, out)
+    return out
+
+
+def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
     K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
     St = unk.S.T.tocsr()
     p0 = np.full(p_fixed.size, p_c)
@@ -1188,9 +1308,10 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
            p: np.ndarray, theta: np.ndarray, created: bool = False,
-           pockets: bool = False) -> tuple[dict[str, float], float]:
+           pockets: bool = False, grad_p: np.ndarray | None = None) -> tuple[dict[str, float], float]:
     """Boundary flows from the dual-cell balance of the boundary dofs (exactly conservative); with
-    ``pockets`` also each pocket's own inflow under its name (not counted again in the balance)."""
+    ``pockets`` also each pocket's own inflow under its name (not counted again in the balance).
+    ``grad_p``: the P1 gradient of ``p`` per triangle, if the caller has it."""
     basis = ops.basis
     storage = system.storage * theta + system.source
     balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
@@ -1199,8 +1320,12 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     count = np.zeros(basis.N)
     for d in groups.values():
         count[d] += 1
-    grad_p = _interpolate(_cells(mesh, ops), p)[1]
-    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, mesh.boundaries[k]) for k in groups}
+    if grad_p is None:
+        grad_p = _interpolate(_cells(mesh, ops), p)[1]
+    # the direct facet fluxes count at the corner dofs only: each group's facets that touch one (the same
+    # sums, in the same order, as over all its facets)
+    none = np.zeros(0, np.int64)
+    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, ops.facet_groups.get(k, none)) for k in groups}
     corner = count > 1
     shared = np.zeros(basis.N)
     for k in groups:
@@ -1615,11 +1740,11 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
             cost, start, model) -> ReynoldsResult:
     basis = ops.basis
-    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
-                            pockets=isinstance(inlet_pressure, tuple))
     cells = _cells(mesh, ops)
     x, dx = ops.x, cells.dx
     pq, dp = _interpolate(cells, p)
+    flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
+                            pockets=isinstance(inlet_pressure, tuple), grad_p=dp)
     dp = dp[:, :, None]
     theta_q = _interpolate(cells, theta)[0]
     sliding = wedge if sliding is None else float(sliding)

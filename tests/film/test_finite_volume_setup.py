@@ -1,0 +1,70 @@
+"""The per-mesh set-up of the JFO solver: recess integrals of the grid faces, facets kept by the meshers, caches."""
+
+import numpy as np
+import skfem
+
+from bearingfe import Circle, Recess, Surface, grid_mesh, mesh_surface
+from bearingfe.film import finite_volume as fv
+from bearingfe.film.finite_volume import solve_jfo
+from bearingfe.film.thickness import UniformFilm
+
+
+def _dimpled():
+    """Four circular dimples of two depths on a unit slider (at least four: the bucketed recess test)."""
+    centres = [(0.3, -0.2), (0.7, -0.2), (0.3, 0.2), (0.7, 0.2)]
+    return Surface(arc=(0.0, 1.0), half_width=0.5,
+                   recesses=[Recess(Circle(c, 0.15), 0.5 + 0.5 * (k % 2)) for k, c in enumerate(centres)])
+
+
+def test_line_recess_meets_the_chord_lengths():
+    """``int depth dz`` along lines ``phi = x`` through circular dimples: depth times the chord
+    ``2 sqrt(r^2 - (x - cx)^2)`` (closed form). Each contour crossing is located to ``2**-30`` of a
+    sub-interval (an eighth of the segment), so the integrals agree to 1e-9 of the segment length. The lines
+    cross the dimples within 0.1 of their centres: chords of 0.22 or more, longer than a sub-interval (the
+    method's stated condition: at most one crossing per sub-interval)."""
+    surface = _dimpled()
+    x = np.concatenate([np.linspace(0.2, 0.4, 21), np.linspace(0.6, 0.8, 21)])
+    lo, hi = np.full(x.size, -0.5), np.full(x.size, 0.5)
+    got = fv._line_recess(surface, x, lo, hi)
+    expected = np.zeros(x.size)
+    for r in surface.recesses:
+        (cx, _), radius = r.shape.center, r.shape.radius
+        expected += r.depth * 2.0 * np.sqrt(np.clip(radius**2 - (x - cx) ** 2, 0.0, None))
+    assert np.abs(got - expected).max() < 1e-9
+
+
+def test_line_recess_on_part_of_a_chord():
+    """Segments ending inside a dimple: depth times the part of the chord in ``[lo, hi]`` (closed form)."""
+    surface = _dimpled()
+    x = np.full(5, 0.3)
+    lo = np.array([-0.5, -0.3, -0.25, -0.1, 0.0])
+    hi = np.array([-0.2, -0.1, 0.0, 0.3, 0.5])
+    half = 0.15   # the chord through the centres of the two dimples at phi = 0.3 (depth 0.5, at z = -0.2 and 0.2)
+    expected = sum(d * np.clip(np.minimum(hi, c + half) - np.maximum(lo, c - half), 0.0, None)
+                   for c, d in ((-0.2, 0.5), (0.2, 0.5)))
+    assert np.allclose(fv._line_recess(surface, x, lo, hi), expected, rtol=0.0, atol=1e-9)
+
+
+def test_grid_and_gmsh_meshes_keep_the_facets_they_named():
+    """The meshers' copies with named boundaries carry the facets they were named on: the same as
+    scikit-fem builds from the triangles afresh, so the boundary facet indices stay valid."""
+    for mesh in (grid_mesh(_dimpled(), 0.1), mesh_surface(_dimpled(), 0.2)):
+        m = mesh.mesh
+        assert "_facets" in m.__dict__
+        fresh = skfem.MeshTri1(m.p, m.t)
+        assert np.array_equal(m.facets, fresh.facets) and np.array_equal(m.t2f, fresh.t2f)
+        outer = m.facets[:, mesh.boundaries["outer"]]
+        assert np.all(np.isin(outer, fresh.boundary_nodes()))
+
+
+def test_a_second_solve_on_a_mesh_repeats_the_first():
+    """The second solve reads the per-mesh set-up (recess integrals of the faces and at the quadrature
+    points, cut cells, unknowns) from the caches: the same answer as the first, to round-off."""
+    film = UniformFilm(1.0)
+    for couette, mesh in (("grid", grid_mesh(_dimpled(), 0.05)), ("streamline", mesh_surface(_dimpled(), 0.1))):
+        first = solve_jfo(mesh, film, cavitation_pressure=-0.05, couette=couette)
+        again = solve_jfo(mesh, film, cavitation_pressure=-0.05, couette=couette)
+        assert first.cavitated_fraction > 0.01   # a cavity: the JFO path with its fill fraction
+        assert np.allclose(again.pressure, first.pressure, rtol=0.0, atol=1e-12 * np.abs(first.pressure).max())
+        assert np.allclose(again.theta, first.theta, rtol=0.0, atol=1e-12)
+        assert abs(again.friction - first.friction) <= 1e-12 * abs(first.friction)
