@@ -132,7 +132,8 @@ class PocketFilm:
         forces = _column(self.whole.forces, sum(pk * s.forces[:, 3] for pk, s in zip(p, self.pockets)))
         integrals = self.whole.integrals.copy()
         integrals[3] = sum(pk * s.integrals[3] for pk, s in zip(p, self.pockets))
-        return dataclasses.replace(self.whole, fields=fields, forces=forces, integrals=integrals, system=system)
+        units = (fields, forces, integrals)
+        return dataclasses.replace(self.whole, unit_solutions=lambda: units, system=system)
 
     def pocket_moments(self, pressures: np.ndarray) -> np.ndarray:
         """``(area, int cos, int sin)`` of the pockets weighted by their pressures."""
