@@ -140,6 +140,34 @@ def test_free_set_factorizations_solve_the_free_block():
     assert obstacle._factor_banded(-A) is None  # not positive definite
     with pytest.raises(ValueError, match="order must be a permutation"):
         ObstacleProblem(A, obstacle.factorize_splu_sym, order=np.zeros(A.shape[0], int))
+    # the same two from the precomputed block entries (the path ObstacleProblem takes)
+    block = obstacle._Blocks(A).coo(free)
+    banded = obstacle._factor_banded(A[idx][:, idx], block)
+    np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    ordered = obstacle._factor_in_order(A, free, rng.permutation(A.shape[0]), block)
+    np.testing.assert_allclose(ordered(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+
+
+def test_precomputed_blocks_are_scipys_slices():
+    # _Blocks gives exactly scipy's A[idx][:, idx] (same entries, same sorted CSR arrays), on a nonsymmetric
+    # matrix with unsorted column indices, for random masks, the empty-row case and the full set
+    rng = np.random.default_rng(4)
+    A = (sp.random(60, 60, density=0.15, random_state=5) + sp.eye(60)).tocsr()
+    A.indices = A.indices.copy()
+    for i in range(60):  # shuffle the columns within each row: the extractor must sort them itself
+        lo, hi = A.indptr[i], A.indptr[i + 1]
+        order = lo + rng.permutation(hi - lo)
+        A.indices[lo:hi], A.data[lo:hi] = A.indices[order], A.data[order]
+    A.has_sorted_indices = False
+    blocks = obstacle._Blocks(A)
+    for free in (rng.random(60) < 0.5, rng.random(60) < 0.9, np.ones(60, bool)):
+        idx = np.flatnonzero(free)
+        expected = A[idx][:, idx].tocsr()
+        expected.sort_indices()
+        got = blocks.csr(blocks.coo(free))
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_array_equal(got.data, expected.data)
 
 
 def test_factorization_paths_give_the_same_answer(journal_mesh, monkeypatch):
