@@ -310,10 +310,15 @@ class ObstacleProblem:
 #: the ten or twenty CG steps of a set there (each mostly interpreter time).
 DIRECT_UP_TO = 1500
 #: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
-#: the half-bandwidth is at most :data:`BAND_MAX` (measured: 0.21 ms against 0.68 ms for SuperLU at 509
-#: unknowns, 0.66 against 2.1 ms at 1,572, ordering and extraction included; the solves cost the same).
+#: the half-bandwidth is at most :data:`BAND_MAX` and the band's work ``n kd^2`` at most :data:`BANDED_WORK`
+#: (measured: 0.21 ms against 0.68 ms for SuperLU at 509 unknowns, 0.66 against 2.1 ms at 1,572, ordering and
+#: extraction included; the solves cost the same).
 BANDED_UP_TO = 5000
-BAND_MAX = 40
+#: Widest half-bandwidth factored banded: P2 free sets of 500 unknowns have 42, of 1,600 have 68 (measured at
+#: 1e3 P2 unknowns: the Swift-Stieber solve 15.7 ms with 40, 10.5 ms with 80, as SuperLU took the kd = 42 sets).
+BAND_MAX = 80
+#: Largest ``n kd^2`` factored banded (that of 5,000 unknowns with a half-bandwidth of 40).
+BANDED_WORK = 5000 * 40**2
 
 
 class _Blocks:
@@ -350,9 +355,9 @@ class _Blocks:
 
 def _factor_banded(M: sp.spmatrix, block: tuple | None = None):
     """Banded Cholesky (LAPACK) of a symmetric positive definite ``M`` in the reverse Cuthill-McKee order,
-    or None if the half-bandwidth exceeds :data:`BAND_MAX` or ``M`` is not positive definite in floating
-    point (the caller then uses SuperLU). ``block``: ``M``'s entries as ``(rows, cols, values, m)`` (from
-    :class:`_Blocks`), which spares converting ``M``."""
+    or None if the half-bandwidth exceeds :data:`BAND_MAX` (or the band's work :data:`BANDED_WORK`) or ``M``
+    is not positive definite in floating point (the caller then uses SuperLU). ``block``: ``M``'s entries as
+    ``(rows, cols, values, m)`` (from :class:`_Blocks`), which spares converting ``M``."""
     M = sp.csr_matrix(M)
     perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
     inverse = np.empty_like(perm)
@@ -364,7 +369,7 @@ def _factor_banded(M: sp.spmatrix, block: tuple | None = None):
     prow, pcol = inverse[rows], inverse[cols]
     offset = prow - pcol
     kd = int(np.abs(offset).max(initial=0))
-    if kd > BAND_MAX:
+    if kd > BAND_MAX or M.shape[0] * kd**2 > BANDED_WORK:
         return None
     lower = offset >= 0
     band = np.zeros((kd + 1, M.shape[0]))

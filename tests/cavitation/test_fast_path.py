@@ -189,3 +189,23 @@ def test_factorization_paths_give_the_same_answer(journal_mesh, monkeypatch):
     sol = problem.solve(b, start)
     assert problem.krylov_iterations == 0 and sol.factorizations == sol.iterations  # one per set
     np.testing.assert_array_equal(sol.active, ref.active)
+
+
+def test_galerkin_product_is_scipys_triple_product():
+    # the P2 problem's S^T A S from the per-pattern gather (GalerkinProduct) against scipy's two products:
+    # the same pattern, values equal to round-off (1e-14 relative: the same terms summed in another order),
+    # for two film states on one mesh (one pattern, other values); a matrix of another pattern is refused
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
+    sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
+    S, _ = swift_stieber._change_of(sups[0].operators.basis, sups[0].system.interior)
+    product = swift_stieber.GalerkinProduct(S, sups[0].system.matrix)
+    for sup in sups:
+        A = sup.system.matrix
+        assert product.matches(A)
+        expected = (S.T @ A @ S).tocsr()
+        expected.sort_indices()
+        got = product(A)
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_allclose(got.data, expected.data, rtol=0, atol=1e-14 * np.abs(expected.data).max())
+    assert not product.matches(sp.eye(S.shape[0], format="csr"))
