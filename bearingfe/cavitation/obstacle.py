@@ -131,13 +131,19 @@ class ObstacleProblem:
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
-        self._blocks = _Blocks(self.A)
+        self._block_plan = None  # _Blocks of A, made on the first block taken
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
         self.krylov_iterations = 0
         #: factorizations made, in total
         self.factorization_count = 0
+
+    @property
+    def _blocks(self) -> "_Blocks":
+        if self._block_plan is None:
+            self._block_plan = _Blocks(self.A)
+        return self._block_plan
 
     def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
@@ -335,8 +341,9 @@ class _Blocks:
         if not A.has_sorted_indices:
             A = A.sorted_indices()
         self.n = A.shape[0]
-        self.row = np.repeat(np.arange(self.n, dtype=np.int64), np.diff(A.indptr))
-        self.col = A.indices.astype(np.int64)
+        index = np.int32 if self.n < 2**31 else np.int64  # two index arrays of nnz: half the memory in int32
+        self.row = np.repeat(np.arange(self.n, dtype=index), np.diff(A.indptr))
+        self.col = A.indices.astype(index, copy=False)
         self.data = A.data
 
     def coo(self, free: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
