@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import scipy.sparse as sp
 
-from .coarse import NESTED_MIN, nested_start
+from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
@@ -211,6 +211,20 @@ def _change_of(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matri
     return cached[1], cached[2]
 
 
+_CHAINS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _chain_of(basis, interior: np.ndarray) -> CoarseChain:
+    """The :class:`~bearingfe.cavitation.coarse.CoarseChain` of the interior dofs, kept per basis (it depends
+    on the dof coordinates only, so every film state of a mesh shares it)."""
+    key = np.asarray(interior).tobytes()
+    cached = _CHAINS.get(basis)
+    if cached is None or cached[0] != key:
+        cached = (key, CoarseChain(np.asarray(basis.doflocs)[:, interior].T))
+        _CHAINS[basis] = cached
+    return cached[1]
+
+
 def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,
                      tol: float = TOLERANCE, max_iterations: int = MAX_ITERATIONS) -> FilmProblem:
     """The condensed complementarity problem of a film state (cached per superposition)."""
@@ -295,10 +309,10 @@ def _solve(sup: Superposition, weights: np.ndarray, options: "ModelOptions") -> 
     notes = ()
     krylov = fp.problem.krylov_iterations
     if options.warm_start is None and fp.problem.n >= NESTED_MIN:
-        points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
         try:
-            start, info = nested_start(fp.problem.A, b, points, fp.problem.factorize, tol=options.tol,
-                                       max_iterations=options.max_iterations)
+            start, info = nested_start(fp.problem.A, b, None, fp.problem.factorize, tol=options.tol,
+                                       max_iterations=options.max_iterations,
+                                       chain=_chain_of(sup.operators.basis, fp.interior))
             cost["cavitation_coarse_iterations"] = float(info["coarse_iterations"])
         except (CavitationError, RuntimeError, ValueError, np.linalg.LinAlgError) as exc:
             # a coarse problem failed (e.g. a singular coarse matrix): start from the default set

@@ -209,3 +209,23 @@ def test_galerkin_product_is_scipys_triple_product():
         np.testing.assert_array_equal(got.indices, expected.indices)
         np.testing.assert_allclose(got.data, expected.data, rtol=0, atol=1e-14 * np.abs(expected.data).max())
     assert not product.matches(sp.eye(S.shape[0], format="csr"))
+
+
+def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
+    # the coarse grids depend on the dof coordinates only: the chain kept per basis (swift_stieber._chain_of)
+    # gives the same start and coarse iterations as nested_start making its grids afresh, for two film states
+    from bearingfe.cavitation.coarse import CoarseChain, nested_start
+    for e, a in ((0.6, 0.0), (0.4, 0.7)):
+        sup = superpose(journal_mesh, CosineFilm(e, a), formulation="direct")
+        fp = swift_stieber.obstacle_problem(sup)
+        b = fp.right_side(np.array([1.0, 0.0, 0.0, 0.0]))
+        points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
+        chain = swift_stieber._chain_of(sup.operators.basis, fp.interior)
+        assert chain is swift_stieber._chain_of(sup.operators.basis, fp.interior)
+        kept = nested_start(fp.problem.A, b, None, fp.problem.factorize, tol=1e-10, max_iterations=60, chain=chain)
+        fresh = nested_start(fp.problem.A, b, points, fp.problem.factorize, tol=1e-10, max_iterations=60)
+        np.testing.assert_array_equal(kept[0], fresh[0])
+        assert kept[1] == fresh[1] and kept[0].any()
+    with pytest.raises(ValueError, match="chain's unknowns"):
+        CoarseChain(points).start(fp.problem.A[:10, :10], b[:10], fp.problem.factorize, tol=1e-10,
+                                  max_iterations=60)
