@@ -146,6 +146,10 @@ def test_free_set_factorizations_solve_the_free_block():
     np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
     ordered = obstacle._factor_in_order(A, free, rng.permutation(A.shape[0]), block)
     np.testing.assert_allclose(ordered(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    # banded in the whole matrix's reverse Cuthill-McKee order restricted to the set (ObstacleProblem's first try)
+    whole = reverse_cuthill_mckee(A, symmetric_mode=True)
+    banded = obstacle._factor_banded(None, block, obstacle._restricted(whole, free))
+    np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
 
 
 def test_precomputed_blocks_are_scipys_slices():
