@@ -327,8 +327,10 @@ class ObstacleProblem:
 
 
 #: Free sets up to this many unknowns are factored, not solved by CG: a (banded) factorization costs less than
-#: the ten or twenty CG steps of a set there (each mostly interpreter time).
-DIRECT_UP_TO = 1500
+#: the ten or twenty CG steps of a set there (each mostly interpreter time). Measured at 3e3 unknowns (free sets
+#: of 1,600-2,000, banded factorizations; CPU time, best of 30): P2 18.4 ms against 19.3 ms with 1,500 (a
+#: factorization and 38 CG steps), P1 16.4 against 18.8 ms.
+DIRECT_UP_TO = 3000
 #: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
 #: the half-bandwidth is at most :data:`BAND_MAX` and the band's work ``n kd^2`` at most :data:`BANDED_WORK`
 #: (measured: 0.21 ms against 0.68 ms for SuperLU at 509 unknowns, 0.66 against 2.1 ms at 1,572, ordering and
