@@ -337,7 +337,7 @@ DIRECT_UP_TO = 3000
 #: extraction included; the solves cost the same).
 BANDED_UP_TO = 5000
 #: Widest half-bandwidth factored banded: P2 free sets of 500 unknowns have 42, of 1,600 have 68 (measured at
-#: 1e3 P2 unknowns: the Swift-Stieber solve 15.7 ms with 40, 10.5 ms with 80, as SuperLU took the kd = 42 sets).
+#: 1e3 P2 unknowns, load 5: the Swift-Stieber solve 15.7 ms with 40, 10.5 ms with 80; SuperLU took the kd = 42 sets).
 BAND_MAX = 80
 #: Largest ``n kd^2`` factored banded (that of 5,000 unknowns with a half-bandwidth of 40).
 BANDED_WORK = 5000 * 40**2
