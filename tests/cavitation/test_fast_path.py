@@ -235,3 +235,19 @@ def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
     with pytest.raises(ValueError, match="chain's unknowns"):
         CoarseChain(points).start(fp.problem.A[:10, :10], b[:10], fp.problem.factorize, tol=1e-10,
                                   max_iterations=60)
+
+
+def test_blocks_by_scipy_slicing_above_the_limit_give_the_same_answer(journal_mesh, monkeypatch):
+    # above BLOCKS_UP_TO unknowns the free blocks come from scipy's slicing (faster there): with the limit
+    # set to zero the same problem takes that path for every set, and finds the plain method's set and unknown
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+    monkeypatch.setattr(obstacle, "BLOCKS_UP_TO", 0)
+    monkeypatch.setattr(obstacle, "DIRECT_UP_TO", 1000)  # CG on the sets too: its matrix is a sliced block
+    problem = ObstacleProblem(fp.problem.A, fp.problem.factorize, order=fp.problem.order)
+    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve)  # P1: the full film's own
+    sol = problem.solve(fp.right_side(weights), (sup.fields @ weights)[fp.interior] < 0)
+    assert problem._block_plan is None and problem.krylov_iterations > 0
+    np.testing.assert_array_equal(sol.active, ref.active)
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
