@@ -131,12 +131,36 @@ class ObstacleProblem:
         self._cache: dict[bytes, object] = {}
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
+        self._block_plan = None  # _Blocks of A, made on the first block taken
+        self._rcm = None  # reverse Cuthill-McKee order of A, made on the first banded factorization
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
         self.krylov_iterations = 0
         #: factorizations made, in total
         self.factorization_count = 0
+
+    @property
+    def _blocks(self) -> "_Blocks":
+        if self._block_plan is None:
+            self._block_plan = _Blocks(self.A)
+        return self._block_plan
+
+    def _block_matrix(self, free: np.ndarray, block: tuple | None = None) -> sp.csr_matrix:
+        """``A[free][:, free]``: from the block's entries of :class:`_Blocks` (given, or taken here up to
+        :data:`BLOCKS_UP_TO` unknowns), by scipy's slicing above."""
+        if block is None and self.n <= BLOCKS_UP_TO:
+            block = self._blocks.coo(free)
+        if block is not None:
+            return self._blocks.csr(block)
+        idx = np.flatnonzero(free)
+        return self.A[idx][:, idx].tocsr()
+
+    def _rcm_order(self) -> np.ndarray:
+        """The reverse Cuthill-McKee order of the whole matrix (made once)."""
+        if self._rcm is None:
+            self._rcm = reverse_cuthill_mckee(self.A, symmetric_mode=True).astype(np.int64)
+        return self._rcm
 
     def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
@@ -146,18 +170,26 @@ class ObstacleProblem:
         self._cache[key] = solve
 
     def _factor(self, free: np.ndarray):
-        idx = np.flatnonzero(free)
         factorize = self.factorize
         default = factorize is factorize_splu_sym or factorize is factorize_splu_small
-        solve = _factor_banded(self.A[idx][:, idx]) if default and 0 < idx.size <= BANDED_UP_TO else None
-        if solve is None and not idx.size:
+        size = int(np.count_nonzero(free))
+        block = self._blocks.coo(free) if size and self.n <= BLOCKS_UP_TO else None
+        solve = None
+        if default and 0 < size <= BANDED_UP_TO:
+            # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
+            # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
+            # in the set's own
+            if block is not None:  # (a whole-matrix order for a small set of a large matrix: not made)
+                solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
+            solve = _factor_banded(self._block_matrix(free, block), block) if solve is None else solve
+        if solve is None and not size:
             solve = lambda b: np.zeros_like(b)  # noqa: E731
         elif solve is None and factorize is factorize_splu_sym and self.order is not None:
-            solve = _factor_in_order(self.A, free, self.order)
+            solve = _factor_in_order(self.A, free, self.order, block)
         elif solve is None:
-            if factorize is factorize_splu_sym and idx.size <= SMALL_PANELS_UP_TO:
+            if factorize is factorize_splu_sym and size <= SMALL_PANELS_UP_TO:
                 factorize = factorize_splu_small  # the same factorization, out of threaded BLAS
-            solve = factorize(self.A[idx][:, idx])
+            solve = factorize(self._block_matrix(free, block))
         self._reference = (free.copy(), solve)
         self._store(np.packbits(free).tobytes(), solve)
         self.factorization_count += 1
@@ -305,34 +337,94 @@ class ObstacleProblem:
 
 
 #: Free sets up to this many unknowns are factored, not solved by CG: a (banded) factorization costs less than
-#: the ten or twenty CG steps of a set there (each mostly interpreter time).
-DIRECT_UP_TO = 1500
+#: the ten or twenty CG steps of a set there (each mostly interpreter time). Measured at 3e3 unknowns (free sets
+#: of 1,600-2,000, banded factorizations; CPU time, best of 30): P2 18.4 ms against 19.3 ms with 1,500 (a
+#: factorization and 38 CG steps), P1 16.4 against 18.8 ms.
+DIRECT_UP_TO = 3000
 #: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
-#: the half-bandwidth is at most :data:`BAND_MAX` (measured: 0.21 ms against 0.68 ms for SuperLU at 509
-#: unknowns, 0.66 against 2.1 ms at 1,572, ordering and extraction included; the solves cost the same).
+#: the half-bandwidth is at most :data:`BAND_MAX` and the band's work ``n kd^2`` at most :data:`BANDED_WORK`
+#: (measured: 0.21 ms against 0.68 ms for SuperLU at 509 unknowns, 0.66 against 2.1 ms at 1,572, ordering and
+#: extraction included; the solves cost the same).
 BANDED_UP_TO = 5000
-BAND_MAX = 40
+#: Widest half-bandwidth factored banded: P2 free sets of 500 unknowns have 42, of 1,600 have 68 (measured at
+#: 1e3 P2 unknowns, load 5: the Swift-Stieber solve 15.7 ms with 40, 10.5 ms with 80; SuperLU took the kd = 42 sets).
+BAND_MAX = 80
+#: Largest ``n kd^2`` factored banded (that of 5,000 unknowns with a half-bandwidth of 40).
+BANDED_WORK = 5000 * 40**2
 
 
-def _factor_banded(M: sp.spmatrix):
+#: Matrices up to this many unknowns take their free blocks from :class:`_Blocks`; above, scipy's slicing (in C,
+#: without the fixed costs that weigh at small sizes) is faster: 5.2 against 12 ms at 3e5 unknowns and 1.5e6
+#: entries, 14 against 36 ms with 3.9e6 entries.
+BLOCKS_UP_TO = 20000
+
+
+class _Blocks:
+    """Principal blocks ``A[idx][:, idx]`` of a fixed CSR matrix from index arrays made once per matrix.
+
+    scipy's slicing builds two new sparse matrices per block (their index checks and dtype searches cost
+    about 0.5 ms at 1e3 unknowns, a tenth of an active-set step there); here a block is one mask over the
+    stored entries and three gathers. The block's entries come in the order of the stored ones (rows in
+    order, columns sorted within a row if ``A``'s are), so :meth:`csr` is scipy's ``A[idx][:, idx]``.
+    """
+
+    def __init__(self, A: sp.csr_matrix) -> None:
+        A = sp.csr_matrix(A)
+        if not A.has_sorted_indices:
+            A = A.sorted_indices()
+        self.n = A.shape[0]
+        index = np.int32 if self.n < 2**31 else np.int64  # two index arrays of nnz: half the memory in int32
+        self.row = np.repeat(np.arange(self.n, dtype=index), np.diff(A.indptr))
+        self.col = A.indices.astype(index, copy=False)
+        self.data = A.data
+
+    def coo(self, free: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+        """``(rows, cols, values, m)`` of the block on the ``free`` mask, numbered among the free dofs."""
+        keep = free[self.row] & free[self.col]
+        position = np.cumsum(free) - 1
+        return position[self.row[keep]], position[self.col[keep]], self.data[keep], int(position[-1]) + 1
+
+    def csr(self, block: tuple[np.ndarray, np.ndarray, np.ndarray, int]) -> sp.csr_matrix:
+        """The block of :meth:`coo` as a CSR matrix (sorted indices)."""
+        rows, cols, values, m = block
+        indptr = np.zeros(m + 1, np.int64)
+        np.cumsum(np.bincount(rows, minlength=m), out=indptr[1:])
+        return sp.csr_matrix((values, cols, indptr), shape=(m, m))
+
+
+def _restricted(order: np.ndarray, free: np.ndarray) -> np.ndarray:
+    """An elimination ``order`` of all dofs restricted to the ``free`` ones (positions among the free dofs)."""
+    return (np.cumsum(free) - 1)[order[free[order]]]
+
+
+def _factor_banded(M: sp.spmatrix | None, block: tuple | None = None, perm: np.ndarray | None = None):
     """Banded Cholesky (LAPACK) of a symmetric positive definite ``M`` in the reverse Cuthill-McKee order,
-    or None if the half-bandwidth exceeds :data:`BAND_MAX` or ``M`` is not positive definite in floating
-    point (the caller then uses SuperLU)."""
-    M = sp.csr_matrix(M)
-    perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
-    P = M[perm][:, perm].tocoo()
-    offset = P.row - P.col
+    or None if the half-bandwidth exceeds :data:`BAND_MAX` (or the band's work :data:`BANDED_WORK`) or ``M``
+    is not positive definite in floating point (the caller then uses SuperLU). ``block``: ``M``'s entries as
+    ``(rows, cols, values, m)`` (from :class:`_Blocks`), which spares converting ``M``; ``perm``: the order to
+    factor in instead of ``M``'s reverse Cuthill-McKee order (``M`` is then not read, ``block`` is needed)."""
+    if perm is None:
+        M = sp.csr_matrix(M)
+        perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
+    if block is None:
+        C = M.tocoo()
+        block = (C.row, C.col, C.data, M.shape[0])
+    rows, cols, values, m = block
+    perm = np.asarray(perm, np.int64)
+    inverse = np.empty_like(perm)
+    inverse[perm] = np.arange(perm.size)
+    prow, pcol = inverse[rows], inverse[cols]
+    offset = prow - pcol
     kd = int(np.abs(offset).max(initial=0))
-    if kd > BAND_MAX:
+    if kd > BAND_MAX or m * kd**2 > BANDED_WORK:
         return None
     lower = offset >= 0
-    band = np.zeros((kd + 1, M.shape[0]))
-    band[offset[lower], P.col[lower]] = P.data[lower]
+    band = np.zeros((kd + 1, m))
+    band[offset[lower], pcol[lower]] = values[lower]
     try:
         factor = sla.cholesky_banded(band, lower=True, check_finite=False)
     except np.linalg.LinAlgError:
         return None
-    inverse = np.argsort(perm)
 
     def solve(b: np.ndarray) -> np.ndarray:
         return sla.cho_solve_banded((factor, True), np.asarray(b, dtype=float)[perm], check_finite=False)[inverse]
@@ -340,16 +432,26 @@ def _factor_banded(M: sp.spmatrix):
     return solve
 
 
-def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray):
+def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray, block: tuple | None = None):
     """SuperLU (symmetric mode, no pivoting, as :func:`factorize_splu_sym`) of ``A[free][:, free]`` in
-    ``order`` restricted to the free set; returns the solve of ``A[free][:, free]``."""
-    position = np.cumsum(free) - 1
-    sub = position[order[free[order]]]  # the free block's order (positions among the free dofs)
-    chosen = np.flatnonzero(free)[sub]
-    lu = spla.splu(A[chosen][:, chosen].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=0.0,
+    ``order`` restricted to the free set; returns the solve of ``A[free][:, free]``. ``block``: the free
+    block's entries as ``(rows, cols, values, m)`` (from :class:`_Blocks`)."""
+    sub = _restricted(order, free)  # the free block's order (positions among the free dofs)
+    inverse = np.empty_like(sub)
+    inverse[sub] = np.arange(sub.size)
+    if block is None:
+        chosen = np.flatnonzero(free)[sub]
+        matrix = A[chosen][:, chosen].tocsc()
+    else:
+        rows, cols, values, m = block
+        prow, pcol = inverse[rows], inverse[cols]
+        ordering = np.lexsort((prow, pcol))  # by column, rows sorted within: scipy's CSC of the permuted block
+        indptr = np.zeros(m + 1, np.int64)
+        np.cumsum(np.bincount(pcol, minlength=m), out=indptr[1:])
+        matrix = sp.csc_matrix((values[ordering], prow[ordering], indptr), shape=(m, m))
+    lu = spla.splu(matrix, permc_spec="NATURAL", diag_pivot_thresh=0.0,
                    options={"SymmetricMode": True},
                    **({"panel_size": 1, "relax": 1} if sub.size <= SMALL_PANELS_UP_TO else {}))
-    inverse = np.argsort(sub)
 
     def solve(b: np.ndarray) -> np.ndarray:
         return lu.solve(np.asarray(b, dtype=float)[sub])[inverse]
@@ -408,6 +510,7 @@ class _Krylov:
         ref_free, self.ref_solve = problem._reference
         self.problem = problem
         self.idx = np.flatnonzero(free)
+        self.free = free.copy()
         pos = np.full(problem.n, -1)
         pos[self.idx] = np.arange(self.idx.size)
         ref_idx = np.flatnonzero(ref_free)
@@ -438,7 +541,7 @@ class _Krylov:
         # the free rows and columns once, not a product with the whole matrix per step (the same sums in the
         # same order: the left-out columns multiply zeros)
         if self._matrix is None:
-            self._matrix = self.problem.A[self.idx][:, self.idx].tocsr()
+            self._matrix = self.problem._block_matrix(self.free)
         return self._matrix @ x
 
     def __call__(self, b: np.ndarray, rtol: float | None = None, x0: np.ndarray | None = None) -> np.ndarray:

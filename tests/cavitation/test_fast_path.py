@@ -97,10 +97,12 @@ def test_grid_interpolation_is_a_partition_of_unity():
     np.testing.assert_allclose(P @ f, 3 * pts[:, 0] - 2 * pts[:, 1] + 1, atol=1e-12)
 
 
-def test_no_memory_for_a_second_factorization_falls_back_to_cg_on_the_first(journal_mesh):
+def test_no_memory_for_a_second_factorization_falls_back_to_cg_on_the_first(journal_mesh, monkeypatch):
     # at 1e6 unknowns SuperLU can fail to allocate the active set's factorization next to the full one
     # (SUPERLU_MALLOC fails: a RuntimeError); then CG preconditioned with the full factorization solves
-    # every set, to the same answer
+    # every set, to the same answer. The sets here (about 1,750 unknowns) stand for large ones: factored
+    # directly only up to DIRECT_UP_TO, set below them
+    monkeypatch.setattr(obstacle, "DIRECT_UP_TO", 1000)
     sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
     weights = np.array([1.0, 0.0, 0.0, 0.0])
     fp, ref = _plain(sup, weights)
@@ -140,6 +142,38 @@ def test_free_set_factorizations_solve_the_free_block():
     assert obstacle._factor_banded(-A) is None  # not positive definite
     with pytest.raises(ValueError, match="order must be a permutation"):
         ObstacleProblem(A, obstacle.factorize_splu_sym, order=np.zeros(A.shape[0], int))
+    # the same two from the precomputed block entries (the path ObstacleProblem takes)
+    block = obstacle._Blocks(A).coo(free)
+    banded = obstacle._factor_banded(A[idx][:, idx], block)
+    np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    ordered = obstacle._factor_in_order(A, free, rng.permutation(A.shape[0]), block)
+    np.testing.assert_allclose(ordered(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    # banded in the whole matrix's reverse Cuthill-McKee order restricted to the set (ObstacleProblem's first try)
+    whole = reverse_cuthill_mckee(A, symmetric_mode=True)
+    banded = obstacle._factor_banded(None, block, obstacle._restricted(whole, free))
+    np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+
+
+def test_precomputed_blocks_are_scipys_slices():
+    # _Blocks gives exactly scipy's A[idx][:, idx] (same entries, same sorted CSR arrays), on a nonsymmetric
+    # matrix with unsorted column indices, for random masks, the empty-row case and the full set
+    rng = np.random.default_rng(4)
+    A = (sp.random(60, 60, density=0.15, random_state=5) + sp.eye(60)).tocsr()
+    A.indices = A.indices.copy()
+    for i in range(60):  # shuffle the columns within each row: the extractor must sort them itself
+        lo, hi = A.indptr[i], A.indptr[i + 1]
+        order = lo + rng.permutation(hi - lo)
+        A.indices[lo:hi], A.data[lo:hi] = A.indices[order], A.data[order]
+    A.has_sorted_indices = False
+    blocks = obstacle._Blocks(A)
+    for free in (rng.random(60) < 0.5, rng.random(60) < 0.9, np.ones(60, bool)):
+        idx = np.flatnonzero(free)
+        expected = A[idx][:, idx].tocsr()
+        expected.sort_indices()
+        got = blocks.csr(blocks.coo(free))
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_array_equal(got.data, expected.data)
 
 
 def test_factorization_paths_give_the_same_answer(journal_mesh, monkeypatch):
@@ -161,3 +195,59 @@ def test_factorization_paths_give_the_same_answer(journal_mesh, monkeypatch):
     sol = problem.solve(b, start)
     assert problem.krylov_iterations == 0 and sol.factorizations == sol.iterations  # one per set
     np.testing.assert_array_equal(sol.active, ref.active)
+
+
+def test_galerkin_product_is_scipys_triple_product():
+    # the P2 problem's S^T A S from the per-pattern gather (GalerkinProduct) against scipy's two products:
+    # the same pattern, values equal to round-off (1e-14 relative: the same terms summed in another order),
+    # for two film states on one mesh (one pattern, other values); a matrix of another pattern is refused
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
+    sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
+    S, _ = swift_stieber._change_of(sups[0].operators.basis, sups[0].system.interior)
+    product = swift_stieber.GalerkinProduct(S, sups[0].system.matrix)
+    for sup in sups:
+        A = sup.system.matrix
+        assert product.matches(A)
+        expected = (S.T @ A @ S).tocsr()
+        expected.sort_indices()
+        got = product(A)
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_allclose(got.data, expected.data, rtol=0, atol=1e-14 * np.abs(expected.data).max())
+    assert not product.matches(sp.eye(S.shape[0], format="csr"))
+
+
+def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
+    # the coarse grids depend on the dof coordinates only: the chain kept per basis (swift_stieber._chain_of)
+    # gives the same start and coarse iterations as nested_start making its grids afresh, for two film states
+    from bearingfe.cavitation.coarse import CoarseChain, nested_start
+    for e, a in ((0.6, 0.0), (0.4, 0.7)):
+        sup = superpose(journal_mesh, CosineFilm(e, a), formulation="direct")
+        fp = swift_stieber.obstacle_problem(sup)
+        b = fp.right_side(np.array([1.0, 0.0, 0.0, 0.0]))
+        points = np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T
+        chain = swift_stieber._chain_of(sup.operators.basis, fp.interior)
+        assert chain is swift_stieber._chain_of(sup.operators.basis, fp.interior)
+        kept = nested_start(fp.problem.A, b, None, fp.problem.factorize, tol=1e-10, max_iterations=60, chain=chain)
+        fresh = nested_start(fp.problem.A, b, points, fp.problem.factorize, tol=1e-10, max_iterations=60)
+        np.testing.assert_array_equal(kept[0], fresh[0])
+        assert kept[1] == fresh[1] and kept[0].any()
+    with pytest.raises(ValueError, match="chain's unknowns"):
+        CoarseChain(points).start(fp.problem.A[:10, :10], b[:10], fp.problem.factorize, tol=1e-10,
+                                  max_iterations=60)
+
+
+def test_blocks_by_scipy_slicing_above_the_limit_give_the_same_answer(journal_mesh, monkeypatch):
+    # above BLOCKS_UP_TO unknowns the free blocks come from scipy's slicing (faster there): with the limit
+    # set to zero the same problem takes that path for every set, and finds the plain method's set and unknown
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+    monkeypatch.setattr(obstacle, "BLOCKS_UP_TO", 0)
+    monkeypatch.setattr(obstacle, "DIRECT_UP_TO", 1000)  # CG on the sets too: its matrix is a sliced block
+    problem = ObstacleProblem(fp.problem.A, fp.problem.factorize, order=fp.problem.order)
+    problem.add_factorization(np.ones(problem.n, bool), sup.system.solve)  # P1: the full film's own
+    sol = problem.solve(fp.right_side(weights), (sup.fields @ weights)[fp.interior] < 0)
+    assert problem._block_plan is None and problem.krylov_iterations > 0
+    np.testing.assert_array_equal(sol.active, ref.active)
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
