@@ -94,12 +94,12 @@ def _pocket_mesh(mesh: SupportMesh, name: str, names: Sequence[str]) -> SupportM
         bnd = mesh.boundaries
         others = [np.asarray(bnd[n]) for n in names if n != name]
         new = dict(bnd, inlet=np.asarray(bnd[name]), outer=np.union1d(bnd["outer"], np.concatenate(others)))
-        mesh._cache[key] = SupportMesh(mesh=_with_boundaries(mesh.mesh, new), surface=mesh.surface,
+        mesh._cache[key] = SupportMesh(mesh=_replacing_boundaries(mesh.mesh, new), surface=mesh.surface,
                                        size=mesh.size, source=mesh.source)
     return mesh._cache[key]
 
 
-def _with_boundaries(m, boundaries: Mapping[str, np.ndarray]):
+def _replacing_boundaries(m, boundaries: Mapping[str, np.ndarray]):
     """A scikit-fem mesh with its boundaries replaced (``with_boundaries`` only adds to them)."""
     return dataclasses.replace(m, _boundaries={k: np.asarray(v) for k, v in boundaries.items()})
 
