@@ -444,11 +444,12 @@ def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray, bloc
         matrix = A[chosen][:, chosen].tocsc()
     else:
         rows, cols, values, m = block
-        prow, pcol = inverse[rows], inverse[cols]
-        ordering = np.lexsort((prow, pcol))  # by column, rows sorted within: scipy's CSC of the permuted block
-        indptr = np.zeros(m + 1, np.int64)
-        np.cumsum(np.bincount(pcol, minlength=m), out=indptr[1:])
-        matrix = sp.csc_matrix((values[ordering], prow[ordering], indptr), shape=(m, m))
+        # the CSR arrays of the permuted block's transpose are its CSC arrays (rows sorted within a column): by
+        # scipy's conversion in C, 0.9 ms against 3.5 ms for a lexsort of the 1.1e5 entries of a 5,400-unknown
+        # P2 set (the same matrix, entry for entry)
+        csr = sp.coo_matrix((values, (inverse[cols], inverse[rows])), shape=(m, m)).tocsr()
+        csr.sort_indices()
+        matrix = sp.csc_matrix((csr.data, csr.indices, csr.indptr), shape=(m, m))
     lu = spla.splu(matrix, permc_spec="NATURAL", diag_pivot_thresh=0.0,
                    options={"SymmetricMode": True},
                    **({"panel_size": 1, "relax": 1} if sub.size <= SMALL_PANELS_UP_TO else {}))
