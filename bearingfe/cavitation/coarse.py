@@ -148,29 +148,30 @@ class CoarseChain:
                                       tol=tol, max_iterations=min(max_iterations, 25))
             sol = problem.solve(rhs[k], active)
             iterations += sol.iterations
-            active = _carried(self.transfers[k], sol, M.diagonal(), matrices[k - 1] if k else A)
+            active = _carried(self.transfers[k], sol, M.diagonal(), matrices[k - 1] if k else A, finest=k == 0)
         info = {"levels": len(self.grids), "coarse_iterations": iterations,
                 "coarse_nodes": int(self.nodes[0].size)}
         return active, info
 
 
-def _carried(P: sp.csr_matrix, sol, diagonal: np.ndarray, fine: sp.spmatrix) -> np.ndarray:
+def _carried(P: sp.csr_matrix, sol, diagonal: np.ndarray, fine: sp.spmatrix, finest: bool) -> np.ndarray:
     """The rupture set of a coarse solution carried to the next level's unknowns (interpolation ``P``, matrix
-    ``fine``).
+    ``fine``; ``finest``: that level is the given system).
 
     Ruptured where the interpolated signed coarse field ``u - lam / diag`` is negative (full film positive,
-    rupture negative), which puts the free boundary within a fine spacing of the coarse one: an active-set step
-    fewer where that level's free sets are factored (measured on the journal at 3e3 unknowns: 4 -> 3 steps P1,
-    5 -> 4 P2). Where they go by CG preconditioned with the first set's factorization (a start of more than
-    :data:`~bearingfe.cavitation.obstacle.DIRECT_UP_TO` free unknowns), the free set is grown by one ring of
-    ``fine``'s neighbours: a first set that holds most later ones preconditions their solves well (measured
-    on the journal, CG steps in all: 14 against 35 at 1e4 P2 unknowns, 19 against 41 P1, 25 against 33 at 3e4
-    P2, 22 against 44 P1, and no more active-set steps, against the set ruptured only where every coarse node
-    the interpolation reads is ruptured; the signed set alone, a layer too small there, took 64 against 42 at
-    1e4 P2).
+    rupture negative), which puts the free boundary within a fine spacing of the coarse one, and the free set
+    grown by one ring of ``fine``'s neighbours, which puts it a layer outside (measured against the set
+    ruptured only where every coarse node the interpolation reads is ruptured, the same answers; on the
+    journal at 3e3 unknowns, where the free sets are factored: 4 -> 2 active-set steps P1, 5 -> 4 P2; at 1e4
+    and 3e4, where they go by CG preconditioned with the first set's factorization, which then holds most
+    later sets: CG steps in all 14 against 35 at 1e4 P2 unknowns, 19 against 41 P1, 25 against 33 at 3e4 P2,
+    22 against 44 P1, with no more active-set steps; the signed set alone, a layer too small, took 64
+    against 42 at 1e4 P2). On the coarse levels whose sets are factored (a start of at most
+    :data:`~bearingfe.cavitation.obstacle.DIRECT_UP_TO` free unknowns) the signed set is kept as it is: the
+    ring cost them a step more at 1e4 and 3e4 unknowns.
     """
     active = (P @ (sol.u - sol.multiplier / diagonal)) < 0.0
-    if P.shape[0] - np.count_nonzero(active) <= DIRECT_UP_TO:
+    if not finest and P.shape[0] - np.count_nonzero(active) <= DIRECT_UP_TO:
         return active
     fine = sp.csr_matrix(fine)
     pattern = sp.csr_matrix((np.ones(fine.indices.size), fine.indices, fine.indptr), shape=fine.shape)
