@@ -336,3 +336,21 @@ def test_settled_sets_by_medium_steps_give_the_tight_answer(journal_mesh, monkey
         assert u_min >= -1e-10 * np.abs(ref.u).max() and product <= 1e-9 * scale
         steps[medium] = problem.krylov_iterations
     assert steps[default] > 0 and steps[None] > 0
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_small_cold_start_grown_gives_the_plain_answer(element):
+    # below NESTED_MIN unknowns the cold start is where the linear solution is negative, its free set grown by
+    # COLD_RINGS rings of neighbours (the Swift-Stieber film reaches past the linear zero): the plain method's
+    # set and unknown (1e-9 relative), in fewer active-set steps than from the linear set (5 -> 3 P1, 5 -> 4 P2 on
+    # the benchmark's 1e3-unknown journal)
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.09 if element == "P1" else 0.18)
+    sup = superpose(mesh, CosineFilm(0.6, 0.0), formulation="direct", element=element)
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref, plain = _plain(sup, weights, result=True)
+    assert fp.problem.n < NESTED_MIN and swift_stieber.COLD_RINGS[element] >= 1
+    res = solve_cavitating(sup, 1.0)
+    assert "cavitation_coarse_iterations" not in res.cost
+    np.testing.assert_array_equal(res.cavitated, plain.cavitated)
+    np.testing.assert_allclose(res.pressure, plain.pressure, rtol=0, atol=1e-9 * np.abs(plain.pressure).max())
+    assert res.iterations < ref.iterations
