@@ -28,6 +28,7 @@ the problem.
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -330,7 +331,8 @@ class ObstacleProblem:
             if not exact and not settled and (changes <= max(SETTLING_CHANGES, SETTLING_FRACTION * self.n)
                                               or key in seen):
                 # settled, nearly (a few dofs flipping on the rounding of an inexact solve), or back to a
-                # set seen, on an inexact solve: solve this set to the tolerance and decide on that
+                # set seen, on an inexact solve: solve this set to the medium step (the tolerance if None) and
+                # go on from that
                 u[free], _, exact = self._solve_free(free, b[free], medium, u[free])
                 lam, new_active = self._next_set(u, b, active, free, scale_b)
                 key = np.packbits(new_active).tobytes()
@@ -418,6 +420,7 @@ class _Blocks:
 _RCM_ORDERS: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
 #: Patterns kept in :data:`_RCM_ORDERS` (a mesh's film states share one, its coarse grids one each).
 RCM_PATTERNS_KEPT = 8
+_RCM_LOCK = threading.Lock()
 
 
 def _pattern_rcm(A: sp.csr_matrix) -> np.ndarray:
@@ -426,14 +429,16 @@ def _pattern_rcm(A: sp.csr_matrix) -> np.ndarray:
     pattern's index arrays, some 20 us)."""
     if A.shape[0] > BLOCKS_UP_TO:
         return reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
-    for k, (indptr, indices, order) in enumerate(_RCM_ORDERS):
-        if indptr.size == A.indptr.size and indices.size == A.indices.size and np.array_equal(indptr, A.indptr) \
-                and np.array_equal(indices, A.indices):
-            _RCM_ORDERS.append(_RCM_ORDERS.pop(k))
-            return order
+    with _RCM_LOCK:  # film states solved in threads share the list
+        for k, (indptr, indices, order) in enumerate(_RCM_ORDERS):
+            if indptr.size == A.indptr.size and indices.size == A.indices.size \
+                    and np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices):
+                _RCM_ORDERS.append(_RCM_ORDERS.pop(k))
+                return order
     order = reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
-    _RCM_ORDERS.append((A.indptr.copy(), A.indices.copy(), order))
-    del _RCM_ORDERS[:-RCM_PATTERNS_KEPT]
+    with _RCM_LOCK:
+        _RCM_ORDERS.append((A.indptr.copy(), A.indices.copy(), order))
+        del _RCM_ORDERS[:-RCM_PATTERNS_KEPT]
     return order
 
 
