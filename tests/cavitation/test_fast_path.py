@@ -251,3 +251,106 @@ def test_blocks_by_scipy_slicing_above_the_limit_give_the_same_answer(journal_me
     assert problem._block_plan is None and problem.krylov_iterations > 0
     np.testing.assert_array_equal(sol.active, ref.active)
     np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
+
+
+def test_rcm_order_kept_per_pattern():
+    # the reverse Cuthill-McKee order is found once per sparsity pattern: a matrix of the same pattern with other
+    # values (the next film state of a mesh) gets the same order object, equal to scipy's order of the pattern;
+    # another pattern gets its own
+    A = _laplacian(20)
+    first = obstacle._pattern_rcm(A)
+    np.testing.assert_array_equal(first, reverse_cuthill_mckee(A, symmetric_mode=True))
+    B = A.copy()
+    B.data = B.data * np.linspace(1.0, 2.0, B.data.size)
+    assert obstacle._pattern_rcm(B) is first
+    C = _laplacian(21)
+    other = obstacle._pattern_rcm(C)
+    assert other is not first and other.size == C.shape[0]
+    np.testing.assert_array_equal(other, reverse_cuthill_mckee(C, symmetric_mode=True))
+    for k in range(obstacle.RCM_PATTERNS_KEPT):  # older patterns drop out: found again, equal
+        obstacle._pattern_rcm(_laplacian(22 + k))
+    again = obstacle._pattern_rcm(A)
+    assert again is not first
+    np.testing.assert_array_equal(again, first)
+
+
+def test_both_carried_starts_give_the_plain_answer(journal_mesh, monkeypatch):
+    # the coarse rupture set goes to the next level by the sign of the interpolated u - lam / diag, the free set
+    # grown by one ring of the matrix's neighbours on the given system's level (and on coarse levels whose sets
+    # go by CG); with the ring or without it the iteration ends on the plain method's set and unknown
+    from bearingfe.cavitation import coarse
+
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+    b, A = fp.right_side(weights), fp.problem.A
+    chain = coarse.CoarseChain(np.asarray(sup.operators.basis.doflocs)[:, fp.interior].T)
+    grown, _ = chain.start(A, b, fp.problem.factorize, tol=1e-10, max_iterations=60)
+    carried = coarse._carried
+    monkeypatch.setattr(coarse, "_carried", lambda *args, finest: carried(*args, finest=False))
+    signed, _ = chain.start(A, b, fp.problem.factorize, tol=1e-10, max_iterations=60)
+    # the same coarse solution (the coarse levels' sets are factored here): the grown free set is the signed
+    # one grown by a ring of A's neighbours
+    assert fp.problem.n - signed.sum() <= obstacle.DIRECT_UP_TO
+    np.testing.assert_array_equal(~grown, (abs(A) @ (~signed).astype(float)) > 0)
+    assert np.count_nonzero(~grown) > np.count_nonzero(~signed)
+    for start in (signed, grown):
+        sol = ObstacleProblem(A, fp.problem.factorize, reuse=False).solve(b, start)
+        np.testing.assert_array_equal(sol.active, ref.active)
+        np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
+
+
+def test_settled_sets_by_medium_steps_give_the_tight_answer(journal_mesh, monkeypatch):
+    # once the active set nearly settles, its CG solves go to a medium step (MEDIUM * tol) and only the set that
+    # no longer changes to tol / 100, which decides: the same rupture set and unknown (1e-9 relative) as every
+    # settled set solved to tol / 100, and as the plain method; the free sets go by CG here (factored directly
+    # only up to DIRECT_UP_TO, set below them). Fewer CG steps on the benchmark's journals (35 against 42 at 1e4
+    # P2 unknowns, 34 against 43 at 3e5); about as many on this small one
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+    b = fp.right_side(weights)
+    start = (sup.fields @ weights)[fp.interior] < 0
+    monkeypatch.setattr(obstacle, "DIRECT_UP_TO", 1000)
+    steps, levels = {}, []
+    solve_free = ObstacleProblem._solve_free
+
+    def recorded(self, free, b_free, rtol=None, x0=None):
+        levels.append(rtol)
+        return solve_free(self, free, b_free, rtol, x0)
+
+    monkeypatch.setattr(ObstacleProblem, "_solve_free", recorded)
+    default = obstacle.MEDIUM
+    for medium in (None, default):
+        monkeypatch.setattr(obstacle, "MEDIUM", medium)
+        problem = ObstacleProblem(fp.problem.A, obstacle.factorize_splu_sym)
+        levels.clear()
+        sol = problem.solve(b, start)
+        # the medium path solves some sets to the medium step (the last one is exact: by CG to the tolerance, or
+        # factored when CG would cost more)
+        assert (default * problem.tol in levels) == (medium is not None)
+        np.testing.assert_array_equal(sol.active, ref.active)
+        np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
+        u_min, lam_min, product = sol.complementarity()
+        scale = np.abs(ref.u).max() * np.abs(sol.multiplier).max()
+        assert u_min >= -1e-10 * np.abs(ref.u).max() and product <= 1e-9 * scale
+        steps[medium] = problem.krylov_iterations
+    assert steps[default] > 0 and steps[None] > 0
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_small_cold_start_grown_gives_the_plain_answer(element):
+    # below NESTED_MIN unknowns the cold start is where the linear solution is negative, its free set grown by
+    # COLD_RINGS rings of neighbours (the Swift-Stieber film reaches past the linear zero): the plain method's
+    # set and unknown (1e-9 relative), in fewer active-set steps than from the linear set (5 -> 3 P1, 5 -> 4 P2 on
+    # the benchmark's 1e3-unknown journal)
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.09 if element == "P1" else 0.18)
+    sup = superpose(mesh, CosineFilm(0.6, 0.0), formulation="direct", element=element)
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref, plain = _plain(sup, weights, result=True)
+    assert fp.problem.n < NESTED_MIN and swift_stieber.COLD_RINGS[element] >= 1
+    res = solve_cavitating(sup, 1.0)
+    assert "cavitation_coarse_iterations" not in res.cost
+    np.testing.assert_array_equal(res.cavitated, plain.cavitated)
+    np.testing.assert_allclose(res.pressure, plain.pressure, rtol=0, atol=1e-9 * np.abs(plain.pressure).max())
+    assert res.iterations < ref.iterations
