@@ -142,6 +142,7 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
         ox, oy = to_axes(np.append(out[0], out[0, 0]), np.append(out[1], out[1, 0]))
         ax.plot(ox, oy, color="k", lw=1.0)
     ruptured = getattr(panel.result, "cavitated", None)
+    limits = ax.get_xlim(), ax.get_ylim()  # a contour autoscales its axes tight: this panel keeps the others'
     if panel.kind == "pressure" and ruptured is not None and np.size(ruptured) == panel.result.basis.N:
         _, _, flag = sampled(panel.result, np.asarray(ruptured, dtype=float).ravel(), nrefs=nrefs)
         if flag.min() < 0.5 < flag.max():
@@ -150,6 +151,8 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     elif panel.kind == "pressure" and v.min() < 0.0 < v.max():
         ax.tricontour(tri, v, levels=[0.0], colors="red", linewidths=1.2)
         ax.plot([], [], color="red", label="p = 0")
+    ax.set_xlim(limits[0])
+    ax.set_ylim(limits[1])
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper right", fontsize="small")
     unit = "R0" if panel.radius is None else "mm"
