@@ -1258,10 +1258,23 @@ def _box_fill(mesh: SupportMesh, film: Film, system: FVSystem, theta: np.ndarray
     hbar = np.full(n, np.nan)
     hbar[g.i if wedge >= 0 else g.j] = system.face_film
     emptied = np.flatnonzero(theta < 1.0 - 1e-12)
-    if emptied.size == 0:
-        return 0.0, 0.0
+    deficit = cavity = 0.0
+    for start in range(0, emptied.size, BOX_FILL_CHUNK):  # in blocks of boxes: arrays that stay in cache
+        d, a = _box_fill_block(mesh, film, g.box, theta, hbar, emptied[start:start + BOX_FILL_CHUNK], samples)
+        deficit, cavity = deficit + d, cavity + a
+    return deficit, cavity
+
+
+#: Emptied boxes :func:`_box_fill` integrates at a time (``samples**2`` points each: 64 x 4096 = 262,144 points, a
+#: few MB per array; one block for all boxes took 0.81 s on 68,000 boxes, its arrays many times the cache).
+BOX_FILL_CHUNK = 4096
+
+
+def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.ndarray, hbar: np.ndarray,
+                    emptied: np.ndarray, samples: int) -> tuple[float, float]:
+    """:func:`_box_fill`'s two integrals over the boxes ``emptied`` (node indices)."""
     c = theta[emptied] * hbar[emptied]
-    b = g.box[:, emptied]
+    b = box[:, emptied]
     t = (np.arange(samples) + 0.5) / samples
     X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
     Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
