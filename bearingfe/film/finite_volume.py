@@ -1605,6 +1605,7 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
+            nested = dict(nested, first_guess_factorizations=1.0)  # beside the active set's own count
         if couette == "streamline" and cavitation == "jfo":
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
                                                       max_iterations, ops)
@@ -1702,7 +1703,12 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         ``cavitation="jfo"``, ``theta`` (fill fraction at the dofs),
         ``cavitated`` (dofs at ``p = p_c``), ``cavitated_fraction`` (area with
         ``theta < 1`` over the film area), flows with their Couette and
-        Poiseuille parts and ``mass_balance`` at solver tolerance.
+        Poiseuille parts and ``mass_balance`` at solver tolerance. ``cost``:
+        times [s] of the stages and counts: ``factorizations`` of the active
+        set, ``first_guess_factorizations`` (1 where a cold start guessed its cavity
+        from a full-film solve: on this grid, or on the coarsest grid of a
+        nested start), the nested start's ``nested_levels`` and
+        ``coarse_iterations``.
 
     Raises
     ------

@@ -93,3 +93,17 @@ def test_box_fill_in_blocks_sums_the_same_integrals(monkeypatch):
     blocks = real(*args, **kwargs)
     assert whole[0] > 0.0 and 0.0 < whole[1] < 1.0   # a deficit, and an area within the unit pad
     assert np.allclose(blocks, whole, rtol=1e-13, atol=0.0)
+
+
+def test_the_full_film_first_guess_is_counted():
+    """A cold solve guesses its cavity from one full-film factorization, reported beside the active set's
+    own count: on its own grid below the nested sizes, on the coarsest grid of a nested start above; a warm
+    start makes none."""
+    small = solve_jfo(grid_mesh(_dimpled(), 0.05), UniformFilm(1.0), cavitation_pressure=-0.05, couette="grid")
+    assert small.cost["first_guess_factorizations"] == 1.0 and small.cost["factorizations"] >= 1.0
+    warm = solve_jfo(grid_mesh(_dimpled(), 0.05), UniformFilm(1.0), cavitation_pressure=-0.05, couette="grid",
+                     warm_start=small)
+    assert "first_guess_factorizations" not in warm.cost
+    nested = solve_jfo(grid_mesh(_dimpled(), 1.0 / fv.NESTED_MIN ** 0.5 * 0.9), UniformFilm(1.0),
+                       cavitation_pressure=-0.05, couette="grid")
+    assert nested.cost["nested_levels"] >= 1.0 and nested.cost["first_guess_factorizations"] == 1.0
