@@ -69,7 +69,8 @@ from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
 from ..geometry.locate import cell_diameters
-from ..geometry.meshing import SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_uniformly
+from ..geometry.meshing import (SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_uniformly,
+                                with_named_boundaries)
 from ..core.parameters import Discretization, takes
 from ..film import forms
 from ..core.parameters import ELEMENTS
@@ -441,7 +442,7 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
     bnd = {"arc_start": facets[np.abs(mid[0] - phis[0]) < tol], "arc_end": facets[np.abs(mid[0] - phis[1]) < tol],
            "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
     bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
-    return SupportMesh(mesh=m.with_boundaries(bnd), surface=surface, size=float(cell_diameters(m).max()),
+    return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface, size=float(cell_diameters(m).max()),
                        source="structured")
 
 

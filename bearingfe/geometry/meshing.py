@@ -32,7 +32,7 @@ from ..core.tempdirs import private_tempdir
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_once", "mesh_from_data",
            "check_triangles", "check_support_mesh",
-           "strip_mesh", "grid_mesh", "name_surface_boundaries", "periodic_pairs"]
+           "strip_mesh", "grid_mesh", "name_surface_boundaries", "with_named_boundaries", "periodic_pairs"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -642,12 +642,24 @@ def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
                 f"{name}: {len(missing)} edge(s) of the physical curve '{label}' are not edges of the triangles "
                 f"(a pocket or gap too thin for the element size, or curves not in the meshed surface)")
         boundaries[label] = np.array(sorted({facet_of[k] for k in keys}), dtype=np.int64)
-    return _with_boundaries(mesh, boundaries) if boundaries else mesh
+    return with_named_boundaries(mesh, boundaries) if boundaries else mesh
 
 
-def _with_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:
+def with_named_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:
     """``m.with_boundaries(boundaries)`` keeping the facets (and their maps) ``m`` has built already: the copy
-    has the same triangles, and scikit-fem would sort them into facets again on its first use of them."""
+    has the same triangles, and scikit-fem would sort them into facets again on its first use of them.
+
+    Parameters
+    ----------
+    m : skfem.Mesh
+    boundaries : dict
+        Boundary name -> facet indices of ``m`` (added to ``m``'s own).
+
+    Returns
+    -------
+    skfem.Mesh
+        The copy with the named boundaries.
+    """
     new = m.with_boundaries(boundaries)
     if np.array_equal(new.t, m.t):
         for name in ("_facets", "_t2f", "_f2t"):
@@ -824,7 +836,8 @@ def strip_mesh(n: int, *, length: float = 1.0, width: float | None = None, rows:
     bnd = {"arc_start": facets[np.abs(x) < tol], "arc_end": facets[np.abs(x - length) < tol]}
     bnd["outer"] = np.concatenate([bnd["arc_start"], bnd["arc_end"]])
     again = functools.partial(strip_mesh, 2 * n, length=length, width=width, rows=2 * rows)
-    return SupportMesh(mesh=_with_boundaries(m, bnd), surface=None, size=length / n, source="strip", refinement=again)
+    return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=None, size=length / n, source="strip",
+                       refinement=again)
 
 
 def grid_mesh(surface: Surface, size: float, *, size_z: float | None = None,
@@ -911,7 +924,7 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
         m = _without_pockets(m, pockets)
     bnd = _surface_boundaries(m, surface, pockets)
     again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
-    return SupportMesh(mesh=_with_boundaries(m, bnd), surface=surface,
+    return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
                        size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again)
 
 
@@ -954,7 +967,7 @@ def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str 
     pockets = tuple(_axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets))
     p = m.p[:, m.t]
     edges = np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
-    return SupportMesh(mesh=_with_boundaries(m, _surface_boundaries(m, surface, pockets)), surface=surface,
+    return SupportMesh(mesh=with_named_boundaries(m, _surface_boundaries(m, surface, pockets)), surface=surface,
                        size=float(edges.max()), source=source)
 
 

@@ -250,3 +250,19 @@ def test_warm_newton_step_skips_the_full_film_work():
                                           warm_start=joined).force - joined.force) / step
                           for dx, dy in ((step, 0.0), (0.0, step))])
     assert np.abs(fd - dFx).max() <= 1e-3 * np.abs(dFx).max()
+
+
+def test_the_structured_journal_mesh_keeps_the_facets_it_named():
+    """The full bearing's structured mesh carries the facets its boundaries were named on (scikit-fem's
+    ``with_boundaries`` copy would drop them and sort the triangles into facets again on first use): the same
+    facets as a fresh mesh of its triangles, its named boundaries on the mesh's boundary."""
+    import skfem
+
+    from bearingfe.bearings.journal import structured_journal_mesh
+
+    mesh = structured_journal_mesh(JournalBearing(0.5), 0.3)
+    m = mesh.mesh
+    assert "_facets" in m.__dict__
+    fresh = skfem.MeshTri1(m.p, m.t)
+    assert np.array_equal(m.facets, fresh.facets) and np.array_equal(m.t2f, fresh.t2f)
+    assert np.all(np.isin(m.facets[:, mesh.boundaries["outer"]], fresh.boundary_nodes()))
