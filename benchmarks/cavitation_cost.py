@@ -256,7 +256,8 @@ def publish() -> None:
             "size) and published with `python -m benchmarks.cavitation_cost publish`.\n\n" + text)
     # other processes' cores: the 1-minute load average less this benchmark's own process
     run_all._store("cavitation", text, facts, float(sum(r.get("seconds", 0.0) for r in rows)), False,
-                   max(0.0, float(np.mean(loads)) - 1.0) if loads else math.nan)
+                   max(0.0, float(np.mean(loads)) - 1.0) if loads else math.nan,
+                   kind="publication, from rows measured one size per process, of")
     run_all.main(["--only", ""])
 
 

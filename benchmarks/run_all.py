@@ -260,10 +260,14 @@ class OtherLoad:
         return max(0.0, ((b1 - b0) - (o1 - o0)) / (t1 - t0)) if t1 > t0 else math.nan
 
 
-def _store(name: str, text: str, facts: dict, seconds: float, quick: bool, other: float) -> None:
+def _store(name: str, text: str, facts: dict, seconds: float, quick: bool, other: float,
+           kind: str | None = None) -> None:
+    """Write part ``name``'s section with its stamp; ``kind`` replaces "full run of" (e.g. a part published from
+    rows measured separately: its date is then the publication's, ``seconds`` the rows' measuring time)."""
     PARTS_DIR.mkdir(parents=True, exist_ok=True)
     info = machine()
-    stamp = (f"*Part `{name}`: {'QUICK run (small sizes)' if quick else 'full run'} of "
+    kind = kind or ('QUICK run (small sizes) of' if quick else 'full run of')
+    stamp = (f"*Part `{name}`: {kind} "
              f"{info['date']} on {info['cpu']} ({info['cores']} cores), {seconds:.0f} s; other processes "
              f"used {other:.2f} cores meanwhile ("
              f"{'idle machine' if other < 0.25 else 'SHARED machine: absolute times are inflated'}).*\n\n")
