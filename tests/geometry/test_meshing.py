@@ -313,3 +313,29 @@ def test_recess_contours_are_refined_by_default():
     assert default.n_nodes > 2 * uniform.n_nodes
     finer = refine_once(default)
     assert finer.n_nodes > 3 * default.n_nodes
+
+
+def test_grid_cells_checked_on_the_lines_agree_with_the_per_triangle_check(monkeypatch):
+    """grid_mesh skips check_triangles when its grid lines prove every triangle valid; the line test
+    (_grid_cells_valid) must accept exactly the grids check_triangles accepts: here an ordinary grid, and an
+    elongated one whose half cells fall below check_triangles' area bound (1e-10 x longest edge squared)."""
+    from bearingfe.geometry import meshing
+    from bearingfe.geometry.geofiles import GeometryFileError
+
+    ok_x, ok_z = np.linspace(0.0, 1.0, 5), np.linspace(-0.5, 0.5, 4)
+    assert meshing._grid_cells_valid(ok_x, ok_z)
+    m = skfem.MeshTri1.init_tensor(ok_x, ok_z)
+    meshing.check_triangles(m.p, m.t)   # passes: the line test agrees
+    thin_x = np.array([0.0, 1e-11, 1.0])   # a column 1e-11 wide: area / diagonal^2 ~ 5e-12 < 1e-10
+    assert not meshing._grid_cells_valid(thin_x, ok_z)
+    m = skfem.MeshTri1.init_tensor(thin_x, ok_z)
+    with pytest.raises(GeometryFileError, match="degenerate"):
+        meshing.check_triangles(m.p, m.t)
+    assert not meshing._grid_cells_valid(np.array([0.0, 0.5, 0.5, 1.0]), ok_z)   # a repeated line
+    # grid_mesh itself no longer runs the per-triangle check, any other support mesh still does
+    calls = []
+    monkeypatch.setattr(meshing, "check_triangles", lambda *a, **k: calls.append(1))
+    grid = bf.grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.25)
+    assert calls == [] and "_cells_checked" not in grid._cache
+    SupportMesh(mesh=grid.mesh, surface=grid.surface, source="grid")
+    assert calls == [1]
