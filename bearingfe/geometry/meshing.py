@@ -669,6 +669,23 @@ def with_named_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:
     return new
 
 
+def _init_facets(m: skfem.Mesh) -> None:
+    """Give ``m`` the facets and triangle-to-facet map scikit-fem's ``Mesh._init_facets`` would build (the same
+    arrays: the sorted unique node pairs in lexicographic order), found by a sparse matrix's counting sort by
+    first node instead of scikit-fem's sort of structured rows (about twice as fast on a large grid)."""
+    from scipy.sparse import csr_matrix
+
+    local = m.elem.refdom.facets
+    pairs = np.sort(np.hstack([m.t[ix] for ix in local]), axis=0)
+    nv = int(m.nvertices)
+    graph = csr_matrix((np.ones(pairs.shape[1]), (pairs[0], pairs[1])), shape=(nv, nv))
+    graph.sum_duplicates()   # rows then columns sorted, each pair once: the lexicographic unique pairs
+    first = np.repeat(np.arange(nv, dtype=np.int64), np.diff(graph.indptr))
+    code = first * nv + graph.indices
+    m._facets = np.ascontiguousarray(np.vstack([first, graph.indices]).astype(m.t.dtype))
+    m._t2f = np.searchsorted(code, pairs[0].astype(np.int64) * nv + pairs[1]).reshape(len(local), m.t.shape[1])
+
+
 def _unique_columns(key: np.ndarray, n: int, inverse: bool = False):
     """``np.unique(key, axis=1, return_counts=True)`` (and ``return_inverse``) for columns of node indices
     below ``n``, on one integer per column (sorting a structured view is several times slower)."""
@@ -929,6 +946,7 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
     m = skfem.MeshTri1.init_tensor(xs, zs)
     if pockets:
         m = _without_pockets(m, pockets)
+    _init_facets(m)
     bnd = _surface_boundaries(m, surface, pockets)
     again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
     checked = {_CELLS_CHECKED: True} if _grid_cells_valid(xs, zs) else {}   # else check_triangles names the fault

@@ -339,3 +339,14 @@ def test_grid_cells_checked_on_the_lines_agree_with_the_per_triangle_check(monke
     assert calls == [] and "_cells_checked" not in grid._cache
     SupportMesh(mesh=grid.mesh, surface=grid.surface, source="grid")
     assert calls == [1]
+
+
+def test_grid_facets_are_the_ones_scikit_fem_builds():
+    """grid_mesh builds its facets itself (a sparse counting sort); they must be scikit-fem's own arrays
+    (Mesh.facets, Mesh.t2f, f2t): the same pairs in the same order, on a grid with a pocket cut out."""
+    pocket = bf.Rectangle((0.3, 0.1), (0.2, 0.3))
+    grid = bf.grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[pocket]), 0.1)
+    fresh = skfem.MeshTri1(grid.mesh.p, grid.mesh.t)   # nothing built yet: scikit-fem sorts the facets itself
+    assert np.array_equal(grid.mesh.facets, fresh.facets) and grid.mesh.facets.dtype == fresh.facets.dtype
+    assert np.array_equal(grid.mesh.t2f, fresh.t2f)
+    assert np.array_equal(grid.mesh.f2t, fresh.f2t)
