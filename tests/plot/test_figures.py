@@ -55,3 +55,78 @@ def test_ruled_table_places_one_text_per_cell_on_its_row():
     (rules,) = ax.lines  # one polyline: 4 row rules and 4 column rules, each 2 points and a break
     assert len(rules.get_xdata()) == 3 * (4 + 4)
     assert not ax.axison
+
+
+def _figure_with_every_kind_of_axis():
+    """Stacked axes sharing x (inner labels hidden), a grid, a colour bar on the right, an axis label on each
+    side, a log axis and an axis whose labels need an offset text (the last two keep matplotlib's ticks)."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.0, 7.0))
+    top, middle, bottom = figures.frame(fig, nrows=3, top=0.3, bottom=0.6, left=0.9, right=1.2,
+                                        hgap=0.4).subplots(sharex=True)
+    x = np.linspace(0.0, 360.0, 50)
+    top.plot(x, np.sin(np.radians(x)))
+    top.grid(True, alpha=0.3)
+    top.set_ylabel("sin [-]")
+    mesh = middle.pcolormesh(x, [0.0, 1.0, 2.0], np.outer([1.0, 2.0], x[:-1]), shading="flat")
+    bar = fig.colorbar(mesh, ax=middle)
+    bar.set_label("value [W]")
+    middle.set_yscale("log")
+    bottom.plot(x, 1e-5 + 1e-9 * x)  # labels with an offset text
+    bottom.set_xlabel("angle [deg]")
+    bottom.set_xticks(np.arange(0, 361, 90))
+    return fig
+
+
+def _pixels(fig, drawn: bool):
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    buffer = io.BytesIO()
+    if drawn:
+        figures.save(fig, None)  # nothing written without a path
+        with figures.drawn_ticks(fig):
+            fig.savefig(buffer, format="png", dpi=figures.DPI)
+    else:
+        fig.savefig(buffer, format="png", dpi=figures.DPI)
+    return np.asarray(Image.open(buffer))
+
+
+def test_drawn_ticks_give_the_same_picture_as_matplotlibs_ticks():
+    """The marks, labels, grid lines and axis labels drawn by drawn_ticks land on the same pixels as
+    matplotlib's own ticks (reference: the same figure drawn with matplotlib's tick objects), the shared and
+    the hidden labels, a colour bar's right-hand labels and the axes kept on matplotlib's ticks included."""
+    import numpy as np
+
+    reference = _pixels(_figure_with_every_kind_of_axis(), drawn=False)
+    drawn = _pixels(_figure_with_every_kind_of_axis(), drawn=True)
+    assert reference.shape == drawn.shape
+    assert np.array_equal(reference, drawn)
+
+
+def test_drawn_ticks_replace_only_plain_axes_and_restore_them():
+    """Within the block the plain axes have no tick locator (their marks are artists of the axes) while the log
+    axis, the offset-text axis and every axis sharing its ticker with them keep theirs; after it every axis has
+    its own locator back and the added artists are gone."""
+    from matplotlib.ticker import NullLocator
+
+    fig = _figure_with_every_kind_of_axis()
+    top, middle, bottom, bar = fig.axes
+    before = {id(a): (a.get_major_locator(), len(a.axes.get_children())) for ax in fig.axes
+              for a in (ax.xaxis, ax.yaxis)}
+    with figures.drawn_ticks(fig):
+        assert isinstance(top.yaxis.get_major_locator(), NullLocator)  # plain
+        assert isinstance(bar.yaxis.get_major_locator(), NullLocator)  # a colour bar: plain
+        assert not isinstance(middle.yaxis.get_major_locator(), NullLocator)  # log
+        assert not isinstance(bottom.yaxis.get_major_locator(), NullLocator)  # offset text
+        # the shared x ticker: the bottom axes is plain in x, and so are the others sharing it
+        assert isinstance(top.xaxis.get_major_locator(), NullLocator)
+        assert len(top.get_children()) > before[id(top.yaxis)][1]
+    for ax in fig.axes:
+        for a in (ax.xaxis, ax.yaxis):
+            assert a.get_major_locator() is before[id(a)][0]
+            assert len(ax.get_children()) == before[id(a)][1]
