@@ -8,6 +8,7 @@ get the mode the process umask gives (``0o666 & ~umask``), as ``open`` would.
 
 from __future__ import annotations
 
+import base64
 import contextlib
 import csv
 import json
@@ -17,12 +18,13 @@ import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Iterator, Mapping, Sequence
+from xml.sax.saxutils import escape
 
 import numpy as np
 
 from ..core.limits import check_limit
 
-__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "write_pvd", "read_pvd", "write_csv", "write_json",
+__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "vtu_document", "write_pvd", "read_pvd", "write_csv", "write_json",
            "ROSS_COEFFICIENTS", "write_ross_bearings", "read_ross_bearing"]
 
 #: Trajectory columns written by :func:`write_csv` when present, in this order.
@@ -108,22 +110,77 @@ def write_vtu(result, path: str | Path, scale=None, *, field_data: Mapping[str, 
     -------
     Path
     """
-    import meshio
-
     path = Path(path)
     if path.suffix != ".vtu":
         raise ValueError(f"path must end in .vtu, got {path.name}")
     points, t, data = vtu_fields(result, scale)
-    mesh = meshio.Mesh(points, [("triangle", t)], point_data=data)
     with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu")
-        if field_data:  # meshio's VTU writer leaves field data out: VTK's <FieldData>, one number each
-            arrays = "".join(f'<DataArray type="Float64" Name="{name}" NumberOfTuples="1" format="ascii">'
-                             f"{float(value)!r}</DataArray>\n" for name, value in field_data.items())
-            text = tmp.read_text()
-            tmp.write_text(text.replace("<UnstructuredGrid>", f"<UnstructuredGrid>\n<FieldData>\n{arrays}</FieldData>",
-                                        1))
+        tmp.write_bytes(vtu_document(points, t, data, field_data))
     return path
+
+
+#: VTK's cell type of a linear triangle.
+VTK_TRIANGLE = 5
+#: Quotes escaped in an XML attribute.
+_QUOTE = {'"': "&quot;"}
+
+
+def _binary(values: np.ndarray) -> str:
+    """A VTK XML ``binary`` data array: base64 of its byte count (UInt64) and its little-endian bytes."""
+    raw = np.ascontiguousarray(values).astype(values.dtype.newbyteorder("<"), copy=False).tobytes()
+    return base64.b64encode(np.uint64(len(raw)).astype("<u8").tobytes() + raw).decode("ascii")
+
+
+def vtu_document(points: np.ndarray, triangles: np.ndarray, point_data: Mapping[str, np.ndarray],
+                 field_data: Mapping[str, float] | None = None) -> bytes:
+    """A VTK XML unstructured grid of triangles (the ``.vtu`` format ParaView and VTK read).
+
+    Parameters
+    ----------
+    points : ndarray, shape (n, 3)
+        Point coordinates (as given: [m] or [R0]).
+    triangles : ndarray, shape (m, 3)
+        Point indices of each triangle.
+    point_data : mapping
+        Named arrays of ``n`` values each (Float64).
+    field_data : mapping, optional
+        Named numbers of the whole grid (one Float64 each, written in ASCII).
+
+    Returns
+    -------
+    bytes
+        The document: arrays base64-encoded (``format="binary"``, a UInt64 byte count before each), little-endian.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    cells = np.asarray(triangles, dtype=np.int64)
+    n, m = points.shape[0], cells.shape[0]
+    if points.shape != (n, 3) or cells.shape != (m, 3):
+        raise ValueError(f"points must be (n, 3) and triangles (m, 3), got {points.shape} and {cells.shape}")
+    lines = ['<?xml version="1.0"?>',
+             '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">',
+             "<UnstructuredGrid>"]
+    if field_data:
+        lines.append("<FieldData>")
+        lines += [f'<DataArray type="Float64" Name="{escape(name, _QUOTE)}" NumberOfTuples="1" format="ascii">'
+                  f"{float(value)!r}</DataArray>" for name, value in field_data.items()]
+        lines.append("</FieldData>")
+    lines += [f'<Piece NumberOfPoints="{n}" NumberOfCells="{m}">',
+              "<PointData>"]
+    for name, values in point_data.items():
+        values = np.asarray(values, dtype=np.float64)
+        if values.shape != (n,):
+            raise ValueError(f"point data {name!r} must hold {n} values, got shape {values.shape}")
+        lines.append(f'<DataArray type="Float64" Name="{escape(name, _QUOTE)}" format="binary">{_binary(values)}</DataArray>')
+    lines += ["</PointData>", "<Points>",
+              f'<DataArray type="Float64" NumberOfComponents="3" format="binary">{_binary(points)}</DataArray>',
+              "</Points>", "<Cells>",
+              f'<DataArray type="Int64" Name="connectivity" format="binary">{_binary(cells)}</DataArray>',
+              f'<DataArray type="Int64" Name="offsets" format="binary">'
+              f"{_binary(np.arange(3, 3 * m + 1, 3, dtype=np.int64))}</DataArray>",
+              f'<DataArray type="UInt8" Name="types" format="binary">'
+              f"{_binary(np.full(m, VTK_TRIANGLE, dtype=np.uint8))}</DataArray>",
+              "</Cells>", "</Piece>", "</UnstructuredGrid>", "</VTKFile>", ""]
+    return "\n".join(lines).encode("utf-8")
 
 
 def write_pvd(results_or_paths: Sequence, times: Sequence[float], path: str | Path, *,

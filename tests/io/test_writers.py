@@ -113,3 +113,28 @@ def test_failed_write_leaves_nothing_and_keeps_old_file(tmp_path):
         io.write_json({"x": object()}, target)
     assert target.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["s.json"]
+
+
+def test_vtu_is_read_by_vtk_itself(tmp_path, results):
+    """The document read by VTK's own XML reader (through pyvista): the points, the triangles (VTK type 5), the
+    point arrays to the last bit (binary, little-endian) and the field data, a quoted name included."""
+    import pyvista as pv
+
+    res = results[0]
+    io.write_vtu(res, tmp_path / "v.vtu", SCALE, field_data={'angle "beta"': 33.5})
+    grid = pv.read(tmp_path / "v.vtu")
+    m = res.basis.mesh
+    assert (grid.n_points, grid.n_cells) == (m.nvertices, m.t.shape[1])
+    assert set(grid.celltypes) == {5}
+    np.testing.assert_array_equal(grid.cell_connectivity.reshape(-1, 3), m.t[:3].T)
+    np.testing.assert_array_equal(grid.points[:, :2], 0.05 * m.p[:, : m.nvertices].T)
+    np.testing.assert_array_equal(grid["pressure_Pa"], SCALE.pressure * res.pressure[: m.nvertices])
+    assert float(grid.field_data['angle "beta"'][0]) == 33.5
+
+
+def test_vtu_document_refuses_arrays_of_the_wrong_shape():
+    pts, tri = np.zeros((4, 3)), np.array([[0, 1, 2], [1, 2, 3]])
+    with pytest.raises(ValueError, match="points must be"):
+        io.writers.vtu_document(np.zeros((4, 2)), tri, {})
+    with pytest.raises(ValueError, match="'p' must hold 4 values"):
+        io.writers.vtu_document(pts, tri, {"p": np.zeros(3)})
