@@ -257,15 +257,16 @@ def _run(data: dict, label: str, out_dir: Path, progress: Callable | None, base_
     # best, 0.88 median); on one core the plainest design (the cheapest run) here, beside the import thread
     loading = []
     order = sorted(designs, key=lambda n: len(designs[n].surface.inlets))
-    jobs = [lambda p=designs[n]: simulate_design(p, run) for n in order]
+    jobs = [lambda p=designs[n]: _design(p, run) for n in order]
     if pictures and _workers(len(jobs) + 1) > 1:
         jobs.insert(0, lambda: None)  # this process's share: the import thread alone
     freeze()  # before the forks: the collector then skips the imported modules
     results = in_processes(jobs, processes=len(jobs) if len(jobs) > len(order) else None,
                            after_fork=(lambda: loading.append(preload())) if pictures else None)
     rigid = dict(zip(order, results[len(results) - len(order):]))
+    states, solved = {}, {}  # the pictured film states by run; the film states re-solved, by sample
     for name, p in designs.items():
-        meshes[name], runs[name] = rigid[name]
+        meshes[name], runs[name], states[name], solved[name] = rigid[name]
         balance[name] = runs[name].stats["balance_ratio"]  # simulate checks it before integrating
         done += 1
         if elastic:
@@ -286,11 +287,12 @@ def _run(data: dict, label: str, out_dir: Path, progress: Callable | None, base_
         cols = report_columns(traj, pump.scale, pump.drive.omega)
         files.append(write_csv(cols, out_dir / f"trajectory_{name}.csv", fields=list(cols)).name)
     pumps = {name: designs[name.removesuffix("_elastic")] for name in runs}
-    solved: dict = {name: {} for name in runs}  # the film states re-solved, by sample (the PVD frames reuse them)
-    states = {name: _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
-                            compliances.get(name.removesuffix("_elastic")) if name.endswith("_elastic") else None,
-                            solved[name])
-              for name, traj in runs.items()}
+    for name, traj in runs.items():  # the elastic runs' (the rigid designs' came with their runs)
+        if name not in states:
+            solved[name] = {}
+            states[name] = _states(pumps[name], meshes[name.removesuffix("_elastic")], traj, run,
+                                   compliances[name.removesuffix("_elastic")], solved[name])
+    states = {name: states[name] for name in runs}
     tick(done + 1, steps, f"pictures: {', '.join(pictures)}")
     for thread in loading:  # loaded before the pictures fork
         thread.join()
@@ -400,6 +402,14 @@ def simulate_design(pump, run: dict):
     return mesh, simulate(pump, mesh, run["revolutions"], start=run["start"], rtol=run["rtol"],
                           cavitation=run["cavitation"], element=run["element"],
                           periodic_tol=run.get("periodic_tol", PERIODIC_TOL))
+
+
+def _design(pump, run: dict):
+    """:func:`simulate_design` and the run's pictured film states (:func:`_states`, with the film states it
+    re-solved by sample): one design's share of the scene, made where the design runs."""
+    mesh, traj = simulate_design(pump, run)
+    solved: dict = {}
+    return mesh, traj, _states(pump, mesh, traj, run, None, solved), solved
 
 
 def pocket_gain(pocket, plain) -> float:
