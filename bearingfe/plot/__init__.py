@@ -1,14 +1,15 @@
 """Pictures: pyvista fields and matplotlib curves, imported lazily (never on ``import bearingfe``).
 
-==============  ==============================================================
-module          what it draws
-==============  ==============================================================
-``fields``      pressure and film fields on the surface (pyvista, off-screen)
-``curves``      trajectories, orbits and other curves (matplotlib)
-``maps``        field maps side by side, P2 fields on a refined display mesh (matplotlib)
-``mechanisms``  the crank and rotor models' curves (matplotlib)
-``figures``     fixed margins in inches (no layout-engine pass); saving at the package's resolution
-==============  ==============================================================
+===============  ==============================================================
+module           what it draws
+===============  ==============================================================
+``fields``       pressure and film fields on the surface (pyvista, off-screen)
+``curves``       trajectories, orbits and other curves (matplotlib)
+``maps``         field maps side by side, P2 fields on a refined display mesh (matplotlib)
+``mechanisms``   the crank and rotor models' curves (matplotlib)
+``figures``      fixed margins in inches (no layout-engine pass); saving at the package's resolution
+``colour_bars``  colour bars as a few artists beside a map (no axes of their own)
+===============  ==============================================================
 """
 
 __all__ = ["preload"]
@@ -40,7 +41,7 @@ def preload():
         from matplotlib import _qhull, _tri  # noqa: F401  (the triangulations' compiled helpers, else on first use)
         from PIL import Image
 
-        from . import curves, fields, maps  # noqa: F401  (fields: its numpy part; pyvista loads on use)
+        from . import colour_bars, curves, fields, maps  # noqa: F401  (fields: its numpy part; pyvista loads on use)
 
         Image.preinit()  # the image formats PIL registers on its first save
 

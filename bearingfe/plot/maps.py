@@ -103,7 +103,8 @@ def sampled(result, values: np.ndarray | None = None, *, kind: str = "pressure",
 def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = True):
     """Draw ``panel`` into ``ax``; returns the mappable (a ``TriMesh``/``PolyCollection``).
 
-    The colour bar (``ax.figure.colorbar``) is labelled ``"<symbol> [<unit>]"``; the pockets are
+    The colour bar (:func:`bearingfe.plot.colour_bars.colour_bar`, also ``mappable.colorbar``) is labelled
+    ``"<symbol> [<unit>]"``; the pockets are
     filled with the inlet pressure (pressure) or grey (film, deflection) and outlined in black; the
     ``p = 0`` line of a pressure that changes sign is drawn in red.
     """
@@ -172,8 +173,9 @@ def field_axes(ax, panel: Panel, *, nrefs: int | None = None, colorbar: bool = T
     for axis in (ax.xaxis, ax.yaxis):  # a map is read by its colours: a few ticks place it (each costs ~1 ms)
         axis.set_major_locator(MaxNLocator(MAP_TICKS, steps=TICK_STEPS))
     if colorbar:
-        bar = ax.figure.colorbar(mappable, ax=ax, shrink=0.9, ticks=MaxNLocator(MAP_TICKS, steps=TICK_STEPS))
-        bar.set_label(f"{symbol} [{panel.unit}]")
+        from .colour_bars import colour_bar
+
+        colour_bar(ax, mappable, f"{symbol} [{panel.unit}]", MaxNLocator(MAP_TICKS, steps=TICK_STEPS))
     return mappable
 
 
@@ -184,7 +186,8 @@ def field_panels(panels: Sequence[Sequence[Panel | None]], path=None, *, title: 
     Returns
     -------
     matplotlib.figure.Figure
-        One axes per panel (empty cells removed) plus one colour bar each.
+        One axes per panel (empty cells removed); each panel's colour bar is an artist of the figure
+        (:class:`bearingfe.plot.colour_bars.ColourBar`, in ``fig.artists``).
     """
     from matplotlib.figure import Figure
 

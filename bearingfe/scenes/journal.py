@@ -636,7 +636,11 @@ def _tilting_pressure_picture(eq, meshes, bearing, scale, pads: list, path: Path
     ax.set_xlabel("angle from +x towards +y [deg] (pivots dotted)")
     ax.set_ylabel("z [mm]")
     if art is not None:
-        fig.colorbar(art, ax=ax, shrink=0.9).set_label("p [MPa]")
+        from matplotlib.ticker import AutoLocator
+
+        from ..plot.colour_bars import colour_bar
+
+        colour_bar(ax, art, "p [MPa]", AutoLocator())
     ax.set_title(f"{title}\n{len(pads)} tilting pads: eps = {eq.eps:.3g}, attitude = {eq.attitude:.3g} deg; "
                  f"pad rotation and load above each pad", fontsize="medium")
     save(fig, path)

@@ -10,6 +10,7 @@ import pytest
 from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri
 
 import bearingfe as bf
+from bearingfe.plot.colour_bars import ColourBar
 from bearingfe.plot.maps import DISPLAY_TRIANGLES, Panel, field_panels, refinements, sampled
 
 
@@ -65,9 +66,10 @@ def test_panels_have_titles_units_colour_bars_and_the_zero_line(tmp_path):
     fig = field_panels(rows, tmp_path / "maps.png", title="comparison")
     assert (tmp_path / "maps.png").stat().st_size > 5000
     maps = [ax for ax in fig.axes if ax.get_title()]
-    bars = [ax for ax in fig.axes if not ax.get_title()]
+    bars = [a for a in fig.artists if isinstance(a, ColourBar)]
+    assert fig.axes == maps  # the colour bars are artists of the figure, not axes
     assert [ax.get_title() for ax in maps] == ["design 0, beta = 0 deg", "design 1, beta = 10 deg", "film"]
-    assert [b.get_ylabel() for b in bars] == ["p [MPa]", "p [MPa]", "h [um]"]
+    assert [b.label for b in bars] == ["p [MPa]", "p [MPa]", "h [um]"]
     assert all(ax.get_xlabel() == "phi [deg]" and ax.get_ylabel() == "z [mm]" for ax in maps)
     # the pressure colours span the scaled field: its largest value, 0.5 at the centre, times 29.45 MPa
     lo, hi = maps[0].collections[0].get_clim()
@@ -86,13 +88,18 @@ def test_map_axes_and_colour_bars_draw_a_few_ticks_at_round_steps():
     (matplotlib's MaxNLocator): the map of -28.6..28.6 deg by -20..20 mm draws -20, 0, 20 on both axes."""
     from bearingfe.plot.maps import MAP_TICKS
 
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
     res = _result(n=6)
     fig = field_panels([[Panel(res, "pressure", 29.45, "MPa", radius=0.05, title="p")]])
-    fig.canvas.draw()
-    (ax,), bars = [a for a in fig.axes if a.get_title()], [a for a in fig.axes if not a.get_title()]
-    for axis in (ax.xaxis, ax.yaxis, bars[0].yaxis):
-        lo, hi = sorted(axis.get_view_interval())
-        ticks = [t for t in axis.get_ticklocs() if lo - 1e-9 <= t <= hi + 1e-9]
+    FigureCanvasAgg(fig).draw()
+    (ax,), (bar,) = fig.axes, [a for a in fig.artists if isinstance(a, ColourBar)]
+    for axis in (ax.xaxis, ax.yaxis, bar):
+        if axis is bar:
+            ticks = list(bar.ticks)
+        else:
+            lo, hi = sorted(axis.get_view_interval())
+            ticks = [t for t in axis.get_ticklocs() if lo - 1e-9 <= t <= hi + 1e-9]
         assert 2 <= len(ticks) <= MAP_TICKS + 1
         step = np.diff(ticks)[0] / 10.0 ** np.floor(np.log10(np.diff(ticks)[0]))
         assert any(step == pytest.approx(s) for s in (1, 2, 2.5, 5))

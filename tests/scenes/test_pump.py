@@ -193,7 +193,7 @@ def test_pictures_draw_both_designs(coarse_run):
     for fig in panels:
         titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
         assert len(titles) == 4  # two designs x (most loaded, thinnest film)
-        bars = [ax.get_ylabel() for ax in fig.axes if not ax.get_title()]  # the colour bars: one unit a picture
+        bars = [a.label for a in fig.artists if hasattr(a, "tick_labels")]  # the colour bars: one unit a picture
         assert len(bars) == 4 and len(set(bars)) == 1
         units.append(bars[0])
         for design in ("pocket", "plain"):
