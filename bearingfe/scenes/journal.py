@@ -614,7 +614,7 @@ def _tilting_pressure_picture(eq, meshes, bearing, scale, pads: list, path: Path
     from matplotlib.tri import Triangulation
 
     from ..plot.figures import frame, save
-    from ..plot.maps import sampled
+    from ..plot.maps import gouraud, sampled
 
     fig = Figure(figsize=(10.0, 4.6))
     ax = fig.add_subplot(frame(fig, top=0.8, bottom=0.55, left=0.8, right=0.3)[0, 0])
@@ -623,8 +623,8 @@ def _tilting_pressure_picture(eq, meshes, bearing, scale, pads: list, path: Path
     hi = max((float(v.max()) for (_, _, v), _ in drawn), default=1.0) * scale.pressure / 1e6
     art = None
     for (xy, tri, v), _ in drawn:
-        art = ax.tripcolor(Triangulation(np.degrees(xy[0]), xy[1] * to_mm, tri.T), v * scale.pressure / 1e6,
-                           shading="gouraud", cmap="viridis", vmin=0.0, vmax=hi or 1.0, rasterized=True)
+        art = gouraud(ax, Triangulation(np.degrees(xy[0]), xy[1] * to_mm, tri.T), v * scale.pressure / 1e6,
+                      "viridis", 0.0, hi or 1.0)
     half = bearing.length / 2 * 1e3
     for (start, end), pad in zip(bearing.geometry.arcs, pads):
         a, e = math.degrees(start), math.degrees(end)
