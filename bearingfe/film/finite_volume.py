@@ -100,6 +100,7 @@ from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
+from ..geometry.surface import Circle
 from .mesh_operators import Operators, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
@@ -612,9 +613,10 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
     crossing of a recess contour located to ``2**-bisections`` of a sub-interval (1e-9 for 30) in
     ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
-    an eighth of a cell). The sub-intervals a contour crosses are searched together, recess by recess
-    (only the crossed recess's own test), each round testing ``sections - 1`` points of every bracket at
-    once and keeping the part where the test changes: ``log2(sections)`` halvings per round."""
+    an eighth of a cell). A circle's contour is crossed where its chord on the line ends (closed form);
+    other contours' crossings are searched together, recess by recess (only the crossed recess's own
+    test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
+    the test changes: ``log2(sections)`` halvings per round."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
@@ -623,6 +625,8 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     if seg.size:
         aa, bb, dA, xs = a[seg, k].copy(), b[seg, k].copy(), da[seg, k], x[seg]
         groups, owned = [], np.zeros(seg.size, bool)
+        exact = np.zeros(seg.size, bool)   # crossings of a circle's contour: found in closed form
+        found = np.empty(seg.size)
         for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
             cand = np.flatnonzero(~owned & (xs >= blo[0]) & (xs <= bhi[0]) & (bb >= blo[1]) & (aa <= bhi[1]))
             if cand.size:
@@ -631,24 +635,51 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
                 cand, inside = cand[crossed], inside[crossed]
                 if cand.size:
                     owned[cand] = True
-                    groups.append((cand, lambda px, pz, r=r, inside=inside: r.shape.contains(px, pz) == inside[:, None]))
+                    if isinstance(r.shape, Circle):
+                        exact[cand] = True
+                        found[cand] = np.clip(_circle_crossing(r.shape, xs[cand], inside), aa[cand], bb[cand])
+                    else:
+                        groups.append((cand, lambda px, pz, r=r, inside=inside:
+                                       r.shape.contains(px, pz) == inside[:, None]))
         rest = np.flatnonzero(~owned)   # not one recess's crossing (none should be left): the surface's depth
         if rest.size:
             groups.append((rest, lambda px, pz, dA=dA[rest]: surface.recess_depth(px, pz) == dA[:, None]))
-        halvings = max(1, int(round(math.log2(sections))))
-        fractions = np.arange(1, sections) / sections
-        rows, px = np.arange(seg.size), xs[:, None]
-        for _ in range(-(-bisections // halvings)):
-            c = aa[:, None] + (bb - aa)[:, None] * fractions
-            left = np.empty(c.shape, bool)
-            for idx, same_side in groups:
-                left[idx] = same_side(px[idx], c[idx])
-            first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
-            aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
-                      np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
-        c = 0.5 * (aa + bb)
-        piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
+        if groups:
+            todo = np.flatnonzero(~exact)
+            found[todo] = _bisect_crossings(groups, todo, xs, aa, bb, bisections, sections)
+        piece[seg, k] = dA * (found - a[seg, k]) + db[seg, k] * (b[seg, k] - found)
     return piece.sum(axis=1)
+
+
+def _circle_crossing(circle: Circle, x: np.ndarray, inside: np.ndarray) -> np.ndarray:
+    """Where the lines ``phi = x`` cross the contour of ``circle`` upwards in ``z``: leaving it (its upper
+    chord end) where ``inside`` (the bracket's lower end lies in it), else entering it (the lower end)."""
+    (cx, cz), r = circle.center, circle.radius
+    half = np.sqrt(np.maximum(r * r - (x - cx) ** 2, 0.0))
+    return np.where(inside, cz + half, cz - half)
+
+
+def _bisect_crossings(groups, todo: np.ndarray, xs: np.ndarray, aa: np.ndarray, bb: np.ndarray,
+                      bisections: int, sections: int) -> np.ndarray:
+    """The crossings of the brackets ``todo`` (indices into ``xs``, ``aa``, ``bb``), each to ``2**-bisections``
+    of its bracket: rounds of ``sections - 1`` points per bracket, each group ``(indices, same_side)`` testing
+    its own brackets; returns the midpoints of the last brackets."""
+    where = np.full(xs.size, -1, np.int64)
+    where[todo] = np.arange(todo.size)
+    groups = [(where[idx], test) for idx, test in groups]
+    aa, bb, px = aa[todo].copy(), bb[todo].copy(), xs[todo][:, None]
+    halvings = max(1, int(round(math.log2(sections))))
+    fractions = np.arange(1, sections) / sections
+    rows = np.arange(todo.size)
+    for _ in range(-(-bisections // halvings)):
+        c = aa[:, None] + (bb - aa)[:, None] * fractions
+        left = np.empty(c.shape, bool)
+        for idx, same_side in groups:
+            left[idx] = same_side(px[idx], c[idx])
+        first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
+        aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
+                  np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
+    return 0.5 * (aa + bb)
 
 
 def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
