@@ -65,8 +65,8 @@ one or two linear solves; a cold solve with the grid flux on a ``grid_mesh`` of
 :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on
 the grid with every other line (nested iteration, recursively), which halves
 the fine-level factorizations (measured 4 against 7-8 on the dimpled slider at
-1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of as many
-unknowns starts from the cavity of the same problem on a ``grid_mesh`` of its
+1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of
+:data:`NESTED_MIN_UNSTRUCTURED` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of its
 surface with about a quarter of its nodes (grid flux; measured 4, 4 and 2
 fine-level factorizations against 9, 8 and 6 on the pocket pad, the dimple and
 the grooved journal of docs/jfo_gmsh.md at 2.3e4-4.7e4 nodes). Where the
@@ -1561,9 +1561,18 @@ def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
 
 
 #: A cold solve on an unstructured mesh (``couette`` ``"streamline"``, ``"median"`` or ``"limited"``) of
-#: :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of the
-#: surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested).
+#: :data:`NESTED_MIN_UNSTRUCTURED` unknowns or more starts from the cavity of the same problem on a ``grid_mesh``
+#: of the surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested from
+#: :data:`NESTED_MIN` on).
 NESTED_UNSTRUCTURED = True
+#: Unknowns from which a cold solve on an unstructured mesh takes the nested start (:data:`NESTED_UNSTRUCTURED`):
+#: lower than a grid's :data:`NESTED_MIN`, since the fine level's factorizations cost more there (the streamline
+#: flux's wider stencil) while the coarse grid is a quarter of the nodes. Measured (docs/jfo_gmsh.md's cases,
+#: uniform and contour-refined gmsh meshes, best of 4 interleaved, load 1 on 2 cores): even at about 1,500 nodes
+#: (pocket pad 22.0 against 22.1 ms at 1,340 nodes, 16.6 against 19.2 ms at 963), a win from 2,000 on (pocket pad
+#: 31.8 against 35.8 ms at 1,936 nodes, 45.7 against 70.2 at 2,952, 103 against 184 ms at 7,375 nodes: 2 against
+#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes).
+NESTED_MIN_UNSTRUCTURED = 2000
 
 
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
@@ -1635,8 +1644,9 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
-        if (cavity is None and dt is None and cavitation == "jfo" and unk.rep.size >= NESTED_MIN
-                and (couette == "grid" or NESTED_UNSTRUCTURED)):
+        if (cavity is None and dt is None and cavitation == "jfo"
+                and (unk.rep.size >= NESTED_MIN if couette == "grid"
+                     else NESTED_UNSTRUCTURED and unk.rep.size >= NESTED_MIN_UNSTRUCTURED)):
             cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
