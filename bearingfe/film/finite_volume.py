@@ -1522,7 +1522,12 @@ def _auto_couette(mesh: SupportMesh) -> str:
 
 #: Unknowns from which a cold grid solve (``couette="grid"`` on ``grid_mesh``) starts from the cavity of the
 #: same problem on the grid with every other line (nested iteration, recursively down to fewer unknowns).
-NESTED_MIN = 15000
+#: Measured (best of 4 interleaved, load 0.3-0.8 on 2 cores; the 5 x 5 dimples of docs/jfo_dimples.md, the
+#: pocket pad and the dimple of docs/jfo_gmsh.md): even below 4,000 nodes; from there on a win (pocket pad
+#: 45.8 against 54.5 ms at 4,872 nodes, 101 against 187 ms at 9,840; the 5 x 5 dimples 150 against 163 ms
+#: at 10,201, 628 against 751 ms at 40,401: 3 fine factorizations against 5), and the same fine
+#: factorizations at 7.9e4 and 1.6e5 nodes (one more coarse level).
+NESTED_MIN = 4000
 #: A nested start's coarse level stops its active-set iteration once a step would switch at most this
 #: fraction of its nodes (the finer level's own steps move the cavity by more: its discretization shifts
 #: the fronts by a cell): a rough coarse cavity, not a converged one.
