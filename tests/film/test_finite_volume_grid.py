@@ -276,3 +276,28 @@ def test_rough_coarse_levels_give_the_converged_answer_in_fewer_coarse_steps(mon
     assert np.array_equal(rough.cavitated, converged.cavitated)
     assert np.abs(rough.pressure - converged.pressure).max() < 1e-10 * np.abs(converged.pressure).max()
     assert np.abs(rough.theta - converged.theta).max() < 1e-10
+
+
+def test_circle_contours_crossed_in_closed_form_as_bisection_finds_them(monkeypatch):
+    # the face film of a grid's box faces across circular dimple contours: the chord ends (closed form)
+    # against the bracketing search every other shape takes (to 2**-30 of an eighth of a cell): the same
+    # line integrals to that search's resolution, and a square recess (a Polygon) still bisected
+    from bearingfe.film import finite_volume as fv
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+        recesses=[Recess(Circle((0.3, 0.1), 0.17), 0.8), Recess(Circle((0.72, -0.2), 0.11), 1.3),
+                  Recess(Rectangle((0.7, 0.25), (0.2, 0.1)), 0.5)])
+    g = fv._grid_faces(grid_mesh(surface, 1 / 37))
+    closed = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+
+    class NotACircle:   # every recess bisected
+        pass
+
+    monkeypatch.setattr(fv, "Circle", NotACircle)
+    bisected = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    # the search ends within 2**-31 of an eighth of a cell of each crossing, at most a few per face, each
+    # weighing the depth step (1.3): 4 * 1.3 * (1/37/8) * 2**-31 = 8e-12
+    assert np.count_nonzero(closed) > 100 and np.abs(closed - bisected).max() <= 1e-11
+    # a chord end lies where the circle's test changes: just below it inside, just above outside
+    c = fv._circle_crossing(Circle((0.3, 0.1), 0.17), np.array([0.3, 0.4]), np.array([True, False]))
+    assert np.allclose(c, [0.27, 0.1 - np.sqrt(0.17**2 - 0.1**2)], rtol=0, atol=1e-15)
