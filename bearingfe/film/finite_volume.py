@@ -397,14 +397,18 @@ class _Streamline:
         taking theta of their upwind node."""
         w = np.where(upwinded, 0.0, self.weights)
         w[0] += np.where(upwinded, 1.0, 0.0)
-        nodes = self.nodes.copy()
-        nodes[0] = np.where(upwinded, self.up, nodes[0])
-        C = _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+        nt = self.nodes.shape[1] // 3
+        t = self.nodes[:, :nt]   # the foot nodes are the segment's triangle's (median_dual's segment order)
+        first = None
+        if upwinded.any():   # the upwinded segments' first weight goes to their upwind node's column
+            pair = np.arange(upwinded.size) // nt
+            first = np.where(upwinded, np.where(self.up == self.d.i, pair, (pair + 1) % 3), 0)
+        C = _streamline_flux(n, t, self.flux, w, first)
         if self.scale is None:
             return C, None
         s = self.scale.copy()
         s[0] = np.where(upwinded, self.up_scale, s[0])
-        return C, _streamline_flux(n, self.d, self.flux, nodes, w * s).tocsr()
+        return C, _streamline_flux(n, t, self.flux, w * s, first)
 
 
 def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
@@ -443,12 +447,33 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
 STREAMLINE_PASSES = 8
 
 
-def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
-    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
-    rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
-    cols = np.concatenate([nodes.ravel(), nodes.ravel()])
-    vals = np.concatenate([(f * w).ravel(), -(f * w).ravel()])
-    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
+                     first: np.ndarray | None = None) -> sp.csr_matrix:
+    """Outflow per dual cell of ``f_s theta(foot_s)`` through each median-dual segment (from ``i`` to ``j``,
+    :func:`median_dual`'s order: segment ``e * n_triangles + k`` joins the nodes ``e`` and ``e + 1`` of
+    triangle ``k``), theta at the foot ``sum_b w[b] theta(t[b])`` over the triangle's nodes ``t`` ``(3,
+    n_triangles)``; ``first``: per segment the local node (0..2) that takes the weight ``w[0]`` (default 0).
+    Summed per triangle into its 3 x 3 block first (the P1 stiffness's pattern: 9 entries a triangle for
+    the sort into CSR, not 18 per segment triple)."""
+    nt = t.shape[1]
+    local = np.zeros((3, 3, nt))   # (row node, column node, triangle)
+    flat = local.reshape(-1)
+    k = np.arange(nt)
+    for e in range(3):
+        seg = slice(e * nt, (e + 1) * nt)
+        a, b = e, (e + 1) % 3
+        for c in range(3):
+            v = f[seg] * w[c, seg]
+            if c == 0 and first is not None:
+                col = first[seg]
+                flat[(3 * a + col) * nt + k] += v
+                flat[(3 * b + col) * nt + k] -= v
+            else:
+                local[a, c] += v
+                local[b, c] -= v
+    rows = np.repeat(t, 3, axis=0).ravel()
+    cols = np.tile(t, (3, 1)).ravel()
+    return sp.csr_matrix((flat, (rows, cols)), shape=(n, n))
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------

@@ -94,3 +94,34 @@ def test_squeeze_that_empties_the_film_is_upwinded_where_theta_would_fall_below_
     assert np.hypot(*res.force) == pytest.approx(np.hypot(*median.force), rel=1e-2)
     assert abs(res.mass_balance) < 1e-10
 
+
+
+def test_streamline_matrices_summed_per_triangle_equal_the_segment_sums():
+    # the flux matrices are summed per triangle (3 x 3 blocks) before the sort into CSR; reference: each
+    # segment's outflow f_s sum_b w_b theta(foot node b) added to its two cells one by one (COO), with a
+    # tenth of the segments upwinded (theta of their upwind node) and the recess contour's scaled operator
+    import scipy.sparse as sp
+
+    from bearingfe.film import finite_volume as fv
+
+    case = dimple()
+    mesh = mesh_surface(case.surface, 0.05)
+    st = fv._assemble(fv.operators(mesh), mesh, case.film, 1.0, (0.0, 0.0), None, None, "streamline").reconstruction
+    n, d = mesh.n_nodes, st.d
+    upwinded = np.random.default_rng(3).random(st.up.size) < 0.1
+    w = np.where(upwinded, 0.0, st.weights)
+    w[0] += upwinded
+    nodes = st.nodes.copy()
+    nodes[0] = np.where(upwinded, st.up, nodes[0])
+    scale = st.scale.copy()
+    scale[0] = np.where(upwinded, st.up_scale, scale[0])
+
+    def by_segment(weights):
+        rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
+        vals = (st.flux * weights).ravel()
+        return sp.csr_matrix((np.concatenate([vals, -vals]), (rows, np.concatenate([nodes.ravel()] * 2))), (n, n))
+
+    C, C_cavity = st.matrices(n, upwinded)
+    for new, ref in ((C, by_segment(w)), (C_cavity, by_segment(w * scale))):
+        assert abs(new - ref).max() <= 1e-15 * abs(ref).max()
+    assert st.scale is not None and upwinded.sum() > 50
