@@ -125,3 +125,16 @@ def test_streamline_matrices_summed_per_triangle_equal_the_segment_sums():
     for new, ref in ((C, by_segment(w)), (C_cavity, by_segment(w * scale))):
         assert abs(new - ref).max() <= 1e-15 * abs(ref).max()
     assert st.scale is not None and upwinded.sum() > 50
+
+
+def test_corner_facet_triangles_found_without_the_inverse_map():
+    # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
+    # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
+    from bearingfe.film import finite_volume as fv
+
+    mesh = mesh_surface(dimple().surface, 0.05)   # no pockets: nothing else builds the map
+    fv.solve_jfo(mesh, dimple().film, cavitation_pressure=-0.05)
+    assert not hasattr(mesh.mesh, "_f2t")
+    facets = np.asarray(mesh.boundaries["outer"])
+    found = fv._facet_elements(mesh.mesh, facets)
+    assert np.array_equal(found, mesh.mesh.f2t[0, facets])
