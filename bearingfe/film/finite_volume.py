@@ -1859,7 +1859,6 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
                             pockets=isinstance(inlet_pressure, tuple), grad_p=dp)
     dp = dp[:, :, None]
-    theta_q = _interpolate(cells, theta)[0]
     sliding = wedge if sliding is None else float(sliding)
     area = system.area
     emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
@@ -1871,6 +1870,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     else:
         u = velocity_at(mesh.runner, x)
         speed2 = 1.0 if u is None else u[0] ** 2 + u[1] ** 2
+        theta_q = _interpolate(cells, theta)[0]   # the median dual's shear (the grid's is the box fill's)
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)
