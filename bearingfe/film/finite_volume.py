@@ -908,7 +908,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
     area = _load(cells, np.ones_like(h_q))
-    storage = _load(cells, hdot_q)
+    no_squeeze = squeeze[0] == 0.0 and squeeze[1] == 0.0   # as _rate: dh/dt = 0, its load 0
+    storage = np.zeros(n) if no_squeeze else _load(cells, hdot_q)
     source = np.zeros(n)
     if dt is not None:
         H = _load(cells, h_q)
