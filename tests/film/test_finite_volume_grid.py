@@ -301,3 +301,25 @@ def test_circle_contours_crossed_in_closed_form_as_bisection_finds_them(monkeypa
     # a chord end lies where the circle's test changes: just below it inside, just above outside
     c = fv._circle_crossing(Circle((0.3, 0.1), 0.17), np.array([0.3, 0.4]), np.array([True, False]))
     assert np.allclose(c, [0.27, 0.1 - np.sqrt(0.17**2 - 0.1**2)], rtol=0, atol=1e-15)
+
+
+def test_coarse_levels_without_sub_cell_means_start_the_same_fine_solve(monkeypatch):
+    # a nested start's coarse levels take h^3 at the quadrature points on the cells a dimple contour cuts
+    # (no sub-cell means): their cavity only starts the finer level, whose answer is the LCP's solution
+    # whatever the start (to round-off) and here in as many fine factorizations
+    from bearingfe.film import finite_volume as fv
+
+    mesh = grid_mesh(_dimpled(), 1 / 100)
+    plain = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    monkeypatch.setattr(fv, "NESTED_CELL_MEANS", True)
+    means = solve_jfo(grid_mesh(_dimpled(), 1 / 100), UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert plain.cost["nested_levels"] >= 1 and plain.cavitated.any()
+    assert np.array_equal(plain.cavitated, means.cavitated)
+    assert np.abs(plain.pressure - means.pressure).max() <= 1e-10 * np.abs(means.pressure).max()
+    assert plain.cost["factorizations"] == means.cost["factorizations"]
+    # the coarse system differs from the one with the means where the contours cut the cells
+    coarse = fv._coarser_grid(mesh)
+    ops = fv.operators(coarse)
+    rough = fv._assemble(ops, coarse, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid", rough=True)
+    exact = fv._assemble(ops, coarse, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    assert abs(rough.K - exact.K).max() > 1e-6 * abs(exact.K).max()
