@@ -1592,6 +1592,13 @@ NESTED_P_WEIGHT = 10.0
 #: docs/jfo_dimples.md at 1e4 .. 1.6e5 nodes: the same fine factorizations and answers to 1e-14, the coarse
 #: levels' sub-cell sampling saved: 3-6 % of a cold solve at 1e4 .. 4e4 nodes, load 1 on 2 cores).
 NESTED_CELL_MEANS = False
+#: Whether the fixed dofs of a nested start's coarse level (edges, pockets: full film at their own pressure)
+#: carry their ``P = p - p_c`` into the interpolated sign, as the unknowns do; without it they read 0, a front,
+#: and every fine node between a coarse cavity node and a fed pocket's edge starts in the cavity. Measured on
+#: the grooved journal of docs/jfo_gmsh.md on meshes refined at the groove (many fine nodes there): 2 against 4
+#: fine factorizations at 2,548 nodes, 2 against 6 at 4,419, 1 against 6 at 7,731 (94 against 187 ms); the
+#: other cases of that page and the 5 x 5 dimples the same counts (their edges are at or near ``p_c``).
+NESTED_FIXED_SIGN = True
 
 
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
@@ -1669,7 +1676,10 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
     # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
     P = csol.p - p_c
-    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, NESTED_P_WEIGHT * P / (np.abs(P).max(initial=0.0) or 1.0))
+    scale = float(np.abs(P).max(initial=0.0)) or 1.0
+    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, NESTED_P_WEIGHT * P / scale)
+    if NESTED_FIXED_SIGN:   # edges and pockets: full film at their own pressure (not 0, which reads as a front)
+        d[cunk.fixed] = NESTED_P_WEIGHT * (_pocket_values(coarse, cops, inlet_pressure)[cunk.fixed] - p_c) / scale
     cp = cops.basis.doflocs
     lines = [np.unique(cp[0]), np.unique(cp[1])]
     values = np.zeros((lines[0].size, lines[1].size))   # nodes in pockets (holes) stay 0: no fine node reads them
