@@ -65,8 +65,8 @@ one or two linear solves; a cold solve with the grid flux on a ``grid_mesh`` of
 :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on
 the grid with every other line (nested iteration, recursively), which halves
 the fine-level factorizations (measured 4 against 7-8 on the dimpled slider at
-1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of as many
-unknowns starts from the cavity of the same problem on a ``grid_mesh`` of its
+1e5 and 3.6e5 unknowns); a cold solve on an unstructured mesh of
+:data:`NESTED_MIN_UNSTRUCTURED` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of its
 surface with about a quarter of its nodes (grid flux; measured 4, 4 and 2
 fine-level factorizations against 9, 8 and 6 on the pocket pad, the dimple and
 the grooved journal of docs/jfo_gmsh.md at 2.3e4-4.7e4 nodes). Where the
@@ -100,6 +100,7 @@ from ..core.linalg import Factorize, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
+from ..geometry.surface import Circle
 from .mesh_operators import Operators, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
@@ -396,14 +397,18 @@ class _Streamline:
         taking theta of their upwind node."""
         w = np.where(upwinded, 0.0, self.weights)
         w[0] += np.where(upwinded, 1.0, 0.0)
-        nodes = self.nodes.copy()
-        nodes[0] = np.where(upwinded, self.up, nodes[0])
-        C = _streamline_flux(n, self.d, self.flux, nodes, w).tocsr()
+        nt = self.nodes.shape[1] // 3
+        t = self.nodes[:, :nt]   # the foot nodes are the segment's triangle's (median_dual's segment order)
+        first = None
+        if upwinded.any():   # the upwinded segments' first weight goes to their upwind node's column
+            pair = np.arange(upwinded.size) // nt
+            first = np.where(upwinded, np.where(self.up == self.d.i, pair, (pair + 1) % 3), 0)
+        C = _streamline_flux(n, t, self.flux, w, first)
         if self.scale is None:
             return C, None
         s = self.scale.copy()
         s[0] = np.where(upwinded, self.up_scale, s[0])
-        return C, _streamline_flux(n, self.d, self.flux, nodes, w * s).tocsr()
+        return C, _streamline_flux(n, t, self.flux, w * s, first)
 
 
 def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
@@ -442,12 +447,33 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
 STREAMLINE_PASSES = 8
 
 
-def _streamline_flux(n: int, d: _Dual, f: np.ndarray, nodes: np.ndarray, w: np.ndarray) -> sp.csr_matrix:
-    """Outflow per dual cell of ``f_s theta(foot_s)`` through each segment (from ``i`` to ``j``)."""
-    rows = np.concatenate([np.tile(d.i, 3), np.tile(d.j, 3)])
-    cols = np.concatenate([nodes.ravel(), nodes.ravel()])
-    vals = np.concatenate([(f * w).ravel(), -(f * w).ravel()])
-    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
+                     first: np.ndarray | None = None) -> sp.csr_matrix:
+    """Outflow per dual cell of ``f_s theta(foot_s)`` through each median-dual segment (from ``i`` to ``j``,
+    :func:`median_dual`'s order: segment ``e * n_triangles + k`` joins the nodes ``e`` and ``e + 1`` of
+    triangle ``k``), theta at the foot ``sum_b w[b] theta(t[b])`` over the triangle's nodes ``t`` ``(3,
+    n_triangles)``; ``first``: per segment the local node (0..2) that takes the weight ``w[0]`` (default 0).
+    Summed per triangle into its 3 x 3 block first (the P1 stiffness's pattern: 9 entries a triangle for
+    the sort into CSR, not 18 per segment triple)."""
+    nt = t.shape[1]
+    local = np.zeros((3, 3, nt))   # (row node, column node, triangle)
+    flat = local.reshape(-1)
+    k = np.arange(nt)
+    for e in range(3):
+        seg = slice(e * nt, (e + 1) * nt)
+        a, b = e, (e + 1) % 3
+        for c in range(3):
+            v = f[seg] * w[c, seg]
+            if c == 0 and first is not None:
+                col = first[seg]
+                flat[(3 * a + col) * nt + k] += v
+                flat[(3 * b + col) * nt + k] -= v
+            else:
+                local[a, c] += v
+                local[b, c] -= v
+    rows = np.repeat(t, 3, axis=0).ravel()
+    cols = np.tile(t, (3, 1)).ravel()
+    return sp.csr_matrix((flat, (rows, cols)), shape=(n, n))
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
@@ -612,9 +638,10 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
     crossing of a recess contour located to ``2**-bisections`` of a sub-interval (1e-9 for 30) in
     ``pieces`` sub-intervals per segment (at most one crossing per sub-interval: recesses wider than
-    an eighth of a cell). The sub-intervals a contour crosses are searched together, recess by recess
-    (only the crossed recess's own test), each round testing ``sections - 1`` points of every bracket at
-    once and keeping the part where the test changes: ``log2(sections)`` halvings per round."""
+    an eighth of a cell). A circle's contour is crossed where its chord on the line ends (closed form);
+    other contours' crossings are searched together, recess by recess (only the crossed recess's own
+    test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
+    the test changes: ``log2(sections)`` halvings per round."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
@@ -623,6 +650,8 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     if seg.size:
         aa, bb, dA, xs = a[seg, k].copy(), b[seg, k].copy(), da[seg, k], x[seg]
         groups, owned = [], np.zeros(seg.size, bool)
+        exact = np.zeros(seg.size, bool)   # crossings of a circle's contour: found in closed form
+        found = np.empty(seg.size)
         for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
             cand = np.flatnonzero(~owned & (xs >= blo[0]) & (xs <= bhi[0]) & (bb >= blo[1]) & (aa <= bhi[1]))
             if cand.size:
@@ -631,24 +660,51 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
                 cand, inside = cand[crossed], inside[crossed]
                 if cand.size:
                     owned[cand] = True
-                    groups.append((cand, lambda px, pz, r=r, inside=inside: r.shape.contains(px, pz) == inside[:, None]))
+                    if isinstance(r.shape, Circle):
+                        exact[cand] = True
+                        found[cand] = np.clip(_circle_crossing(r.shape, xs[cand], inside), aa[cand], bb[cand])
+                    else:
+                        groups.append((cand, lambda px, pz, r=r, inside=inside:
+                                       r.shape.contains(px, pz) == inside[:, None]))
         rest = np.flatnonzero(~owned)   # not one recess's crossing (none should be left): the surface's depth
         if rest.size:
             groups.append((rest, lambda px, pz, dA=dA[rest]: surface.recess_depth(px, pz) == dA[:, None]))
-        halvings = max(1, int(round(math.log2(sections))))
-        fractions = np.arange(1, sections) / sections
-        rows, px = np.arange(seg.size), xs[:, None]
-        for _ in range(-(-bisections // halvings)):
-            c = aa[:, None] + (bb - aa)[:, None] * fractions
-            left = np.empty(c.shape, bool)
-            for idx, same_side in groups:
-                left[idx] = same_side(px[idx], c[idx])
-            first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
-            aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
-                      np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
-        c = 0.5 * (aa + bb)
-        piece[seg, k] = dA * (c - a[seg, k]) + db[seg, k] * (b[seg, k] - c)
+        if groups:
+            todo = np.flatnonzero(~exact)
+            found[todo] = _bisect_crossings(groups, todo, xs, aa, bb, bisections, sections)
+        piece[seg, k] = dA * (found - a[seg, k]) + db[seg, k] * (b[seg, k] - found)
     return piece.sum(axis=1)
+
+
+def _circle_crossing(circle: Circle, x: np.ndarray, inside: np.ndarray) -> np.ndarray:
+    """Where the lines ``phi = x`` cross the contour of ``circle`` upwards in ``z``: leaving it (its upper
+    chord end) where ``inside`` (the bracket's lower end lies in it), else entering it (the lower end)."""
+    (cx, cz), r = circle.center, circle.radius
+    half = np.sqrt(np.maximum(r * r - (x - cx) ** 2, 0.0))
+    return np.where(inside, cz + half, cz - half)
+
+
+def _bisect_crossings(groups, todo: np.ndarray, xs: np.ndarray, aa: np.ndarray, bb: np.ndarray,
+                      bisections: int, sections: int) -> np.ndarray:
+    """The crossings of the brackets ``todo`` (indices into ``xs``, ``aa``, ``bb``), each to ``2**-bisections``
+    of its bracket: rounds of ``sections - 1`` points per bracket, each group ``(indices, same_side)`` testing
+    its own brackets; returns the midpoints of the last brackets."""
+    where = np.full(xs.size, -1, np.int64)
+    where[todo] = np.arange(todo.size)
+    groups = [(where[idx], test) for idx, test in groups]
+    aa, bb, px = aa[todo].copy(), bb[todo].copy(), xs[todo][:, None]
+    halvings = max(1, int(round(math.log2(sections))))
+    fractions = np.arange(1, sections) / sections
+    rows = np.arange(todo.size)
+    for _ in range(-(-bisections // halvings)):
+        c = aa[:, None] + (bb - aa)[:, None] * fractions
+        left = np.empty(c.shape, bool)
+        for idx, same_side in groups:
+            left[idx] = same_side(px[idx], c[idx])
+        first = np.where(left.all(axis=1), sections - 1, np.argmin(left, axis=1))   # first point past it
+        aa, bb = (np.where(first > 0, c[rows, np.maximum(first - 1, 0)], aa),
+                  np.where(first < sections - 1, c[rows, np.minimum(first, sections - 2)], bb))
+    return 0.5 * (aa + bb)
 
 
 def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
@@ -815,14 +871,16 @@ class FVSystem:
 
 
 def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squeeze, dt, previous,
-              couette: str = "median") -> FVSystem:
+              couette: str = "median", rough: bool = False) -> FVSystem:
+    """The operators of the scheme; ``rough``: ``h^3`` at the quadrature points also on the cells a recess
+    contour cuts (a nested start's coarse level: no sub-cell means, :data:`NESTED_CELL_MEANS`)."""
     basis = ops.basis
     x = ops.x
     h_q = _film_q(mesh, film, x)
     if not np.all(h_q > 0):
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
-    h_q, inv_h_q, h3_q = _cell_means(mesh, film, x, h_q)
+    h_q, inv_h_q, h3_q = (h_q, 1.0 / h_q, h_q**3) if rough else _cell_means(mesh, film, x, h_q)
     cells = _cells(mesh, ops)
     K = _stiffness(cells, h3_q / 12.0)
     rec = None
@@ -852,7 +910,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
     area = _load(cells, np.ones_like(h_q))
-    storage = _load(cells, hdot_q)
+    no_squeeze = squeeze[0] == 0.0 and squeeze[1] == 0.0   # as _rate: dh/dt = 0, its load 0
+    storage = np.zeros(n) if no_squeeze else _load(cells, hdot_q)
     source = np.zeros(n)
     if dt is not None:
         H = _load(cells, h_q)
@@ -1296,6 +1355,24 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
 
 # -- flows ------------------------------------------------------------------------------
 
+def _facet_elements(m, facets: np.ndarray) -> np.ndarray:
+    """The triangle of each boundary facet: scikit-fem's ``f2t`` where the mesh has it already, else found
+    among the triangles with two nodes on the facets (a few corner facets: not the inverse map of every
+    facet, 5 ms at 7,500 nodes, built for them alone on a gmsh mesh without pockets)."""
+    if hasattr(m, "_f2t"):   # scikit-fem's cache of the map
+        return m.f2t[0, facets]
+    a, b = m.facets[:, facets]
+    t = m.t[:3]
+    mark = np.zeros(m.nvertices, bool)
+    mark[a], mark[b] = True, True
+    cand = np.flatnonzero(mark[t].sum(axis=0) >= 2)
+    tc = t[:, cand]
+    match = (tc[:, None, :] == a[None, :, None]).any(axis=0) & (tc[:, None, :] == b[None, :, None]).any(axis=0)
+    if not np.all(match.sum(axis=1) == 1):   # not each a boundary facet of one triangle
+        return m.f2t[0, facets]
+    return cand[np.argmax(match, axis=1)]
+
+
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
                 facets: np.ndarray) -> np.ndarray:
     """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node.
@@ -1307,7 +1384,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     if facets.size == 0:
         return out
     a, b = m.facets[:, facets]
-    elem = m.f2t[0, facets]
+    elem = _facet_elements(m, facets)
     pa, pb = m.p[:, a], m.p[:, b]
     tvec = pb - pa
     length = np.linalg.norm(tvec, axis=0)
@@ -1491,7 +1568,12 @@ def _auto_couette(mesh: SupportMesh) -> str:
 
 #: Unknowns from which a cold grid solve (``couette="grid"`` on ``grid_mesh``) starts from the cavity of the
 #: same problem on the grid with every other line (nested iteration, recursively down to fewer unknowns).
-NESTED_MIN = 15000
+#: Measured (best of 4 interleaved, load 0.3-0.8 on 2 cores; the 5 x 5 dimples of docs/jfo_dimples.md, the
+#: pocket pad and the dimple of docs/jfo_gmsh.md): even below 4,000 nodes; from there on a win (pocket pad
+#: 45.8 against 54.5 ms at 4,872 nodes, 101 against 187 ms at 9,840; the 5 x 5 dimples 150 against 163 ms
+#: at 10,201, 628 against 751 ms at 40,401: 3 fine factorizations against 5), and the same fine
+#: factorizations at 7.9e4 and 1.6e5 nodes (one more coarse level).
+NESTED_MIN = 4000
 #: A nested start's coarse level stops its active-set iteration once a step would switch at most this
 #: fraction of its nodes (the finer level's own steps move the cavity by more: its discretization shifts
 #: the fronts by a cell): a rough coarse cavity, not a converged one.
@@ -1504,6 +1586,19 @@ NESTED_ROUGH = 0.005
 #: 200x200, 400x400 and 600x600 cells, rough coarse levels): fine factorizations 3, 3, 3 at weights 3, 10
 #: and 30; 3, 4, 4 at 1e-4 (about the unscaled start); 3, 3, 4 at 1; 4, 4, 4 at 100.
 NESTED_P_WEIGHT = 10.0
+#: Whether a nested start's coarse levels integrate ``h^3`` over the grid cells a recess contour cuts by the
+#: sub-cell means (:func:`_cell_means`), as the finest level does. Off: the coarse levels take the plain
+#: quadrature there, their cavity only starts the finer level (measured on the 5 x 5 dimples of
+#: docs/jfo_dimples.md at 1e4 .. 1.6e5 nodes: the same fine factorizations and answers to 1e-14, the coarse
+#: levels' sub-cell sampling saved: 3-6 % of a cold solve at 1e4 .. 4e4 nodes, load 1 on 2 cores).
+NESTED_CELL_MEANS = False
+#: Whether the fixed dofs of a nested start's coarse level (edges, pockets: full film at their own pressure)
+#: carry their ``P = p - p_c`` into the interpolated sign, as the unknowns do; without it they read 0, a front,
+#: and every fine node between a coarse cavity node and a fed pocket's edge starts in the cavity. Measured on
+#: the grooved journal of docs/jfo_gmsh.md on meshes refined at the groove (many fine nodes there): 2 against 4
+#: fine factorizations at 2,548 nodes, 2 against 6 at 4,419, 1 against 6 at 7,731 (94 against 187 ms); the
+#: other cases of that page and the 5 x 5 dimples the same counts (their edges are at or near ``p_c``).
+NESTED_FIXED_SIGN = True
 
 
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
@@ -1530,9 +1625,18 @@ def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
 
 
 #: A cold solve on an unstructured mesh (``couette`` ``"streamline"``, ``"median"`` or ``"limited"``) of
-#: :data:`NESTED_MIN` unknowns or more starts from the cavity of the same problem on a ``grid_mesh`` of the
-#: surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested).
+#: :data:`NESTED_MIN_UNSTRUCTURED` unknowns or more starts from the cavity of the same problem on a ``grid_mesh``
+#: of the surface with about a quarter of its nodes (:func:`_grid_under`, the grid flux; itself nested from
+#: :data:`NESTED_MIN` on).
 NESTED_UNSTRUCTURED = True
+#: Unknowns from which a cold solve on an unstructured mesh takes the nested start (:data:`NESTED_UNSTRUCTURED`):
+#: lower than a grid's :data:`NESTED_MIN`, since the fine level's factorizations cost more there (the streamline
+#: flux's wider stencil) while the coarse grid is a quarter of the nodes. Measured (docs/jfo_gmsh.md's cases,
+#: uniform and contour-refined gmsh meshes, best of 4 interleaved, load 1 on 2 cores): even at about 1,500 nodes
+#: (pocket pad 22.0 against 22.1 ms at 1,340 nodes, 16.6 against 19.2 ms at 963), a win from 2,000 on (pocket pad
+#: 31.8 against 35.8 ms at 1,936 nodes, 45.7 against 70.2 at 2,952, 103 against 184 ms at 7,375 nodes: 2 against
+#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes).
+NESTED_MIN_UNSTRUCTURED = 2000
 
 
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
@@ -1572,7 +1676,10 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
     # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
     P = csol.p - p_c
-    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, NESTED_P_WEIGHT * P / (np.abs(P).max(initial=0.0) or 1.0))
+    scale = float(np.abs(P).max(initial=0.0)) or 1.0
+    d = cunk.S @ np.where(csol.cavity, csol.theta - 1.0, NESTED_P_WEIGHT * P / scale)
+    if NESTED_FIXED_SIGN:   # edges and pockets: full film at their own pressure (not 0, which reads as a front)
+        d[cunk.fixed] = NESTED_P_WEIGHT * (_pocket_values(coarse, cops, inlet_pressure)[cunk.fixed] - p_c) / scale
     cp = cops.basis.doflocs
     lines = [np.unique(cp[0]), np.unique(cp[1])]
     values = np.zeros((lines[0].size, lines[1].size))   # nodes in pockets (holes) stay 0: no fine node reads them
@@ -1591,11 +1698,12 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
                      max_iterations: int, warm_start, start: float, rough: int = 0):
     """Assembly and the complementarity solve of :func:`solve_jfo` (inputs checked, ``couette`` resolved);
-    ``rough`` as in :func:`active_set` (the grid flux only: a nested start's coarse level).
+    ``rough`` as in :func:`active_set` (the grid flux only: a nested start's coarse level, assembled without
+    the cut cells' sub-cell means unless :data:`NESTED_CELL_MEANS`).
     Returns the time the assembly ended, the operators, system, unknowns, solution, the number of upwinded
     segments and the costs of a nested start."""
     ops = operators(mesh, "P1")
-    system = _assemble(ops, mesh, film, wedge, sq, dt, previous, couette)
+    system = _assemble(ops, mesh, film, wedge, sq, dt, previous, couette, rough=bool(rough) and not NESTED_CELL_MEANS)
     t1 = time.perf_counter()
     p_fixed = _pocket_values(mesh, ops, inlet_pressure)
     unk = _unknowns(mesh, ops)
@@ -1604,8 +1712,9 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
-        if (cavity is None and dt is None and cavitation == "jfo" and unk.rep.size >= NESTED_MIN
-                and (couette == "grid" or NESTED_UNSTRUCTURED)):
+        if (cavity is None and dt is None and cavitation == "jfo"
+                and (unk.rep.size >= NESTED_MIN if couette == "grid"
+                     else NESTED_UNSTRUCTURED and unk.rep.size >= NESTED_MIN_UNSTRUCTURED)):
             cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
@@ -1770,7 +1879,6 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     flows, balance = _flows(mesh, ops, film, system, wedge, p, theta, created=model == "reynolds",
                             pockets=isinstance(inlet_pressure, tuple), grad_p=dp)
     dp = dp[:, :, None]
-    theta_q = _interpolate(cells, theta)[0]
     sliding = wedge if sliding is None else float(sliding)
     area = system.area
     emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
@@ -1782,6 +1890,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     else:
         u = velocity_at(mesh.runner, x)
         speed2 = 1.0 if u is None else u[0] ** 2 + u[1] ** 2
+        theta_q = _interpolate(cells, theta)[0]   # the median dual's shear (the grid's is the box fill's)
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)

@@ -89,7 +89,7 @@ def test_ordered_factorization_falls_back_on_an_inaccurate_solve():
 @pytest.mark.parametrize("couette, fewer", [("streamline", True), ("median", False)])
 def test_nested_start_on_gmsh_meshes_gives_the_cold_answer_in_fewer_fine_steps(monkeypatch, couette, fewer):
     case = pocket_pad()
-    monkeypatch.setattr(fv, "NESTED_MIN", 300)
+    monkeypatch.setattr(fv, "NESTED_MIN_UNSTRUCTURED", 300)
     monkeypatch.setattr(fv, "NESTED_UNSTRUCTURED", False)
     cold = fv.solve_jfo(mesh_surface(case.surface, 0.03), case.film, couette=couette, **_options(case))
     monkeypatch.setattr(fv, "NESTED_UNSTRUCTURED", True)

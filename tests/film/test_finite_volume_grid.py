@@ -276,3 +276,50 @@ def test_rough_coarse_levels_give_the_converged_answer_in_fewer_coarse_steps(mon
     assert np.array_equal(rough.cavitated, converged.cavitated)
     assert np.abs(rough.pressure - converged.pressure).max() < 1e-10 * np.abs(converged.pressure).max()
     assert np.abs(rough.theta - converged.theta).max() < 1e-10
+
+
+def test_circle_contours_crossed_in_closed_form_as_bisection_finds_them(monkeypatch):
+    # the face film of a grid's box faces across circular dimple contours: the chord ends (closed form)
+    # against the bracketing search every other shape takes (to 2**-30 of an eighth of a cell): the same
+    # line integrals to that search's resolution, and a square recess (a Polygon) still bisected
+    from bearingfe.film import finite_volume as fv
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+        recesses=[Recess(Circle((0.3, 0.1), 0.17), 0.8), Recess(Circle((0.72, -0.2), 0.11), 1.3),
+                  Recess(Rectangle((0.7, 0.25), (0.2, 0.1)), 0.5)])
+    g = fv._grid_faces(grid_mesh(surface, 1 / 37))
+    closed = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+
+    class NotACircle:   # every recess bisected
+        pass
+
+    monkeypatch.setattr(fv, "Circle", NotACircle)
+    bisected = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    # the search ends within 2**-31 of an eighth of a cell of each crossing, at most a few per face, each
+    # weighing the depth step (1.3): 4 * 1.3 * (1/37/8) * 2**-31 = 8e-12
+    assert np.count_nonzero(closed) > 100 and np.abs(closed - bisected).max() <= 1e-11
+    # a chord end lies where the circle's test changes: just below it inside, just above outside
+    c = fv._circle_crossing(Circle((0.3, 0.1), 0.17), np.array([0.3, 0.4]), np.array([True, False]))
+    assert np.allclose(c, [0.27, 0.1 - np.sqrt(0.17**2 - 0.1**2)], rtol=0, atol=1e-15)
+
+
+def test_coarse_levels_without_sub_cell_means_start_the_same_fine_solve(monkeypatch):
+    # a nested start's coarse levels take h^3 at the quadrature points on the cells a dimple contour cuts
+    # (no sub-cell means): their cavity only starts the finer level, whose answer is the LCP's solution
+    # whatever the start (to round-off) and here in as many fine factorizations
+    from bearingfe.film import finite_volume as fv
+
+    mesh = grid_mesh(_dimpled(), 1 / 100)
+    plain = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    monkeypatch.setattr(fv, "NESTED_CELL_MEANS", True)
+    means = solve_jfo(grid_mesh(_dimpled(), 1 / 100), UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert plain.cost["nested_levels"] >= 1 and plain.cavitated.any()
+    assert np.array_equal(plain.cavitated, means.cavitated)
+    assert np.abs(plain.pressure - means.pressure).max() <= 1e-10 * np.abs(means.pressure).max()
+    assert plain.cost["factorizations"] == means.cost["factorizations"]
+    # the coarse system differs from the one with the means where the contours cut the cells
+    coarse = fv._coarser_grid(mesh)
+    ops = fv.operators(coarse)
+    rough = fv._assemble(ops, coarse, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid", rough=True)
+    exact = fv._assemble(ops, coarse, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    assert abs(rough.K - exact.K).max() > 1e-6 * abs(exact.K).max()
