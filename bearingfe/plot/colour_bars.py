@@ -23,11 +23,16 @@ def colour_bar(ax, mappable, label: str, locator):
     """A vertical colour bar right of ``ax``, drawn by a few artists of the figure (:class:`ColourBar`), in the
     place and the looks of ``fig.colorbar(mappable, ax=ax, shrink=BAR_SHRINK)``: ``ax`` gives up the same share
     of its cell; ``locator`` (e.g. a ``MaxNLocator``) places the ticks; ``label`` beside them. Returns the bar
-    (also ``mappable.colorbar``).
+    (also ``mappable.colorbar``). An axes that no grid placed (``fig.add_axes``) has no cell to share: it gets
+    matplotlib's own colour bar (``fig.colorbar``), which is returned.
 
     A matplotlib colour bar is an axes of its own (its tick objects, spines, a mesh of 256 cells and a layout
     pass: about 11 ms each, half of a field map's cost)."""
     fig = ax.get_figure()
+    if ax.get_subplotspec() is None:  # an axes placed by hand (add_axes): matplotlib's bar takes its room
+        bar = fig.colorbar(mappable, ax=ax, shrink=BAR_SHRINK, ticks=locator)
+        bar.set_label(label)
+        return bar
     grid = ax.get_subplotspec().subgridspec(3, 2, wspace=2 * BAR_PAD / (1 - BAR_PAD), hspace=0,
                                             height_ratios=[0.5 * (1 - BAR_SHRINK), BAR_SHRINK, 0.5 * (1 - BAR_SHRINK)],
                                             width_ratios=[1 - BAR_FRACTION - BAR_PAD, BAR_FRACTION])

@@ -85,3 +85,19 @@ def test_the_bar_looks_like_matplotlibs():
     assert difference.max() == 0
     assert inside[3:-3, 3:-3].max() <= 4  # the colours (the outline's antialiased corners may round apart)
     assert inside.max() <= 48
+
+
+def test_an_axes_placed_by_hand_gets_matplotlibs_bar():
+    """``fig.add_axes`` leaves no grid cell to share: the bar is matplotlib's own, labelled and ticked as asked."""
+    from matplotlib.colorbar import Colorbar
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
+
+    fig = Figure(figsize=(6.0, 3.5))
+    ax = fig.add_axes((0.1, 0.1, 0.6, 0.8))
+    mesh = ax.pcolormesh(np.arange(4.0), np.arange(3.0), np.arange(6.0).reshape(2, 3))
+    bar = colour_bars.colour_bar(ax, mesh, "h [um]", MaxNLocator(4))
+    assert isinstance(bar, Colorbar) and bar.ax.get_ylabel() == "h [um]" and mesh.colorbar is bar
+    _drawn(fig)
+    expected = [t for t in MaxNLocator(4).tick_values(0.0, 5.0) if 0.0 <= t <= 5.0]  # the locator's own values
+    assert [t for t in bar.get_ticks() if 0.0 <= t <= 5.0] == expected and len(expected) >= 3
