@@ -319,7 +319,9 @@ def mesh_surface(
                               size_function=size_function, min_size=min_size,
                               order=order, refine=refine + 1, algorithm=algorithm, verbose=verbose,
                               max_elements=max_elements)
-    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again)
+    # mesh_from_data checked the triangles (_read_gmsh_model): the mesh need not check them again
+    return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again,
+                       _cache={_CELLS_CHECKED: True})
 
 
 def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
@@ -392,7 +394,8 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
     mesh = mesh_from_data(data, path.name)
     if "outer" not in (mesh.boundaries or {}):
         raise ValueError(f"{path.name}: no physical curve group named 'outer'")
-    return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path))
+    return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path),
+                       _cache={_CELLS_CHECKED: True})  # mesh_from_data checked the triangles
 
 
 def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:

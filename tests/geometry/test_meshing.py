@@ -341,6 +341,21 @@ def test_grid_cells_checked_on_the_lines_agree_with_the_per_triangle_check(monke
     assert calls == [1]
 
 
+def test_gmsh_meshes_check_their_triangles_once(monkeypatch):
+    """mesh_surface and load_mesh check the triangles as they read them (mesh_from_data): the support mesh they
+    return does not check them again; a bad file still fails on that one check (test_geofiles, test_guards)."""
+    from bearingfe.geometry import meshing
+
+    calls = []
+    real = meshing.check_triangles
+    monkeypatch.setattr(meshing, "check_triangles", lambda *a, **k: calls.append(1) or real(*a, **k))
+    mesh = bf.mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.2)
+    assert calls == [1] and "_cells_checked" not in mesh._cache
+    calls.clear()
+    SupportMesh(mesh=mesh.mesh, surface=mesh.surface, source="user")  # a mesh from elsewhere: checked
+    assert calls == [1]
+
+
 def test_grid_facets_are_the_ones_scikit_fem_builds():
     """grid_mesh builds its facets itself (a sparse counting sort); they must be scikit-fem's own arrays
     (Mesh.facets, Mesh.t2f, f2t): the same pairs in the same order, on a grid with a pocket cut out."""
