@@ -622,31 +622,41 @@ def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
     """
     t_all = np.asarray(data.triangles, dtype=np.int64)
     order = 1 if t_all.shape[0] == 3 else 2
-    used = np.unique(t_all)
+    used = _used(t_all, data.points.shape[1])
     compact = np.full(data.points.shape[1], -1, dtype=np.int64)
     compact[used] = np.arange(used.size)
     xy = np.ascontiguousarray(data.points[:, used], dtype=float)
     t = compact[t_all]
     check_triangles(xy, t[:3], name)
-    vertices = np.unique(t[:3])
+    vertices = _used(t[:3], xy.shape[1])
     renumber = np.full(xy.shape[1], -1, dtype=np.int64)
     renumber[vertices] = np.arange(vertices.size)  # scikit-fem's own vertex numbering
     if order == 1:
         mesh = skfem.MeshTri1(np.ascontiguousarray(xy[:, vertices]), np.ascontiguousarray(renumber[t]))
     else:
         mesh = skfem.MeshTri2(xy, np.ascontiguousarray(t))
-    facet_of = {(a, b): k for k, (a, b) in enumerate(np.sort(mesh.facets, axis=0).T.tolist())}
+    _init_facets(mesh)
+    nv = int(mesh.nvertices)
+    codes = mesh.facets[0].astype(np.int64) * nv + mesh.facets[1]  # ascending: the facets are sorted pairs
     boundaries = {}
     for label, ends in data.curves.items():
-        ends = renumber[compact[np.asarray(ends, dtype=np.int64)]]
-        keys = [tuple(sorted(e)) for e in ends.T.tolist()]
-        missing = [k for k in keys if k not in facet_of]
+        ends = np.sort(renumber[compact[np.asarray(ends, dtype=np.int64)]], axis=0)
+        wanted = ends[0] * nv + ends[1]
+        at = np.minimum(np.searchsorted(codes, wanted), codes.size - 1)
+        missing = int(np.count_nonzero((codes[at] != wanted) | (ends[0] < 0)))
         if missing:
             raise GeometryFileError(
-                f"{name}: {len(missing)} edge(s) of the physical curve '{label}' are not edges of the triangles "
+                f"{name}: {missing} edge(s) of the physical curve '{label}' are not edges of the triangles "
                 f"(a pocket or gap too thin for the element size, or curves not in the meshed surface)")
-        boundaries[label] = np.array(sorted({facet_of[k] for k in keys}), dtype=np.int64)
+        boundaries[label] = np.unique(at).astype(np.int64)
     return with_named_boundaries(mesh, boundaries) if boundaries else mesh
+
+
+def _used(indices: np.ndarray, n: int) -> np.ndarray:
+    """The sorted distinct values of ``indices`` (all in ``0 .. n - 1``): ``np.unique`` by a mask, no sort."""
+    mask = np.zeros(n, dtype=bool)
+    mask[indices.ravel()] = True
+    return np.flatnonzero(mask)
 
 
 def with_named_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:

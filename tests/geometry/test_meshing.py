@@ -356,6 +356,22 @@ def test_gmsh_meshes_check_their_triangles_once(monkeypatch):
     assert calls == [1]
 
 
+@pytest.mark.parametrize("order", [1, 2])
+def test_gmsh_meshes_have_scikit_fems_own_facets_and_boundaries(order):
+    """mesh_from_data builds the facets by the counting sort and finds the named curves' facets by their codes:
+    the facets, the triangle-to-facet map and every boundary equal what scikit-fem builds from the same triangles
+    (reference: a fresh scikit-fem mesh of the same nodes and triangles, its boundaries by the curves' node pairs)."""
+    shoe = Surface(arc=(-0.6, 0.6), half_width=0.4, inlets=[bf.Circle((0.0, 0.0), 0.16)])
+    m = bf.mesh_surface(shoe, 0.08, order=order).mesh
+    fresh = type(m)(m.doflocs if order == 2 else m.p, m.t if order == 1 else np.vstack([m.t, m.t2f + m.nvertices]))
+    np.testing.assert_array_equal(m.facets, fresh.facets)
+    np.testing.assert_array_equal(m.t2f, fresh.t2f)
+    pairs = {tuple(f): k for k, f in enumerate(fresh.facets.T.tolist())}
+    for name, facets in m.boundaries.items():
+        ends = np.sort(m.facets[:, facets], axis=0)
+        assert [pairs[tuple(e)] for e in ends.T.tolist()] == facets.tolist()
+
+
 def test_grid_facets_are_the_ones_scikit_fem_builds():
     """grid_mesh builds its facets itself (a sparse counting sort); they must be scikit-fem's own arrays
     (Mesh.facets, Mesh.t2f, f2t): the same pairs in the same order, on a grid with a pocket cut out."""
