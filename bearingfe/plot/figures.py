@@ -15,11 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "drawn_ticks"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "write_png", "drawn_ticks"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100
-#: zlib level of the saved PNGs (0 none ... 9 smallest; PIL's default 6 takes several times longer).
+#: zlib level of the saved PNGs (0 none ... 9 smallest; 6, PIL's default, takes several times longer).
 PNG_COMPRESSION = 1
 
 
@@ -118,15 +118,63 @@ def ruled_table(ax, rows, col_labels, col_widths, *, fontsize: float = 9, row_he
 
 
 def save(fig, path):
-    """Save ``fig`` at :data:`DPI` (format from the suffix; PNGs at :data:`PNG_COMPRESSION`); returns ``fig``.
+    """Save ``fig`` at :data:`DPI` (format from the suffix); returns ``fig``.
 
     The ticks of plain axes are drawn by :func:`drawn_ticks` while the file is written (the figure returned
-    keeps matplotlib's own ticks)."""
-    if path is not None:
-        png = Path(path).suffix.lower() == ".png"
+    keeps matplotlib's own ticks). A PNG is the Agg canvas's pixels written by :func:`write_png` (what
+    ``savefig`` writes, in half the time); other formats go through ``savefig``."""
+    if path is None:
+        return fig
+    if Path(path).suffix.lower() != ".png":
         with drawn_ticks(fig):
-            fig.savefig(path, dpi=DPI, **({"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if png else {}))
+            fig.savefig(path, dpi=DPI)
+        return fig
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    dpi = fig.get_dpi()
+    fig.set_dpi(DPI)
+    try:
+        canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+        with drawn_ticks(fig):
+            canvas.draw()
+        write_png(np.asarray(canvas.buffer_rgba()), path, DPI)
+    finally:
+        fig.set_dpi(dpi)
     return fig
+
+
+def write_png(rgba: np.ndarray, path, dpi: float = DPI) -> None:
+    """Write an image ``(height, width, 4)`` of 8-bit RGBA as a PNG file (RGB when every pixel is opaque).
+
+    Every row is stored with PNG's "Sub" filter (each byte less the one a pixel before) and compressed by zlib
+    at level :data:`PNG_COMPRESSION`: about half of PIL's time for its adaptive filters, the file a tenth larger.
+    The resolution ``dpi`` [dots per inch] goes into the file (``pHYs``), as matplotlib writes it.
+    """
+    import struct
+    import zlib
+
+    image = np.asarray(rgba)
+    if image.ndim != 3 or image.shape[2] != 4 or image.dtype != np.uint8:
+        raise ValueError(f"rgba must be an (height, width, 4) uint8 array, got {image.dtype} {image.shape}")
+    opaque = bool(image[:, :, 3].min() == 255)
+    pixels = image[:, :, :3] if opaque else image
+    height, width, channels = pixels.shape
+    flat = pixels.reshape(height, width * channels)
+    rows = np.empty((height, flat.shape[1] + 1), dtype=np.uint8)
+    rows[:, 0] = 1  # Sub
+    rows[:, 1:channels + 1] = flat[:, :channels]
+    np.subtract(flat[:, channels:], flat[:, :-channels], out=rows[:, channels + 1:], casting="unsafe")
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    per_metre = int(round(dpi / 0.0254))
+    with open(path, "wb") as out:
+        out.write(b"\x89PNG\r\n\x1a\n")
+        out.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2 if opaque else 6, 0, 0, 0)))
+        out.write(chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)))
+        out.write(chunk(b"IDAT", zlib.compress(rows.tobytes(), PNG_COMPRESSION)))
+        out.write(chunk(b"IEND", b""))
 
 
 #: Tick parameters :func:`drawn_ticks` draws itself (an axis given any other keeps matplotlib's ticks).
