@@ -159,11 +159,11 @@ def write_png(rgba: np.ndarray, path, dpi: float = DPI) -> None:
     opaque = bool(image[:, :, 3].min() == 255)
     pixels = image[:, :, :3] if opaque else image
     height, width, channels = pixels.shape
-    flat = pixels.reshape(height, width * channels)
-    rows = np.empty((height, flat.shape[1] + 1), dtype=np.uint8)
+    rows = np.empty((height, 1 + width * channels), dtype=np.uint8)  # the one buffer: filter byte, then bytes
     rows[:, 0] = 1  # Sub
-    rows[:, 1:channels + 1] = flat[:, :channels]
-    np.subtract(flat[:, channels:], flat[:, :-channels], out=rows[:, channels + 1:], casting="unsafe")
+    body = rows[:, 1:].reshape(height, width, channels)
+    body[:, 0] = pixels[:, 0]
+    np.subtract(pixels[:, 1:], pixels[:, :-1], out=body[:, 1:])  # modulo 256
 
     def chunk(kind: bytes, data: bytes) -> bytes:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
@@ -173,7 +173,7 @@ def write_png(rgba: np.ndarray, path, dpi: float = DPI) -> None:
         out.write(b"\x89PNG\r\n\x1a\n")
         out.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2 if opaque else 6, 0, 0, 0)))
         out.write(chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1)))
-        out.write(chunk(b"IDAT", zlib.compress(rows.tobytes(), PNG_COMPRESSION)))
+        out.write(chunk(b"IDAT", zlib.compress(memoryview(rows), PNG_COMPRESSION)))
         out.write(chunk(b"IEND", b""))
 
 
