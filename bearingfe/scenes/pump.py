@@ -327,8 +327,8 @@ PERIODIC_TOL = 1e-6
 #: CPU cost of each picture and of the PVD frames [ms] (shipped scene, each alone in a process forked after the
 #: picture modules loaded, its first-use costs included, best of five; "deflection" taken as "pressure"): how
 #: :func:`run` shares them among processes; the frames reuse the states already solved.
-_COSTS = {"pressure": 200.0, "film": 182.0, "deflection": 200.0, "summary": 183.0, "trajectory": 139.0,
-          "pocket": 111.0, "orbit": 67.0, "frames": 10.0}
+_COSTS = {"pressure": 189.0, "film": 174.0, "deflection": 189.0, "summary": 181.0, "trajectory": 133.0,
+          "pocket": 110.0, "orbit": 65.0, "frames": 10.0}
 #: Up to this many assignments (``workers ** jobs``) the shares are the best of them all; above,
 #: the dearest first to the least loaded share.
 _EXACT_SHARES_UP_TO = 4096
