@@ -155,12 +155,19 @@ class GalerkinProduct:
         k, first = np.repeat(k, copies), np.repeat(first, copies)
         p, q, w = S.indices[first], S.indices[second], S.data[first] * S.data[second]
         m = S.shape[1]
-        keys, target = np.unique(p.astype(np.int64) * m + q, return_inverse=True)
+        # the result's pattern from scipy's products of the patterns (all values one: no entry cancels), and
+        # each product's place in it by a binary search of its sorted (row, column) keys (np.unique's sort of
+        # all products took twice as long: 9 against 5 ms at 2e3 P2 unknowns)
+        one = sp.csr_matrix((np.ones(S.indptr[-1]), S.indices, S.indptr), shape=S.shape)
+        C = (one.T.tocsr() @ sp.csr_matrix((np.ones(nnz), pattern.indices, pattern.indptr),
+                                           shape=pattern.shape) @ one).tocsr()
+        C.sort_indices()
         self.shape = (m, m)
-        self.indices = (keys % m).astype(np.int64)
-        self.indptr = np.zeros(m + 1, np.int64)
-        np.cumsum(np.bincount(keys // m, minlength=m), out=self.indptr[1:])
-        self.gather = sp.csr_matrix((w, (target.ravel(), k)), shape=(keys.size, nnz))
+        self.indices = C.indices.astype(np.int64)
+        self.indptr = C.indptr.astype(np.int64)
+        keys = np.repeat(np.arange(m, dtype=np.int64), np.diff(self.indptr)) * m + self.indices
+        target = np.searchsorted(keys, p.astype(np.int64) * m + q)
+        self.gather = sp.csr_matrix((w, (target, k)), shape=(keys.size, nnz))
 
     def matches(self, A: sp.csr_matrix) -> bool:
         """Whether ``A`` has the pattern this product was made for."""
