@@ -1147,6 +1147,52 @@ class _SetSolver:
             return None
 
 
+#: Unknowns from which a set change too large for a low-rank update is first iterated on a band around the
+#: switched unknowns (:func:`_band_set`), the rest held at the last global solve, before the next global
+#: factorization: the fine level of a nested start then factorizes the band's set instead of an intermediate one.
+BAND_FROM = 50_000
+#: Graph rings of neighbours around the switched unknowns that make the band of :func:`_band_set`.
+BAND_RINGS = 6
+#: Active-set iterations of the band subproblem at most (it stops earlier when its set repeats).
+BAND_ITERATIONS = 20
+
+
+def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
+              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float) -> np.ndarray:
+    """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
+    ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
+    (their set is the same in both). Returns the proposed next set (``new`` outside the band); the caller's
+    global solve on it decides convergence, so the band only changes which sets are factorized on the way."""
+    pattern = (abs(K) + abs(Gc)).tocsr()
+    band = new != cav
+    for _ in range(BAND_RINGS):
+        band = band | (pattern @ band.astype(float) > 0)
+    B, out = np.flatnonzero(band), np.flatnonzero(~band)
+    yo, co = y[out], cav[out]
+    KB, GcB, GB = K[B], Gc[B], G[B]
+    fixed = (-b[B] - GB[:, out] @ (~co).astype(float)
+             - KB[:, out] @ np.where(co, 0.0, yo) - GcB[:, out] @ np.where(co, yo, 0.0))
+    KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
+    c = new[B].copy()
+    seen = set()
+    for _ in range(BAND_ITERATIONS):
+        M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
+        yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
+        if not np.all(np.isfinite(yb)):
+            break
+        P = np.where(c, 0.0, yb)
+        nc = np.where(c, yb < 1.0 - tol, P < -tol_p)
+        if np.array_equal(nc, c):
+            break
+        seen.add(np.packbits(c).tobytes())
+        if np.packbits(nc).tobytes() in seen:
+            break
+        c = nc
+    out_set = new.copy()
+    out_set[B] = c
+    return out_set
+
+
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
                 negative: bool = False, rough: int = 0) -> _Solution:
@@ -1173,6 +1219,11 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         theta = np.where(cav, y, 1.0)
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
+        if (not (fixed or rough) and cav.size >= BAND_FROM and solver.base is not None and not np.array_equal(new, cav)
+                and np.count_nonzero(new != solver.base) > LOW_RANK_SWITCHES):
+            proposed = _band_set(KII, GcII, GII, b, cav, y, new, tol, tol_p)
+            if not np.array_equal(proposed, cav) and np.packbits(proposed).tobytes() not in seen:
+                new = proposed
         if np.array_equal(new, cav) or (rough and np.count_nonzero(new != cav) <= rough):
             if theta.min(initial=1.0) < -tol and not (negative or rough):
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
