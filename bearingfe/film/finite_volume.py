@@ -1150,48 +1150,67 @@ class _SetSolver:
 #: Unknowns from which a set change too large for a low-rank update is first iterated on a band around the
 #: switched unknowns (:func:`_band_set`), the rest held at the last global solve, before the next global
 #: factorization, which then factorizes the band's set instead of an intermediate one. Measured on the 5 x 5
-#: dimples of docs/jfo_dimples.md (best of 2-3 interleaved, load 0.3-0.7): 2 against 3 fine factorizations
-#: at 1e4, 4e4 and 1.6e5 unknowns (2.40 against 2.54 s a solve at 1.6e5, the band 0.15 s); at 3.6e5 still 3
-#: (the band leaves 44-52 switches, from the far-field change its fixed rim does not see, whatever its width:
-#: 6, 12 and 20 rings measured), 7.9 against 8.5 s.
+#: dimples of docs/jfo_dimples.md (best of 2-3 interleaved, load 0.3-0.8): 2 against 3 fine factorizations
+#: at 1e4, 4e4, 1.6e5 and 3.6e5 unknowns. One band pass alone left 15 switches at 1.6e5 and 44-52 at 3.6e5
+#: (whatever its width: 6, 12 and 20 rings measured): the far-field change its fixed rim does not see; the
+#: global correction solves between :data:`BAND_PASSES` passes leave 1 and 10 (Woodbury steps). Solve 2.45
+#: against 2.54 s at 1.6e5, 6.6 against 8.5 s at 3.6e5 (the band about 0.15 s a pass at 1.6e5).
 BAND_FROM = 50_000
 #: Graph rings of neighbours around the switched unknowns that make the band of :func:`_band_set`.
 BAND_RINGS = 6
 #: Active-set iterations of the band subproblem at most (it stops earlier when its set repeats).
 BAND_ITERATIONS = 20
+#: Passes of the band iteration, each after the first started from one global correction solve.
+BAND_PASSES = 3
 
 
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
-              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float) -> np.ndarray:
+              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
-    (their set is the same in both). Returns the proposed next set (``new`` outside the band); the caller's
-    global solve on it decides convergence, so the band only changes which sets are factorized on the way."""
+    (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
+    :data:`BAND_PASSES` passes then corrects the whole field by one solve of the residual of the band's set
+    (the far-field change the band's fixed rim does not see) and iterates the band again from it.
+    Returns the proposed next set (``new`` outside the band); the caller's global solve on it decides
+    convergence, so the band only changes which sets are factorized on the way."""
     pattern = (abs(K) + abs(Gc)).tocsr()
     band = new != cav
     for _ in range(BAND_RINGS):
         band = band | (pattern @ band.astype(float) > 0)
     B, out = np.flatnonzero(band), np.flatnonzero(~band)
-    yo, co = y[out], cav[out]
+    co = cav[out]
     KB, GcB, GB = K[B], Gc[B], G[B]
-    fixed = (-b[B] - GB[:, out] @ (~co).astype(float)
-             - KB[:, out] @ np.where(co, 0.0, yo) - GcB[:, out] @ np.where(co, yo, 0.0))
     KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
+    KBo, GcBo = KB[:, out], GcB[:, out]
+    base = -b[B] - GB[:, out] @ (~co).astype(float)
     c = new[B].copy()
-    seen = set()
-    for _ in range(BAND_ITERATIONS):
-        M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
-        yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
-        if not np.all(np.isfinite(yb)):
+    y = y.copy()
+    for npass in range(BAND_PASSES if solve is not None else 1):
+        yo = y[out]
+        fixed = base - KBo @ np.where(co, 0.0, yo) - GcBo @ np.where(co, yo, 0.0)
+        seen = set()
+        for _ in range(BAND_ITERATIONS):
+            M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
+            yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
+            if not np.all(np.isfinite(yb)):
+                break
+            P = np.where(c, 0.0, yb)
+            nc = np.where(c, yb < 1.0 - tol, P < -tol_p)
+            if np.array_equal(nc, c):
+                break
+            seen.add(np.packbits(c).tobytes())
+            if np.packbits(nc).tobytes() in seen:
+                break
+            c = nc
+        if solve is None or npass == BAND_PASSES - 1 or not np.all(np.isfinite(yb)):
             break
-        P = np.where(c, 0.0, yb)
-        nc = np.where(c, yb < 1.0 - tol, P < -tol_p)
-        if np.array_equal(nc, c):
-            break
-        seen.add(np.packbits(c).tobytes())
-        if np.packbits(nc).tobytes() in seen:
-            break
-        c = nc
+        y[B] = yb
+        full = cav.copy()
+        full[B] = c
+        r = -b - G @ (~full).astype(float) - K @ np.where(full, 0.0, y) - Gc @ np.where(full, y, 0.0)
+        y = y + np.asarray(solve(r), float)
+        P = np.where(full, 0.0, y)
+        c = np.where(full, y < 1.0 - tol, P < -tol_p)[B]
     out_set = new.copy()
     out_set[B] = c
     return out_set
@@ -1225,7 +1244,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
         if (not (fixed or rough) and cav.size >= BAND_FROM and solver.base is not None and not np.array_equal(new, cav)
                 and np.count_nonzero(new != solver.base) > LOW_RANK_SWITCHES):
-            proposed = _band_set(KII, GcII, GII, b, cav, y, new, tol, tol_p)
+            proposed = _band_set(KII, GcII, GII, b, cav, y, new, tol, tol_p, solver.solve)
             if not np.array_equal(proposed, cav) and np.packbits(proposed).tobytes() not in seen:
                 new = proposed
         if np.array_equal(new, cav) or (rough and np.count_nonzero(new != cav) <= rough):
