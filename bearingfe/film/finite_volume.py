@@ -1153,8 +1153,10 @@ class _SetSolver:
 #: dimples of docs/jfo_dimples.md (best of 2-3 interleaved, load 0.3-0.8): 2 against 3 fine factorizations
 #: at 1e4, 4e4, 1.6e5 and 3.6e5 unknowns. One band pass alone left 15 switches at 1.6e5 and 44-52 at 3.6e5
 #: (whatever its width: 6, 12 and 20 rings measured): the far-field change its fixed rim does not see; the
-#: global correction solves between :data:`BAND_PASSES` passes leave 1 and 10 (Woodbury steps). Solve 2.45
-#: against 2.54 s at 1.6e5, 6.6 against 8.5 s at 3.6e5 (the band about 0.15 s a pass at 1.6e5).
+#: global correction solves between :data:`BAND_PASSES` passes leave 1 and 10 (Woodbury steps). The fine level
+#: (factorizations, Woodbury, the rest with the band) of cold solves, benchmarks/jfo_dimples.py's ``stages``
+#: interleaved at load 0.4-0.85: 1.8 against 2.1-2.2 s at 1.6e5, 4.8-4.9 against 5.2-5.6 s at 3.6e5 (the
+#: factorizations 2.9-3.0 against 4.5-4.9 s, the band's passes about 0.7 s of it).
 BAND_FROM = 50_000
 #: Graph rings of neighbours around the switched unknowns that make the band of :func:`_band_set`.
 BAND_RINGS = 6
