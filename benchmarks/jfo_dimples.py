@@ -98,8 +98,8 @@ def stages(n: int) -> dict:
     """Where a cold solve on the n x n grid spends its time: mesh, assembly, the nested start (every coarse
     level: its mesh, assembly and active set), the fine active set (nested-dissection order, factorizations,
     Sherman-Morrison-Woodbury steps, band iterations, the rest: matrices, solves, set updates) and the
-    postprocessing; and the yardstick, one factorization + solve of the converged fine matrix in the same order (what each fine
-    factorization costs at best). Timed by wrapping the solver's internals (benchmark only)."""
+    postprocessing; and the yardstick, one factorization + solve of the converged fine matrix in the same order
+    (what each fine factorization costs at best). Timed by wrapping the solver's internals (benchmark only)."""
     from bearingfe.film import finite_volume as fv
 
     shape, film = surface(), UniformFilm(1.0)
