@@ -1147,6 +1147,77 @@ class _SetSolver:
             return None
 
 
+#: Unknowns from which a set change too large for a low-rank update is first iterated on a band around the
+#: switched unknowns (:func:`_band_set`), the rest held at the last global solve, before the next global
+#: factorization, which then factorizes the band's set instead of an intermediate one. Measured on the 5 x 5
+#: dimples of docs/jfo_dimples.md (best of 2-3 interleaved, load 0.3-0.8): 2 against 3 fine factorizations
+#: at 1e4, 4e4, 1.6e5 and 3.6e5 unknowns. One band pass alone left 15 switches at 1.6e5 and 44-52 at 3.6e5
+#: (whatever its width: 6, 12 and 20 rings measured): the far-field change its fixed rim does not see; the
+#: global correction solves between :data:`BAND_PASSES` passes leave 1 and 10 (Woodbury steps). The fine level
+#: (factorizations, Woodbury, the rest with the band) of cold solves, benchmarks/jfo_dimples.py's ``stages``
+#: interleaved at load 0.4-0.85: 1.8 against 2.1-2.2 s at 1.6e5, 4.8-4.9 against 5.2-5.6 s at 3.6e5 (the
+#: factorizations 2.9-3.0 against 4.5-4.9 s, the band's passes about 0.7 s of it).
+BAND_FROM = 50_000
+#: Graph rings of neighbours around the switched unknowns that make the band of :func:`_band_set`.
+BAND_RINGS = 6
+#: Active-set iterations of the band subproblem at most (it stops earlier when its set repeats).
+BAND_ITERATIONS = 20
+#: Passes of the band iteration, each after the first started from one global correction solve.
+BAND_PASSES = 3
+
+
+def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
+              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None) -> np.ndarray:
+    """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
+    ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
+    (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
+    :data:`BAND_PASSES` passes then corrects the whole field by one solve of the residual of the band's set
+    (the far-field change the band's fixed rim does not see) and iterates the band again from it.
+    Returns the proposed next set (``new`` outside the band); the caller's global solve on it decides
+    convergence, so the band only changes which sets are factorized on the way."""
+    pattern = (abs(K) + abs(Gc)).tocsr()
+    band = new != cav
+    for _ in range(BAND_RINGS):
+        band = band | (pattern @ band.astype(float) > 0)
+    B, out = np.flatnonzero(band), np.flatnonzero(~band)
+    co = cav[out]
+    KB, GcB, GB = K[B], Gc[B], G[B]
+    KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
+    KBo, GcBo = KB[:, out], GcB[:, out]
+    base = -b[B] - GB[:, out] @ (~co).astype(float)
+    c = new[B].copy()
+    y = y.copy()
+    for npass in range(BAND_PASSES if solve is not None else 1):
+        yo = y[out]
+        fixed = base - KBo @ np.where(co, 0.0, yo) - GcBo @ np.where(co, yo, 0.0)
+        seen = set()
+        for _ in range(BAND_ITERATIONS):
+            M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
+            yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
+            if not np.all(np.isfinite(yb)):
+                break
+            P = np.where(c, 0.0, yb)
+            nc = np.where(c, yb < 1.0 - tol, P < -tol_p)
+            if np.array_equal(nc, c):
+                break
+            seen.add(np.packbits(c).tobytes())
+            if np.packbits(nc).tobytes() in seen:
+                break
+            c = nc
+        if solve is None or npass == BAND_PASSES - 1 or not np.all(np.isfinite(yb)):
+            break
+        y[B] = yb
+        full = cav.copy()
+        full[B] = c
+        r = -b - G @ (~full).astype(float) - K @ np.where(full, 0.0, y) - Gc @ np.where(full, y, 0.0)
+        y = y + np.asarray(solve(r), float)
+        P = np.where(full, 0.0, y)
+        c = np.where(full, y < 1.0 - tol, P < -tol_p)[B]
+    out_set = new.copy()
+    out_set[B] = c
+    return out_set
+
+
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
                 negative: bool = False, rough: int = 0) -> _Solution:
@@ -1173,6 +1244,11 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         theta = np.where(cav, y, 1.0)
         tol_p = tol * max(float(np.abs(P).max(initial=0.0)), abs(p_c), 1e-300)
         new = cav if fixed else np.where(cav, theta < 1.0 - tol, P < -tol_p)
+        if (not (fixed or rough) and cav.size >= BAND_FROM and solver.base is not None and not np.array_equal(new, cav)
+                and np.count_nonzero(new != solver.base) > LOW_RANK_SWITCHES):
+            proposed = _band_set(KII, GcII, GII, b, cav, y, new, tol, tol_p, solver.solve)
+            if not np.array_equal(proposed, cav) and np.packbits(proposed).tobytes() not in seen:
+                new = proposed
         if np.array_equal(new, cav) or (rough and np.count_nonzero(new != cav) <= rough):
             if theta.min(initial=1.0) < -tol and not (negative or rough):
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "

@@ -211,6 +211,26 @@ def test_low_rank_tail_of_the_active_set_matches_fresh_factorizations(monkeypatc
     assert fast.cost["active_set_residual"] < 1e-12
 
 
+def test_band_iteration_gives_the_plain_active_sets_solution_in_fewer_factorizations(monkeypatch):
+    # a set change too large for Woodbury is first iterated on a band around the switched dofs (the rest
+    # held at the last global solve): the proposal only changes which sets are factorized on the way, the
+    # global solve still decides convergence, so the answer is the plain method's complementarity solution
+    # (to the solver tolerance: the last step is a Woodbury solve accepted at a 1e-11 residual), in fewer
+    # fine factorizations (measured 2 against 3 on these dimples at 1.7e4 nodes, as at 1e4 .. 1.6e5)
+    import bearingfe.film.finite_volume as jfo
+
+    mesh, options = grid_mesh(_dimpled(), 1 / 130), dict(cavitation_pressure=-0.05)
+    monkeypatch.setattr(jfo, "BAND_FROM", 0)
+    band = solve_jfo(mesh, UniformFilm(1.0), **options)
+    monkeypatch.setattr(jfo, "BAND_FROM", 10**9)
+    plain = solve_jfo(mesh, UniformFilm(1.0), **options)
+    assert plain.cavitated.any() and np.array_equal(band.cavitated, plain.cavitated)
+    assert np.abs(band.pressure - plain.pressure).max() < 1e-10 * np.abs(plain.pressure).max()
+    assert np.abs(band.theta - plain.theta).max() < 1e-10
+    assert band.cost["factorizations"] < plain.cost["factorizations"]
+    assert abs(band.mass_balance) < 1e-12 and band.cost["active_set_residual"] < 1e-11
+
+
 def test_sliding_backwards_mirrors_the_solution():
     # the dimple layout is symmetric about phi = 1/2, so wedge = -1 gives the mirror image: same cavity
     # area, friction of opposite sign (the fill of each box is taken from its downstream face, here the
