@@ -12,6 +12,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.artist import Artist
 
+from .figures import ticks_in_view
+
 __all__ = ["BAR_FRACTION", "BAR_PAD", "BAR_SHRINK", "BAR_ASPECT", "colour_bar", "ColourBar"]
 
 #: A colour bar's share of its map's cell, the gap between them, its length and its aspect (matplotlib's defaults
@@ -54,7 +56,8 @@ def colour_bar(ax, mappable, label: str, locator):
 class ColourBar(Artist):
     """A vertical colour bar at ``rect`` (left, bottom, width, height in figure fractions): the colour map as an
     image, a black outline, tick marks and labels on the right (matplotlib's tick size, pad and label font),
-    ``label`` beside the labels. Its pieces are made when it is drawn (their places need the renderer), and kept
+    ``label`` beside the labels, and the labels' common offset or power of ten above the bar when the formatter
+    needs one (``offset_text``). Its pieces are made when it is drawn (their places need the renderer), and kept
     as ``ticks`` (values), ``tick_labels`` and ``label_text`` (texts) for a reader."""
 
     def __init__(self, rect, cmap, norm, label: str, locator) -> None:
@@ -63,6 +66,7 @@ class ColourBar(Artist):
         self.ticks: np.ndarray = np.empty(0)
         self.tick_labels: list = []
         self.label_text = None
+        self.offset_text = ""
         self._extent = None
 
     def _ticks(self):
@@ -75,9 +79,7 @@ class ColourBar(Artist):
         formatter.axis.set_view_interval(lo, hi)
         formatter.axis.set_data_interval(lo, hi)
         texts = formatter.format_ticks(locs)
-        slack = 1e-10 * (hi - lo)
-        shown = [(v, t) for v, t in zip(locs, texts) if lo - slack <= v <= hi + slack]
-        return shown, formatter.get_offset()
+        return ticks_in_view(locs, texts, lo, hi), formatter.get_offset()
 
     def draw(self, renderer) -> None:
         import matplotlib as mpl
@@ -108,6 +110,11 @@ class ColourBar(Artist):
         labels = [Text(x0 + w + dx, y, s, transform=fig.transFigure, fontsize=rc["ytick.labelsize"],
                        va=rc["ytick.alignment"], ha="left") for y, (_, s) in zip(ys, shown)]
         pieces = [image, outline, marks, *labels]
+        extras = []
+        if offset:  # the labels' common offset or power of ten (e.g. "1e-5"), above the bar as matplotlib puts it
+            extras.append(Text(x0 + w, y0 + h + pad / 72.0 * fig.dpi / fig.bbox.height, offset,
+                               transform=fig.transFigure, fontsize=rc["ytick.labelsize"], va="bottom", ha="left"))
+            pieces += extras
         for piece in pieces:
             piece.set_figure(fig)
         right = box.x1 + (size / 72.0 * fig.dpi if ys else 0.0)
@@ -120,8 +127,8 @@ class ColourBar(Artist):
         for piece in (*pieces, title):
             piece.draw(renderer)
         self.ticks = np.array([v for v, _ in shown])
-        self.tick_labels, self.label_text = labels, title
-        self._extent = Bbox.union([box, *(t.get_window_extent(renderer) for t in (*labels, title))])
+        self.tick_labels, self.label_text, self.offset_text = labels, title, offset
+        self._extent = Bbox.union([box, *(t.get_window_extent(renderer) for t in (*labels, title, *extras))])
         self.stale = False
 
     def get_window_extent(self, renderer=None):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "write_png", "drawn_ticks"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "write_png", "drawn_ticks", "ticks_in_view"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100
@@ -217,6 +217,14 @@ def drawn_ticks(fig):
             restore()
 
 
+def ticks_in_view(locs, labels, lo: float, hi: float) -> list[tuple[float, str]]:
+    """The ``(value, label)`` pairs of the ticks ``locs`` that lie in the view ``lo``..``hi`` (either order), as
+    matplotlib decides it (inside, or outside by at most 1e-10 of the view's length)."""
+    lo, hi = sorted((float(lo), float(hi)))
+    slack = 1e-10 * (hi - lo)
+    return [(float(v), t) for v, t in zip(locs, labels) if lo - slack <= v <= hi + slack]
+
+
 def _tick_plan(axis) -> dict | None:
     """What :func:`drawn_ticks` draws for ``axis`` (ticks in view, labels, sides, grid), or None (not plain)."""
     import matplotlib as mpl
@@ -239,9 +247,7 @@ def _tick_plan(axis) -> dict | None:
     texts = formatter.format_ticks(locs) if locs.size else []
     if isinstance(formatter, ScalarFormatter) and formatter.get_offset():
         return None
-    lo, hi = sorted(axis.get_view_interval())
-    slack = 1e-10 * (hi - lo)  # matplotlib's test of a tick in view
-    shown = [(float(v), t) for v, t in zip(locs, texts) if lo - slack <= v <= hi + slack]
+    shown = ticks_in_view(locs, texts, *axis.get_view_interval())
     return {"axis": axis, "name": name, "sides": sides, "marks": marks, "labels": labels, "shown": shown,
             "grid": params.get("gridOn", False), "grid_style": {k[5:]: v for k, v in params.items()
                                                               if k.startswith("grid_")}}

@@ -101,3 +101,22 @@ def test_an_axes_placed_by_hand_gets_matplotlibs_bar():
     _drawn(fig)
     expected = [t for t in MaxNLocator(4).tick_values(0.0, 5.0) if 0.0 <= t <= 5.0]  # the locator's own values
     assert [t for t in bar.get_ticks() if 0.0 <= t <= 5.0] == expected and len(expected) >= 3
+
+
+def test_labels_that_need_an_offset_show_it_above_the_bar():
+    """Values 20.001 .. 20.004 label as matplotlib's ScalarFormatter does, with the common offset "+2e1" that
+    makes them readable: the offset is shown above the bar, the labels alone would read 0.001 .. 0.004."""
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator, ScalarFormatter
+
+    fig = Figure(figsize=(6.0, 3.5))
+    ax, mesh = _map(fig, fig.add_gridspec(1, 1, left=0.12, right=0.9)[0, 0])
+    mesh.set_clim(20.001, 20.004)
+    bar = colour_bars.colour_bar(ax, mesh, "h [um]", MaxNLocator(4))
+    renderer = _drawn(fig)
+    reference = ScalarFormatter()
+    reference.create_dummy_axis()
+    reference.axis.set_view_interval(20.001, 20.004)
+    reference.format_ticks(MaxNLocator(4).tick_values(20.001, 20.004))
+    assert bar.offset_text == reference.get_offset() != ""
+    assert bar.get_window_extent(renderer).y1 <= fig.bbox.y1
