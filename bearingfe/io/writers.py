@@ -24,8 +24,8 @@ import numpy as np
 
 from ..core.limits import check_limit
 
-__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "vtu_document", "write_pvd", "read_pvd", "write_csv", "write_json",
-           "ROSS_COEFFICIENTS", "write_ross_bearings", "read_ross_bearing"]
+__all__ = ["atomic_path", "umask", "vtu_fields", "write_vtu", "vtu_document", "write_pvd", "read_pvd", "write_csv",
+           "write_json", "ROSS_COEFFICIENTS", "write_ross_bearings", "read_ross_bearing"]
 
 #: Trajectory columns written by :func:`write_csv` when present, in this order.
 CSV_FIELDS = ("beta", "gamma", "delta", "phi0", "h_min", "friction_moment", "flow_inlet", "flow_side",
@@ -170,7 +170,8 @@ def vtu_document(points: np.ndarray, triangles: np.ndarray, point_data: Mapping[
         values = np.asarray(values, dtype=np.float64)
         if values.shape != (n,):
             raise ValueError(f"point data {name!r} must hold {n} values, got shape {values.shape}")
-        lines.append(f'<DataArray type="Float64" Name="{escape(name, _QUOTE)}" format="binary">{_binary(values)}</DataArray>')
+        lines.append(f'<DataArray type="Float64" Name="{escape(name, _QUOTE)}" format="binary">'
+                     f"{_binary(values)}</DataArray>")
     lines += ["</PointData>", "<Points>",
               f'<DataArray type="Float64" NumberOfComponents="3" format="binary">{_binary(points)}</DataArray>',
               "</Points>", "<Cells>",

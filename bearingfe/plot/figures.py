@@ -15,7 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "write_png", "drawn_ticks", "ticks_in_view"]
+__all__ = ["DPI", "PNG_COMPRESSION", "frame", "title", "ruled_table", "save", "write_png", "drawn_ticks",
+           "ticks_in_view"]
 
 #: Resolution of the saved pictures [dots per inch].
 DPI = 100

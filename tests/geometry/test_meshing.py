@@ -342,8 +342,9 @@ def test_grid_cells_checked_on_the_lines_agree_with_the_per_triangle_check(monke
 
 
 def test_gmsh_meshes_check_their_triangles_once(monkeypatch):
-    """mesh_surface and load_mesh check the triangles as they read them (mesh_from_data): the support mesh they
-    return does not check them again; a bad file still fails on that one check (test_geofiles, test_guards)."""
+    """mesh_surface checks the triangles as it reads gmsh's mesh (mesh_from_data, which load_mesh shares): the
+    support mesh it returns does not check them again, one made elsewhere still does; a bad file still fails on
+    mesh_from_data's check (tests/hostile)."""
     from bearingfe.geometry import meshing
 
     calls = []
