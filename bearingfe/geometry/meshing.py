@@ -17,7 +17,7 @@ import functools
 import math
 import pickle
 import threading
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -66,6 +66,13 @@ class SupportMesh:
         would: set by :func:`mesh_surface`, :func:`strip_mesh` and
         :func:`grid_mesh`; None for meshes read from files (see
         :func:`refine_once`).
+
+    Other Parameters
+    ----------------
+    cells_checked : bool
+        The maker already proved every triangle valid (:func:`mesh_from_data`
+        checks them, a grid's lines prove them): only the boundaries are
+        checked here. Not stored.
     """
 
     mesh: skfem.Mesh
@@ -74,10 +81,10 @@ class SupportMesh:
     source: str = "gmsh"
     refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
+    cells_checked: InitVar[bool] = False
 
-    def __post_init__(self) -> None:
-        # a grid whose cells were checked on its grid lines (_grid_on_lines) skips the per-triangle check
-        check_support_mesh(self.mesh, self.source, triangles=not self._cache.pop(_CELLS_CHECKED, False))
+    def __post_init__(self, cells_checked: bool) -> None:
+        check_support_mesh(self.mesh, self.source, triangles=not cells_checked)
 
     def __getstate__(self) -> dict:
         # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
@@ -321,7 +328,7 @@ def mesh_surface(
                               max_elements=max_elements)
     # mesh_from_data checked the triangles (_read_gmsh_model): the mesh need not check them again
     return SupportMesh(mesh=mesh, surface=surface, size=size / 2**refine, source="gmsh", refinement=again,
-                       _cache={_CELLS_CHECKED: True})
+                       cells_checked=True)
 
 
 def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, trusted: bool = False,
@@ -395,7 +402,7 @@ def load_mesh(path: str | Path, *, size: float | None = None, order: int = 1, tr
     if "outer" not in (mesh.boundaries or {}):
         raise ValueError(f"{path.name}: no physical curve group named 'outer'")
     return SupportMesh(mesh=mesh, surface=None, size=size if size is not None else math.nan, source=str(path),
-                       _cache={_CELLS_CHECKED: True})  # mesh_from_data checked the triangles
+                       cells_checked=True)  # mesh_from_data checked the triangles
 
 
 def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
@@ -962,14 +969,9 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
     _init_facets(m)
     bnd = _surface_boundaries(m, surface, pockets)
     again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
-    checked = {_CELLS_CHECKED: True} if _grid_cells_valid(xs, zs) else {}   # else check_triangles names the fault
     return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
                        size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again,
-                       _cache=checked)
-
-
-#: Key a mesh builder puts in ``SupportMesh._cache`` when its cells are valid by construction (popped on init).
-_CELLS_CHECKED = "_cells_checked"
+                       cells_checked=_grid_cells_valid(xs, zs))  # else check_triangles names the fault
 
 
 def _grid_cells_valid(xs: np.ndarray, zs: np.ndarray) -> bool:

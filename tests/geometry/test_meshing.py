@@ -336,7 +336,7 @@ def test_grid_cells_checked_on_the_lines_agree_with_the_per_triangle_check(monke
     calls = []
     monkeypatch.setattr(meshing, "check_triangles", lambda *a, **k: calls.append(1))
     grid = bf.grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.25)
-    assert calls == [] and "_cells_checked" not in grid._cache
+    assert calls == [] and "cells_checked" not in vars(grid)   # an init-only flag, not stored
     SupportMesh(mesh=grid.mesh, surface=grid.surface, source="grid")
     assert calls == [1]
 
@@ -351,7 +351,7 @@ def test_gmsh_meshes_check_their_triangles_once(monkeypatch):
     real = meshing.check_triangles
     monkeypatch.setattr(meshing, "check_triangles", lambda *a, **k: calls.append(1) or real(*a, **k))
     mesh = bf.mesh_surface(Surface(arc=(-0.5, 0.5), half_width=0.4), 0.2)
-    assert calls == [1] and "_cells_checked" not in mesh._cache
+    assert calls == [1] and "cells_checked" not in vars(mesh)
     calls.clear()
     SupportMesh(mesh=mesh.mesh, surface=mesh.surface, source="user")  # a mesh from elsewhere: checked
     assert calls == [1]
