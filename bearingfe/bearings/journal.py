@@ -49,6 +49,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+import weakref
 from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -60,7 +61,8 @@ from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
 from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
-from ..cavitation.swift_stieber import warm_mask
+from ..cavitation.coarse import NESTED_MIN
+from ..cavitation.swift_stieber import cold_mask, warm_mask
 from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
 from ..film import build_result
 from ..film.superposition import source_weights
@@ -505,20 +507,23 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
     squeeze = (gamma_rate, phi0_rate)
     notes = ()
-    if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
-            and not any(m.needs_finite_volumes for m in meshes)):
-        # several Galerkin films from rupture sets: one active-set iteration over all of them
+    if cavitation == "reynolds" and len(meshes) > 1 and not any(m.needs_finite_volumes for m in meshes):
+        # several Galerkin films from rupture sets, or small ones from none (the cold start of solve_cavitating
+        # below NESTED_MIN unknowns): one active-set iteration over all of them
         sups = [superpose(mesh, film, formulation="direct", element=element, lazy=True) for mesh in meshes]
+        if not all(w is not None or sup.system.interior.size < NESTED_MIN for w, sup in zip(warm, sups)):
+            sups = None
+    if sups:
         try:
             results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure
                                                                   if m.has_inlet else 0.0) for m in meshes], warm)
         except CavitationError as exc:  # pad by pad, each with the fallbacks of solve_cavitating
             notes = (f"cavitation: the pads' joined active-set iteration failed ({exc}); solved pad by pad",)
-            sups = []
         else:
             force = np.sum([res.force for res in results], axis=0)
             return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force,
                           rotation=rotation, joined=joined)
+    sups = []
     for mesh, previous in zip(meshes, warm):
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
         if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
@@ -579,8 +584,11 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
     their block-diagonal system: one factorization of the joined free set per iteration and one count of
     iterations (the largest any film needs, not their sum); one :class:`ReynoldsResult` per film.
 
-    ``warm``: one warm start per film (a result on any mesh of its surface, or a rupture mask of its dofs);
-    the full-film start of every film is its superposition's own factorization (as for one film)."""
+    ``warm``: one warm start per film (a result on any mesh of its surface, or a rupture mask of its dofs), or
+    None for the cold start of :func:`~bearingfe.cavitation.swift_stieber.cold_mask` (films below
+    :data:`~bearingfe.cavitation.coarse.NESTED_MIN` unknowns; the results are then lazy too, where
+    ``solve_cavitating`` builds the flows of every film); the full-film start of every film is its
+    superposition's own factorization (as for one film)."""
     t0 = time.perf_counter()
     films = tuple(obstacle_problem(sup) for sup in sups)
     sizes = [fp.problem.n for fp in films]
@@ -598,7 +606,8 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
 
     problem.add_factorization(np.ones(problem.n, bool), full_film)
     b = np.concatenate([fp.right_side(w) for fp, w in zip(films, weights)])
-    start = np.concatenate([warm_mask(fp, sup, w, s) for fp, sup, w, s in zip(films, sups, weights, warm)])
+    start = np.concatenate([cold_mask(fp, sup, w) if s is None else warm_mask(fp, sup, w, s)
+                            for fp, sup, w, s in zip(films, sups, weights, warm)])
     with dense_threads(1) if problem.n <= SMALL_PANELS_UP_TO else nullcontext():
         sol = problem.solve(b, start)
     cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
@@ -1367,11 +1376,23 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     return name_surface_boundaries(m, mesh.surface, source="structured")
 
 
+_DOF_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _dof_tree(basis) -> cKDTree:
+    """The k-d tree of a basis' dof locations, kept per basis: the Newton steps on a mesh carry its rupture set
+    over (turned) at every solve, and each refinement level from the level before."""
+    tree = _DOF_TREES.get(basis)
+    if tree is None:
+        tree = _DOF_TREES[basis] = cKDTree(np.asarray(basis.doflocs).T)
+    return tree
+
+
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0) -> np.ndarray:
     """Rupture mask at ``points`` (shape (2, n)): the state of the nearest dof of ``res`` (its front is
     then off by at most half the dof spacing); ``turn``: that of ``res`` turned by this angle along ``phi``
     (the state at ``phi - turn``)."""
-    nearest = cKDTree(np.asarray(res.basis.doflocs).T).query((points - np.array([[turn], [0.0]])).T)[1]
+    nearest = _dof_tree(res.basis).query((points - np.array([[turn], [0.0]])).T)[1]
     return np.asarray(res.cavitated, bool)[nearest]
 
 
