@@ -181,19 +181,26 @@ def test_bad_structured_options_for_pads():
 
 def test_pads_solved_as_one_give_each_pads_own_solution():
     # two_groove's pads from rupture sets are solved by one active-set iteration on their block-diagonal system
-    # (one result per pad); each pad solved alone from the same start gives the same rupture set and pressure
-    # to round-off, the force and its derivatives (one factorization of the joined free set) are their sums,
-    # and the joined iteration count is the largest pad's, not the sum
+    # (one result per pad); each pad solved alone from the same start (a block of one, and by solve_cavitating)
+    # gives the same rupture set and pressure to round-off, the force and its derivatives (one factorization of
+    # the joined free set) are their sums, and the joined iteration count is the largest pad's, not the sum
+    from bearingfe.cavitation import solve_cavitating
+    from bearingfe.film import superpose
+    from bearingfe.film.thickness import CosineFilm
     meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
     start = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
     joined = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
     assert joined.joined is not None and len(joined.results) == 2
     alone = [position_state(TWO_GROOVE, (mesh,), 0.43, -0.44, "reynolds", element="P2", warm_start=(res,))
              for mesh, res in zip(meshes, start.results)]
-    assert all(a.joined is None for a in alone)
-    for j, (a,) in zip(joined.results, (a.results for a in alone)):
-        assert j.basis.mesh is a.basis.mesh and np.array_equal(j.cavitated, a.cavitated)
-        assert np.abs(j.pressure - a.pressure).max() <= 1e-12 * np.abs(a.pressure).max()
+    assert all(a.joined is not None and len(a.joined.films) == 1 for a in alone)
+    film = CosineFilm(math.hypot(0.43, -0.44), math.atan2(0.44, -0.43))
+    for j, (a,), mesh, res in zip(joined.results, (a.results for a in alone), meshes, start.results):
+        own = solve_cavitating(superpose(mesh, film, formulation="direct", element="P2"), 1.0, (0.0, 0.0), 0.0,
+                               model="reynolds", warm_start=res)
+        for other in (a, own):
+            assert j.basis.mesh is other.basis.mesh and np.array_equal(j.cavitated, other.cavitated)
+            assert np.abs(j.pressure - other.pressure).max() <= 1e-12 * np.abs(other.pressure).max()
     assert np.allclose(joined.force, sum(a.force for a in alone), rtol=1e-12, atol=0)
     dFx, dFv = force_derivatives(joined)
     alone_dFx = sum(force_derivatives(a)[0] for a in alone)
