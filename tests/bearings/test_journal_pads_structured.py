@@ -211,6 +211,27 @@ def test_pads_solved_as_one_give_each_pads_own_solution():
     assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
 
 
+def test_pads_cold_start_solved_as_one_as_each_pad_alone():
+    # without a warm start the pads (below NESTED_MIN unknowns) are solved as one from each pad's cold start
+    # (cold_mask: solve_cavitating's start there), with lazy results (no flows built until read): each pad's
+    # rupture set and pressure are solve_cavitating's cold solution to round-off, and its flows when read too
+    from bearingfe.cavitation import solve_cavitating
+    from bearingfe.film import operators, superpose
+    from bearingfe.film.thickness import CosineFilm
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    cold = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    assert cold.joined is not None and len(cold.results) == 2
+    assert all("flows" not in operators(m, "P2").compiled._lazy for m in meshes)
+    film = CosineFilm(math.hypot(0.40, -0.42), math.atan2(0.42, -0.40))
+    for j, mesh in zip(cold.results, meshes):
+        own = solve_cavitating(superpose(mesh, film, formulation="direct", element="P2"), 1.0, (0.0, 0.0), 0.0,
+                               model="reynolds")
+        assert np.array_equal(j.cavitated, own.cavitated) and own.cavitated.any()
+        assert np.abs(j.pressure - own.pressure).max() <= 1e-12 * np.abs(own.pressure).max()
+        scale = max(abs(v) for v in own.flows.values())
+        assert all(abs(j.flows[k] - v) <= 1e-10 * scale for k, v in own.flows.items())
+
+
 def test_a_failed_joined_iteration_falls_back_to_pad_by_pad(monkeypatch):
     # should the pads' joined active-set iteration fail (CavitationError), every pad is solved on its own (with
     # solve_cavitating's fallbacks), the results say so, and the solution is the joined one to round-off
