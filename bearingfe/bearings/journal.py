@@ -49,6 +49,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+import weakref
 from contextlib import nullcontext
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -60,7 +61,8 @@ from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
 from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
-from ..cavitation.swift_stieber import warm_mask
+from ..cavitation.coarse import NESTED_MIN
+from ..cavitation.swift_stieber import cold_mask, warm_mask
 from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
 from ..film import build_result
 from ..film.superposition import source_weights
@@ -505,20 +507,24 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
     squeeze = (gamma_rate, phi0_rate)
     notes = ()
-    if (cavitation == "reynolds" and len(meshes) > 1 and all(w is not None for w in warm)
-            and not any(m.needs_finite_volumes for m in meshes)):
-        # several Galerkin films from rupture sets: one active-set iteration over all of them
+    if cavitation == "reynolds" and bearing.pads is not None and not any(m.needs_finite_volumes for m in meshes):
+        # the Galerkin films of pads (one or several) from rupture sets, or small ones from none (the cold start
+        # of solve_cavitating below NESTED_MIN unknowns): one active-set iteration over all of them, with lazy
+        # results (a Newton step reads the force and the rupture sets; the flows are built when read)
         sups = [superpose(mesh, film, formulation="direct", element=element, lazy=True) for mesh in meshes]
+        if not all(w is not None or sup.system.interior.size < NESTED_MIN for w, sup in zip(warm, sups)):
+            sups = None
+    if sups:
         try:
             results, joined = _solve_joined(sups, [source_weights(1.0, squeeze, bearing.supply_pressure
                                                                   if m.has_inlet else 0.0) for m in meshes], warm)
         except CavitationError as exc:  # pad by pad, each with the fallbacks of solve_cavitating
             notes = (f"cavitation: the pads' joined active-set iteration failed ({exc}); solved pad by pad",)
-            sups = []
         else:
             force = np.sum([res.force for res in results], axis=0)
             return _State(results=tuple(results), sups=tuple(sups), force=_rot(rotation) @ force,
                           rotation=rotation, joined=joined)
+    sups = []
     for mesh, previous in zip(meshes, warm):
         ps = bearing.supply_pressure if mesh.has_inlet else 0.0
         if cavitation == "jfo" or mesh.needs_finite_volumes:  # finite volumes: no Galerkin system
@@ -579,8 +585,11 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
     their block-diagonal system: one factorization of the joined free set per iteration and one count of
     iterations (the largest any film needs, not their sum); one :class:`ReynoldsResult` per film.
 
-    ``warm``: one warm start per film (a result on any mesh of its surface, or a rupture mask of its dofs);
-    the full-film start of every film is its superposition's own factorization (as for one film)."""
+    ``warm``: one warm start per film (a result on any mesh of its surface, or a rupture mask of its dofs), or
+    None for the cold start of :func:`~bearingfe.cavitation.swift_stieber.cold_mask` (films below
+    :data:`~bearingfe.cavitation.coarse.NESTED_MIN` unknowns; the results are then lazy too, where
+    ``solve_cavitating`` builds the flows of every film); the full-film start of every film is its
+    superposition's own factorization (as for one film)."""
     t0 = time.perf_counter()
     films = tuple(obstacle_problem(sup) for sup in sups)
     sizes = [fp.problem.n for fp in films]
@@ -598,7 +607,8 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
 
     problem.add_factorization(np.ones(problem.n, bool), full_film)
     b = np.concatenate([fp.right_side(w) for fp, w in zip(films, weights)])
-    start = np.concatenate([warm_mask(fp, sup, w, s) for fp, sup, w, s in zip(films, sups, weights, warm)])
+    start = np.concatenate([cold_mask(fp, sup, w) if s is None else warm_mask(fp, sup, w, s)
+                            for fp, sup, w, s in zip(films, sups, weights, warm)])
     with dense_threads(1) if problem.n <= SMALL_PANELS_UP_TO else nullcontext():
         sol = problem.solve(b, start)
     cost = {"cavitation": time.perf_counter() - t0, "cavitation_factorizations": float(sol.factorizations)}
@@ -976,9 +986,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         over): the active-set iteration then only corrects the free boundary
         by the step's motion. ``False`` starts every solve afresh (where the
         linear solution is negative); the answers agree to the active-set
-        tolerance. The Galerkin films of several pads started from rupture
-        sets are solved as one (one active-set iteration on their
-        block-diagonal system), with one result per pad.
+        tolerance. The Galerkin films of the pads (one or several) are
+        solved as one (one active-set iteration on their block-diagonal
+        system), with one result per pad whose flows are built when read.
     structured : bool
         Mesh with :func:`structured_meshes` (graded tensor-product meshes,
         no gmsh) instead of :func:`journal_mesh`: the full bearing's
@@ -997,7 +1007,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         level solved once at that position from the previous level's
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
-        ``f`` of the bearing's largest, ``rupture_size min(1/f, 4)``: a
+        ``f`` of the bearing's largest, ``rupture_size min(1/f, 5)``: a
         lightly loaded pad's front weighs less on the coefficients), each
         level solved at a Newton step on from the level before; then Newton
         to ``tol`` on those meshes (the returned ``meshes``, which
@@ -1094,6 +1104,15 @@ def _angle_between(a: float, b: float) -> float:
     return (b - a + math.pi) % (2 * math.pi) - math.pi
 
 
+#: Pads' structured meshes are remeshed after the first Newton when the answer's ``sqrt(1 - eps)`` (the smallest
+#: column width's scale) moved by more than this fraction from the first guess's (or the line of centres by more
+#: than ``0.5 sqrt(1 - eps)``). 0.1 remeshed two_groove_ld1 (the short-bearing guess 0.35 against eps 0.49:
+#: 11.4 %), one more coarse solve and two more compiled meshes, 1.13x the full bearing's time; with 0.15 its
+#: errors in part ``journal_pads`` stay within 4.6e-4 at sizes 0.2 to 0.3 (rupture_size 0.05 and below), the
+#: other cases' meshes are unchanged (their guesses moved 6-7 %; the supply groove's 27 % still remeshes).
+PAD_REMESH = 0.15
+
+
 def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, tol, max_newton, rupture_size):
     """Pads, partial arcs and periodic films on :func:`structured_meshes`: Newton in ``(x, y)`` on meshes graded
     for the first guess (remeshed once if the answer's thinnest film moved), then, with ``rupture_size``, the
@@ -1113,7 +1132,7 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
         k_total += k
         e_new = float(np.hypot(*xy))
         moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
-        if (min_size is not None or (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= 0.1
+        if (min_size is not None or (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= PAD_REMESH
                                      and moved <= 0.5 * math.sqrt(1 - e_new))):
             break
     if rupture_size is not None:
@@ -1263,8 +1282,11 @@ RUPTURE_REACH = 0.75
 RUPTURE_SPLITS = 2
 #: A film whose largest pressure is a fraction f of the bearing's has its front refined to
 #: ``rupture_size * min(1 / f, RUPTURE_LIGHT)``: the lightly loaded pad of a two-groove bearing (f = 0.01)
-#: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients).
-RUPTURE_LIGHT = 4.0
+#: then gets one level instead of all (not refining it at all left errors up to 1e-3 in its coefficients, on
+#: two_groove_ld1 at sizes 0.2-0.25). 5 rather than 4: the light pad of a mesh of size 0.3 (front elements 0.42
+#: across) is split once to 0.21, not twice because 0.21 exceeds 4 x 0.05 (two_groove_ld1: 172 nodes instead
+#: of 399, error 3.8e-4 instead of 4.6e-4); the errors of every other setting of part ``journal_pads`` unchanged.
+RUPTURE_LIGHT = 5.0
 #: Supply pockets: elements within this many of their diameters of a pocket corner are split (0.75: every
 #: element touching the corner, whose centroid lies within 2/3 of a median of it, and few others; 1.5 split a
 #: ring of neighbours too: on the supply groove of part ``journal_pads`` 15 % more nodes at sizes 0.2 to 0.3
@@ -1355,11 +1377,23 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     return name_surface_boundaries(m, mesh.surface, source="structured")
 
 
+_DOF_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _dof_tree(basis) -> cKDTree:
+    """The k-d tree of a basis' dof locations, kept per basis: the Newton steps on a mesh carry its rupture set
+    over (turned) at every solve, and each refinement level from the level before."""
+    tree = _DOF_TREES.get(basis)
+    if tree is None:
+        tree = _DOF_TREES[basis] = cKDTree(np.asarray(basis.doflocs).T)
+    return tree
+
+
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0) -> np.ndarray:
     """Rupture mask at ``points`` (shape (2, n)): the state of the nearest dof of ``res`` (its front is
     then off by at most half the dof spacing); ``turn``: that of ``res`` turned by this angle along ``phi``
     (the state at ``phi - turn``)."""
-    nearest = cKDTree(np.asarray(res.basis.doflocs).T).query((points - np.array([[turn], [0.0]])).T)[1]
+    nearest = _dof_tree(res.basis).query((points - np.array([[turn], [0.0]])).T)[1]
     return np.asarray(res.cavitated, bool)[nearest]
 
 

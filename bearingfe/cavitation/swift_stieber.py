@@ -52,7 +52,7 @@ from ..geometry.locate import containing_cells
 if TYPE_CHECKING:
     from .models import ModelOptions
 
-__all__ = ["FilmProblem", "bernstein_change", "obstacle_problem", "solve_swift_stieber", "warm_mask"]
+__all__ = ["FilmProblem", "bernstein_change", "cold_mask", "obstacle_problem", "solve_swift_stieber", "warm_mask"]
 
 @dataclass(frozen=True, eq=False)
 class FilmProblem:
@@ -296,6 +296,12 @@ def _transferred_mask(previous: ReynoldsResult, basis) -> np.ndarray:
 COLD_RINGS = MappingProxyType({"P1": 2, "P2": 1})
 
 
+def cold_mask(fp: FilmProblem, sup: Superposition, wts: np.ndarray) -> np.ndarray:
+    """The start of a system below :data:`~bearingfe.cavitation.coarse.NESTED_MIN` unknowns without a warm
+    start: where the linear solution is negative, less :data:`COLD_RINGS` rings along its edge."""
+    return _grown(warm_mask(fp, sup, wts, None), fp.problem.A, COLD_RINGS.get(sup.operators.element, 0))
+
+
 def _grown(active: np.ndarray, A: sp.spmatrix, rings: int) -> np.ndarray:
     """``active`` with its complement (the free set) grown by ``rings`` rings of ``A``'s neighbours."""
     A = sp.csr_matrix(A)
@@ -331,9 +337,8 @@ def _solve(sup: Superposition, weights: np.ndarray, options: "ModelOptions") -> 
     t0 = time.perf_counter()
     fp = obstacle_problem(sup, options.solver, tol=options.tol, max_iterations=options.max_iterations)
     b = fp.right_side(weights)
-    start = warm_mask(fp, sup, weights, options.warm_start)
-    if options.warm_start is None and fp.problem.n < NESTED_MIN:
-        start = _grown(start, fp.problem.A, COLD_RINGS.get(sup.operators.element, 0))
+    start = (cold_mask(fp, sup, weights) if options.warm_start is None and fp.problem.n < NESTED_MIN
+             else warm_mask(fp, sup, weights, options.warm_start))
     cost = {}
     notes = ()
     krylov = fp.problem.krylov_iterations

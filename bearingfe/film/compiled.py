@@ -39,6 +39,7 @@ The scikit-fem assembly (:func:`bearingfe.film.superposition.superpose` with
 
 from __future__ import annotations
 
+import functools
 import threading
 from dataclasses import dataclass, field
 from typing import Callable, Mapping, Sequence
@@ -449,8 +450,6 @@ class CompiledOperator:
     indptr: np.ndarray             # CSR pattern of A (n_dofs x n_dofs)
     indices: np.ndarray
     groups: tuple[str, ...]        # flow groups (boundary edges and the pockets)
-    group_maps: tuple              # 3 x (n_groups, n_q) sparse: group sums of the residual of q_phi dx, q_z dx, dh/dt dx
-    corners: tuple                 # facet data of the corner dofs (see _corner_terms)
     _basis: object = field(repr=False)
     _rows: np.ndarray = field(repr=False)  # (n_pairs, n_cells): the upper entry each local pair i <= j adds to
     _lazy: dict = field(default_factory=dict, repr=False)
@@ -458,9 +457,30 @@ class CompiledOperator:
     runner: object = None          # the mesh's runner if not the original one (bearingfe.geometry.runner)
 
     def __getstate__(self) -> dict:
+        self._flow_maps()  # built, so that the copy needs no operators to build them from
         state = self.__dict__.copy()
         del state["_lock"]
         return state
+
+    def _flow_maps(self) -> tuple:
+        """``(group_maps, corners, corner_weights)`` of :func:`_flow_maps`, built on the first flow computed: a
+        Newton step's film solve reads the force and the rupture set only (on a journal's pads 1-2 ms per mesh
+        of a few hundred dofs, most of what compiling a small mesh costs)."""
+        if "flows" not in self._lazy:
+            with self._lock:
+                if "flows" not in self._lazy:
+                    self._lazy["flows"] = self._lazy.pop("flow_builder")()
+        return self._lazy["flows"]
+
+    @property
+    def group_maps(self) -> tuple:
+        """3 x ``(n_groups, n_q)`` sparse: group sums of the residual of ``q_phi dx``, ``q_z dx``, ``dh/dt dx``."""
+        return self._flow_maps()[0]
+
+    @property
+    def corners(self) -> tuple:
+        """Facet data of the corner dofs (see :meth:`_corner_terms`)."""
+        return self._flow_maps()[1]
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state, _lock=threading.Lock())
@@ -901,7 +921,7 @@ class CompiledOperator:
         q0, q1 = film_flux(h, (dp0, dp1), wedge, direction=self._direction(velocity_at(self.runner, x)))
         qn = q0 * normals[0][:, None] + q1 * normals[1][:, None]
         direct = {name: phi_ds @ qn[rows] for name, (rows, phi_ds) in parts.items()}  # (n_corner_dofs, S)
-        weights_of = self._lazy["corner_weights"]  # group -> (n_corner_dofs,): its weight there, or 0
+        weights_of = self._flow_maps()[2]  # group -> (n_corner_dofs,): its weight there, or 0
         shared = sum(np.where(weights_of[name][:, None] > 0, d, 0.0) for name, d in direct.items())
         for k, name in enumerate(self.groups):
             if name in direct:
@@ -973,15 +993,9 @@ class CompiledSystem:
         return values[:2].copy(), values[2].copy()
 
 
-def compile_operator(ops) -> CompiledOperator:
-    """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
-    basis, n = ops.basis, ops.n_dofs
-    cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
-    maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
-    indptr, indices, position = _pattern(basis.element_dofs, n)
-    dx = cell_dx.ravel()
-    I = ops.interior
-    groups = tuple(ops.flow_groups)
+def _flow_maps(ops, maps, n: int, groups: tuple) -> tuple:
+    """The maps of the flows out of each group (:meth:`CompiledOperator.group_maps`, ``corners`` and the corner
+    dofs' weights per group) of :func:`compile_operator`."""
     A = np.zeros((len(groups), n))
     corner_dofs = set()
     for k, name in enumerate(groups):
@@ -998,12 +1012,7 @@ def compile_operator(ops) -> CompiledOperator:
     group_maps = tuple(sp.csr_matrix(np.asarray(apply(A.T)).T) for apply in
                        (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
     corners: tuple = ()
-    lazy: dict = {}
-    if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
-        lazy["x"] = np.asarray(ops.x).reshape(2, -1)
-    lazy["twins"] = _twins(indptr, indices, n)
-    upper = _upper_rows(position, lazy["twins"][0])
-    del position
+    weights_of: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
         fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
@@ -1028,9 +1037,27 @@ def compile_operator(ops) -> CompiledOperator:
         ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
         corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
-        lazy["corner_weights"] = weights_of
+    return group_maps, corners, weights_of
+
+
+def compile_operator(ops) -> CompiledOperator:
+    """Build the compiled operator of :class:`~bearingfe.film.superposition.Operators` ``ops``."""
+    basis, n = ops.basis, ops.n_dofs
+    cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
+    maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
+    indptr, indices, position = _pattern(basis.element_dofs, n)
+    dx = cell_dx.ravel()
+    I = ops.interior
+    groups = tuple(ops.flow_groups)
+    lazy: dict = {}
+    if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
+        lazy["x"] = np.asarray(ops.x).reshape(2, -1)
+    lazy["twins"] = _twins(indptr, indices, n)
+    upper = _upper_rows(position, lazy["twins"][0])
+    del position
+    lazy["flow_builder"] = functools.partial(_flow_maps, ops, maps, n, groups)
     _release(basis)  # the per-point arrays of the basis: the maps keep what they need
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, dx=dx, maps=maps,
                             indptr=indptr, indices=indices, groups=groups,
-                            group_maps=group_maps, corners=corners, _basis=basis, _rows=upper,
+                            _basis=basis, _rows=upper,
                             _lazy=lazy, runner=None if is_along_phi(ops.mesh.runner) else ops.mesh.runner)

@@ -181,19 +181,26 @@ def test_bad_structured_options_for_pads():
 
 def test_pads_solved_as_one_give_each_pads_own_solution():
     # two_groove's pads from rupture sets are solved by one active-set iteration on their block-diagonal system
-    # (one result per pad); each pad solved alone from the same start gives the same rupture set and pressure
-    # to round-off, the force and its derivatives (one factorization of the joined free set) are their sums,
-    # and the joined iteration count is the largest pad's, not the sum
+    # (one result per pad); each pad solved alone from the same start (a block of one, and by solve_cavitating)
+    # gives the same rupture set and pressure to round-off, the force and its derivatives (one factorization of
+    # the joined free set) are their sums, and the joined iteration count is the largest pad's, not the sum
+    from bearingfe.cavitation import solve_cavitating
+    from bearingfe.film import superpose
+    from bearingfe.film.thickness import CosineFilm
     meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
     start = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
     joined = position_state(TWO_GROOVE, meshes, 0.43, -0.44, "reynolds", element="P2", warm_start=start)
     assert joined.joined is not None and len(joined.results) == 2
     alone = [position_state(TWO_GROOVE, (mesh,), 0.43, -0.44, "reynolds", element="P2", warm_start=(res,))
              for mesh, res in zip(meshes, start.results)]
-    assert all(a.joined is None for a in alone)
-    for j, (a,) in zip(joined.results, (a.results for a in alone)):
-        assert j.basis.mesh is a.basis.mesh and np.array_equal(j.cavitated, a.cavitated)
-        assert np.abs(j.pressure - a.pressure).max() <= 1e-12 * np.abs(a.pressure).max()
+    assert all(a.joined is not None and len(a.joined.films) == 1 for a in alone)
+    film = CosineFilm(math.hypot(0.43, -0.44), math.atan2(0.44, -0.43))
+    for j, (a,), mesh, res in zip(joined.results, (a.results for a in alone), meshes, start.results):
+        own = solve_cavitating(superpose(mesh, film, formulation="direct", element="P2"), 1.0, (0.0, 0.0), 0.0,
+                               model="reynolds", warm_start=res)
+        for other in (a, own):
+            assert j.basis.mesh is other.basis.mesh and np.array_equal(j.cavitated, other.cavitated)
+            assert np.abs(j.pressure - other.pressure).max() <= 1e-12 * np.abs(other.pressure).max()
     assert np.allclose(joined.force, sum(a.force for a in alone), rtol=1e-12, atol=0)
     dFx, dFv = force_derivatives(joined)
     alone_dFx = sum(force_derivatives(a)[0] for a in alone)
@@ -202,6 +209,27 @@ def test_pads_solved_as_one_give_each_pads_own_solution():
     assert np.abs(dFv - alone_dFv).max() <= 1e-10 * np.abs(alone_dFv).max()
     assert joined.results[0].iterations == joined.results[1].iterations
     assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
+
+
+def test_pads_cold_start_solved_as_one_as_each_pad_alone():
+    # without a warm start the pads (below NESTED_MIN unknowns) are solved as one from each pad's cold start
+    # (cold_mask: solve_cavitating's start there), with lazy results (no flows built until read): each pad's
+    # rupture set and pressure are solve_cavitating's cold solution to round-off, and its flows when read too
+    from bearingfe.cavitation import solve_cavitating
+    from bearingfe.film import operators, superpose
+    from bearingfe.film.thickness import CosineFilm
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    cold = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    assert cold.joined is not None and len(cold.results) == 2
+    assert all("flows" not in operators(m, "P2").compiled._lazy for m in meshes)
+    film = CosineFilm(math.hypot(0.40, -0.42), math.atan2(0.42, -0.40))
+    for j, mesh in zip(cold.results, meshes):
+        own = solve_cavitating(superpose(mesh, film, formulation="direct", element="P2"), 1.0, (0.0, 0.0), 0.0,
+                               model="reynolds")
+        assert np.array_equal(j.cavitated, own.cavitated) and own.cavitated.any()
+        assert np.abs(j.pressure - own.pressure).max() <= 1e-12 * np.abs(own.pressure).max()
+        scale = max(abs(v) for v in own.flows.values())
+        assert all(abs(j.flows[k] - v) <= 1e-10 * scale for k, v in own.flows.items())
 
 
 def test_a_failed_joined_iteration_falls_back_to_pad_by_pad(monkeypatch):

@@ -180,3 +180,26 @@ def test_small_panels_leave_the_fill_reducing_order_unchanged():
     options = dict(permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     default, small = spla.splu(A, **options), spla.splu(A, panel_size=1, relax=1, **options)
     np.testing.assert_array_equal(small.perm_c, default.perm_c)
+
+
+def test_flow_maps_built_on_first_use_and_carried_by_a_pickled_copy():
+    # the flow maps (group sums, corner facet data) are built on the first flow computed, not with the operator
+    # (a Newton step reads no flows); a copy pickled before any flow was computed carries them built, the same
+    # maps the original builds when its flows are first read (the reference: the original's own, built after)
+    import pickle
+    mesh = bf.mesh_surface(SURFACE, 0.3)  # fresh: no operator compiled yet
+    sup = bf.superpose(mesh, FILM, formulation="direct", element="P2")
+    co = sup.operators.compiled
+    assert "flows" not in co._lazy and "flow_builder" in co._lazy
+    copy = pickle.loads(pickle.dumps(co))
+    assert "flows" in copy._lazy and "flow_builder" not in copy._lazy
+    res = sup.combine(**POINT, sliding=0.7)  # the original builds its maps now
+    assert "flows" in co._lazy and "flow_builder" not in co._lazy and res.flows
+    for mine, theirs in zip(co.group_maps, copy.group_maps):
+        assert mine.shape == theirs.shape and (mine != theirs).nnz == 0
+    E, Gx, Gz, normals, x, parts = co.corners
+    E2, Gx2, Gz2, normals2, x2, parts2 = copy.corners
+    assert E.shape[0] > 0  # the pocket's corner dofs: facet data to compare
+    for a, b in ((E, E2), (Gx, Gx2), (Gz, Gz2)):
+        assert (a != b).nnz == 0
+    assert np.array_equal(normals, normals2) and np.array_equal(x, x2) and parts.keys() == parts2.keys()
