@@ -472,7 +472,7 @@ class _State:
     sups: tuple
     force: np.ndarray          # on the shoe/bore = applied load on the journal at equilibrium
     rotation: float            # mesh frame -> bearing frame angle
-    joined: "_Joined | None" = None  # the pads' joined obstacle problem, when they were solved as one
+    joined: "_Joined | None" = None  # the films' joined obstacle problem, when they were solved as one
 
 
 def _check_eps(eps: float) -> float:
@@ -507,10 +507,10 @@ def _solve_state(bearing: JournalBearing, meshes, x: float, y: float, cavitation
             warm_start.results if isinstance(warm_start, _State) else tuple(warm_start))
     squeeze = (gamma_rate, phi0_rate)
     notes = ()
-    if cavitation == "reynolds" and bearing.pads is not None and not any(m.needs_finite_volumes for m in meshes):
-        # the Galerkin films of pads (one or several) from rupture sets, or small ones from none (the cold start
-        # of solve_cavitating below NESTED_MIN unknowns): one active-set iteration over all of them, with lazy
-        # results (a Newton step reads the force and the rupture sets; the flows are built when read)
+    if cavitation == "reynolds" and not any(m.needs_finite_volumes for m in meshes):
+        # the Galerkin films (the full bearing's one, or the pads') from rupture sets, or small ones from none (the
+        # cold start of solve_cavitating below NESTED_MIN unknowns): one active-set iteration over all of them,
+        # with lazy results (a Newton step reads the force and the rupture sets; the flows are built when read)
         sups = [superpose(mesh, film, formulation="direct", element=element, lazy=True) for mesh in meshes]
         if not all(w is not None or sup.system.interior.size < NESTED_MIN for w, sup in zip(warm, sups)):
             sups = None
@@ -986,9 +986,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         over): the active-set iteration then only corrects the free boundary
         by the step's motion. ``False`` starts every solve afresh (where the
         linear solution is negative); the answers agree to the active-set
-        tolerance. The Galerkin films of the pads (one or several) are
+        tolerance. The Galerkin films (the full bearing's, or the pads') are
         solved as one (one active-set iteration on their block-diagonal
-        system), with one result per pad whose flows are built when read.
+        system), with one result per film whose flows are built when read.
     structured : bool
         Mesh with :func:`structured_meshes` (graded tensor-product meshes,
         no gmsh) instead of :func:`journal_mesh`: the full bearing's
