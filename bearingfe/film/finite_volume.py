@@ -934,6 +934,8 @@ class _Solution:
     iterations: int
     residual: float
     factorizations: int = 0       # new factorizations of the active-set matrices
+    solve: Callable[[np.ndarray], np.ndarray] | None = dataclasses.field(default=None, compare=False, repr=False)
+    # the last factorization's solve (of the set it factorized: a nested start's coarse correction)
 
 
 @dataclass(frozen=True, eq=False)
@@ -1167,17 +1169,22 @@ BAND_PASSES = 3
 
 
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
-              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None) -> np.ndarray:
+              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
+              passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
+              iterations: int = BAND_ITERATIONS) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
     :data:`BAND_PASSES` passes then corrects the whole field by one solve of the residual of the band's set
     (the far-field change the band's fixed rim does not see) and iterates the band again from it.
     Returns the proposed next set (``new`` outside the band); the caller's global solve on it decides
-    convergence, so the band only changes which sets are factorized on the way."""
+    convergence, so the band only changes which sets are factorized on the way. ``seed``: the unknowns the band
+    grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
+    correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
+    and its active-set iterations in a pass at most."""
     pattern = (abs(K) + abs(Gc)).tocsr()
-    band = new != cav
-    for _ in range(BAND_RINGS):
+    band = (new != cav) if seed is None else seed.copy()
+    for _ in range(rings):
         band = band | (pattern @ band.astype(float) > 0)
     B, out = np.flatnonzero(band), np.flatnonzero(~band)
     co = cav[out]
@@ -1187,11 +1194,13 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     base = -b[B] - GB[:, out] @ (~co).astype(float)
     c = new[B].copy()
     y = y.copy()
-    for npass in range(BAND_PASSES if solve is not None else 1):
+    passes = passes if solve is not None else 1
+    last = None
+    for npass in range(passes):
         yo = y[out]
         fixed = base - KBo @ np.where(co, 0.0, yo) - GcBo @ np.where(co, yo, 0.0)
         seen = set()
-        for _ in range(BAND_ITERATIONS):
+        for _ in range(iterations):
             M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
             yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
             if not np.all(np.isfinite(yb)):
@@ -1204,13 +1213,18 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
             if np.packbits(nc).tobytes() in seen:
                 break
             c = nc
-        if solve is None or npass == BAND_PASSES - 1 or not np.all(np.isfinite(yb)):
+        if solve is None or npass == passes - 1 or not np.all(np.isfinite(yb)):
             break
         y[B] = yb
         full = cav.copy()
         full[B] = c
         r = -b - G @ (~full).astype(float) - K @ np.where(full, 0.0, y) - Gc @ np.where(full, y, 0.0)
         y = y + np.asarray(solve(r), float)
+        if converge:   # the band's set carried to the next pass as it is; stop once a pass leaves it so
+            if last is not None and np.array_equal(last, c):
+                break
+            last = c.copy()
+            continue
         P = np.where(full, 0.0, y)
         c = np.where(full, y < 1.0 - tol, P < -tol_p)[B]
     out_set = new.copy()
@@ -1218,21 +1232,53 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     return out_set
 
 
+#: Unknowns from which a cold grid solve with a nested start iterates the starting set before its first fine
+#: factorization (:func:`_two_grid_set`): on a band around the carried cavity's fronts, each pass corrected
+#: by the coarse level's last factorization.
+TWO_GRID_FROM = 50_000
+#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
+TWO_GRID_PASSES = 4
+#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts.
+TWO_GRID_RINGS = 6
+#: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
+TWO_GRID_ITERATIONS = 20
+
+
+def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
+                  y: np.ndarray, correct, tol: float, p_c: float) -> np.ndarray:
+    """The set a nested start carries (``cav``, with the coarse solution ``y`` interpolated), iterated without
+    a fine factorization: :func:`_band_set` on a band around its fronts (the unknowns with a neighbour of the
+    other kind), each pass followed by the coarse-grid correction ``correct`` of the residual (the far field's
+    response to the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes. The caller's
+    global solves on the returned set decide convergence: this only changes which set is factorized first."""
+    pattern = (abs(K) + abs(Gc)).tocsr()
+    f = cav.astype(float)
+    front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
+    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
+                     converge=True, rings=TWO_GRID_RINGS, iterations=TWO_GRID_ITERATIONS)
+
+
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
-                negative: bool = False, rough: int = 0) -> _Solution:
+                negative: bool = False, rough: int = 0, guess=None) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
     ``fixed``: one solve on the given sets (no sign tests); ``negative``: return a converged cavity with
     ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again); ``rough``: return
     the solution of the last set once the next one differs from it in at most this many unknowns (a nested
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
-    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
+    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
+    start's ``(y, correct)``, the coarse solution on the unknowns (``P`` or ``theta`` by ``cavity``) and its
+    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns the set is first iterated on a band
+    around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
     solver = _SetSolver(KII, GcII, factorize, unk)
+    if guess is not None and not (fixed or rough) and cav.size >= TWO_GRID_FROM:
+        cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - GII @ full.astype(float)
@@ -1257,7 +1303,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
             res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale,
-                             factorizations=solver.factorizations)
+                             factorizations=solver.factorizations, solve=solver.solve)
         key = np.packbits(new).tobytes()
         if key in seen:
             error = JFOError(f"JFO active-set iteration cycles after {it} iterations "
@@ -1741,14 +1787,14 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     stops its iteration early (:data:`NESTED_ROUGH`)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
-        return None, {}
+        return None, {}, None
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
                                                             "grid", cavitation, factorize, tol, max_iterations,
                                                             None, time.perf_counter(),
                                                             rough=int(NESTED_ROUGH * coarse.n_nodes))
     except JFOError:
-        return None, {}
+        return None, {}, None
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
     # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
     P = csol.p - p_c
@@ -1768,7 +1814,32 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info = dict(info)
     info["nested_levels"] = info.get("nested_levels", 0.0) + 1.0
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
-    return value < 0.0, info
+    cavity = value < 0.0
+    guess = None
+    if couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
+        # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
+        index = np.full(values.shape, -1)
+        index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
+        rows = np.tile(np.arange(unk.rep.size), 4)
+        cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
+                               index[k[0] + 1, k[1] + 1]])
+        w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
+        keep = cols >= 0
+        I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unk.rep.size, cp.shape[1]))
+        fixed = _pocket_values(coarse, cops, inlet_pressure)
+        p_all = cunk.S @ (csol.p - p_c)
+        p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
+        theta_all = cunk.S @ csol.theta
+        theta_all[cunk.fixed] = 1.0
+        y = np.where(cavity, I @ theta_all, I @ p_all)
+        Iu = (I @ cunk.S).tocsr()
+        IuT = Iu.T.tocsr()
+
+        def correct(r: np.ndarray) -> np.ndarray:
+            return Iu @ np.asarray(csol.solve(IuT @ r), float)
+
+        guess = (y, correct)
+    return cavity, info, guess
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
@@ -1784,14 +1855,14 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     p_fixed = _pocket_values(mesh, ops, inlet_pressure)
     unk = _unknowns(mesh, ops)
     cavity = _warm_cavity(warm_start, ops, unk)
-    upwinded, nested = 0, {}
+    upwinded, nested, guess = 0, {}, None
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
         if (cavity is None and dt is None and cavitation == "jfo"
                 and (unk.rep.size >= NESTED_MIN if couette == "grid"
                      else NESTED_UNSTRUCTURED and unk.rep.size >= NESTED_MIN_UNSTRUCTURED)):
-            cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
+            cavity, nested, guess = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
                                             factorize, tol, max_iterations, ops, unk)
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
@@ -1800,7 +1871,8 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
                                                       max_iterations, ops)
         elif cavitation == "jfo":
-            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough)
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough,
+                             guess=guess)
         else:
             sol = _obstacle(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
         if couette == "limited" and cavitation == "jfo":
