@@ -111,8 +111,9 @@ def stages(n: int) -> dict:
     set_solver = {name: getattr(fv._SetSolver, name) for name in ("_refactorize", "_woodbury")}
 
     def timed(kind, f):
-        def wrapper(*args, **kwargs):   # the fine level's events; a nested start's own ones go to its total
-            outer, t = "nested" not in inside, time.perf_counter()
+        def wrapper(*args, **kwargs):   # the fine level's events; a nested start's and a band's own ones (the
+            outer, t = "nested" not in inside and "band" not in inside, time.perf_counter()   # band's set solver)
+            # go to their totals
             inside.append(kind)
             try:
                 return f(*args, **kwargs)

@@ -1181,22 +1181,39 @@ BAND_ITERATIONS = 20
 BAND_PASSES = 3
 
 
-def _band_solve(M: sp.csc_matrix, rhs: np.ndarray, order: np.ndarray) -> np.ndarray:
-    """A band's solve, factored in the reverse Cuthill-McKee ``order`` of its pattern with diagonal pivots
-    preferred (as :func:`_ordered_splu`): 0.056 against 0.086 s for SuperLU's COLAMD on the 6.2e4-unknown band
-    of the 600 x 600 dimples (25 rings around their cavities, thin: the factorization's per-column overhead
-    dominates). A residual that is not at round-off falls back to COLAMD with partial pivoting."""
-    try:
-        lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
-                       options={"SymmetricMode": True})
-        x = np.empty(rhs.size)
-        x[order] = lu.solve(rhs[order])
-        bound = 1e-10 * (np.abs(M.data).max(initial=0.0) * np.abs(x).max(initial=0.0) + np.abs(rhs).max(initial=0.0))
-        if np.abs(M @ x - rhs).max(initial=0.0) <= bound:
+def _band_factorize(order: np.ndarray) -> Factorize:
+    """Factorization of a band's matrices in the reverse Cuthill-McKee ``order`` of its pattern with diagonal
+    pivots preferred (as :func:`_ordered_splu`): 0.056 against 0.086 s for SuperLU's COLAMD on the 6.2e4-unknown
+    band of the 600 x 600 dimples (25 rings around their cavities, thin: the per-column overhead dominates). A
+    first solve whose residual is not at round-off falls back to COLAMD with partial pivoting."""
+
+    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
+        M = sp.csc_matrix(M)
+        fallback, checked = [], []
+        try:
+            lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
+                           options={"SymmetricMode": True})
+        except RuntimeError:   # exactly singular in this order
+            fallback.append(factorize_splu(M))
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            b = np.asarray(b, dtype=float)
+            if fallback:
+                return fallback[0](b)
+            x = np.empty_like(b)
+            x[order] = lu.solve(b[order])
+            if checked:
+                return x
+            checked.append(True)
+            bound = 1e-10 * (np.abs(M.data).max(initial=0.0) * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
+            if not np.abs(M @ x - b).max(initial=0.0) <= bound:   # also NaN
+                fallback.append(factorize_splu(M))
+                return fallback[0](b)
             return x
-    except RuntimeError:   # exactly singular in this order
-        pass
-    return spla.spsolve(M, rhs)
+
+        return solve
+
+    return factorize
 
 
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
@@ -1227,14 +1244,14 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     y = y.copy()
     passes = passes if solve is not None else 1
     order = np.asarray(reverse_cuthill_mckee((abs(KBB) + abs(GcBB)).tocsr(), symmetric_mode=True))
+    band_solver = _SetSolver(KBB, GcBB, _band_factorize(order))   # Woodbury for a few switches, as globally
     last = None
     for npass in range(passes):
         yo = y[out]
         fixed = base - KBo @ np.where(co, 0.0, yo) - GcBo @ np.where(co, yo, 0.0)
         seen = set()
         for _ in range(iterations):
-            M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
-            yb = _band_solve(M.tocsc(), fixed - GBB @ (~c).astype(float), order)
+            yb = band_solver(c, fixed - GBB @ (~c).astype(float))
             if not np.all(np.isfinite(yb)):
                 break
             P = np.where(c, 0.0, yb)
