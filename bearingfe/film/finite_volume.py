@@ -1283,7 +1283,12 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 
 #: Unknowns from which a cold grid solve with a nested start iterates the starting set before its first fine
 #: factorization (:func:`_two_grid_set`): on a band around the carried cavity's fronts, each pass corrected
-#: by the coarse level's last factorization.
+#: by the coarse level's last factorization. Measured on the 5 x 5 dimples of docs/jfo_dimples.md (best of 2-4
+#: interleaved, load 2-3.8 on 2 cores): 1 fine factorization against 2 from 6.3e4 nodes on (1.7 against 2.4 s
+#: at 6.3e4, 2.5 against 2.8 at 9e4, cavitation stage 6.6-9.2 against 11.9-14.4 s at 3.6e5); below, 1 against
+#: 3 but the band costs more than the two factorizations it saves (1.9 against 1.45 s at 4e4, 0.48 against
+#: 0.38 s at 1e4). Left out: stopping the coarse level below it earlier (2 % of its nodes switching instead of
+#: :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
 TWO_GRID_FROM = 50_000
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
 TWO_GRID_PASSES = 4
@@ -1749,11 +1754,6 @@ NESTED_MIN = 4000
 #: fraction of its nodes (the finer level's own steps move the cavity by more: its discretization shifts
 #: the fronts by a cell): a rough coarse cavity, not a converged one.
 NESTED_ROUGH = 0.005
-#: :data:`NESTED_ROUGH` of a coarse level below a fine level of :data:`TWO_GRID_FROM` unknowns or more, whose
-#: band start (:func:`_two_grid_set`) moves the fronts it carries anyway. Measured on the 5 x 5 dimples of
-#: docs/jfo_dimples.md at 600 x 600 cells (load 2): 0.005, 0.02, 0.05: 2, 1, 1 factorizations at 300 x 300,
-#: then 1 fine factorization and 1, 2, 21 Woodbury columns (5.9 against 6.6 s a solve at 0.02 and 0.005).
-NESTED_ROUGH_TWO_GRID = 0.02
 #: Weight of the full-film ``P / max P`` against the cavity's ``theta - 1`` in the sign carried from a nested
 #: start's coarse level (see :func:`_nested_cavity`). ``P`` is small beside ``theta - 1`` (non-dimensional
 #: 1e-3 .. 1e-2 against 0.1 .. 1 on the dimpled slider): unscaled, a fine node between a full and a cavitated
@@ -1842,12 +1842,11 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}, None
-    rough = NESTED_ROUGH_TWO_GRID if couette == "grid" and unk.rep.size >= TWO_GRID_FROM else NESTED_ROUGH
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
                                                             "grid", cavitation, factorize, tol, max_iterations,
                                                             None, time.perf_counter(),
-                                                            rough=int(rough * coarse.n_nodes))
+                                                            rough=int(NESTED_ROUGH * coarse.n_nodes))
     except JFOError:
         return None, {}, None
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
