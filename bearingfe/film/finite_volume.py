@@ -1833,12 +1833,14 @@ def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
 
 def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float,
                    couette: str, cavitation: str, factorize: Factorize, tol: float, max_iterations: int,
-                   ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
+                   ops: Operators, unk: FVUnknowns, guess: bool = True) -> tuple[np.ndarray | None, dict, tuple | None]:
     """Cavity to start a cold grid solve from: the converged cavity on the coarser grid
     (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
     bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
-    stops its iteration early (:data:`NESTED_ROUGH`)."""
+    stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
+    coarse level) and from :data:`TWO_GRID_FROM` unknowns, also returns the start of :func:`_two_grid_set`: the
+    coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}, None
@@ -1869,8 +1871,8 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info["nested_levels"] = info.get("nested_levels", 0.0) + 1.0
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
     cavity = value < 0.0
-    guess = None
-    if couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
+    start = None
+    if guess and couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
         # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
         index = np.full(values.shape, -1)
         index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
@@ -1892,8 +1894,8 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
         def correct(r: np.ndarray) -> np.ndarray:
             return Iu @ np.asarray(csol.solve(IuT @ r), float)
 
-        guess = (y, correct)
-    return cavity, info, guess
+        start = (y, correct)
+    return cavity, info, start
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
@@ -1917,7 +1919,7 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
                 and (unk.rep.size >= NESTED_MIN if couette == "grid"
                      else NESTED_UNSTRUCTURED and unk.rep.size >= NESTED_MIN_UNSTRUCTURED)):
             cavity, nested, guess = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
-                                            factorize, tol, max_iterations, ops, unk)
+                                            factorize, tol, max_iterations, ops, unk, guess=not rough)
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
             nested = dict(nested, first_guess_factorizations=1.0)  # beside the active set's own count
