@@ -111,8 +111,9 @@ def stages(n: int) -> dict:
     set_solver = {name: getattr(fv._SetSolver, name) for name in ("_refactorize", "_woodbury")}
 
     def timed(kind, f):
-        def wrapper(*args, **kwargs):   # the fine level's events; a nested start's own ones go to its total
-            outer, t = "nested" not in inside, time.perf_counter()
+        def wrapper(*args, **kwargs):   # the fine level's events; a nested start's and a band's own ones (the
+            outer, t = "nested" not in inside and "band" not in inside, time.perf_counter()   # band's set solver)
+            # go to their totals
             inside.append(kind)
             try:
                 return f(*args, **kwargs)
@@ -380,10 +381,12 @@ def main(argv=None) -> None:
         "start + fine active set + postprocess). `nested start`: every coarser grid on every other line, each "
         "with its own mesh, assembly and active set, stopped once a step switches at most 0.5 % of its nodes; "
         "its cavity carried to the fine grid. `fine factorizations`: SuperLU of the fine active-set matrices in "
-        "one nested-dissection order (`fine ND order`, found once per mesh); `Woodbury`: steps solved by a "
-        "low-rank update of the last factorization; `band`: a set change too large for that iterated first on "
-        "a band of neighbours around the switched nodes (passes with a global correction solve between them), "
-        "so the next factorization is near the final set; `rest`: matrices, solves, set updates. `yardstick`: one "
+        "one nested-dissection order (`fine ND order`, the grid's own dissection, found once per mesh); "
+        "`Woodbury`: steps solved by a low-rank update of the last factorization; `band`: from 5e4 nodes the "
+        "carried cavity is first iterated on a band of 6 neighbour rings around its fronts, each pass corrected "
+        "by the coarse grid's last factorization, so the first fine factorization is already near the final set "
+        "(and a later set change too large for Woodbury is iterated on a band around the switched nodes, with "
+        "global correction solves between its passes); `rest`: matrices, solves, set updates. `yardstick`: one "
         "factorization and solve of the converged fine matrix in the same order (best of two).",
         "",
         "## FBNS-type reference scheme (cell-wise film, first-order upwind; benchmark only)",

@@ -33,7 +33,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import breadth_first_order, connected_components
 
-__all__ = ["nested_dissection", "LEAF_SIZE", "NESTED_DISSECTION_FROM"]
+__all__ = ["nested_dissection", "grid_dissection", "LEAF_SIZE", "NESTED_DISSECTION_FROM"]
 
 #: Parts of at most this many vertices are not split further (measured on the grid P1 matrix of 1e5
 #: unknowns, by coordinates: fill 2 % above that of 8, 3 % below that of 32).
@@ -182,6 +182,70 @@ def nested_dissection(pattern: sp.spmatrix, coordinates: np.ndarray | None = Non
         live = active[rows] & active[cols]
         rows, cols = rows[live], cols[live]
     return np.concatenate(leaves + separators[::-1]).astype(np.int64) if n else np.zeros(0, dtype=np.int64)
+
+
+def grid_dissection(index: np.ndarray, leaf: int = LEAF_SIZE) -> np.ndarray:
+    """A nested-dissection order of the vertices of a tensor grid, in closed form from their line numbers.
+
+    Each box of grid lines is cut at the middle line of its longer side (in lines), that line's vertices in
+    the box being the separator, until a box holds at most ``leaf`` vertices: the recursive coordinate
+    bisection :func:`nested_dissection` does by coordinates, without the graph. The order is valid for any
+    pattern; it is a dissection where every edge joins vertices on the same or neighbouring lines in each
+    direction (P1 on a grid, with or without its diagonals; boxes with holes, e.g. a grid's pockets, too).
+
+    Parameters
+    ----------
+    index : int array (2, n)
+        The grid line numbers of each vertex along the two axes (any non-negative integers).
+    leaf : int
+        Boxes of at most this many vertices are not cut (>= 2).
+
+    Returns
+    -------
+    order : int array (n,)
+        A permutation, as :func:`nested_dissection`'s: leaves first, then the separators, the deepest first.
+    """
+    if not (isinstance(leaf, (int, np.integer)) and leaf >= 2):
+        raise ValueError(f"leaf must be an integer >= 2 (vertices), got {leaf!r}")
+    index = np.asarray(index)
+    if index.ndim != 2 or index.shape[0] != 2 or not np.issubdtype(index.dtype, np.integer):
+        raise ValueError(f"index must be an integer array of shape (2, n), got {index.dtype} {index.shape}")
+    n = index.shape[1]
+    if n == 0:
+        return np.zeros(0, dtype=np.int64)
+    index = index.astype(np.int64)
+    lo = index.min(axis=1)[:, None]
+    hi = index.max(axis=1)[:, None] + 1
+    vertex = np.arange(n, dtype=np.int64)   # the vertices still to place, and the box of each
+    box = np.zeros(n, dtype=np.int64)
+    leaves: list[np.ndarray] = []
+    separators: list[np.ndarray] = []
+    while vertex.size:
+        count = np.bincount(box, minlength=lo.shape[1])
+        small = (count <= leaf)[box]
+        if small.any():
+            leaves.append(vertex[small][np.argsort(box[small], kind="stable")])
+            vertex, box = vertex[~small], box[~small]
+            if not vertex.size:
+                break
+        extent = hi - lo
+        boxes = np.arange(lo.shape[1])
+        axis = (extent[1] > extent[0]).astype(np.int64)
+        mid = lo[axis, boxes] + extent[axis, boxes] // 2
+        line = index[axis[box], vertex]
+        cut = line == mid[box]
+        other = index[1 - axis[box], vertex]
+        sep = np.lexsort((other[cut], box[cut]))
+        separators.append(vertex[cut][sep])
+        right = line > mid[box]
+        keep = ~cut
+        vertex, box = vertex[keep], 2 * box[keep] + right[keep]
+        # the children's boxes: the left one ends at the cut line, the right one starts after it
+        lo2, hi2 = np.repeat(lo, 2, axis=1), np.repeat(hi, 2, axis=1)
+        hi2[axis, 2 * boxes] = mid
+        lo2[axis, 2 * boxes + 1] = mid + 1
+        lo, hi = lo2, hi2
+    return np.concatenate(leaves + separators[::-1])
 
 
 def _last_per_label(labels: np.ndarray, order: np.ndarray, count: int) -> np.ndarray:

@@ -91,6 +91,7 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .thickness import Film
 from .forms import along
@@ -511,13 +512,17 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
 
 def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
     """``int c grad phi_i . grad phi_j`` (P1: the gradients are constant on a triangle, so each triangle
-    contributes ``int_T c`` times their products)."""
+    contributes ``int_T c`` times their products). Summed from the 3 edges of each triangle (``A + A^T``), the
+    diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3 entries a triangle into
+    the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to 4e-16 relative; the
+    entries that sum to exactly zero, across the diagonals of a square grid, are left out)."""
     g, t = cells.grad, cells.t
     w = np.sum(c_q * cells.dx, axis=1)
-    rows = np.repeat(t, 3, axis=0).ravel()
-    cols = np.tile(t, (3, 1)).ravel()
-    vals = (w * (g[0][:, None] * g[0][None, :] + g[1][:, None] * g[1][None, :])).ravel()
-    return sp.csr_matrix((vals, (rows, cols)), shape=(cells.n, cells.n))
+    a, b = [0, 1, 2], [1, 2, 0]
+    vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
+    A = U + U.T
+    return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
 
 
 def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
@@ -934,6 +939,8 @@ class _Solution:
     iterations: int
     residual: float
     factorizations: int = 0       # new factorizations of the active-set matrices
+    solve: Callable[[np.ndarray], np.ndarray] | None = dataclasses.field(default=None, compare=False, repr=False)
+    # the last factorization's solve (of the set it factorized: a nested start's coarse correction)
 
 
 @dataclass(frozen=True, eq=False)
@@ -944,6 +951,7 @@ class FVUnknowns:
     rep: np.ndarray         # (m,) a dof of each unknown
     fixed: np.ndarray       # dofs with given pressure and theta = 1
     coordinates: np.ndarray | None = None   # (2, m) positions of the unknowns (for a fill-reducing order)
+    on_grid: bool = False   # the unknowns lie on the lines of a grid_mesh without a seam (grid_dissection)
     _order: dict = dataclasses.field(default_factory=dict, repr=False)   # the order, found once
 
 
@@ -971,7 +979,8 @@ def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
     S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
     fixed = np.ones(n, bool)
     fixed[I] = False
-    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps])
+    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps],
+                      on_grid=mesh.source == "grid" and not start.size)
 
 
 _REDUCED: "weakref.WeakKeyDictionary[FVSystem, tuple]" = weakref.WeakKeyDictionary()
@@ -1024,7 +1033,9 @@ LOW_RANK_SWITCHES = 24
 #: pivots preferred (SuperLU's symmetric mode, threshold :data:`PIVOT_THRESHOLD`) instead of SuperLU's
 #: COLAMD with partial pivoting. Measured on the converged active-set matrix (load 2.7 on 2 cores): 0.13 s
 #: against 0.28 s at 4.4e4 unknowns (gmsh, streamline flux), 0.48 s against 0.89 s at 1.6e5 (grid flux),
-#: the order found in 0.06 s and 0.29 s.
+#: the order found in 0.06 s and 0.29 s. On a ``grid_mesh`` without a seam the order is the grid's own
+#: dissection in closed form (:func:`bearingfe.core.ordering.grid_dissection`): at 600 x 600 dimple cells
+#: 0.09-0.15 against 0.47-0.49 s, fill 0.7 % more, the same factorization time within the noise (load 3).
 ORDERED_FROM = 5000
 #: Threshold of the partial pivoting of the ordered factorization (a diagonal pivot is kept while it is
 #: at least this fraction of its column's largest entry).
@@ -1040,10 +1051,14 @@ def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factor
         return factorize_splu
     order = unk._order.get("order")
     if order is None or order.size != m:
-        from ..core.ordering import nested_dissection
+        from ..core.ordering import grid_dissection, nested_dissection
 
-        pattern = (abs(K) + abs(G)).tocsr()
-        order = unk._order["order"] = nested_dissection(pattern, unk.coordinates)
+        if unk.on_grid:   # the unknowns' grid line numbers: the dissection in closed form
+            index = np.stack([np.unique(c, return_inverse=True)[1].ravel() for c in unk.coordinates])
+            order = grid_dissection(index)
+        else:
+            order = nested_dissection((abs(K) + abs(G)).tocsr(), unk.coordinates)
+        unk._order["order"] = order
     inverse = np.argsort(order)
 
     def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
@@ -1166,18 +1181,58 @@ BAND_ITERATIONS = 20
 BAND_PASSES = 3
 
 
+def _band_factorize(order: np.ndarray) -> Factorize:
+    """Factorization of a band's matrices in the reverse Cuthill-McKee ``order`` of its pattern with diagonal
+    pivots preferred (as :func:`_ordered_splu`): 0.056 against 0.086 s for SuperLU's COLAMD on the 6.2e4-unknown
+    band of the 600 x 600 dimples (25 rings around their cavities, thin: the per-column overhead dominates). A
+    first solve whose residual is not at round-off falls back to COLAMD with partial pivoting."""
+
+    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
+        M = sp.csc_matrix(M)
+        fallback, checked = [], []
+        try:
+            lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
+                           options={"SymmetricMode": True})
+        except RuntimeError:   # exactly singular in this order
+            fallback.append(factorize_splu(M))
+
+        def solve(b: np.ndarray) -> np.ndarray:
+            b = np.asarray(b, dtype=float)
+            if fallback:
+                return fallback[0](b)
+            x = np.empty_like(b)
+            x[order] = lu.solve(b[order])
+            if checked:
+                return x
+            checked.append(True)
+            bound = 1e-10 * (np.abs(M.data).max(initial=0.0) * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
+            if not np.abs(M @ x - b).max(initial=0.0) <= bound:   # also NaN
+                fallback.append(factorize_splu(M))
+                return fallback[0](b)
+            return x
+
+        return solve
+
+    return factorize
+
+
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
-              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None) -> np.ndarray:
+              y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
+              passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
+              iterations: int = BAND_ITERATIONS) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
     :data:`BAND_PASSES` passes then corrects the whole field by one solve of the residual of the band's set
     (the far-field change the band's fixed rim does not see) and iterates the band again from it.
     Returns the proposed next set (``new`` outside the band); the caller's global solve on it decides
-    convergence, so the band only changes which sets are factorized on the way."""
+    convergence, so the band only changes which sets are factorized on the way. ``seed``: the unknowns the band
+    grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
+    correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
+    and its active-set iterations in a pass at most."""
     pattern = (abs(K) + abs(Gc)).tocsr()
-    band = new != cav
-    for _ in range(BAND_RINGS):
+    band = (new != cav) if seed is None else seed.copy()
+    for _ in range(rings):
         band = band | (pattern @ band.astype(float) > 0)
     B, out = np.flatnonzero(band), np.flatnonzero(~band)
     co = cav[out]
@@ -1187,13 +1242,16 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     base = -b[B] - GB[:, out] @ (~co).astype(float)
     c = new[B].copy()
     y = y.copy()
-    for npass in range(BAND_PASSES if solve is not None else 1):
+    passes = passes if solve is not None else 1
+    order = np.asarray(reverse_cuthill_mckee((abs(KBB) + abs(GcBB)).tocsr(), symmetric_mode=True))
+    band_solver = _SetSolver(KBB, GcBB, _band_factorize(order))   # Woodbury for a few switches, as globally
+    last = None
+    for npass in range(passes):
         yo = y[out]
         fixed = base - KBo @ np.where(co, 0.0, yo) - GcBo @ np.where(co, yo, 0.0)
         seen = set()
-        for _ in range(BAND_ITERATIONS):
-            M = KBB @ sp.diags((~c).astype(float)) + GcBB @ sp.diags(c.astype(float))
-            yb = spla.spsolve(M.tocsc(), fixed - GBB @ (~c).astype(float))
+        for _ in range(iterations):
+            yb = band_solver(c, fixed - GBB @ (~c).astype(float))
             if not np.all(np.isfinite(yb)):
                 break
             P = np.where(c, 0.0, yb)
@@ -1204,13 +1262,18 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
             if np.packbits(nc).tobytes() in seen:
                 break
             c = nc
-        if solve is None or npass == BAND_PASSES - 1 or not np.all(np.isfinite(yb)):
+        if solve is None or npass == passes - 1 or not np.all(np.isfinite(yb)):
             break
         y[B] = yb
         full = cav.copy()
         full[B] = c
         r = -b - G @ (~full).astype(float) - K @ np.where(full, 0.0, y) - Gc @ np.where(full, y, 0.0)
         y = y + np.asarray(solve(r), float)
+        if converge:   # the band's set carried to the next pass as it is; stop once a pass leaves it so
+            if last is not None and np.array_equal(last, c):
+                break
+            last = c.copy()
+            continue
         P = np.where(full, 0.0, y)
         c = np.where(full, y < 1.0 - tol, P < -tol_p)[B]
     out_set = new.copy()
@@ -1218,21 +1281,58 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     return out_set
 
 
+#: Unknowns from which a cold grid solve with a nested start iterates the starting set before its first fine
+#: factorization (:func:`_two_grid_set`): on a band around the carried cavity's fronts, each pass corrected
+#: by the coarse level's last factorization. Measured on the 5 x 5 dimples of docs/jfo_dimples.md (best of 2-4
+#: interleaved, load 2-3.8 on 2 cores): 1 fine factorization against 2 from 6.3e4 nodes on (1.7 against 2.4 s
+#: at 6.3e4, 2.5 against 2.8 at 9e4, cavitation stage 6.6-9.2 against 11.9-14.4 s at 3.6e5); below, 1 against
+#: 3 but the band costs more than the two factorizations it saves (1.9 against 1.45 s at 4e4, 0.48 against
+#: 0.38 s at 1e4). Left out: stopping the coarse level below it earlier (2 % of its nodes switching instead of
+#: :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
+TWO_GRID_FROM = 50_000
+#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
+TWO_GRID_PASSES = 4
+#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts.
+TWO_GRID_RINGS = 6
+#: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
+TWO_GRID_ITERATIONS = 20
+
+
+def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
+                  y: np.ndarray, correct, tol: float, p_c: float) -> np.ndarray:
+    """The set a nested start carries (``cav``, with the coarse solution ``y`` interpolated), iterated without
+    a fine factorization: :func:`_band_set` on a band around its fronts (the unknowns with a neighbour of the
+    other kind), each pass followed by the coarse-grid correction ``correct`` of the residual (the far field's
+    response to the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes. The caller's
+    global solves on the returned set decide convergence: this only changes which set is factorized first."""
+    pattern = (abs(K) + abs(Gc)).tocsr()
+    f = cav.astype(float)
+    front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
+    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
+                     converge=True, rings=TWO_GRID_RINGS, iterations=TWO_GRID_ITERATIONS)
+
+
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
                 factorize: Factorize, tol: float, max_iterations: int, fixed: bool = False,
-                negative: bool = False, rough: int = 0) -> _Solution:
+                negative: bool = False, rough: int = 0, guess=None) -> _Solution:
     """Primal-dual active set (semismooth Newton on min(P, 1 - theta)) on the unknowns;
     ``fixed``: one solve on the given sets (no sign tests); ``negative``: return a converged cavity with
     ``theta < 0`` instead of raising (the streamline flux upwinds there and solves again); ``rough``: return
     the solution of the last set once the next one differs from it in at most this many unknowns (a nested
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
-    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute."""
+    :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
+    start's ``(y, correct)``, the coarse solution on the unknowns (``P`` or ``theta`` by ``cavity``) and its
+    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns the set is first iterated on a band
+    around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
     solver = _SetSolver(KII, GcII, factorize, unk)
+    if guess is not None and not (fixed or rough) and cav.size >= TWO_GRID_FROM:
+        cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - GII @ full.astype(float)
@@ -1257,7 +1357,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
             res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale,
-                             factorizations=solver.factorizations)
+                             factorizations=solver.factorizations, solve=solver.solve)
         key = np.packbits(new).tobytes()
         if key in seen:
             error = JFOError(f"JFO active-set iteration cycles after {it} iterations "
@@ -1733,22 +1833,24 @@ def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
 
 def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float,
                    couette: str, cavitation: str, factorize: Factorize, tol: float, max_iterations: int,
-                   ops: Operators, unk: FVUnknowns) -> tuple[np.ndarray | None, dict]:
+                   ops: Operators, unk: FVUnknowns, guess: bool = True) -> tuple[np.ndarray | None, dict, tuple | None]:
     """Cavity to start a cold grid solve from: the converged cavity on the coarser grid
     (:func:`_coarser_grid`, itself started the same way), carried to the unknowns by the sign of the
     bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
-    stops its iteration early (:data:`NESTED_ROUGH`)."""
+    stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
+    coarse level) and from :data:`TWO_GRID_FROM` unknowns, also returns the start of :func:`_two_grid_set`: the
+    coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
-        return None, {}
+        return None, {}, None
     try:
         _, cops, _, cunk, csol, _, info = _complementarity(coarse, film, wedge, sq, inlet_pressure, p_c, None, None,
                                                             "grid", cavitation, factorize, tol, max_iterations,
                                                             None, time.perf_counter(),
                                                             rough=int(NESTED_ROUGH * coarse.n_nodes))
     except JFOError:
-        return None, {}
+        return None, {}, None
     # the sign of P (full film) or of theta - 1 (cavity), interpolated bilinearly from the coarse grid's
     # nodes: a front between two coarse nodes lands between them, where the coarse solution puts it
     P = csol.p - p_c
@@ -1768,7 +1870,32 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info = dict(info)
     info["nested_levels"] = info.get("nested_levels", 0.0) + 1.0
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
-    return value < 0.0, info
+    cavity = value < 0.0
+    start = None
+    if guess and couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
+        # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
+        index = np.full(values.shape, -1)
+        index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
+        rows = np.tile(np.arange(unk.rep.size), 4)
+        cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
+                               index[k[0] + 1, k[1] + 1]])
+        w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
+        keep = cols >= 0
+        I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unk.rep.size, cp.shape[1]))
+        fixed = _pocket_values(coarse, cops, inlet_pressure)
+        p_all = cunk.S @ (csol.p - p_c)
+        p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
+        theta_all = cunk.S @ csol.theta
+        theta_all[cunk.fixed] = 1.0
+        y = np.where(cavity, I @ theta_all, I @ p_all)
+        Iu = (I @ cunk.S).tocsr()
+        IuT = Iu.T.tocsr()
+
+        def correct(r: np.ndarray) -> np.ndarray:
+            return Iu @ np.asarray(csol.solve(IuT @ r), float)
+
+        start = (y, correct)
+    return cavity, info, start
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
@@ -1784,15 +1911,15 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
     p_fixed = _pocket_values(mesh, ops, inlet_pressure)
     unk = _unknowns(mesh, ops)
     cavity = _warm_cavity(warm_start, ops, unk)
-    upwinded, nested = 0, {}
+    upwinded, nested, guess = 0, {}, None
     if cavitation == "none":
         sol = active_set(system, unk, p_fixed, p_c, np.zeros(unk.rep.size, bool), factorize, tol, 1, fixed=True)
     else:
         if (cavity is None and dt is None and cavitation == "jfo"
                 and (unk.rep.size >= NESTED_MIN if couette == "grid"
                      else NESTED_UNSTRUCTURED and unk.rep.size >= NESTED_MIN_UNSTRUCTURED)):
-            cavity, nested = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
-                                            factorize, tol, max_iterations, ops, unk)
+            cavity, nested, guess = _nested_cavity(mesh, film, wedge, sq, inlet_pressure, p_c, couette, cavitation,
+                                            factorize, tol, max_iterations, ops, unk, guess=not rough)
         if cavity is None:
             cavity = _initial_cavity(system, unk, p_fixed, p_c, factorize)
             nested = dict(nested, first_guess_factorizations=1.0)  # beside the active set's own count
@@ -1800,7 +1927,8 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
                                                       max_iterations, ops)
         elif cavitation == "jfo":
-            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough)
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough,
+                             guess=guess)
         else:
             sol = _obstacle(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations)
         if couette == "limited" and cavitation == "jfo":

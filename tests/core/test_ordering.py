@@ -17,7 +17,7 @@ import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import connected_components
 
 import bearingfe as bf
-from bearingfe.core.ordering import nested_dissection
+from bearingfe.core.ordering import grid_dissection, nested_dissection
 from benchmarks.orderings import matrix
 
 SYM = dict(diag_pivot_thresh=0.0, options={"SymmetricMode": True})
@@ -60,6 +60,34 @@ def test_the_order_is_a_permutation_whose_last_vertices_separate_the_rest(by):
         raise AssertionError(f"no top separator of at most {top} vertices")
     halves = np.bincount(label)
     assert halves.min() >= 0.4 * rest.size
+
+
+def test_grid_dissection_cuts_at_the_middle_line_and_fills_as_the_coordinate_dissection():
+    # the closed form on a grid's line numbers: a permutation, the last m vertices the middle line (whose
+    # removal leaves two halves of equal size), every separator after the box it cuts; the fill within 5 %
+    # of nested_dissection by coordinates (the same cuts, its separators from the graph: measured 0.7 % more
+    # on the 600 x 600 dimple grid, 0.98 here and 0.97 with a hole, as a grid's pocket makes one)
+    m = 61
+    A, xy = _grid(m)
+    index = xy.astype(np.int64)
+    order = grid_dissection(index)
+    np.testing.assert_array_equal(np.sort(order), np.arange(m * m))
+    top = order[-m:]
+    assert np.unique(index[0, top]).size == 1 and index[0, top[0]] == m // 2
+    rest = np.sort(order[:-m])
+    count, label = connected_components(A[rest][:, rest], directed=False)
+    assert count == 2 and np.bincount(label).tolist() == [m * (m // 2)] * 2
+    assert _fill(A, order) <= 1.05 * _fill(A, nested_dissection(A, xy))
+    hole = (np.abs(index[0] - 20) < 6) & (np.abs(index[1] - 40) < 9)
+    keep = np.flatnonzero(~hole)
+    holed = grid_dissection(index[:, keep])
+    np.testing.assert_array_equal(np.sort(holed), np.arange(keep.size))
+    assert _fill(A[keep][:, keep], holed) <= 1.05 * _fill(A[keep][:, keep], nested_dissection(A[keep][:, keep], xy[:, keep]))
+    assert grid_dissection(np.zeros((2, 0), dtype=int)).size == 0
+    with pytest.raises(ValueError, match="leaf"):
+        grid_dissection(index, leaf=1)
+    with pytest.raises(ValueError, match="index must be an integer array"):
+        grid_dissection(xy)
 
 
 def test_disconnected_and_tiny_patterns():
