@@ -382,3 +382,23 @@ def test_grid_facets_are_the_ones_scikit_fem_builds():
     assert np.array_equal(grid.mesh.facets, fresh.facets) and grid.mesh.facets.dtype == fresh.facets.dtype
     assert np.array_equal(grid.mesh.t2f, fresh.t2f)
     assert np.array_equal(grid.mesh.f2t, fresh.f2t)
+
+
+def test_named_locally_refined_meshes_have_scikit_fems_own_facets():
+    """name_surface_boundaries (a grid refined locally by scikit-fem, e.g. at a journal's rupture front) builds
+    the facets by the same counting sort as grid_mesh: scikit-fem's own arrays, and the same named boundaries as
+    when scikit-fem sorts them."""
+    from bearingfe.geometry.meshing import name_surface_boundaries
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    grid = bf.grid_mesh(surface, 0.1)
+    refined = grid.mesh.refined(np.arange(0, grid.n_elements, 3))
+    named = name_surface_boundaries(skfem.MeshTri1(refined.p, refined.t), surface)
+    sorted_by_skfem = skfem.MeshTri1(refined.p, refined.t)
+    assert np.array_equal(named.mesh.facets, sorted_by_skfem.facets)
+    assert np.array_equal(named.mesh.t2f, sorted_by_skfem.t2f)
+    facets = sorted_by_skfem.boundary_facets()
+    assert set(named.boundaries) >= {"outer", "inlet", "arc_start", "arc_end", "side"}
+    assert all(np.isin(f, facets).all() for f in named.boundaries.values())
+    assert np.array_equal(np.sort(named.boundaries["outer"]),
+                          np.sort(facets[~np.isin(facets, named.boundaries["inlet"])]))
