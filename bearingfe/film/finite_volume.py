@@ -568,8 +568,8 @@ def _recess_plan(surface, phi, buckets: int = 4096):
     starts = np.searchsorted(key[order], np.arange(buckets + 1))
     plan = []
     for r, (lo, hi) in zip(recesses, _recess_boxes(surface)):
-        k0 = int(np.clip(math.floor((lo[0] - lo_phi) / width), 0, buckets - 1))
-        k1 = int(np.clip(math.floor((hi[0] - lo_phi) / width), 0, buckets - 1))
+        k0 = min(max(math.floor((lo[0] - lo_phi) / width), 0), buckets - 1)   # Python clamps: no numpy call
+        k1 = min(max(math.floor((hi[0] - lo_phi) / width), 0), buckets - 1)   # per recess
         idx = order[starts[k0]:starts[k1 + 1]]
         plan.append((r, lo, hi, idx))
     return plan
@@ -631,6 +631,20 @@ def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
     for lo, hi in _recess_boxes(surface):   # found once per surface
         near |= (x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1])
     return near
+
+
+def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """``surface.recess_depth(X, Z)`` of points grouped in rectangles: row ``k`` of ``X``, ``Z``
+    (``(n, k_points)``) lies in ``[x0_k, x1_k] x [z0_k, z1_k]``. Each recess tests only the rows whose
+    rectangle overlaps its bounding box (:func:`_recess_boxes`, the box :func:`_recess_plan` also trusts),
+    the recesses added in their order: the same values as the plain test, without sorting the points (cells
+    and boxes of a grid, each near one recess contour, sampled many times)."""
+    out = np.zeros(np.shape(X))
+    for r, (lo, hi) in zip(surface.recesses, _recess_boxes(surface)):
+        rows = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
+        if rows.size:
+            out[rows] += r.depth * r.shape.contains(X[rows], Z[rows])
+    return out
 
 
 def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
@@ -837,7 +851,8 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    depth = _recess_depth(surface, pts[0], pts[1]) if cut.size else np.zeros(pts.shape[1:])
+    cx, cz = px[:, cut], pz[:, cut]   # each recess tests the cut cells near it
+    depth = _boxed_depth(surface, cx.min(axis=0), cx.max(axis=0), cz.min(axis=0), cz.max(axis=0), pts[0], pts[1])
     out = (cut, pts, depth)
     _CUTS[mesh] = (subdivisions, out)
     return out
@@ -1420,9 +1435,8 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
     h = np.asarray(film.thickness(X, Z), dtype=float) + 0.0 * X
     surface = mesh.surface
-    if surface is not None and getattr(surface, "recesses", ()):   # the depth only in boxes near a recess
-        near = np.flatnonzero(_near_recess(surface, b[0], b[1], b[2], b[3]))
-        h[near] += _recess_depth(surface, X[near], Z[near])
+    if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
+        h += _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)
     cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
     fill = np.minimum(1.0, cc / h)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]

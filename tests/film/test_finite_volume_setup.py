@@ -45,6 +45,25 @@ def test_line_recess_on_part_of_a_chord():
     assert np.allclose(fv._line_recess(surface, x, lo, hi), expected, rtol=0.0, atol=1e-9)
 
 
+def test_boxed_depth_is_the_surfaces_own_recess_depth():
+    """:func:`_boxed_depth` (each recess tests only the rectangles near it) gives exactly the surface's
+    ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
+    and away from the contours, 16 points in each."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[Recess(Circle((0.3, 0.0), 0.2), 0.3), Recess(Rectangle((0.65, 0.25), (0.2, 0.15)), 0.7),
+                                Recess(Circle((0.8, -0.3), 0.1), 1.1)])
+    rng = np.random.default_rng(3)
+    x0, z0 = rng.uniform(0.0, 0.95, 400), rng.uniform(-0.5, 0.45, 400)
+    x1, z1 = x0 + rng.uniform(0.0, 0.1, 400), z0 + rng.uniform(0.0, 0.1, 400)
+    s = rng.uniform(0.0, 1.0, (2, 400, 16))
+    X, Z = x0[:, None] + (x1 - x0)[:, None] * s[0], z0[:, None] + (z1 - z0)[:, None] * s[1]
+    got = fv._boxed_depth(surface, x0, x1, z0, z1, X, Z)
+    assert np.array_equal(got, surface.recess_depth(X, Z))
+    assert all(np.any(got == r.depth) for r in surface.recesses) and np.any(got == 0.0)
+
+
 def test_grid_and_gmsh_meshes_keep_the_facets_they_named():
     """The meshers' copies with named boundaries carry the facets they were named on: the same as
     scikit-fem builds from the triangles afresh, so the boundary facet indices stay valid."""
