@@ -427,10 +427,8 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
     p, t = m.p, m.t[:3]
     nt = t.shape[1]
     g = p[:, t].mean(axis=1)
-    depth = np.empty(t.shape)
-    for a in range(3):
-        q = p[:, t[a]] + 1e-6 * (g - p[:, t[a]])   # just inside the triangle: its side of a step
-        depth[a] = _recess_depth(surface, q[0], q[1])
+    q = p[:, t] + 1e-6 * (g[:, None, :] - p[:, t])   # (2, 3, nt) just inside the triangle: its side of a step
+    depth = _rows_depth(surface, q[0].T, q[1].T).T
     deepest = np.zeros(m.nvertices)
     np.maximum.at(deepest, t.ravel(), depth.ravel())
     h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
@@ -647,6 +645,20 @@ def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.nd
     return out
 
 
+def _rows_depth(surface, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """:func:`_boxed_depth` of points grouped in rows (``(n, k)``: a triangle's quadrature points, a line's
+    samples), each row's rectangle its points' bounding box (column by column: numpy's reduction along a
+    short last axis is many times slower)."""
+    X, Z = np.asarray(X), np.asarray(Z)
+    x0, x1, z0, z1 = X[:, 0].copy(), X[:, 0].copy(), Z[:, 0].copy(), Z[:, 0].copy()
+    for k in range(1, X.shape[1]):
+        np.minimum(x0, X[:, k], out=x0)
+        np.maximum(x1, X[:, k], out=x1)
+        np.minimum(z0, Z[:, k], out=z0)
+        np.maximum(z1, Z[:, k], out=z1)
+    return _boxed_depth(surface, x0, x1, z0, z1, X, Z)
+
+
 def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
                  bisections: int = 30, sections: int = 32) -> np.ndarray:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
@@ -657,7 +669,7 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
     the test changes: ``log2(sections)`` halvings per round."""
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
-    d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
+    d = _rows_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
     piece = np.where(da == db, da * (b - a), 0.0)
     seg, k = np.nonzero(da != db)
@@ -798,7 +810,7 @@ def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
         return None
     depth = _DEPTHS.get(mesh)
     if depth is None or depth.shape != x.shape[1:]:
-        depth = _DEPTHS[mesh] = _recess_depth(surface, x[0], x[1])
+        depth = _DEPTHS[mesh] = _rows_depth(surface, x[0], x[1])   # (n_triangles, n_points)
     return depth
 
 
@@ -843,7 +855,7 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
-    dep_v = _recess_depth(surface, px[:, near], pz[:, near])
+    dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
     cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]

@@ -46,7 +46,7 @@ def test_line_recess_on_part_of_a_chord():
 
 
 def test_boxed_depth_is_the_surfaces_own_recess_depth():
-    """:func:`_boxed_depth` (each recess tests only the rectangles near it) gives exactly the surface's
+    """:func:`_boxed_depth` (each recess tests only the rectangles near it) and :func:`_rows_depth` give exactly the surface's
     ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
     and away from the contours, 16 points in each."""
     from bearingfe import Rectangle
@@ -61,6 +61,7 @@ def test_boxed_depth_is_the_surfaces_own_recess_depth():
     X, Z = x0[:, None] + (x1 - x0)[:, None] * s[0], z0[:, None] + (z1 - z0)[:, None] * s[1]
     got = fv._boxed_depth(surface, x0, x1, z0, z1, X, Z)
     assert np.array_equal(got, surface.recess_depth(X, Z))
+    assert np.array_equal(fv._rows_depth(surface, X, Z), got)   # the rows' own bounding boxes
     assert all(np.any(got == r.depth) for r in surface.recesses) and np.any(got == 0.0)
 
 
