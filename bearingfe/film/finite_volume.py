@@ -667,7 +667,10 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     an eighth of a cell). A circle's contour is crossed where its chord on the line ends (closed form);
     other contours' crossings are searched together, recess by recess (only the crossed recess's own
     test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
-    the test changes: ``log2(sections)`` halvings per round."""
+    the test changes: ``log2(sections)`` halvings per round. Where every recess is a circle, each line
+    takes its chords' overlap with ``[lo, hi]`` directly (no samples, no condition on the recess width)."""
+    if all(isinstance(r.shape, Circle) for r in surface.recesses):
+        return _line_circles(surface, x, lo, hi)
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _rows_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
@@ -700,6 +703,21 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
             found[todo] = _bisect_crossings(groups, todo, xs, aa, bb, bisections, sections)
         piece[seg, k] = dA * (found - a[seg, k]) + db[seg, k] * (b[seg, k] - found)
     return piece.sum(axis=1)
+
+
+def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """:func:`_line_recess` where every recess is a circle (recesses do not overlap): the depth times the
+    part of each chord ``|z - cz| < sqrt(r^2 - (x - cx)^2)`` in ``[lo, hi]``, the lines near each circle's
+    box only."""
+    out = np.zeros(np.shape(x))
+    for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
+        near = np.flatnonzero((x >= blo[0]) & (x <= bhi[0]) & (hi >= blo[1]) & (lo <= bhi[1]))
+        if near.size:
+            (cx, cz), radius = r.shape.center, r.shape.radius
+            half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
+            chord = np.minimum(hi[near], cz + half) - np.maximum(lo[near], cz - half)
+            out[near] += r.depth * np.maximum(chord, 0.0)
+    return out
 
 
 def _circle_crossing(circle: Circle, x: np.ndarray, inside: np.ndarray) -> np.ndarray:

@@ -45,6 +45,27 @@ def test_line_recess_on_part_of_a_chord():
     assert np.allclose(fv._line_recess(surface, x, lo, hi), expected, rtol=0.0, atol=1e-9)
 
 
+def test_all_circle_lines_take_the_chords_as_the_sampled_crossings_do(monkeypatch):
+    """Where every recess is a circle, :func:`_line_recess` takes each chord's overlap with the segment
+    directly (:func:`_line_circles`); the sampled path (every contour crossing located to ``2**-30`` of an
+    eighth of the segment, forced here by hiding the Circle type) gives the same integrals to that
+    resolution: at most two crossings a line, each weighing a depth of 1, 2 * (1/8) * 2**-30 = 2.3e-10,
+    on segments inside, across and away from the dimples."""
+    surface = _dimpled()
+    rng = np.random.default_rng(5)
+    x = rng.uniform(0.0, 1.0, 300)
+    lo = rng.uniform(-0.5, 0.3, 300)
+    hi = lo + rng.uniform(0.0, 0.5, 300)
+    direct = fv._line_recess(surface, x, lo, hi)
+
+    class NotACircle:   # every recess sampled and bisected
+        pass
+
+    monkeypatch.setattr(fv, "Circle", NotACircle)
+    sampled = fv._line_recess(surface, x, lo, hi)
+    assert np.count_nonzero(direct) > 100 and np.abs(direct - sampled).max() <= 2.3e-10
+
+
 def test_boxed_depth_is_the_surfaces_own_recess_depth():
     """:func:`_boxed_depth` (each recess tests only the rectangles near it) and :func:`_rows_depth` give exactly the surface's
     ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
