@@ -1494,31 +1494,41 @@ def _facet_elements(m, facets: np.ndarray) -> np.ndarray:
 
 
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
-                facets: np.ndarray) -> np.ndarray:
-    """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node.
+                facets) -> np.ndarray | dict[str, np.ndarray]:
+    """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node; ``facets`` an array,
+    or a dict of named arrays (one pass over all of them: their triangles found and the film evaluated once;
+    a dict of the named results).
 
     ``grad_p`` is the (element-wise constant) P1 pressure gradient, shape (2, n_elements).
     """
     m = mesh.mesh
-    out = np.zeros(m.nvertices)
-    if facets.size == 0:
-        return out
-    a, b = m.facets[:, facets]
-    elem = _facet_elements(m, facets)
-    pa, pb = m.p[:, a], m.p[:, b]
-    tvec = pb - pa
-    length = np.linalg.norm(tvec, axis=0)
-    n = np.array([tvec[1], -tvec[0]]) / length
-    centre = m.p[:, m.t[:, elem]].mean(axis=1)
-    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
-    g = grad_p[:, elem]
-    for node, quarter in ((a, 0.75 * pa + 0.25 * pb), (b, 0.25 * pa + 0.75 * pb)):
-        h = _thickness(mesh, film, quarter[0], quarter[1])
-        u = velocity_at(mesh.runner, quarter)
-        un = n[0] if u is None else u[0] * n[0] + u[1] * n[1]
-        qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
-        np.add.at(out, node, 0.5 * length * qn)
-    return out
+    named = facets if isinstance(facets, dict) else {None: facets}
+    sizes = [np.size(f) for f in named.values()]
+    results = {k: np.zeros(m.nvertices) for k in named}
+    every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
+    if every.size:
+        a, b = m.facets[:, every]
+        elem = _facet_elements(m, every)
+        pa, pb = m.p[:, a], m.p[:, b]
+        tvec = pb - pa
+        length = np.linalg.norm(tvec, axis=0)
+        n = np.array([tvec[1], -tvec[0]]) / length
+        centre = m.p[:, m.t[:, elem]].mean(axis=1)
+        n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
+        g = grad_p[:, elem]
+        quarters = np.concatenate([0.75 * pa + 0.25 * pb, 0.25 * pa + 0.75 * pb], axis=1)   # near a, near b
+        h2 = _thickness(mesh, film, quarters[0], quarters[1])
+        u2 = velocity_at(mesh.runner, quarters)
+        ends = np.cumsum([0] + sizes)
+        for side, node in enumerate((a, b)):
+            part = slice(side * every.size, (side + 1) * every.size)
+            h = h2[part]
+            un = n[0] if u2 is None else u2[0][part] * n[0] + u2[1][part] * n[1]
+            qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
+            contribution = 0.5 * length * qn
+            for k, lo, hi in zip(named, ends[:-1], ends[1:]):   # each group's own sums, in its facets' order
+                np.add.at(results[k], node[lo:hi], contribution[lo:hi])
+    return results if isinstance(facets, dict) else results[None]
 
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
@@ -1540,7 +1550,7 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     # the direct facet fluxes count at the corner dofs only: each group's facets that touch one (the same
     # sums, in the same order, as over all its facets)
     none = np.zeros(0, np.int64)
-    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, ops.facet_groups.get(k, none)) for k in groups}
+    direct = _facet_flux(mesh, film, wedge, grad_p, theta, {k: ops.facet_groups.get(k, none) for k in groups})
     corner = count > 1
     shared = np.zeros(basis.N)
     for k in groups:

@@ -66,6 +66,23 @@ def test_all_circle_lines_take_the_chords_as_the_sampled_crossings_do(monkeypatc
     assert np.count_nonzero(direct) > 100 and np.abs(direct - sampled).max() <= 2.3e-10
 
 
+def test_facet_fluxes_of_named_groups_in_one_pass_equal_one_call_each():
+    """The boundary facet fluxes of several named groups in one pass (their triangles and films found once)
+    equal, bit for bit, those of one call per group: the same half-facet terms summed in each group's order
+    (a dimpled grid: recess depth at the facets' quarter points; an empty group gives zeros)."""
+    mesh = grid_mesh(_dimpled(), 1 / 12)
+    ops = fv.operators(mesh, "P1")
+    rng = np.random.default_rng(2)
+    grad_p = rng.normal(size=(2, mesh.mesh.t.shape[1]))
+    theta = rng.uniform(0.2, 1.0, mesh.mesh.nvertices)
+    groups = {k: ops.facet_groups[k] for k in ("arc_start", "arc_end", "side")}
+    groups["none"] = np.zeros(0, np.int64)
+    together = fv._facet_flux(mesh, UniformFilm(1.0), 1.0, grad_p, theta, groups)
+    for k, facets in groups.items():
+        assert np.array_equal(together[k], fv._facet_flux(mesh, UniformFilm(1.0), 1.0, grad_p, theta, facets))
+    assert all(np.count_nonzero(together[k]) > 0 for k in ("arc_start", "arc_end", "side"))
+
+
 def test_boxed_depth_is_the_surfaces_own_recess_depth():
     """:func:`_boxed_depth` (each recess tests only the rectangles near it) and :func:`_rows_depth` give exactly the surface's
     ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
