@@ -1035,13 +1035,24 @@ def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float)
 
 def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
     K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
-    St = unk.S.T.tocsr()
     p0 = np.full(p_fixed.size, p_c)
     p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
     theta0 = np.zeros(p_fixed.size)
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
-    b = St @ (K @ p0 + G @ theta0 + system.source)
-    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+    r = K @ p0 + G @ theta0 + system.source
+    if unk.S.nnz == unk.S.shape[1]:      # each unknown one dof (no periodic seam): S selects the dofs rep
+        rep = unk.rep                    # the same matrices as S^T A S, whose products drop exact zeros
+        return _selected(K, rep), _selected(G, rep), r[rep]
+    St = unk.S.T.tocsr()
+    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), St @ r
+
+
+def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
+    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives)."""
+    B = A[rows][:, rows].tocsr()
+    B.eliminate_zeros()
+    B.sort_indices()
+    return B
 
 
 def _reduced_cavity(system: FVSystem, unk: FVUnknowns, G: sp.csr_matrix) -> sp.csr_matrix:

@@ -83,6 +83,32 @@ def test_facet_fluxes_of_named_groups_in_one_pass_equal_one_call_each():
     assert all(np.count_nonzero(together[k]) > 0 for k in ("arc_start", "arc_end", "side"))
 
 
+def test_condensed_selection_equals_the_products_with_the_unknowns_map():
+    """Without a periodic seam the unknowns are a selection of the dofs: the condensed matrices taken by
+    indexing equal ``S^T A S`` (the products, which drop exact zeros: the P1 stiffness of a grid has them on
+    the cells' diagonals) in pattern and values, bit for bit, and so does the fixed part of the residual."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    p_fixed = fv._pocket_values(mesh, ops, 0.0)
+    K, G, b = fv._condensed(system, unk, p_fixed, -0.05)
+    St = unk.S.T.tocsr()
+    A = (system.C + sp.diags(system.storage)).tocsr()
+    p0 = np.full(p_fixed.size, -0.05)
+    p0[unk.fixed] = p_fixed[unk.fixed]
+    theta0 = np.zeros(p_fixed.size)
+    theta0[unk.fixed] = 1.0
+    for got, want in ((K, (St @ system.K @ unk.S).tocsr()), (G, (St @ A @ unk.S).tocsr())):
+        want.sort_indices()
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    assert np.array_equal(b, St @ (system.K @ p0 + A @ theta0 + system.source))
+    assert np.count_nonzero(system.K.data == 0.0) > 0   # the zeros the products drop are there
+
+
 def test_boxed_depth_is_the_surfaces_own_recess_depth():
     """:func:`_boxed_depth` (each recess tests only the rectangles near it) and :func:`_rows_depth` give exactly the surface's
     ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
