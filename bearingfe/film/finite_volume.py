@@ -1041,11 +1041,19 @@ def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     theta0 = np.zeros(p_fixed.size)
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
     r = K @ p0 + G @ theta0 + system.source
-    if unk.S.nnz == unk.S.shape[1]:      # each unknown one dof (no periodic seam): S selects the dofs rep
+    if _selects(unk):                    # each unknown one dof (no periodic seam): S selects the dofs rep
         rep = unk.rep                    # the same matrices as S^T A S, whose products drop exact zeros
         return _selected(K, rep), _selected(G, rep), r[rep]
     St = unk.S.T.tocsr()
     return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), St @ r
+
+
+def _selects(unk: FVUnknowns) -> bool:
+    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]``."""
+    S = sp.csr_matrix(unk.S)
+    m = S.shape[1]
+    return (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
+            and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
 
 
 def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
