@@ -96,7 +96,7 @@ from .thickness import Film
 from .forms import along
 from .flows import edge_groups
 from ..core.checks import check_operating_point, note_resolution
-from ..core.linalg import Factorize, factorize_splu, get_linear_solver
+from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
@@ -1162,7 +1162,11 @@ class _SetSolver:
     +-15 % noise, no trend at 3.6e5), ``Equil=False`` (same), SuperLU's own ``MMD_AT_PLUS_A`` in symmetric
     mode (30 % less fill, slower), and solving the Woodbury columns as one block of right sides (SuperLU's
     triangular solves cost the same per column either way: 0.015-0.018 s per column for 1, 8 and 40 columns
-    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves.
+    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves. The block
+    solve runs with one BLAS thread (:func:`bearingfe.core.linalg.dense_threads`): SuperLU's solve of several
+    right sides calls BLAS, whose two threads wait for each other on a busy machine (measured at load 3 on
+    2 cores: 24 columns 54 ms with two threads against 7.6 ms with one at 9,801 unknowns, 57 against 2.4 ms
+    at 2,855 on a gmsh mesh; the Woodbury steps of cold solves 13-34 against 43-184 ms at 11,903 nodes).
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
@@ -1200,7 +1204,8 @@ class _SetSolver:
         if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
             sign = np.where(self.base[new], -1.0, 1.0)
             U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
-            Z = np.asarray(self.solve(U), float).reshape(U.shape)
+            with dense_threads(1):   # SuperLU's block solve calls BLAS: threaded, it waits on a busy machine
+                Z = np.asarray(self.solve(U), float).reshape(U.shape)
             for k, j in enumerate(new):
                 self.z[j] = Z[:, k]
         Z = np.column_stack([self.z[j] for j in J])
@@ -1998,9 +2003,10 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
                          "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     p_c = float(cavitation_pressure)
-    t1, ops, system, unk, sol, upwinded, nested = _complementarity(
-        mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation, factorize,
-        tol, max_iterations, warm_start, start)
+    with dense_threads(1):   # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine
+        t1, ops, system, unk, sol, upwinded, nested = _complementarity(
+            mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation,
+            factorize, tol, max_iterations, warm_start, start)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
     free[ops.interior] = True
