@@ -191,3 +191,21 @@ def test_the_full_film_first_guess_is_counted():
     nested = solve_jfo(grid_mesh(_dimpled(), 1.0 / fv.NESTED_MIN ** 0.5 * 0.9), UniformFilm(1.0),
                        cavitation_pressure=-0.05, couette="grid")
     assert nested.cost["nested_levels"] >= 1.0 and nested.cost["first_guess_factorizations"] == 1.0
+
+
+def test_facet_to_triangle_map_is_scikit_fems():
+    """The facet-to-triangle map given to a mesh before its pocket moments (one stable sort) is the array
+    scikit-fem's ``Mesh.build_inverse`` makes (two unique sorts), element for element and in its dtype,
+    on a gmsh mesh with a pocket and on a grid."""
+    from bearingfe import Rectangle
+    from bearingfe.film import mesh_operators
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    for mesh in (mesh_surface(surface, 0.1), grid_mesh(surface, 1 / 10)):
+        m = mesh.mesh   # built here: its map may be replaced
+        want = skfem.Mesh.build_inverse(m.t, m.t2f)
+        if hasattr(m, "_f2t"):
+            del m._f2t
+        mesh_operators._give_f2t(m)
+        assert m._f2t.dtype == want.dtype and np.array_equal(m._f2t, want)
+        assert np.count_nonzero(want[1] == -1) > 0   # boundary facets (pocket and outline) in it
