@@ -209,3 +209,29 @@ def test_facet_to_triangle_map_is_scikit_fems():
         mesh_operators._give_f2t(m)
         assert m._f2t.dtype == want.dtype and np.array_equal(m._f2t, want)
         assert np.count_nonzero(want[1] == -1) > 0   # boundary facets (pocket and outline) in it
+
+
+def test_the_complementarity_solve_runs_with_one_blas_thread(monkeypatch):
+    """SuperLU's solves call BLAS, whose threads wait for each other on a busy machine: the complementarity
+    solve (active sets, factorizations, Woodbury block solves) runs with every BLAS library capped at one
+    thread, and the caller's thread counts are back afterwards."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def counts():
+        return [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+
+    seen = []
+    inner = fv._complementarity
+
+    def spy(*args, **kwargs):
+        seen.append(counts())
+        return inner(*args, **kwargs)
+
+    monkeypatch.setattr(fv, "_complementarity", spy)
+    with threadpool_limits(limits=2, user_api="blas"):   # a caller with two BLAS threads
+        before = counts()
+        solve_jfo(grid_mesh(_dimpled(), 1 / 12), UniformFilm(1.0), cavitation_pressure=-0.05)
+        after = counts()
+    assert before and all(n == 2 for n in before)
+    assert seen and all(n == 1 for n in seen[0])
+    assert after == before
