@@ -2050,9 +2050,9 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)
-    force = np.array([np.sum(np.array(pq) * np.cos(x[0]) * dx), np.sum(np.array(pq) * np.sin(x[0]) * dx)])
+    force = np.array([np.sum(pq * np.cos(x[0]) * dx), np.sum(pq * np.sin(x[0]) * dx)])   # pq: an array already
     force = force + pm[1:]
-    integral = float(np.sum(np.array(pq) * dx) + pm[0])
+    integral = float(np.sum(pq * dx) + pm[0])
     if isinstance(inlet_pressure, tuple):
         inlet_pressure = max(inlet_pressure)
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
