@@ -97,7 +97,7 @@ from .thickness import Film
 from .forms import along
 from .flows import edge_groups
 from ..core.checks import check_operating_point, note_resolution
-from ..core.linalg import Factorize, factorize_splu, get_linear_solver
+from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
@@ -226,8 +226,9 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     t = m.t[:3]
     cells = np.zeros((max(nx - 1, 1), max(ny - 1, 1)), np.int64)   # triangles per grid cell (2: in the mesh)
     tri_ok = (np.ptp(kx[t], axis=0) == 1) & (np.ptp(ky[t], axis=0) == 1)
-    if np.all(tri_ok):
-        np.add.at(cells, (kx[t].min(axis=0), ky[t].min(axis=0)), 1)
+    if np.all(tri_ok):   # counted by bincount (numpy's add.at is several times slower)
+        flat = kx[t].min(axis=0) * cells.shape[1] + ky[t].min(axis=0)
+        cells = np.bincount(flat, minlength=cells.size).reshape(cells.shape)
     if (nx < 2 or ny < 2 or np.bincount(kx * ny + ky, minlength=nx * ny).max() > 1 or not np.all(tri_ok)
             or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
@@ -428,10 +429,8 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
     p, t = m.p, m.t[:3]
     nt = t.shape[1]
     g = p[:, t].mean(axis=1)
-    depth = np.empty(t.shape)
-    for a in range(3):
-        q = p[:, t[a]] + 1e-6 * (g - p[:, t[a]])   # just inside the triangle: its side of a step
-        depth[a] = _recess_depth(surface, q[0], q[1])
+    q = p[:, t] + 1e-6 * (g[:, None, :] - p[:, t])   # (2, 3, nt) just inside the triangle: its side of a step
+    depth = _rows_depth(surface, q[0].T, q[1].T).T
     deepest = np.zeros(m.nvertices)
     np.maximum.at(deepest, t.ravel(), depth.ravel())
     h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
@@ -573,8 +572,8 @@ def _recess_plan(surface, phi, buckets: int = 4096):
     starts = np.searchsorted(key[order], np.arange(buckets + 1))
     plan = []
     for r, (lo, hi) in zip(recesses, _recess_boxes(surface)):
-        k0 = int(np.clip(math.floor((lo[0] - lo_phi) / width), 0, buckets - 1))
-        k1 = int(np.clip(math.floor((hi[0] - lo_phi) / width), 0, buckets - 1))
+        k0 = min(max(math.floor((lo[0] - lo_phi) / width), 0), buckets - 1)   # Python clamps: no numpy call
+        k1 = min(max(math.floor((hi[0] - lo_phi) / width), 0), buckets - 1)   # per recess
         idx = order[starts[k0]:starts[k1 + 1]]
         plan.append((r, lo, hi, idx))
     return plan
@@ -638,6 +637,34 @@ def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
     return near
 
 
+def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """``surface.recess_depth(X, Z)`` of points grouped in rectangles: row ``k`` of ``X``, ``Z``
+    (``(n, k_points)``) lies in ``[x0_k, x1_k] x [z0_k, z1_k]``. Each recess tests only the rows whose
+    rectangle overlaps its bounding box (:func:`_recess_boxes`, the box :func:`_recess_plan` also trusts),
+    the recesses added in their order: the same values as the plain test, without sorting the points (cells
+    and boxes of a grid, each near one recess contour, sampled many times)."""
+    out = np.zeros(np.shape(X))
+    for r, (lo, hi) in zip(surface.recesses, _recess_boxes(surface)):
+        rows = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
+        if rows.size:
+            out[rows] += r.depth * r.shape.contains(X[rows], Z[rows])
+    return out
+
+
+def _rows_depth(surface, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """:func:`_boxed_depth` of points grouped in rows (``(n, k)``: a triangle's quadrature points, a line's
+    samples), each row's rectangle its points' bounding box (column by column: numpy's reduction along a
+    short last axis is many times slower)."""
+    X, Z = np.asarray(X), np.asarray(Z)
+    x0, x1, z0, z1 = X[:, 0].copy(), X[:, 0].copy(), Z[:, 0].copy(), Z[:, 0].copy()
+    for k in range(1, X.shape[1]):
+        np.minimum(x0, X[:, k], out=x0)
+        np.maximum(x1, X[:, k], out=x1)
+        np.minimum(z0, Z[:, k], out=z0)
+        np.maximum(z1, Z[:, k], out=z1)
+    return _boxed_depth(surface, x0, x1, z0, z1, X, Z)
+
+
 def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces: int = 8,
                  bisections: int = 30, sections: int = 32) -> np.ndarray:
     """``int depth dz`` of the recesses along the segments ``phi = x, lo < z < hi``, exact: each
@@ -646,9 +673,12 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     an eighth of a cell). A circle's contour is crossed where its chord on the line ends (closed form);
     other contours' crossings are searched together, recess by recess (only the crossed recess's own
     test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
-    the test changes: ``log2(sections)`` halvings per round."""
+    the test changes: ``log2(sections)`` halvings per round. Where every recess is a circle, each line
+    takes its chords' overlap with ``[lo, hi]`` directly (no samples, no condition on the recess width)."""
+    if all(isinstance(r.shape, Circle) for r in surface.recesses):
+        return _line_circles(surface, x, lo, hi)
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
-    d = _recess_depth(surface, x[:, None] + 0.0 * z, z)
+    d = _rows_depth(surface, x[:, None] + 0.0 * z, z)
     a, b, da, db = z[:, :-1], z[:, 1:], d[:, :-1], d[:, 1:]
     piece = np.where(da == db, da * (b - a), 0.0)
     seg, k = np.nonzero(da != db)
@@ -679,6 +709,21 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
             found[todo] = _bisect_crossings(groups, todo, xs, aa, bb, bisections, sections)
         piece[seg, k] = dA * (found - a[seg, k]) + db[seg, k] * (b[seg, k] - found)
     return piece.sum(axis=1)
+
+
+def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """:func:`_line_recess` where every recess is a circle (recesses do not overlap): the depth times the
+    part of each chord ``|z - cz| < sqrt(r^2 - (x - cx)^2)`` in ``[lo, hi]``, the lines near each circle's
+    box only."""
+    out = np.zeros(np.shape(x))
+    for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
+        near = np.flatnonzero((x >= blo[0]) & (x <= bhi[0]) & (hi >= blo[1]) & (lo <= bhi[1]))
+        if near.size:
+            (cx, cz), radius = r.shape.center, r.shape.radius
+            half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
+            chord = np.minimum(hi[near], cz + half) - np.maximum(lo[near], cz - half)
+            out[near] += r.depth * np.maximum(chord, 0.0)
+    return out
 
 
 def _circle_crossing(circle: Circle, x: np.ndarray, inside: np.ndarray) -> np.ndarray:
@@ -789,7 +834,7 @@ def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
         return None
     depth = _DEPTHS.get(mesh)
     if depth is None or depth.shape != x.shape[1:]:
-        depth = _DEPTHS[mesh] = _recess_depth(surface, x[0], x[1])
+        depth = _DEPTHS[mesh] = _rows_depth(surface, x[0], x[1])   # (n_triangles, n_points)
     return depth
 
 
@@ -834,7 +879,7 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
-    dep_v = _recess_depth(surface, px[:, near], pz[:, near])
+    dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
     cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
@@ -842,7 +887,8 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    depth = _recess_depth(surface, pts[0], pts[1]) if cut.size else np.zeros(pts.shape[1:])
+    cx, cz = px[:, cut], pz[:, cut]   # each recess tests the cut cells near it
+    depth = _boxed_depth(surface, cx.min(axis=0), cx.max(axis=0), cz.min(axis=0), cz.max(axis=0), pts[0], pts[1])
     out = (cut, pts, depth)
     _CUTS[mesh] = (subdivisions, out)
     return out
@@ -999,13 +1045,32 @@ def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float)
 
 def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
     K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
-    St = unk.S.T.tocsr()
     p0 = np.full(p_fixed.size, p_c)
     p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
     theta0 = np.zeros(p_fixed.size)
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
-    b = St @ (K @ p0 + G @ theta0 + system.source)
-    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), b
+    r = K @ p0 + G @ theta0 + system.source
+    if _selects(unk):                    # each unknown one dof (no periodic seam): S selects the dofs rep
+        rep = unk.rep                    # the same matrices as S^T A S, whose products drop exact zeros
+        return _selected(K, rep), _selected(G, rep), r[rep]
+    St = unk.S.T.tocsr()
+    return (St @ K @ unk.S).tocsr(), (St @ G @ unk.S).tocsr(), St @ r
+
+
+def _selects(unk: FVUnknowns) -> bool:
+    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]``."""
+    S = sp.csr_matrix(unk.S)
+    m = S.shape[1]
+    return (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
+            and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
+
+
+def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
+    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives)."""
+    B = A[rows][:, rows].tocsr()
+    B.eliminate_zeros()
+    B.sort_indices()
+    return B
 
 
 def _reduced_cavity(system: FVSystem, unk: FVUnknowns, G: sp.csr_matrix) -> sp.csr_matrix:
@@ -1112,7 +1177,11 @@ class _SetSolver:
     +-15 % noise, no trend at 3.6e5), ``Equil=False`` (same), SuperLU's own ``MMD_AT_PLUS_A`` in symmetric
     mode (30 % less fill, slower), and solving the Woodbury columns as one block of right sides (SuperLU's
     triangular solves cost the same per column either way: 0.015-0.018 s per column for 1, 8 and 40 columns
-    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves.
+    at 1.6e5 unknowns), so :data:`LOW_RANK_SWITCHES` stays near one factorization's worth of solves. The block
+    solve runs with one BLAS thread (:func:`bearingfe.core.linalg.dense_threads`): SuperLU's solve of several
+    right sides calls BLAS, whose two threads wait for each other on a busy machine (measured at load 3 on
+    2 cores: 24 columns 54 ms with two threads against 7.6 ms with one at 9,801 unknowns, 57 against 2.4 ms
+    at 2,855 on a gmsh mesh; the Woodbury steps of cold solves 13-34 against 43-184 ms at 11,903 nodes).
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
@@ -1150,7 +1219,8 @@ class _SetSolver:
         if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
             sign = np.where(self.base[new], -1.0, 1.0)
             U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
-            Z = np.asarray(self.solve(U), float).reshape(U.shape)
+            with dense_threads(1):   # SuperLU's block solve calls BLAS: threaded, it waits on a busy machine
+                Z = np.asarray(self.solve(U), float).reshape(U.shape)
             for k, j in enumerate(new):
                 self.z[j] = Z[:, k]
         Z = np.column_stack([self.z[j] for j in J])
@@ -1520,9 +1590,8 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
     h = np.asarray(film.thickness(X, Z), dtype=float) + 0.0 * X
     surface = mesh.surface
-    if surface is not None and getattr(surface, "recesses", ()):   # the depth only in boxes near a recess
-        near = np.flatnonzero(_near_recess(surface, b[0], b[1], b[2], b[3]))
-        h[near] += _recess_depth(surface, X[near], Z[near])
+    if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
+        h += _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)
     cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
     fill = np.minimum(1.0, cc / h)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
@@ -1550,31 +1619,41 @@ def _facet_elements(m, facets: np.ndarray) -> np.ndarray:
 
 
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
-                facets: np.ndarray) -> np.ndarray:
-    """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node.
+                facets) -> np.ndarray | dict[str, np.ndarray]:
+    """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node; ``facets`` an array,
+    or a dict of named arrays (one pass over all of them: their triangles found and the film evaluated once;
+    a dict of the named results).
 
     ``grad_p`` is the (element-wise constant) P1 pressure gradient, shape (2, n_elements).
     """
     m = mesh.mesh
-    out = np.zeros(m.nvertices)
-    if facets.size == 0:
-        return out
-    a, b = m.facets[:, facets]
-    elem = _facet_elements(m, facets)
-    pa, pb = m.p[:, a], m.p[:, b]
-    tvec = pb - pa
-    length = np.linalg.norm(tvec, axis=0)
-    n = np.array([tvec[1], -tvec[0]]) / length
-    centre = m.p[:, m.t[:, elem]].mean(axis=1)
-    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
-    g = grad_p[:, elem]
-    for node, quarter in ((a, 0.75 * pa + 0.25 * pb), (b, 0.25 * pa + 0.75 * pb)):
-        h = _thickness(mesh, film, quarter[0], quarter[1])
-        u = velocity_at(mesh.runner, quarter)
-        un = n[0] if u is None else u[0] * n[0] + u[1] * n[1]
-        qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
-        np.add.at(out, node, 0.5 * length * qn)
-    return out
+    named = facets if isinstance(facets, dict) else {None: facets}
+    sizes = [np.size(f) for f in named.values()]
+    results = {k: np.zeros(m.nvertices) for k in named}
+    every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
+    if every.size:
+        a, b = m.facets[:, every]
+        elem = _facet_elements(m, every)
+        pa, pb = m.p[:, a], m.p[:, b]
+        tvec = pb - pa
+        length = np.linalg.norm(tvec, axis=0)
+        n = np.array([tvec[1], -tvec[0]]) / length
+        centre = m.p[:, m.t[:, elem]].mean(axis=1)
+        n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
+        g = grad_p[:, elem]
+        quarters = np.concatenate([0.75 * pa + 0.25 * pb, 0.25 * pa + 0.75 * pb], axis=1)   # near a, near b
+        h2 = _thickness(mesh, film, quarters[0], quarters[1])
+        u2 = velocity_at(mesh.runner, quarters)
+        ends = np.cumsum([0] + sizes)
+        for side, node in enumerate((a, b)):
+            part = slice(side * every.size, (side + 1) * every.size)
+            h = h2[part]
+            un = n[0] if u2 is None else u2[0][part] * n[0] + u2[1][part] * n[1]
+            qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
+            contribution = 0.5 * length * qn
+            for k, lo, hi in zip(named, ends[:-1], ends[1:]):   # each group's own sums, in its facets' order
+                np.add.at(results[k], node[lo:hi], contribution[lo:hi])
+    return results if isinstance(facets, dict) else results[None]
 
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
@@ -1596,7 +1675,7 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     # the direct facet fluxes count at the corner dofs only: each group's facets that touch one (the same
     # sums, in the same order, as over all its facets)
     none = np.zeros(0, np.int64)
-    direct = {k: _facet_flux(mesh, film, wedge, grad_p, theta, ops.facet_groups.get(k, none)) for k in groups}
+    direct = _facet_flux(mesh, film, wedge, grad_p, theta, {k: ops.facet_groups.get(k, none) for k in groups})
     corner = count > 1
     shared = np.zeros(basis.N)
     for k in groups:
@@ -2052,9 +2131,10 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
                          "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     p_c = float(cavitation_pressure)
-    t1, ops, system, unk, sol, upwinded, nested = _complementarity(
-        mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation, factorize,
-        tol, max_iterations, warm_start, start)
+    with dense_threads(1):   # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine
+        t1, ops, system, unk, sol, upwinded, nested = _complementarity(
+            mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation,
+            factorize, tol, max_iterations, warm_start, start)
     t2 = time.perf_counter()
     free = np.zeros(ops.n_dofs, bool)
     free[ops.interior] = True
@@ -2098,9 +2178,9 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)
-    force = np.array([np.sum(np.array(pq) * np.cos(x[0]) * dx), np.sum(np.array(pq) * np.sin(x[0]) * dx)])
+    force = np.array([np.sum(pq * np.cos(x[0]) * dx), np.sum(pq * np.sin(x[0]) * dx)])   # pq: an array already
     force = force + pm[1:]
-    integral = float(np.sum(np.array(pq) * dx) + pm[0])
+    integral = float(np.sum(pq * dx) + pm[0])
     if isinstance(inlet_pressure, tuple):
         inlet_pressure = max(inlet_pressure)
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))

@@ -45,6 +45,90 @@ def test_line_recess_on_part_of_a_chord():
     assert np.allclose(fv._line_recess(surface, x, lo, hi), expected, rtol=0.0, atol=1e-9)
 
 
+def test_all_circle_lines_take_the_chords_as_the_sampled_crossings_do(monkeypatch):
+    """Where every recess is a circle, :func:`_line_recess` takes each chord's overlap with the segment
+    directly (:func:`_line_circles`); the sampled path (every contour crossing located to ``2**-30`` of an
+    eighth of the segment, forced here by hiding the Circle type) gives the same integrals to that
+    resolution: at most two crossings a line, each weighing a depth of 1, 2 * (1/8) * 2**-30 = 2.3e-10,
+    on segments inside, across and away from the dimples."""
+    surface = _dimpled()
+    rng = np.random.default_rng(5)
+    x = rng.uniform(0.0, 1.0, 300)
+    lo = rng.uniform(-0.5, 0.3, 300)
+    hi = lo + rng.uniform(0.0, 0.5, 300)
+    direct = fv._line_recess(surface, x, lo, hi)
+
+    class NotACircle:   # every recess sampled and bisected
+        pass
+
+    monkeypatch.setattr(fv, "Circle", NotACircle)
+    sampled = fv._line_recess(surface, x, lo, hi)
+    assert np.count_nonzero(direct) > 100 and np.abs(direct - sampled).max() <= 2.3e-10
+
+
+def test_facet_fluxes_of_named_groups_in_one_pass_equal_one_call_each():
+    """The boundary facet fluxes of several named groups in one pass (their triangles and films found once)
+    equal, bit for bit, those of one call per group: the same half-facet terms summed in each group's order
+    (a dimpled grid: recess depth at the facets' quarter points; an empty group gives zeros)."""
+    mesh = grid_mesh(_dimpled(), 1 / 12)
+    ops = fv.operators(mesh, "P1")
+    rng = np.random.default_rng(2)
+    grad_p = rng.normal(size=(2, mesh.mesh.t.shape[1]))
+    theta = rng.uniform(0.2, 1.0, mesh.mesh.nvertices)
+    groups = {k: ops.facet_groups[k] for k in ("arc_start", "arc_end", "side")}
+    groups["none"] = np.zeros(0, np.int64)
+    together = fv._facet_flux(mesh, UniformFilm(1.0), 1.0, grad_p, theta, groups)
+    for k, facets in groups.items():
+        assert np.array_equal(together[k], fv._facet_flux(mesh, UniformFilm(1.0), 1.0, grad_p, theta, facets))
+    assert all(np.count_nonzero(together[k]) > 0 for k in ("arc_start", "arc_end", "side"))
+
+
+def test_condensed_selection_equals_the_products_with_the_unknowns_map():
+    """Without a periodic seam the unknowns are a selection of the dofs: the condensed matrices taken by
+    indexing equal ``S^T A S`` (the products, which drop exact zeros: the P1 stiffness of a grid has them on
+    the cells' diagonals) in pattern and values, bit for bit, and so does the fixed part of the residual."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    p_fixed = fv._pocket_values(mesh, ops, 0.0)
+    K, G, b = fv._condensed(system, unk, p_fixed, -0.05)
+    St = unk.S.T.tocsr()
+    A = (system.C + sp.diags(system.storage)).tocsr()
+    p0 = np.full(p_fixed.size, -0.05)
+    p0[unk.fixed] = p_fixed[unk.fixed]
+    theta0 = np.zeros(p_fixed.size)
+    theta0[unk.fixed] = 1.0
+    for got, want in ((K, (St @ system.K @ unk.S).tocsr()), (G, (St @ A @ unk.S).tocsr())):
+        want.sort_indices()
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    assert np.array_equal(b, St @ (system.K @ p0 + A @ theta0 + system.source))
+    assert np.count_nonzero(system.K.data == 0.0) > 0   # the zeros the products drop are there
+
+
+def test_boxed_depth_is_the_surfaces_own_recess_depth():
+    """:func:`_boxed_depth` (each recess tests only the rectangles near it) and :func:`_rows_depth` give exactly the surface's
+    ``recess_depth`` of the same points: recesses of two shapes and three depths, rectangles inside, across
+    and away from the contours, 16 points in each."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[Recess(Circle((0.3, 0.0), 0.2), 0.3), Recess(Rectangle((0.65, 0.25), (0.2, 0.15)), 0.7),
+                                Recess(Circle((0.8, -0.3), 0.1), 1.1)])
+    rng = np.random.default_rng(3)
+    x0, z0 = rng.uniform(0.0, 0.95, 400), rng.uniform(-0.5, 0.45, 400)
+    x1, z1 = x0 + rng.uniform(0.0, 0.1, 400), z0 + rng.uniform(0.0, 0.1, 400)
+    s = rng.uniform(0.0, 1.0, (2, 400, 16))
+    X, Z = x0[:, None] + (x1 - x0)[:, None] * s[0], z0[:, None] + (z1 - z0)[:, None] * s[1]
+    got = fv._boxed_depth(surface, x0, x1, z0, z1, X, Z)
+    assert np.array_equal(got, surface.recess_depth(X, Z))
+    assert np.array_equal(fv._rows_depth(surface, X, Z), got)   # the rows' own bounding boxes
+    assert all(np.any(got == r.depth) for r in surface.recesses) and np.any(got == 0.0)
+
+
 def test_grid_and_gmsh_meshes_keep_the_facets_they_named():
     """The meshers' copies with named boundaries carry the facets they were named on: the same as
     scikit-fem builds from the triangles afresh, so the boundary facet indices stay valid."""
@@ -107,3 +191,47 @@ def test_the_full_film_first_guess_is_counted():
     nested = solve_jfo(grid_mesh(_dimpled(), 1.0 / fv.NESTED_MIN ** 0.5 * 0.9), UniformFilm(1.0),
                        cavitation_pressure=-0.05, couette="grid")
     assert nested.cost["nested_levels"] >= 1.0 and nested.cost["first_guess_factorizations"] == 1.0
+
+
+def test_facet_to_triangle_map_is_scikit_fems():
+    """The facet-to-triangle map given to a mesh before its pocket moments (one stable sort) is the array
+    scikit-fem's ``Mesh.build_inverse`` makes (two unique sorts), element for element and in its dtype,
+    on a gmsh mesh with a pocket and on a grid."""
+    from bearingfe import Rectangle
+    from bearingfe.film import mesh_operators
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    for mesh in (mesh_surface(surface, 0.1), grid_mesh(surface, 1 / 10)):
+        m = mesh.mesh   # built here: its map may be replaced
+        want = skfem.Mesh.build_inverse(m.t, m.t2f)
+        if hasattr(m, "_f2t"):
+            del m._f2t
+        mesh_operators._give_f2t(m)
+        assert m._f2t.dtype == want.dtype and np.array_equal(m._f2t, want)
+        assert np.count_nonzero(want[1] == -1) > 0   # boundary facets (pocket and outline) in it
+
+
+def test_the_complementarity_solve_runs_with_one_blas_thread(monkeypatch):
+    """SuperLU's solves call BLAS, whose threads wait for each other on a busy machine: the complementarity
+    solve (active sets, factorizations, Woodbury block solves) runs with every BLAS library capped at one
+    thread, and the caller's thread counts are back afterwards."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    def counts():
+        return [p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"]
+
+    seen = []
+    inner = fv._complementarity
+
+    def spy(*args, **kwargs):
+        seen.append(counts())
+        return inner(*args, **kwargs)
+
+    monkeypatch.setattr(fv, "_complementarity", spy)
+    with threadpool_limits(limits=2, user_api="blas"):   # a caller with two BLAS threads
+        before = counts()
+        solve_jfo(grid_mesh(_dimpled(), 1 / 12), UniformFilm(1.0), cavitation_pressure=-0.05)
+        after = counts()
+    assert before and all(n == 2 for n in before)
+    assert seen and all(n == 1 for n in seen[0])
+    assert after == before
