@@ -540,11 +540,13 @@ class ElasticSqueeze(Model):
         return stats
 
 
-#: Relative tolerance of the GMRES solves with ``K`` in a right side of a product compliance: tight, for the
-#: central differences in ``(gamma, delta)`` of the Jacobian (steps 1e-7) still carry 3 digits.
-K_TOLERANCE = 1e-10
+#: Relative tolerance of the GMRES solves with ``K`` in a right side of a product compliance.
+K_TOLERANCE = 1e-9
+#: Relative step of the central differences in ``(gamma, delta)`` of the product path's Jacobian: the rates
+#: carry about ``K_TOLERANCE`` relative noise, so the differences keep about ``log10(FD_STEP / K_TOLERANCE)`` digits.
+FD_STEP = 1e-6
 #: Relative tolerance of the GMRES solves with the integrator's Newton matrix (its simplified Newton takes the rest).
-NEWTON_TOLERANCE = 1e-8
+NEWTON_TOLERANCE = 1e-6
 #: Largest number of GMRES iterations of one solve (restarts included).
 KRYLOV_MAX_ITERATIONS = 2000
 
@@ -616,7 +618,9 @@ class _InteriorCompliance:
         """``K^-1 b`` to :data:`K_TOLERANCE` (``warm``: from the last such solution, the right sides' run)."""
         x0 = self._last if warm and self._last is not None else None
         x, its = _gmres(self.K, np.asarray(b, float), self._K_pre.solve, x0, K_TOLERANCE,
-                        "the squeeze of the deflection's K^-1 (12 M C on the interior pressures)")
+                        "the squeeze of the deflection's K^-1 (12 M C on the interior pressures; singular when "
+                        "some interior pressure opens no film, e.g. an auxiliary grid coarser than the mesh: a "
+                        "smaller spacing)")
         self.iterations += its
         if warm:
             self._last = x
@@ -649,7 +653,7 @@ class _SqueezeJacobian:
         self.G = np.linalg.inv(model.LI @ self.B)
         self.Jg = np.empty((y.size, 2))
         for k in range(2):
-            e = 1e-7 * max(1.0, abs(y[k]))
+            e = FD_STEP * max(1.0, abs(y[k]))
             yp, ym = y.copy(), y.copy()
             yp[k] += e
             ym[k] -= e
