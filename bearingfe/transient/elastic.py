@@ -573,6 +573,44 @@ def _gmres(matvec, b: np.ndarray, preconditioner, x0: np.ndarray | None, rtol: f
     return x, count[0]
 
 
+#: Patches of the coarse space of the product path's preconditioners (about; fewer on small meshes).
+COARSE_PATCHES = 256
+
+
+def _patches(points: np.ndarray, count: int) -> sp.csr_matrix:
+    """Indicators (columns) of about ``count`` patches of the points ``(2, m)``: the non-empty cells of a grid
+    over their bounding box, at most one patch per four points."""
+    m = points.shape[1]
+    count = max(1, min(count, m // 4))
+    lo, hi = points.min(axis=1), points.max(axis=1)
+    span = np.maximum(hi - lo, 1e-300)
+    nx = max(1, int(round(math.sqrt(count * span[0] / span[1]))))
+    nz = max(1, int(round(count / nx)))
+    ix = np.minimum((nx * (points[0] - lo[0]) / span[0]).astype(int), nx - 1)
+    iz = np.minimum((nz * (points[1] - lo[1]) / span[1]).astype(int), nz - 1)
+    _, patch = np.unique(ix * nz + iz, return_inverse=True)
+    patch = np.asarray(patch).ravel()
+    return sp.csr_matrix((np.ones(m), (np.arange(m), patch)), shape=(m, int(patch.max()) + 1))
+
+
+class _TwoLevel:
+    """The preconditioner ``Q + S^-1 (I - A Q)``, ``Q = Z (Z^T A Z)^-1 Z^T``: the coarse patches solved exactly
+    (dense, from the stored ``A Z``), the rest by the local ``S^-1`` (sparse factors).
+
+    The local part alone (``12 sigma M`` for ``K``) misjudges the smooth modes, on which the compliance's
+    influence adds up over the whole film (the row sums of ``C`` are about 30 times its diagonal on the pump
+    shoe): the coarse space takes them."""
+
+    def __init__(self, Z: sp.csr_matrix, AZ: np.ndarray, local) -> None:
+        self.Z, self.AZ, self.local = Z, AZ, local
+        self.ZT = Z.T.tocsr()
+        self.lu = sla.lu_factor(self.ZT @ AZ, check_finite=False)
+
+    def __call__(self, v: np.ndarray) -> np.ndarray:
+        e = sla.lu_solve(self.lu, self.ZT @ v, check_finite=False)
+        return self.Z @ e + self.local(v - self.AZ @ e)
+
+
 class _InteriorCompliance:
     """A compliance held as its product, on the interior pressures: ``C_I x``, ``K x = 12 M_I C_I x`` and ``K^-1``.
 
@@ -601,7 +639,12 @@ class _InteriorCompliance:
                              "its own pressure")
         self.products = probes.size
         self.iterations = 0
-        self._K_pre = spla.splu(self.sigma * self.M_II)
+        self._K_local = spla.splu(self.sigma * self.M_II)
+        # the coarse space: indicators of patches of interior dofs, and the compliance's columns on them
+        self.Z = _patches(ops.basis.doflocs[:, self.I], COARSE_PATCHES)
+        self.CZ = self.columns(self.Z.toarray())            # (n, k): C_I Z
+        KZ = 12.0 * (self.M_I @ self.CZ)
+        self._K_pre = _TwoLevel(self.Z, KZ, self._K_local.solve)
         self._last = None
 
     def columns(self, x: np.ndarray) -> np.ndarray:
@@ -617,7 +660,7 @@ class _InteriorCompliance:
     def solve_K(self, b: np.ndarray, warm: bool = False) -> np.ndarray:
         """``K^-1 b`` to :data:`K_TOLERANCE` (``warm``: from the last such solution, the right sides' run)."""
         x0 = self._last if warm and self._last is not None else None
-        x, its = _gmres(self.K, np.asarray(b, float), self._K_pre.solve, x0, K_TOLERANCE,
+        x, its = _gmres(self.K, np.asarray(b, float), self._K_pre, x0, K_TOLERANCE,
                         "the squeeze of the deflection's K^-1 (12 M C on the interior pressures; singular when "
                         "some interior pressure opens no film, e.g. an auxiliary grid coarser than the mesh: a "
                         "smaller spacing)")
@@ -685,7 +728,9 @@ class _NewtonSolve:
         self.J, self.c = J, c
         model = J.model
         pc = model.product
-        self._pre = spla.splu((c * J.A + pc.sigma * pc.M_II).tocsc())
+        local = spla.splu((c * J.A + pc.sigma * pc.M_II).tocsc())
+        TZ = 12.0 * (pc.M_I @ pc.CZ) + c * (J.A @ pc.Z + J.Bh @ pc.CZ)
+        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), local.solve)
         cols = np.column_stack([J.Jg[2:], J.B])
         X = np.column_stack([self._T_solve(cols[:, k]) for k in range(4)])
         rho = np.column_stack([self._rho(cols[:, k], X[:, k]) for k in range(4)])
@@ -701,7 +746,7 @@ class _NewtonSolve:
             w = pc.columns(x)
             return 12.0 * (pc.M_I @ w) + c * (J.A @ x + J.Bh @ w)
 
-        x, its = _gmres(matvec, pc.K(v), self._pre.solve, v.copy(), NEWTON_TOLERANCE,
+        x, its = _gmres(matvec, pc.K(v), self._pre, v.copy(), NEWTON_TOLERANCE,
                         "the integrator's Newton matrix of the deflection squeeze")
         pc.iterations += its
         return x
