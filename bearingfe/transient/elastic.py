@@ -44,11 +44,39 @@ opening the pressures make (``deflection_atol``, in clearances), not on the
 raw pressures: that and BDF take about 190 steps per revolution where LSODA
 on the raw pressures took 850. The dense algebra runs on one BLAS thread
 (threads of a few-hundred-row matrix only wait for each other on a busy
-machine). The periodic start mixes the last revolutions (Anderson). The
-compliance stays dense: a low-rank form does not pay, because its
-singular values fall to 1 % of the largest only near the full rank
-(``docs/elastic.md`` gives the measured ranks); beyond
-the ``compliance`` limit of :mod:`bearingfe.core.limits` (4000 dofs) the dense forms are refused.
+machine). The periodic start mixes the last revolutions (Anderson). A
+dense compliance is refused beyond the ``compliance`` limit of
+:mod:`bearingfe.core.limits` (4000 dofs; a low-rank form does not pay, its
+singular values fall to 1 % of the largest only near the full rank:
+``docs/elastic.md``).
+
+Compliance held as its product
+------------------------------
+With a compliance held as its product only (``Compliance.matrix is None``:
+the FFT half-space of :mod:`bearingfe.elastic.convolution`) nothing dense of
+size ``n`` is formed, and there is no size cap:
+
+* ``K^-1 b`` is GMRES on the products ``K x = 12 M_I C_I x`` (one compliance
+  product each), warm-started from the last right side's, to
+  :data:`K_TOLERANCE`, preconditioned on two levels: about
+  :data:`COARSE_PATCHES` patches of interior dofs solved exactly (dense
+  ``Z^T K Z``, from ``C_I Z`` computed once), the rest by the sparse factors of
+  ``12 sigma M_II`` (``sigma`` the compliance's self-influence);
+* the integrator is scipy's BDF with its Newton matrix ``I - c J`` solved
+  matrix-free: the pressure block is ``K^-1 (K + c Jr)`` (``Jr = A_II + B_h
+  C_I``), so its solve is GMRES on ``K + c Jr`` (right side ``K v``; no
+  ``K^-1`` inside) with the same two-level preconditioner around the sparse
+  factors of ``c A_II + 12 sigma M_II``, and the rates' rows and the
+  ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
+  solves per Newton matrix, one per Newton iteration), to
+  :data:`NEWTON_TOLERANCE`. Only ``method="BDF"`` runs this way.
+
+The run is the dense path's up to these inner tolerances (the same steps;
+measured 6e-8 in ``gamma``, ``delta`` and the film [c] on the dense map
+held as a product, tests/transient/test_elastic.py); the cost is GMRES
+iterations times compliance products (``stats``: ``krylov_iterations``,
+``compliance_products``), measured against the dense path in the
+``elastic_fft`` part of ``docs/benchmarks.md``.
 
 Cavitation: the pressure may go negative (the source paper's model,
 ``cavitation="none"``); a complementarity condition on a state variable is
@@ -99,7 +127,9 @@ class QuasiStaticElastic(Rigid):
     (:func:`bearingfe.elastic.balance_load`, the direct form): without
     cavitation by a chord Newton from the last answer whose dense Jacobian is
     kept over the right sides (``factorizations`` then counts its
-    residuals), else by the damped Newton on the deflection. The start is the
+    residuals), else by the damped Newton on the deflection; a compliance held
+    as its product (no dense matrix, no size cap) always takes the latter,
+    matrix-free (Newton-Krylov). The start is the
     rigid film's (steady or given); a state where no deflection carries the
     load stops the run (``"no-equilibrium"``).
 
@@ -282,8 +312,10 @@ class ElasticSqueeze(Model):
 
     Works on the compiled film-independent maps of the mesh
     (:mod:`bearingfe.film.compiled`): a state costs sparse products with the
-    quadrature points, one product with the compliance and one solve with the
-    factors of ``K``; no assembly and no factorization. Counters: ``nfev``
+    quadrature points, one product with the compliance and one product with
+    the explicit ``K^-1`` (a dense compliance) or a preconditioned GMRES solve
+    with ``K`` (a compliance held as its product: see the module notes); no
+    assembly and no factorization of the film. Counters: ``nfev``
     and ``jacobians`` over the whole run (samples included), ``factorizations``
     (of the integrator's Newton matrix) and ``steps`` over every revolution
     integrated (the periodic start's included).
@@ -808,7 +840,10 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
     compliance : Compliance
         Of the support, on the mesh of ``pump.surface``: any compliance
         matrix on the film dofs (:func:`bearingfe.elastic.half_space`,
-        :func:`bearingfe.elastic.shoe_body`).
+        :func:`bearingfe.elastic.shoe_body`; up to the dense limit), or one
+        held as its product (:func:`bearingfe.elastic.half_space_fft`,
+        :func:`bearingfe.elastic.half_space_grid`; matrix-free, no size
+        limit, ``method="BDF"``: see the module notes).
     revolutions : float
         Length of the run in shaft turns, > 0.
     start : {"periodic", "steady"} or Trajectory
@@ -819,7 +854,8 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
         the same compliance: continue from its last sample (angle, ``gamma``,
         ``delta`` and pressure; ``beta0`` is then its angle).
     method : {"BDF", "LSODA", "Radau"}
-        Integrator (implicit: the fine pressure modes are stiff).
+        Integrator (implicit: the fine pressure modes are stiff); "BDF" only
+        with a compliance held as its product.
     rtol : float
         Relative tolerance of the integrator.
     atol : float
@@ -853,7 +889,9 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
         ``"ruptured"`` when an accepted state's film reaches 2 % of the
         clearance (a trial step that closes the film is retaken shorter).
         ``stats``: ``nfev``, ``jacobians``, ``factorizations`` (of the
-        integrator's Newton matrix), ``steps``, ``seconds``.
+        integrator's Newton matrix; set up matrix-free with a product
+        compliance), ``steps``, ``seconds``; with a product compliance also
+        ``krylov_iterations`` and ``compliance_products``.
 
     Notes
     -----
@@ -862,7 +900,9 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
     its smallest film) of a run at ``rtol = 1e-8`` (measured 1e-4 c and
     less: ``docs/elastic.md``, tests/test_elastic_transient.py), in a
     fourth of the steps. The dense linear algebra runs on one
-    BLAS thread (:func:`bearingfe.core.linalg.dense_threads`).
+    BLAS thread (:func:`bearingfe.core.linalg.dense_threads`). A compliance
+    held as its product gives the same run up to the inner GMRES tolerances
+    (:data:`K_TOLERANCE`, :data:`NEWTON_TOLERANCE`).
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
