@@ -525,8 +525,8 @@ uniform grid, an approximation of the dense map of second order in the grid spac
 to 1e5 unknowns, and the grid transfer's difference from the dense map, are the `elastic_fft` part of
 [benchmarks.md](benchmarks.md). `simulate_elastic` (the deflection's squeeze) takes them too: `K^-1` and the
 integrator's Newton matrix are then solved by GMRES with a two-level preconditioner instead of the explicit
-inverse and the dense Jacobian (the same run as the dense path to the inner tolerance, slower at a few
-thousand unknowns and not capped; timed in the same part).
+inverse and the dense Jacobian (the same run as the dense path to the inner tolerance; about the dense
+run's time at 2700 unknowns, several times slower at 1000, and not capped; timed in the same part).
 """
 
 
