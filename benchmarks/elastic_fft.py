@@ -24,6 +24,15 @@ pump's), where the FFT needs the auxiliary grid of :func:`bearingfe.elastic.half
 (an approximation: its difference from the dense map is reported, relative to the largest
 opening, with the film force's).
 
+A third table times the pump transient with the squeeze of the deflection
+(:func:`bearingfe.transient.simulate_elastic`) on the shipped pump (gmsh mesh of
+:func:`bearingfe.transient.pump_mesh`, steel on steel), a quarter revolution across the compression
+from the steady start at 5.8 rad: the dense compliance (explicit ``K^-1``, dense Jacobian; up to the
+dense limit) against the grid half-space held as its product (GMRES for ``K^-1`` and for the
+integrator's Newton matrix), beside the rigid transient of the same window (:func:`bearingfe.simulate`).
+At the smallest size the dense compliance is also run held as its product (the same map): its
+difference from the dense run is the matrix-free path's own error.
+
 Both paths converge to ``max |C p - w| <= 1e-8`` c; where both run, the largest difference
 of their openings is reported. Run ``PYTHONPATH=. python -m benchmarks.elastic_fft`` (or the
 ``elastic_fft`` part of ``benchmarks/run_all.py``).
@@ -46,6 +55,11 @@ QUICK_DIVISIONS = (6, 12)
 #: gmsh element sizes [R0] of the shoe with the circular pocket: about 1e3, 3e3, 1e4, 3e4, 1e5 film dofs.
 GMSH_SIZES = (0.032, 0.018, 0.0095, 0.0055, 0.003)
 QUICK_GMSH_SIZES = (0.032, 0.018)
+#: pump_mesh sizes [R0] of the transient table: about 1e3, 2.7e3, 1e4 film dofs.
+TRANSIENT_SIZES = (0.035, 0.02, 0.0105)
+QUICK_TRANSIENT_SIZES = (0.035,)
+#: The transient window: revolutions from the steady start at ``TRANSIENT_BETA0`` [rad].
+TRANSIENT_REVOLUTIONS, TRANSIENT_BETA0 = 0.25, 5.8
 
 
 def _case():
@@ -121,6 +135,45 @@ def measure(k: int | None = None, gmsh_size: float | None = None) -> dict:
     return row
 
 
+def measure_transient(size: float) -> dict:
+    """The transient row of one ``pump_mesh`` size (see the module docstring); one run each."""
+    import bearingfe as bf
+    from bearingfe.core.limits import limit
+    from bearingfe.elastic import Compliance, half_space, half_space_grid
+    from bearingfe.transient import simulate_elastic
+    from tests.helpers import ROOT
+
+    pump = bf.load_mechanism(ROOT / "mechanisms" / "eccentric_pump.toml")
+    mesh = bf.transient.pump_mesh(pump, size)
+    mats = (pump.shoe_material, pump.eccentric_material)
+    kw = dict(start="steady", beta0=TRANSIENT_BETA0, points_per_revolution=72)
+    n = mesh.n_nodes
+    row = {"mesh": "transient", "dofs": n, "load": os.getloadavg()[0]}
+    gc.collect()
+    row["rigid"], rigid = _best(lambda: bf.simulate(pump, mesh, TRANSIENT_REVOLUTIONS, **kw), 1)
+    row["product_build"], G = _best(lambda: half_space_grid(mesh, pump.scale, mats), 1)
+    row["product"], prod = _best(lambda: simulate_elastic(pump, G, TRANSIENT_REVOLUTIONS, **kw), 1)
+    row.update(status=prod.status, rigid_status=rigid.status, steps=prod.stats["steps"],
+               krylov=prod.stats["krylov_iterations"], products=prod.stats["compliance_products"],
+               solves=prod.stats["nfev"], h_min=float(prod.h_min.min() / pump.clearance),
+               dense_build=None, dense=None, dense_steps=None, difference=None, same_map=None)
+    if n <= limit("compliance"):
+        row["dense_build"], D = _best(lambda: half_space(mesh, pump.scale, mats), 1)
+        row["dense"], dense = _best(lambda: simulate_elastic(pump, D, TRANSIENT_REVOLUTIONS, **kw), 1)
+        row.update(dense_steps=dense.stats["steps"], dense_status=dense.status,
+                   difference=float(np.abs(dense.h_min - prod.h_min).max() / pump.clearance))
+        if size == max(TRANSIENT_SIZES):
+            same = Compliance(mesh=D.mesh, element=D.element, model="dense-as-product", matrix=None,
+                              pocket=D.pocket, modulus=D.modulus, scale=D.scale, seconds=0.0,
+                              operator=lambda p: D.matrix @ p)
+            row["same_map_seconds"], again = _best(lambda: simulate_elastic(pump, same, TRANSIENT_REVOLUTIONS, **kw),
+                                                   1)
+            row["same_map"] = float(max(np.abs(dense.h_min - again.h_min).max() / pump.clearance,
+                                        np.abs(dense.gamma - again.gamma).max(),
+                                        np.abs(dense.delta - again.delta).max()))
+    return row
+
+
 def run(quick: bool = False, log=print) -> list[dict]:
     rows = []
     for k in (QUICK_DIVISIONS if quick else DIVISIONS):
@@ -131,6 +184,10 @@ def run(quick: bool = False, log=print) -> list[dict]:
         t = time.perf_counter()
         rows.append(measure(gmsh_size=size))
         log(f"elastic_fft: gmsh, {rows[-1]['dofs']} dofs in {time.perf_counter() - t:.1f} s")
+    for size in (QUICK_TRANSIENT_SIZES if quick else TRANSIENT_SIZES):
+        t = time.perf_counter()
+        rows.append(measure_transient(size))
+        log(f"elastic_fft: transient, {rows[-1]['dofs']} dofs in {time.perf_counter() - t:.1f} s")
     return rows
 
 
@@ -201,7 +258,47 @@ def report(rows: list[dict]) -> tuple[str, dict]:
                             "max w [c]", "load"], table), "",
                   f"Growth: grid solve {facts['gmsh_solve_slope']:.2f} (log-log slope); "
                   f"{facts['gmsh_largest_dofs']} film unknowns in {facts['gmsh_largest_solve']:.3g} s."]
+    transient = sorted((r for r in rows if r.get("mesh") == "transient"), key=lambda r: r["dofs"])
+    if transient:
+        lines += ["", *_transient_report(transient, facts)]
     return "\n".join(lines) + "\n", facts
+
+
+def _transient_report(rows: list[dict], facts: dict) -> list[str]:
+    """The transient table (:func:`measure_transient`) and its facts."""
+    table = [[r["dofs"], _g(r["rigid"]), _g(r["dense_build"] and r["dense_build"] + r["dense"]),
+              _g(r["product_build"] + r["product"]),
+              _g(r["dense"] and (r["product_build"] + r["product"]) / (r["dense_build"] + r["dense"])),
+              f"{r['steps']}" + ("" if r["dense_steps"] is None else f" / {r['dense_steps']}"),
+              _g(r["krylov"] / max(r["solves"], 1)),
+              r["products"], _g(r["difference"]), _g(r["same_map"]), f"{r['h_min']:.4f}", r["status"],
+              f"{r['load']:.1f}"] for r in rows]
+    both = [r for r in rows if r["dense"] is not None]
+    facts.update(transient_largest_dofs=rows[-1]["dofs"], transient_largest_seconds=rows[-1]["product"],
+                 transient_product_slope=_slope(rows, "product"),
+                 transient_same_map=max((r["same_map"] for r in rows if r["same_map"] is not None), default=None))
+    lines = ["### The pump transient with the squeeze of the deflection: dense against matrix-free", "",
+             f"`simulate_elastic` on the shipped pump (steel on steel, `pump_mesh`, P1), {TRANSIENT_REVOLUTIONS} "
+             f"revolution from the steady start at {TRANSIENT_BETA0} rad (across the compression), one run each. "
+             "*dense*: the dense half-space, the explicit `K^-1` and the integrator's dense Jacobian (refused above "
+             "4000 film unknowns); *product*: the grid half-space (`half_space_grid`) held as its FFT product, `K^-1` "
+             "and the integrator's Newton matrix by GMRES with the two-level preconditioner; *rigid*: "
+             "`bearingfe.simulate` of the same window. Times in s, builds of the compliance included. *steps*: "
+             "product / dense; *GMRES per right side*: GMRES iterations over the right sides evaluated; *difference*: "
+             "largest `|h_min(product) - h_min(dense)|` [c] (the grid half-space approximates the dense map); *same "
+             "map*: the dense compliance run as a product, largest difference from the dense run in `h_min` [c], "
+             "`gamma`, `delta` (the matrix-free path's own error, against rtol 1e-5); *h_min*: smallest film [c].", "",
+             md_table(["dofs", "rigid", "dense", "product", "product / dense", "steps", "GMRES per right side",
+                       "C products", "difference [c]", "same map", "h_min [c]", "status", "load"], table), ""]
+    text = f"Growth: product {facts['transient_product_slope']:.2f} (log-log slope of the run time)"
+    if both:
+        text += "; where both run: " + "; ".join(
+            f"{r['dofs']} dofs, product {(r['product_build'] + r['product']) / (r['dense_build'] + r['dense']):.2g} "
+            "times the dense run" for r in both)
+    above = ", above the dense limit," if rows[-1]["dense"] is None else ""
+    lines.append(text + f". The matrix-free squeeze runs {facts['transient_largest_dofs']} film unknowns{above} in "
+                 f"{facts['transient_largest_seconds']:.3g} s ({rows[-1]['status']}).")
+    return lines
 
 
 if __name__ == "__main__":

@@ -200,7 +200,8 @@ PART_TABLE: tuple[Part, ...] = (
          "the cost of a level-1 and a level-2 thermal solve against the isothermal one (benchmarks.thermal_levels)"),
     Part("elastic_fft", part_elastic_fft, "Elastic half-space support from 1e3 to 1e5 unknowns: dense against FFT",
          "the film on the elastic half-space from 1e3 to 1e5 unknowns, dense compliance against its FFT product, "
-         "beside the floor (benchmarks.elastic_fft)"),
+         "beside the floor, and the pump transient with the deflection's squeeze (simulate_elastic) dense against "
+         "matrix-free beside the rigid one (benchmarks.elastic_fft)"),
     Part("thrust", lambda quick: thrust_speed.report(thrust_speed.run(quick, log=_log)),
          "Thrust bearing: tilting-pad equilibrium at 1e-3 in load (six pads)",
          "a six-pad tilting-pad thrust bearing's equilibrium at 1e-3 in load beside its floor "

@@ -44,11 +44,39 @@ opening the pressures make (``deflection_atol``, in clearances), not on the
 raw pressures: that and BDF take about 190 steps per revolution where LSODA
 on the raw pressures took 850. The dense algebra runs on one BLAS thread
 (threads of a few-hundred-row matrix only wait for each other on a busy
-machine). The periodic start mixes the last revolutions (Anderson). The
-compliance stays dense: a low-rank form does not pay, because its
-singular values fall to 1 % of the largest only near the full rank
-(``docs/elastic.md`` gives the measured ranks); beyond
-the ``compliance`` limit of :mod:`bearingfe.core.limits` (4000 dofs) the dense forms are refused.
+machine). The periodic start mixes the last revolutions (Anderson). A
+dense compliance is refused beyond the ``compliance`` limit of
+:mod:`bearingfe.core.limits` (4000 dofs; a low-rank form does not pay, its
+singular values fall to 1 % of the largest only near the full rank:
+``docs/elastic.md``).
+
+Compliance held as its product
+------------------------------
+With a compliance held as its product only (``Compliance.matrix is None``:
+the FFT half-space of :mod:`bearingfe.elastic.convolution`) nothing dense of
+size ``n`` is formed, and there is no size cap:
+
+* ``K^-1 b`` is GMRES on the products ``K x = 12 M_I C_I x`` (one compliance
+  product each), warm-started from the last right side's, to
+  :data:`K_TOLERANCE`, preconditioned on two levels: about
+  :data:`COARSE_PATCHES` patches of interior dofs solved exactly (dense
+  ``Z^T K Z``, from ``C_I Z`` computed once), the rest by the sparse factors of
+  ``12 sigma M_II`` (``sigma`` the compliance's self-influence);
+* the integrator is scipy's BDF with its Newton matrix ``I - c J`` solved
+  matrix-free: the pressure block is ``K^-1 (K + c Jr)`` (``Jr = A_II + B_h
+  C_I``), so its solve is GMRES on ``K + c Jr`` (right side ``K v``; no
+  ``K^-1`` inside) with the same two-level preconditioner around the sparse
+  factors of ``c A_II + 12 sigma M_II``, and the rates' rows and the
+  ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
+  solves per Newton matrix, one per Newton iteration), to
+  :data:`NEWTON_TOLERANCE`. Only ``method="BDF"`` runs this way.
+
+The run is the dense path's up to these inner tolerances (the same steps;
+measured 6e-8 in ``gamma``, ``delta`` and the film [c] on the dense map
+held as a product, tests/transient/test_elastic.py); the cost is GMRES
+iterations times compliance products (``stats``: ``krylov_iterations``,
+``compliance_products``), measured against the dense path in the
+``elastic_fft`` part of ``docs/benchmarks.md``.
 
 Cavitation: the pressure may go negative (the source paper's model,
 ``cavitation="none"``); a complementarity condition on a state variable is
@@ -69,7 +97,9 @@ from typing import Sequence
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.integrate as si
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..bearings.pump import EccentricPump
 from ..core import DEFAULT_SOLVER
@@ -97,7 +127,9 @@ class QuasiStaticElastic(Rigid):
     (:func:`bearingfe.elastic.balance_load`, the direct form): without
     cavitation by a chord Newton from the last answer whose dense Jacobian is
     kept over the right sides (``factorizations`` then counts its
-    residuals), else by the damped Newton on the deflection. The start is the
+    residuals), else by the damped Newton on the deflection; a compliance held
+    as its product (no dense matrix, no size cap) always takes the latter,
+    matrix-free (Newton-Krylov). The start is the
     rigid film's (steady or given); a state where no deflection carries the
     load stops the run (``"no-equilibrium"``).
 
@@ -280,8 +312,10 @@ class ElasticSqueeze(Model):
 
     Works on the compiled film-independent maps of the mesh
     (:mod:`bearingfe.film.compiled`): a state costs sparse products with the
-    quadrature points, one product with the compliance and one solve with the
-    factors of ``K``; no assembly and no factorization. Counters: ``nfev``
+    quadrature points, one product with the compliance and one product with
+    the explicit ``K^-1`` (a dense compliance) or a preconditioned GMRES solve
+    with ``K`` (a compliance held as its product: see the module notes); no
+    assembly and no factorization of the film. Counters: ``nfev``
     and ``jacobians`` over the whole run (samples included), ``factorizations``
     (of the integrator's Newton matrix) and ``steps`` over every revolution
     integrated (the periodic start's included).
@@ -314,30 +348,42 @@ class ElasticSqueeze(Model):
         co = ops.compiled
         self.ops, self.basis, self.co = ops, ops.basis, co
         self.I, self.inlet = ops.interior, ops.inlet
-        C = np.asarray(compliance.matrix, float)
-        self.C_I = np.ascontiguousarray(C[:, self.I])
-        self.c_in = C[:, self.inlet].sum(axis=1) + compliance.pocket  # opening per unit pocket pressure
-        M = ops.mass.tocsr()[self.I]
-        # K^-1 explicitly (K is dense anyway): a state then costs one product with it
-        self.Kinv = sla.inv(12.0 * (M @ self.C_I), check_finite=False)
-        self.a_s = self.Kinv @ (12.0 * (M @ self.c_in))  # K^-1 c_s
         self.E, self.Gp, self.Gz = co.value, co.grad[0], co.grad[1]
         self.dx = co.dx
         self.src = co.sources  # (E^T dx)[I]
+        self.src_cos, self.src_sin = self.src @ np.cos(co.x[0]), self.src @ np.sin(co.x[0])
+        M = ops.mass.tocsr()[self.I]
+        self.product = None if compliance.dense else _InteriorCompliance(compliance, ops)
+        if self.product is None:
+            C = np.asarray(compliance.matrix, float)
+            self.C_I = np.ascontiguousarray(C[:, self.I])
+            self.c_in = C[:, self.inlet].sum(axis=1) + compliance.pocket  # opening per unit pocket pressure
+            # K^-1 explicitly (K is dense anyway): a state then costs one product with it
+            self.Kinv = sla.inv(12.0 * (M @ self.C_I), check_finite=False)
+            self.a_s = self.Kinv @ (12.0 * (M @ self.c_in))  # K^-1 c_s
+            self.k_cos, self.k_sin = 12.0 * (self.Kinv @ self.src_cos), 12.0 * (self.Kinv @ self.src_sin)
+            self.opening_weight = float(np.abs(compliance.matrix).sum(axis=1).max())
+        else:  # products only: K^-1 by preconditioned GMRES (_InteriorCompliance)
+            pc = self.product
+            self.C_I = self.Kinv = None
+            on_inlet = np.zeros(compliance.n_dofs)
+            on_inlet[self.inlet] = 1.0
+            self.c_in = compliance.apply(on_inlet) + compliance.pocket
+            self.a_s = pc.solve_K(12.0 * (M @ self.c_in))
+            self.k_cos, self.k_sin = 12.0 * pc.solve_K(self.src_cos), 12.0 * pc.solve_K(self.src_sin)
+            # the largest opening of a unit pressure everywhere: the dense row sum of |C| for a positive kernel
+            self.opening_weight = float(np.abs(compliance.apply(np.ones(compliance.n_dofs))).max())
         self.GpT, self.GzT = self.Gp.T.tocsr()[self.I], self.Gz.T.tocsr()[self.I]
         # the wedge source in conservative form, -int 6 wedge h dv/dphi (bearingfe.film.forms.couette_source):
         # the points -> interior map, and its derivative in the nodal opening w (h = h_rigid + E w)
         self.phi_src = co.phi_sources
         self.phi_src_E = (self.phi_src @ self.E).tocsr()
         self.cos_q, self.sin_q = np.cos(co.x[0]), np.sin(co.x[0])
-        self.src_cos, self.src_sin = self.src @ self.cos_q, self.src @ self.sin_q
-        self.k_cos, self.k_sin = 12.0 * (self.Kinv @ self.src_cos), 12.0 * (self.Kinv @ self.src_sin)
         d = self.basis.doflocs
         self.cos_d, self.sin_d = np.cos(d[0]), np.sin(d[0])
         L = np.asarray(co.loads[:2] @ co.value)  # (2, n_dofs): int phi_j (cos, sin) dphi dz
         self.LI = L[:, self.I]
         self.L_in = L[:, self.inlet].sum(axis=1) + np.asarray(ops.pocket_moments[1:], float)
-        self.opening_weight = float(np.abs(compliance.matrix).sum(axis=1).max())
         self._drive = (None, None)
 
     # -- start -------------------------------------------------------------------------------------
@@ -388,7 +434,7 @@ class ElasticSqueeze(Model):
         """Opening ``w``, film at the quadrature points and at the dofs, and ``cos``, ``sin`` of ``phi - delta``."""
         gamma, delta = float(y[0]), float(y[1])
         ps = self.drive(beta)[0]
-        w = self.C_I @ y[2:] + ps * self.c_in
+        w = self._open(y[2:]) + ps * self.c_in
         g = max(gamma, 0.0)
         cd, sd = math.cos(delta), math.sin(delta)
         cos_m = self.cos_q * cd + self.sin_q * sd  # cos(phi - delta) at the points
@@ -420,7 +466,7 @@ class ElasticSqueeze(Model):
         gp, gz = self.Gp @ p, self.Gz @ p
         h3 = h**3 * self.dx
         R = self.GpT @ (h3 * gp) + self.GzT @ (h3 * gz) - 6.0 * wedge * (self.phi_src @ h)
-        a = -(self.Kinv @ R) - dps * self.a_s
+        a = -self._solve_K(R) - dps * self.a_s
         B = np.column_stack([cd * self.k_cos + sd * self.k_sin, g * (cd * self.k_sin - sd * self.k_cos)])
         res = self.LI @ pI + ps * self.L_in + load
         rhs = self.LI @ a + self.kappa * res + self.L_in * dps + dload
@@ -431,6 +477,16 @@ class ElasticSqueeze(Model):
                                 f"({math.degrees(beta) % 360:.1f} deg), gamma = {gamma:.4g}") from None
         return r, a - B @ r, dict(p=p, w=w, h=h, dh=dh, h_dofs=h_dofs, wedge=wedge, dps=dps,
                                   shapes=(cos_m, g * sin_m), gp=gp, gz=gz, B=B)
+
+    def _open(self, p_interior: np.ndarray) -> np.ndarray:
+        """``C_I p_I``: the film opening [c] of the interior pressures."""
+        return self.C_I @ p_interior if self.product is None else self.product.columns(p_interior)
+
+    def _solve_K(self, R: np.ndarray) -> np.ndarray:
+        """``K^-1 R``: one product with the explicit inverse, or GMRES on the products (warm: the last solution)."""
+        if self.product is None:
+            return self.Kinv @ R
+        return self.product.solve_K(R, warm=True)
 
     def rates(self, beta: float, y: np.ndarray) -> np.ndarray:
         r, dp, _ = self._rates(beta, y)
@@ -445,6 +501,8 @@ class ElasticSqueeze(Model):
         with ``G = (L_I B)^-1`` gives ``dr/dp_I = G L_I (da/dp_I + kappa)``.
         """
         self.jacobians += 1
+        if self.product is not None:
+            return _SqueezeJacobian(self, beta, y)
         r, dp, st = self._rates(beta, y)
         n = y.size
         J = np.empty((n, n))
@@ -474,6 +532,11 @@ class ElasticSqueeze(Model):
     def stepper(self, beta0, y0, angles, settings, first_step, max_step):
         atol = np.r_[settings.absolute_tolerance, settings.absolute_tolerance,
                      self.deflection_atol / self.weights(y0)[2:]]
+        if self.product is not None:  # BDF with its Newton solves by GMRES (settings: BDF only)
+            first_step = None if first_step is None else min(float(first_step), float(angles[-1]) - beta0)
+            return _KrylovBDF(self.rates, beta0, np.asarray(y0, float), float(angles[-1]), rtol=settings.rtol,
+                              atol=atol, max_step=settings.max_step if max_step is None else max_step,
+                              first_step=first_step, jac=self.jacobian)
         return scipy_stepper(self.rates, beta0, y0, float(angles[-1]), settings, first_step, max_step, atol=atol,
                              jac=self.jacobian)
 
@@ -482,7 +545,7 @@ class ElasticSqueeze(Model):
         r, dp, st = self._rates(beta, y)
         sc = self.pump.scale
         w, h = st["w"], st["h"]
-        dw = self.C_I @ dp + self.c_in * st["dps"]
+        dw = self._open(dp) + self.c_in * st["dps"]
         hdot = r[0] * st["shapes"][0] + r[1] * st["shapes"][1] + self.E @ dw
         gp0, gp1 = st["gp"], st["gz"]
         friction = float(np.sum((st["wedge"] / h + 0.5 * h * gp0) * self.dx))
@@ -502,8 +565,273 @@ class ElasticSqueeze(Model):
                 "max_deflection": sc.to_thickness(float(w.max())), "pressures": st["p"]}
 
     def statistics(self, output, runs: Sequence) -> dict[str, float]:
-        return {"nfev": self.nfev, "jacobians": self.jacobians,
-                "factorizations": sum(run.factorizations for run in runs), "steps": sum(run.steps for run in runs)}
+        stats = {"nfev": self.nfev, "jacobians": self.jacobians,
+                 "factorizations": sum(run.factorizations for run in runs), "steps": sum(run.steps for run in runs)}
+        if self.product is not None:
+            stats.update(compliance_products=self.product.products, krylov_iterations=self.product.iterations)
+        return stats
+
+
+#: Relative tolerance of the GMRES solves with ``K`` in a right side of a product compliance.
+K_TOLERANCE = 1e-9
+#: Relative step of the central differences in ``(gamma, delta)`` of the product path's Jacobian: the rates
+#: carry about ``K_TOLERANCE`` relative noise, so the differences keep about ``log10(FD_STEP / K_TOLERANCE)`` digits.
+FD_STEP = 1e-6
+#: Relative tolerance of the GMRES solves with the integrator's Newton matrix (its simplified Newton takes the rest).
+NEWTON_TOLERANCE = 1e-6
+#: Largest number of GMRES iterations of one solve (restarts included).
+KRYLOV_MAX_ITERATIONS = 2000
+
+
+def _gmres(matvec, b: np.ndarray, preconditioner, x0: np.ndarray | None, rtol: float, what: str) -> tuple:
+    """``x`` with ``|A x - b| <= rtol |b|`` by restarted GMRES (right-hand preconditioned), and its iterations.
+
+    Raises :class:`~bearingfe.elastic.ElasticError` naming ``what`` when the tolerance is not met."""
+    n = b.size
+    op = spla.LinearOperator((n, n), matvec=matvec, dtype=float)
+    pre = spla.LinearOperator((n, n), matvec=preconditioner, dtype=float)
+    count = [0]
+
+    def counted(_):
+        count[0] += 1
+
+    restart = min(n, 60)
+    x, info = spla.gmres(op, b, x0=x0, rtol=rtol, atol=0.0, restart=restart, maxiter=KRYLOV_MAX_ITERATIONS // restart,
+                         M=pre, callback=counted, callback_type="pr_norm")
+    if info != 0 or not np.all(np.isfinite(x)):
+        size = float(np.linalg.norm(matvec(x) - b) / max(float(np.linalg.norm(b)), 1e-300))
+        raise ElasticError(f"{what}: GMRES did not reach the relative residual {rtol:g} in {count[0]} iterations "
+                           f"(reached {size:.3g})")
+    return x, count[0]
+
+
+#: Patches of the coarse space of the product path's preconditioners (about; fewer on small meshes).
+COARSE_PATCHES = 256
+
+
+def _patches(points: np.ndarray, count: int) -> sp.csr_matrix:
+    """Indicators (columns) of about ``count`` patches of the points ``(2, m)``: the non-empty cells of a grid
+    over their bounding box, at most one patch per four points."""
+    m = points.shape[1]
+    count = max(1, min(count, m // 4))
+    lo, hi = points.min(axis=1), points.max(axis=1)
+    span = np.maximum(hi - lo, 1e-300)
+    nx = max(1, int(round(math.sqrt(count * span[0] / span[1]))))
+    nz = max(1, int(round(count / nx)))
+    ix = np.minimum((nx * (points[0] - lo[0]) / span[0]).astype(int), nx - 1)
+    iz = np.minimum((nz * (points[1] - lo[1]) / span[1]).astype(int), nz - 1)
+    _, patch = np.unique(ix * nz + iz, return_inverse=True)
+    patch = np.asarray(patch).ravel()
+    return sp.csr_matrix((np.ones(m), (np.arange(m), patch)), shape=(m, int(patch.max()) + 1))
+
+
+class _TwoLevel:
+    """The preconditioner ``Q + S^-1 (I - A Q)``, ``Q = Z (Z^T A Z)^-1 Z^T``: the coarse patches solved exactly
+    (dense, from the stored ``A Z``), the rest by the local ``S^-1`` (sparse factors).
+
+    The local part alone (``12 sigma M`` for ``K``) misjudges the smooth modes, on which the compliance's
+    influence adds up over the whole film (the row sums of ``C`` are about 30 times its diagonal on the pump
+    shoe): the coarse space takes them."""
+
+    def __init__(self, Z: sp.csr_matrix, AZ: np.ndarray, local) -> None:
+        self.Z, self.AZ, self.local = Z, AZ, local
+        self.ZT = Z.T.tocsr()
+        self.lu = sla.lu_factor(self.ZT @ AZ, check_finite=False)
+
+    def __call__(self, v: np.ndarray) -> np.ndarray:
+        e = sla.lu_solve(self.lu, self.ZT @ v, check_finite=False)
+        return self.Z @ e + self.local(v - self.AZ @ e)
+
+
+class _InteriorCompliance:
+    """A compliance held as its product, on the interior pressures: ``C_I x``, ``K x = 12 M_I C_I x`` and ``K^-1``.
+
+    ``K^-1 b`` is GMRES on the products, preconditioned on two levels
+    (:class:`_TwoLevel`): about :data:`COARSE_PATCHES` patches of interior dofs
+    solved exactly, the rest by the sparse factors of ``12 sigma M_II`` with
+    ``sigma`` the mean self-influence of a few interior dofs (the compliance's
+    diagonal, read off its products). ``K`` is a smoothing map of order -1 (the
+    Boussinesq kernel ``1/r``): its condition grows only like ``sqrt(N)``. On
+    the pump shoe (343 dofs, one revolution) the solves took 11 iterations on
+    average (warm-started), the Newton matrix's 8; the local level alone took
+    twice as many. Memory: ``C_I Z`` and ``K Z``, ``O(N k)``. Counters:
+    ``products`` (of the compliance, columns counted) and ``iterations`` (of
+    GMRES).
+    """
+
+    def __init__(self, compliance: Compliance, ops) -> None:
+        self.compliance, self.I, self.n = compliance, ops.interior, compliance.n_dofs
+        mass = ops.mass.tocsr()
+        self.M_I = mass[self.I]
+        self.M_II = (12.0 * mass[self.I][:, self.I]).tocsc()
+        m = self.I.size
+        probes = self.I[np.unique(np.linspace(0, m - 1, min(m, 5)).astype(int))]
+        unit = np.zeros((self.n, probes.size))
+        unit[probes, np.arange(probes.size)] = 1.0
+        self.sigma = float(np.mean(compliance.apply(unit)[probes, np.arange(probes.size)]))
+        if not self.sigma > 0:
+            raise ValueError(f"the {compliance.model!r} compliance has a self-influence {self.sigma:.3g} <= 0 at "
+                             "interior dofs: the deflection squeeze needs a compliance that opens the film under "
+                             "its own pressure")
+        self.products = probes.size
+        self.iterations = 0
+        self._K_local = spla.splu(self.sigma * self.M_II)
+        # the coarse space: indicators of patches of interior dofs, and the compliance's columns on them
+        self.Z = _patches(ops.basis.doflocs[:, self.I], COARSE_PATCHES)
+        self.CZ = self.columns(self.Z.toarray())            # (n, k): C_I Z
+        KZ = 12.0 * (self.M_I @ self.CZ)
+        self._K_pre = _TwoLevel(self.Z, KZ, self._K_local.solve)
+        self._last = None
+
+    def columns(self, x: np.ndarray) -> np.ndarray:
+        """``C_I x`` [c] for interior pressures ``x``, shape ``(m,)`` or ``(m, k)``."""
+        full = np.zeros((self.n,) + np.shape(x)[1:])
+        full[self.I] = x
+        self.products += 1 if np.ndim(x) == 1 else np.shape(x)[1]
+        return self.compliance.apply(full)
+
+    def K(self, x: np.ndarray) -> np.ndarray:
+        return 12.0 * (self.M_I @ self.columns(x))
+
+    def solve_K(self, b: np.ndarray, warm: bool = False) -> np.ndarray:
+        """``K^-1 b`` to :data:`K_TOLERANCE` (``warm``: from the last such solution, the right sides' run)."""
+        x0 = self._last if warm and self._last is not None else None
+        x, its = _gmres(self.K, np.asarray(b, float), self._K_pre, x0, K_TOLERANCE,
+                        "the squeeze of the deflection's K^-1 (12 M C on the interior pressures; singular when "
+                        "some interior pressure opens no film, e.g. an auxiliary grid coarser than the mesh: a "
+                        "smaller spacing)")
+        self.iterations += its
+        if warm:
+            self._last = x
+        return x
+
+
+class _SqueezeJacobian:
+    """``d(rhs)/dy`` of :class:`ElasticSqueeze` at one state for a product compliance, held as its pieces.
+
+    With ``Da = -K^-1 Jr``, ``Jr = A_II + B_h C_I`` (the residual's derivative in
+    the interior pressures, sparse plus one compliance product),
+    ``Rp = G L_I (Da + kappa)`` (the rates' derivative, ``G = (L_I B)^-1``) and the
+    columns of ``(gamma, delta)`` by central differences (``J_g``), the
+    Jacobian is ``[[J_gg, Rp], [J_pg, Da - B Rp]]``: the dense one of
+    :meth:`ElasticSqueeze.jacobian`, never formed. The integrator's Newton
+    matrix ``I - c J`` is solved by :meth:`newton` (:class:`_NewtonSolve`).
+    """
+
+    __array_ufunc__ = None  # numpy scalars times this defer to __rmul__
+
+    def __init__(self, model: ElasticSqueeze, beta: float, y: np.ndarray) -> None:
+        self.model = model
+        _, _, st = model._rates(beta, y)
+        co = model.co
+        h2 = 3.0 * st["h"] ** 2 * model.dx
+        self.A = co.condensed(co.matrix_data("direct", st["h"], None)).tocsc()
+        self.Bh = ((model.GpT @ sp.diags(h2 * st["gp"]) + model.GzT @ sp.diags(h2 * st["gz"])) @ model.E
+                   - 6.0 * st["wedge"] * model.phi_src_E).tocsr()
+        self.B = st["B"]
+        self.G = np.linalg.inv(model.LI @ self.B)
+        self.Jg = np.empty((y.size, 2))
+        for k in range(2):
+            e = FD_STEP * max(1.0, abs(y[k]))
+            yp, ym = y.copy(), y.copy()
+            yp[k] += e
+            ym[k] -= e
+            self.Jg[:, k] = (model.rates(beta, yp) - model.rates(beta, ym)) / (2 * e)
+
+    def __rmul__(self, c) -> tuple:
+        return (self, float(c))
+
+
+class _NewtonIdentity:
+    """The identity of :class:`_KrylovBDF`: ``I - c J`` is the :class:`_NewtonSolve` of ``(J, c)``."""
+
+    def __sub__(self, scaled: tuple) -> tuple:
+        return scaled
+
+
+class _NewtonSolve:
+    """Solves with the integrator's Newton matrix ``N = I - c J`` of a :class:`_SqueezeJacobian`, exactly up to GMRES.
+
+    The pressure block is ``T = I - c Da = K^-1 (K + c Jr)``, so ``T^-1 v = (K + c Jr)^-1 K v``: GMRES on
+    ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned by the sparse factors
+    of ``c A_II + 12 sigma M_II`` (the film's operator for the fine modes, the compliance's local part for the
+    coarse ones). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
+    ``(gamma, delta)``), taken exactly: with ``x = T^-1 v``, ``Da x = (x - v)/c`` gives ``Rp x`` with no
+    further solve, and a 4x4 system joins the pieces (four solves with ``T`` per Newton matrix, one per solve).
+    """
+
+    def __init__(self, J: _SqueezeJacobian, c: float) -> None:
+        self.J, self.c = J, c
+        model = J.model
+        pc = model.product
+        local = spla.splu((c * J.A + pc.sigma * pc.M_II).tocsc())
+        TZ = 12.0 * (pc.M_I @ pc.CZ) + c * (J.A @ pc.Z + J.Bh @ pc.CZ)
+        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), local.solve)
+        cols = np.column_stack([J.Jg[2:], J.B])
+        X = np.column_stack([self._T_solve(cols[:, k]) for k in range(4)])
+        rho = np.column_stack([self._rho(cols[:, k], X[:, k]) for k in range(4)])
+        self.X_J, self.X_B, rho_J, rho_B = X[:, :2], X[:, 2:], rho[:, :2], rho[:, 2:]
+        eye = np.eye(2)
+        self.S = np.linalg.inv(np.block([[eye - c * J.Jg[:2], -c * eye], [-c * rho_J, eye + c * rho_B]]))
+
+    def _T_solve(self, v: np.ndarray) -> np.ndarray:
+        J, c = self.J, self.c
+        pc = J.model.product
+
+        def matvec(x):
+            w = pc.columns(x)
+            return 12.0 * (pc.M_I @ w) + c * (J.A @ x + J.Bh @ w)
+
+        try:
+            x, its = _gmres(matvec, pc.K(v), self._pre, v.copy(), NEWTON_TOLERANCE,
+                            "the integrator's Newton matrix of the deflection squeeze")
+        except ElasticError as exc:  # a shorter step brings the matrix nearer K, which GMRES does solve
+            raise TrialRejected(str(exc)) from None
+        pc.iterations += its
+        return x
+
+    def _rho(self, v: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """``Rp x`` for ``x = T^-1 v``."""
+        J = self.J
+        return J.G @ (J.model.LI @ ((x - v) / self.c + J.model.kappa * x))
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        c = self.c
+        bg, bp = b[:2], b[2:]
+        x = self._T_solve(bp)
+        zs = self.S @ np.r_[bg, self._rho(bp, x)]
+        zg, s = zs[:2], zs[2:]
+        return np.r_[zg, x + c * (self.X_J @ zg) - c * (self.X_B @ s)]
+
+
+class _KrylovBDF(si.BDF):
+    """scipy's BDF with the Newton matrix of a :class:`_SqueezeJacobian` solved by :class:`_NewtonSolve`.
+
+    The steps, error control and dense output are scipy's; only the linear algebra of its simplified Newton
+    changes (``nlu`` counts the Newton matrices set up). ``jac`` returns :class:`_SqueezeJacobian`.
+    """
+
+    def __init__(self, fun, t0, y0, t_bound, *, jac, **options) -> None:
+        super().__init__(fun, t0, y0, t_bound, jac=jac, **options)
+        self.J, self.I = self._first_jacobian, _NewtonIdentity()
+
+        def lu(pair):
+            self.nlu += 1
+            return _NewtonSolve(*pair)
+
+        self.lu = lu
+        self.solve_lu = lambda newton, b: newton.solve(b)
+
+    def _validate_jac(self, jac, sparsity):
+        self._first_jacobian = jac(self.t, self.y)
+        self.njev += 1
+
+        def wrapped(t, y):
+            self.njev += 1
+            return jac(t, y)
+
+        # a sparse stand-in while scipy's constructor runs: its sparse branch makes no dense identity
+        return wrapped, sp.csc_matrix((self.n, self.n))
 
 
 def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: float = 1.0, *,
@@ -519,7 +847,10 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
     compliance : Compliance
         Of the support, on the mesh of ``pump.surface``: any compliance
         matrix on the film dofs (:func:`bearingfe.elastic.half_space`,
-        :func:`bearingfe.elastic.shoe_body`).
+        :func:`bearingfe.elastic.shoe_body`; up to the dense limit), or one
+        held as its product (:func:`bearingfe.elastic.half_space_fft`,
+        :func:`bearingfe.elastic.half_space_grid`; matrix-free, no size
+        limit, ``method="BDF"``: see the module notes).
     revolutions : float
         Length of the run in shaft turns, > 0.
     start : {"periodic", "steady"} or Trajectory
@@ -530,7 +861,8 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
         the same compliance: continue from its last sample (angle, ``gamma``,
         ``delta`` and pressure; ``beta0`` is then its angle).
     method : {"BDF", "LSODA", "Radau"}
-        Integrator (implicit: the fine pressure modes are stiff).
+        Integrator (implicit: the fine pressure modes are stiff); "BDF" only
+        with a compliance held as its product.
     rtol : float
         Relative tolerance of the integrator.
     atol : float
@@ -564,7 +896,9 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
         ``"ruptured"`` when an accepted state's film reaches 2 % of the
         clearance (a trial step that closes the film is retaken shorter).
         ``stats``: ``nfev``, ``jacobians``, ``factorizations`` (of the
-        integrator's Newton matrix), ``steps``, ``seconds``.
+        integrator's Newton matrix; set up matrix-free with a product
+        compliance), ``steps``, ``seconds``; with a product compliance also
+        ``krylov_iterations`` and ``compliance_products``.
 
     Notes
     -----
@@ -573,7 +907,9 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
     its smallest film) of a run at ``rtol = 1e-8`` (measured 1e-4 c and
     less: ``docs/elastic.md``, tests/test_elastic_transient.py), in a
     fourth of the steps. The dense linear algebra runs on one
-    BLAS thread (:func:`bearingfe.core.linalg.dense_threads`).
+    BLAS thread (:func:`bearingfe.core.linalg.dense_threads`). A compliance
+    held as its product gives the same run up to the inner GMRES tolerances
+    (:data:`K_TOLERANCE`, :data:`NEWTON_TOLERANCE`).
     """
     if not isinstance(pump, EccentricPump):
         raise ValueError(f"pump must be a bearingfe.EccentricPump, got {type(pump).__name__}")
@@ -592,10 +928,11 @@ def simulate_elastic(pump: EccentricPump, compliance: Compliance, revolutions: f
                            periodic_max_iter=periodic_max_iter)
     ElasticSqueeze.check(settings)
     positive("kappa", kappa), positive("deflection_atol", deflection_atol)
-    if not compliance.dense:
-        raise ValueError(f"simulate_elastic factors dense matrices of the compliance: it needs a dense one, got "
-                         f"the {compliance.model!r} product (the quasi-static simulate(elastic=...) takes it)")
-    check_dense_size(compliance.n_dofs)
+    if compliance.dense:
+        check_dense_size(compliance.n_dofs)
+    elif method != "BDF":
+        raise ValueError(f"method must be 'BDF' with the {compliance.model!r} compliance held as its product: the "
+                         f"integrator's Newton solves are then matrix-free (GMRES inside BDF), got {method!r}")
     ratio = balance_ratio(pump, compliance.mesh, element=compliance.element)
     if ratio >= 1.0:
         raise LiftOffError(f"{pump.name!r}: balance ratio {ratio:.3f} >= 1: the shoe lifts off")
