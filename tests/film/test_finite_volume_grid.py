@@ -240,11 +240,7 @@ def test_two_grid_band_start_gives_the_plain_solution_in_fewer_fine_factorizatio
     # against 3 on the dimples at 1.7e4 nodes, 1 against 2 on the grooved journal with its fed pocket and seam)
     import bearingfe.film.finite_volume as jfo
 
-    if case == "dimples":
-        mesh, film, options = grid_mesh(_dimpled(), 1 / 130), UniformFilm(1.0), dict(cavitation_pressure=-0.05)
-    else:
-        surface, film, options = _pocketed_journal()
-        mesh = grid_mesh(surface, 2 * np.pi / 160, size_z=1 / 64)
+    mesh, film, options = _nested_case(case)
     calls = []
     band = jfo._two_grid_set
     monkeypatch.setattr(jfo, "_two_grid_set", lambda *a, **k: calls.append(1) or band(*a, **k))
@@ -283,6 +279,15 @@ def _pocketed_journal():
     return surface, CosineFilm(0.6, 0.0), dict(inlet_pressure=0.2)
 
 
+def _nested_case(case: str):
+    """The mesh, film and solve options of the nested-start tests: 130 x 130 dimples, or the grooved journal
+    (a fed pocket, a hole of the grid, and a seam) on a 160 x 64 grid."""
+    if case == "dimples":
+        return grid_mesh(_dimpled(), 1 / 130), UniformFilm(1.0), dict(cavitation_pressure=-0.05)
+    surface, film, options = _pocketed_journal()
+    return grid_mesh(surface, 2 * np.pi / 160, size_z=1 / 64), film, options
+
+
 @pytest.mark.parametrize("case", ["dimples", "grooved journal"])
 def test_nested_start_from_coarser_grids_gives_the_cold_solution(monkeypatch, case):
     # a cold grid solve above NESTED_MIN unknowns starts from the cavity of the grid on every other line
@@ -291,11 +296,7 @@ def test_nested_start_from_coarser_grids_gives_the_cold_solution(monkeypatch, ca
     # no more fine factorizations; the grooved journal has a fed pocket (a hole of the grid) and a seam
     import bearingfe.film.finite_volume as jfo
 
-    if case == "dimples":
-        mesh, film, options = grid_mesh(_dimpled(), 1 / 130), UniformFilm(1.0), dict(cavitation_pressure=-0.05)
-    else:
-        surface, film, options = _pocketed_journal()
-        mesh = grid_mesh(surface, 2 * np.pi / 160, size_z=1 / 64)
+    mesh, film, options = _nested_case(case)
     nested = solve_jfo(mesh, film, **options)
     monkeypatch.setattr(jfo, "NESTED_MIN", 10**9)
     cold = solve_jfo(mesh, film, **options)
