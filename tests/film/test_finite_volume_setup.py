@@ -208,7 +208,7 @@ def test_facet_to_triangle_map_is_scikit_fems():
     scikit-fem's ``Mesh.build_inverse`` makes (two unique sorts), element for element and in its dtype,
     on a gmsh mesh with a pocket and on a grid."""
     from bearingfe import Rectangle
-    from bearingfe.film import mesh_operators
+    from bearingfe.geometry.meshing import give_facet_triangles
 
     surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
     for mesh in (mesh_surface(surface, 0.1), grid_mesh(surface, 1 / 10)):
@@ -216,7 +216,7 @@ def test_facet_to_triangle_map_is_scikit_fems():
         want = skfem.Mesh.build_inverse(m.t, m.t2f)
         if hasattr(m, "_f2t"):
             del m._f2t
-        mesh_operators._give_f2t(m)
+        give_facet_triangles(m)
         assert m._f2t.dtype == want.dtype and np.array_equal(m._f2t, want)
         assert np.count_nonzero(want[1] == -1) > 0   # boundary facets (pocket and outline) in it
 
