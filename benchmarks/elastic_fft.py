@@ -249,7 +249,7 @@ def report(rows: list[dict]) -> tuple[str, dict]:
                   f"{r['max_deflection']:.4f}", f"{r['load']:.1f}"] for r in gmsh]
         lines += ["", "### Unstructured (gmsh) meshes: the FFT through an auxiliary grid", "",
                   "The same case on gmsh meshes of the shoe with its circular pocket (the shipped pump's), P1: "
-                  "the compliance through a uniform grid of half the mesh size (`half_space_grid`, "
+                  "the compliance through a uniform grid of half the median edge of the mesh (`half_space_grid`, "
                   "`COMPLIANCES[\"half-space-grid\"]`, an approximation of the dense map, second order in the "
                   "grid spacing). *difference*: largest `|w_grid - w_dense|` over the largest opening; *force "
                   "difference*: relative difference of the film force (both converged to 1e-8 c).", "",

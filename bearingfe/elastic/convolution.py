@@ -252,6 +252,13 @@ def half_space_fft(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1"
                       modulus=e_star, scale=scale, seconds=time.perf_counter() - start, operator=apply)
 
 
+def _median_edge(m) -> float:
+    """The median length of the triangles' straight edges (vertex to vertex) [R0]."""
+    t, p = m.t[:3], m.p
+    return float(np.median(np.concatenate([np.hypot(*(p[:, t[i]] - p[:, t[j]]))
+                                           for i, j in ((0, 1), (1, 2), (2, 0))])))
+
+
 def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1", *,
                     spacing: float | None = None) -> Compliance:
     """Compliance of two elastic half-spaces on any film mesh, through an auxiliary uniform grid (FFT).
@@ -273,7 +280,10 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
         As in :func:`bearingfe.elastic.half_space`.
     element : {"P1", "P2"}
     spacing : float, optional
-        Grid spacing [R0], > 0; default half the mesh's nominal size.
+        Grid spacing [R0], > 0; default half the median edge of the mesh's
+        triangles (not its nominal size: a small surface or a graded mesh has
+        edges well below it, and a grid coarser than the dofs makes ``C``
+        singular on them; a mesh read from a file has no nominal size).
 
     Returns
     -------
@@ -288,7 +298,7 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
         raise ValueError(f"mesh must be a bearingfe SupportMesh, got {type(mesh).__name__}")
     e_star = contact_modulus(modulus)
     start = time.perf_counter()
-    h = 0.5 * mesh.size if spacing is None else spacing
+    h = 0.5 * _median_edge(mesh.mesh) if spacing is None else spacing
     if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0):
         raise ValueError(f"spacing must be a grid spacing in R0, > 0, got {spacing!r}")
     m = mesh.mesh

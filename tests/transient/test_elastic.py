@@ -216,15 +216,14 @@ def test_product_compliance_runs_above_the_dense_cap(setup, monkeypatch):
     the FFT half-space through its auxiliary grid (half_space_grid, held as its product) runs, the squeeze
     model and the quasi-static one (balance_load's Newton-Krylov: the dense-only chord is not taken). Its
     film is the dense one's within the grid's approximation (second order in its spacing: 1e-2 c here,
-    measured 4.5e-3 c); at the default spacing (half the mesh size) some interior dof of this coarse
-    mesh carries no grid node, K = 12 M C_I is singular, and the error says so."""
+    measured 3.4e-3 c at the default spacing, half the median edge); at a spacing of half the nominal size
+    (0.15: this small shoe's edges are near 0.12) some interior dof of this coarse mesh carries no grid node,
+    K = 12 M C_I is singular, and the error says so."""
     from bearingfe.core.limits import LimitError
     from bearingfe.elastic import half_space_grid
 
     mesh, C = setup
-    # a quarter of the mesh size: at the default half, some interior dof of this coarse mesh carries no grid
-    # node and K = 12 M C_I is singular (the error says so)
-    grid = half_space_grid(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material), spacing=0.075)
+    grid = half_space_grid(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material))
     kw = dict(start="steady", beta0=1.2, points_per_revolution=60)
     dense = simulate_elastic(PUMP, C, 0.05, **kw)
     monkeypatch.setenv("BEARINGFE_MAX_COMPLIANCE", "50")
@@ -238,6 +237,6 @@ def test_product_compliance_runs_above_the_dense_cap(setup, monkeypatch):
     assert qs.status == "completed"
     # on the discharge plateau the two models agree (as the dense ones do above)
     np.testing.assert_allclose(prod.h_min, qs.h_min, rtol=2e-2)
-    coarse = half_space_grid(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material))
+    coarse = half_space_grid(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material), spacing=0.15)
     with pytest.raises(bf.elastic.ElasticError, match="singular when some interior pressure opens no film"):
         simulate_elastic(PUMP, coarse, 0.05, **kw)
