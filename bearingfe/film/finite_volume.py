@@ -1124,14 +1124,25 @@ def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factor
         else:
             order = nested_dissection((abs(K) + abs(G)).tocsr(), unk.coordinates)
         unk._order["order"] = order
+    return _factorize_in_order(order)
+
+
+def _factorize_in_order(order: np.ndarray) -> Factorize:
+    """SuperLU of matrices in the fixed fill-reducing ``order`` with diagonal pivots preferred (SuperLU's
+    symmetric mode, threshold :data:`PIVOT_THRESHOLD`). A matrix exactly singular in this order, or whose
+    first solve's residual is not at round-off (pivots too small for this set), falls back to COLAMD with
+    partial pivoting (:func:`~bearingfe.core.linalg.factorize_splu`)."""
     inverse = np.argsort(order)
 
     def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         M = sp.csc_matrix(M)
         scale = float(np.abs(M.data).max(initial=0.0))
-        lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
-                       options={"SymmetricMode": True})
         fallback, checked = [], []
+        try:
+            lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
+                           options={"SymmetricMode": True})
+        except RuntimeError:   # exactly singular in this order
+            fallback.append(factorize_splu(M))
 
         def solve(b: np.ndarray) -> np.ndarray:
             b = np.asarray(b, dtype=float)
@@ -1143,7 +1154,7 @@ def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factor
             checked.append(True)
             r = M @ x - b
             bound = 1e-10 * (scale * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
-            if not np.abs(r).max(initial=0.0) <= bound:   # also NaN: pivots too small for this set
+            if not np.abs(r).max(initial=0.0) <= bound:   # also NaN
                 fallback.append(factorize_splu(M))
                 return fallback[0](b)
             return x
@@ -1251,41 +1262,6 @@ BAND_ITERATIONS = 20
 BAND_PASSES = 3
 
 
-def _band_factorize(order: np.ndarray) -> Factorize:
-    """Factorization of a band's matrices in the reverse Cuthill-McKee ``order`` of its pattern with diagonal
-    pivots preferred (as :func:`_ordered_splu`): 0.056 against 0.086 s for SuperLU's COLAMD on the 6.2e4-unknown
-    band of the 600 x 600 dimples (25 rings around their cavities, thin: the per-column overhead dominates). A
-    first solve whose residual is not at round-off falls back to COLAMD with partial pivoting."""
-
-    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
-        M = sp.csc_matrix(M)
-        fallback, checked = [], []
-        try:
-            lu = spla.splu(M[order][:, order].tocsc(), permc_spec="NATURAL", diag_pivot_thresh=PIVOT_THRESHOLD,
-                           options={"SymmetricMode": True})
-        except RuntimeError:   # exactly singular in this order
-            fallback.append(factorize_splu(M))
-
-        def solve(b: np.ndarray) -> np.ndarray:
-            b = np.asarray(b, dtype=float)
-            if fallback:
-                return fallback[0](b)
-            x = np.empty_like(b)
-            x[order] = lu.solve(b[order])
-            if checked:
-                return x
-            checked.append(True)
-            bound = 1e-10 * (np.abs(M.data).max(initial=0.0) * np.abs(x).max(initial=0.0) + np.abs(b).max(initial=0.0))
-            if not np.abs(M @ x - b).max(initial=0.0) <= bound:   # also NaN
-                fallback.append(factorize_splu(M))
-                return fallback[0](b)
-            return x
-
-        return solve
-
-    return factorize
-
-
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
               y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
               passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
@@ -1314,7 +1290,9 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     y = y.copy()
     passes = passes if solve is not None else 1
     order = np.asarray(reverse_cuthill_mckee((abs(KBB) + abs(GcBB)).tocsr(), symmetric_mode=True))
-    band_solver = _SetSolver(KBB, GcBB, _band_factorize(order))   # Woodbury for a few switches, as globally
+    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
+    # the 600 x 600 dimples: thin, the per-column overhead dominates); Woodbury for a few switches, as globally
+    band_solver = _SetSolver(KBB, GcBB, _factorize_in_order(order))
     last = None
     for npass in range(passes):
         yo = y[out]
