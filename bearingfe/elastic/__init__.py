@@ -15,6 +15,7 @@ module           what it does
 ``block``        the shoe as a 3-D block held at its back; any body's openings as a compliance
 ``shoe``         the real shoe body (gmsh tetrahedra, seat, lining) and its :class:`ShoeBody`
 ``coupled``      the film opened by its own pressure: Newton, load balance, chord balance
+``krylov``       restarted GMRES of the matrix-free solves (coupled Newton steps, the transient's squeeze)
 ===============  ==================================================================
 """
 

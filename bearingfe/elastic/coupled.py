@@ -45,6 +45,7 @@ import scipy.sparse.linalg as spla
 from skfem import BilinearForm
 
 from .compliance import MAX_ITERATIONS, TOLERANCE, Compliance, ElasticError, check_dense_size
+from .krylov import RESTART, gmres
 from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from ..core.checks import check_elastic, check_operating_point, note_resolution
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
@@ -302,19 +303,20 @@ _KRYLOV = np.empty((0, 0))  # marks a matrix-free Jacobian in place of LU factor
 
 
 def _krylov_step(J: spla.LinearOperator, F: np.ndarray, residual: float, products: list) -> np.ndarray:
-    """The Newton step ``(dg/dw - I) s = -F`` by GMRES on the products of ``dg/dw`` (inexact Newton)."""
-    n = F.size
+    """The Newton step ``(dg/dw - I) s = -F`` by GMRES on the products of ``dg/dw`` (inexact Newton: at most
+    ``KRYLOV_CYCLES`` restart cycles; a step short of its tolerance is judged by the backtracking)."""
 
     def matvec(v):
         products[0] += 1
         return J.matvec(v) - v
 
-    op = spla.LinearOperator((n, n), matvec=matvec, dtype=float)
-    rtol = min(1e-2, max(residual, 1e-12))
-    step, info = spla.gmres(op, -F, rtol=rtol, atol=0.0, restart=min(n, 60), maxiter=20)
-    if info < 0 or not np.all(np.isfinite(step)):
-        raise ElasticError("GMRES broke down on the elastic film's Jacobian (I - C dp/dw)")
-    return step  # info > 0 (not converged): the backtracking judges the step
+    step, _ = gmres(matvec, -F, rtol=min(1e-2, max(residual, 1e-12)), what="the elastic film's Jacobian (I - C dp/dw)",
+                    max_iterations=KRYLOV_CYCLES * min(F.size, RESTART), must_converge=False)
+    return step
+
+
+#: Restart cycles of GMRES in one inexact Newton step of the coupled film.
+KRYLOV_CYCLES = 20
 
 
 @BilinearForm

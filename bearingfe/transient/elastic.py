@@ -105,6 +105,7 @@ from ..bearings.pump import EccentricPump
 from ..core import DEFAULT_SOLVER
 from ..core.linalg import dense_threads
 from ..elastic import Compliance, ElasticError, balance_load, check_dense_size
+from ..elastic.krylov import gmres
 from ..film import CosineFilm, operators
 from ..cavitation import CavitationError
 from .base import FilmClosed, Model, NoEquilibrium, TrialRejected
@@ -583,28 +584,6 @@ NEWTON_TOLERANCE = 1e-6
 KRYLOV_MAX_ITERATIONS = 2000
 
 
-def _gmres(matvec, b: np.ndarray, preconditioner, x0: np.ndarray | None, rtol: float, what: str) -> tuple:
-    """``x`` with ``|A x - b| <= rtol |b|`` by restarted GMRES (right-hand preconditioned), and its iterations.
-
-    Raises :class:`~bearingfe.elastic.ElasticError` naming ``what`` when the tolerance is not met."""
-    n = b.size
-    op = spla.LinearOperator((n, n), matvec=matvec, dtype=float)
-    pre = spla.LinearOperator((n, n), matvec=preconditioner, dtype=float)
-    count = [0]
-
-    def counted(_):
-        count[0] += 1
-
-    restart = min(n, 60)
-    x, info = spla.gmres(op, b, x0=x0, rtol=rtol, atol=0.0, restart=restart, maxiter=KRYLOV_MAX_ITERATIONS // restart,
-                         M=pre, callback=counted, callback_type="pr_norm")
-    if info != 0 or not np.all(np.isfinite(x)):
-        size = float(np.linalg.norm(matvec(x) - b) / max(float(np.linalg.norm(b)), 1e-300))
-        raise ElasticError(f"{what}: GMRES did not reach the relative residual {rtol:g} in {count[0]} iterations "
-                           f"(reached {size:.3g})")
-    return x, count[0]
-
-
 #: Patches of the coarse space of the product path's preconditioners (about; fewer on small meshes).
 COARSE_PATCHES = 256
 
@@ -696,10 +675,11 @@ class _InteriorCompliance:
     def solve_K(self, b: np.ndarray, warm: bool = False) -> np.ndarray:
         """``K^-1 b`` to :data:`K_TOLERANCE` (``warm``: from the last such solution, the right sides' run)."""
         x0 = self._last if warm and self._last is not None else None
-        x, its = _gmres(self.K, np.asarray(b, float), self._K_pre, x0, K_TOLERANCE,
-                        "the squeeze of the deflection's K^-1 (12 M C on the interior pressures; singular when "
-                        "some interior pressure opens no film, e.g. an auxiliary grid coarser than the mesh: a "
-                        "smaller spacing)")
+        x, its = gmres(self.K, np.asarray(b, float), preconditioner=self._K_pre, x0=x0, rtol=K_TOLERANCE,
+                       max_iterations=KRYLOV_MAX_ITERATIONS,
+                       what="the squeeze of the deflection's K^-1 (12 M C on the interior pressures; singular when "
+                            "some interior pressure opens no film, e.g. an auxiliary grid coarser than the mesh: a "
+                            "smaller spacing)")
         self.iterations += its
         if warm:
             self._last = x
@@ -783,8 +763,9 @@ class _NewtonSolve:
             return 12.0 * (pc.M_I @ w) + c * (J.A @ x + J.Bh @ w)
 
         try:
-            x, its = _gmres(matvec, pc.K(v), self._pre, v.copy(), NEWTON_TOLERANCE,
-                            "the integrator's Newton matrix of the deflection squeeze")
+            x, its = gmres(matvec, pc.K(v), preconditioner=self._pre, x0=v.copy(), rtol=NEWTON_TOLERANCE,
+                           max_iterations=KRYLOV_MAX_ITERATIONS,
+                           what="the integrator's Newton matrix of the deflection squeeze")
         except ElasticError as exc:  # a shorter step brings the matrix nearer K, which GMRES does solve
             raise TrialRejected(str(exc)) from None
         pc.iterations += its
