@@ -642,7 +642,7 @@ class _InteriorCompliance:
         self.compliance, self.I, self.n = compliance, ops.interior, compliance.n_dofs
         mass = ops.mass.tocsr()
         self.M_I = mass[self.I]
-        self.M_II = (12.0 * mass[self.I][:, self.I]).tocsc()
+        self.M12_II = (12.0 * mass[self.I][:, self.I]).tocsc()  # 12 M_II: the squeeze term of K = 12 M C
         m = self.I.size
         probes = self.I[np.unique(np.linspace(0, m - 1, min(m, 5)).astype(int))]
         unit = np.zeros((self.n, probes.size))
@@ -654,7 +654,7 @@ class _InteriorCompliance:
                              "its own pressure")
         self.products = probes.size
         self.iterations = 0
-        self._K_local = spla.splu(self.sigma * self.M_II)
+        self._K_local = spla.splu(self.sigma * self.M12_II)
         # the coarse space: indicators of patches of interior dofs, and the compliance's columns on them
         self.Z = _patches(ops.basis.doflocs[:, self.I], COARSE_PATCHES)
         self.CZ = self.columns(self.Z.toarray())            # (n, k): C_I Z
@@ -744,7 +744,7 @@ class _NewtonSolve:
         self.J, self.c = J, c
         model = J.model
         pc = model.product
-        local = spla.splu((c * J.A + pc.sigma * pc.M_II).tocsc())
+        local = spla.splu((c * J.A + pc.sigma * pc.M12_II).tocsc())
         TZ = 12.0 * (pc.M_I @ pc.CZ) + c * (J.A @ pc.Z + J.Bh @ pc.CZ)
         self._pre = _TwoLevel(pc.Z, np.asarray(TZ), local.solve)
         cols = np.column_stack([J.Jg[2:], J.B])
