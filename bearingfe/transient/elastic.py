@@ -96,6 +96,7 @@ import time
 from typing import Sequence
 
 import numpy as np
+import scipy
 import scipy.linalg as sla
 import scipy.integrate as si
 import scipy.sparse as sp
@@ -785,6 +786,10 @@ class _NewtonSolve:
         return np.r_[zg, x + c * (self.X_J @ zg) - c * (self.X_B @ s)]
 
 
+#: scipy BDF internals that :class:`_KrylovBDF` replaces (its simplified Newton's matrix, factorization and solve).
+_BDF_INTERNALS = ("J", "I", "lu", "solve_lu", "nlu")
+
+
 class _KrylovBDF(si.BDF):
     """scipy's BDF with the Newton matrix of a :class:`_SqueezeJacobian` solved by :class:`_NewtonSolve`.
 
@@ -794,6 +799,11 @@ class _KrylovBDF(si.BDF):
 
     def __init__(self, fun, t0, y0, t_bound, *, jac, **options) -> None:
         super().__init__(fun, t0, y0, t_bound, jac=jac, **options)
+        missing = [name for name in _BDF_INTERNALS if not hasattr(self, name)]
+        if missing:
+            raise RuntimeError(f"scipy {scipy.__version__}'s BDF has no {', '.join(missing)}: the deflection squeeze's "
+                               "matrix-free Newton matrix replaces these internals; use a dense compliance or a "
+                               "scipy release whose BDF has them (1.17 does)")
         self.J, self.I = self._first_jacobian, _NewtonIdentity()
 
         def lu(pair):

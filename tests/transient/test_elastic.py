@@ -240,3 +240,15 @@ def test_product_compliance_runs_above_the_dense_cap(setup, monkeypatch):
     coarse = half_space_grid(mesh, PUMP.scale, (PUMP.shoe_material, PUMP.eccentric_material), spacing=0.15)
     with pytest.raises(bf.elastic.ElasticError, match="singular when some interior pressure opens no film"):
         simulate_elastic(PUMP, coarse, 0.05, **kw)
+
+
+def test_scipy_bdf_has_the_internals_the_krylov_bdf_replaces():
+    # The matrix-free deflection squeeze swaps scipy BDF's Newton matrix, factorization and solve
+    # (bearingfe.transient.elastic._BDF_INTERNALS): a scipy release without them must fail here, loudly,
+    # not integrate with scipy's own dense algebra on the sparse stand-in.
+    import scipy.integrate as si
+
+    from bearingfe.transient.elastic import _BDF_INTERNALS
+
+    bdf = si.BDF(lambda t, y: -y, 0.0, np.ones(2), 1.0)
+    assert all(hasattr(bdf, name) for name in _BDF_INTERNALS)
