@@ -104,8 +104,7 @@ class GridConvolution:
         if ox.max() > 1 or oz.max() > 1:
             raise ValueError("the FFT half-space needs triangles that are half-cells of the grid (grid_mesh)")
         code = (ox * 2 + oz)                                 # vertex offsets as 0..3, shape (3, n_elements)
-        shapes, which = np.unique(code.T, axis=0, return_inverse=True)
-        which = np.asarray(which).ravel()
+        shapes, which = _shape_classes(code)
         ncx, ncz = nx - 1, nz - 1
         # zero-padded to at least n + (n - 1) - 1 (linear, not circular, convolution), at a fast FFT length
         px, pz = sfft.next_fast_len(2 * nx - 2, real=True), sfft.next_fast_len(2 * nz - 2, real=True)
@@ -117,11 +116,12 @@ class GridConvolution:
         pts = np.array([MX.ravel() * hx, MZ.ravel() * hz])
         # terms (cells mask, node offset) -> kernel; triangles of different shapes on the same cells (the two
         # halves of every cell) share the masked window of a vertex offset: their kernels add up
-        masks, kernels = [], {}
+        masks, kernels, whole_parts = [], {}, []
         for s, shape in enumerate(shapes):
             offs = [(int(c) // 2, int(c) % 2) for c in shape]
             v = np.array([[o[0] * hx for o in offs], [o[1] * hz for o in offs]])[:, :, None]  # (2, 3, 1)
             K = element_integrals(pts, v, "P1")[:, :, 0]   # (3, n_offsets)
+            whole_parts.append(K)
             mask = np.zeros((ncx, ncz), bool)
             sel = which == s
             mask[cx[sel], cz[sel]] = True
@@ -137,14 +137,20 @@ class GridConvolution:
                 kernels[key][np.mod(MX, px), np.mod(MZ, pz)] += K[k].reshape(MX.shape)
         # the cells with no triangle (the holes: pockets of a grid mesh) and the kernel of a whole cell
         self._holes = ~np.logical_or.reduce(masks)
-        cell = np.array([[0.0, hx, hx, 0.0, hx, 0.0], [0.0, 0.0, hz, 0.0, hz, hz]]).reshape(2, 2, 3).transpose(0, 2, 1)
-        whole = element_integrals(pts, cell, "P1").sum(axis=(0, 2))  # sum of the barycentric weights: 1
+        self._whole_shapes = _halves(shapes)
+        if self._whole_shapes:  # the two reference triangles tile the cell: its kernel is the sum of theirs
+            whole = sum(kernel.sum(axis=0) for kernel in whole_parts)
+        else:
+            cell = np.array([[0.0, hx, hx, 0.0, hx, 0.0], [0.0, 0.0, hz, 0.0, hz, hz]]).reshape(2, 2, 3).transpose(0, 2, 1)
+            whole = element_integrals(pts, cell, "P1").sum(axis=(0, 2))  # sum of the barycentric weights: 1
         self._cell_kernel = np.zeros((px, pz))
         self._cell_kernel[np.mod(MX, px), np.mod(MZ, pz)] = whole.reshape(MX.shape)
         self._masks = [None if m.all() else m.astype(float) for m in masks]
         self._keys = list(kernels)
         self._kernels = sfft.rfft2(np.array([kernels[key] for key in self._keys]), axes=(1, 2))
         self._ncells = (ncx, ncz)
+        self._p, self._t = m.p, m.t
+        self._cell_triangles = np.argsort(cx * ncz + cz, kind="stable")  # two per cell where no hole
 
     def __call__(self, p: np.ndarray) -> np.ndarray:
         """``G p`` at the nodes [R0] for the nodal values ``p`` (shape ``(n_nodes,)`` or ``(n_nodes, k)``)."""
@@ -167,6 +173,33 @@ class GridConvolution:
         # (K * q)(i) = sum_c K(i - c) q(c): node i sits at index i of the padded result
         return w[:nx, :nz].ravel()[self.flat]
 
+
+    def probes(self, x: np.ndarray) -> sp.csr_matrix:
+        """P1 interpolation ``(n, n_nodes)`` from the grid's nodes to the points ``x`` (2, n) [R0].
+
+        The cell of each point by index arithmetic on the uniform lines (no search), then the half of it that
+        holds the point; points off the grid's box (round-off at its edge) take its nearest cell, extrapolated.
+        Needs a grid without holes (every cell carries its two triangles)."""
+        if self._holes.any() or self._t.shape[1] != 2 * self._ncells[0] * self._ncells[1]:
+            raise ValueError("GridConvolution.probes needs a grid whose every cell carries two triangles "
+                             "(no pockets): locate the points with bearingfe.geometry.locate instead")
+        from ..geometry.locate import INSIDE_TOLERANCE, barycentric
+
+        x = np.asarray(x, float)
+        ncx, ncz = self._ncells
+        i = np.clip(np.floor((x[0] - self.origin[0]) / self.step[0]).astype(np.int64), 0, ncx - 1)
+        k = np.clip(np.floor((x[1] - self.origin[1]) / self.step[1]).astype(np.int64), 0, ncz - 1)
+        pair = self._cell_triangles.reshape(-1, 2)[i * ncz + k]          # (n, 2): the cell's two triangles
+        first, second = (barycentric(self._p, self._t, pair[:, j], x) for j in range(2))
+        # the half where the point's smallest barycentric coordinate is largest (inside: >= -tolerance)
+        worst = [np.minimum(np.minimum(l1, l2), 1.0 - l1 - l2) for l1, l2 in (first, second)]
+        use_second = worst[1] > np.maximum(worst[0], -INSIDE_TOLERANCE)
+        cells = np.where(use_second, pair[:, 1], pair[:, 0])
+        l1, l2 = (np.where(use_second, b, a) for a, b in zip(first, second))
+        n = x.shape[1]
+        rows = np.tile(np.arange(n), 3)
+        cols = self._t[:, cells].ravel()
+        return sp.csr_matrix((np.concatenate([1.0 - l1 - l2, l1, l2]), (rows, cols)), shape=(n, self.n_nodes))
 
     def holes(self) -> np.ndarray:
         """``int_holes 1/|x_i - y| dA`` [R0] at the nodes: the cells of the grid that carry no triangle."""
@@ -252,6 +285,23 @@ def half_space_fft(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1"
                       modulus=e_star, scale=scale, seconds=time.perf_counter() - start, operator=apply)
 
 
+def _shape_classes(code: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct rows of the vertex codes (3, n_elements), sorted, and each triangle's row: what
+    ``np.unique(code.T, axis=0, return_inverse=True)`` gives, by counting the 64 possible keys (no sort)."""
+    key = code[0] * 16 + code[1] * 4 + code[2]
+    present = np.flatnonzero(np.bincount(key, minlength=64))
+    lookup = np.full(64, -1)
+    lookup[present] = np.arange(present.size)
+    return np.array([present // 16, present // 4 % 4, present % 4]).T, lookup[key]
+
+
+def _halves(shapes: np.ndarray) -> bool:
+    """Whether the reference triangles (rows of vertex codes ``2 ox + oz`` in 0..3) are the two halves of the
+    cell cut along one diagonal."""
+    found = {frozenset(int(c) for c in shape) for shape in shapes}
+    return found in ({frozenset((0, 1, 3)), frozenset((0, 2, 3))}, {frozenset((0, 1, 2)), frozenset((1, 2, 3))})
+
+
 def _median_edge(m) -> float:
     """The median length of the triangles' straight edges (vertex to vertex) [R0]."""
     t, p = m.t[:3], m.p
@@ -290,7 +340,7 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
     Compliance
         ``model="half-space-grid"``, ``matrix=None``.
     """
-    from ..geometry.locate import containing_cells, probe_matrices
+    from ..geometry.locate import lattice_cells, probe_matrices
 
     if not isinstance(scale, Scale):
         raise ValueError(f"scale must be a bearingfe.Scale, got {type(scale).__name__}")
@@ -307,11 +357,16 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
     if n[0] * n[1] > 50 * max(m.p.shape[1], 1000):
         raise ValueError(f"spacing = {h:g} R0 makes a grid of {n[0] * n[1]} nodes for a mesh of {m.p.shape[1]}: "
                          "choose a spacing near the mesh size")
-    grid = skfem.MeshTri1.init_tensor(np.linspace(lo[0], hi[0], n[0]), np.linspace(lo[1], hi[1], n[1]))
+    lines = (np.linspace(lo[0], hi[0], n[0]), np.linspace(lo[1], hi[1], n[1]))
+    steps = ((hi[0] - lo[0]) / (n[0] - 1), (hi[1] - lo[1]) / (n[1] - 1))
+    grid = skfem.MeshTri1.init_tensor(*lines)
     conv = GridConvolution(grid)
     basis = operators(mesh, element).basis
     X = grid.p
-    inside = containing_cells(m.p, m.t, X) >= 0
+    lattice = lattice_cells(m.p, m.t, lo, steps, n)
+    cells = lattice[np.rint((X[0] - lo[0]) / steps[0]).astype(np.int64),
+                    np.rint((X[1] - lo[1]) / steps[1]).astype(np.int64)]
+    inside = cells >= 0
     pockets = np.zeros(X.shape[1], bool)
     if len(mesh.boundaries.get("inlet", ())):
         if mesh.surface is None:
@@ -324,9 +379,9 @@ def half_space_grid(mesh: SupportMesh, scale: Scale, modulus, element: str = "P1
     if mesh.surface is not None and not mesh.surface.is_rectangular:
         inside &= np.asarray(mesh.surface.outline.contains(X[0], X[1]), bool)  # on it: p = 0 anyway
     rows = np.flatnonzero(inside)
-    T = probe_matrices(basis, X[:, rows])[0].tocoo()
+    T = probe_matrices(basis, X[:, rows], cells[rows])[0].tocoo()
     to_grid = sp.csr_matrix((T.data, (rows[T.row], T.col)), shape=(X.shape[1], basis.N))
-    back = probe_matrices(skfem.Basis(grid, skfem.ElementTriP1()), basis.doflocs)[0]
+    back = conv.probes(basis.doflocs)
     kappa = 0.0 if math.isinf(e_star) else scale.pressure * scale.radius / (math.pi * e_star * scale.clearance)
     pocket = kappa * (back @ conv(pockets.astype(float)))
 

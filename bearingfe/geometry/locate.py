@@ -4,6 +4,8 @@ One home for the mesh queries the solvers share:
 
 - :func:`containing_cells`: the triangle that holds each point (-1 if none),
   from a k-d tree of the centroids and barycentric tests on the nearest ones;
+- :func:`lattice_cells`: the same for the nodes of a uniform lattice, by visiting
+  each triangle's bounding box (no search);
 - :func:`nearest_cells`: the same, falling back to the nearest centroid for
   points just outside (round-off on curved edges);
 - :func:`probe_matrices`: sparse maps from the dofs of a scikit-fem basis to
@@ -18,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["containing_cells", "nearest_cells", "barycentric", "probe_matrices", "probes", "cell_diameters"]
+__all__ = ["containing_cells", "lattice_cells", "nearest_cells", "barycentric", "probe_matrices", "probes", "cell_diameters"]
 
 #: Barycentric slack of the inside test: a point on an edge belongs to both cells.
 INSIDE_TOLERANCE = 1e-10
@@ -58,19 +60,53 @@ def containing_cells(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidate
     return _search(p, np.asarray(t)[:3], np.asarray(points, float), candidates)[0]
 
 
+def lattice_cells(p: np.ndarray, t: np.ndarray, origin, step, shape) -> np.ndarray:
+    """The straight triangle ``(p, t[:3])`` holding each node ``origin + (i step[0], k step[1])`` of a
+    lattice of ``shape = (nx, nz)`` nodes, as an array ``(nx, nz)`` (-1 where none does).
+
+    Each triangle visits the lattice nodes of its bounding box (barycentric test, as
+    :func:`containing_cells`): no search, ``O(cells + nodes)`` when the lattice is about as fine as the
+    mesh. A node on an edge shared by two triangles gets one of them."""
+    t = np.asarray(t)[:3]
+    (ox, oz), (hx, hz), (nx, nz) = origin, step, shape
+    v = p[:, t]                                                    # (2, 3, n)
+    i0 = np.maximum(np.ceil((v[0].min(axis=0) - ox) / hx - 1e-9).astype(np.int64), 0)
+    i1 = np.minimum(np.floor((v[0].max(axis=0) - ox) / hx + 1e-9).astype(np.int64), nx - 1)
+    k0 = np.maximum(np.ceil((v[1].min(axis=0) - oz) / hz - 1e-9).astype(np.int64), 0)
+    k1 = np.minimum(np.floor((v[1].max(axis=0) - oz) / hz + 1e-9).astype(np.int64), nz - 1)
+    wide = np.maximum(k1 - k0 + 1, 0)
+    counts = np.maximum(i1 - i0 + 1, 0) * wide
+    cells = np.repeat(np.arange(t.shape[1]), counts)
+    j = np.arange(cells.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    i = i0[cells] + j // wide[cells]
+    k = k0[cells] + j % wide[cells]
+    l1, l2 = barycentric(p, t, cells, np.array([ox + i * hx, oz + k * hz]))
+    tol = INSIDE_TOLERANCE
+    inside = (l1 >= -tol) & (l2 >= -tol) & (l1 + l2 <= 1 + tol)
+    out = np.full(nx * nz, -1)
+    out[i[inside] * nz + k[inside]] = cells[inside]
+    return out.reshape(nx, nz)
+
+
 def nearest_cells(p: np.ndarray, t: np.ndarray, points: np.ndarray, candidates: int = 8) -> np.ndarray:
     """As :func:`containing_cells`, but a point in no candidate gets the cell of the nearest centroid."""
     found, nearest = _search(p, np.asarray(t)[:3], np.asarray(points, float), candidates)
     return np.where(found >= 0, found, nearest)
 
 
-def probe_matrices(basis, x: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+def probe_matrices(basis, x: np.ndarray, cells: np.ndarray | None = None
+                   ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
     """Sparse maps ``(n, basis.N)`` from dofs to the value and the gradient ``(d/dphi, d/dz)`` of a field
-    at the points ``x`` (2, n). Cells are found on the straight triangles of the mesh's vertices; the
-    reference coordinates then come from the basis's own (possibly curved) mapping."""
+    at the points ``x`` (2, n). Cells are found on the straight triangles of the mesh's vertices
+    (:func:`nearest_cells`), unless the caller has them (``cells``, one per point, e.g. from
+    :func:`containing_cells`); the reference coordinates then come from the basis's own (possibly curved)
+    mapping."""
     x = np.asarray(x, float)
     m = basis.mesh
-    cells = nearest_cells(m.p, m.t, x)
+    if cells is None:
+        cells = nearest_cells(m.p, m.t, x)
+    elif np.shape(cells) != (x.shape[1],) or np.min(cells, initial=0) < 0:
+        raise ValueError(f"cells must hold one cell (>= 0) per point ({x.shape[1]}), got shape {np.shape(cells)}")
     ref = basis.mapping.invF(x[:, :, None], tind=cells)
     rows = np.tile(np.arange(x.shape[1]), basis.Nbfun)
     cols = basis.element_dofs[:, cells].ravel()

@@ -173,3 +173,36 @@ def test_quasi_static_pump_transient_takes_the_grid_transfer():
             for build in (half_space, half_space_grid)]
     dense, grid = (float(np.min(r.h_min)) for r in runs)
     assert grid == pytest.approx(dense, rel=2e-3)
+
+
+def test_grid_probes_and_cell_kernel_equal_the_searched_ones():
+    # GridConvolution.probes (cells by index arithmetic) against the k-d tree search of
+    # bearingfe.geometry.locate on the same grid; the whole-cell kernel summed from the two halves' kernels
+    # against its direct integral (GridConvolution's holes); both to round-off. Points: a curved P2 mesh's
+    # dofs (some a hair outside the box of its vertices) and points on grid lines and the diagonal.
+    import skfem
+
+    from bearingfe.elastic.convolution import GridConvolution
+    from bearingfe.elastic.half_space import element_integrals
+    from bearingfe.geometry.locate import probe_matrices
+
+    mesh = bf.mesh_surface(POCKET, 0.1, order=2)
+    basis = operators(mesh, "P2").basis
+    lo, hi = mesh.mesh.p.min(axis=1), mesh.mesh.p.max(axis=1)
+    grid = skfem.MeshTri1.init_tensor(np.linspace(lo[0], hi[0], 27), np.linspace(lo[1], hi[1], 19))
+    conv = GridConvolution(grid)
+    edges = np.array([[lo[0], hi[0], 0.5 * (lo[0] + hi[0]), grid.p[0, 40]], [lo[1], hi[1], grid.p[1, 40], grid.p[1, 40]]])
+    points = np.hstack([basis.doflocs, grid.p[:, ::7], edges])
+    searched = probe_matrices(skfem.Basis(grid, skfem.ElementTriP1()), points)[0]
+    field = np.sin(3.0 * grid.p[0]) * np.cos(2.0 * grid.p[1]) + grid.p[0] * grid.p[1]
+    assert np.abs(conv.probes(points) @ field - searched @ field).max() <= 1e-12
+    hx, hz = conv.step
+    cell = np.array([[0.0, hx, hx, 0.0, hx, 0.0], [0.0, 0.0, hz, 0.0, hz, hz]]).reshape(2, 2, 3).transpose(0, 2, 1)
+    m = np.arange(-3, 4)  # grid offsets along the cells' diagonal
+    direct = element_integrals(np.array([m * hx, m * hz]), cell, "P1").sum(axis=(0, 2))
+    assert conv._whole_shapes
+    summed = conv._cell_kernel[np.mod(m, conv._pad[0]), np.mod(m, conv._pad[1])]
+    assert np.abs(summed - direct).max() <= 1e-13 * np.abs(direct).max()
+    with pytest.raises(ValueError, match="two triangles"):
+        GridConvolution(bf.grid_mesh(bf.Surface(arc=(-0.6, 0.6), half_width=0.4,
+                                                inlets=[bf.Rectangle((0.0, 0.0), (0.2, 0.2))]), 0.1)).probes(points)
