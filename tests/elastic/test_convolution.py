@@ -52,6 +52,26 @@ def test_fft_product_is_the_dense_product(surface, size, size_z):
     assert (np.max(pocket) > 0.1) == (surface is RECESS)
 
 
+def test_one_kernel_product_is_the_dense_product():
+    # PLAIN grid (every cell carries its triangles): a field zero on the edge rows takes the one-kernel
+    # product; against the dense matrix, round-off apart; with a non-zero edge value it takes the per-shape
+    # sums, also the dense product; a grid with a pocket hole has no node kernel
+    mesh = bf.grid_mesh(PLAIN, 0.1, size_z=0.08)
+    dense = half_space(mesh, SCALE, (STEEL, STEEL))
+    fft = half_space_fft(mesh, SCALE, (STEEL, STEEL))
+    conv = grid_convolution(mesh)
+    assert conv._node_kernel is not None
+    p = np.random.default_rng(2).standard_normal(dense.n_dofs)
+    edge = (np.abs(mesh.mesh.p[0]) > 0.6 - 1e-9) | (np.abs(mesh.mesh.p[1]) > 0.4 - 1e-9)
+    for values in (np.where(edge, 0.0, p), p):
+        grid = np.zeros(conv.shape)
+        grid.ravel()[conv.flat] = values
+        assert conv._edges_vanish(grid) == (values is not p)
+        ref = dense.matrix @ values
+        assert np.max(np.abs(fft.apply(values) - ref)) <= 1e-10 * np.max(np.abs(ref))
+    assert grid_convolution(bf.grid_mesh(RECESS, 0.05))._node_kernel is None
+
+
 def test_uniform_pressure_on_rectangle_against_love():
     # 32 MPa on the whole 60 x 40 mm shoe: Love's corner formula at every node (corners, edges, centre)
     mesh = bf.grid_mesh(PLAIN, 0.025)
