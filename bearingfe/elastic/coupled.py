@@ -509,7 +509,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
                 pf = pocket_film(mesh, deflected, Discretization(element=element, formulation="direct", solver=solver))
                 sup = pf.whole
             else:
-                sup = superpose(mesh, deflected, formulation="direct", element=element, solver=solver)
+                sup = superpose(mesh, deflected, formulation="direct", element=element, solver=solver, lazy=True)
         except ValueError as exc:
             if "h_min" in str(exc):
                 raise ElasticError(str(exc)) from None
