@@ -999,7 +999,10 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
-    cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
+    varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
+    for k in range(1, dep_q.shape[1]):   # a depth that varies over the points (numpy's ptp along a short last
+        varies |= dep_q[:, k] != dep_q[:, 0]   # axis is many times slower)
+    cut = near[varies]
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
     lam += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n - 1) for j in range(n - 1 - i)]
