@@ -1695,7 +1695,7 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     h = _film_at(film, X, Z)
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
-        h += _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)
+        h = h + _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)   # not in place: h may be the film's array
     cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
     fill = np.minimum(1.0, cc / h)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
