@@ -511,13 +511,14 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
         return _CELLS[mesh]
     m = mesh.mesh
     p, t = m.p, m.t[:3]
-    x, y = p[0][t], p[1][t]
-    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
-    grad = np.empty((2, 3, t.shape[1]))   # written in place: no temporaries of the stacked gradients
-    for k, (a, b) in enumerate(((1, 2), (2, 0), (0, 1))):
-        np.subtract(y[a], y[b], out=grad[0, k])
-        np.subtract(x[b], x[a], out=grad[1, k])
-    grad /= det
+    grad = np.empty((2, 3, t.shape[1]))   # written block by block: no temporaries of all triangles
+    for block in _blocks(t.shape[1]):
+        x, y = p[0][t[:, block]], p[1][t[:, block]]
+        det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+        for k, (a, b) in enumerate(((1, 2), (2, 0), (0, 1))):
+            np.subtract(y[a], y[b], out=grad[0, k, block])
+            np.subtract(x[b], x[a], out=grad[1, k, block])
+        grad[:, :, block] /= det
     X = np.asarray(ops.basis.X)
     cells = _Cells(t=t, grad=grad, lam=np.array([1.0 - X[0] - X[1], X[0], X[1]]), dx=np.asarray(ops.basis.dx),
                    n=int(m.nvertices))

@@ -88,3 +88,13 @@ def test_overlaps_sorted_into_strips_are_those_of_the_plain_test(monkeypatch):
     for (lo, hi), s, p in zip(fv._recess_boxes(surface), sorted_, plain):
         brute = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
         assert np.array_equal(np.sort(s), brute) and np.array_equal(p, brute)
+
+
+def test_barycentric_gradients_by_blocks_are_the_stacked_formula(monkeypatch):
+    monkeypatch.setattr(fv, "BLOCK", 37)
+    mesh = grid_mesh(_dimpled(), 1 / 30)
+    p, t = mesh.mesh.p, mesh.mesh.t
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    grad = np.array([[y[1] - y[2], y[2] - y[0], y[0] - y[1]], [x[2] - x[1], x[0] - x[2], x[1] - x[0]]]) / det
+    assert np.array_equal(fv._cells(mesh, fv.operators(mesh)).grad, grad)
