@@ -586,8 +586,9 @@ def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _point_sum(term: Callable[[slice], np.ndarray], out: np.ndarray) -> float:
     """``np.sum`` of ``term`` over all triangles, ``term(b)`` its values at the quadrature points of the
     triangles ``b`` (a slice): written block by block (:data:`BLOCK`) into ``out`` (C order, ``(n_triangles,
-    n_points)``, overwritten) and summed once, so the sum is that of the whole array (the same rounding)
-    without its temporaries."""
+    n_points)``, overwritten) and summed once, without the temporaries of all points. The sum of the whole
+    product in C order: the same rounding as ``np.sum`` of it written at once (C-ordered where its first
+    factor is, as the P1 values of :func:`_interpolate` and ``1/h`` are)."""
     for b in _blocks(out.shape[0]):
         out[b] = term(b)
     return float(np.sum(out))
