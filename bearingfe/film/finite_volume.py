@@ -433,7 +433,7 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
     depth = _rows_depth(surface, q[0].T, q[1].T).T
     deepest = np.zeros(m.nvertices)
     np.maximum.at(deepest, t.ravel(), depth.ravel())
-    h0 = np.asarray(film.thickness(p[0], p[1]), float) + 0.0 * p[0]
+    h0 = _film_at(film, p[0], p[1])
     scale = (h0[t] + deepest[t]) / (h0[t] + depth)          # (3, n_triangles)
     tri = np.arange(d.i.size) % nt
     pair = np.arange(d.i.size) // nt                         # 0: (0, 1), 1: (1, 2), 2: (2, 0)
@@ -478,6 +478,18 @@ def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
 
+#: Cells (triangles) or faces the passes over quadrature points of the assembly take at a time (:func:`_blocks`):
+#: their temporaries, a few hundred kB each, stay in cache and are reused, where arrays of all points (35 MB
+#: each at 7.2e5 triangles x 6 points) were new memory the system had to supply, page by page.
+BLOCK = 16384
+
+
+def _blocks(n: int, size: int | None = None) -> list[slice]:
+    """Consecutive slices of at most ``size`` (default :data:`BLOCK`) of ``range(n)``."""
+    size = BLOCK if size is None else size
+    return [slice(lo, min(lo + size, n)) for lo in range(0, n, size)]
+
+
 @dataclass(frozen=True, eq=False)
 class _Cells:
     """What the P1 integrals of the scheme need, per mesh: the triangles, the gradients of their
@@ -499,9 +511,14 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
         return _CELLS[mesh]
     m = mesh.mesh
     p, t = m.p, m.t[:3]
-    x, y = p[0][t], p[1][t]
-    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
-    grad = np.array([[y[1] - y[2], y[2] - y[0], y[0] - y[1]], [x[2] - x[1], x[0] - x[2], x[1] - x[0]]]) / det
+    grad = np.empty((2, 3, t.shape[1]))   # written block by block: no temporaries of all triangles
+    for block in _blocks(t.shape[1]):
+        x, y = p[0][t[:, block]], p[1][t[:, block]]
+        det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+        for k, (a, b) in enumerate(((1, 2), (2, 0), (0, 1))):
+            np.subtract(y[a], y[b], out=grad[0, k, block])
+            np.subtract(x[b], x[a], out=grad[1, k, block])
+        grad[:, :, block] /= det
     X = np.asarray(ops.basis.X)
     cells = _Cells(t=t, grad=grad, lam=np.array([1.0 - X[0] - X[1], X[0], X[1]]), dx=np.asarray(ops.basis.dx),
                    n=int(m.nvertices))
@@ -509,14 +526,29 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
     return cells
 
 
+def _integrals(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
+    """``int_T f`` per triangle from ``f`` at the quadrature points."""
+    return _integrals_of(f_q, cells.dx)
+
+
+def _integrals_of(f_q: np.ndarray, dx: np.ndarray) -> np.ndarray:
+    """The quadrature sums ``sum_k f_k dx_k`` of the rows of ``f_q`` and ``dx`` (some triangles' integrals)."""
+    return np.sum(f_q * dx, axis=1)
+
+
 def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
-    """``int c grad phi_i . grad phi_j`` (P1: the gradients are constant on a triangle, so each triangle
-    contributes ``int_T c`` times their products). Summed from the 3 edges of each triangle (``A + A^T``), the
-    diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3 entries a triangle into
-    the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to 4e-16 relative; the
-    entries that sum to exactly zero, across the diagonals of a square grid, are left out)."""
+    """``int c grad phi_i . grad phi_j`` from ``c`` at the quadrature points (:func:`_stiffness_of` its
+    integrals over the triangles)."""
+    return _stiffness_of(cells, _integrals(cells, c_q))
+
+
+def _stiffness_of(cells: _Cells, w: np.ndarray) -> sp.csr_matrix:
+    """``int c grad phi_i . grad phi_j`` from ``w = int_T c`` per triangle (P1: the gradients are constant on
+    a triangle, so each triangle contributes ``int_T c`` times their products). Summed from the 3 edges of each
+    triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
+    entries a triangle into the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to
+    4e-16 relative; the entries that sum to exactly zero, across the diagonals of a square grid, are left out)."""
     g, t = cells.grad, cells.t
-    w = np.sum(c_q * cells.dx, axis=1)
     a, b = [0, 1, 2], [1, 2, 0]
     vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
     U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
@@ -524,9 +556,10 @@ def _stiffness(cells: _Cells, c_q: np.ndarray) -> sp.csr_matrix:
     return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
 
 
-def _load(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
-    """``int f phi_i`` for every node."""
-    fw = f_q * cells.dx
+def _load(cells: _Cells, f_q: np.ndarray | None) -> np.ndarray:
+    """``int f phi_i`` for every node; ``f_q`` None: ``f = 1`` (the lumped nodal areas, without an array of
+    ones at the quadrature points)."""
+    fw = cells.dx if f_q is None else f_q * cells.dx
     return sum(np.bincount(cells.t[a], weights=_weighted(fw, cells.lam[a]), minlength=cells.n) for a in range(3))
 
 
@@ -544,8 +577,21 @@ def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ``(2, n_triangles)`` (constant per triangle)."""
     ut = u[cells.t]
     g, lam = cells.grad, cells.lam
-    values = ut[0][:, None] * lam[0] + ut[1][:, None] * lam[1] + ut[2][:, None] * lam[2]
+    values = np.empty((ut.shape[1], lam.shape[1]))
+    for b in _blocks(ut.shape[1]):   # no temporaries of all points
+        values[b] = ut[0, b, None] * lam[0] + ut[1, b, None] * lam[1] + ut[2, b, None] * lam[2]
     return values, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
+
+
+def _point_sum(term: Callable[[slice], np.ndarray], out: np.ndarray) -> float:
+    """``np.sum`` of ``term`` over all triangles, ``term(b)`` its values at the quadrature points of the
+    triangles ``b`` (a slice): written block by block (:data:`BLOCK`) into ``out`` (C order, ``(n_triangles,
+    n_points)``, overwritten) and summed once, without the temporaries of all points. The sum of the whole
+    product in C order: the same rounding as ``np.sum`` of it written at once (C-ordered where its first
+    factor is, as the P1 values of :func:`_interpolate` and ``1/h`` are)."""
+    for b in _blocks(out.shape[0]):
+        out[b] = term(b)
+    return float(np.sum(out))
 
 
 def _recess_depth(surface, phi, z) -> np.ndarray:
@@ -614,9 +660,17 @@ def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
 
 # -- film with recesses --------------------------------------------------------------
 
+def _film_at(film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """``film.thickness`` at the points ``(phi, z)`` as a float array of their shape [units of c]: a film may
+    answer a scalar or an array that broadcasts; an answer of the points' shape is taken as it is (adding
+    ``0 phi`` to it, as to the others, would write a copy and change at most the sign of a zero)."""
+    h = np.asarray(film.thickness(phi, z), dtype=float)
+    return h if h.shape == np.shape(phi) else h + 0.0 * phi
+
+
 def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
     """Film thickness plus the depth of any recess of the surface at the points."""
-    h = np.asarray(film.thickness(phi, z), dtype=float) + 0.0 * phi
+    h = _film_at(film, phi, z)
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):
         h = h + _recess_depth(surface, phi, z)
@@ -631,10 +685,47 @@ def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
     """Mask of the rectangles ``[x0, x1] x [z0, z1]`` that overlap the bounding box of a recess (with a
     margin of 1 % of its size, :func:`_recess_boxes`): elsewhere the recess depth is zero and need not be
     sampled."""
-    near = np.zeros(np.shape(x0), bool)
-    for lo, hi in _recess_boxes(surface):   # found once per surface
-        near |= (x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1])
-    return near
+    near = np.zeros(np.size(x0), bool)
+    for rows in _overlaps(surface, x0, x1, z0, z1):
+        near[rows] = True
+    return near.reshape(np.shape(x0))
+
+
+#: Rectangles from which :func:`_overlaps` sorts them into strips along ``phi`` (with 4 recesses or more).
+OVERLAPS_SORTED_FROM = 16384
+
+
+def _overlaps(surface, x0, x1, z0, z1, buckets: int = 4096) -> list[np.ndarray]:
+    """Per recess of ``surface`` (in order), the indices of the rectangles ``[x0, x1] x [z0, z1]`` (1-D arrays)
+    that overlap its bounding box (:func:`_recess_boxes`, found once per surface).
+
+    From :data:`OVERLAPS_SORTED_FROM` rectangles and 4 recesses on, the rectangles are sorted once into
+    ``buckets`` strips by ``x0`` (a linear-time sort of small integers, as :func:`_recess_plan`) and each recess
+    tests only those of the strips its box can reach (``x0`` within the widest rectangle of it): the same
+    indices as testing all of them (not in increasing order), at a fraction of the cost on many recesses.
+    """
+    boxes = _recess_boxes(surface)
+    x0, x1, z0, z1 = (np.ravel(v) for v in (x0, x1, z0, z1))
+
+    def overlapping(lo, hi, idx=None):
+        if idx is None:
+            return np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
+        return idx[(x1[idx] >= lo[0]) & (x0[idx] <= hi[0]) & (z1[idx] >= lo[1]) & (z0[idx] <= hi[1])]
+
+    first, last = (float(x0.min()), float(x0.max())) if x0.size else (math.nan, math.nan)
+    reach = float(np.max(x1 - x0)) if x0.size else math.nan
+    if len(boxes) < 4 or x0.size < OVERLAPS_SORTED_FROM or not math.isfinite(first + last + reach):
+        return [overlapping(lo, hi) for lo, hi in boxes]
+    width = (last - first) / buckets or 1.0
+    key = np.clip(((x0 - first) / width).astype(np.int64), 0, buckets - 1).astype(np.int16)
+    order = np.argsort(key, kind="stable")
+    starts = np.searchsorted(key[order], np.arange(buckets + 1))
+    out = []
+    for lo, hi in boxes:   # one strip more on each side: the strips' edges rounded
+        k0 = min(max(math.floor((lo[0] - reach - first) / width) - 1, 0), buckets - 1)
+        k1 = min(max(math.floor((hi[0] - first) / width) + 1, 0), buckets - 1)
+        out.append(overlapping(lo, hi, order[starts[k0]:starts[k1 + 1]]))
+    return out
 
 
 def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
@@ -644,8 +735,7 @@ def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.nd
     the recesses added in their order: the same values as the plain test, without sorting the points (cells
     and boxes of a grid, each near one recess contour, sampled many times)."""
     out = np.zeros(np.shape(X))
-    for r, (lo, hi) in zip(surface.recesses, _recess_boxes(surface)):
-        rows = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
+    for r, rows in zip(surface.recesses, _overlaps(surface, x0, x1, z0, z1)):
         if rows.size:
             out[rows] += r.depth * r.shape.contains(X[rows], Z[rows])
     return out
@@ -716,8 +806,7 @@ def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.
     part of each chord ``|z - cz| < sqrt(r^2 - (x - cx)^2)`` in ``[lo, hi]``, the lines near each circle's
     box only."""
     out = np.zeros(np.shape(x))
-    for r, (blo, bhi) in zip(surface.recesses, _recess_boxes(surface)):
-        near = np.flatnonzero((x >= blo[0]) & (x <= bhi[0]) & (hi >= blo[1]) & (lo <= bhi[1]))
+    for r, near in zip(surface.recesses, _overlaps(surface, x, x, lo, hi)):
         if near.size:
             (cx, cz), radius = r.shape.center, r.shape.radius
             half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
@@ -775,12 +864,23 @@ def _face_film(mesh: SupportMesh, film: Film, x0: np.ndarray, x1: np.ndarray, lo
 
 
 def _face_smooth(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """The film part of :func:`_face_film`: 3 x 3 Gauss points per rectangle, one call of the film."""
+    """The film part of :func:`_face_film`: 3 x 3 Gauss points per rectangle, one call of the film per block
+    of :data:`BLOCK` rectangles (1-D arrays; others in one call)."""
+    if np.ndim(x0) != 1:
+        return _face_smooth_block(film, x0, x1, lo, hi)
+    mean = np.empty(np.shape(x0))
+    for b in _blocks(mean.size):
+        mean[b] = _face_smooth_block(film, x0[b], x1[b], lo[b], hi[b])
+    return mean
+
+
+def _face_smooth_block(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """:func:`_face_smooth` of some rectangles, the film called once at their 9 points each."""
     g, w = _GAUSS
     gx, gz = np.repeat(g, 3)[:, None], np.tile(g, 3)[:, None]
     x = 0.5 * (x0 + x1) + 0.5 * gx * (x1 - x0)
     z = 0.5 * (lo + hi) + 0.5 * gz * (hi - lo)
-    terms = (0.25 * np.outer(w, w).ravel()[:, None] * (hi - lo)) * (np.asarray(film.thickness(x, z), float) + 0.0 * x)
+    terms = (0.25 * np.outer(w, w).ravel()[:, None] * (hi - lo)) * _film_at(film, x, z)
     mean = np.zeros_like(x0)
     for term in terms:   # summed in the order of the points
         mean += term
@@ -839,29 +939,50 @@ def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
 
 
 def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
-    """:func:`_thickness` at the quadrature points ``x`` of ``mesh``, the recess depth found once per mesh."""
-    h = np.asarray(film.thickness(x[0], x[1]), dtype=float) + 0.0 * x[0]
+    """:func:`_thickness` at the quadrature points ``x`` of ``mesh`` ``(n_triangles, n_points)``, the recess
+    depth found once per mesh; the film called once per :data:`BLOCK` triangles."""
     depth = _quadrature_depth(mesh, x)
-    return h if depth is None else h + depth
+    h = np.empty(x.shape[1:])
+    for b in _blocks(h.shape[0]):
+        h[b] = _film_at(film, x[0, b], x[1, b])
+        if depth is not None:
+            h[b] += depth[b]
+    return h
 
 
-def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, h_q: np.ndarray, subdivisions: int = 8):
-    """``h``, ``1/h`` and ``h^3`` at the quadrature points, replaced on the triangles a recess contour
-    cuts (a grid mesh) by their means over ``subdivisions**2`` sub-triangle centroids: the P1
-    stiffness needs only ``int_T h^3``, which plain quadrature gets wrong across a step."""
-    inv_q, h3_q = 1.0 / h_q, h_q**3
+def _film_integrals(cells: _Cells, h_q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``1/h`` at the quadrature points and ``int_T h^3/12`` per triangle (the stiffness's weights,
+    :func:`_integrals` of ``h^3/12``), by blocks of :data:`BLOCK` triangles: ``h^3`` at every point is never
+    held."""
+    inv_q = np.empty(h_q.shape)
+    w = np.empty(h_q.shape[0])
+    for b in _blocks(h_q.shape[0]):
+        np.divide(1.0, h_q[b], out=inv_q[b])
+        w[b] = _integrals_of(h_q[b] ** 3 / 12.0, cells.dx[b])
+    return inv_q, w
+
+
+def _cell_means(mesh: SupportMesh, film: Film, x: np.ndarray, subdivisions: int = 8):
+    """The triangles a recess contour cuts (a grid mesh with recesses) and the means of ``h``, ``1/h`` and
+    ``h^3`` over their ``subdivisions**2`` sub-triangle centroids (the P1 stiffness needs only ``int_T h^3``,
+    which plain quadrature gets wrong across a step); None elsewhere (:func:`_with_cell_means`)."""
     surface = mesh.surface
     if mesh.source != "grid" or surface is None or not surface.recesses:
-        return h_q, inv_q, h3_q
+        return None
     cut, pts, depth = _cut_cells(mesh, x, subdivisions)
     if cut.size == 0:
-        return h_q, inv_q, h3_q
-    hh = np.asarray(film.thickness(pts[0], pts[1]), dtype=float) + 0.0 * pts[0] + depth   # as _thickness
-    h_q, inv_q, h3_q = h_q.copy(), inv_q.copy(), h3_q.copy()
-    h_q[cut] = hh.mean(axis=1)[:, None]
-    inv_q[cut] = (1.0 / hh).mean(axis=1)[:, None]
-    h3_q[cut] = (hh**3).mean(axis=1)[:, None]
-    return h_q, inv_q, h3_q
+        return None
+    hh = _film_at(film, pts[0], pts[1]) + depth   # as _thickness
+    return cut, hh.mean(axis=1), (1.0 / hh).mean(axis=1), (hh**3).mean(axis=1)
+
+
+def _with_cell_means(cells: _Cells, means, h_q: np.ndarray, inv_q: np.ndarray, w: np.ndarray) -> None:
+    """Puts the cut triangles' means (:func:`_cell_means`) into ``h`` and ``1/h`` at their quadrature points
+    and their ``int_T h^3/12`` into ``w``, in place."""
+    cut, h, inv, h3 = means
+    h_q[cut] = h[:, None]
+    inv_q[cut] = inv[:, None]
+    w[cut] = _integrals_of(np.repeat(h3[:, None], h_q.shape[1], axis=1) / 12.0, cells.dx[cut])
 
 
 _CUTS: "weakref.WeakKeyDictionary[SupportMesh, tuple]" = weakref.WeakKeyDictionary()
@@ -880,7 +1001,10 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
-    cut = near[(np.ptp(dep_q, axis=1) > 0) | (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])]
+    varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
+    for k in range(1, dep_q.shape[1]):   # a depth that varies over the points (numpy's ptp along a short last
+        varies |= dep_q[:, k] != dep_q[:, 0]   # axis is many times slower)
+    cut = near[varies]
     n = subdivisions
     lam = [((i + 1 / 3) / n, (j + 1 / 3) / n) for i in range(n) for j in range(n - i)]
     lam += [((i + 2 / 3) / n, (j + 2 / 3) / n) for i in range(n - 1) for j in range(n - 1 - i)]
@@ -896,8 +1020,9 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
 
 
 def _rate(film: Film, phi: np.ndarray, z: np.ndarray, squeeze) -> np.ndarray:
+    """``dh/dt`` at the points for the squeeze rates ``squeeze`` (zeros without one: allocated, never written)."""
     if squeeze[0] == 0.0 and squeeze[1] == 0.0:
-        return np.zeros_like(phi)
+        return np.zeros(np.shape(phi))
     shapes = film.rate_shapes(phi, z)
     return squeeze[0] * np.asarray(shapes[0], float) + squeeze[1] * np.asarray(shapes[1], float)
 
@@ -928,12 +1053,15 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     basis = ops.basis
     x = ops.x
     h_q = _film_q(mesh, film, x)
-    if not np.all(h_q > 0):
+    if not h_q.min() > 0:
         raise ValueError(f"film thickness reaches {h_q.min():.4g} <= 0 on the surface (film {film!r})")
     hdot_q = _rate(film, x[0], x[1], squeeze)
-    h_q, inv_h_q, h3_q = (h_q, 1.0 / h_q, h_q**3) if rough else _cell_means(mesh, film, x, h_q)
     cells = _cells(mesh, ops)
-    K = _stiffness(cells, h3_q / 12.0)
+    inv_h_q, w = _film_integrals(cells, h_q)
+    means = None if rough else _cell_means(mesh, film, x)
+    if means is not None:
+        _with_cell_means(cells, means, h_q, inv_h_q, w)
+    K = _stiffness_of(cells, w)
     rec = None
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)
@@ -960,7 +1088,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     else:
         C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
                           shape=(n, n)).tocsr()
-    area = _load(cells, np.ones_like(h_q))
+    area = _load(cells, None)
     no_squeeze = squeeze[0] == 0.0 and squeeze[1] == 0.0   # as _rate: dh/dt = 0, its load 0
     storage = np.zeros(n) if no_squeeze else _load(cells, hdot_q)
     source = np.zeros(n)
@@ -1566,10 +1694,10 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     t = (np.arange(samples) + 0.5) / samples
     X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
     Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
-    h = np.asarray(film.thickness(X, Z), dtype=float) + 0.0 * X
+    h = _film_at(film, X, Z)
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
-        h += _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)
+        h = h + _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)   # not in place: h may be the film's array
     cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
     fill = np.minimum(1.0, cc / h)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
@@ -2145,9 +2273,11 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     area = system.area
     emptied = cavitated if model == "reynolds" else theta < 1.0 - 1e-12
     cav_fraction = float(np.sum(area[emptied]) / np.sum(area))
+    buffer = np.empty(pq.shape)   # the terms of the sums over the quadrature points (_point_sum)
     if system.faces is not None and model == "jfo":   # grid: the fill inside each box cell (_box_fill)
         deficit, cavity = _box_fill(mesh, film, system, theta, wedge)
-        friction = float(np.sum((sliding * system.inv_h_q + 0.5 * system.h_q * dp[0]) * dx)) - sliding * deficit
+        inv_h, h, dp0 = system.inv_h_q, system.h_q, dp[0]
+        friction = _point_sum(lambda b: (sliding * inv_h[b] + 0.5 * h[b] * dp0[b]) * dx[b], buffer) - sliding * deficit
         cav_fraction = cavity / float(np.sum(area))
     else:
         u = velocity_at(mesh.runner, x)
@@ -2156,9 +2286,10 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)
-    force = np.array([np.sum(pq * np.cos(x[0]) * dx), np.sum(pq * np.sin(x[0]) * dx)])   # pq: an array already
+    force = np.array([_point_sum(lambda b: pq[b] * np.cos(x[0, b]) * dx[b], buffer),
+                      _point_sum(lambda b: pq[b] * np.sin(x[0, b]) * dx[b], buffer)])
     force = force + pm[1:]
-    integral = float(np.sum(pq * dx) + pm[0])
+    integral = float(_point_sum(lambda b: pq[b] * dx[b], buffer) + pm[0])
     if isinstance(inlet_pressure, tuple):
         inlet_pressure = max(inlet_pressure)
     h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))

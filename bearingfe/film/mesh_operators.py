@@ -15,6 +15,7 @@ from typing import Mapping
 import numpy as np
 import scipy.sparse as sp
 import skfem
+from skfem.mapping import MappingAffine
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefLine
 
@@ -26,7 +27,8 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh, give_facet_triangles
 
-__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis", "pocket_moments"]
+__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis", "pocket_moments",
+           "affine_points"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,7 +72,10 @@ class Operators:
             compiled = self._lazy.get(("assembly", "compiled"))
             if compiled is not None:
                 return compiled.points
-            return np.array(self.basis.mapping.F(self.basis.X, tind=self.basis.tind))
+            b = self.basis
+            if type(b.mapping) is MappingAffine and b.tind is None and b.mapping.dim == 2:
+                return affine_points(b.mapping, b.X)
+            return np.array(b.mapping.F(b.X, tind=b.tind))
         return self._get("x", build)
 
     def __post_init__(self) -> None:
@@ -118,6 +123,32 @@ class Operators:
         return self._get("facet_bases", lambda: MappingProxyType({
             n: facet_basis(self.basis, f, quadrature_order(self.element))
             for n, f in self.facet_groups.items()}))
+
+
+#: Cells :func:`affine_points` maps at a time (its temporaries, 2 x 16,384 x the points per cell, stay in cache).
+AFFINE_BLOCK = 16384
+
+
+def affine_points(mapping: MappingAffine, X: np.ndarray) -> np.ndarray:
+    """The points ``F(X) = A X + b`` of a two-dimensional affine mapping at the reference points ``X``
+    ``(2, n_points)``, shape ``(2, n_cells, n_points)`` (C order), in the same units as the mesh.
+
+    The same numbers as scikit-fem's ``MappingAffine.F`` (``A[:, 0] X[0] + A[:, 1] X[1]``, then ``+ b``),
+    computed block by block of :data:`AFFINE_BLOCK` cells into one array: its einsum, the sum with ``b`` and
+    the copy each wrote an array as large as the answer (at 7.2e5 triangles x 6 points, 35 MB each, new
+    memory the system has to supply: 0.24 s against 0.15 s per call, CPU time, one cold call each).
+    """
+    A, b = mapping.A, mapping.b
+    n_cells = A.shape[2]
+    out = np.empty((2, n_cells, X.shape[1]))
+    for lo in range(0, n_cells, AFFINE_BLOCK):
+        hi = min(lo + AFFINE_BLOCK, n_cells)
+        for i in range(2):
+            o = out[i, lo:hi]
+            np.multiply(A[i, 0, lo:hi, None], X[0], out=o)
+            o += A[i, 1, lo:hi, None] * X[1]
+            o += b[i, lo:hi, None]
+    return out
 
 
 def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
@@ -173,8 +204,19 @@ class LeanCellBasis(skfem.CellBasis):
     @property
     def dx(self) -> np.ndarray:
         if self.__dict__.get("_dx") is None:
-            self.__dict__["_dx"] = (np.abs(self.mapping.detDF(self.X, tind=self.tind))
-                                    * np.broadcast_to(self.W, (self.nelems, self.W.shape[-1])))
+            mapping = self.mapping
+            if type(mapping) is MappingAffine and self.tind is None and np.ndim(self.W) == 1:
+                # scikit-fem's |detDF| * W (detDF: the cell's determinant tiled over the points), written point
+                # by point into the same layout (column-major: a point's weights in a row): the same numbers
+                # without two temporaries of all points
+                det = np.abs(mapping.detA)
+                dx = np.empty((self.W.size, det.size))
+                for k, w in enumerate(self.W):
+                    np.multiply(det, w, out=dx[k])
+                self.__dict__["_dx"] = dx.T
+            else:
+                self.__dict__["_dx"] = (np.abs(mapping.detDF(self.X, tind=self.tind))
+                                        * np.broadcast_to(self.W, (self.nelems, self.W.shape[-1])))
         return self.__dict__["_dx"]
 
     @dx.setter

@@ -1015,6 +1015,7 @@ def _surface_boundaries(m: skfem.MeshTri1, surface: Surface, pockets) -> dict[st
     :func:`grid_mesh` names them); ``pockets``: the ``(phi_lo, phi_hi, z_lo, z_hi)`` of the holes."""
     a1, a2 = surface.arc
     a = surface.half_width
+    give_facet_triangles(m)   # the map boundary_facets reads, without scikit-fem's two np.unique
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * max(a2 - a1, 2 * a)

@@ -1,0 +1,100 @@
+"""The JFO assembly and postprocess computed block by block: the same numbers, bit for bit, as the formulas over
+all quadrature points at once (the previous path, written out here), whatever the block size."""
+
+import numpy as np
+import pytest
+
+from bearingfe import Circle, CosineFilm, Recess, Surface, grid_mesh, mesh_surface
+from bearingfe.film import finite_volume as fv
+from bearingfe.film.mesh_operators import operators
+
+
+def _dimpled(n_side=3, radius=0.1, depth=0.8):
+    pitch = 1.0 / n_side
+    dimples = [Recess(Circle((pitch * (i + 0.5), pitch * (j + 0.5) - 0.5), radius), depth)
+               for i in range(n_side) for j in range(n_side)]
+    return Surface(arc=(0.0, 1.0), half_width=0.5, recesses=dimples)
+
+
+FILM = CosineFilm(0.3, 1.0)   # a film that varies over the cells and opens (a cavity), a uniform one would hide
+# the order of the points
+
+
+@pytest.mark.parametrize("kind", ["grid", "gmsh"])
+def test_quadrature_points_and_weights_are_scikit_fems(kind):
+    mesh = grid_mesh(_dimpled(), 1 / 40) if kind == "grid" else mesh_surface(_dimpled(), 0.08)
+    basis = operators(mesh).basis
+    mapping = basis.mapping
+    assert np.array_equal(operators(mesh).x, np.array(mapping.F(basis.X)))
+    reference = np.abs(mapping.detDF(basis.X)) * np.broadcast_to(basis.W, (basis.nelems, basis.W.size))
+    dx = basis.dx
+    assert np.array_equal(dx, reference) and dx.strides == reference.strides   # the layout the sums rely on
+
+
+def _systems(monkeypatch, block):
+    monkeypatch.setattr(fv, "BLOCK", block)
+    mesh = grid_mesh(_dimpled(), 1 / 70)   # 5,041 nodes: a nested start
+    ops = fv.operators(mesh)
+    system = fv._assemble(ops, mesh, FILM, 1.0, (0.0, 0.0), None, None, "grid")
+    result = fv.solve_jfo(mesh, FILM, cavitation_pressure=-0.05, couette="grid")
+    return mesh, ops, system, result
+
+
+def test_blocks_of_any_size_give_the_same_system_and_result(monkeypatch):
+    *_, one, r_one = _systems(monkeypatch, 10**9)     # one block: the arrays of all points at once
+    mesh, ops, small, r_small = _systems(monkeypatch, 37)   # blocks of 37 triangles or faces, the last one short
+    for name in ("h_q", "inv_h_q", "hdot_q", "area", "storage", "face_film"):
+        assert np.array_equal(getattr(one, name), getattr(small, name)), name
+    for name in ("K", "C"):
+        assert (getattr(one, name) != getattr(small, name)).nnz == 0, name
+    assert r_one.cavitated.any() and r_one.cost["nested_levels"] >= 1
+    assert (r_one.friction, r_one.integral, *r_one.force) == (r_small.friction, r_small.integral, *r_small.force)
+
+
+def test_assembly_equals_the_formulas_over_all_points(monkeypatch):
+    mesh, ops, system, result = _systems(monkeypatch, 37)
+    x = ops.x
+    cells = fv._cells(mesh, ops)
+    # the previous path: h, 1/h and h^3 at every quadrature point, the cut cells' means put in, K from h^3/12
+    h = np.asarray(FILM.thickness(x[0], x[1]), float) + 0.0 * x[0] + fv._quadrature_depth(mesh, x)
+    inv, h3 = 1.0 / h, h**3
+    cut, h_m, inv_m, h3_m = fv._cell_means(mesh, FILM, x)
+    assert cut.size > 0
+    h[cut], inv[cut], h3[cut] = h_m[:, None], inv_m[:, None], h3_m[:, None]
+    assert np.array_equal(system.h_q, h) and np.array_equal(system.inv_h_q, inv)
+    assert (system.K != fv._stiffness(cells, h3 / 12.0)).nnz == 0
+    assert np.array_equal(system.area, fv._load(cells, np.ones_like(h)))
+    # the postprocess's sums over the points: those of the whole arrays
+    pq, dp = fv._interpolate(cells, result.pressure)
+    ut = result.pressure[cells.t]
+    assert np.array_equal(pq, ut[0][:, None] * cells.lam[0] + ut[1][:, None] * cells.lam[1]
+                          + ut[2][:, None] * cells.lam[2])
+    assert result.integral == float(np.sum(pq * cells.dx))
+    assert result.force[0] == np.sum(pq * np.cos(x[0]) * cells.dx)
+    assert result.force[1] == np.sum(pq * np.sin(x[0]) * cells.dx)
+
+
+def test_overlaps_sorted_into_strips_are_those_of_the_plain_test(monkeypatch):
+    surface = _dimpled(n_side=4)
+    rng = np.random.default_rng(3)
+    n = 3 * fv.OVERLAPS_SORTED_FROM   # the strips' path (16 recesses)
+    x0, z0 = rng.uniform(-0.1, 1.1, n), rng.uniform(-0.6, 0.6, n)
+    x1, z1 = x0 + rng.uniform(0.0, 0.05, n), z0 + rng.uniform(0.0, 0.05, n)
+    x0[:5] = x1[:5] = np.linspace(0.0, 1.0, 5)   # lines (no width)
+    sorted_ = fv._overlaps(surface, x0, x1, z0, z1)
+    monkeypatch.setattr(fv, "OVERLAPS_SORTED_FROM", 10**12)
+    plain = fv._overlaps(surface, x0, x1, z0, z1)
+    assert len(sorted_) == len(plain) == 16 and sum(p.size for p in plain) > 1000
+    for (lo, hi), s, p in zip(fv._recess_boxes(surface), sorted_, plain):
+        brute = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
+        assert np.array_equal(np.sort(s), brute) and np.array_equal(p, brute)
+
+
+def test_barycentric_gradients_by_blocks_are_the_stacked_formula(monkeypatch):
+    monkeypatch.setattr(fv, "BLOCK", 37)
+    mesh = grid_mesh(_dimpled(), 1 / 30)
+    p, t = mesh.mesh.p, mesh.mesh.t
+    x, y = p[0][t], p[1][t]
+    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
+    grad = np.array([[y[1] - y[2], y[2] - y[0], y[0] - y[1]], [x[2] - x[1], x[0] - x[2], x[1] - x[0]]]) / det
+    assert np.array_equal(fv._cells(mesh, fv.operators(mesh)).grad, grad)
