@@ -82,21 +82,31 @@ _BAND_MAX = 40
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet).
+    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet)."""
+    return _point_rows(np.asarray(basis.element_dofs), _basis_tables(basis), n_dofs)
 
-    Row ``cell * n_points + point`` holds the ``Nbfun`` basis functions of its cell, so the CSR
+
+def _basis_tables(basis) -> np.ndarray:
+    """The values and the two gradient components of the basis functions of ``basis`` at its points,
+    ``(3, n_bfun, n_cells, n_points)``."""
+    return np.array([[np.asarray(part(phi[0])) for phi in basis.basis]
+                     for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1])])
+
+
+def _point_rows(dofs: np.ndarray, tables: np.ndarray, n_dofs: int) -> tuple[sp.csr_matrix, ...]:
+    """The sparse maps dofs -> points of :func:`_basis_tables`' ``tables`` on cells (or facets) of ``dofs``
+    ``(n_bfun, n_cells)``, one per table.
+
+    Row ``cell * n_points + point`` holds the ``n_bfun`` basis functions of its cell, so the CSR
     arrays are written directly (columns sorted per row: the canonical form a COO build gives).
     """
-    dofs = np.asarray(basis.element_dofs)  # (Nbfun, n_cells)
-    nb = len(basis.basis)
-    n_cells, n_points = np.asarray(basis.basis[0][0]).shape
+    nb, n_cells, n_points = tables.shape[1:]
     sort = np.argsort(dofs, axis=0, kind="stable")  # per cell: its dofs in increasing order
     cols = np.take_along_axis(dofs, sort, axis=0).T  # (n_cells, nb)
     indices = np.broadcast_to(cols[:, None, :], (n_cells, n_points, nb)).ravel().astype(np.int32)
     indptr = np.arange(0, n_cells * n_points * nb + 1, nb, dtype=np.int32)
     out = []
-    for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1]):
-        v = np.stack([np.asarray(part(phi[0])) for phi in basis.basis])  # (nb, n_cells, n_points)
+    for v in tables:  # (nb, n_cells, n_points)
         v = np.take_along_axis(v, sort[:, :, None], axis=0).transpose(1, 2, 0)
         m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(n_cells * n_points, n_dofs))
         m.has_sorted_indices = True
@@ -205,6 +215,19 @@ def _release(basis) -> None:
         release()
 
 
+def _rows_of(columns: list[np.ndarray], values: list[np.ndarray], n_columns: int) -> sp.csr_matrix:
+    """A CSR matrix whose row ``s`` holds ``values[s]`` at the increasing ``columns[s]``, exact zeros dropped
+    (the entries ``sp.csr_matrix`` takes from the dense rows)."""
+    keep = [v != 0.0 for v in values]
+    counts = [int(k.sum()) for k in keep]
+    indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+    data = np.concatenate([v[k] for v, k in zip(values, keep)]) if values else np.zeros(0)
+    indices = (np.concatenate([c[k] for c, k in zip(columns, keep)]) if columns else np.zeros(0)).astype(np.int32)
+    out = sp.csr_matrix((data, indices, indptr), shape=(len(values), n_columns))
+    out.has_sorted_indices = True
+    return out
+
+
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
     """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
     carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
@@ -261,19 +284,46 @@ class _AffineMaps:
 
     def values(self, u: np.ndarray) -> np.ndarray:
         """``E @ u`` for ``u`` of shape ``(n_dofs,)`` or ``(n_dofs, S)``: values at the points, ``(n_q[, S])``."""
-        return self._columns(u, lambda v: np.einsum("ci,iq->cq", v[self.dofs], self.phi))
+        return self._columns(u, self._cell_values)
 
     def gradient(self, u: np.ndarray, k: int) -> np.ndarray:
         """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
-        def one(v):
-            local = v[self.dofs]
-            if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
-                g = (self.inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
-                     + self.inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
-                return np.broadcast_to(g[:, None], self.shape)
-            return (self.inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
-                    + self.inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
-        return self._columns(u, one)
+        return self._columns(u, lambda v: self._cell_gradient(v, k))
+
+    def _cell_values(self, v: np.ndarray, cells: np.ndarray | None = None) -> np.ndarray:
+        """Values of the field ``v`` (dof values) at the points of ``cells`` (all if None), ``(n_cells, n_points)``."""
+        dofs = self.dofs if cells is None else self.dofs[cells]
+        return np.einsum("ci,iq->cq", v[dofs], self.phi)
+
+    def _cell_gradient(self, v: np.ndarray, k: int, cells: np.ndarray | None = None) -> np.ndarray:
+        """Gradient component ``k`` of the field ``v`` at the points of ``cells`` (all if None)."""
+        dofs, inv = (self.dofs, self.inv) if cells is None else (self.dofs[cells], self.inv[:, :, cells])
+        local = v[dofs]
+        if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
+            g = (inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
+                 + inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
+            return np.broadcast_to(g[:, None], (dofs.shape[0], self.shape[1]))
+        return (inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
+                + inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
+
+    def field_rows(self, U: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi U)^T``, ``(G_z U)^T`` and ``(E U)^T``: the gradient components and values at the points of
+        the fields ``U`` ``(n_dofs, S)``, as sparse ``(S, n_q)`` rows.
+
+        Each field is evaluated on the cells where it has a non-zero dof only (boundary groups touch a thin
+        layer of cells); the rows hold the non-zeros of the dense products, the same numbers in the same order.
+        """
+        U = np.asarray(U, dtype=float)
+        n_points = self.shape[1]
+        columns, parts = [], ([], [], [])
+        for s in range(U.shape[1]):
+            v = U[:, s]
+            cells = np.flatnonzero(np.any(v[self.dofs] != 0.0, axis=1))
+            columns.append((cells[:, None] * n_points + np.arange(n_points)).ravel())
+            for out, f in zip(parts, (self._cell_gradient(v, 0, cells), self._cell_gradient(v, 1, cells),
+                                      self._cell_values(v, cells))):
+                out.append(np.ravel(f))
+        return tuple(_rows_of(columns, values, self.shape[0] * n_points) for values in parts)
 
     # -- points -> dofs ---------------------------------------------------------------
 
@@ -340,6 +390,10 @@ class _SparseMaps:
 
     def sparse(self):
         return self.E, self.Gx, self.Gz
+
+    def field_rows(self, U: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi U)^T``, ``(G_z U)^T``, ``(E U)^T`` as sparse ``(S, n_q)`` rows (see :meth:`_AffineMaps.field_rows`)."""
+        return tuple(sp.csr_matrix(np.asarray(M @ U).T) for M in (self.Gx, self.Gz, self.E))
 
 
 @dataclass(frozen=True, eq=False)
@@ -1009,33 +1063,43 @@ def _flow_maps(ops, maps, n: int, groups: tuple) -> tuple:
             A[k, dofs[corner]] = w[corner]
     # sparse: only the points of the elements next to a group are non-zero (and a sparse product
     # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
-    group_maps = tuple(sp.csr_matrix(np.asarray(apply(A.T)).T) for apply in
-                       (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
+    group_maps = maps.field_rows(A.T)
     corners: tuple = ()
     weights_of: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
         fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
-        Ef, Gfx, Gfz = _interpolation(fb, n)
-        normals = np.asarray(fb.normals).reshape(2, -1)
-        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
-        n_points = np.shape(fb.dx)[1]
-        phi_ds_all = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()  # (n_corner_dofs, n_facet_points)
-        keep = np.zeros(phi_ds_all.shape[1], dtype=bool)
+        dofs = np.asarray(fb.element_dofs)  # (nb, n_facets)
+        tables = _basis_tables(fb)  # (3, nb, n_facets, n_points)
+        dx = np.asarray(fb.dx)
+        n_facets, n_points = dx.shape
+        # each corner dof's basis function times the facet weights at every facet point (a facet's dofs
+        # are distinct, so at most one of its basis functions is the corner dof's)
+        phi_ds = np.zeros((cdofs.size, n_facets, n_points))  # (n_corner_dofs, n_facets, n_points)
+        at = np.minimum(np.searchsorted(cdofs, dofs), cdofs.size - 1)
+        for i in range(dofs.shape[0]):
+            f = np.flatnonzero(cdofs[at[i]] == dofs[i])
+            phi_ds[at[i, f], f] = tables[0, i, f] * dx[f]
+        keep = np.zeros(n_facets, dtype=bool)
         weights_of, kept = {}, {}
         for name, facets in parts.items():
-            rows = slice(facets.start * n_points, facets.stop * n_points)
             # only the facets where a corner dof's basis function lives contribute
-            per_facet = np.abs(phi_ds_all[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
-            keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
-            kept[name] = phi_ds_all[:, rows][:, keep[rows]]
-            dofs, w = ops.flow_groups[name]
+            per_facet = np.abs(phi_ds[:, facets]).max(axis=(0, 2))
+            keep[facets] = per_facet > 1e-14 * per_facet.max()
+            # column-major, the layout it had as the transpose of a sparse matrix's dense copy: BLAS rounds
+            # ``phi_ds @ q`` differently in the two layouts, and so the flows stay the same to the bit
+            kept[name] = np.asfortranarray(phi_ds[:, facets][:, keep[facets]].reshape(cdofs.size, -1))
+            dofs_g, w = ops.flow_groups[name]
             wc = np.zeros(cdofs.size)
             corner = w < 1
-            wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
+            wc[np.searchsorted(cdofs, dofs_g[corner])] = w[corner]
             weights_of[name] = wc
         ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
-        corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
+        on = np.repeat(keep, n_points)
+        normals = np.asarray(fb.normals).reshape(2, -1)[:, on]
+        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)[:, on]
+        Ef, Gfx, Gfz = _point_rows(dofs[:, keep], tables[:, :, keep], n)  # the rows of the kept facets' points
+        corners = (Ef, Gfx, Gfz, normals, xf,
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
     return group_maps, corners, weights_of
 

@@ -104,3 +104,56 @@ def test_pocket_moments_of_a_rectangle_are_its_area_and_cosine_moments():
     exact = [width * (b - a), width * (np.sin(b) - np.sin(a)), width * (np.cos(a) - np.cos(b))]
     for element in ("P1", "P2"):
         np.testing.assert_allclose(operators(_mesh(), element).pocket_moments, exact, rtol=1e-12, atol=1e-14)
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_group_field_rows_are_the_nonzeros_of_the_dense_products(surface, element):
+    # the flows' group maps evaluate each group's field on the cells it touches only; the reference is the
+    # path they replace, the dense products over all cells made sparse: the same entries, bit for bit
+    import scipy.sparse as sp
+
+    ops = operators(_mesh(surface), element)
+    co = ops.compiled
+    U = np.zeros((co.n_dofs, len(co.groups)))
+    for k, name in enumerate(co.groups):
+        dofs, w = ops.flow_groups[name]
+        U[dofs, k] = w
+    m = co.maps
+    dense = (m.gradient(U, 0), m.gradient(U, 1), m.values(U))
+    for rows, full in zip(m.field_rows(U), dense):
+        expected = sp.csr_matrix(np.asarray(full).T)
+        assert rows.shape == expected.shape and rows.nnz == expected.nnz < full.size / 2
+        np.testing.assert_array_equal(rows.indptr, expected.indptr)
+        np.testing.assert_array_equal(rows.indices, expected.indices)
+        np.testing.assert_array_equal(rows.data, expected.data)
+
+
+@pytest.mark.parametrize("all_facets", [False, True])
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_corner_facet_data_are_the_rows_of_the_facet_maps(monkeypatch, element, all_facets):
+    # the corner dofs' facet data taken from the facet basis's tables on the kept facets; the reference is
+    # the path they replace: the sparse maps of all corner facets, their corner-dof columns and kept rows.
+    # With all the groups' facets (not only those next to the corners) most are dropped as zero.
+    from bearingfe.film.compiled import _interpolation
+
+    if all_facets:
+        monkeypatch.setattr(film_operators, "_corner_facets", lambda m, basis, bnd, groups: {n: bnd[n] for n in groups})
+    ops = operators(_mesh(), element)
+    co = ops.compiled
+    E, Gx, Gz, normals, x, parts = co.corners
+    fb, slices = ops.corner_basis
+    Ef, Gfx, Gfz = _interpolation(fb, co.n_dofs)
+    cdofs = np.unique(np.concatenate([d[w < 1] for d, w in (ops.flow_groups[n] for n in slices)]))
+    phi_ds = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()
+    n_points = np.shape(fb.dx)[1]
+    keep = np.zeros(phi_ds.shape[1], dtype=bool)
+    for name, facets in slices.items():
+        rows = slice(facets.start * n_points, facets.stop * n_points)
+        per_facet = np.abs(phi_ds[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
+        keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
+        np.testing.assert_array_equal(parts[name][1], phi_ds[:, rows][:, keep[rows]])
+    assert keep.any() and (keep.all() != all_facets)
+    for mine, full in ((E, Ef), (Gx, Gfx), (Gz, Gfz)):
+        assert (mine != full[keep]).nnz == 0
+    np.testing.assert_array_equal(normals, np.asarray(fb.normals).reshape(2, -1)[:, keep])
+    np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()).reshape(2, -1)[:, keep])
