@@ -229,11 +229,26 @@ def _rows_of(columns: list[np.ndarray], values: list[np.ndarray], n_columns: int
 
 
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
-    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
-    carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
-    block = carrier[rows][:, cols].tocsr()
-    block.sort_indices()
-    return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern (``n`` columns):
+    ``(positions, indices, indptr)``, each row's columns sorted (what scipy's fancy indexing and
+    ``sort_indices`` give, found by index arithmetic on the arrays)."""
+    rows, cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
+    where = np.full(n, -1, dtype=np.int64)  # column -> its place among cols, -1 if not taken
+    where[cols] = np.arange(cols.size)
+    starts, counts = np.asarray(indptr[rows], dtype=np.int64), np.diff(indptr)[rows].astype(np.int64)
+    first = np.cumsum(counts) - counts
+    entries = np.repeat(starts - first, counts) + np.arange(int(counts.sum()))  # the rows' entries, in row order
+    column = where[indices[entries]]
+    taken = column >= 0
+    row = np.repeat(np.arange(rows.size), counts)[taken]
+    entries, column = entries[taken], column[taken]
+    if column.size > 1:
+        key = row * max(cols.size, 1) + column
+        if np.any(key[1:] < key[:-1]):  # cols not increasing (or a row's columns unsorted): sort each row
+            order = np.argsort(key, kind="stable")
+            entries, column, row = entries[order], column[order], row[order]
+    indptr_out = np.concatenate([[0], np.cumsum(np.bincount(row, minlength=rows.size))])
+    return entries, column.astype(np.int32), indptr_out.astype(np.int32)
 
 
 class _AffineMaps:
@@ -778,12 +793,12 @@ class CompiledOperator:
                            diag_pivot_thresh=0.0, options={"SymmetricMode": True},
                            **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
             order = np.argsort(lu.perm_c)
-        carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
-        permuted = carrier[order][:, order].tocsc()
-        permuted.sort_indices()
+        positions, indices, indptr = _block(ptr, idx, order, order, n)
         # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
         # matrix object is kept and only its values change (SuperLU copies them when it factors)
-        return order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted
+        permuted = sp.csc_matrix((np.zeros(positions.size), indices, indptr), shape=(n, n))
+        permuted.has_sorted_indices = True
+        return order, np.argsort(order), sel[positions], permuted
 
     @property
     def banded(self) -> bool:

@@ -157,3 +157,23 @@ def test_corner_facet_data_are_the_rows_of_the_facet_maps(monkeypatch, element, 
         assert (mine != full[keep]).nnz == 0
     np.testing.assert_array_equal(normals, np.asarray(fb.normals).reshape(2, -1)[:, keep])
     np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()).reshape(2, -1)[:, keep])
+
+
+def test_pattern_blocks_are_scipys_fancy_indexing():
+    # the condensed blocks' positions and patterns by index arithmetic; the reference is the path they replace,
+    # scipy's fancy indexing of a matrix holding each entry's position, indices then sorted: the same arrays
+    import scipy.sparse as sp
+    from bearingfe.film.compiled import _block
+
+    co = operators(_mesh(), "P2").compiled
+    n, rng = co.n_dofs, np.random.default_rng(5)
+    carrier = sp.csr_matrix((np.arange(1, co.nnz + 1, dtype=float), co.indices, co.indptr), shape=(n, n))
+    cases = [(co.interior, co.interior), (co.interior, co.inlet), (co.interior, rng.permutation(co.inlet)),
+             (rng.permutation(n)[:40], rng.permutation(n)[:300]), (co.interior, np.zeros(0, np.int64))]
+    for rows, cols in cases:
+        expected = carrier[rows][:, cols].tocsr()
+        expected.sort_indices()
+        positions, indices, indptr = _block(co.indptr, co.indices, rows, cols, n)
+        np.testing.assert_array_equal(positions, expected.data.astype(np.int64) - 1)
+        np.testing.assert_array_equal(indices, expected.indices)
+        np.testing.assert_array_equal(indptr, expected.indptr)
