@@ -26,7 +26,8 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh, give_facet_triangles
 
-__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis", "pocket_moments"]
+__all__ = ["Operators", "operators", "facet_basis", "facet_geometry", "quadrature_order", "LeanCellBasis",
+           "pocket_moments"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -270,6 +271,28 @@ def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> sk
                             quadrature=_LINE_RULES[intorder])
 
 
+def facet_geometry(basis: skfem.CellBasis, facets: np.ndarray, intorder: int
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The quadrature points, outward normals and weights on ``facets`` of the map of ``basis``:
+    ``(x, n, dx)`` of shapes ``(2, n_facets, n_points)`` twice and ``(n_facets, n_points)``.
+
+    The same calls and numbers as :func:`facet_basis`'s ``global_coordinates()``, ``normals`` and ``dx``,
+    without the basis functions at the points, which an integral of geometric quantities does not need.
+    The mesh must have its facet-to-triangle map (:func:`~bearingfe.geometry.meshing.give_facet_triangles`).
+    """
+    m, mapping = basis.mesh, basis.mapping
+    if m.brefdom is RefLine and intorder in _LINE_RULES:
+        X, W = _LINE_RULES[intorder]
+    else:
+        X, W = get_quadrature(m.brefdom, intorder)
+    find = np.asarray(facets)
+    cells = m.f2t[0, find]  # the triangle whose outward normal scikit-fem gives a boundary facet
+    x = mapping.G(X, find=find)
+    normals = mapping.normals(mapping.invF(x, tind=cells), cells, find, m.t2f)
+    dx = np.abs(mapping.detDG(X, find=find)) * np.broadcast_to(W, (find.size, W.shape[-1]))
+    return np.asarray(x), np.asarray(normals), dx
+
+
 def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """Area and first trigonometric moments of the pocket regions.
 
@@ -281,9 +304,7 @@ def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    give_facet_triangles(basis.mesh)   # the facet basis orients its normals by it
-    fb = facet_basis(basis, inlet_facets, 8)  # the integrands need only the points, normals and weights
-    phi = np.array(fb.global_coordinates())[0]
-    nphi = np.array(fb.normals)[0]
-    dx = fb.dx
+    give_facet_triangles(basis.mesh)   # the normals are oriented by it
+    x, n, dx = facet_geometry(basis, np.asarray(inlet_facets), 8)  # only the points, normals and weights
+    phi, nphi = x[0], n[0]
     return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])

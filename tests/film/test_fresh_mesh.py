@@ -177,3 +177,16 @@ def test_pattern_blocks_are_scipys_fancy_indexing():
         np.testing.assert_array_equal(positions, expected.data.astype(np.int64) - 1)
         np.testing.assert_array_equal(indices, expected.indices)
         np.testing.assert_array_equal(indptr, expected.indptr)
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_facet_geometry_is_the_facet_basis_geometry(surface, element):
+    # the pocket contour's points, normals and weights without the basis functions; the reference is the
+    # facet basis they were taken from before: the same numbers, bit for bit (straight and curved maps)
+    ops = operators(_mesh(surface), element)
+    facets = ops.mesh.boundaries["inlet"]
+    fb = film_operators.facet_basis(ops.basis, facets, 8)
+    x, n, dx = film_operators.facet_geometry(ops.basis, facets, 8)
+    np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()))
+    np.testing.assert_array_equal(n, np.asarray(fb.normals))
+    np.testing.assert_array_equal(dx, np.asarray(fb.dx))
