@@ -120,16 +120,37 @@ def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matr
     return _interpolation(basis, basis.N)
 
 
-def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CSR pattern of the element matrices' union and, for every (i, j, cell), its position in it."""
+def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, int], np.ndarray]:
+    """The CSR pattern of the element matrices' union, symmetric: ``(indptr, indices, (twins, n_upper),
+    upper_rows)``.
+
+    ``twins`` (:func:`_twins`) gives every entry its upper-triangle twin's index among the ``n_upper``
+    upper-triangle entries (row-major); ``upper_rows`` ``(n_pairs, n_cells)`` the upper entry each local
+    pair ``i <= j`` of each cell adds to. Found from the local pairs ``i <= j`` alone: their distinct
+    ``(min, max)`` dof pairs are the upper triangle; row ``r`` of the full pattern is then the strict
+    upper entries of column ``r`` (transposed, in row order: a stable sort by column) followed by the
+    upper entries of row ``r``.
+    """
     nb = dofs.shape[0]
-    rows = np.repeat(dofs, nb, axis=0)           # (nb*nb, n_cells): row dof of local pair (i, j)
-    cols = np.tile(dofs, (nb, 1))                # column dof
-    keys = rows.astype(np.int64) * n + cols
-    unique, position = np.unique(keys.ravel(), return_inverse=True)
-    indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
-    index = np.int32 if unique.size < 2**31 else np.int64  # positions in the pattern: half the bytes
-    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape).astype(index)
+    i, j = np.triu_indices(nb)  # the local pairs i <= j, row-major (the order of the scatters' pairs)
+    a, b = dofs[i].astype(np.int64), dofs[j].astype(np.int64)
+    keys = np.minimum(a, b) * n + np.maximum(a, b)
+    unique, upper_rows = np.unique(keys.ravel(), return_inverse=True)
+    row, col = unique // n, unique % n
+    n_upper = unique.size
+    strict = np.flatnonzero(row < col)
+    lower = strict[np.argsort(col[strict], kind="stable")]  # the strict upper entries by column, rows increasing
+    n_lower, n_up = np.bincount(col[strict], minlength=n), np.bincount(row, minlength=n)
+    indptr = np.concatenate([[0], np.cumsum(n_lower + n_up)])
+    first_lower, first_upper = np.cumsum(n_lower) - n_lower, np.cumsum(n_up) - n_up
+    at_lower = indptr[col[lower]] + np.arange(lower.size) - first_lower[col[lower]]
+    at_upper = indptr[row] + n_lower[row] + np.arange(n_upper) - first_upper[row]
+    indices = np.empty(int(indptr[-1]), dtype=np.int32)
+    indices[at_lower], indices[at_upper] = row[lower], col
+    index = np.int32 if n_upper < 2**31 else np.int64
+    twins = np.empty(indices.size, dtype=index)
+    twins[at_lower], twins[at_upper] = lower, np.arange(n_upper)
+    return indptr, indices, (twins, int(n_upper)), upper_rows.reshape(keys.shape).astype(index)
 
 
 def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
@@ -188,16 +209,10 @@ class Scatter:
                              shape=(self.n_upper, n_cells * n_points))
 
 
-def _upper_rows(position: np.ndarray, twins: np.ndarray) -> np.ndarray:
-    """For every local pair ``i <= j`` of every cell, the upper-triangle entry it adds to, ``(n_pairs, n_cells)``."""
-    nb = int(round(np.sqrt(position.shape[0])))
-    return twins[position[[i * nb + j for i in range(nb) for j in range(i, nb)]]]
-
-
 def _scatter(basis, rows: np.ndarray, n_upper: int, kind: str) -> Scatter:
     """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
     (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
-    triangle (``rows``, :func:`_upper_rows`), and the lower one copies it."""
+    triangle (``rows``, :func:`_pattern`), and the lower one copies it."""
     _, values = _pair_values(basis, kind)
     return Scatter(values=values, rows=rows.ravel(), n_upper=n_upper)
 
@@ -1124,16 +1139,14 @@ def compile_operator(ops) -> CompiledOperator:
     basis, n = ops.basis, ops.n_dofs
     cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
     maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
-    indptr, indices, position = _pattern(basis.element_dofs, n)
+    indptr, indices, twins, upper = _pattern(np.asarray(basis.element_dofs), n)
     dx = cell_dx.ravel()
     I = ops.interior
     groups = tuple(ops.flow_groups)
     lazy: dict = {}
     if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
         lazy["x"] = np.asarray(ops.x).reshape(2, -1)
-    lazy["twins"] = _twins(indptr, indices, n)
-    upper = _upper_rows(position, lazy["twins"][0])
-    del position
+    lazy["twins"] = twins
     lazy["flow_builder"] = functools.partial(_flow_maps, ops, maps, n, groups)
     _release(basis)  # the per-point arrays of the basis: the maps keep what they need
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, dx=dx, maps=maps,

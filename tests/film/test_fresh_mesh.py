@@ -190,3 +190,30 @@ def test_facet_geometry_is_the_facet_basis_geometry(surface, element):
     np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()))
     np.testing.assert_array_equal(n, np.asarray(fb.normals))
     np.testing.assert_array_equal(dx, np.asarray(fb.dx))
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_pattern_from_the_upper_pairs_is_the_element_matrices_union(element):
+    # the pattern, twins and upper rows found from the local pairs i <= j; the references: scipy's sum of
+    # the element matrices' patterns, _twins (searches each entry's twin in the pattern), and for every
+    # local pair the rank of its (min, max) dof pair among the upper entries: the same integers
+    import scipy.sparse as sp
+    from bearingfe.film.compiled import _pattern, _twins
+
+    ops = operators(_mesh(), element)
+    dofs, n = np.asarray(ops.basis.element_dofs), ops.n_dofs
+    indptr, indices, (twins, n_upper), upper_rows = _pattern(dofs, n)
+    nb = dofs.shape[0]
+    rows, cols = np.repeat(dofs, nb, axis=0).ravel(), np.tile(dofs, (nb, 1)).ravel()
+    union = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
+    union.sum_duplicates()
+    np.testing.assert_array_equal(indptr, union.indptr)
+    np.testing.assert_array_equal(indices, union.indices)
+    expected_twins, expected_upper = _twins(union.indptr, union.indices, n)
+    np.testing.assert_array_equal(twins, expected_twins)
+    assert n_upper == expected_upper
+    entry_rows = np.repeat(np.arange(n), np.diff(indptr))
+    upper_keys = (entry_rows.astype(np.int64) * n + indices)[entry_rows <= indices]
+    i, j = np.triu_indices(nb)
+    pair_keys = np.minimum(dofs[i], dofs[j]).astype(np.int64) * n + np.maximum(dofs[i], dofs[j])
+    np.testing.assert_array_equal(upper_rows, np.searchsorted(upper_keys, pair_keys))
