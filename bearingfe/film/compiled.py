@@ -76,9 +76,15 @@ _SMALL_PANELS_UP_TO = 20000
 #: faster than SuperLU's, one pump revolution 20-25 % faster; the main scene's pocket mesh has 34
 #: (SuperLU 98 us a factorization, banded 30 us). ``dpbtrf`` at 300 unknowns on a loaded machine
 #: (load 4, 2,000 factorizations each): half-bandwidth 34 68 us median, 36 71 us, 40 82-84 us, with
-#: occasional scheduler stalls of 2-4 ms at every width. Wider bands keep SuperLU (its fill-reducing
-#: order wins as the band grows). The solutions agree to round-off (tests/film/test_compiled.py).
-_BAND_MAX = 40
+#: occasional scheduler stalls of 2-4 ms at every width. Up to 64 the banded factorization and a
+#: four-column solve cost no more than SuperLU's numeric factorization in the kept order and its solve
+#: (CPU, best of 100, P1 and P2 gmsh meshes of 288-3,570 unknowns; e.g. P2, 456 unknowns, half-bandwidth
+#: 47: 0.11 + 0.08 against 0.19 + 0.04 ms; P2, 779, 65: 0.43 + 0.11 against 0.48 + 0.08 ms; P1, 3,570, 62:
+#: 1.3 + 0.7 against 4.0 + 0.4 ms), and a fresh mesh's first film needs no factorization to find SuperLU's
+#: order (minimum degree, 1.5-2x the numeric one). From about 66 SuperLU is as fast or faster on repeated
+#: films (P2, 592 unknowns, 66: 0.32 + 0.09 against 0.27 + 0.05 ms) and keeps them. The solutions agree to
+#: round-off (tests/film/test_compiled.py).
+_BAND_MAX = 64
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
