@@ -1104,10 +1104,8 @@ def _flow_maps(ops, maps, n: int, groups: tuple) -> tuple:
     weights_of: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
-        fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
-        dofs = np.asarray(fb.element_dofs)  # (nb, n_facets)
-        tables = _basis_tables(fb)  # (3, nb, n_facets, n_points)
-        dx = np.asarray(fb.dx)
+        facet, parts = ops.corner_tables  # the basis on the corner facets of all groups
+        dofs, tables, dx = facet.dofs, facet.tables, facet.dx  # (nb, n_facets), (3, nb, n_facets, n_points)
         n_facets, n_points = dx.shape
         # each corner dof's basis function times the facet weights at every facet point (a facet's dofs
         # are distinct, so at most one of its basis functions is the corner dof's)
@@ -1132,8 +1130,8 @@ def _flow_maps(ops, maps, n: int, groups: tuple) -> tuple:
             weights_of[name] = wc
         ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
         on = np.repeat(keep, n_points)
-        normals = np.asarray(fb.normals).reshape(2, -1)[:, on]
-        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)[:, on]
+        normals = facet.normals.reshape(2, -1)[:, on]
+        xf = facet.x.reshape(2, -1)[:, on]
         Ef, Gfx, Gfz = _point_rows(dofs[:, keep], tables[:, :, keep], n)  # the rows of the kept facets' points
         corners = (Ef, Gfx, Gfz, normals, xf,
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Mapping
+from typing import Mapping, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -26,8 +26,8 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh, give_facet_triangles
 
-__all__ = ["Operators", "operators", "facet_basis", "facet_geometry", "quadrature_order", "LeanCellBasis",
-           "pocket_moments"]
+__all__ = ["Operators", "operators", "facet_basis", "facet_geometry", "facet_tables", "FacetTables",
+           "quadrature_order", "LeanCellBasis", "pocket_moments"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,16 +102,17 @@ class Operators:
         return self._get(("assembly", name), lambda: ASSEMBLIES[name](self))
 
     @property
-    def corner_basis(self) -> tuple[skfem.FacetBasis, Mapping[str, slice]]:
-        """One facet basis over the facets of all :attr:`facet_groups` (in their order) and, per
-        group, the slice of its facets in it (for the compiled corner fluxes)."""
+    def corner_tables(self) -> tuple["FacetTables", Mapping[str, slice]]:
+        """The basis functions, points, normals and weights on the facets of all :attr:`facet_groups` (in their
+        order, :func:`facet_tables`) and, per group, the slice of its facets in them (for the compiled corner
+        fluxes)."""
         def build():
             names = list(self.facet_groups)
             ends = np.cumsum([0] + [len(self.facet_groups[n]) for n in names])
             facets = np.concatenate([self.facet_groups[n] for n in names])
-            fb = facet_basis(self.basis, facets, quadrature_order(self.element))
-            return fb, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
-        return self._get("corner_basis", build)
+            tables = facet_tables(self.basis, facets, quadrature_order(self.element))
+            return tables, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
+        return self._get("corner_tables", build)
 
     @property
     def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
@@ -271,6 +272,35 @@ def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> sk
                             quadrature=_LINE_RULES[intorder])
 
 
+class FacetTables(NamedTuple):
+    """A cell basis's functions and map at the quadrature points of some facets (:func:`facet_tables`)."""
+
+    dofs: np.ndarray     # (n_bfun, n_facets): the dofs of each facet's triangle
+    tables: np.ndarray   # (3, n_bfun, n_facets, n_points): the basis functions' values, d/dphi and d/dz
+    x: np.ndarray        # (2, n_facets, n_points): the points
+    normals: np.ndarray  # (2, n_facets, n_points): the outward normals
+    dx: np.ndarray       # (n_facets, n_points): the weights (Jacobian included)
+
+
+def _facet_points(basis: skfem.CellBasis, facets: np.ndarray, intorder: int):
+    """``(cells, Y, x, normals, dx)`` on ``facets``: each facet's triangle (scikit-fem's first), the points in
+    its reference coordinates and in the plane, the outward normals and the weights; the calls a
+    :class:`skfem.FacetBasis` makes (one side, facets given as an array)."""
+    m, mapping = basis.mesh, basis.mapping
+    give_facet_triangles(m)   # the triangle of each facet, which orients the normals
+    if m.brefdom is RefLine and intorder in _LINE_RULES:
+        X, W = _LINE_RULES[intorder]
+    else:
+        X, W = get_quadrature(m.brefdom, intorder)
+    find = np.asarray(facets)
+    cells = m.f2t[0, find]
+    x = mapping.G(X, find=find)
+    Y = mapping.invF(x, tind=cells)
+    normals = mapping.normals(Y, cells, find, m.t2f)
+    dx = np.abs(mapping.detDG(X, find=find)) * np.broadcast_to(W, (find.size, W.shape[-1]))
+    return cells, Y, np.asarray(x), np.asarray(normals), dx
+
+
 def facet_geometry(basis: skfem.CellBasis, facets: np.ndarray, intorder: int
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The quadrature points, outward normals and weights on ``facets`` of the map of ``basis``:
@@ -278,19 +308,24 @@ def facet_geometry(basis: skfem.CellBasis, facets: np.ndarray, intorder: int
 
     The same calls and numbers as :func:`facet_basis`'s ``global_coordinates()``, ``normals`` and ``dx``,
     without the basis functions at the points, which an integral of geometric quantities does not need.
-    The mesh must have its facet-to-triangle map (:func:`~bearingfe.geometry.meshing.give_facet_triangles`).
     """
-    m, mapping = basis.mesh, basis.mapping
-    if m.brefdom is RefLine and intorder in _LINE_RULES:
-        X, W = _LINE_RULES[intorder]
-    else:
-        X, W = get_quadrature(m.brefdom, intorder)
-    find = np.asarray(facets)
-    cells = m.f2t[0, find]  # the triangle whose outward normal scikit-fem gives a boundary facet
-    x = mapping.G(X, find=find)
-    normals = mapping.normals(mapping.invF(x, tind=cells), cells, find, m.t2f)
-    dx = np.abs(mapping.detDG(X, find=find)) * np.broadcast_to(W, (find.size, W.shape[-1]))
-    return np.asarray(x), np.asarray(normals), dx
+    return _facet_points(basis, facets, intorder)[2:]
+
+
+def facet_tables(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> FacetTables:
+    """The basis functions of an H1 element (values and gradients), the points, normals and weights on
+    ``facets``: the numbers of :func:`facet_basis` (``basis[j][0]``, its ``grad``, ``global_coordinates()``,
+    ``normals``, ``dx``) from the same calls, without the facet basis object (the map's inverse Jacobian
+    computed once for all the basis functions, not once for each)."""
+    cells, Y, x, normals, dx = _facet_points(basis, facets, intorder)
+    invDF = basis.mapping.invDF(Y, cells)
+    tables = np.empty((3, basis.Nbfun, *dx.shape))
+    for j in range(basis.Nbfun):
+        phi, dphi = basis.elem.lbasis(Y, j)
+        tables[0, j] = np.broadcast_to(phi, dx.shape)
+        tables[1:, j] = np.einsum("ijkl,ikl->jkl", invDF, dphi)
+    return FacetTables(dofs=np.asarray(basis.dofs.element_dofs)[:, cells], tables=tables, x=x, normals=normals,
+                       dx=dx)
 
 
 def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
@@ -304,7 +339,6 @@ def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    give_facet_triangles(basis.mesh)   # the normals are oriented by it
     x, n, dx = facet_geometry(basis, np.asarray(inlet_facets), 8)  # only the points, normals and weights
     phi, nphi = x[0], n[0]
     return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])

@@ -131,8 +131,9 @@ def test_group_field_rows_are_the_nonzeros_of_the_dense_products(surface, elemen
 @pytest.mark.parametrize("all_facets", [False, True])
 @pytest.mark.parametrize("element", ["P1", "P2"])
 def test_corner_facet_data_are_the_rows_of_the_facet_maps(monkeypatch, element, all_facets):
-    # the corner dofs' facet data taken from the facet basis's tables on the kept facets; the reference is
-    # the path they replace: the sparse maps of all corner facets, their corner-dof columns and kept rows.
+    # the corner dofs' facet data taken from the basis's tables on the kept facets; the reference is the
+    # path they replace: the sparse maps of a facet basis on all corner facets, their corner-dof columns and
+    # kept rows.
     # With all the groups' facets (not only those next to the corners) most are dropped as zero.
     from bearingfe.film.compiled import _interpolation
 
@@ -141,7 +142,9 @@ def test_corner_facet_data_are_the_rows_of_the_facet_maps(monkeypatch, element, 
     ops = operators(_mesh(), element)
     co = ops.compiled
     E, Gx, Gz, normals, x, parts = co.corners
-    fb, slices = ops.corner_basis
+    slices = ops.corner_tables[1]
+    fb = film_operators.facet_basis(ops.basis, np.concatenate([ops.facet_groups[n] for n in slices]),
+                                    film_operators.quadrature_order(element))
     Ef, Gfx, Gfz = _interpolation(fb, co.n_dofs)
     cdofs = np.unique(np.concatenate([d[w < 1] for d, w in (ops.flow_groups[n] for n in slices)]))
     phi_ds = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()
@@ -217,3 +220,21 @@ def test_pattern_from_the_upper_pairs_is_the_element_matrices_union(element):
     i, j = np.triu_indices(nb)
     pair_keys = np.minimum(dofs[i], dofs[j]).astype(np.int64) * n + np.maximum(dofs[i], dofs[j])
     np.testing.assert_array_equal(upper_rows, np.searchsorted(upper_keys, pair_keys))
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_facet_tables_are_the_facet_basis_numbers(surface, element):
+    # the basis functions, points, normals and weights on facets from the facet basis's own calls without the
+    # facet basis; the reference is scikit-fem's facet basis: the same numbers, bit for bit (straight and curved)
+    ops = operators(_mesh(surface), element)
+    facets = np.concatenate([ops.mesh.boundaries["inlet"], ops.mesh.boundaries["side"]])
+    fb = film_operators.facet_basis(ops.basis, facets, 6)
+    mine = film_operators.facet_tables(ops.basis, facets, 6)
+    np.testing.assert_array_equal(mine.dofs, fb.element_dofs)
+    for j, phi in enumerate(fb.basis):
+        np.testing.assert_array_equal(mine.tables[0, j], np.asarray(phi[0]))
+        np.testing.assert_array_equal(mine.tables[1, j], phi[0].grad[0])
+        np.testing.assert_array_equal(mine.tables[2, j], phi[0].grad[1])
+    np.testing.assert_array_equal(mine.x, np.asarray(fb.global_coordinates()))
+    np.testing.assert_array_equal(mine.normals, np.asarray(fb.normals))
+    np.testing.assert_array_equal(mine.dx, np.asarray(fb.dx))
