@@ -16,7 +16,6 @@ import numpy as np
 import scipy.sparse as sp
 import skfem
 from skfem.quadrature import get_quadrature
-from skfem.refdom import RefLine
 
 from . import forms
 from .assembly import ASSEMBLIES, DEFAULT_ASSEMBLY, Assembly
@@ -157,7 +156,8 @@ class LeanCellBasis(skfem.CellBasis):
     """
 
     def __init__(self, mesh: skfem.Mesh, elem: skfem.Element, mapping=None, intorder: int | None = None) -> None:
-        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder, None, mesh.refdom)
+        rule = None if intorder is None else quadrature_rule(mesh.refdom, intorder)
+        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder, rule, mesh.refdom)
         self.tind = None
         self.nelems = mesh.nelements
 
@@ -201,8 +201,8 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     bnd = mesh.boundaries
     if "outer" not in bnd:
         raise ValueError("mesh has no boundary named 'outer'")
-    outer = basis.get_dofs(bnd["outer"]).all()
-    inlet = basis.get_dofs(bnd["inlet"]).all() if "inlet" in bnd else np.zeros(0, dtype=np.int64)
+    outer = facet_dofs(basis, bnd["outer"])
+    inlet = facet_dofs(basis, bnd["inlet"]) if "inlet" in bnd else np.zeros(0, dtype=np.int64)
     fixed = np.union1d(outer, inlet)
     free = np.ones(basis.N, bool)
     free[fixed] = False
@@ -224,9 +224,23 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
 
+def facet_dofs(basis: skfem.CellBasis, facets: np.ndarray) -> np.ndarray:
+    """The dofs on ``facets`` of a triangle mesh's basis, sorted: those of their vertices and their own
+    (``basis.get_dofs(facets).all()``, the same array, by a mask instead of scikit-fem's views and sort)."""
+    if basis.mesh.dim() != 2:  # (edge dofs, which 3-D meshes have, are not counted here)
+        return basis.get_dofs(facets).all()
+    f = np.asarray(facets)
+    nodal, own = np.asarray(basis.nodal_dofs), np.asarray(basis.facet_dofs)
+    on = np.zeros(basis.N, dtype=bool)
+    on[nodal[:, basis.mesh.facets[:, f]].ravel()] = True
+    if own.size:  # (P1 has none)
+        on[own[:, f].ravel()] = True
+    return np.flatnonzero(on).astype(np.result_type(nodal, own))
+
+
 def _flow_groups(basis, bnd, names) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Boundary dofs per outflow group; dofs shared by two groups (corners) count half to each."""
-    dofs = {n: basis.get_dofs(bnd[n]).all() for n in names}
+    dofs = {n: facet_dofs(basis, bnd[n]) for n in names}
     count = np.zeros(basis.N)
     for d in dofs.values():
         count[d] += 1
@@ -257,19 +271,24 @@ def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
     return out
 
 
-#: Gauss-Legendre rules on the reference facet by integration order, tabulated once (scikit-fem
-#: recomputes them for every facet basis; they are constants).
-_LINE_RULES = {k: get_quadrature(RefLine, k) for k in (4, 6, 8)}
+#: Quadrature rules by reference domain and integration order, tabulated on first use (scikit-fem
+#: recomputes them for every basis; they are constants, shared read-only by the bases).
+_RULES: dict = {}
+
+
+def quadrature_rule(refdom, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's quadrature rule ``(points, weights)`` of order ``intorder`` on ``refdom``, computed once."""
+    key = (refdom, intorder)
+    if key not in _RULES:
+        _RULES[key] = get_quadrature(refdom, intorder)
+    return _RULES[key]
 
 
 def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> skfem.FacetBasis:
     """A facet basis of ``basis``'s element and map on ``facets`` (its dof numbering and a tabulated
     quadrature rule: the same basis scikit-fem would build, without recomputing either)."""
-    if basis.mesh.brefdom is not RefLine or intorder not in _LINE_RULES:
-        return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
-                                intorder=intorder)
     return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
-                            quadrature=_LINE_RULES[intorder])
+                            quadrature=quadrature_rule(basis.mesh.brefdom, intorder))
 
 
 class FacetTables(NamedTuple):
@@ -288,10 +307,7 @@ def _facet_points(basis: skfem.CellBasis, facets: np.ndarray, intorder: int):
     :class:`skfem.FacetBasis` makes (one side, facets given as an array)."""
     m, mapping = basis.mesh, basis.mapping
     give_facet_triangles(m)   # the triangle of each facet, which orients the normals
-    if m.brefdom is RefLine and intorder in _LINE_RULES:
-        X, W = _LINE_RULES[intorder]
-    else:
-        X, W = get_quadrature(m.brefdom, intorder)
+    X, W = quadrature_rule(m.brefdom, intorder)
     find = np.asarray(facets)
     cells = m.f2t[0, find]
     x = mapping.G(X, find=find)

@@ -238,3 +238,14 @@ def test_facet_tables_are_the_facet_basis_numbers(surface, element):
     np.testing.assert_array_equal(mine.x, np.asarray(fb.global_coordinates()))
     np.testing.assert_array_equal(mine.normals, np.asarray(fb.normals))
     np.testing.assert_array_equal(mine.dx, np.asarray(fb.dx))
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_facet_dofs_are_scikit_fems(element):
+    # the dofs on boundary facets by a mask; the reference is scikit-fem's get_dofs(...).all(): the same array
+    ops = operators(_mesh(CIRCLE), element)
+    for name, facets in ops.mesh.boundaries.items():
+        expected = ops.basis.get_dofs(facets).all()
+        mine = film_operators.facet_dofs(ops.basis, facets)
+        np.testing.assert_array_equal(mine, expected)
+        assert mine.dtype == expected.dtype and mine.size > 0
