@@ -320,25 +320,24 @@ class _AffineMaps:
 
     def values(self, u: np.ndarray) -> np.ndarray:
         """``E @ u`` for ``u`` of shape ``(n_dofs,)`` or ``(n_dofs, S)``: values at the points, ``(n_q[, S])``."""
-        return self._columns(u, self._cell_values)
+        return self._columns(u, lambda v: self._values_of(v[self.dofs]))
 
     def gradient(self, u: np.ndarray, k: int) -> np.ndarray:
         """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
-        return self._columns(u, lambda v: self._cell_gradient(v, k))
+        return self._columns(u, lambda v: self._gradient_of(v[self.dofs], self.inv, k))
 
-    def _cell_values(self, v: np.ndarray, cells: np.ndarray | None = None) -> np.ndarray:
-        """Values of the field ``v`` (dof values) at the points of ``cells`` (all if None), ``(n_cells, n_points)``."""
-        dofs = self.dofs if cells is None else self.dofs[cells]
-        return np.einsum("ci,iq->cq", v[dofs], self.phi)
+    def _values_of(self, local: np.ndarray) -> np.ndarray:
+        """Values at the points of some cells of a field whose dof values on them are ``local``
+        ``(n_cells, n_bfun)``: ``(n_cells, n_points)``."""
+        return np.einsum("ci,iq->cq", local, self.phi)
 
-    def _cell_gradient(self, v: np.ndarray, k: int, cells: np.ndarray | None = None) -> np.ndarray:
-        """Gradient component ``k`` of the field ``v`` at the points of ``cells`` (all if None)."""
-        dofs, inv = (self.dofs, self.inv) if cells is None else (self.dofs[cells], self.inv[:, :, cells])
-        local = v[dofs]
+    def _gradient_of(self, local: np.ndarray, inv: np.ndarray, k: int) -> np.ndarray:
+        """Gradient component ``k`` at the points of some cells (their inverse Jacobians ``inv``,
+        ``(2, 2, n_cells)``) of a field whose dof values on them are ``local``."""
         if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
             g = (inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
                  + inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
-            return np.broadcast_to(g[:, None], (dofs.shape[0], self.shape[1]))
+            return np.broadcast_to(g[:, None], (local.shape[0], self.shape[1]))
         return (inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
                 + inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
 
@@ -352,12 +351,13 @@ class _AffineMaps:
         U = np.asarray(U, dtype=float)
         n_points = self.shape[1]
         columns, parts = [], ([], [], [])
+        touched = np.any(U[self.dofs] != 0.0, axis=1)  # (n_cells, S): the cells where each field lives
         for s in range(U.shape[1]):
-            v = U[:, s]
-            cells = np.flatnonzero(np.any(v[self.dofs] != 0.0, axis=1))
+            cells = np.flatnonzero(touched[:, s])
+            local, inv = U[self.dofs[cells], s], self.inv[:, :, cells]
             columns.append((cells[:, None] * n_points + np.arange(n_points)).ravel())
-            for out, f in zip(parts, (self._cell_gradient(v, 0, cells), self._cell_gradient(v, 1, cells),
-                                      self._cell_values(v, cells))):
+            for out, f in zip(parts, (self._gradient_of(local, inv, 0), self._gradient_of(local, inv, 1),
+                                      self._values_of(local))):
                 out.append(np.ravel(f))
         return tuple(_rows_of(columns, values, self.shape[0] * n_points) for values in parts)
 
