@@ -145,7 +145,8 @@ def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, tuple[np
     row, col = unique // n, unique % n
     n_upper = unique.size
     strict = np.flatnonzero(row < col)
-    lower = strict[np.argsort(col[strict], kind="stable")]  # the strict upper entries by column, rows increasing
+    by_column = col[strict] if n > 2**16 else col[strict].astype(np.uint16)  # numpy sorts 16-bit integers by radix
+    lower = strict[np.argsort(by_column, kind="stable")]  # the strict upper entries by column, rows increasing
     n_lower, n_up = np.bincount(col[strict], minlength=n), np.bincount(row, minlength=n)
     indptr = np.concatenate([[0], np.cumsum(n_lower + n_up)])
     first_lower, first_upper = np.cumsum(n_lower) - n_lower, np.cumsum(n_up) - n_up
