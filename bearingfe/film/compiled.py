@@ -429,7 +429,8 @@ class _SparseMaps:
         return self.E, self.Gx, self.Gz
 
     def field_rows(self, U: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-        """``(G_phi U)^T``, ``(G_z U)^T``, ``(E U)^T`` as sparse ``(S, n_q)`` rows (see :meth:`_AffineMaps.field_rows`)."""
+        """``(G_phi U)^T``, ``(G_z U)^T``, ``(E U)^T`` as sparse ``(S, n_q)`` rows
+        (see :meth:`_AffineMaps.field_rows`)."""
         return tuple(sp.csr_matrix(np.asarray(M @ U).T) for M in (self.Gx, self.Gz, self.E))
 
 
