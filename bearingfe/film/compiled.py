@@ -76,27 +76,43 @@ _SMALL_PANELS_UP_TO = 20000
 #: faster than SuperLU's, one pump revolution 20-25 % faster; the main scene's pocket mesh has 34
 #: (SuperLU 98 us a factorization, banded 30 us). ``dpbtrf`` at 300 unknowns on a loaded machine
 #: (load 4, 2,000 factorizations each): half-bandwidth 34 68 us median, 36 71 us, 40 82-84 us, with
-#: occasional scheduler stalls of 2-4 ms at every width. Wider bands keep SuperLU (its fill-reducing
-#: order wins as the band grows). The solutions agree to round-off (tests/film/test_compiled.py).
-_BAND_MAX = 40
+#: occasional scheduler stalls of 2-4 ms at every width. Up to 64 the banded factorization and a
+#: four-column solve cost no more than SuperLU's numeric factorization in the kept order and its solve
+#: (CPU, best of 100, P1 and P2 gmsh meshes of 288-3,570 unknowns; e.g. P2, 456 unknowns, half-bandwidth
+#: 47: 0.11 + 0.08 against 0.19 + 0.04 ms; P2, 779, 65: 0.43 + 0.11 against 0.48 + 0.08 ms; P1, 3,570, 62:
+#: 1.3 + 0.7 against 4.0 + 0.4 ms), and a fresh mesh's first film needs no factorization to find SuperLU's
+#: order (minimum degree, 1.5-2x the numeric one). From about 66 SuperLU is as fast or faster on repeated
+#: films (P2, 592 unknowns, 66: 0.32 + 0.09 against 0.27 + 0.05 ms) and keeps them. The solutions agree to
+#: round-off (tests/film/test_compiled.py).
+_BAND_MAX = 64
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet).
+    """``E``, ``G_phi``, ``G_z``: dofs -> values / gradients at the points of ``basis`` (cell or facet)."""
+    return _point_rows(np.asarray(basis.element_dofs), _basis_tables(basis), n_dofs)
 
-    Row ``cell * n_points + point`` holds the ``Nbfun`` basis functions of its cell, so the CSR
+
+def _basis_tables(basis) -> np.ndarray:
+    """The values and the two gradient components of the basis functions of ``basis`` at its points,
+    ``(3, n_bfun, n_cells, n_points)``."""
+    return np.array([[np.asarray(part(phi[0])) for phi in basis.basis]
+                     for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1])])
+
+
+def _point_rows(dofs: np.ndarray, tables: np.ndarray, n_dofs: int) -> tuple[sp.csr_matrix, ...]:
+    """The sparse maps dofs -> points of :func:`_basis_tables`' ``tables`` on cells (or facets) of ``dofs``
+    ``(n_bfun, n_cells)``, one per table.
+
+    Row ``cell * n_points + point`` holds the ``n_bfun`` basis functions of its cell, so the CSR
     arrays are written directly (columns sorted per row: the canonical form a COO build gives).
     """
-    dofs = np.asarray(basis.element_dofs)  # (Nbfun, n_cells)
-    nb = len(basis.basis)
-    n_cells, n_points = np.asarray(basis.basis[0][0]).shape
+    nb, n_cells, n_points = tables.shape[1:]
     sort = np.argsort(dofs, axis=0, kind="stable")  # per cell: its dofs in increasing order
     cols = np.take_along_axis(dofs, sort, axis=0).T  # (n_cells, nb)
     indices = np.broadcast_to(cols[:, None, :], (n_cells, n_points, nb)).ravel().astype(np.int32)
     indptr = np.arange(0, n_cells * n_points * nb + 1, nb, dtype=np.int32)
     out = []
-    for part in (np.asarray, lambda f: f.grad[0], lambda f: f.grad[1]):
-        v = np.stack([np.asarray(part(phi[0])) for phi in basis.basis])  # (nb, n_cells, n_points)
+    for v in tables:  # (nb, n_cells, n_points)
         v = np.take_along_axis(v, sort[:, :, None], axis=0).transpose(1, 2, 0)
         m = sp.csr_matrix((np.ascontiguousarray(v).ravel(), indices, indptr), shape=(n_cells * n_points, n_dofs))
         m.has_sorted_indices = True
@@ -110,16 +126,38 @@ def interpolation_maps(basis) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matr
     return _interpolation(basis, basis.N)
 
 
-def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """CSR pattern of the element matrices' union and, for every (i, j, cell), its position in it."""
+def _pattern(dofs: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, int], np.ndarray]:
+    """The CSR pattern of the element matrices' union, symmetric: ``(indptr, indices, (twins, n_upper),
+    upper_rows)``.
+
+    ``twins`` (:func:`_twins`) gives every entry its upper-triangle twin's index among the ``n_upper``
+    upper-triangle entries (row-major); ``upper_rows`` ``(n_pairs, n_cells)`` the upper entry each local
+    pair ``i <= j`` of each cell adds to. Found from the local pairs ``i <= j`` alone: their distinct
+    ``(min, max)`` dof pairs are the upper triangle; row ``r`` of the full pattern is then the strict
+    upper entries of column ``r`` (transposed, in row order: a stable sort by column) followed by the
+    upper entries of row ``r``.
+    """
     nb = dofs.shape[0]
-    rows = np.repeat(dofs, nb, axis=0)           # (nb*nb, n_cells): row dof of local pair (i, j)
-    cols = np.tile(dofs, (nb, 1))                # column dof
-    keys = rows.astype(np.int64) * n + cols
-    unique, position = np.unique(keys.ravel(), return_inverse=True)
-    indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // n, minlength=n))])
-    index = np.int32 if unique.size < 2**31 else np.int64  # positions in the pattern: half the bytes
-    return indptr, (unique % n).astype(np.int32), position.reshape(keys.shape).astype(index)
+    i, j = np.triu_indices(nb)  # the local pairs i <= j, row-major (the order of the scatters' pairs)
+    a, b = dofs[i].astype(np.int64), dofs[j].astype(np.int64)
+    keys = np.minimum(a, b) * n + np.maximum(a, b)
+    unique, upper_rows = np.unique(keys.ravel(), return_inverse=True)
+    row, col = unique // n, unique % n
+    n_upper = unique.size
+    strict = np.flatnonzero(row < col)
+    by_column = col[strict] if n > 2**16 else col[strict].astype(np.uint16)  # numpy sorts 16-bit integers by radix
+    lower = strict[np.argsort(by_column, kind="stable")]  # the strict upper entries by column, rows increasing
+    n_lower, n_up = np.bincount(col[strict], minlength=n), np.bincount(row, minlength=n)
+    indptr = np.concatenate([[0], np.cumsum(n_lower + n_up)])
+    first_lower, first_upper = np.cumsum(n_lower) - n_lower, np.cumsum(n_up) - n_up
+    at_lower = indptr[col[lower]] + np.arange(lower.size) - first_lower[col[lower]]
+    at_upper = indptr[row] + n_lower[row] + np.arange(n_upper) - first_upper[row]
+    indices = np.empty(int(indptr[-1]), dtype=np.int32)
+    indices[at_lower], indices[at_upper] = row[lower], col
+    index = np.int32 if n_upper < 2**31 else np.int64
+    twins = np.empty(indices.size, dtype=index)
+    twins[at_lower], twins[at_upper] = lower, np.arange(n_upper)
+    return indptr, indices, (twins, int(n_upper)), upper_rows.reshape(keys.shape).astype(index)
 
 
 def _twins(indptr: np.ndarray, indices: np.ndarray, n: int) -> tuple[np.ndarray, int]:
@@ -178,16 +216,10 @@ class Scatter:
                              shape=(self.n_upper, n_cells * n_points))
 
 
-def _upper_rows(position: np.ndarray, twins: np.ndarray) -> np.ndarray:
-    """For every local pair ``i <= j`` of every cell, the upper-triangle entry it adds to, ``(n_pairs, n_cells)``."""
-    nb = int(round(np.sqrt(position.shape[0])))
-    return twins[position[[i * nb + j for i in range(nb) for j in range(i, nb)]]]
-
-
 def _scatter(basis, rows: np.ndarray, n_upper: int, kind: str) -> Scatter:
     """``S`` with ``A.data = (S @ c)[twins]`` for ``int c grad u . grad v`` (stiff) or ``int c u v``
     (mass): both are symmetric, so only the local pairs ``i <= j`` are summed, onto the upper
-    triangle (``rows``, :func:`_upper_rows`), and the lower one copies it."""
+    triangle (``rows``, :func:`_pattern`), and the lower one copies it."""
     _, values = _pair_values(basis, kind)
     return Scatter(values=values, rows=rows.ravel(), n_upper=n_upper)
 
@@ -205,12 +237,40 @@ def _release(basis) -> None:
         release()
 
 
+def _rows_of(columns: list[np.ndarray], values: list[np.ndarray], n_columns: int) -> sp.csr_matrix:
+    """A CSR matrix whose row ``s`` holds ``values[s]`` at the increasing ``columns[s]``, exact zeros dropped
+    (the entries ``sp.csr_matrix`` takes from the dense rows)."""
+    keep = [v != 0.0 for v in values]
+    counts = [int(k.sum()) for k in keep]
+    indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int32)
+    data = np.concatenate([v[k] for v, k in zip(values, keep)]) if values else np.zeros(0)
+    indices = (np.concatenate([c[k] for c, k in zip(columns, keep)]) if columns else np.zeros(0)).astype(np.int32)
+    out = sp.csr_matrix((data, indices, indptr), shape=(len(values), n_columns))
+    out.has_sorted_indices = True
+    return out
+
+
 def _block(indptr, indices, rows: np.ndarray, cols: np.ndarray, n: int):
-    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern."""
-    carrier = sp.csr_matrix((np.arange(1, indices.size + 1, dtype=float), indices, indptr), shape=(n, n))
-    block = carrier[rows][:, cols].tocsr()
-    block.sort_indices()
-    return (block.data.astype(np.int64) - 1), block.indices.astype(np.int32), block.indptr.astype(np.int32)
+    """Data positions and CSR pattern of the block ``A[rows][:, cols]`` of a CSR pattern (``n`` columns):
+    ``(positions, indices, indptr)``, each row's columns sorted (what scipy's fancy indexing and
+    ``sort_indices`` give, found by index arithmetic on the arrays)."""
+    rows, cols = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
+    where = np.full(n, -1, dtype=np.int64)  # column -> its place among cols, -1 if not taken
+    where[cols] = np.arange(cols.size)
+    starts, counts = np.asarray(indptr[rows], dtype=np.int64), np.diff(indptr)[rows].astype(np.int64)
+    first = np.cumsum(counts) - counts
+    entries = np.repeat(starts - first, counts) + np.arange(int(counts.sum()))  # the rows' entries, in row order
+    column = where[indices[entries]]
+    taken = column >= 0
+    row = np.repeat(np.arange(rows.size), counts)[taken]
+    entries, column = entries[taken], column[taken]
+    if column.size > 1:
+        key = row * max(cols.size, 1) + column
+        if np.any(key[1:] < key[:-1]):  # cols not increasing (or a row's columns unsorted): sort each row
+            order = np.argsort(key, kind="stable")
+            entries, column, row = entries[order], column[order], row[order]
+    indptr_out = np.concatenate([[0], np.cumsum(np.bincount(row, minlength=rows.size))])
+    return entries, column.astype(np.int32), indptr_out.astype(np.int32)
 
 
 class _AffineMaps:
@@ -261,19 +321,46 @@ class _AffineMaps:
 
     def values(self, u: np.ndarray) -> np.ndarray:
         """``E @ u`` for ``u`` of shape ``(n_dofs,)`` or ``(n_dofs, S)``: values at the points, ``(n_q[, S])``."""
-        return self._columns(u, lambda v: np.einsum("ci,iq->cq", v[self.dofs], self.phi))
+        return self._columns(u, lambda v: self._values_of(v[self.dofs]))
 
     def gradient(self, u: np.ndarray, k: int) -> np.ndarray:
         """``G_k @ u`` (``k = 0``: d/dphi, ``1``: d/dz)."""
-        def one(v):
-            local = v[self.dofs]
-            if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
-                g = (self.inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
-                     + self.inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
-                return np.broadcast_to(g[:, None], self.shape)
-            return (self.inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
-                    + self.inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
-        return self._columns(u, one)
+        return self._columns(u, lambda v: self._gradient_of(v[self.dofs], self.inv, k))
+
+    def _values_of(self, local: np.ndarray) -> np.ndarray:
+        """Values at the points of some cells of a field whose dof values on them are ``local``
+        ``(n_cells, n_bfun)``: ``(n_cells, n_points)``."""
+        return np.einsum("ci,iq->cq", local, self.phi)
+
+    def _gradient_of(self, local: np.ndarray, inv: np.ndarray, k: int) -> np.ndarray:
+        """Gradient component ``k`` at the points of some cells (their inverse Jacobians ``inv``,
+        ``(2, 2, n_cells)``) of a field whose dof values on them are ``local``."""
+        if self.constant_gradients:  # per cell, then spread over its points (no per-point temporaries)
+            g = (inv[0, k] * np.einsum("ci,i->c", local, self.dphi[0, :, 0])
+                 + inv[1, k] * np.einsum("ci,i->c", local, self.dphi[1, :, 0]))
+            return np.broadcast_to(g[:, None], (local.shape[0], self.shape[1]))
+        return (inv[0, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[0])
+                + inv[1, k][:, None] * np.einsum("ci,iq->cq", local, self.dphi[1]))
+
+    def field_rows(self, U: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi U)^T``, ``(G_z U)^T`` and ``(E U)^T``: the gradient components and values at the points of
+        the fields ``U`` ``(n_dofs, S)``, as sparse ``(S, n_q)`` rows.
+
+        Each field is evaluated on the cells where it has a non-zero dof only (boundary groups touch a thin
+        layer of cells); the rows hold the non-zeros of the dense products, the same numbers in the same order.
+        """
+        U = np.asarray(U, dtype=float)
+        n_points = self.shape[1]
+        columns, parts = [], ([], [], [])
+        touched = np.any(U[self.dofs] != 0.0, axis=1)  # (n_cells, S): the cells where each field lives
+        for s in range(U.shape[1]):
+            cells = np.flatnonzero(touched[:, s])
+            local, inv = U[self.dofs[cells], s], self.inv[:, :, cells]
+            columns.append((cells[:, None] * n_points + np.arange(n_points)).ravel())
+            for out, f in zip(parts, (self._gradient_of(local, inv, 0), self._gradient_of(local, inv, 1),
+                                      self._values_of(local))):
+                out.append(np.ravel(f))
+        return tuple(_rows_of(columns, values, self.shape[0] * n_points) for values in parts)
 
     # -- points -> dofs ---------------------------------------------------------------
 
@@ -340,6 +427,11 @@ class _SparseMaps:
 
     def sparse(self):
         return self.E, self.Gx, self.Gz
+
+    def field_rows(self, U: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """``(G_phi U)^T``, ``(G_z U)^T``, ``(E U)^T`` as sparse ``(S, n_q)`` rows
+        (see :meth:`_AffineMaps.field_rows`)."""
+        return tuple(sp.csr_matrix(np.asarray(M @ U).T) for M in (self.Gx, self.Gz, self.E))
 
 
 @dataclass(frozen=True, eq=False)
@@ -724,12 +816,12 @@ class CompiledOperator:
                            diag_pivot_thresh=0.0, options={"SymmetricMode": True},
                            **(_SMALL_PANELS if n <= _SMALL_PANELS_UP_TO else {}))
             order = np.argsort(lu.perm_c)
-        carrier = sp.csc_matrix((np.arange(1, sel.size + 1, dtype=float), idx, ptr), shape=(n, n))
-        permuted = carrier[order][:, order].tocsc()
-        permuted.sort_indices()
+        positions, indices, indptr = _block(ptr, idx, order, order, n)
         # A is symmetric, so the CSR arrays of the permuted block are its CSC arrays too; the
         # matrix object is kept and only its values change (SuperLU copies them when it factors)
-        return order, np.argsort(order), sel[permuted.data.astype(np.int64) - 1], permuted
+        permuted = sp.csc_matrix((np.zeros(positions.size), indices, indptr), shape=(n, n))
+        permuted.has_sorted_indices = True
+        return order, np.argsort(order), sel[positions], permuted
 
     @property
     def banded(self) -> bool:
@@ -1009,33 +1101,41 @@ def _flow_maps(ops, maps, n: int, groups: tuple) -> tuple:
             A[k, dofs[corner]] = w[corner]
     # sparse: only the points of the elements next to a group are non-zero (and a sparse product
     # keeps clear of a threaded BLAS, which on a loaded machine costs more than the product itself)
-    group_maps = tuple(sp.csr_matrix(np.asarray(apply(A.T)).T) for apply in
-                       (lambda v: maps.gradient(v, 0), lambda v: maps.gradient(v, 1), maps.values))
+    group_maps = maps.field_rows(A.T)
     corners: tuple = ()
     weights_of: dict = {}
     if ops.facet_groups and corner_dofs:
         cdofs = np.array(sorted(corner_dofs))
-        fb, parts = ops.corner_basis  # one facet basis over the corner facets of all groups
-        Ef, Gfx, Gfz = _interpolation(fb, n)
-        normals = np.asarray(fb.normals).reshape(2, -1)
-        xf = np.asarray(fb.global_coordinates()).reshape(2, -1)
-        n_points = np.shape(fb.dx)[1]
-        phi_ds_all = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()  # (n_corner_dofs, n_facet_points)
-        keep = np.zeros(phi_ds_all.shape[1], dtype=bool)
+        facet, parts = ops.corner_tables  # the basis on the corner facets of all groups
+        dofs, tables, dx = facet.dofs, facet.tables, facet.dx  # (nb, n_facets), (3, nb, n_facets, n_points)
+        n_facets, n_points = dx.shape
+        # each corner dof's basis function times the facet weights at every facet point (a facet's dofs
+        # are distinct, so at most one of its basis functions is the corner dof's)
+        phi_ds = np.zeros((cdofs.size, n_facets, n_points))  # (n_corner_dofs, n_facets, n_points)
+        at = np.minimum(np.searchsorted(cdofs, dofs), cdofs.size - 1)
+        for i in range(dofs.shape[0]):
+            f = np.flatnonzero(cdofs[at[i]] == dofs[i])
+            phi_ds[at[i, f], f] = tables[0, i, f] * dx[f]
+        keep = np.zeros(n_facets, dtype=bool)
         weights_of, kept = {}, {}
         for name, facets in parts.items():
-            rows = slice(facets.start * n_points, facets.stop * n_points)
             # only the facets where a corner dof's basis function lives contribute
-            per_facet = np.abs(phi_ds_all[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
-            keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
-            kept[name] = phi_ds_all[:, rows][:, keep[rows]]
-            dofs, w = ops.flow_groups[name]
+            per_facet = np.abs(phi_ds[:, facets]).max(axis=(0, 2))
+            keep[facets] = per_facet > 1e-14 * per_facet.max()
+            # column-major, the layout it had as the transpose of a sparse matrix's dense copy: BLAS rounds
+            # ``phi_ds @ q`` differently in the two layouts, and so the flows stay the same to the bit
+            kept[name] = np.asfortranarray(phi_ds[:, facets][:, keep[facets]].reshape(cdofs.size, -1))
+            dofs_g, w = ops.flow_groups[name]
             wc = np.zeros(cdofs.size)
             corner = w < 1
-            wc[np.searchsorted(cdofs, dofs[corner])] = w[corner]
+            wc[np.searchsorted(cdofs, dofs_g[corner])] = w[corner]
             weights_of[name] = wc
         ends = np.cumsum([0] + [kept[name].shape[1] for name in parts])
-        corners = (Ef[keep], Gfx[keep], Gfz[keep], normals[:, keep], xf[:, keep],
+        on = np.repeat(keep, n_points)
+        normals = facet.normals.reshape(2, -1)[:, on]
+        xf = facet.x.reshape(2, -1)[:, on]
+        Ef, Gfx, Gfz = _point_rows(dofs[:, keep], tables[:, :, keep], n)  # the rows of the kept facets' points
+        corners = (Ef, Gfx, Gfz, normals, xf,
                    {name: (slice(ends[k], ends[k + 1]), kept[name]) for k, name in enumerate(parts)})
     return group_maps, corners, weights_of
 
@@ -1045,16 +1145,14 @@ def compile_operator(ops) -> CompiledOperator:
     basis, n = ops.basis, ops.n_dofs
     cell_dx = np.ascontiguousarray(basis.dx)  # (n_cells, n_points); dx below is a view of it
     maps = (_AffineMaps if _AffineMaps.applies(basis) else _SparseMaps)(basis, cell_dx)
-    indptr, indices, position = _pattern(basis.element_dofs, n)
+    indptr, indices, twins, upper = _pattern(np.asarray(basis.element_dofs), n)
     dx = cell_dx.ravel()
     I = ops.interior
     groups = tuple(ops.flow_groups)
     lazy: dict = {}
     if "x" in ops._lazy:  # the points the operators already hold (not a second copy)
         lazy["x"] = np.asarray(ops.x).reshape(2, -1)
-    lazy["twins"] = _twins(indptr, indices, n)
-    upper = _upper_rows(position, lazy["twins"][0])
-    del position
+    lazy["twins"] = twins
     lazy["flow_builder"] = functools.partial(_flow_maps, ops, maps, n, groups)
     _release(basis)  # the per-point arrays of the basis: the maps keep what they need
     return CompiledOperator(n_dofs=n, interior=I, inlet=ops.inlet, dx=dx, maps=maps,

@@ -10,14 +10,13 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Mapping
+from typing import Mapping, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
 import skfem
 from skfem.mapping import MappingAffine
 from skfem.quadrature import get_quadrature
-from skfem.refdom import RefLine
 
 from . import forms
 from .assembly import ASSEMBLIES, DEFAULT_ASSEMBLY, Assembly
@@ -27,8 +26,8 @@ from .flows import edge_groups
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh, give_facet_triangles
 
-__all__ = ["Operators", "operators", "facet_basis", "quadrature_order", "LeanCellBasis", "pocket_moments",
-           "affine_points"]
+__all__ = ["Operators", "operators", "facet_basis", "facet_geometry", "facet_tables", "FacetTables",
+           "quadrature_order", "LeanCellBasis", "pocket_moments", "affine_points"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,16 +105,17 @@ class Operators:
         return self._get(("assembly", name), lambda: ASSEMBLIES[name](self))
 
     @property
-    def corner_basis(self) -> tuple[skfem.FacetBasis, Mapping[str, slice]]:
-        """One facet basis over the facets of all :attr:`facet_groups` (in their order) and, per
-        group, the slice of its facets in it (for the compiled corner fluxes)."""
+    def corner_tables(self) -> tuple["FacetTables", Mapping[str, slice]]:
+        """The basis functions, points, normals and weights on the facets of all :attr:`facet_groups` (in their
+        order, :func:`facet_tables`) and, per group, the slice of its facets in them (for the compiled corner
+        fluxes)."""
         def build():
             names = list(self.facet_groups)
             ends = np.cumsum([0] + [len(self.facet_groups[n]) for n in names])
             facets = np.concatenate([self.facet_groups[n] for n in names])
-            fb = facet_basis(self.basis, facets, quadrature_order(self.element))
-            return fb, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
-        return self._get("corner_basis", build)
+            tables = facet_tables(self.basis, facets, quadrature_order(self.element))
+            return tables, MappingProxyType({n: slice(int(ends[k]), int(ends[k + 1])) for k, n in enumerate(names)})
+        return self._get("corner_tables", build)
 
     @property
     def facet_bases(self) -> Mapping[str, skfem.FacetBasis]:
@@ -186,7 +186,8 @@ class LeanCellBasis(skfem.CellBasis):
     """
 
     def __init__(self, mesh: skfem.Mesh, elem: skfem.Element, mapping=None, intorder: int | None = None) -> None:
-        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder, None, mesh.refdom)
+        rule = None if intorder is None else quadrature_rule(mesh.refdom, intorder)
+        skfem.assembly.basis.AbstractBasis.__init__(self, mesh, elem, mapping, intorder, rule, mesh.refdom)
         self.tind = None
         self.nelems = mesh.nelements
 
@@ -241,8 +242,8 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
     bnd = mesh.boundaries
     if "outer" not in bnd:
         raise ValueError("mesh has no boundary named 'outer'")
-    outer = basis.get_dofs(bnd["outer"]).all()
-    inlet = basis.get_dofs(bnd["inlet"]).all() if "inlet" in bnd else np.zeros(0, dtype=np.int64)
+    outer = facet_dofs(basis, bnd["outer"])
+    inlet = facet_dofs(basis, bnd["inlet"]) if "inlet" in bnd else np.zeros(0, dtype=np.int64)
     fixed = np.union1d(outer, inlet)
     free = np.ones(basis.N, bool)
     free[fixed] = False
@@ -264,9 +265,23 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         phi_range=phi_range, eigen_bound=eigen_bound, seconds=time.perf_counter() - start)
 
 
+def facet_dofs(basis: skfem.CellBasis, facets: np.ndarray) -> np.ndarray:
+    """The dofs on ``facets`` of a triangle mesh's basis, sorted: those of their vertices and their own
+    (``basis.get_dofs(facets).all()``, the same array, by a mask instead of scikit-fem's views and sort)."""
+    if basis.mesh.dim() != 2:  # (edge dofs, which 3-D meshes have, are not counted here)
+        return basis.get_dofs(facets).all()
+    f = np.asarray(facets)
+    nodal, own = np.asarray(basis.nodal_dofs), np.asarray(basis.facet_dofs)
+    on = np.zeros(basis.N, dtype=bool)
+    on[nodal[:, basis.mesh.facets[:, f]].ravel()] = True
+    if own.size:  # (P1 has none)
+        on[own[:, f].ravel()] = True
+    return np.flatnonzero(on).astype(np.result_type(nodal, own))
+
+
 def _flow_groups(basis, bnd, names) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Boundary dofs per outflow group; dofs shared by two groups (corners) count half to each."""
-    dofs = {n: basis.get_dofs(bnd[n]).all() for n in names}
+    dofs = {n: facet_dofs(basis, bnd[n]) for n in names}
     count = np.zeros(basis.N)
     for d in dofs.values():
         count[d] += 1
@@ -297,19 +312,77 @@ def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
     return out
 
 
-#: Gauss-Legendre rules on the reference facet by integration order, tabulated once (scikit-fem
-#: recomputes them for every facet basis; they are constants).
-_LINE_RULES = {k: get_quadrature(RefLine, k) for k in (4, 6, 8)}
+#: Quadrature rules by reference domain and integration order, tabulated on first use (scikit-fem
+#: recomputes them for every basis; they are constants, shared read-only by the bases).
+_RULES: dict = {}
+
+
+def quadrature_rule(refdom, intorder: int) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's quadrature rule ``(points, weights)`` of order ``intorder`` on ``refdom``, computed once."""
+    key = (refdom, intorder)
+    if key not in _RULES:
+        _RULES[key] = get_quadrature(refdom, intorder)
+    return _RULES[key]
 
 
 def facet_basis(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> skfem.FacetBasis:
     """A facet basis of ``basis``'s element and map on ``facets`` (its dof numbering and a tabulated
     quadrature rule: the same basis scikit-fem would build, without recomputing either)."""
-    if basis.mesh.brefdom is not RefLine or intorder not in _LINE_RULES:
-        return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
-                                intorder=intorder)
     return skfem.FacetBasis(basis.mesh, basis.elem, mapping=basis.mapping, facets=facets, dofs=basis.dofs,
-                            quadrature=_LINE_RULES[intorder])
+                            quadrature=quadrature_rule(basis.mesh.brefdom, intorder))
+
+
+class FacetTables(NamedTuple):
+    """A cell basis's functions and map at the quadrature points of some facets (:func:`facet_tables`)."""
+
+    dofs: np.ndarray     # (n_bfun, n_facets): the dofs of each facet's triangle
+    tables: np.ndarray   # (3, n_bfun, n_facets, n_points): the basis functions' values, d/dphi and d/dz
+    x: np.ndarray        # (2, n_facets, n_points): the points
+    normals: np.ndarray  # (2, n_facets, n_points): the outward normals
+    dx: np.ndarray       # (n_facets, n_points): the weights (Jacobian included)
+
+
+def _facet_points(basis: skfem.CellBasis, facets: np.ndarray, intorder: int):
+    """``(cells, Y, x, normals, dx)`` on ``facets``: each facet's triangle (scikit-fem's first), the points in
+    its reference coordinates and in the plane, the outward normals and the weights; the calls a
+    :class:`skfem.FacetBasis` makes (one side, facets given as an array)."""
+    m, mapping = basis.mesh, basis.mapping
+    give_facet_triangles(m)   # the triangle of each facet, which orients the normals
+    X, W = quadrature_rule(m.brefdom, intorder)
+    find = np.asarray(facets)
+    cells = m.f2t[0, find]
+    x = mapping.G(X, find=find)
+    Y = mapping.invF(x, tind=cells)
+    normals = mapping.normals(Y, cells, find, m.t2f)
+    dx = np.abs(mapping.detDG(X, find=find)) * np.broadcast_to(W, (find.size, W.shape[-1]))
+    return cells, Y, np.asarray(x), np.asarray(normals), dx
+
+
+def facet_geometry(basis: skfem.CellBasis, facets: np.ndarray, intorder: int
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The quadrature points, outward normals and weights on ``facets`` of the map of ``basis``:
+    ``(x, n, dx)`` of shapes ``(2, n_facets, n_points)`` twice and ``(n_facets, n_points)``.
+
+    The same calls and numbers as :func:`facet_basis`'s ``global_coordinates()``, ``normals`` and ``dx``,
+    without the basis functions at the points, which an integral of geometric quantities does not need.
+    """
+    return _facet_points(basis, facets, intorder)[2:]
+
+
+def facet_tables(basis: skfem.CellBasis, facets: np.ndarray, intorder: int) -> FacetTables:
+    """The basis functions of an H1 element (values and gradients), the points, normals and weights on
+    ``facets``: the numbers of :func:`facet_basis` (``basis[j][0]``, its ``grad``, ``global_coordinates()``,
+    ``normals``, ``dx``) from the same calls, without the facet basis object (the map's inverse Jacobian
+    computed once for all the basis functions, not once for each)."""
+    cells, Y, x, normals, dx = _facet_points(basis, facets, intorder)
+    invDF = basis.mapping.invDF(Y, cells)
+    tables = np.empty((3, basis.Nbfun, *dx.shape))
+    for j in range(basis.Nbfun):
+        phi, dphi = basis.elem.lbasis(Y, j)
+        tables[0, j] = np.broadcast_to(phi, dx.shape)
+        tables[1:, j] = np.einsum("ijkl,ikl->jkl", invDF, dphi)
+    return FacetTables(dofs=np.asarray(basis.dofs.element_dofs)[:, cells], tables=tables, x=x, normals=normals,
+                       dx=dx)
 
 
 def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
@@ -323,9 +396,6 @@ def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    give_facet_triangles(basis.mesh)   # the facet basis orients its normals by it
-    fb = facet_basis(basis, inlet_facets, 8)  # the integrands need only the points, normals and weights
-    phi = np.array(fb.global_coordinates())[0]
-    nphi = np.array(fb.normals)[0]
-    dx = fb.dx
+    x, n, dx = facet_geometry(basis, np.asarray(inlet_facets), 8)  # only the points, normals and weights
+    phi, nphi = x[0], n[0]
     return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])

@@ -28,7 +28,7 @@ POINT = dict(wedge=1.0, squeeze=(0.3, -0.2), inlet_pressure=0.8)
 @pytest.fixture(scope="module")
 def meshes():
     return {"straight": bf.mesh_surface(SURFACE, 0.3), "curved": bf.mesh_surface(SURFACE, 0.35, order=2),
-            "curved_fine": bf.mesh_surface(SURFACE, 0.25, order=2)}
+            "curved_fine": bf.mesh_surface(SURFACE, 0.1, order=2)}
 
 
 def _close(a, b, scale=None):
@@ -127,9 +127,9 @@ def test_film_fields_from_precomputed_angles_equal_the_direct_evaluation():
 @pytest.mark.parametrize("geometry, element, banded",
                          [("straight", "P1", True), ("curved", "P2", True), ("curved_fine", "P2", False)])
 def test_condensed_factorization_banded_or_sparse_solves_the_system(meshes, geometry, element, banded):
-    # small bands (half-bandwidth <= 40 in the reverse Cuthill-McKee order: the P1 test mesh has 11,
+    # small bands (half-bandwidth <= 64 in the reverse Cuthill-McKee order: the P1 test mesh has 11,
     # the curved P2 mesh 37) are factored by banded Cholesky, wider ones (the finer curved P2 mesh:
-    # more than 40) by SuperLU; all give
+    # 85) by SuperLU; all give
     # scipy's sparse direct solution to round-off (1e-12 relative: backward-stable factorizations
     # of a matrix whose condition number is ~1e2 here)
     import scipy.sparse.linalg as spla

@@ -104,3 +104,149 @@ def test_pocket_moments_of_a_rectangle_are_its_area_and_cosine_moments():
     exact = [width * (b - a), width * (np.sin(b) - np.sin(a)), width * (np.cos(a) - np.cos(b))]
     for element in ("P1", "P2"):
         np.testing.assert_allclose(operators(_mesh(), element).pocket_moments, exact, rtol=1e-12, atol=1e-14)
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_group_field_rows_are_the_nonzeros_of_the_dense_products(surface, element):
+    # the flows' group maps evaluate each group's field on the cells it touches only; the reference is the
+    # path they replace, the dense products over all cells made sparse: the same entries, bit for bit
+    import scipy.sparse as sp
+
+    ops = operators(_mesh(surface), element)
+    co = ops.compiled
+    U = np.zeros((co.n_dofs, len(co.groups)))
+    for k, name in enumerate(co.groups):
+        dofs, w = ops.flow_groups[name]
+        U[dofs, k] = w
+    m = co.maps
+    dense = (m.gradient(U, 0), m.gradient(U, 1), m.values(U))
+    for rows, full in zip(m.field_rows(U), dense):
+        expected = sp.csr_matrix(np.asarray(full).T)
+        assert rows.shape == expected.shape and rows.nnz == expected.nnz < full.size / 2
+        np.testing.assert_array_equal(rows.indptr, expected.indptr)
+        np.testing.assert_array_equal(rows.indices, expected.indices)
+        np.testing.assert_array_equal(rows.data, expected.data)
+
+
+@pytest.mark.parametrize("all_facets", [False, True])
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_corner_facet_data_are_the_rows_of_the_facet_maps(monkeypatch, element, all_facets):
+    # the corner dofs' facet data taken from the basis's tables on the kept facets; the reference is the
+    # path they replace: the sparse maps of a facet basis on all corner facets, their corner-dof columns and
+    # kept rows.
+    # With all the groups' facets (not only those next to the corners) most are dropped as zero.
+    from bearingfe.film.compiled import _interpolation
+
+    if all_facets:
+        monkeypatch.setattr(film_operators, "_corner_facets", lambda m, basis, bnd, groups: {n: bnd[n] for n in groups})
+    ops = operators(_mesh(), element)
+    co = ops.compiled
+    E, Gx, Gz, normals, x, parts = co.corners
+    slices = ops.corner_tables[1]
+    fb = film_operators.facet_basis(ops.basis, np.concatenate([ops.facet_groups[n] for n in slices]),
+                                    film_operators.quadrature_order(element))
+    Ef, Gfx, Gfz = _interpolation(fb, co.n_dofs)
+    cdofs = np.unique(np.concatenate([d[w < 1] for d, w in (ops.flow_groups[n] for n in slices)]))
+    phi_ds = Ef[:, cdofs].toarray().T * np.asarray(fb.dx).ravel()
+    n_points = np.shape(fb.dx)[1]
+    keep = np.zeros(phi_ds.shape[1], dtype=bool)
+    for name, facets in slices.items():
+        rows = slice(facets.start * n_points, facets.stop * n_points)
+        per_facet = np.abs(phi_ds[:, rows]).reshape(cdofs.size, -1, n_points).max(axis=(0, 2))
+        keep[rows] = np.repeat(per_facet > 1e-14 * per_facet.max(), n_points)
+        np.testing.assert_array_equal(parts[name][1], phi_ds[:, rows][:, keep[rows]])
+    assert keep.any() and (keep.all() != all_facets)
+    for mine, full in ((E, Ef), (Gx, Gfx), (Gz, Gfz)):
+        assert (mine != full[keep]).nnz == 0
+    np.testing.assert_array_equal(normals, np.asarray(fb.normals).reshape(2, -1)[:, keep])
+    np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()).reshape(2, -1)[:, keep])
+
+
+def test_pattern_blocks_are_scipys_fancy_indexing():
+    # the condensed blocks' positions and patterns by index arithmetic; the reference is the path they replace,
+    # scipy's fancy indexing of a matrix holding each entry's position, indices then sorted: the same arrays
+    import scipy.sparse as sp
+    from bearingfe.film.compiled import _block
+
+    co = operators(_mesh(), "P2").compiled
+    n, rng = co.n_dofs, np.random.default_rng(5)
+    carrier = sp.csr_matrix((np.arange(1, co.nnz + 1, dtype=float), co.indices, co.indptr), shape=(n, n))
+    cases = [(co.interior, co.interior), (co.interior, co.inlet), (co.interior, rng.permutation(co.inlet)),
+             (rng.permutation(n)[:40], rng.permutation(n)[:300]), (co.interior, np.zeros(0, np.int64))]
+    for rows, cols in cases:
+        expected = carrier[rows][:, cols].tocsr()
+        expected.sort_indices()
+        positions, indices, indptr = _block(co.indptr, co.indices, rows, cols, n)
+        np.testing.assert_array_equal(positions, expected.data.astype(np.int64) - 1)
+        np.testing.assert_array_equal(indices, expected.indices)
+        np.testing.assert_array_equal(indptr, expected.indptr)
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_facet_geometry_is_the_facet_basis_geometry(surface, element):
+    # the pocket contour's points, normals and weights without the basis functions; the reference is the
+    # facet basis they were taken from before: the same numbers, bit for bit (straight and curved maps)
+    ops = operators(_mesh(surface), element)
+    facets = ops.mesh.boundaries["inlet"]
+    fb = film_operators.facet_basis(ops.basis, facets, 8)
+    x, n, dx = film_operators.facet_geometry(ops.basis, facets, 8)
+    np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()))
+    np.testing.assert_array_equal(n, np.asarray(fb.normals))
+    np.testing.assert_array_equal(dx, np.asarray(fb.dx))
+
+
+@pytest.mark.parametrize("unused", [0, 2**16])  # dofs beyond the cells' (empty rows): the sort of > 2^16 columns
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_pattern_from_the_upper_pairs_is_the_element_matrices_union(element, unused):
+    # the pattern, twins and upper rows found from the local pairs i <= j; the references: scipy's sum of
+    # the element matrices' patterns, _twins (searches each entry's twin in the pattern), and for every
+    # local pair the rank of its (min, max) dof pair among the upper entries: the same integers
+    import scipy.sparse as sp
+    from bearingfe.film.compiled import _pattern, _twins
+
+    ops = operators(_mesh(), element)
+    dofs, n = np.asarray(ops.basis.element_dofs), ops.n_dofs + unused
+    indptr, indices, (twins, n_upper), upper_rows = _pattern(dofs, n)
+    nb = dofs.shape[0]
+    rows, cols = np.repeat(dofs, nb, axis=0).ravel(), np.tile(dofs, (nb, 1)).ravel()
+    union = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(n, n))
+    union.sum_duplicates()
+    np.testing.assert_array_equal(indptr, union.indptr)
+    np.testing.assert_array_equal(indices, union.indices)
+    expected_twins, expected_upper = _twins(union.indptr, union.indices, n)
+    np.testing.assert_array_equal(twins, expected_twins)
+    assert n_upper == expected_upper
+    entry_rows = np.repeat(np.arange(n), np.diff(indptr))
+    upper_keys = (entry_rows.astype(np.int64) * n + indices)[entry_rows <= indices]
+    i, j = np.triu_indices(nb)
+    pair_keys = np.minimum(dofs[i], dofs[j]).astype(np.int64) * n + np.maximum(dofs[i], dofs[j])
+    np.testing.assert_array_equal(upper_rows, np.searchsorted(upper_keys, pair_keys))
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_facet_tables_are_the_facet_basis_numbers(surface, element):
+    # the basis functions, points, normals and weights on facets from the facet basis's own calls without the
+    # facet basis; the reference is scikit-fem's facet basis: the same numbers, bit for bit (straight and curved)
+    ops = operators(_mesh(surface), element)
+    facets = np.concatenate([ops.mesh.boundaries["inlet"], ops.mesh.boundaries["side"]])
+    fb = film_operators.facet_basis(ops.basis, facets, 6)
+    mine = film_operators.facet_tables(ops.basis, facets, 6)
+    np.testing.assert_array_equal(mine.dofs, fb.element_dofs)
+    for j, phi in enumerate(fb.basis):
+        np.testing.assert_array_equal(mine.tables[0, j], np.asarray(phi[0]))
+        np.testing.assert_array_equal(mine.tables[1, j], phi[0].grad[0])
+        np.testing.assert_array_equal(mine.tables[2, j], phi[0].grad[1])
+    np.testing.assert_array_equal(mine.x, np.asarray(fb.global_coordinates()))
+    np.testing.assert_array_equal(mine.normals, np.asarray(fb.normals))
+    np.testing.assert_array_equal(mine.dx, np.asarray(fb.dx))
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_facet_dofs_are_scikit_fems(element):
+    # the dofs on boundary facets by a mask; the reference is scikit-fem's get_dofs(...).all(): the same array
+    ops = operators(_mesh(CIRCLE), element)
+    for name, facets in ops.mesh.boundaries.items():
+        expected = ops.basis.get_dofs(facets).all()
+        mine = film_operators.facet_dofs(ops.basis, facets)
+        np.testing.assert_array_equal(mine, expected)
+        assert mine.dtype == expected.dtype and mine.size > 0
