@@ -931,6 +931,52 @@ def _short_force(eps: float, a: float) -> np.ndarray:
     return np.array([-8.0 * a**3 * eps * eps / q**2, 2.0 * math.pi * a**3 * eps / q**1.5])
 
 
+def _short_force_and_stiffness(xy: np.ndarray, a: float) -> tuple[np.ndarray, np.ndarray]:
+    """The short bearing's force on the bore [mu omega R^4/c^2] and its stiffness ``dF/d(x, y)`` [per c] with the
+    journal at ``xy`` (any frame, ``0 < |xy| < 1``): :func:`_short_force` turned with the line of centres, and its
+    derivative along the line of centres (``dF/deps`` of the closed form) and across it (the force turning with
+    it, ``J F / eps``)."""
+    e = float(np.hypot(*xy))
+    q = 1.0 - e * e
+    u = np.asarray(xy, float) / e  # the journal's displacement direction
+    R = np.array([[-u[0], u[1]], [-u[1], -u[0]]])  # the mesh frame (journal at (-eps, 0)) -> this frame
+    F = R @ _short_force(e, a)
+    dF = R @ np.array([-16.0 * a**3 * e * (1.0 + e * e) / q**3, 2.0 * math.pi * a**3 * (1.0 + 2.0 * e * e) / q**2.5])
+    turned = np.array([-F[1], F[0]]) / e
+    return F, np.outer(dF, u) + np.outer(turned, [-u[1], u[0]])
+
+
+def _short_guess(load: np.ndarray, a: float) -> np.ndarray:
+    """Journal position [c] at which the short (Ocvirk) bearing carries ``load`` (eps kept in [0.05, 0.95]): the
+    first guess of the structured paths (:func:`_short_eps` in closed form, the force turned onto the load)."""
+    e = min(max(_short_eps(float(np.hypot(*load)), a), 0.05), 0.95)
+    F = _short_force(e, a)
+    return _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
+
+
+def _calibrated_guess(xy: np.ndarray, force: np.ndarray, K: np.ndarray, load: np.ndarray,
+                      a: float) -> np.ndarray | None:
+    """A first guess corrected by one film solve: the position where the short bearing, scaled and offset to
+    match that solve, carries ``load`` (None if the fit or its inversion fails).
+
+    The film force is modelled as ``c F_short(x, y) + F_0``: ``c`` [-] fits the solve's stiffness ``K`` to the
+    short bearing's (least squares over the four entries), ``F_0`` is the force the scaled short bearing leaves
+    unexplained at ``xy`` (a supply pocket's push, the pressure lost at a pad edge); the model is then inverted
+    in closed form (:func:`_short_guess` of ``(load - F_0) / c``). It keeps the short bearing's growth of the
+    load with eps, which a Newton step from a guess far below the answer lacks: on the supply groove of part
+    ``journal_pads`` (pocket fed at 0.5 over a 360-degree pad cut at -60 degrees) the guess moves from eps 0.556
+    to 0.725 (answer 0.761), where a Newton step reaches 0.671."""
+    F_short, K_short = _short_force_and_stiffness(xy, a)
+    c = float(np.sum(K * K_short) / np.sum(K_short * K_short))
+    if not (math.isfinite(c) and c > 0):
+        return None
+    target = (np.asarray(load, float) - (np.asarray(force, float) - c * F_short)) / c
+    try:
+        return _short_guess(target, a)
+    except ValueError:  # the model asks for more than the short bearing carries (or nothing at all)
+        return None
+
+
 def _short_eps(load: float, a: float, closed_form: bool = True) -> float:
     """Eccentricity of the short (Ocvirk) bearing under a non-dimensional load: first guess. ``closed_form``:
     from :func:`_short_force`, else from the quadrature of :func:`short_bearing_force` (the gmsh path's guess
@@ -1046,7 +1092,7 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         return _equilibrium_full(bearing, w, theta_load, eps, mesher, opts, tol, max_newton, rupture_size)
     xy = eps * np.array([math.cos(theta_load), math.sin(theta_load)])
     if structured:
-        xy, state, k, res, meshes = _equilibrium_structured(bearing, xy, load, size, min_size, opts, tol,
+        xy, state, k, res, meshes = _equilibrium_structured(bearing, load, size, min_size, opts, tol,
                                                             max_newton, rupture_size)
     else:
         for _ in range(2):
@@ -1113,27 +1159,44 @@ def _angle_between(a: float, b: float) -> float:
 PAD_REMESH = 0.15
 
 
-def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, tol, max_newton, rupture_size):
+def _regrade(xy_mesh, xy) -> bool:
+    """Whether pads' structured meshes graded for the journal at ``xy_mesh`` are remeshed for the position ``xy``
+    (:data:`PAD_REMESH`)."""
+    e, e_new = float(np.hypot(*xy_mesh)), float(np.hypot(*xy))
+    moved = abs(_angle_between(math.atan2(-xy_mesh[1], -xy_mesh[0]), math.atan2(-xy[1], -xy[0])))
+    return abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) > PAD_REMESH or moved > 0.5 * math.sqrt(1 - e_new)
+
+
+def _equilibrium_structured(bearing, load, size, min_size, opts: _Solves, tol, max_newton, rupture_size):
     """Pads, partial arcs and periodic films on :func:`structured_meshes`: Newton in ``(x, y)`` on meshes graded
     for the first guess (remeshed once if the answer's thinnest film moved), then, with ``rupture_size``, the
     rupture refinement of every pad and Newton to ``tol`` on the refined meshes. Returns
-    ``(xy, state, newton_steps, residual, meshes)``."""
+    ``(xy, state, newton_steps, residual, meshes)``.
+
+    The first guess is the short bearing's (its force turned onto the load, not the load line itself). Galerkin
+    films are solved there once; if the guess corrected by that solve (:func:`_calibrated_guess`) would regrade
+    the meshes (:func:`_regrade`: the guess is far off), the first step goes there instead of a Newton step's
+    way, else Newton goes on from that solve (the same iteration as without the check)."""
     first_tol = tol if rupture_size is None else max(tol, COARSE_TOL)
-    # first guess: the short bearing's attitude (its force turned onto the load), not the load line itself
-    e = float(np.hypot(*xy))
-    F = _short_force(e, bearing.half_width)
-    xy = _rot(math.atan2(load[1], load[0]) - math.atan2(F[1], F[0])) @ np.array([-e, 0.0])
+    xy = _short_guess(load, bearing.half_width)
     k_total = 0
-    for _ in range(3):
+    for rounds in range(3):
+        xy_mesh = xy
         e, phi0 = float(np.hypot(*xy)), math.atan2(-xy[1], -xy[0])
         ms = default_min_size(size, e) if min_size is None else min_size
         meshes = structured_meshes(bearing, size, min_size=ms, eps=e, phi0=phi0)
-        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton, polar=True)
+        first = stiffness = None
+        if rounds == 0 and min_size is None and opts.cavitation != "jfo":
+            first = opts.solve(bearing, meshes, *xy)
+            if all(sup is not None for sup in first.sups):
+                stiffness = _linearized(first)[0]
+                guess = _calibrated_guess(xy, first.force, stiffness, load, bearing.half_width)
+                if guess is not None and _regrade(xy, guess):
+                    xy, first, stiffness, k_total = guess, None, None, 1
+        xy, state, k, res = _newton_xy(bearing, meshes, xy, load, opts, first_tol, max_newton, first=first,
+                                       polar=True, first_stiffness=stiffness)
         k_total += k
-        e_new = float(np.hypot(*xy))
-        moved = abs(_angle_between(phi0, math.atan2(-xy[1], -xy[0])))
-        if (min_size is not None or (abs(math.sqrt(1 - e_new) / math.sqrt(1 - e) - 1) <= PAD_REMESH
-                                     and moved <= 0.5 * math.sqrt(1 - e_new))):
+        if min_size is not None or not _regrade(xy_mesh, xy):
             break
     if rupture_size is not None:
         def step(state, at):
@@ -1150,9 +1213,10 @@ def _equilibrium_structured(bearing, xy, load, size, min_size, opts: _Solves, to
 
 
 def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first: _State | None = None,
-               polar: bool = False):
-    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made;
-    ``polar``: :func:`_polar_step` steps, else plain ones (see :func:`_eps_step`)."""
+               polar: bool = False, first_stiffness: np.ndarray | None = None):
+    """Newton on ``F(x, y) = load`` on fixed meshes; ``first``: the solution at ``xy`` on them if already made
+    (``first_stiffness``: its stiffness, if already linearized); ``polar``: :func:`_polar_step` steps, else plain
+    ones (see :func:`_eps_step`)."""
     w = np.hypot(*load)
     for k in range(max_newton + 1):
         e = float(np.hypot(*xy))
@@ -1163,7 +1227,8 @@ def _newton_xy(bearing, meshes, xy, load, opts: _Solves, tol, max_newton, first:
         res = float(np.hypot(*R) / w)
         if res <= tol:
             return xy, state, k, res
-        K = _stiffness(bearing, meshes, state, xy, opts.cavitation)
+        K = (first_stiffness if k == 0 and first is not None and first_stiffness is not None
+             else _stiffness(bearing, meshes, state, xy, opts.cavitation))
         xy = _polar_step(xy, state.force, K, load, plain=not polar)
     raise RuntimeError(f"journal equilibrium: Newton did not converge in {max_newton} steps "
                        f"(relative force residual {res:.3g}); can the pads carry a load in this direction?")
