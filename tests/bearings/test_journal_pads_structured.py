@@ -176,6 +176,29 @@ def test_calibrated_guess_reaches_the_same_equilibrium_in_fewer_newton_steps():
         assert not _regrade(xy, _calibrated_guess(xy, first.force, _linearized(first)[0], load, 0.5))
 
 
+def test_reformation_fronts_are_refined_less():
+    # the supply groove's front elements where the film forms again upstream of the pocket (phi 1.19 to 1.38) are
+    # told from the rupture front behind the first pressure peak (phi -0.49 to -0.40, none of them there) and
+    # refined to 5 x rupture_size only (largest 0.138 across against 0.035 on the rupture front); the light pad of
+    # two_groove (its full film fed from its trailing part) is all reformation, its loaded pad all rupture
+    from bearingfe.bearings.journal import REFORMATION_SIZE, _front_elements, _reformation_elements
+    from bearingfe.geometry.locate import cell_diameters
+    eq, _ = solved("supply_groove")
+    res = eq.state.results[0]
+    front = _front_elements(res)
+    reformation = _reformation_elements(res, front)
+    mesh = res.basis.mesh
+    phi = mesh.p[0, mesh.t].mean(axis=0)
+    d = cell_diameters(mesh)
+    assert reformation.any() and np.all(phi[reformation] > D(60)) and np.all(phi[front & ~reformation] < 0)
+    assert d[front & ~reformation].max() <= 0.04 * (1 + 1e-9)
+    assert 0.04 < d[reformation].max() <= REFORMATION_SIZE * 0.04 * (1 + 1e-9)
+    eq, _ = solved("two_groove")
+    (light, light_front), (loaded, loaded_front) = ((_reformation_elements(r, _front_elements(r)), _front_elements(r))
+                                                    for r in eq.state.results)
+    assert light.any() and np.array_equal(light, light_front) and loaded_front.any() and not loaded.any()
+
+
 def test_turned_warm_start_gives_the_same_solution():
     # the rupture set carried to the next Newton position turned with the line of centres (pads, bearing frame)
     # starts the active-set iteration; the solution is that of a cold start to round-off
