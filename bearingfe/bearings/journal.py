@@ -1075,7 +1075,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         rupture sets, until the front lies in elements no longer than
         ``rupture_size`` (on a pad whose largest pressure is a fraction
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 5)``: a
-        lightly loaded pad's front weighs less on the coefficients), each
+        lightly loaded pad's front weighs less on the coefficients; where the
+        film forms again, e.g. upstream of a supply pocket, ``5 rupture_size``
+        at least), each
         level solved at a Newton step on from the level before; then Newton
         to ``tol`` on those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
@@ -1399,7 +1401,9 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
     """Refine the elements near the rupture front of every film (conforming red-green-blue splits) until the
     front lies in elements no longer than ``rupture_size`` on the film with the largest pressure, and no
     longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
-    ``f`` of that (the coefficients' error from a front grows with the pressures around it). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    ``f`` of that (the coefficients' error from a front grows with the pressures around it); where the film forms
+    again (:func:`_reformation_elements`) no longer than ``rupture_size REFORMATION_SIZE`` (or the film's size,
+    if larger). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
     from the previous level's rupture sets (nested iteration).
 
