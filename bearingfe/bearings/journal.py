@@ -458,14 +458,17 @@ def _reformation_elements(res: ReynoldsResult, front: np.ndarray) -> np.ndarray:
         return out
     mesh = res.basis.mesh
     centres = mesh.p[:, mesh.t].mean(axis=1)[:, front].T
-    phi = np.asarray(res.basis.doflocs)[0]
-    ruptured = np.asarray(res.cavitated, bool)
-    upstream = []
-    for hits in _dof_tree(res.basis).query_ball_point(centres, REFORMATION_REACH * cell_diameters(mesh)[front]):
-        hits = np.asarray(hits, int)
-        r = ruptured[hits]
-        upstream.append(bool(r.any() and not r.all() and phi[hits][r].mean() < phi[hits][~r].mean()))
-    out[front] = upstream
+    hits = _dof_tree(res.basis).query_ball_point(centres, REFORMATION_REACH * cell_diameters(mesh)[front])
+    owner = np.repeat(np.arange(len(hits)), [len(h) for h in hits])
+    dofs = np.concatenate([np.asarray(h, int) for h in hits])
+    ruptured = np.asarray(res.cavitated, bool)[dofs]
+    phi = np.asarray(res.basis.doflocs)[0][dofs]
+
+    def mean_phi(mask):  # per front element: the mean phi of its dofs in mask, and their number
+        count = np.bincount(owner[mask], minlength=len(hits))
+        return np.bincount(owner[mask], weights=phi[mask], minlength=len(hits)) / np.maximum(count, 1), count
+    (phi_r, n_r), (phi_f, n_f) = mean_phi(ruptured), mean_phi(~ruptured)
+    out[front] = (n_r > 0) & (n_f > 0) & (phi_r < phi_f)
     return out
 
 
@@ -1450,8 +1453,11 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
-    reformation = _reformation_elements(res, front) if reformation_size is not None else np.zeros_like(front)
     diameters = cell_diameters(m)
+    # told apart only when some front element is longer than rupture_size (reformation_size is not smaller)
+    reformation = (_reformation_elements(res, front)
+                   if reformation_size is not None and np.any(diameters[front] > rupture_size * (1 + 1e-9))
+                   else np.zeros_like(front))
     groups = [(mask, size) for mask, size in ((front & ~reformation, rupture_size), (reformation, reformation_size))
               if mask.any() and math.isfinite(size) and diameters[mask].max() > size * (1 + 1e-9)]
     if groups:
