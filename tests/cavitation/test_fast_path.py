@@ -217,6 +217,29 @@ def test_galerkin_product_is_scipys_triple_product():
     assert not product.matches(sp.eye(S.shape[0], format="csr"))
 
 
+def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
+    # a basis' first GALERKIN_PLAN_AFTER film states take scipy's two products (no plan kept), the later ones the
+    # GalerkinProduct made then; both give S^T A S with the same pattern and values equal to round-off
+    # (1e-14 relative), and a new pattern on the basis starts the count again
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
+    sup = superpose(mesh, CosineFilm(0.6, 0.0), formulation="direct", element="P2")
+    basis = sup.operators.basis
+    S, _ = swift_stieber._change_of(basis, sup.system.interior)
+    expected = (S.T @ sup.system.matrix @ S).tocsr()
+    expected.sort_indices()
+    swift_stieber._GALERKIN.pop(basis, None)
+    for k in range(swift_stieber.GALERKIN_PLAN_AFTER + 2):
+        got = swift_stieber._galerkin(basis, S, sp.csr_matrix(sup.system.matrix))
+        planned = swift_stieber._GALERKIN[basis][4]
+        assert (planned is None) == (k < swift_stieber.GALERKIN_PLAN_AFTER)
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_allclose(got.data, expected.data, rtol=0, atol=1e-14 * np.abs(expected.data).max())
+    eye = sp.eye(S.shape[0], format="csr")
+    swift_stieber._galerkin(basis, S, eye)
+    assert swift_stieber._GALERKIN[basis][3] == 1 and swift_stieber._GALERKIN[basis][4] is None
+
+
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
     # the coarse grids depend on the dof coordinates only: the chain kept per basis (swift_stieber._chain_of)
     # gives the same start and coarse iterations as nested_start making its grids afresh, for two film states
