@@ -1334,14 +1334,25 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 #: by the coarse level's last factorization. Measured on the 5 x 5 dimples of docs/jfo_dimples.md (best of 2-4
 #: interleaved, load 2-3.8 on 2 cores): 1 fine factorization against 2 from 6.3e4 nodes on (1.7 against 2.4 s
 #: at 6.3e4, 2.5 against 2.8 at 9e4, cavitation stage 6.6-9.2 against 11.9-14.4 s at 3.6e5); below, 1 against
-#: 3 but the band costs more than the two factorizations it saves (1.9 against 1.45 s at 4e4, 0.48 against
-#: 0.38 s at 1e4). Left out: stopping the coarse level below it earlier (2 % of its nodes switching instead of
-#: :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
-TWO_GRID_FROM = 50_000
+#: 3 with the wide band (:data:`TWO_GRID_RINGS`), which costs more than the two factorizations it saves (1.9
+#: against 1.45 s at 4e4, 0.48 against 0.38 s at 1e4); the narrow band (:data:`TWO_GRID_NARROW_RINGS`) saves
+#: there (CPU time of cold solves, median of 7 interleaved, load 2.5-3 on 2 cores: 346 against 497 ms at 40,401
+#: nodes, 174 against 210 ms at 19,881, 98 against 106 ms at 10,201; 1 fine factorization against 3), but not
+#: at 5,041 nodes (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
+#: switching instead of :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
+TWO_GRID_FROM = 8000
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
 TWO_GRID_PASSES = 4
-#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts.
+#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
+#: :data:`TWO_GRID_WIDE_FROM` unknowns on (below: :data:`TWO_GRID_NARROW_RINGS`).
 TWO_GRID_RINGS = 6
+#: Unknowns from which the band of :func:`_two_grid_set` takes :data:`TWO_GRID_RINGS` rings.
+TWO_GRID_WIDE_FROM = 50_000
+#: Neighbour rings of the band of :func:`_two_grid_set` below :data:`TWO_GRID_WIDE_FROM` unknowns. The carried
+#: cavity is wrong almost only on its front nodes (on the 5 x 5 dimples at 1e4 and 4e4 unknowns: 444 and 992
+#: nodes, all on the front or one ring off it), and on these grids the fronts of the 25 dimples fill much of the
+#: domain: six rings made the band about the whole grid.
+TWO_GRID_NARROW_RINGS = 2
 #: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
 TWO_GRID_ITERATIONS = 20
 
@@ -1357,8 +1368,9 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
     f = cav.astype(float)
     front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
     return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=TWO_GRID_RINGS, iterations=TWO_GRID_ITERATIONS)
+                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
