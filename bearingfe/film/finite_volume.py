@@ -1880,8 +1880,12 @@ NESTED_UNSTRUCTURED = True
 #: uniform and contour-refined gmsh meshes, best of 4 interleaved, load 1 on 2 cores): even at about 1,500 nodes
 #: (pocket pad 22.0 against 22.1 ms at 1,340 nodes, 16.6 against 19.2 ms at 963), a win from 2,000 on (pocket pad
 #: 31.8 against 35.8 ms at 1,936 nodes, 45.7 against 70.2 at 2,952, 103 against 184 ms at 7,375 nodes: 2 against
-#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes).
-NESTED_MIN_UNSTRUCTURED = 2000
+#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes). The threshold counts unknowns, not nodes:
+#: lowered from 2,000 to 1,500 so that the meshes of about 1,950 nodes (1,744 and 1,804 unknowns) take it (CPU
+#: time of cold solves, median of 7 interleaved, load 4 on 2 cores: pocket pad 22.9 against 28.4 ms at 1,936
+#: nodes, 1 fine factorization against 3; the dimple 28.9 against 31.5 ms at 1,964 nodes), while the dimple at
+#: 1,415 nodes (about 1,290 unknowns) does not gain (24.1 against 22.0 ms).
+NESTED_MIN_UNSTRUCTURED = 1500
 
 
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
