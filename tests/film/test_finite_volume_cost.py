@@ -64,6 +64,24 @@ def test_ordered_factorization_gives_the_colamd_answer(monkeypatch):
     assert abs(ordered.mass_balance) < 1e-12
 
 
+def test_grid_factorizations_are_ordered_from_fewer_unknowns(monkeypatch):
+    # on a grid_mesh the closed-form dissection order is taken from ORDERED_FROM_GRID unknowns (a 40 x 40 grid of
+    # the dimple: 1,521 unknowns, below ORDERED_FROM): the same iterations and the COLAMD answer to round-off
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.25), 1.0)])
+    options = dict(cavitation_pressure=-0.05, couette="grid")
+    mesh = grid_mesh(surface, 1 / 40)
+    unk = fv._unknowns(mesh, operators(mesh, "P1"))
+    assert unk.on_grid and fv.ORDERED_FROM_GRID <= unk.rep.size < fv.ORDERED_FROM
+    ordered = fv.solve_jfo(mesh, UniformFilm(1.0), **options)
+    assert unk._order["order"].size == unk.rep.size   # the order was taken
+    monkeypatch.setattr(fv, "ORDERED_FROM_GRID", 10**9)
+    colamd = fv.solve_jfo(grid_mesh(surface, 1 / 40), UniformFilm(1.0), **options)
+    assert ordered.iterations == colamd.iterations and np.array_equal(ordered.cavitated, colamd.cavitated)
+    assert np.abs(ordered.pressure - colamd.pressure).max() <= 1e-9 * np.abs(colamd.pressure).max()
+    assert np.abs(ordered.theta - colamd.theta).max() <= 1e-9
+    assert abs(ordered.mass_balance) < 1e-12
+
+
 def test_ordered_factorization_falls_back_on_an_inaccurate_solve():
     """A matrix whose diagonal pivots are tiny (the symmetric mode keeps them above the 0.01 threshold
     only by pivoting): the solve still returns the answer to round-off, by the COLAMD fallback if needed."""
