@@ -1344,8 +1344,9 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 #: 3 with the wide band (:data:`TWO_GRID_RINGS`), which costs more than the two factorizations it saves (1.9
 #: against 1.45 s at 4e4, 0.48 against 0.38 s at 1e4); the narrow band (:data:`TWO_GRID_NARROW_RINGS`) saves
 #: there (CPU time of cold solves, median of 7 interleaved, load 2.5-3 on 2 cores: 346 against 497 ms at 40,401
-#: nodes, 174 against 210 ms at 19,881, 98 against 106 ms at 10,201; 1 fine factorization against 3), but not
-#: at 5,041 nodes (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
+#: nodes, 174 against 210 ms at 19,881, 98 against 106 ms at 10,201; 1 fine factorization against 3), even at
+#: 9,216 nodes (86.5 against 87.6 ms; 8,836 unknowns), but not at 7,396 (76.8 against 71.2 ms) or 5,041 nodes
+#: (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
 #: switching instead of :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
 TWO_GRID_FROM = 8000
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
