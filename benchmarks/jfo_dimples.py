@@ -382,9 +382,9 @@ def main(argv=None) -> None:
         "with its own mesh, assembly and active set, stopped once a step switches at most 0.5 % of its nodes; "
         "its cavity carried to the fine grid. `fine factorizations`: SuperLU of the fine active-set matrices in "
         "one nested-dissection order (`fine ND order`, the grid's own dissection, found once per mesh); "
-        "`Woodbury`: steps solved by a low-rank update of the last factorization; `band`: from 5e4 nodes the "
-        "carried cavity is first iterated on a band of 6 neighbour rings around its fronts, each pass corrected "
-        "by the coarse grid's last factorization, so the first fine factorization is already near the final set "
+        "`Woodbury`: steps solved by a low-rank update of the last factorization; `band`: from 8,000 nodes the "
+        "carried cavity is first iterated on a band of neighbour rings (2; 6 from 5e4 nodes) around its fronts, "
+        "each pass corrected by the coarse grid's last factorization, so the first fine factorization is already near the final set "
         "(and a later set change too large for Woodbury is iterated on a band around the switched nodes, with "
         "global correction solves between its passes); `rest`: matrices, solves, set updates. `yardstick`: one "
         "factorization and solve of the converged fine matrix in the same order (best of two).",

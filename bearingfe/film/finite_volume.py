@@ -1230,6 +1230,13 @@ LOW_RANK_SWITCHES = 24
 #: dissection in closed form (:func:`bearingfe.core.ordering.grid_dissection`): at 600 x 600 dimple cells
 #: 0.09-0.15 against 0.47-0.49 s, fill 0.7 % more, the same factorization time within the noise (load 3).
 ORDERED_FROM = 5000
+#: :data:`ORDERED_FROM` for unknowns on a ``grid_mesh`` without a seam, whose order is the grid's dissection in
+#: closed form (no graph partitioning to pay): the ordered factorizations win from fewer unknowns there. CPU time of
+#: cold solves of the 5 x 5 dimples (the order found in each solve), median of 5 interleaved, load 4-5 on 2 cores:
+#: 56.2 against 60.3 ms at 5,041 nodes, 29.4 against 30.3 at 2,601, 19.9 against 21.0 at 1,681; on gmsh meshes,
+#: whose nested-dissection order costs a partitioning, 1,000 unknowns were no gain (27.4 against 25.7 ms on the
+#: pocket pad at 1,936 nodes, 30.8 against 32.4 on the dimple at 1,964).
+ORDERED_FROM_GRID = 1000
 #: Threshold of the partial pivoting of the ordered factorization (a diagonal pivot is kept while it is
 #: at least this fraction of its column's largest entry).
 PIVOT_THRESHOLD = 0.01
@@ -1237,10 +1244,10 @@ PIVOT_THRESHOLD = 0.01
 
 def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factorize:
     """SuperLU of the active-set matrices in the nested-dissection order of ``unk`` (from
-    :data:`ORDERED_FROM` unknowns on, else COLAMD); the order is found once and kept on ``unk``. A solve whose
-    residual is not at round-off falls back to COLAMD with partial pivoting."""
+    :data:`ORDERED_FROM` unknowns on, :data:`ORDERED_FROM_GRID` on a grid, else COLAMD); the order is found once
+    and kept on ``unk``. A solve whose residual is not at round-off falls back to COLAMD with partial pivoting."""
     m = K.shape[0]
-    if m < ORDERED_FROM or unk.coordinates is None:
+    if m < (ORDERED_FROM_GRID if unk.on_grid else ORDERED_FROM) or unk.coordinates is None:
         return factorize_splu
     order = unk._order.get("order")
     if order is None or order.size != m:
@@ -1462,14 +1469,26 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 #: by the coarse level's last factorization. Measured on the 5 x 5 dimples of docs/jfo_dimples.md (best of 2-4
 #: interleaved, load 2-3.8 on 2 cores): 1 fine factorization against 2 from 6.3e4 nodes on (1.7 against 2.4 s
 #: at 6.3e4, 2.5 against 2.8 at 9e4, cavitation stage 6.6-9.2 against 11.9-14.4 s at 3.6e5); below, 1 against
-#: 3 but the band costs more than the two factorizations it saves (1.9 against 1.45 s at 4e4, 0.48 against
-#: 0.38 s at 1e4). Left out: stopping the coarse level below it earlier (2 % of its nodes switching instead of
-#: :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
-TWO_GRID_FROM = 50_000
+#: 3 with the wide band (:data:`TWO_GRID_RINGS`), which costs more than the two factorizations it saves (1.9
+#: against 1.45 s at 4e4, 0.48 against 0.38 s at 1e4); the narrow band (:data:`TWO_GRID_NARROW_RINGS`) saves
+#: there (CPU time of cold solves, median of 7 interleaved, load 2.5-3 on 2 cores: 346 against 497 ms at 40,401
+#: nodes, 174 against 210 ms at 19,881, 98 against 106 ms at 10,201; 1 fine factorization against 3), even at
+#: 9,216 nodes (86.5 against 87.6 ms; 8,836 unknowns), but not at 7,396 (76.8 against 71.2 ms) or 5,041 nodes
+#: (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
+#: switching instead of :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
+TWO_GRID_FROM = 8000
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
 TWO_GRID_PASSES = 4
-#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts.
+#: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
+#: :data:`TWO_GRID_WIDE_FROM` unknowns on (below: :data:`TWO_GRID_NARROW_RINGS`).
 TWO_GRID_RINGS = 6
+#: Unknowns from which the band of :func:`_two_grid_set` takes :data:`TWO_GRID_RINGS` rings.
+TWO_GRID_WIDE_FROM = 50_000
+#: Neighbour rings of the band of :func:`_two_grid_set` below :data:`TWO_GRID_WIDE_FROM` unknowns. The carried
+#: cavity is wrong almost only on its front nodes (on the 5 x 5 dimples at 1e4 and 4e4 unknowns: 444 and 992
+#: nodes, all on the front or one ring off it), and on these grids the fronts of the 25 dimples fill much of the
+#: domain: six rings made the band about the whole grid.
+TWO_GRID_NARROW_RINGS = 2
 #: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
 TWO_GRID_ITERATIONS = 20
 
@@ -1485,8 +1504,9 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
     f = cav.astype(float)
     front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
     return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=TWO_GRID_RINGS, iterations=TWO_GRID_ITERATIONS)
+                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -1996,8 +2016,12 @@ NESTED_UNSTRUCTURED = True
 #: uniform and contour-refined gmsh meshes, best of 4 interleaved, load 1 on 2 cores): even at about 1,500 nodes
 #: (pocket pad 22.0 against 22.1 ms at 1,340 nodes, 16.6 against 19.2 ms at 963), a win from 2,000 on (pocket pad
 #: 31.8 against 35.8 ms at 1,936 nodes, 45.7 against 70.2 at 2,952, 103 against 184 ms at 7,375 nodes: 2 against
-#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes).
-NESTED_MIN_UNSTRUCTURED = 2000
+#: 6 fine factorizations; the dimple 49 against 75 ms at 3,055 nodes). The threshold counts unknowns, not nodes:
+#: lowered from 2,000 to 1,500 so that the meshes of about 1,950 nodes (1,744 and 1,804 unknowns) take it (CPU
+#: time of cold solves, median of 7 interleaved, load 4 on 2 cores: pocket pad 22.9 against 28.4 ms at 1,936
+#: nodes, 1 fine factorization against 3; the dimple 28.9 against 31.5 ms at 1,964 nodes), while the dimple at
+#: 1,415 nodes (about 1,290 unknowns) does not gain (24.1 against 22.0 ms).
+NESTED_MIN_UNSTRUCTURED = 1500
 
 
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:

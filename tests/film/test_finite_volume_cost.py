@@ -10,7 +10,7 @@ the integrals; 1e-9 on a solve, whose matrices have condition numbers up to abou
 import numpy as np
 import pytest
 
-from benchmarks.jfo_gmsh import pocket_pad
+from benchmarks.jfo_gmsh import dimple, pocket_pad
 from bearingfe import Circle, Ellipse, Polygon, Recess, Surface, UniformFilm, grid_mesh, mesh_surface
 from bearingfe.film import finite_volume as fv
 from bearingfe.film.forms import load, weighted_laplace
@@ -64,6 +64,24 @@ def test_ordered_factorization_gives_the_colamd_answer(monkeypatch):
     assert abs(ordered.mass_balance) < 1e-12
 
 
+def test_grid_factorizations_are_ordered_from_fewer_unknowns(monkeypatch):
+    # on a grid_mesh the closed-form dissection order is taken from ORDERED_FROM_GRID unknowns (a 40 x 40 grid of
+    # the dimple: 1,521 unknowns, below ORDERED_FROM): the same iterations and the COLAMD answer to round-off
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.25), 1.0)])
+    options = dict(cavitation_pressure=-0.05, couette="grid")
+    mesh = grid_mesh(surface, 1 / 40)
+    unk = fv._unknowns(mesh, operators(mesh, "P1"))
+    assert unk.on_grid and fv.ORDERED_FROM_GRID <= unk.rep.size < fv.ORDERED_FROM
+    ordered = fv.solve_jfo(mesh, UniformFilm(1.0), **options)
+    assert unk._order["order"].size == unk.rep.size   # the order was taken
+    monkeypatch.setattr(fv, "ORDERED_FROM_GRID", 10**9)
+    colamd = fv.solve_jfo(grid_mesh(surface, 1 / 40), UniformFilm(1.0), **options)
+    assert ordered.iterations == colamd.iterations and np.array_equal(ordered.cavitated, colamd.cavitated)
+    assert np.abs(ordered.pressure - colamd.pressure).max() <= 1e-9 * np.abs(colamd.pressure).max()
+    assert np.abs(ordered.theta - colamd.theta).max() <= 1e-9
+    assert abs(ordered.mass_balance) < 1e-12
+
+
 def test_ordered_factorization_falls_back_on_an_inaccurate_solve():
     """A matrix whose diagonal pivots are tiny (the symmetric mode keeps them above the 0.01 threshold
     only by pivoting): the solve still returns the answer to round-off, by the COLAMD fallback if needed."""
@@ -98,6 +116,26 @@ def test_nested_start_on_gmsh_meshes_gives_the_cold_answer_in_fewer_fine_steps(m
     assert mesh.n_nodes > 1000 and cold.cost.get("nested_levels") is None
     assert nested.cost["nested_levels"] >= 1 and nested.cost["coarse_iterations"] >= 1
     assert nested.iterations < cold.iterations if fewer else nested.iterations <= cold.iterations
+    assert np.abs(nested.pressure - cold.pressure).max() <= 1e-9 * np.abs(cold.pressure).max()
+    assert np.abs(nested.theta - cold.theta).max() <= 1e-9
+
+
+@pytest.mark.parametrize("make, cold_factorizations, nested_factorizations", [(pocket_pad, 3, 1), (dimple, 3, 2)])
+def test_gmsh_meshes_of_about_1500_unknowns_take_the_nested_start(monkeypatch, make, cold_factorizations,
+                                                                   nested_factorizations):
+    # the uniform 0.025 meshes of docs/jfo_gmsh.md (1,936 and 1,964 nodes, 1,744 and 1,804 unknowns) are above
+    # NESTED_MIN_UNSTRUCTURED: the nested start ends on the cold start's complementarity solution (to the
+    # solver tolerance) in fewer fine factorizations (the counts measured: the pocket pad 1 against 3, the
+    # dimple 2 against 3)
+    case = make()
+    mesh = mesh_surface(case.surface, 0.025, recess_size=0.025)
+    nested = fv.solve_jfo(mesh, case.film, **_options(case))
+    monkeypatch.setattr(fv, "NESTED_UNSTRUCTURED", False)
+    cold = fv.solve_jfo(mesh, case.film, **_options(case))
+    assert nested.cost["nested_levels"] == 1 and cold.cost.get("nested_levels") is None
+    assert nested.cost["factorizations"] == nested_factorizations
+    assert cold.cost["factorizations"] == cold_factorizations
+    assert np.array_equal(nested.cavitated, cold.cavitated)
     assert np.abs(nested.pressure - cold.pressure).max() <= 1e-9 * np.abs(cold.pressure).max()
     assert np.abs(nested.theta - cold.theta).max() <= 1e-9
 
