@@ -262,11 +262,19 @@ class ObstacleProblem:
             return self._factor(free)(b_free), 1, True
         return solve(b_free), 0, True
 
+    def factorization(self, free: np.ndarray):
+        """The solve ``b -> A[free][:, free]^-1 b`` by a factorization: the cached one of that set (the
+        active-set iteration's, when it ended on a factored set), else a new one, kept in the cache."""
+        free = np.asarray(free, bool)
+        if free.shape != (self.n,):
+            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        return self._solver(free)[0]
+
     def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Solve with ``u = 0`` on a given active set (the linearization on a
         fixed rupture set) with a factorization; ``b`` may have several columns."""
         free = ~np.asarray(active, bool)
-        solve, _ = self._solver(free)
+        solve = self.factorization(free)
         b = np.asarray(b, float)
         u = np.zeros_like(b)
         if free.any():

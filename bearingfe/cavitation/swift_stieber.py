@@ -52,7 +52,8 @@ from ..geometry.locate import containing_cells
 if TYPE_CHECKING:
     from .models import ModelOptions
 
-__all__ = ["FilmProblem", "bernstein_change", "cold_mask", "obstacle_problem", "solve_swift_stieber", "warm_mask"]
+__all__ = ["FilmProblem", "bernstein_change", "cached_problem", "cold_mask", "obstacle_problem",
+           "solve_swift_stieber", "warm_mask"]
 
 @dataclass(frozen=True, eq=False)
 class FilmProblem:
@@ -249,6 +250,11 @@ def _chain_of(basis, interior: np.ndarray) -> CoarseChain:
         cached = (key, CoarseChain(np.asarray(basis.doflocs)[:, interior].T))
         _CHAINS[basis] = cached
     return cached[1]
+
+
+def cached_problem(sup: Superposition) -> FilmProblem | None:
+    """The :class:`FilmProblem` of a film state if one was made (by :func:`obstacle_problem`), else None."""
+    return _PROBLEMS.get(sup)
 
 
 def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVER, *,

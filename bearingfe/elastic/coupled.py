@@ -47,6 +47,7 @@ from skfem import BilinearForm
 from .compliance import MAX_ITERATIONS, TOLERANCE, Compliance, ElasticError, check_dense_size
 from .krylov import RESTART, gmres
 from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
+from ..cavitation.swift_stieber import cached_problem
 from ..core.checks import check_elastic, check_operating_point, note_resolution
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -355,14 +356,18 @@ def pressure_sensitivity(basis, film: Film, pressure: np.ndarray, wedge: float, 
 
 
 def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, free: np.ndarray, *,
-                         rates_balance: bool = False, system=None):
+                         rates_balance: bool = False, system=None, problem=None):
     """``v -> (dp/dw) v`` without forming ``dp/dw`` (:func:`pressure_sensitivity`'s products).
 
     One sparse factorization of ``A_FF`` at the call (none when ``system``, the
     :class:`~bearingfe.film.superposition.CondensedSystem` of the same film in
     the direct form, already factors it: its interior is the free set); each
-    product is a sparse product and one solve with those factors. ``v`` of
-    shape ``(n_dofs,)`` or ``(n_dofs, k)``.
+    product is a sparse product and one solve with those factors. ``problem``:
+    the Swift-Stieber :class:`~bearingfe.cavitation.FilmProblem` of the same
+    film state on P1 (its matrix is ``A[I, I]``), whose factorization of the
+    free set is taken (the one its active-set iteration ended on, else one made
+    there in the film's fill-reducing order and kept). ``v`` of shape
+    ``(n_dofs,)`` or ``(n_dofs, k)``.
     """
     x = np.array(basis.global_coordinates())
     h = np.asarray(film.thickness(x[0], x[1]))
@@ -373,9 +378,8 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
     n = basis.N
     if not idx.size:
         return lambda v: np.zeros(np.shape(v))
-    if system is not None and np.array_equal(np.asarray(system.interior), idx):
-        solve = system.solve
-    else:
+    solve = _film_factors(idx, n, system, problem)
+    if solve is None:
         solve = spla.splu(sp.csc_matrix(A[idx][:, idx])).solve
     BF = B.tocsr()[idx]
     U = L = M = None
@@ -401,6 +405,21 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
         return out
 
     return apply
+
+
+def _film_factors(idx: np.ndarray, n: int, system=None, problem=None):
+    """The solve of ``A_FF`` (free dofs ``idx`` of ``n``) from the film state's own factors, or None: the full
+    film's (``system``) when nothing is ruptured, else the cavitation ``problem``'s of the free set (P1)."""
+    if system is not None and np.array_equal(np.asarray(system.interior), idx):
+        return system.solve
+    if problem is None or problem.change is not None:
+        return None
+    free = np.zeros(n, bool)
+    free[idx] = True
+    interior = np.asarray(problem.interior)
+    if np.count_nonzero(free[interior]) != idx.size:  # a free dof off the problem's interior
+        return None
+    return problem.problem.factorization(free[interior])
 
 
 @dataclass(frozen=True, eq=False)
@@ -521,7 +540,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
             res = solve_model(sup, weights, cavitation, options)
         if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
-        last[:] = [res, sup.system]  # the factorized film of the last state: the Krylov Jacobian's solves
+        last[:] = [res, sup]  # the factorized film of the last state: the Krylov Jacobian's solves
         if pockets:
             return compliance.apply(np.asarray(res.pressure, float)) + opening, res
         return compliance.deflection(res.pressure, inlet_pressure), res
@@ -532,7 +551,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     def jacobian(w, res):
         if not compliance.dense:
             return _jacobian_operator(compliance, res, interior, cavitation,
-                                      system=last[1] if last[0] is res else None)
+                                      sup=last[1] if last[0] is res else None)
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
@@ -595,13 +614,18 @@ def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool
 
 
 def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavitation: str,
-                       rates_balance: bool = False, system=None) -> spla.LinearOperator:
-    """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied); ``system``:
-    the film's factorized direct system at this state, if at hand (:func:`sensitivity_operator`)."""
+                       rates_balance: bool = False, sup=None) -> spla.LinearOperator:
+    """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied); ``sup``:
+    the film's superposition at this state, if at hand: its factorized direct system and its Swift-Stieber
+    problem's factors (:func:`sensitivity_operator`)."""
     args = (res.basis, res.film, res.pressure, res.wedge)
     clipped = res.cavitated is not None and cavitation == "gumbel"
     free = interior if (res.cavitated is None or clipped) else interior & ~res.cavitated
-    S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system)
+    system = problem = None
+    if sup is not None:
+        system = sup.system
+        problem = cached_problem(sup) if cavitation == "reynolds" and not clipped else None
+    S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system, problem=problem)
 
     def matvec(v):
         s = S(np.ravel(v))
@@ -868,13 +892,13 @@ def balance_load(mesh: SupportMesh, film: Film, compliance: Compliance, load, *,
                 warm[0] = res
         except np.linalg.LinAlgError as exc:
             raise ElasticError(f"no equilibrium rates on the deflected film: {exc}") from None
-        last[:] = [res, sup.system]
+        last[:] = [res, sup]
         return compliance.deflection(res.pressure, inlet_pressure), (sup, rates, res)
 
     def jacobian(w, payload):
         if not compliance.dense:
             return _jacobian_operator(compliance, payload[2], interior, cavitation, rates_balance=True,
-                                      system=last[1] if last[0] is payload[2] else None)
+                                      sup=last[1] if last[0] is payload[2] else None)
         return compliance.matrix @ _sensitivity(payload[2], interior, cavitation, rates_balance=True)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)

@@ -226,3 +226,33 @@ def test_grid_probes_and_cell_kernel_equal_the_searched_ones():
     with pytest.raises(ValueError, match="two triangles"):
         GridConvolution(bf.grid_mesh(bf.Surface(arc=(-0.6, 0.6), half_width=0.4,
                                                 inlets=[bf.Rectangle((0.0, 0.0), (0.2, 0.2))]), 0.1)).probes(points)
+
+
+@pytest.mark.parametrize("rates_balance", [False, True])
+def test_sensitivity_from_the_cavitation_factors_is_the_fresh_one(rates_balance):
+    # dp/dw v with A_FF solved by the Swift-Stieber problem's factors (the active-set iteration's own of the
+    # final set, and a new one of another set, kept in its cache) against a fresh SuperLU factorization of
+    # A_FF from the sensitivity's own assembly: the same products to 1e-10 of their largest (round-off of
+    # two assemblies of the same matrix)
+    from bearingfe.cavitation import ModelOptions, solve_model
+    from bearingfe.cavitation.swift_stieber import cached_problem
+    from bearingfe.elastic.coupled import sensitivity_operator
+
+    mesh = bf.grid_mesh(PLAIN, 0.05)
+    sup = bf.superpose(mesh, FILM, formulation="direct", element="P1")
+    res = solve_model(sup, np.array([1.0, 0.0, 0.0, 0.0]), "reynolds", ModelOptions())
+    fp = cached_problem(sup)
+    ops = operators(mesh, "P1")
+    interior = np.zeros(ops.basis.N, bool)
+    interior[ops.interior] = True
+    V = np.random.default_rng(0).standard_normal((ops.basis.N, 3))
+    args = (res.basis, res.film, res.pressure, res.wedge)
+    made = fp.problem.factorization_count
+    for free, new in ((interior & ~res.cavitated, 0), (interior & ~res.cavitated & (ops.basis.doflocs[0] > -0.2), 1)):
+        assert res.cavitated.any() and free.sum() < interior.sum()
+        fresh = sensitivity_operator(*args, free, rates_balance=rates_balance)(V)
+        reused = sensitivity_operator(*args, free, rates_balance=rates_balance, problem=fp)(V)
+        assert fp.problem.factorization_count == made + new  # the final set's from the cache, the other made
+        made = fp.problem.factorization_count
+        assert np.abs(fresh).max() > 0
+        np.testing.assert_allclose(reused, fresh, rtol=0, atol=1e-10 * np.abs(fresh).max())
