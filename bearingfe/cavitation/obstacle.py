@@ -220,6 +220,15 @@ class ObstacleProblem:
         self._store(np.packbits(free).tobytes(), solve)
         self._reference = (free.copy(), solve)
 
+    def precondition(self, free: np.ndarray, solve) -> None:
+        """Take a factorization of a nearby matrix's ``A'[free][:, free]`` (the same unknowns, e.g. the previous
+        state of a film being iterated on) as the preconditioner of the next sets' conjugate-gradient solves;
+        unlike :meth:`add_factorization` it is not taken as a solve of this matrix."""
+        free = np.asarray(free, bool)
+        if free.shape != (self.n,):
+            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        self._reference = (free.copy(), solve)
+
     def _solve_free(self, free: np.ndarray, b_free: np.ndarray, rtol: float | None = None,
                     x0: np.ndarray | None = None) -> tuple[np.ndarray, int, bool]:
         """``A[free][:, free]^-1 b_free``: cached, by preconditioned CG, or by a new factorization.

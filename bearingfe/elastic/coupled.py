@@ -47,7 +47,7 @@ from skfem import BilinearForm
 from .compliance import MAX_ITERATIONS, TOLERANCE, Compliance, ElasticError, check_dense_size
 from .krylov import RESTART, gmres
 from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
-from ..cavitation.swift_stieber import cached_problem
+from ..cavitation.swift_stieber import cached_problem, obstacle_problem
 from ..core.checks import check_elastic, check_operating_point, note_resolution
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -509,6 +509,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     ops = operators(mesh, element)
     basis = ops.basis
     warm, last = [None], [None, None]
+    kept = [None]  # (free set, solve): the last Jacobian's factorization in the Swift-Stieber problem's unknowns
     if pockets:
         from ..cavitation.models import solve_pocket_state
         from ..film.pockets import pocket_film, pocket_names
@@ -537,6 +538,11 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
             res = solve_pocket_state(pf, names, pockets, OperatingPoint(wedge=wedge, squeeze=tuple(weights[1:3])),
                                      cavitation, options)
         else:
+            if kept[0] is not None and warm[0] is not None and cavitation == "reynolds":
+                # the last Jacobian's factors (a nearby film, the rupture set this solve starts from) precondition
+                # its active-set steps in place of this film's full-film factorization
+                obstacle_problem(sup, solver, tol=options.tol,
+                                 max_iterations=options.max_iterations).problem.precondition(*kept[0])
             res = solve_model(sup, weights, cavitation, options)
         if res.cavitated is not None and cavitation != "gumbel":
             warm[0] = res
@@ -551,7 +557,7 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
     def jacobian(w, res):
         if not compliance.dense:
             return _jacobian_operator(compliance, res, interior, cavitation,
-                                      sup=last[1] if last[0] is res else None)
+                                      sup=last[1] if last[0] is res else None, kept=kept)
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
@@ -614,10 +620,11 @@ def _sensitivity(res, interior: np.ndarray, cavitation: str, rates_balance: bool
 
 
 def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavitation: str,
-                       rates_balance: bool = False, sup=None) -> spla.LinearOperator:
+                       rates_balance: bool = False, sup=None, kept: list | None = None) -> spla.LinearOperator:
     """``dg/dw = C dp/dw`` as products (the matrix-free :func:`_sensitivity`, then ``C`` applied); ``sup``:
     the film's superposition at this state, if at hand: its factorized direct system and its Swift-Stieber
-    problem's factors (:func:`sensitivity_operator`)."""
+    problem's factors (:func:`sensitivity_operator`); ``kept[0]`` is then set to that problem's factorization
+    of the free set ``(free, solve)``."""
     args = (res.basis, res.film, res.pressure, res.wedge)
     clipped = res.cavitated is not None and cavitation == "gumbel"
     free = interior if (res.cavitated is None or clipped) else interior & ~res.cavitated
@@ -626,6 +633,9 @@ def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavita
         system = sup.system
         problem = cached_problem(sup) if cavitation == "reynolds" and not clipped else None
     S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system, problem=problem)
+    if kept is not None and problem is not None and problem.change is None:
+        own = free[np.asarray(problem.interior)]
+        kept[0] = (own, problem.problem.factorization(own))  # made (or found) by the operator above
 
     def matvec(v):
         s = S(np.ravel(v))

@@ -377,3 +377,25 @@ def test_small_cold_start_grown_gives_the_plain_answer(element):
     np.testing.assert_array_equal(res.cavitated, plain.cavitated)
     np.testing.assert_allclose(res.pressure, plain.pressure, rtol=0, atol=1e-9 * np.abs(plain.pressure).max())
     assert res.iterations < ref.iterations
+
+
+def test_a_nearby_matrix_preconditions_to_the_same_answer(journal_mesh, monkeypatch):
+    # precondition(): the factorization of the same set of another film (5 % thicker: A scaled by 1.05^3) as
+    # the CG preconditioner, not as a solve: the same rupture set as the plain method and the unknown within
+    # the tolerance (1e-9 relative), with no factorization of this matrix's sets
+    sup = superpose(journal_mesh, CosineFilm(0.6, 0.0), formulation="direct")
+    weights = np.array([1.0, 0.0, 0.0, 0.0])
+    fp, ref = _plain(sup, weights)
+    free = ~ref.active
+    monkeypatch.setattr(obstacle, "DIRECT_UP_TO", 1000)  # the set (1,864 unknowns) by CG, not factored
+    assert np.count_nonzero(free) > obstacle.DIRECT_UP_TO
+    other = sp.csr_matrix(fp.problem.A * 1.05**3)
+    nearby = spla.splu(sp.csc_matrix(other[free][:, free])).solve
+    problem = ObstacleProblem(fp.problem.A, fp.problem.factorize, order=fp.problem.order)
+    problem.precondition(free, nearby)
+    sol = problem.solve(fp.right_side(weights), ref.active)
+    assert sol.factorizations == 0 and problem.krylov_iterations > 0
+    np.testing.assert_array_equal(sol.active, ref.active)
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
+    with pytest.raises(ValueError, match="free"):
+        problem.precondition(free[:-1], nearby)
