@@ -256,3 +256,24 @@ def test_sensitivity_from_the_cavitation_factors_is_the_fresh_one(rates_balance)
         made = fp.problem.factorization_count
         assert np.abs(fresh).max() > 0
         np.testing.assert_allclose(reused, fresh, rtol=0, atol=1e-10 * np.abs(fresh).max())
+
+
+def test_cold_and_warm_starts_of_the_rupture_set_give_the_same_film(monkeypatch):
+    # solve_elastic starts a state's Swift-Stieber set cold once the deflection moved more than WARM_MOVE since
+    # the last cavitated state: always cold (0), always warm (inf) and the default reach the same film, to the
+    # Newton tolerance (1e-11 c) with margin: deflection within 1e-9 c, pressure 1e-8 of its largest, same set
+    from bearingfe.elastic import coupled
+
+    # the film of benchmarks/solver_kinds.py's 'elastic P1' kind, coarser: Newton moves of 0.17 c and less
+    mesh = bf.grid_mesh(bf.Surface(arc=(-1.0, 1.0), half_width=0.5), 0.05)
+    C = half_space_fft(mesh, SCALE, (STEEL, STEEL))
+    runs = []
+    for move in (0.0, math.inf, coupled.WARM_MOVE):
+        monkeypatch.setattr(coupled, "WARM_MOVE", move)
+        runs.append(solve_elastic(mesh, bf.CosineFilm(0.6, math.pi + 0.3), C, cavitation="reynolds", tol=1e-11))
+    ref = runs[0]
+    assert ref.max_deflection > 0.2 and ref.result.cavitated.any()
+    for sol in runs[1:]:
+        np.testing.assert_array_equal(sol.result.cavitated, ref.result.cavitated)
+        assert np.max(np.abs(sol.deflection - ref.deflection)) <= 1e-9
+        assert np.max(np.abs(sol.result.pressure - ref.result.pressure)) <= 1e-8 * ref.result.pressure.max()
