@@ -19,7 +19,9 @@ FFT half-space of :mod:`bearingfe.elastic.convolution`) the Jacobian is never
 formed: the Newton step solves ``(I - C dp/dw) dw = F`` by GMRES, each product
 costing one FFT convolution and one solve with the factors of the film's
 Reynolds matrix ``A_FF`` (``dp/dw v = -A_FF^-1 B_F v``): the superposition's own
-factors when no dof is ruptured, else one factorization per Jacobian. The Jacobian is
+factors when no dof is ruptured, else one factorization per Jacobian (under
+Swift-Stieber the cavitation problem's of the free set, which then preconditions
+the next state's active-set steps of :func:`solve_elastic`). The Jacobian is
 taken afresh at every step (full Newton, not the dense path's chord). This is GMRES on the pressure form ``A + B_h C`` right-preconditioned
 by the film's own factorization (``(A + B_h C) A^-1 = I + B_h C A^-1`` has the
 spectrum of ``I - C dp/dw``). Memory and time then grow like the film
@@ -29,7 +31,8 @@ near the answer); the convergence test is the same as the dense path's.
 The deflected film is a nodal field (its Laplacian is not a function), so
 the direct form of the Reynolds equation is used; any cavitation model
 works (the solve is called as a black box, warm-started from the previous
-rupture set). The deflection is quasi-static: ``dw/dt`` does not enter the
+rupture set; under Swift-Stieber only within :data:`WARM_MOVE` of its deflection,
+else from the model's cold start). The deflection is quasi-static: ``dw/dt`` does not enter the
 squeeze term (the squeeze rates are those of the rigid state variables).
 """
 
