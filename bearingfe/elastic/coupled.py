@@ -323,9 +323,9 @@ def _krylov_step(J: spla.LinearOperator, F: np.ndarray, residual: float, product
 KRYLOV_CYCLES = 20
 
 
-#: Largest change of the deflection [c] since the last cavitated state at which :func:`solve_elastic` starts the
-#: next state's Swift-Stieber rupture set from that one's (preconditioned by the last Jacobian's factors); beyond it the
-#: cavitation model's cold start (nested coarse grids). Measured on the 'elastic P1' kind at 3e4 unknowns
+#: Largest change of the deflection [c] since the last cavitated state at which :func:`solve_elastic` starts
+#: the next state's Swift-Stieber rupture set from that one's (preconditioned by the last Jacobian's factors);
+#: beyond it the cavitation model's cold start (nested coarse grids). Measured on the 'elastic P1' kind at 3e4 unknowns
 #: (Newton moves of 0.17, 0.097, 0.012, 1.4e-4 c): from the warm set the first two took 30 and 15 active-set steps
 #: with 9 and 4 factorizations of 3e4 unknowns (the cavity shrinking a layer a step), from the cold start 4 and 3
 #: steps with one; the third took 4 steps and no factorization warm against the coarse grids' and one cold.
