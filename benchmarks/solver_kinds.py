@@ -52,9 +52,9 @@ KINDS = ("linear P1", "linear P2", "swift-stieber P1", "gumbel P1", "jfo P1", "t
 SIZES = (1e3, 1e4, 1e5, 3e5, 1e6)
 #: Largest size per kind where it is smaller than the last of SIZES: the tilting pad's cold Newton (about
 #: 30 film solves with finite-difference Jacobians) takes minutes beyond 1e5 unknowns (part ``thrust`` has its
-#: cost at the accuracy a design needs); the elastic film's Newton (about 30 factorizations: each of its 6
-#: steps a new film and its Swift-Stieber active set) about half a minute at 1e5 (part ``elastic_fft`` has the
-#: coupled solve without cavitation to 1e5); 1e6 unknowns is the linear P1 solve's memory goal (``BUDGET_MIB``).
+#: cost at the accuracy a design needs); the elastic film's Newton (6 steps, each a new film and its
+#: Swift-Stieber active set) takes about 15 s of CPU at 1e5 (part ``elastic_fft`` has the coupled solve without
+#: cavitation to 1e5); 1e6 unknowns is the linear P1 solve's memory goal (``BUDGET_MIB``).
 LARGEST = {"thrust pad P1": 1e5, "linear P2": 3e5, "swift-stieber P1": 3e5, "gumbel P1": 3e5, "jfo P1": 3e5,
            "elastic P1": 1e5}
 #: The memory a linear P1 solve of 1e6 unknowns should fit in (the whole process) [MiB].
