@@ -1299,6 +1299,30 @@ def _factorize_in_order(order: np.ndarray) -> Factorize:
     return factorize
 
 
+def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
+    """The union sparsity pattern of two square CSC matrices of one shape (sorted, canonical), the values of
+    ``K`` and of ``G`` on it (0 where a matrix has no entry) and each stored entry's column index.
+
+    Lets :meth:`_SetSolver.matrix` assemble ``K diag(~cav) + G diag(cav)`` for a new set by one selection
+    per entry."""
+    ones_k = sp.csc_matrix((np.ones(K.nnz), K.indices, K.indptr), shape=K.shape)
+    ones_g = sp.csc_matrix((np.ones(G.nnz), G.indices, G.indptr), shape=G.shape)
+    pattern = (ones_k + ones_g).tocsc()
+    pattern.sort_indices()
+    column = np.repeat(np.arange(pattern.shape[1]), np.diff(pattern.indptr))
+    keys = column * np.int64(pattern.shape[0]) + pattern.indices   # ascending: sorted columns, sorted rows
+
+    def on_pattern(A: sp.csc_matrix) -> np.ndarray:
+        A = sp.csc_matrix(A, copy=True)
+        A.sum_duplicates()   # canonical, as the products would sum them
+        a_column = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+        out = np.zeros(pattern.nnz)
+        out[np.searchsorted(keys, a_column * np.int64(A.shape[0]) + A.indices)] = A.data
+        return out
+
+    return pattern, on_pattern(K), on_pattern(G), column
+
+
 class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
@@ -1339,9 +1363,21 @@ class _SetSolver:
         self.base = None
         self.z: dict[int, np.ndarray] = {}
         self.factorizations = 0
+        self._choice: tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
-        return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
+        """``M(cav) = K diag(~cav) + G diag(cav)``: column ``j`` of ``G`` where ``cav[j]``, else of ``K``.
+
+        Built on the union pattern of ``K`` and ``G`` (found once per solver, :func:`_column_choice`) by
+        picking each stored entry from one of the two, explicit zeros dropped: the same entries as the
+        sparse products and sum, without them."""
+        if self._choice is None:
+            self._choice = _column_choice(self.K, self.G)
+        pattern, k_data, g_data, column = self._choice
+        M = sp.csc_matrix((np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy()),
+                          shape=pattern.shape)
+        M.eliminate_zeros()   # in place: hence the copies of the kept pattern
+        return M
 
     def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix) -> None:
         self.solve, self.base, self.z = self.factorize(M), cav.copy(), {}
