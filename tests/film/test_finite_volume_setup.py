@@ -245,3 +245,37 @@ def test_the_complementarity_solve_runs_with_one_blas_thread(monkeypatch):
     assert before and all(n == 2 for n in before)
     assert seen and all(n == 1 for n in seen[0])
     assert after == before
+
+
+def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
+    """The full-film first guess on a small grid solves the symmetric positive definite Poiseuille system by
+    banded Cholesky: the pressures equal SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
+    backward stable, the matrix of 14 x 14 cells well conditioned: round-off), hence the same guessed cavity; the
+    band plan kept on the unknowns for the next film is the one built afresh from the matrix's pattern. A
+    non-symmetric matrix, or a band wider than :data:`FIRST_GUESS_BAND_MAX`, is left to SuperLU (None)."""
+    import scipy.sparse as sp
+
+    from bearingfe.core.linalg import factorize_splu
+    from bearingfe.film.compiled import band_plan
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    rhs = -b - G @ np.ones(b.size)
+    want = factorize_splu(K.tocsc())(rhs)
+    got = fv._full_film_banded(unk, K, rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    assert np.array_equal(got < 0, want < 0) and np.count_nonzero(want < 0) > 0
+    kept = unk._order["band"][2]
+    fresh = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], fv.FIRST_GUESS_BAND_MAX)
+    assert kept.kd == fresh.kd and kept.n == fresh.n
+    for name in ("perm", "inverse", "flat", "take"):
+        assert np.array_equal(getattr(kept, name), getattr(fresh, name))
+    assert np.array_equal(fv._full_film_banded(unk, K, rhs), got) and unk._order["band"][2] is kept   # reused
+    skew = K + sp.csr_matrix(([1e-3], ([0], [1])), shape=K.shape)
+    assert fv._full_film_banded(unk, skew, rhs) is None
+    monkeypatch.setattr(fv, "FIRST_GUESS_BAND_MAX", 1)
+    unk._order.pop("band")
+    assert fv._full_film_banded(unk, K, rhs) is None
