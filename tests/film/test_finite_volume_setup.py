@@ -279,3 +279,42 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     monkeypatch.setattr(fv, "FIRST_GUESS_BAND_MAX", 1)
     unk._order.pop("band")
     assert fv._full_film_banded(unk, K, rhs) is None
+
+
+def test_small_active_set_matrices_by_banded_lu(monkeypatch):
+    """Up to :data:`SET_BAND_MAX` the active-set matrices are factored by banded LU with partial pivoting: the
+    solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
+    backward stable, a well-conditioned matrix of 14 x 14 cells: round-off); the order kept on the unknowns
+    is the one found afresh; an exactly singular matrix falls back to SuperLU (which then refuses it as
+    singular, as before); a wider band is left to SuperLU (None)."""
+    import pytest
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from bearingfe.core.linalg import factorize_splu
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    cav = np.zeros(b.size, bool)
+    cav[::3] = True
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    M = solver.matrix(cav)
+    rhs = np.random.default_rng(1).standard_normal(b.size)
+    want = factorize_splu(M)(rhs)
+    got = solver.factorize(M)(rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    perm, kd = unk._order["set_band"][2]
+    pattern = (abs(K) + abs(G)).tocsr()
+    pattern = (pattern + pattern.T).tocsr()
+    assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
+    assert 0 < kd <= fv.SET_BAND_MAX
+    singular = M.tolil()
+    singular[:, 0] = 0.0
+    with pytest.raises(RuntimeError, match="singular"):
+        fv._factorize_banded(perm, kd)(sp.csc_matrix(singular))
+    monkeypatch.setattr(fv, "SET_BAND_MAX", kd - 1)
+    unk._order.pop("set_band")
+    assert fv._set_band(unk, K, G) is None
