@@ -1276,9 +1276,9 @@ SET_BAND_MAX = 64
 def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarray, int] | None:
     """The reverse Cuthill-McKee order of the unknowns for the pattern of ``|K| + |G|`` and its
     half-bandwidth, kept on ``unk`` per pattern; None if that exceeds :data:`SET_BAND_MAX`, or at once for
-    more than ``4 SET_BAND_MAX**2`` unknowns (a 2-D mesh's band is then wider: no pattern built on large
-    meshes)."""
-    if K.shape[0] > 4 * SET_BAND_MAX**2:
+    more than ``SET_BAND_MAX**2`` unknowns (a square grid's band is then wider: no pattern or order built on a
+    fresh larger mesh, only a strip much longer than wide would have fitted)."""
+    if K.shape[0] > SET_BAND_MAX**2:
         return None
     pattern = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (pattern + pattern.T).tocsr()
@@ -1789,9 +1789,12 @@ FIRST_GUESS_BAND_MAX = 96
 def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.ndarray | None:
     """``K^-1 rhs`` by banded Cholesky (:func:`bearingfe.film.compiled.band_plan`, the plan kept on ``unk``
     for ``K``'s pattern); None where ``K`` is not symmetric, its half-bandwidth exceeds
-    :data:`FIRST_GUESS_BAND_MAX`, or it is not positive definite."""
+    :data:`FIRST_GUESS_BAND_MAX` (at once above ``FIRST_GUESS_BAND_MAX**2`` unknowns, as :func:`_set_band`),
+    or it is not positive definite."""
     from .compiled import _band_cholesky, band_plan
 
+    if K.shape[0] > FIRST_GUESS_BAND_MAX**2:
+        return None
     K = sp.csr_matrix(K)
     K.sort_indices()
     kept = unk._order.get("band")
