@@ -499,6 +499,27 @@ class _BandPlan:
     n: int
 
 
+def band_plan(sel: np.ndarray, idx: np.ndarray, ptr: np.ndarray, n: int,
+              kd_max: int = _BAND_MAX) -> _BandPlan | None:
+    """Banded storage, in the reverse Cuthill-McKee order, of a symmetric ``n x n`` matrix given by its CSR
+    pattern ``(idx, ptr)`` whose ``k``-th stored entry is ``data[sel[k]]`` of the values later passed to
+    :func:`_band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` or ``n`` is 0."""
+    if n == 0:
+        return None
+    pattern = sp.csr_matrix((np.ones(sel.size), idx, ptr), shape=(n, n))
+    perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
+    inverse = np.argsort(perm)
+    rows = np.repeat(np.arange(n), np.diff(ptr))
+    i, j = inverse[rows], inverse[idx]          # positions in the band order
+    kd = int(np.max(np.abs(i - j)))
+    if kd > kd_max:
+        return None
+    lower = i >= j
+    # LAPACK lower band storage, column-major: AB[i - j, j] = A[i, j]
+    flat = (i - j)[lower] + j[lower] * (kd + 1)
+    return _BandPlan(perm=perm, inverse=inverse, kd=kd, flat=flat, take=sel[lower], n=n)
+
+
 def _band_cholesky(plan: _BandPlan, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
     """Banded Cholesky of ``A[I, I]`` from its pattern values; None if it is not positive definite."""
     ab = np.zeros((plan.kd + 1, plan.n), order="F")
@@ -833,21 +854,7 @@ class CompiledOperator:
         half-bandwidth exceeds :data:`_BAND_MAX` (built once per pattern)."""
         def build():
             (sel, idx, ptr), _ = self._blocks()
-            n = self.interior.size
-            if n == 0:
-                return None
-            pattern = sp.csr_matrix((np.ones(sel.size), idx, ptr), shape=(n, n))
-            perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
-            inverse = np.argsort(perm)
-            rows = np.repeat(np.arange(n), np.diff(ptr))
-            i, j = inverse[rows], inverse[idx]          # positions in the band order
-            kd = int(np.max(np.abs(i - j)))
-            if kd > _BAND_MAX:
-                return None
-            lower = i >= j
-            # LAPACK lower band storage, column-major: AB[i - j, j] = A[i, j]
-            flat = (i - j)[lower] + j[lower] * (kd + 1)
-            return _BandPlan(perm=perm, inverse=inverse, kd=kd, flat=flat, take=sel[lower], n=n)
+            return band_plan(sel, idx, ptr, self.interior.size)
         return self._get("band", build)
 
     # -- pressure, loads, flows and friction -----------------------------------------------

@@ -245,3 +245,76 @@ def test_the_complementarity_solve_runs_with_one_blas_thread(monkeypatch):
     assert before and all(n == 2 for n in before)
     assert seen and all(n == 1 for n in seen[0])
     assert after == before
+
+
+def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
+    """The full-film first guess on a small grid solves the symmetric positive definite Poiseuille system by
+    banded Cholesky: the pressures equal SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
+    backward stable, the matrix of 14 x 14 cells well conditioned: round-off), hence the same guessed cavity; the
+    band plan kept on the unknowns for the next film is the one built afresh from the matrix's pattern. A
+    non-symmetric matrix, or a band wider than :data:`FIRST_GUESS_BAND_MAX`, is left to SuperLU (None)."""
+    import scipy.sparse as sp
+
+    from bearingfe.core.linalg import factorize_splu
+    from bearingfe.film.compiled import band_plan
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    rhs = -b - G @ np.ones(b.size)
+    want = factorize_splu(K.tocsc())(rhs)
+    got = fv._full_film_banded(unk, K, rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    assert np.array_equal(got < 0, want < 0) and np.count_nonzero(want < 0) > 0
+    kept = unk._order["band"][2]
+    fresh = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], fv.FIRST_GUESS_BAND_MAX)
+    assert kept.kd == fresh.kd and kept.n == fresh.n
+    for name in ("perm", "inverse", "flat", "take"):
+        assert np.array_equal(getattr(kept, name), getattr(fresh, name))
+    assert np.array_equal(fv._full_film_banded(unk, K, rhs), got) and unk._order["band"][2] is kept   # reused
+    skew = K + sp.csr_matrix(([1e-3], ([0], [1])), shape=K.shape)
+    assert fv._full_film_banded(unk, skew, rhs) is None
+    monkeypatch.setattr(fv, "FIRST_GUESS_BAND_MAX", 1)
+    unk._order.pop("band")
+    assert fv._full_film_banded(unk, K, rhs) is None
+
+
+def test_small_active_set_matrices_by_banded_lu(monkeypatch):
+    """Up to :data:`SET_BAND_MAX` the active-set matrices are factored by banded LU with partial pivoting: the
+    solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
+    backward stable, a well-conditioned matrix of 14 x 14 cells: round-off); the order kept on the unknowns
+    is the one found afresh; an exactly singular matrix falls back to SuperLU (which then refuses it as
+    singular, as before); a wider band is left to SuperLU (None)."""
+    import pytest
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from bearingfe.core.linalg import factorize_splu
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    cav = np.zeros(b.size, bool)
+    cav[::3] = True
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    M = solver.matrix(cav)
+    rhs = np.random.default_rng(1).standard_normal(b.size)
+    want = factorize_splu(M)(rhs)
+    got = solver.factorize(M)(rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    perm, kd = unk._order["set_band"][2]
+    pattern = (abs(K) + abs(G)).tocsr()
+    pattern = (pattern + pattern.T).tocsr()
+    assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
+    assert 0 < kd <= fv.SET_BAND_MAX
+    singular = M.tolil()
+    singular[:, 0] = 0.0
+    with pytest.raises(RuntimeError, match="singular"):
+        fv._factorize_banded(perm, kd)(sp.csc_matrix(singular))
+    monkeypatch.setattr(fv, "SET_BAND_MAX", kd - 1)
+    unk._order.pop("set_band")
+    assert fv._set_band(unk, K, G) is None
