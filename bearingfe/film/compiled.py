@@ -500,12 +500,14 @@ class _BandPlan:
 
 
 def band_plan(sel: np.ndarray, idx: np.ndarray, ptr: np.ndarray, n: int,
-              kd_max: int = _BAND_MAX) -> _BandPlan | None:
+              kd_max: int | None = None) -> _BandPlan | None:
     """Banded storage, in the reverse Cuthill-McKee order, of a symmetric ``n x n`` matrix given by its CSR
     pattern ``(idx, ptr)`` whose ``k``-th stored entry is ``data[sel[k]]`` of the values later passed to
-    :func:`_band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` or ``n`` is 0."""
+    :func:`_band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` (default :data:`_BAND_MAX`, read at
+    the call) or ``n`` is 0."""
     if n == 0:
         return None
+    kd_max = _BAND_MAX if kd_max is None else kd_max
     pattern = sp.csr_matrix((np.ones(sel.size), idx, ptr), shape=(n, n))
     perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
     inverse = np.argsort(perm)
