@@ -503,7 +503,7 @@ def band_plan(sel: np.ndarray, idx: np.ndarray, ptr: np.ndarray, n: int,
               kd_max: int | None = None) -> _BandPlan | None:
     """Banded storage, in the reverse Cuthill-McKee order, of a symmetric ``n x n`` matrix given by its CSR
     pattern ``(idx, ptr)`` whose ``k``-th stored entry is ``data[sel[k]]`` of the values later passed to
-    :func:`_band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` (default :data:`_BAND_MAX`, read at
+    :func:`band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` (default :data:`_BAND_MAX`, read at
     the call) or ``n`` is 0."""
     if n == 0:
         return None
@@ -522,7 +522,7 @@ def band_plan(sel: np.ndarray, idx: np.ndarray, ptr: np.ndarray, n: int,
     return _BandPlan(perm=perm, inverse=inverse, kd=kd, flat=flat, take=sel[lower], n=n)
 
 
-def _band_cholesky(plan: _BandPlan, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
+def band_cholesky(plan: _BandPlan, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
     """Banded Cholesky of ``A[I, I]`` from its pattern values; None if it is not positive definite."""
     ab = np.zeros((plan.kd + 1, plan.n), order="F")
     ab.ravel(order="F")[plan.flat] = data[plan.take]
@@ -793,7 +793,7 @@ class CompiledOperator:
         so a film's numbers do not depend on the films solved on the mesh before it."""
         band = self._band_plan()
         if band is not None:
-            solve = _band_cholesky(band, data)
+            solve = band_cholesky(band, data)
             if solve is not None:
                 return solve
             # not positive definite in floating point: SuperLU (diagonal pivots) as for wider bands

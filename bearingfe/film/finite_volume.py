@@ -1799,7 +1799,7 @@ def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.
     for ``K``'s pattern); None where ``K`` is not symmetric, its half-bandwidth exceeds
     :data:`FIRST_GUESS_BAND_MAX` (at once above ``FIRST_GUESS_BAND_MAX**2`` unknowns, as :func:`_set_band`),
     or it is not positive definite."""
-    from .compiled import _band_cholesky, band_plan
+    from .compiled import band_cholesky, band_plan
 
     if K.shape[0] > FIRST_GUESS_BAND_MAX**2:
         return None
@@ -1814,7 +1814,7 @@ def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.
     if plan is None or (K != K.T).nnz:
         return None
     with dense_threads(1):
-        solve = _band_cholesky(plan, K.data)
+        solve = band_cholesky(plan, K.data)
         return None if solve is None else solve(rhs)
 
 
