@@ -390,9 +390,11 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
     n = basis.N
     if not idx.size:
         return lambda v: np.zeros(np.shape(v))
-    solve = _film_factors(idx, n, system, problem)
-    if solve is None:
-        solve = spla.splu(sp.csc_matrix(A[idx][:, idx])).solve
+    if system is not None and np.array_equal(np.asarray(system.interior), idx):
+        solve = system.solve
+    else:
+        found = _problem_factors(np.asarray(free, bool), problem)
+        solve = spla.splu(sp.csc_matrix(A[idx][:, idx])).solve if found is None else found[1]
     BF = B.tocsr()[idx]
     U = L = M = None
     if rates_balance:
@@ -419,19 +421,16 @@ def sensitivity_operator(basis, film: Film, pressure: np.ndarray, wedge: float, 
     return apply
 
 
-def _film_factors(idx: np.ndarray, n: int, system=None, problem=None):
-    """The solve of ``A_FF`` (free dofs ``idx`` of ``n``) from the film state's own factors, or None: the full
-    film's (``system``) when nothing is ruptured, else the cavitation ``problem``'s of the free set (P1)."""
-    if system is not None and np.array_equal(np.asarray(system.interior), idx):
-        return system.solve
+def _problem_factors(free: np.ndarray, problem) -> tuple[np.ndarray, object] | None:
+    """The Swift-Stieber ``problem``'s factorization of the free dofs ``free`` (a mask of all dofs) as
+    ``(free set in its unknowns, solve)``, or None: no problem, a P2 problem (its unknowns are not the dofs), or
+    a free dof off its interior."""
     if problem is None or problem.change is not None:
         return None
-    free = np.zeros(n, bool)
-    free[idx] = True
-    interior = np.asarray(problem.interior)
-    if np.count_nonzero(free[interior]) != idx.size:  # a free dof off the problem's interior
+    own = free[np.asarray(problem.interior)]
+    if np.count_nonzero(own) != np.count_nonzero(free):
         return None
-    return problem.problem.factorization(free[interior])
+    return own, problem.problem.factorization(own)
 
 
 @dataclass(frozen=True, eq=False)
@@ -646,9 +645,10 @@ def _jacobian_operator(compliance: Compliance, res, interior: np.ndarray, cavita
         system = sup.system
         problem = cached_problem(sup) if cavitation == "reynolds" and not clipped else None
     S = sensitivity_operator(*args, free, rates_balance=rates_balance, system=system, problem=problem)
-    if kept is not None and problem is not None and problem.change is None:
-        own = free[np.asarray(problem.interior)]
-        kept[0] = (own, problem.problem.factorization(own))  # made (or found) by the operator above
+    if kept is not None:
+        found = _problem_factors(free, problem)  # the factorization the operator above made or found (cached)
+        if found is not None:
+            kept[0] = found
 
     def matvec(v):
         s = S(np.ravel(v))
