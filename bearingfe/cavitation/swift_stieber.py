@@ -210,6 +210,21 @@ def _triple_product(S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
     return C
 
 
+@dataclass(eq=False)
+class _KeptGalerkin:
+    """What :func:`_galerkin` keeps per basis: ``S``, the pattern of ``A`` it was counted for, the film states
+    of that pattern so far and, once they exceed :data:`GALERKIN_PLAN_AFTER`, the :class:`GalerkinProduct`."""
+
+    S: sp.csr_matrix
+    indptr: np.ndarray
+    indices: np.ndarray
+    states: int = 0
+    product: "GalerkinProduct | None" = None
+
+    def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
+        return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
+
+
 def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
     """``S^T A S``: up to :data:`GALERKIN_UP_TO` unknowns, after :data:`GALERKIN_PLAN_AFTER` film states of one
     pattern on a basis by the :class:`GalerkinProduct` kept for it (remade when ``S`` or ``A``'s pattern change),
@@ -217,13 +232,12 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
     if A.shape[0] > GALERKIN_UP_TO:
         return _triple_product(S, A)
     kept = _GALERKIN.get(basis)
-    if kept is None or kept[0] is not S or not (np.array_equal(A.indptr, kept[1]) and np.array_equal(A.indices, kept[2])):
-        kept = [S, A.indptr.copy(), A.indices.copy(), 0, None]  # S, A's pattern, film states so far, the product
-        _GALERKIN[basis] = kept
-    kept[3] += 1
-    if kept[4] is None and kept[3] > GALERKIN_PLAN_AFTER:
-        kept[4] = GalerkinProduct(S, A)
-    return _triple_product(S, A) if kept[4] is None else kept[4](A)
+    if kept is None or not kept.matches(S, A):
+        kept = _GALERKIN[basis] = _KeptGalerkin(S, A.indptr.copy(), A.indices.copy())
+    kept.states += 1
+    if kept.product is None and kept.states > GALERKIN_PLAN_AFTER:
+        kept.product = GalerkinProduct(S, A)
+    return _triple_product(S, A) if kept.product is None else kept.product(A)
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 

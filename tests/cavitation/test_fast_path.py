@@ -230,14 +230,14 @@ def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
     swift_stieber._GALERKIN.pop(basis, None)
     for k in range(swift_stieber.GALERKIN_PLAN_AFTER + 2):
         got = swift_stieber._galerkin(basis, S, sp.csr_matrix(sup.system.matrix))
-        planned = swift_stieber._GALERKIN[basis][4]
+        planned = swift_stieber._GALERKIN[basis].product
         assert (planned is None) == (k < swift_stieber.GALERKIN_PLAN_AFTER)
         np.testing.assert_array_equal(got.indptr, expected.indptr)
         np.testing.assert_array_equal(got.indices, expected.indices)
         np.testing.assert_allclose(got.data, expected.data, rtol=0, atol=1e-14 * np.abs(expected.data).max())
     eye = sp.eye(S.shape[0], format="csr")
     swift_stieber._galerkin(basis, S, eye)
-    assert swift_stieber._GALERKIN[basis][3] == 1 and swift_stieber._GALERKIN[basis][4] is None
+    assert swift_stieber._GALERKIN[basis].states == 1 and swift_stieber._GALERKIN[basis].product is None
 
 
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
