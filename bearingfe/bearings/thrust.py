@@ -348,15 +348,12 @@ def _pocket_moments(basis) -> tuple[float, float, float]:
     """``int 1``, ``int x``, ``int y`` over the pockets (the mesh's holes, curved edges included), by the
     divergence theorem on their contours: with ``n`` the film's outward normal (into the pocket),
     ``int_P 1 = -oint x n_x``, ``int_P x = -oint x^2/2 n_x``, ``int_P y = -oint y^2/2 n_y``."""
-    from ..film.mesh_operators import facet_basis
+    from ..film.mesh_operators import facet_geometry
 
     facets = (basis.mesh.boundaries or {}).get("inlet")
     if facets is None or len(facets) == 0:
         return 0.0, 0.0, 0.0
-    fb = facet_basis(basis, facets, 8)
-    x = np.asarray(fb.global_coordinates())
-    n = np.asarray(fb.normals)
-    dx = np.asarray(fb.dx)
+    x, n, dx = facet_geometry(basis, np.asarray(facets), 8)  # the points, normals and weights only
     return (float(-np.sum(x[0] * n[0] * dx)), float(-np.sum(0.5 * x[0] ** 2 * n[0] * dx)),
             float(-np.sum(0.5 * x[1] ** 2 * n[1] * dx)))
 

@@ -18,8 +18,8 @@ that then no longer changes, which decides; a set far
 from the last factorization (a tenth of the dofs) or whose iteration would cost
 more than a factorization is factorized instead (``reuse=False``: a
 factorization per set, the plain method). Free sets of up to
-:data:`DIRECT_UP_TO` unknowns are always factorized, and up to
-:data:`BANDED_UP_TO` by banded Cholesky when their band is narrow; larger ones
+:data:`DIRECT_UP_TO` unknowns are always factorized. A factorized set is factored by banded
+Cholesky when its band pays (:func:`bearingfe.core.banded.band_pays` for a matrix factored once), else
 in the caller's fill-reducing ``order`` (the full film's) restricted to the set.
 Nothing here knows about films: :mod:`bearingfe.cavitation.swift_stieber` poses
 the problem.
@@ -33,10 +33,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.linalg as sla
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
+from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
@@ -183,7 +183,7 @@ class ObstacleProblem:
         size = int(np.count_nonzero(free))
         block = self._blocks.coo(free) if size and self.n <= BLOCKS_UP_TO else None
         solve = None
-        if default and 0 < size <= BANDED_UP_TO:
+        if default and band_worth_trying(size, "new_pattern"):
             # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
             # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
             # in the set's own
@@ -382,16 +382,6 @@ class ObstacleProblem:
 #: of 1,600-2,000, banded factorizations; CPU time, best of 30): P2 18.4 ms against 19.3 ms with 1,500 (a
 #: factorization and 38 CG steps), P1 16.4 against 18.8 ms.
 DIRECT_UP_TO = 3000
-#: Free sets up to this many unknowns are factored by banded Cholesky in the reverse Cuthill-McKee order when
-#: the half-bandwidth is at most :data:`BAND_MAX` and the band's work ``n kd^2`` at most :data:`BANDED_WORK`
-#: (measured: 0.21 ms against 0.68 ms for SuperLU at 509 unknowns, 0.66 against 2.1 ms at 1,572, ordering and
-#: extraction included; the solves cost the same).
-BANDED_UP_TO = 5000
-#: Widest half-bandwidth factored banded: P2 free sets of 500 unknowns have 42, of 1,600 have 68 (measured at
-#: 1e3 P2 unknowns, load 5: the Swift-Stieber solve 15.7 ms with 40, 10.5 ms with 80; SuperLU took the kd = 42 sets).
-BAND_MAX = 80
-#: Largest ``n kd^2`` factored banded (that of 5,000 unknowns with a half-bandwidth of 40).
-BANDED_WORK = 5000 * 40**2
 
 
 #: Matrices up to this many unknowns take their free blocks from :class:`_Blocks`; above, scipy's slicing (in C,
@@ -465,38 +455,21 @@ def _restricted(order: np.ndarray, free: np.ndarray) -> np.ndarray:
 
 
 def _factor_banded(M: sp.spmatrix | None, block: tuple | None = None, perm: np.ndarray | None = None):
-    """Banded Cholesky (LAPACK) of a symmetric positive definite ``M`` in the reverse Cuthill-McKee order,
-    or None if the half-bandwidth exceeds :data:`BAND_MAX` (or the band's work :data:`BANDED_WORK`) or ``M``
-    is not positive definite in floating point (the caller then uses SuperLU). ``block``: ``M``'s entries as
-    ``(rows, cols, values, m)`` (from :class:`_Blocks`), which spares converting ``M``; ``perm``: the order to
-    factor in instead of ``M``'s reverse Cuthill-McKee order (``M`` is then not read, ``block`` is needed)."""
+    """Banded Cholesky (:func:`~bearingfe.core.banded.band_cholesky`) of a symmetric positive definite ``M`` in
+    the reverse Cuthill-McKee order, or None if the band does not pay for a matrix factored once
+    (:func:`~bearingfe.core.banded.band_pays`, ``"new_pattern"``) or ``M`` is not positive definite in floating
+    point (the caller then uses SuperLU). ``block``: ``M``'s entries as ``(rows, cols, values, m)`` (from
+    :class:`_Blocks`), which spares converting ``M``; ``perm``: the order to factor in instead of ``M``'s
+    reverse Cuthill-McKee order (``M`` is then not read, ``block`` is needed)."""
     if perm is None:
         M = sp.csr_matrix(M)
-        perm = reverse_cuthill_mckee(M, symmetric_mode=True).astype(np.int64)
+        perm = reverse_cuthill_mckee(M, symmetric_mode=True)
     if block is None:
         C = M.tocoo()
         block = (C.row, C.col, C.data, M.shape[0])
     rows, cols, values, m = block
-    perm = np.asarray(perm, np.int64)
-    inverse = np.empty_like(perm)
-    inverse[perm] = np.arange(perm.size)
-    prow, pcol = inverse[rows], inverse[cols]
-    offset = prow - pcol
-    kd = int(np.abs(offset).max(initial=0))
-    if kd > BAND_MAX or m * kd**2 > BANDED_WORK:
-        return None
-    lower = offset >= 0
-    band = np.zeros((kd + 1, m))
-    band[offset[lower], pcol[lower]] = values[lower]
-    try:
-        factor = sla.cholesky_banded(band, lower=True, check_finite=False)
-    except np.linalg.LinAlgError:
-        return None
-
-    def solve(b: np.ndarray) -> np.ndarray:
-        return sla.cho_solve_banded((factor, True), np.asarray(b, dtype=float)[perm], check_finite=False)[inverse]
-
-    return solve
+    plan = band_plan_in_order(rows, cols, m, perm, kind="new_pattern")
+    return None if plan is None else band_cholesky(plan, values)
 
 
 def _factor_in_order(A: sp.csr_matrix, free: np.ndarray, order: np.ndarray, block: tuple | None = None):

@@ -10,6 +10,7 @@ module            what it does
 ``machine``       The drive and the materials every machine shares (SI, frozen, validated).
 ``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
+``banded``        Banded Cholesky of sparse symmetric positive definite matrices, and the rule for when a band pays.
 ``ordering``      Fill-reducing orderings found from the sparsity pattern alone (nested dissection).
 ``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
 ``parallel``      Independent jobs of one run shared with forked processes when more than one core is free.

@@ -47,11 +47,10 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from scipy.linalg.lapack import dpbtrf, dpbtrs
-from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .flows import named_flows, outflow, ruptured_elements
 from .forms import FilmAt, along, couette_source, film_at, film_flux, shear, unknown_scale
+from ..core.banded import band_cholesky, band_plan
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
 from ..core.ordering import NESTED_DISSECTION_FROM, nested_dissection
 from ..geometry.runner import is_along_phi, velocity_at
@@ -67,24 +66,6 @@ __all__ = ["CompiledOperator", "compile_operator", "FilmFlows", "Scatter", "inte
 #: (not measured there). The factors are the same up to round-off.
 _SMALL_PANELS = {"panel_size": 1, "relax": 1}
 _SMALL_PANELS_UP_TO = 20000
-
-#: Largest half-bandwidth (in the reverse Cuthill-McKee order) factored by banded Cholesky
-#: (LAPACK ``dpbtrf``, lower storage) instead of SuperLU. Up to 31 LAPACK runs its unblocked
-#: column algorithm (rank-one updates of unit-stride vectors, no threads); from 32 it goes blocked
-#: with 32-wide blocks, whose BLAS-3 kernels are then too small to be threaded. Measured on the
-#: pump's P2 shoe mesh of 0.2 R0 (214 unknowns, half-bandwidth 31): factorization and four solves 2x
-#: faster than SuperLU's, one pump revolution 20-25 % faster; the main scene's pocket mesh has 34
-#: (SuperLU 98 us a factorization, banded 30 us). ``dpbtrf`` at 300 unknowns on a loaded machine
-#: (load 4, 2,000 factorizations each): half-bandwidth 34 68 us median, 36 71 us, 40 82-84 us, with
-#: occasional scheduler stalls of 2-4 ms at every width. Up to 64 the banded factorization and a
-#: four-column solve cost no more than SuperLU's numeric factorization in the kept order and its solve
-#: (CPU, best of 100, P1 and P2 gmsh meshes of 288-3,570 unknowns; e.g. P2, 456 unknowns, half-bandwidth
-#: 47: 0.11 + 0.08 against 0.19 + 0.04 ms; P2, 779, 65: 0.43 + 0.11 against 0.48 + 0.08 ms; P1, 3,570, 62:
-#: 1.3 + 0.7 against 4.0 + 0.4 ms), and a fresh mesh's first film needs no factorization to find SuperLU's
-#: order (minimum degree, 1.5-2x the numeric one). From about 66 SuperLU is as fast or faster on repeated
-#: films (P2, 592 unknowns, 66: 0.32 + 0.09 against 0.27 + 0.05 ms) and keeps them. The solutions agree to
-#: round-off (tests/film/test_compiled.py).
-_BAND_MAX = 64
 
 
 def _interpolation(basis, n_dofs: int) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -487,58 +468,6 @@ def _affine_scatter(maps: _AffineMaps, rows: np.ndarray, n_upper: int, kind: str
                           constant=bool(np.all(tables == tables[:, :, :1])))
 
 
-@dataclass(frozen=True, eq=False)
-class _BandPlan:
-    """Where the values of ``A[I, I]`` go in LAPACK's lower band storage (reverse Cuthill-McKee order)."""
-
-    perm: np.ndarray     # band position -> interior index
-    inverse: np.ndarray  # interior index -> band position
-    kd: int              # half-bandwidth
-    flat: np.ndarray     # column-major positions in the (kd + 1, n) band array
-    take: np.ndarray     # the pattern values that fill them
-    n: int
-
-
-def band_plan(sel: np.ndarray, idx: np.ndarray, ptr: np.ndarray, n: int,
-              kd_max: int | None = None) -> _BandPlan | None:
-    """Banded storage, in the reverse Cuthill-McKee order, of a symmetric ``n x n`` matrix given by its CSR
-    pattern ``(idx, ptr)`` whose ``k``-th stored entry is ``data[sel[k]]`` of the values later passed to
-    :func:`band_cholesky`; None if the half-bandwidth exceeds ``kd_max`` (default :data:`_BAND_MAX`, read at
-    the call) or ``n`` is 0."""
-    if n == 0:
-        return None
-    kd_max = _BAND_MAX if kd_max is None else kd_max
-    pattern = sp.csr_matrix((np.ones(sel.size), idx, ptr), shape=(n, n))
-    perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
-    inverse = np.argsort(perm)
-    rows = np.repeat(np.arange(n), np.diff(ptr))
-    i, j = inverse[rows], inverse[idx]          # positions in the band order
-    kd = int(np.max(np.abs(i - j)))
-    if kd > kd_max:
-        return None
-    lower = i >= j
-    # LAPACK lower band storage, column-major: AB[i - j, j] = A[i, j]
-    flat = (i - j)[lower] + j[lower] * (kd + 1)
-    return _BandPlan(perm=perm, inverse=inverse, kd=kd, flat=flat, take=sel[lower], n=n)
-
-
-def band_cholesky(plan: _BandPlan, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray] | None:
-    """Banded Cholesky of ``A[I, I]`` from its pattern values; None if it is not positive definite."""
-    ab = np.zeros((plan.kd + 1, plan.n), order="F")
-    ab.ravel(order="F")[plan.flat] = data[plan.take]
-    factor, info = dpbtrf(ab, lower=1, overwrite_ab=1)
-    if info != 0:
-        return None
-    perm, inverse, n = plan.perm, plan.inverse, plan.n
-
-    def solve(b: np.ndarray) -> np.ndarray:
-        b = np.asarray(b, dtype=float)
-        x, _ = dpbtrs(factor, b[perm].reshape(n, -1), lower=1)
-        return x[inverse].reshape(b.shape)
-
-    return solve
-
-
 @dataclass(frozen=True)
 class FilmFlows:
     """Flows, mass balance and friction of one or many film states (arrays over the samples)."""
@@ -785,7 +714,8 @@ class CompiledOperator:
 
     def factorize_condensed(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
         """Numeric factorization of ``A[I, I]``: banded Cholesky where the pattern's half-bandwidth
-        in the reverse Cuthill-McKee order is at most :data:`_BAND_MAX` (small meshes), else SuperLU
+        in the reverse Cuthill-McKee order pays (:func:`~bearingfe.core.banded.band_pays`, a pattern factored
+        again and again: ``"kept_pattern"``; small meshes), else SuperLU
         (symmetric mode) in a fill-reducing order found once for the pattern (:meth:`_order`). A
         matrix that is not positive definite in floating point goes to SuperLU.
 
@@ -852,11 +782,11 @@ class CompiledOperator:
         return self._band_plan() is not None
 
     def _band_plan(self):
-        """Banded storage of ``A[I, I]`` in the reverse Cuthill-McKee order, or None if its
-        half-bandwidth exceeds :data:`_BAND_MAX` (built once per pattern)."""
+        """Banded storage of ``A[I, I]`` in the reverse Cuthill-McKee order, or None if its band does not pay
+        (:func:`~bearingfe.core.banded.band_plan`, ``"kept_pattern"``; built once per pattern)."""
         def build():
             (sel, idx, ptr), _ = self._blocks()
-            return band_plan(sel, idx, ptr, self.interior.size)
+            return band_plan(sel, idx, ptr, self.interior.size, kind="kept_pattern")
         return self._get("band", build)
 
     # -- pressure, loads, flows and friction -----------------------------------------------

@@ -16,6 +16,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from bearingfe import CosineFilm, Surface, mesh_surface, superpose
 from bearingfe.cavitation import ObstacleProblem, solve_cavitating
 from bearingfe.cavitation import obstacle, swift_stieber
+from bearingfe.core import banded as band_rule
 from bearingfe.cavitation.coarse import NESTED_MIN, grid_interpolation
 from bearingfe.cavitation.obstacle import CavitationError
 from benchmarks.cavitation_cost import plain_solve
@@ -126,7 +127,7 @@ def _laplacian(m):
 
 def test_free_set_factorizations_solve_the_free_block():
     # the banded Cholesky and the SuperLU in a given order both solve A[free][:, free]: against spsolve
-    # (round-off, 1e-10 relative); a band wider than BAND_MAX or an indefinite block is refused (None)
+    # (round-off, 1e-10 relative); a band wider than the limit or an indefinite block is refused (None)
     rng = np.random.default_rng(1)
     A = _laplacian(24)
     free = rng.random(A.shape[0]) < 0.7
@@ -138,7 +139,8 @@ def test_free_set_factorizations_solve_the_free_block():
     np.testing.assert_allclose(banded(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
     ordered = obstacle._factor_in_order(A, free, rng.permutation(A.shape[0]))
     np.testing.assert_allclose(ordered(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
-    assert obstacle._factor_banded(_laplacian(2 * obstacle.BAND_MAX)) is None  # RCM band ~ 2 BAND_MAX
+    widest = band_rule.band_limits("new_pattern").kd_max
+    assert obstacle._factor_banded(_laplacian(2 * widest)) is None  # RCM band ~ twice the widest
     assert obstacle._factor_banded(-A) is None  # not positive definite
     with pytest.raises(ValueError, match="order must be a permutation"):
         ObstacleProblem(A, obstacle.factorize_splu_sym, order=np.zeros(A.shape[0], int))
@@ -183,7 +185,7 @@ def test_factorization_paths_give_the_same_answer(journal_mesh, monkeypatch):
     weights = np.array([1.0, 0.0, 0.0, 0.0])
     fp, ref = _plain(sup, weights)
     b, start = fp.right_side(weights), (sup.fields @ weights)[fp.interior] < 0
-    monkeypatch.setattr(obstacle, "BANDED_UP_TO", 0)
+    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=0, size_max=0))
     order = reverse_cuthill_mckee(fp.problem.A, symmetric_mode=True)
     for kwargs in ({"order": order}, {}):
         sol = ObstacleProblem(fp.problem.A, obstacle.factorize_splu_sym, **kwargs).solve(b, start)

@@ -16,6 +16,7 @@ import pytest
 import scipy.sparse.linalg as spla
 
 import bearingfe as bf
+from bearingfe.core import banded
 from bearingfe.film import compiled
 
 RTOL = 1e-12
@@ -30,7 +31,7 @@ def _mesh():
 
 def _solve(monkeypatch, crossover: int, films=(FILM,)):
     monkeypatch.setattr(compiled, "NESTED_DISSECTION_FROM", crossover)
-    monkeypatch.setattr(compiled, "_BAND_MAX", 0)  # SuperLU, whatever the band
+    monkeypatch.setitem(banded.BAND_LIMITS, "kept_pattern", banded.BandLimits(kd_max=0))  # SuperLU, whatever the band
     calls = []
 
     def counting(A, *args, **kwargs):
