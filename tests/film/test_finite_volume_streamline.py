@@ -127,6 +127,30 @@ def test_streamline_matrices_summed_per_triangle_equal_the_segment_sums():
     assert st.scale is not None and upwinded.sum() > 50
 
 
+def test_median_dual_equals_the_segment_by_segment_construction():
+    # the three edge pairs of every triangle computed at once; reference: the construction pair by pair
+    # (centroid g, edge midpoint m, normal (g - m) turned by 90 degrees towards the edge's second node,
+    # segment midpoint (m + g) / 2), the same operations in the same order: equal bit for bit
+    from bearingfe.film import finite_volume as fv
+
+    m = mesh_surface(dimple().surface, 0.05).mesh
+    p, t = m.p, m.t[:3]
+    g = p[:, t].mean(axis=1)
+    i, j, normal, mid = [], [], [], []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        edge = 0.5 * (p[:, t[a]] + p[:, t[b]])
+        s = g - edge
+        n = np.array([s[1], -s[0]])
+        flip = np.sum(n * (p[:, t[b]] - p[:, t[a]]), axis=0) < 0
+        n[:, flip] *= -1
+        i.append(t[a]), j.append(t[b]), normal.append(n), mid.append(0.5 * (edge + g))
+    d = fv.median_dual(m)
+    assert np.array_equal(d.i, np.concatenate(i)) and np.array_equal(d.j, np.concatenate(j))
+    assert np.array_equal(d.normal, np.hstack(normal)) and np.array_equal(d.midpoint, np.hstack(mid))
+    # each segment's normal points from its first node to its second (positive along the edge)
+    assert np.all(np.sum(d.normal * (p[:, d.j] - p[:, d.i]), axis=0) > 0)
+
+
 def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
