@@ -334,11 +334,12 @@ def _limited_flux(rec: _Reconstruction, alpha: np.ndarray) -> sp.csr_matrix:
 
 # -- streamline upwind values of theta on the median dual ---------------------------------------------
 
-def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndarray, np.ndarray]:
+def _streamline_weights(mesh: SupportMesh, d: _Dual, direction, grad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Nodes ``(3, n_segments)`` and weights of theta at the foot of each median-dual segment's streamline.
 
     ``direction``: the sliding's sign along ``e_phi`` (a float), or the Couette velocity at each segment's
-    midpoint (two arrays: a runner other than the original, :mod:`bearingfe.geometry.runner`).
+    midpoint (two arrays: a runner other than the original, :mod:`bearingfe.geometry.runner`); ``grad``: the
+    gradients of the triangles' barycentric functions ``(2, 3, n_triangles)`` (:attr:`_Cells.grad`).
     From the segment midpoint the line along ``-direction`` (upstream of the sliding) is followed to
     the edge of the segment's triangle; theta there is the P1 interpolation of the triangle's nodes (two
     non-zero weights, both >= 0). A fill fraction that varies across the sliding direction only is thus
@@ -348,37 +349,36 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction) -> tuple[np.ndar
     m = mesh.mesh
     p, t = m.p, m.t[:3]
     nt = t.shape[1]
-    x, y = p[0][t], p[1][t]
-    det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
     # segments are ordered edge-pair major (median_dual): segment e * nt + k lies in triangle k, so the
     # per-triangle arrays broadcast over the pairs as (3 nodes, 1, n_triangles) against (3 pairs, n_triangles)
-    gx = (np.array([y[1] - y[2], y[2] - y[0], y[0] - y[1]]) / det)[:, None, :]     # d lambda_k / d phi
-    gy = (np.array([x[2] - x[1], x[0] - x[2], x[1] - x[0]]) / det)[:, None, :]
+    gx, gy = grad[0][:, None, :], grad[1][:, None, :]     # d lambda_k / d phi, d lambda_k / d z
     xs, ys = d.midpoint.reshape(2, 3, nt)
-    nxt = [1, 2, 0]                                    # lambda_k vanishes at node k + 1 (and k + 2)
-    lam = gx * (xs - x[nxt][:, None, :]) + gy * (ys - y[nxt][:, None, :])
+    nxt = t[[1, 2, 0]]                                    # lambda_k vanishes at node k + 1 (and k + 2)
+    lam = gx * (xs - p[0][nxt][:, None, :]) + gy * (ys - p[1][nxt][:, None, :])
     if np.ndim(direction) == 0:
         rate = np.broadcast_to(-direction * gx, lam.shape)   # d lambda / d tau along the upstream ray
     else:
         rate = -(direction[0].reshape(3, nt) * gx + direction[1].reshape(3, nt) * gy)
     with np.errstate(divide="ignore", invalid="ignore"):
-        tau = np.where(rate < 0, -lam / rate, np.inf)
-    step = np.min(tau, axis=0)
-    step = np.where(np.isfinite(step), step, 0.0)
-    w = np.clip(lam + rate * step, 0.0, None)
-    w /= w.sum(axis=0)
+        tau = -lam / rate
+    tau[~(rate < 0)] = np.inf                             # the ray leaves the triangle where lambda_k hits 0
+    step = np.minimum(np.minimum(tau[0], tau[1]), tau[2])
+    step[~np.isfinite(step)] = 0.0
+    w = lam + rate * step
+    np.maximum(w, 0.0, out=w)
+    w /= w[0] + w[1] + w[2]
     return np.tile(t, (1, 3)), w.reshape(3, 3 * nt)
 
 
 _WEIGHTS: "weakref.WeakKeyDictionary[SupportMesh, dict]" = weakref.WeakKeyDictionary()
 
 
-def _aligned_weights(mesh: SupportMesh, d: _Dual, sign: float) -> tuple[np.ndarray, np.ndarray]:
+def _aligned_weights(mesh: SupportMesh, d: _Dual, sign: float, grad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_streamline_weights` for sliding along ``sign * e_phi``, found once per mesh and sign (read-only
     arrays: the flux's callers copy before they change them)."""
     per_mesh = _WEIGHTS.setdefault(mesh, {})
     if sign not in per_mesh:
-        nodes, w = _streamline_weights(mesh, d, sign)
+        nodes, w = _streamline_weights(mesh, d, sign, grad)
         nodes.flags.writeable = w.flags.writeable = False
         per_mesh[sign] = (nodes, w)
     return per_mesh[sign]
@@ -1082,8 +1082,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     C_cavity = None
     if couette == "streamline":
         sign = math.copysign(1.0, wedge)
-        nodes, w = (_aligned_weights(mesh, d, sign) if u is None
-                    else _streamline_weights(mesh, d, (sign * u[0], sign * u[1])))
+        nodes, w = (_aligned_weights(mesh, d, sign, cells.grad) if u is None
+                    else _streamline_weights(mesh, d, (sign * u[0], sign * u[1]), cells.grad))
         scale, up_scale = _contour_scales(mesh, film, d, f)
         rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale)
         C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))

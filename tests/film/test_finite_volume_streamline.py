@@ -151,6 +151,35 @@ def test_median_dual_equals_the_segment_by_segment_construction():
     assert np.all(np.sum(d.normal * (p[:, d.j] - p[:, d.i]), axis=0) > 0)
 
 
+@pytest.mark.parametrize("rotating", [False, True])
+def test_streamline_feet_lie_upstream_on_their_triangles_edges(rotating):
+    # the foot of each segment's streamline, sum_b w_b x(node b): on the line from the segment midpoint
+    # against the sliding direction (cross product 0, dot product <= 0), on an edge of the segment's own
+    # triangle (a barycentric weight 0, all >= 0, summing to 1): geometry, to round-off
+    import bearingfe as bf
+    from bearingfe.film import finite_volume as fv
+    from bearingfe.geometry.runner import Rotating, velocity_at
+    from tests.film.test_runner import SECTOR
+
+    surface = bf.Surface(outer=SECTOR, runner=Rotating()) if rotating else dimple().surface
+    mesh = mesh_surface(surface, 0.05)
+    ops = fv.operators(mesh)
+    d = fv.median_dual(mesh.mesh)
+    u = velocity_at(mesh.runner, d.midpoint)
+    direction = 1.0 if u is None else (u[0], u[1])
+    nodes, w = fv._streamline_weights(mesh, d, direction, fv._cells(mesh, ops).grad)
+    p = mesh.mesh.p
+    foot = np.einsum("bs,dbs->ds", w, p[:, nodes])
+    step = foot - d.midpoint
+    ux, uy = (np.ones(d.i.size), np.zeros(d.i.size)) if u is None else u
+    scale = np.hypot(*step) + 1e-300
+    assert np.abs(step[0] * uy - step[1] * ux).max() <= 1e-12 * np.abs(p).max()
+    assert np.all(step[0] * ux + step[1] * uy <= 1e-12 * np.abs(p).max() * scale)
+    assert w.min() >= 0.0 and np.abs(w.sum(axis=0) - 1.0).max() <= 1e-14 and w.min(axis=0).max() <= 1e-14
+    tri = np.arange(d.i.size) % mesh.mesh.t.shape[1]
+    assert np.array_equal(nodes, mesh.mesh.t[:3][:, tri])
+
+
 def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
