@@ -430,18 +430,18 @@ def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
     m = mesh.mesh
     p, t = m.p, m.t[:3]
     nt = t.shape[1]
-    g = p[:, t].mean(axis=1)
-    q = p[:, t] + 1e-6 * (g[:, None, :] - p[:, t])   # (2, 3, nt) just inside the triangle: its side of a step
-    depth = _rows_depth(surface, q[0].T, q[1].T).T
+    x, y = p[0][t], p[1][t]                                  # (3, n_triangles)
+    gx, gy = x.mean(axis=0), y.mean(axis=0)
+    # just inside the triangle (its side of a step), the nodes' points as rows of 3 per triangle
+    depth = _rows_depth(surface, (x + 1e-6 * (gx - x)).T, (y + 1e-6 * (gy - y)).T).T
     deepest = np.zeros(m.nvertices)
-    np.maximum.at(deepest, t.ravel(), depth.ravel())
-    h0 = _film_at(film, p[0], p[1])
-    scale = (h0[t] + deepest[t]) / (h0[t] + depth)          # (3, n_triangles)
-    tri = np.arange(d.i.size) % nt
-    pair = np.arange(d.i.size) // nt                         # 0: (0, 1), 1: (1, 2), 2: (2, 0)
-    first, second = pair, (pair + 1) % 3
-    local_up = np.where(f > 0, first, second)
-    return scale[:, tri], scale[local_up, tri]
+    deep = depth > 0                                         # the rest leaves deepest at 0: not scattered
+    np.maximum.at(deepest, t[deep], depth[deep])
+    ht = _film_at(film, p[0], p[1])[t]
+    scale = (ht + deepest[t]) / (ht + depth)                 # (3, n_triangles)
+    first = np.repeat(np.arange(3), nt)                      # segment e * nt + k joins nodes e, e + 1 of k
+    local_up = np.where(f > 0, first, (first + 1) % 3)
+    return np.tile(scale, (1, 3)), scale[local_up, np.tile(np.arange(nt), 3)]
 
 
 #: Passes of ``couette="streamline"`` at most that upwind the segments out of nodes with theta < 0 or

@@ -180,6 +180,38 @@ def test_streamline_feet_lie_upstream_on_their_triangles_edges(rotating):
     assert np.array_equal(nodes, mesh.mesh.t[:3][:, tri])
 
 
+def test_contour_scales_are_the_deepest_film_at_the_node_over_the_film_on_the_triangles_side():
+    # reference, node by node from the definition: the recess depth just inside each triangle at each of its
+    # nodes (surface.recess_depth), the deepest over the node's triangles, scale = (h + deepest) / (h + depth);
+    # per segment the scale of its triangle's nodes and of its upwind node; equal bit for bit
+    from bearingfe.film import finite_volume as fv
+
+    case = dimple()
+    mesh = mesh_surface(case.surface, 0.05)
+    d = fv.median_dual(mesh.mesh)
+    f = np.random.default_rng(5).standard_normal(d.i.size)
+    scale, up_scale = fv._contour_scales(mesh, case.film, d, f)
+    p, t = mesh.mesh.p, mesh.mesh.t[:3]
+    nt = t.shape[1]
+    depth = np.zeros((3, nt))
+    for k in range(nt):
+        g = p[:, t[:, k]].mean(axis=1)
+        for a in range(3):
+            q = p[:, t[a, k]] + 1e-6 * (g - p[:, t[a, k]])
+            depth[a, k] = case.surface.recess_depth(q[0], q[1])
+    deepest = np.zeros(mesh.n_nodes)
+    for a in range(3):
+        for k in range(nt):
+            deepest[t[a, k]] = max(deepest[t[a, k]], depth[a, k])
+    h = case.film.thickness(p[0], p[1])[t]
+    ref = (h + deepest[t]) / (h + depth)
+    assert np.count_nonzero(ref != 1.0) > 50   # contour nodes of the dimple
+    seg = np.arange(d.i.size)
+    tri, pair = seg % nt, seg // nt
+    up = np.where(f > 0, pair, (pair + 1) % 3)
+    assert np.array_equal(scale, ref[:, tri]) and np.array_equal(up_scale, ref[up, tri])
+
+
 def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
