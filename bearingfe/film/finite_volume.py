@@ -1221,7 +1221,14 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 
 
 #: Largest number of switched unknowns solved by a low-rank update of the last factorization
-#: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration.
+#: (Sherman-Morrison-Woodbury) instead of a new one, in the tail of the active-set iteration: counted among
+#: those whose column was not solved for yet on that factorization (each a new pair of triangular solves; the
+#: columns of its earlier steps are kept), at most twice as many in all. Counting every switched unknown instead
+#: refactorized when a step added a few to a Woodbury step's: the streamline pocket pad of docs/jfo_gmsh.md at
+#: 28,947 nodes went from 22 switched unknowns to 25 (3 of them new): 2 fine factorizations against 3, 437-462
+#: against 521-539 ms CPU of a cold solve (two interleaved pairs, load 2); the grid dimple at 40,401 nodes 1
+#: against 2 (0.40 against 0.51 s CPU, one cold solve each); the same sets, the answers equal to round-off (1e-13
+#: relative in theta).
 LOW_RANK_SWITCHES = 24
 #: Unknowns from which the active-set matrices are factored in a nested-dissection order of the unknowns'
 #: coordinates (:func:`bearingfe.core.ordering.nested_dissection`), found once per mesh, with diagonal
@@ -1395,10 +1402,11 @@ def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, n
 class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
-    A set that differs from the last factorized one in ``k <= LOW_RANK_SWITCHES`` columns is solved
-    by Sherman-Morrison-Woodbury on that factorization (``k`` extra triangular solves, cached per
-    column while the factorization lives), accepted with its residual at a fresh factorization's
-    accuracy; larger changes, or a residual that is not at round-off, refactorize.
+    A set that differs from the last factorized one in ``k`` columns, at most :data:`LOW_RANK_SWITCHES` of
+    them not solved for yet on that factorization and ``2 LOW_RANK_SWITCHES`` in all, is solved by
+    Sherman-Morrison-Woodbury on it (an extra triangular solve per new column, cached per column while the
+    factorization lives), accepted with its residual at a fresh factorization's accuracy; larger changes, or a
+    residual that is not at round-off, refactorize.
 
     Measured and left out (the dimpled slider of docs/jfo_dimples.md, 2e4 .. 1e5 unknowns): keeping the
     first factorization's COLAMD column ordering for the later sets (SuperLU with ``NATURAL`` on the
@@ -1457,7 +1465,8 @@ class _SetSolver:
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
             J = np.flatnonzero(cav != self.base)
-            if 0 < J.size <= LOW_RANK_SWITCHES:
+            limit = LOW_RANK_SWITCHES
+            if 0 < J.size <= 2 * limit and sum(1 for j in J if j not in self.z) <= limit:
                 y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
                 if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
                                             - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):

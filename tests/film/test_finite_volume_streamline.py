@@ -212,6 +212,43 @@ def test_contour_scales_are_the_deepest_film_at_the_node_over_the_film_on_the_tr
     assert np.array_equal(scale, ref[:, tri]) and np.array_equal(up_scale, ref[up, tri])
 
 
+def test_woodbury_steps_count_only_the_columns_not_solved_for_yet():
+    # a step that adds a few switched unknowns to an earlier Woodbury step's reuses the kept columns: 22
+    # switched (all new), then 25 (3 new) and 45 (20 new) stay on the first factorization; 60 in all (more
+    # than twice LOW_RANK_SWITCHES) refactorize, and so do 26 new ones on that factorization. Each answer is
+    # the set's system solved directly (spsolve of K diag(~cav) + G diag(cav)) to 1e-12 relative
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
+    from bearingfe.core.linalg import factorize_splu
+    from bearingfe.film import finite_volume as fv
+
+    rng = np.random.default_rng(7)
+    m = 400
+    K = (sp.random(m, m, density=0.01, random_state=1) + sp.eye(m) * 8.0).tocsr()
+    G = (sp.random(m, m, density=0.01, random_state=2) + sp.eye(m) * 5.0).tocsr()
+    solver = fv._SetSolver(K, G, factorize_splu)
+    base = rng.random(m) < 0.3
+    order = rng.permutation(m)
+
+    def step(cav):
+        rhs = rng.standard_normal(m)
+        y = solver(cav, rhs)
+        M = (K @ sp.diags((~cav).astype(float)) + G @ sp.diags(cav.astype(float))).tocsc()
+        ref = spla.spsolve(M, rhs)
+        assert np.abs(y - ref).max() <= 1e-12 * np.abs(ref).max()
+
+    def switched(k):
+        cav = base.copy()
+        cav[order[:k]] = ~cav[order[:k]]
+        return cav
+
+    step(base)
+    for k, factorizations in ((22, 1), (25, 1), (45, 1), (60, 2), (86, 3)):
+        step(switched(k))
+        assert solver.factorizations == factorizations, k
+
+
 def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
