@@ -127,6 +127,128 @@ def test_streamline_matrices_summed_per_triangle_equal_the_segment_sums():
     assert st.scale is not None and upwinded.sum() > 50
 
 
+def test_median_dual_equals_the_segment_by_segment_construction():
+    # the three edge pairs of every triangle computed at once; reference: the construction pair by pair
+    # (centroid g, edge midpoint m, normal (g - m) turned by 90 degrees towards the edge's second node,
+    # segment midpoint (m + g) / 2), the same operations in the same order: equal bit for bit
+    from bearingfe.film import finite_volume as fv
+
+    m = mesh_surface(dimple().surface, 0.05).mesh
+    p, t = m.p, m.t[:3]
+    g = p[:, t].mean(axis=1)
+    i, j, normal, mid = [], [], [], []
+    for a, b in ((0, 1), (1, 2), (2, 0)):
+        edge = 0.5 * (p[:, t[a]] + p[:, t[b]])
+        s = g - edge
+        n = np.array([s[1], -s[0]])
+        flip = np.sum(n * (p[:, t[b]] - p[:, t[a]]), axis=0) < 0
+        n[:, flip] *= -1
+        i.append(t[a]), j.append(t[b]), normal.append(n), mid.append(0.5 * (edge + g))
+    d = fv.median_dual(m)
+    assert np.array_equal(d.i, np.concatenate(i)) and np.array_equal(d.j, np.concatenate(j))
+    assert np.array_equal(d.normal, np.hstack(normal)) and np.array_equal(d.midpoint, np.hstack(mid))
+    # each segment's normal points from its first node to its second (positive along the edge)
+    assert np.all(np.sum(d.normal * (p[:, d.j] - p[:, d.i]), axis=0) > 0)
+
+
+@pytest.mark.parametrize("rotating", [False, True])
+def test_streamline_feet_lie_upstream_on_their_triangles_edges(rotating):
+    # the foot of each segment's streamline, sum_b w_b x(node b): on the line from the segment midpoint
+    # against the sliding direction (cross product 0, dot product <= 0), on an edge of the segment's own
+    # triangle (a barycentric weight 0, all >= 0, summing to 1): geometry, to round-off
+    import bearingfe as bf
+    from bearingfe.film import finite_volume as fv
+    from bearingfe.geometry.runner import Rotating, velocity_at
+    from tests.film.test_runner import SECTOR
+
+    surface = bf.Surface(outer=SECTOR, runner=Rotating()) if rotating else dimple().surface
+    mesh = mesh_surface(surface, 0.05)
+    ops = fv.operators(mesh)
+    d = fv.median_dual(mesh.mesh)
+    u = velocity_at(mesh.runner, d.midpoint)
+    direction = 1.0 if u is None else (u[0], u[1])
+    nodes, w = fv._streamline_weights(mesh, d, direction, fv._cells(mesh, ops).grad)
+    p = mesh.mesh.p
+    foot = np.einsum("bs,dbs->ds", w, p[:, nodes])
+    step = foot - d.midpoint
+    ux, uy = (np.ones(d.i.size), np.zeros(d.i.size)) if u is None else u
+    scale = np.hypot(*step) + 1e-300
+    assert np.abs(step[0] * uy - step[1] * ux).max() <= 1e-12 * np.abs(p).max()
+    assert np.all(step[0] * ux + step[1] * uy <= 1e-12 * np.abs(p).max() * scale)
+    assert w.min() >= 0.0 and np.abs(w.sum(axis=0) - 1.0).max() <= 1e-14 and w.min(axis=0).max() <= 1e-14
+    tri = np.arange(d.i.size) % mesh.mesh.t.shape[1]
+    assert np.array_equal(nodes, mesh.mesh.t[:3][:, tri])
+
+
+def test_contour_scales_are_the_deepest_film_at_the_node_over_the_film_on_the_triangles_side():
+    # reference, node by node from the definition: the recess depth just inside each triangle at each of its
+    # nodes (surface.recess_depth), the deepest over the node's triangles, scale = (h + deepest) / (h + depth);
+    # per segment the scale of its triangle's nodes and of its upwind node; equal bit for bit
+    from bearingfe.film import finite_volume as fv
+
+    case = dimple()
+    mesh = mesh_surface(case.surface, 0.05)
+    d = fv.median_dual(mesh.mesh)
+    f = np.random.default_rng(5).standard_normal(d.i.size)
+    scale, up_scale = fv._contour_scales(mesh, case.film, d, f)
+    p, t = mesh.mesh.p, mesh.mesh.t[:3]
+    nt = t.shape[1]
+    depth = np.zeros((3, nt))
+    for k in range(nt):
+        g = p[:, t[:, k]].mean(axis=1)
+        for a in range(3):
+            q = p[:, t[a, k]] + 1e-6 * (g - p[:, t[a, k]])
+            depth[a, k] = case.surface.recess_depth(q[0], q[1])
+    deepest = np.zeros(mesh.n_nodes)
+    for a in range(3):
+        for k in range(nt):
+            deepest[t[a, k]] = max(deepest[t[a, k]], depth[a, k])
+    h = case.film.thickness(p[0], p[1])[t]
+    ref = (h + deepest[t]) / (h + depth)
+    assert np.count_nonzero(ref != 1.0) > 50   # contour nodes of the dimple
+    seg = np.arange(d.i.size)
+    tri, pair = seg % nt, seg // nt
+    up = np.where(f > 0, pair, (pair + 1) % 3)
+    assert np.array_equal(scale, ref[:, tri]) and np.array_equal(up_scale, ref[up, tri])
+
+
+def test_woodbury_steps_count_only_the_columns_not_solved_for_yet():
+    # a step that adds a few switched unknowns to an earlier Woodbury step's reuses the kept columns: 22
+    # switched (all new), then 25 (3 new) and 45 (20 new) stay on the first factorization; 60 in all (more
+    # than twice LOW_RANK_SWITCHES) refactorize, and so do 26 new ones on that factorization. Each answer is
+    # the set's system solved directly (spsolve of K diag(~cav) + G diag(cav)) to 1e-12 relative
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
+    from bearingfe.core.linalg import factorize_splu
+    from bearingfe.film import finite_volume as fv
+
+    rng = np.random.default_rng(7)
+    m = 400
+    K = (sp.random(m, m, density=0.01, random_state=1) + sp.eye(m) * 8.0).tocsr()
+    G = (sp.random(m, m, density=0.01, random_state=2) + sp.eye(m) * 5.0).tocsr()
+    solver = fv._SetSolver(K, G, factorize_splu)
+    base = rng.random(m) < 0.3
+    order = rng.permutation(m)
+
+    def step(cav):
+        rhs = rng.standard_normal(m)
+        y = solver(cav, rhs)
+        M = (K @ sp.diags((~cav).astype(float)) + G @ sp.diags(cav.astype(float))).tocsc()
+        ref = spla.spsolve(M, rhs)
+        assert np.abs(y - ref).max() <= 1e-12 * np.abs(ref).max()
+
+    def switched(k):
+        cav = base.copy()
+        cav[order[:k]] = ~cav[order[:k]]
+        return cav
+
+    step(base)
+    for k, factorizations in ((22, 1), (25, 1), (45, 1), (60, 2), (86, 3)):
+        step(switched(k))
+        assert solver.factorizations == factorizations, k
+
+
 def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
