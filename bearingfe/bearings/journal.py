@@ -439,7 +439,8 @@ def structured_meshes(bearing: JournalBearing, size: float, *, min_size: float |
 def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float,
                      cells_checked: bool = False) -> SupportMesh:
     """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`;
-    ``cells_checked``: its triangles are valid by construction (see :func:`~bearingfe.geometry.meshing.name_surface_boundaries`)."""
+    ``cells_checked``: its triangles are valid by construction (see
+    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`)."""
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * (phis[1] - phis[0])
