@@ -71,8 +71,8 @@ from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
 from ..geometry.locate import cell_diameters
-from ..geometry.meshing import (SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_uniformly,
-                                with_named_boundaries)
+from ..geometry.meshing import (SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_marked,
+                                refine_uniformly, with_named_boundaries)
 from ..core.parameters import Discretization, takes
 from ..film import forms
 from ..core.parameters import ELEMENTS
@@ -436,8 +436,11 @@ def structured_meshes(bearing: JournalBearing, size: float, *, min_size: float |
     return tuple(grid_mesh(s, size, column_width=width) for s in bearing.surfaces())
 
 
-def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float) -> SupportMesh:
-    """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`."""
+def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float,
+                     cells_checked: bool = False) -> SupportMesh:
+    """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`;
+    ``cells_checked``: its triangles are valid by construction (see
+    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`)."""
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * (phis[1] - phis[0])
@@ -445,7 +448,7 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
            "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
     bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
     return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface, size=float(cell_diameters(m).max()),
-                       source="structured")
+                       source="structured", cells_checked=cells_checked)
 
 
 def _reformation_elements(res: ReynoldsResult, front: np.ndarray) -> np.ndarray:
@@ -1475,7 +1478,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
             marked = np.flatnonzero(marked)
             if not marked.size:
                 break
-            m = m.refined(marked)
+            m = refine_marked(m, marked)
             changed = True
     # the corners of the supply pockets (the pressure gradient is singular there): graded down to corner_size
     corners = np.array([(x, z) for g in mesh.surface.inlets for x, z in _corners(g)]) if corner_size else np.zeros((0, 2))
@@ -1485,14 +1488,15 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
         marked = np.flatnonzero((gap < CORNER_REACH * d) & (d > corner_size * (1 + 1e-9)))
         if not marked.size:
             break
-        m = m.refined(marked)
+        m = refine_marked(m, marked)
         changed = True
     if not changed:
         return None
     check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
+    # conforming splits of the checked mesh's triangles: valid by construction
     if bearing.raimondi_boyd:
-        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width)
-    return name_surface_boundaries(m, mesh.surface, source="structured")
+        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width, cells_checked=True)
+    return name_surface_boundaries(m, mesh.surface, source="structured", cells_checked=True)
 
 
 _DOF_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()

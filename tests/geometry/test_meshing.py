@@ -384,6 +384,33 @@ def test_grid_facets_are_the_ones_scikit_fem_builds():
     assert np.array_equal(grid.mesh.f2t, fresh.f2t)
 
 
+def test_refine_marked_is_scikit_fems_local_refinement():
+    """refine_marked (the rupture front's refinement levels) gives the mesh of scikit-fem's own
+    ``refined(marked)`` to the last index (nodes, triangles and their dtype), level after level, on a grid with a
+    pocket; bad input is refused naming the parameter."""
+    from bearingfe.geometry.meshing import name_surface_boundaries, refine_marked
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    ours = theirs = skfem.MeshTri1(bf.grid_mesh(surface, 0.1).mesh.p, bf.grid_mesh(surface, 0.1).mesh.t)
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        marked = np.sort(rng.choice(theirs.nelements, theirs.nelements // 5, replace=False))
+        ours, theirs = refine_marked(ours, marked), theirs.refined(marked)
+        assert np.array_equal(ours.p, theirs.p)
+        assert np.array_equal(ours.t, theirs.t) and ours.t.dtype == theirs.t.dtype
+    # valid by construction: naming it without the triangle check gives the checked mesh's boundaries
+    named = name_surface_boundaries(skfem.MeshTri1(ours.p, ours.t), surface, cells_checked=True)
+    checked = name_surface_boundaries(skfem.MeshTri1(ours.p, ours.t), surface)
+    assert named.boundaries.keys() == checked.boundaries.keys()
+    assert all(np.array_equal(named.boundaries[k], checked.boundaries[k]) for k in checked.boundaries)
+    with pytest.raises(ValueError, match="marked"):
+        refine_marked(ours, np.array([ours.nelements]))
+    with pytest.raises(ValueError, match="marked"):
+        refine_marked(ours, np.array([0.5]))
+    with pytest.raises(ValueError, match="MeshTri1"):
+        refine_marked(skfem.MeshQuad1(), np.array([0]))
+
+
 def test_named_locally_refined_meshes_have_scikit_fems_own_facets():
     """name_surface_boundaries (a grid refined locally by scikit-fem, e.g. at a journal's rupture front) builds
     the facets by the same counting sort as grid_mesh: scikit-fem's own arrays, and the same named boundaries as
