@@ -1294,23 +1294,46 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     return kept[2]
 
 
-def _factorize_banded(perm: np.ndarray, kd: int) -> Factorize:
+def _factorize_banded(perm: np.ndarray, kd: int) -> "_BandedLU":
     """Banded LU with partial pivoting (LAPACK ``dgbtrf``, lower and upper half-bandwidth ``kd``) of matrices
     whose pattern lies in that band of the order ``perm``; an exactly singular one falls back to COLAMD
     (:func:`~bearingfe.core.linalg.factorize_splu`)."""
-    from scipy.linalg.lapack import dgbtrf, dgbtrs
+    return _BandedLU(perm, kd)
 
-    inverse = np.argsort(perm)
 
-    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
+class _BandedLU:
+    """:func:`_factorize_banded`'s factorization: called with a sparse matrix, or (:meth:`from_band`) with the
+    values of a pattern whose places in LAPACK's band storage were found once (:meth:`places`), which skips the
+    sparse matrix of each set (its format checks, the COO conversion and the reordering of its indices)."""
+
+    def __init__(self, perm: np.ndarray, kd: int):
+        self.perm, self.kd = perm, kd
+        self.inverse = np.argsort(perm)
+
+    def places(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Flat (column-major) places in the band storage of the entries ``(rows, cols)`` (unknown numbers)."""
+        i, j = self.inverse[rows], self.inverse[cols]
+        return (2 * self.kd + i - j) + (3 * self.kd + 1) * j.astype(np.int64)
+
+    def __call__(self, M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         A = sp.coo_matrix(M)
-        i, j = inverse[A.row], inverse[A.col]
-        ab = np.zeros((3 * kd + 1, A.shape[0]), order="F")
-        ab[2 * kd + i - j, j] = A.data   # LAPACK band storage with kd extra rows for the pivoting's fill
+        return self.from_band(A.data, self.places(A.row, A.col), lambda: M)
+
+    def from_band(self, values: np.ndarray, places: np.ndarray,
+                  matrix: Callable[[], sp.spmatrix]) -> Callable[[np.ndarray], np.ndarray]:
+        """The factorization of the matrix with ``values`` at the band ``places`` (zeros elsewhere; explicit zeros
+        among them are no entries); ``matrix()`` builds it as a sparse matrix for the singular fallback."""
+        from scipy.linalg.lapack import dgbtrf, dgbtrs
+
+        kd, perm, inverse = self.kd, self.perm, self.inverse
+        n = perm.size
+        ab = np.zeros((3 * kd + 1) * n)
+        ab[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill
+        ab = ab.reshape((3 * kd + 1, n), order="F")
         with dense_threads(1):
             lu, piv, info = dgbtrf(ab, kd, kd, overwrite_ab=1)
         if info != 0:
-            return factorize_splu(M)
+            return factorize_splu(matrix())
 
         def solve(b: np.ndarray) -> np.ndarray:
             b = np.asarray(b, dtype=float)
@@ -1319,8 +1342,6 @@ def _factorize_banded(perm: np.ndarray, kd: int) -> Factorize:
             return x[inverse]
 
         return solve
-
-    return factorize
 
 
 def _factorize_in_order(order: np.ndarray) -> Factorize:
@@ -1431,6 +1452,7 @@ class _SetSolver:
         self.z: dict[int, np.ndarray] = {}
         self.factorizations = 0
         self._choice: tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._places: np.ndarray | None = None   # band storage places of the union pattern (_band_values)
 
     def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
         """``M(cav) = K diag(~cav) + G diag(cav)``: column ``j`` of ``G`` where ``cav[j]``, else of ``K``.
@@ -1448,9 +1470,28 @@ class _SetSolver:
         M.eliminate_zeros()   # in place: hence the copies of the kept pattern
         return M
 
-    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix) -> None:
-        self.solve, self.base, self.z = self.factorize(M), cav.copy(), {}
+    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix | None = None) -> None:
+        """Factorizes the set ``cav`` (its matrix ``M``, built here where not given): a banded factorization
+        (:class:`_BandedLU`) up to :data:`CHOICE_UP_TO` unknowns takes the picked values on the union pattern
+        straight into its band storage (:meth:`_band_values`), without a sparse matrix per set."""
+        if M is None and isinstance(self.factorize, _BandedLU) and self.K.shape[0] <= CHOICE_UP_TO:
+            values, places = self._band_values(cav)
+            solve = self.factorize.from_band(values, places, lambda: self.matrix(cav))
+        else:
+            solve = self.factorize(self.matrix(cav) if M is None else M)
+        self.solve, self.base, self.z = solve, cav.copy(), {}
         self.factorizations += 1
+
+    def _band_values(self, cav: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The entries of ``M(cav)`` on the union pattern (those :meth:`matrix` drops as explicit zeros are
+        zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
+        storage of :attr:`factorize` (found once per solver)."""
+        if self._choice is None:
+            self._choice = _column_choice(self.K, self.G)
+        pattern, k_data, g_data, column = self._choice
+        if self._places is None:
+            self._places = self.factorize.places(pattern.indices, column)
+        return np.where(cav[column], g_data, k_data) + 0.0, self._places
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
@@ -1462,7 +1503,7 @@ class _SetSolver:
                     return y
             elif J.size == 0:
                 return np.asarray(self.solve(rhs), float)
-        self._refactorize(cav, self.matrix(cav))
+        self._refactorize(cav)
         return np.asarray(self.solve(rhs), float)
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:

@@ -311,6 +311,14 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     pattern = (pattern + pattern.T).tocsr()
     assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
     assert 0 < kd <= fv.SET_BAND_MAX
+    # the set solver's own factorization takes the picked values straight into the band storage: the same
+    # band matrix as the sparse one, so the same factors and solution, bit for bit
+    solver._refactorize(cav)
+    assert isinstance(solver.factorize, fv._BandedLU) and solver.factorizations == 1
+    assert np.array_equal(solver.solve(rhs), got)
+    other = ~cav   # another set: the kept band places serve every set of the pattern
+    solver._refactorize(other)
+    assert np.array_equal(solver.solve(rhs), solver.factorize(solver.matrix(other))(rhs))
     singular = M.tolil()
     singular[:, 0] = 0.0
     with pytest.raises(RuntimeError, match="singular"):
