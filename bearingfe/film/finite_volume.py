@@ -1280,6 +1280,11 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     fresh larger mesh, only a strip much longer than wide would have fitted)."""
     if K.shape[0] > SET_BAND_MAX**2:
         return None
+    kept = unk._order.get("set_band")
+    given = ((K.format, K.indptr, K.indices, G.format, G.indptr, G.indices)
+             if K.format in ("csr", "csc") and G.format in ("csr", "csc") else None)
+    if kept is not None and given is not None and kept[3] is not None and _same_pattern(kept[3], given):
+        return kept[2]   # the same matrices' patterns as last time: the same union pattern
     pattern = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (pattern + pattern.T).tocsr()
     pattern.sort_indices()
@@ -1290,8 +1295,15 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
         rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
         kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
         kept = (pattern.indptr.copy(), pattern.indices.copy(), (perm, kd) if kd <= SET_BAND_MAX else None)
-        unk._order["set_band"] = kept
+    # with the given matrices' own patterns: the next call with the same ones skips the union pattern
+    unk._order["set_band"] = kept[:3] + (None if given is None else
+                                         tuple(a if isinstance(a, str) else a.copy() for a in given),)
     return kept[2]
+
+
+def _same_pattern(a: tuple, b: tuple) -> bool:
+    """Whether two tuples of formats and index arrays (:func:`_set_band`'s key) are equal."""
+    return all(x == y if isinstance(x, str) else np.array_equal(x, y) for x, y in zip(a, b))
 
 
 def _factorize_banded(perm: np.ndarray, kd: int) -> "_BandedLU":
@@ -1387,12 +1399,23 @@ def _factorize_in_order(order: np.ndarray) -> Factorize:
 CHOICE_UP_TO = 5000
 
 
-def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
+def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix,
+                   kept: dict | None = None) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
     """The union sparsity pattern of two square CSC matrices of one shape (sorted, canonical), the values of
     ``K`` and of ``G`` on it (0 where a matrix has no entry) and each stored entry's column index.
 
     Lets :meth:`_SetSolver.matrix` assemble ``K diag(~cav) + G diag(cav)`` for a new set by one selection
-    per entry."""
+    per entry. ``kept``: a dict (the unknowns' ``_order``) that keeps the pattern part (the union, the
+    columns, the places of ``K``'s and ``G``'s entries on it) for canonical ``K`` and ``G`` of the same
+    patterns: a repeated solve on the mesh then only places its values (the same values)."""
+    canonical = kept is not None and K.has_canonical_format and G.has_canonical_format
+    arrays = (K.indptr, K.indices, G.indptr, G.indices)
+    hit = kept.get("choice") if canonical else None
+    if hit is not None and all(np.array_equal(a, b) for a, b in zip(hit[0], arrays)):
+        pattern, column, at_k, at_g = hit[1]
+        k_data, g_data = np.zeros(pattern.nnz), np.zeros(pattern.nnz)
+        k_data[at_k], g_data[at_g] = K.data, G.data
+        return pattern, k_data, g_data, column
     ones_k = sp.csc_matrix((np.ones(K.nnz), K.indices, K.indptr), shape=K.shape)
     ones_g = sp.csc_matrix((np.ones(G.nnz), G.indices, G.indptr), shape=G.shape)
     pattern = (ones_k + ones_g).tocsc()
@@ -1400,15 +1423,19 @@ def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, n
     column = np.repeat(np.arange(pattern.shape[1]), np.diff(pattern.indptr))
     keys = column * np.int64(pattern.shape[0]) + pattern.indices   # ascending: sorted columns, sorted rows
 
-    def on_pattern(A: sp.csc_matrix) -> np.ndarray:
+    def on_pattern(A: sp.csc_matrix) -> tuple[np.ndarray, np.ndarray]:
         A = sp.csc_matrix(A, copy=True)
         A.sum_duplicates()   # canonical, as the products would sum them
         a_column = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+        at = np.searchsorted(keys, a_column * np.int64(A.shape[0]) + A.indices)
         out = np.zeros(pattern.nnz)
-        out[np.searchsorted(keys, a_column * np.int64(A.shape[0]) + A.indices)] = A.data
-        return out
+        out[at] = A.data
+        return out, at
 
-    return pattern, on_pattern(K), on_pattern(G), column
+    (k_data, at_k), (g_data, at_g) = on_pattern(K), on_pattern(G)
+    if canonical:
+        kept["choice"] = (tuple(a.copy() for a in arrays), (pattern, column, at_k, at_g))
+    return pattern, k_data, g_data, column
 
 
 class _SetSolver:
@@ -1445,6 +1472,7 @@ class _SetSolver:
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
         self.K, self.G = K.tocsc(), G.tocsc()
         self.factorize = factorize
+        self.unk = unk
         if factorize is factorize_splu and unk is not None:
             self.factorize = _ordered_splu(unk, self.K, self.G)
         self.solve = None
@@ -1463,7 +1491,7 @@ class _SetSolver:
         if self.K.shape[0] > CHOICE_UP_TO:
             return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
         if self._choice is None:
-            self._choice = _column_choice(self.K, self.G)
+            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
         pattern, k_data, g_data, column = self._choice
         M = sp.csc_matrix((np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy()),
                           shape=pattern.shape)
@@ -1487,7 +1515,7 @@ class _SetSolver:
         zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
         storage of :attr:`factorize` (found once per solver)."""
         if self._choice is None:
-            self._choice = _column_choice(self.K, self.G)
+            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
         pattern, k_data, g_data, column = self._choice
         if self._places is None:
             self._places = self.factorize.places(pattern.indices, column)
@@ -2165,9 +2193,25 @@ NESTED_CELL_MEANS = False
 NESTED_FIXED_SIGN = True
 
 
+_COARSER: "weakref.WeakKeyDictionary[SupportMesh, SupportMesh | None]" = weakref.WeakKeyDictionary()
+
+
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     """The grid mesh of ``mesh.surface`` on every other grid line of ``mesh`` (the outline's and the
-    pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen."""
+    pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen.
+
+    Kept per mesh (while ``mesh`` lives; the coarser levels together have about a third of its nodes): a
+    repeated cold solve on ``mesh`` reuses the coarse levels and what is cached on them (operators, faces,
+    recess integrals, orders) instead of meshing and setting them up again."""
+    if mesh in _COARSER:
+        return _COARSER[mesh]
+    coarse = _coarser_lines(mesh)
+    _COARSER[mesh] = coarse
+    return coarse
+
+
+def _coarser_lines(mesh: SupportMesh) -> SupportMesh | None:
+    """:func:`_coarser_grid` built afresh."""
     from ..geometry import meshing
 
     surface = mesh.surface
