@@ -927,6 +927,32 @@ def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
 _DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
 
 
+_VERTEX_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
+    """The recess depth at the mesh's vertices (:func:`_recess_depth`, found once per mesh; read-only); None
+    without recesses."""
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None
+    depth = _VERTEX_DEPTHS.get(mesh)
+    if depth is None:
+        p = mesh.mesh.p
+        depth = _VERTEX_DEPTHS[mesh] = _recess_depth(surface, p[0], p[1])
+        depth.flags.writeable = False
+    return depth
+
+
+def _dof_thickness(mesh: SupportMesh, film: Film, doflocs: np.ndarray) -> np.ndarray:
+    """:func:`_thickness` at the dofs ``doflocs``, the recess depth kept per mesh where they are its vertices
+    (P1 on a straight mesh): the same values."""
+    depth = _vertex_depth(mesh)
+    if depth is None or doflocs.shape != mesh.mesh.p.shape or not np.array_equal(doflocs, mesh.mesh.p):
+        return _thickness(mesh, film, *doflocs)
+    return _film_at(film, doflocs[0], doflocs[1]) + depth
+
+
 def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
     """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses."""
     surface = mesh.surface
@@ -1000,7 +1026,7 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
-    dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
+    dep_v = _vertex_depth(mesh)[t[:, near]]   # the depth is pointwise: as tested per triangle
     varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
     for k in range(1, dep_q.shape[1]):   # a depth that varies over the points (numpy's ptp along a short last
         varies |= dep_q[:, k] != dep_q[:, 0]   # axis is many times slower)
@@ -2543,7 +2569,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(_point_sum(lambda b: pq[b] * dx[b], buffer) + pm[0])
     if isinstance(inlet_pressure, tuple):
         inlet_pressure = max(inlet_pressure)
-    h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
+    h_min = float(min(system.h_q.min(), _dof_thickness(mesh, film, np.asarray(basis.doflocs)).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
     first_order_unstructured = system.couette == "median" and mesh.source not in ALIGNED_SOURCES
     if model == "jfo" and bool(np.any(emptied)):

@@ -326,3 +326,23 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     monkeypatch.setattr(fv, "SET_BAND_MAX", kd - 1)
     unk._order.pop("set_band")
     assert fv._set_band(unk, K, G) is None
+
+
+def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
+    """The recess depth at the vertices, found once per mesh, is what the per-triangle test of the vertices
+    (the cut cells' check) and the plain thickness at the dofs (the result's h_min) took: the same values,
+    bit for bit, with circles and a rectangle (a bisected contour shape) among the recesses."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[*_dimpled().recesses, Recess(Rectangle((0.5, 0.0), (0.2, 0.1)), 0.7)])
+    mesh = grid_mesh(surface, 1 / 23)
+    t = mesh.mesh.t[:3]
+    px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+    depth = fv._vertex_depth(mesh)
+    assert fv._vertex_depth(mesh) is depth and np.count_nonzero(depth) > 20
+    assert np.array_equal(depth[t], fv._rows_depth(surface, px.T, pz.T).T)
+    film = UniformFilm(1.0)
+    doflocs = np.asarray(fv.operators(mesh).basis.doflocs)
+    assert np.array_equal(fv._dof_thickness(mesh, film, doflocs), fv._thickness(mesh, film, *doflocs))
+    assert fv._vertex_depth(grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)) is None
