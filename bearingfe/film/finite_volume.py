@@ -1564,7 +1564,7 @@ class _SetSolver:
         new = [j for j in J if j not in self.z]
         if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
             sign = np.where(self.base[new], -1.0, 1.0)
-            U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
+            U = _column_change(self.K, self.G, np.asarray(new), sign)
             with dense_threads(1):   # SuperLU's block solve calls BLAS: threaded, it waits on a busy machine
                 Z = np.asarray(self.solve(U), float).reshape(U.shape)
             for k, j in enumerate(new):
@@ -1576,6 +1576,22 @@ class _SetSolver:
             return w - Z @ np.linalg.solve(C, w[J])
         except np.linalg.LinAlgError:
             return None
+
+
+def _column_change(K: sp.csc_matrix, G: sp.csc_matrix, columns: np.ndarray, sign: np.ndarray) -> np.ndarray:
+    """``((G - K)[:, columns] @ diag(sign)).toarray()``: the dense columns of the change of switching the unknowns
+    ``columns`` (``sign`` +-1 each), written from the CSC arrays of canonical ``K`` and ``G`` (no sparse matrices
+    in between; the same values, a zero as ``+0.0``), else by the sparse products."""
+    if not (K.format == G.format == "csc" and K.has_canonical_format and G.has_canonical_format):
+        return ((G[:, columns] - K[:, columns]) @ sp.diags(sign)).toarray()
+    U = np.zeros((K.shape[0], columns.size))
+    for k, j in enumerate(columns):
+        g, kk = slice(G.indptr[j], G.indptr[j + 1]), slice(K.indptr[j], K.indptr[j + 1])
+        U[G.indices[g], k] = G.data[g]
+        U[K.indices[kk], k] -= K.data[kk]
+    U *= sign
+    U += 0.0   # -0.0 (a zero times -1) as the +0.0 of an entry the sparse difference leaves out
+    return U
 
 
 #: Unknowns from which a set change too large for a low-rank update is first iterated on a band around the

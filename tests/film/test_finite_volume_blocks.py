@@ -162,3 +162,27 @@ def test_union_pattern_and_band_order_kept_per_pattern():
     want.sort_indices()
     assert np.array_equal(got.indices, want.indices) and np.array_equal(got.data, want.data)
     assert unk._order["choice"] is not kept
+
+
+def test_woodbury_columns_from_the_csc_arrays_are_the_sparse_difference():
+    """The dense columns of a set change for the low-rank update, written from the CSC arrays of K and G, are
+    the previous path's ``((G - K)[:, columns] @ diag(sign)).toarray()`` bit for bit (zeros as +0.0 too), with
+    an explicit zero stored in G; non-canonical matrices take the sparse path."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(0)
+    n = 400
+    K = (sp.random(n, n, density=0.02, random_state=rng, format="csc") + sp.eye(n)).tocsc()
+    G = (sp.random(n, n, density=0.01, random_state=rng, format="csc") - sp.eye(n)).tolil()
+    G[3, 5] = 0.0   # a stored zero
+    G = G.tocsc()
+    K.data[::7] *= -1.0
+    cols, sign = np.array([5, 17, 3, 0, 399]), np.array([1.0, -1.0, -1.0, 1.0, -1.0])
+    want = ((G[:, cols] - K[:, cols]) @ sp.diags(sign)).toarray()
+    got = fv._column_change(K, G, cols, sign)
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+    # a duplicate (0, 0) entry put first in column 0 (which holds the diagonal already)
+    doubled = sp.csc_matrix((np.r_[1.0, K.data], np.r_[0, K.indices], np.r_[0, K.indptr[1:] + 1]), shape=K.shape)
+    assert not doubled.has_canonical_format
+    assert np.array_equal(fv._column_change(doubled, G, cols, sign),
+                          ((G[:, cols] - doubled[:, cols]) @ sp.diags(sign)).toarray())
