@@ -1640,10 +1640,12 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     c = new[B].copy()
     y = y.copy()
     passes = passes if solve is not None else 1
-    order = np.asarray(reverse_cuthill_mckee((abs(KBB) + abs(GcBB)).tocsr(), symmetric_mode=True))
+    band_pattern = (abs(KBB) + abs(GcBB)).tocsr()
+    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
     # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
-    # the 600 x 600 dimples: thin, the per-column overhead dominates); Woodbury for a few switches, as globally
-    band_solver = _SetSolver(KBB, GcBB, _factorize_in_order(order))
+    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
+    # narrow (_band_factorize); Woodbury for a few switches, as globally
+    band_solver = _SetSolver(KBB, GcBB, _band_factorize(band_pattern, order))
     last = None
     for npass in range(passes):
         yo = y[out]
@@ -1707,6 +1709,18 @@ TWO_GRID_WIDE_FROM = 50_000
 TWO_GRID_NARROW_RINGS = 2
 #: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
 TWO_GRID_ITERATIONS = 20
+
+
+def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
+    """The factorization of :func:`_band_set`'s band matrices (of ``pattern``) in the fill-reducing ``order``:
+    banded LU (:func:`_factorize_banded`) where the half-bandwidth in that order is at most :data:`SET_BAND_MAX`
+    (the band around the fronts is thin: 17-31 on the 5 x 5 dimples at 100-200 cells per side), else SuperLU
+    in it (:func:`_factorize_in_order`)."""
+    order = np.asarray(order, np.int64)
+    inverse = np.argsort(order)
+    rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
+    kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
+    return _factorize_banded(order, kd) if kd <= SET_BAND_MAX else _factorize_in_order(order)
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,

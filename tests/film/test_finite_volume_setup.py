@@ -346,3 +346,32 @@ def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
     doflocs = np.asarray(fv.operators(mesh).basis.doflocs)
     assert np.array_equal(fv._dof_thickness(mesh, film, doflocs), fv._thickness(mesh, film, *doflocs))
     assert fv._vertex_depth(grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)) is None
+
+
+def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
+    """The band subproblem of a nested start (:func:`_band_set`) is factored by banded LU in its reverse
+    Cuthill-McKee order where that order's half-bandwidth is at most SET_BAND_MAX: its solution equals SuperLU's
+    in the same order to 1e-12 of the largest (both backward stable; a well-conditioned set matrix of the
+    14 x 14 dimple grid's unknowns, round-off); a wider band keeps SuperLU."""
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    pattern = (abs(K) + abs(G)).tocsr()
+    order = np.asarray(reverse_cuthill_mckee(pattern, symmetric_mode=True))
+    banded = fv._band_factorize(pattern, order)
+    assert isinstance(banded, fv._BandedLU) and np.array_equal(banded.perm, order)
+    cav = np.zeros(b.size, bool)
+    cav[1::3] = True
+    M = fv._SetSolver(K, G, banded).matrix(cav)
+    rhs = np.random.default_rng(2).standard_normal(b.size)
+    want = fv._factorize_in_order(order)(M)(rhs)
+    got = banded(M)(rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    monkeypatch.setattr(fv, "SET_BAND_MAX", banded.kd - 1)
+    wide = fv._band_factorize(pattern, order)
+    assert not isinstance(wide, fv._BandedLU)
+    assert np.abs(wide(M)(rhs) - want).max() == 0.0
