@@ -929,6 +929,32 @@ def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
 _DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
 
 
+_VERTEX_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
+
+
+def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
+    """The recess depth at the mesh's vertices (:func:`_recess_depth`, found once per mesh; read-only); None
+    without recesses."""
+    surface = mesh.surface
+    if surface is None or not getattr(surface, "recesses", ()):
+        return None
+    depth = _VERTEX_DEPTHS.get(mesh)
+    if depth is None:
+        p = mesh.mesh.p
+        depth = _VERTEX_DEPTHS[mesh] = _recess_depth(surface, p[0], p[1])
+        depth.flags.writeable = False
+    return depth
+
+
+def _dof_thickness(mesh: SupportMesh, film: Film, doflocs: np.ndarray) -> np.ndarray:
+    """:func:`_thickness` at the dofs ``doflocs``, the recess depth kept per mesh where they are its vertices
+    (P1 on a straight mesh): the same values."""
+    depth = _vertex_depth(mesh)
+    if depth is None or doflocs.shape != mesh.mesh.p.shape or not np.array_equal(doflocs, mesh.mesh.p):
+        return _thickness(mesh, film, *doflocs)
+    return _film_at(film, doflocs[0], doflocs[1]) + depth
+
+
 def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
     """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses."""
     surface = mesh.surface
@@ -1002,7 +1028,7 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     px, pz = m.p[0, t], m.p[1, t]
     near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
     dep_q = _quadrature_depth(mesh, x)[near]
-    dep_v = _rows_depth(surface, px[:, near].T, pz[:, near].T).T
+    dep_v = _vertex_depth(mesh)[t[:, near]]   # the depth is pointwise: as tested per triangle
     varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
     for k in range(1, dep_q.shape[1]):   # a depth that varies over the points (numpy's ptp along a short last
         varies |= dep_q[:, k] != dep_q[:, 0]   # axis is many times slower)
@@ -1289,6 +1315,11 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     fresh larger mesh, only a strip much longer than wide would have fitted)."""
     if K.shape[0] > SET_BAND_MAX**2:
         return None
+    kept = unk._order.get("set_band")
+    given = ((K.format, K.indptr, K.indices, G.format, G.indptr, G.indices)
+             if K.format in ("csr", "csc") and G.format in ("csr", "csc") else None)
+    if kept is not None and given is not None and kept[3] is not None and _same_pattern(kept[3], given):
+        return kept[2]   # the same matrices' patterns as last time: the same union pattern
     pattern = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (pattern + pattern.T).tocsr()
     pattern.sort_indices()
@@ -1299,27 +1330,57 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
         rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
         kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
         kept = (pattern.indptr.copy(), pattern.indices.copy(), (perm, kd) if kd <= SET_BAND_MAX else None)
-        unk._order["set_band"] = kept
+    # with the given matrices' own patterns: the next call with the same ones skips the union pattern
+    unk._order["set_band"] = kept[:3] + (None if given is None else
+                                         tuple(a if isinstance(a, str) else a.copy() for a in given),)
     return kept[2]
 
 
-def _factorize_banded(perm: np.ndarray, kd: int) -> Factorize:
+def _same_pattern(a: tuple, b: tuple) -> bool:
+    """Whether two tuples of formats and index arrays (:func:`_set_band`'s key) are equal."""
+    return all(x == y if isinstance(x, str) else np.array_equal(x, y) for x, y in zip(a, b))
+
+
+def _factorize_banded(perm: np.ndarray, kd: int) -> "_BandedLU":
     """Banded LU with partial pivoting (LAPACK ``dgbtrf``, lower and upper half-bandwidth ``kd``) of matrices
     whose pattern lies in that band of the order ``perm``; an exactly singular one falls back to COLAMD
     (:func:`~bearingfe.core.linalg.factorize_splu`)."""
-    from scipy.linalg.lapack import dgbtrf, dgbtrs
+    return _BandedLU(perm, kd)
 
-    inverse = np.argsort(perm)
 
-    def factorize(M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
+class _BandedLU:
+    """:func:`_factorize_banded`'s factorization: called with a sparse matrix, or (:meth:`from_band`) with the
+    values of a pattern whose places in LAPACK's band storage were found once (:meth:`places`), which skips the
+    sparse matrix of each set (its format checks, the COO conversion and the reordering of its indices)."""
+
+    def __init__(self, perm: np.ndarray, kd: int):
+        self.perm, self.kd = perm, kd
+        self.inverse = np.argsort(perm)
+
+    def places(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """Flat (column-major) places in the band storage of the entries ``(rows, cols)`` (unknown numbers)."""
+        i, j = self.inverse[rows], self.inverse[cols]
+        return (2 * self.kd + i - j) + (3 * self.kd + 1) * j.astype(np.int64)
+
+    def __call__(self, M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         A = sp.coo_matrix(M)
-        i, j = inverse[A.row], inverse[A.col]
-        ab = np.zeros((3 * kd + 1, A.shape[0]), order="F")
-        ab[2 * kd + i - j, j] = A.data   # LAPACK band storage with kd extra rows for the pivoting's fill
+        return self.from_band(A.data, self.places(A.row, A.col), lambda: M)
+
+    def from_band(self, values: np.ndarray, places: np.ndarray,
+                  matrix: Callable[[], sp.spmatrix]) -> Callable[[np.ndarray], np.ndarray]:
+        """The factorization of the matrix with ``values`` at the band ``places`` (zeros elsewhere; explicit zeros
+        among them are no entries); ``matrix()`` builds it as a sparse matrix for the singular fallback."""
+        from scipy.linalg.lapack import dgbtrf, dgbtrs
+
+        kd, perm, inverse = self.kd, self.perm, self.inverse
+        n = perm.size
+        ab = np.zeros((3 * kd + 1) * n)
+        ab[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill
+        ab = ab.reshape((3 * kd + 1, n), order="F")
         with dense_threads(1):
             lu, piv, info = dgbtrf(ab, kd, kd, overwrite_ab=1)
         if info != 0:
-            return factorize_splu(M)
+            return factorize_splu(matrix())
 
         def solve(b: np.ndarray) -> np.ndarray:
             b = np.asarray(b, dtype=float)
@@ -1328,8 +1389,6 @@ def _factorize_banded(perm: np.ndarray, kd: int) -> Factorize:
             return x[inverse]
 
         return solve
-
-    return factorize
 
 
 def _factorize_in_order(order: np.ndarray) -> Factorize:
@@ -1375,12 +1434,23 @@ def _factorize_in_order(order: np.ndarray) -> Factorize:
 CHOICE_UP_TO = 5000
 
 
-def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
+def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix,
+                   kept: dict | None = None) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
     """The union sparsity pattern of two square CSC matrices of one shape (sorted, canonical), the values of
     ``K`` and of ``G`` on it (0 where a matrix has no entry) and each stored entry's column index.
 
     Lets :meth:`_SetSolver.matrix` assemble ``K diag(~cav) + G diag(cav)`` for a new set by one selection
-    per entry."""
+    per entry. ``kept``: a dict (the unknowns' ``_order``) that keeps the pattern part (the union, the
+    columns, the places of ``K``'s and ``G``'s entries on it) for canonical ``K`` and ``G`` of the same
+    patterns: a repeated solve on the mesh then only places its values (the same values)."""
+    canonical = kept is not None and K.has_canonical_format and G.has_canonical_format
+    arrays = (K.indptr, K.indices, G.indptr, G.indices)
+    hit = kept.get("choice") if canonical else None
+    if hit is not None and all(np.array_equal(a, b) for a, b in zip(hit[0], arrays)):
+        pattern, column, at_k, at_g = hit[1]
+        k_data, g_data = np.zeros(pattern.nnz), np.zeros(pattern.nnz)
+        k_data[at_k], g_data[at_g] = K.data, G.data
+        return pattern, k_data, g_data, column
     ones_k = sp.csc_matrix((np.ones(K.nnz), K.indices, K.indptr), shape=K.shape)
     ones_g = sp.csc_matrix((np.ones(G.nnz), G.indices, G.indptr), shape=G.shape)
     pattern = (ones_k + ones_g).tocsc()
@@ -1388,15 +1458,19 @@ def _column_choice(K: sp.csc_matrix, G: sp.csc_matrix) -> tuple[sp.csc_matrix, n
     column = np.repeat(np.arange(pattern.shape[1]), np.diff(pattern.indptr))
     keys = column * np.int64(pattern.shape[0]) + pattern.indices   # ascending: sorted columns, sorted rows
 
-    def on_pattern(A: sp.csc_matrix) -> np.ndarray:
+    def on_pattern(A: sp.csc_matrix) -> tuple[np.ndarray, np.ndarray]:
         A = sp.csc_matrix(A, copy=True)
         A.sum_duplicates()   # canonical, as the products would sum them
         a_column = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+        at = np.searchsorted(keys, a_column * np.int64(A.shape[0]) + A.indices)
         out = np.zeros(pattern.nnz)
-        out[np.searchsorted(keys, a_column * np.int64(A.shape[0]) + A.indices)] = A.data
-        return out
+        out[at] = A.data
+        return out, at
 
-    return pattern, on_pattern(K), on_pattern(G), column
+    (k_data, at_k), (g_data, at_g) = on_pattern(K), on_pattern(G)
+    if canonical:
+        kept["choice"] = (tuple(a.copy() for a in arrays), (pattern, column, at_k, at_g))
+    return pattern, k_data, g_data, column
 
 
 class _SetSolver:
@@ -1434,6 +1508,7 @@ class _SetSolver:
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
         self.K, self.G = K.tocsc(), G.tocsc()
         self.factorize = factorize
+        self.unk = unk
         if factorize is factorize_splu and unk is not None:
             self.factorize = _ordered_splu(unk, self.K, self.G)
         self.solve = None
@@ -1441,6 +1516,7 @@ class _SetSolver:
         self.z: dict[int, np.ndarray] = {}
         self.factorizations = 0
         self._choice: tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray] | None = None
+        self._places: np.ndarray | None = None   # band storage places of the union pattern (_band_values)
 
     def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
         """``M(cav) = K diag(~cav) + G diag(cav)``: column ``j`` of ``G`` where ``cav[j]``, else of ``K``.
@@ -1451,16 +1527,35 @@ class _SetSolver:
         if self.K.shape[0] > CHOICE_UP_TO:
             return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
         if self._choice is None:
-            self._choice = _column_choice(self.K, self.G)
+            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
         pattern, k_data, g_data, column = self._choice
         M = sp.csc_matrix((np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy()),
                           shape=pattern.shape)
         M.eliminate_zeros()   # in place: hence the copies of the kept pattern
         return M
 
-    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix) -> None:
-        self.solve, self.base, self.z = self.factorize(M), cav.copy(), {}
+    def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix | None = None) -> None:
+        """Factorizes the set ``cav`` (its matrix ``M``, built here where not given): a banded factorization
+        (:class:`_BandedLU`) up to :data:`CHOICE_UP_TO` unknowns takes the picked values on the union pattern
+        straight into its band storage (:meth:`_band_values`), without a sparse matrix per set."""
+        if M is None and isinstance(self.factorize, _BandedLU) and self.K.shape[0] <= CHOICE_UP_TO:
+            values, places = self._band_values(cav)
+            solve = self.factorize.from_band(values, places, lambda: self.matrix(cav))
+        else:
+            solve = self.factorize(self.matrix(cav) if M is None else M)
+        self.solve, self.base, self.z = solve, cav.copy(), {}
         self.factorizations += 1
+
+    def _band_values(self, cav: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The entries of ``M(cav)`` on the union pattern (those :meth:`matrix` drops as explicit zeros are
+        zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
+        storage of :attr:`factorize` (found once per solver)."""
+        if self._choice is None:
+            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
+        pattern, k_data, g_data, column = self._choice
+        if self._places is None:
+            self._places = self.factorize.places(pattern.indices, column)
+        return np.where(cav[column], g_data, k_data) + 0.0, self._places
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
@@ -1473,14 +1568,14 @@ class _SetSolver:
                     return y
             elif J.size == 0:
                 return np.asarray(self.solve(rhs), float)
-        self._refactorize(cav, self.matrix(cav))
+        self._refactorize(cav)
         return np.asarray(self.solve(rhs), float)
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
         new = [j for j in J if j not in self.z]
         if new:   # column change of switching j away from the factorized set: G_j - K_j or K_j - G_j
             sign = np.where(self.base[new], -1.0, 1.0)
-            U = ((self.G[:, new] - self.K[:, new]) @ sp.diags(sign)).toarray()
+            U = _column_change(self.K, self.G, np.asarray(new), sign)
             with dense_threads(1):   # SuperLU's block solve calls BLAS: threaded, it waits on a busy machine
                 Z = np.asarray(self.solve(U), float).reshape(U.shape)
             for k, j in enumerate(new):
@@ -1492,6 +1587,22 @@ class _SetSolver:
             return w - Z @ np.linalg.solve(C, w[J])
         except np.linalg.LinAlgError:
             return None
+
+
+def _column_change(K: sp.csc_matrix, G: sp.csc_matrix, columns: np.ndarray, sign: np.ndarray) -> np.ndarray:
+    """``((G - K)[:, columns] @ diag(sign)).toarray()``: the dense columns of the change of switching the unknowns
+    ``columns`` (``sign`` +-1 each), written from the CSC arrays of canonical ``K`` and ``G`` (no sparse matrices
+    in between; the same values, a zero as ``+0.0``), else by the sparse products."""
+    if not (K.format == G.format == "csc" and K.has_canonical_format and G.has_canonical_format):
+        return ((G[:, columns] - K[:, columns]) @ sp.diags(sign)).toarray()
+    U = np.zeros((K.shape[0], columns.size))
+    for k, j in enumerate(columns):
+        g, kk = slice(G.indptr[j], G.indptr[j + 1]), slice(K.indptr[j], K.indptr[j + 1])
+        U[G.indices[g], k] = G.data[g]
+        U[K.indices[kk], k] -= K.data[kk]
+    U *= sign
+    U += 0.0   # -0.0 (a zero times -1) as the +0.0 of an entry the sparse difference leaves out
+    return U
 
 
 #: Unknowns from which a set change too large for a low-rank update is first iterated on a band around the
@@ -1540,10 +1651,12 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     c = new[B].copy()
     y = y.copy()
     passes = passes if solve is not None else 1
-    order = np.asarray(reverse_cuthill_mckee((abs(KBB) + abs(GcBB)).tocsr(), symmetric_mode=True))
+    band_pattern = (abs(KBB) + abs(GcBB)).tocsr()
+    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
     # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
-    # the 600 x 600 dimples: thin, the per-column overhead dominates); Woodbury for a few switches, as globally
-    band_solver = _SetSolver(KBB, GcBB, _factorize_in_order(order))
+    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
+    # narrow (_band_factorize); Woodbury for a few switches, as globally
+    band_solver = _SetSolver(KBB, GcBB, _band_factorize(band_pattern, order))
     last = None
     for npass in range(passes):
         yo = y[out]
@@ -1607,6 +1720,18 @@ TWO_GRID_WIDE_FROM = 50_000
 TWO_GRID_NARROW_RINGS = 2
 #: Active-set iterations of the band in each pass of :func:`_two_grid_set` at most.
 TWO_GRID_ITERATIONS = 20
+
+
+def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
+    """The factorization of :func:`_band_set`'s band matrices (of ``pattern``) in the fill-reducing ``order``:
+    banded LU (:func:`_factorize_banded`) where the half-bandwidth in that order is at most :data:`SET_BAND_MAX`
+    (the band around the fronts is thin: 17-31 on the 5 x 5 dimples at 100-200 cells per side), else SuperLU
+    in it (:func:`_factorize_in_order`)."""
+    order = np.asarray(order, np.int64)
+    inverse = np.argsort(order)
+    rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
+    kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
+    return _factorize_banded(order, kd) if kd <= SET_BAND_MAX else _factorize_in_order(order)
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
@@ -2135,9 +2260,25 @@ NESTED_CELL_MEANS = False
 NESTED_FIXED_SIGN = True
 
 
+_COARSER: "weakref.WeakKeyDictionary[SupportMesh, SupportMesh | None]" = weakref.WeakKeyDictionary()
+
+
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     """The grid mesh of ``mesh.surface`` on every other grid line of ``mesh`` (the outline's and the
-    pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen."""
+    pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen.
+
+    Kept per mesh (while ``mesh`` lives; the coarser levels together have about a third of its nodes): a
+    repeated cold solve on ``mesh`` reuses the coarse levels and what is cached on them (operators, faces,
+    recess integrals, orders) instead of meshing and setting them up again."""
+    if mesh in _COARSER:
+        return _COARSER[mesh]
+    coarse = _coarser_lines(mesh)
+    _COARSER[mesh] = coarse
+    return coarse
+
+
+def _coarser_lines(mesh: SupportMesh) -> SupportMesh | None:
+    """:func:`_coarser_grid` built afresh."""
     from ..geometry import meshing
 
     surface = mesh.surface
@@ -2469,7 +2610,7 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
     integral = float(_point_sum(lambda b: pq[b] * dx[b], buffer) + pm[0])
     if isinstance(inlet_pressure, tuple):
         inlet_pressure = max(inlet_pressure)
-    h_min = float(min(system.h_q.min(), _thickness(mesh, film, *basis.doflocs).min()))
+    h_min = float(min(system.h_q.min(), _dof_thickness(mesh, film, np.asarray(basis.doflocs)).min()))
     notes = (f"cavitation={model!r} solves the direct (conservative) form with finite-volume Couette fluxes",)
     first_order_unstructured = system.couette == "median" and mesh.source not in ALIGNED_SOURCES
     if model == "jfo" and bool(np.any(emptied)):

@@ -7,6 +7,7 @@ import pytest
 from bearingfe import Circle, CosineFilm, Recess, Surface, grid_mesh, mesh_surface
 from bearingfe.film import finite_volume as fv
 from bearingfe.film.mesh_operators import operators
+from bearingfe.film.thickness import UniformFilm
 
 
 def _dimpled(n_side=3, radius=0.1, depth=0.8):
@@ -127,3 +128,61 @@ def test_set_matrix_by_column_choice_is_the_product_formula(monkeypatch, choice_
             mine.sort_indices()
             assert np.array_equal(mine.indptr, plain.indptr) and np.array_equal(mine.indices, plain.indices)
             assert np.array_equal(mine.data, plain.data)
+
+
+def test_union_pattern_and_band_order_kept_per_pattern():
+    """A set solver with the unknowns keeps the union pattern's part of the column choice and the band order on
+    them, per pattern of K and G: a second solver of new values on the same patterns picks the same matrices as
+    one built afresh (bit for bit), and matrices of another pattern are not served the kept one."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 20)
+    ops = fv.operators(mesh)
+    unk = fv._unknowns(mesh, ops)
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    cav = np.zeros(b.size, bool)
+    cav[::4] = True
+    first = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    first.matrix(cav)
+    kept = unk._order["choice"]
+    band = unk._order["set_band"][2]
+    second = fv._SetSolver(1.5 * K, 2.0 * G, fv.factorize_splu, unk)   # new values, the same patterns
+    assert unk._order["choice"] is kept and unk._order["set_band"][2] is band
+    fresh = fv._SetSolver(1.5 * K, 2.0 * G, fv.factorize_splu)          # no unknowns: nothing kept
+    for c in (cav, ~cav):
+        got, want = second.matrix(c), fresh.matrix(c)
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    other = (K + sp.csr_matrix(([1e-3], ([0], [b.size - 1])), shape=K.shape)).tocsr()   # one entry more
+    third = fv._SetSolver(other, G, fv.factorize_splu, unk)
+    got = third.matrix(cav)
+    want = (third.K @ sp.diags((~cav).astype(float)) + third.G @ sp.diags(cav.astype(float))).tocsc()
+    want.eliminate_zeros()
+    want.sort_indices()
+    assert np.array_equal(got.indices, want.indices) and np.array_equal(got.data, want.data)
+    assert unk._order["choice"] is not kept
+
+
+def test_woodbury_columns_from_the_csc_arrays_are_the_sparse_difference():
+    """The dense columns of a set change for the low-rank update, written from the CSC arrays of K and G, are
+    the previous path's ``((G - K)[:, columns] @ diag(sign)).toarray()`` bit for bit (zeros as +0.0 too), with
+    an explicit zero stored in G; non-canonical matrices take the sparse path."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(0)
+    n = 400
+    K = (sp.random(n, n, density=0.02, random_state=rng, format="csc") + sp.eye(n)).tocsc()
+    G = (sp.random(n, n, density=0.01, random_state=rng, format="csc") - sp.eye(n)).tolil()
+    G[3, 5] = 0.0   # a stored zero
+    G = G.tocsc()
+    K.data[::7] *= -1.0
+    cols, sign = np.array([5, 17, 3, 0, 399]), np.array([1.0, -1.0, -1.0, 1.0, -1.0])
+    want = ((G[:, cols] - K[:, cols]) @ sp.diags(sign)).toarray()
+    got = fv._column_change(K, G, cols, sign)
+    assert np.array_equal(got, want) and np.array_equal(np.signbit(got), np.signbit(want))
+    # a duplicate (0, 0) entry put first in column 0 (which holds the diagonal already)
+    doubled = sp.csc_matrix((np.r_[1.0, K.data], np.r_[0, K.indices], np.r_[0, K.indptr[1:] + 1]), shape=K.shape)
+    assert not doubled.has_canonical_format
+    assert np.array_equal(fv._column_change(doubled, G, cols, sign),
+                          ((G[:, cols] - doubled[:, cols]) @ sp.diags(sign)).toarray())

@@ -338,6 +338,26 @@ def test_nested_start_from_coarser_grids_gives_the_cold_solution(monkeypatch, ca
 
 
 
+def test_coarse_levels_kept_per_mesh_give_the_same_repeated_solve():
+    # the coarser grids of a nested start are kept per mesh: a repeated cold solve on the mesh takes the same
+    # coarse meshes (and what is cached on them) and gives the first solve's answer bit for bit; the kept grid
+    # is the one built afresh (same nodes and triangles)
+    from bearingfe.film import finite_volume as fv
+
+    mesh = grid_mesh(_dimpled(), 1 / 70)
+    first = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    coarse = fv._coarser_grid(mesh)
+    assert first.cost["nested_levels"] >= 1 and first.cavitated.any()
+    assert fv._coarser_grid(mesh) is coarse
+    again = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert fv._coarser_grid(mesh) is coarse
+    for name in ("pressure", "theta", "cavitated", "force"):
+        assert np.array_equal(getattr(first, name), getattr(again, name))
+    assert first.friction == again.friction and first.cost["factorizations"] == again.cost["factorizations"]
+    fresh = fv._coarser_lines(mesh)
+    assert np.array_equal(fresh.mesh.p, coarse.mesh.p) and np.array_equal(fresh.mesh.t, coarse.mesh.t)
+
+
 def test_rough_coarse_levels_give_the_converged_answer_in_fewer_coarse_steps(monkeypatch):
     # a nested start's coarse levels stop once a step switches at most NESTED_ROUGH of their nodes: the
     # fine level still converges to the same complementarity solution (to round-off: the discrete LCP's

@@ -311,6 +311,14 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     pattern = (pattern + pattern.T).tocsr()
     assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
     assert 0 < kd <= fv.SET_BAND_MAX
+    # the set solver's own factorization takes the picked values straight into the band storage: the same
+    # band matrix as the sparse one, so the same factors and solution, bit for bit
+    solver._refactorize(cav)
+    assert isinstance(solver.factorize, fv._BandedLU) and solver.factorizations == 1
+    assert np.array_equal(solver.solve(rhs), got)
+    other = ~cav   # another set: the kept band places serve every set of the pattern
+    solver._refactorize(other)
+    assert np.array_equal(solver.solve(rhs), solver.factorize(solver.matrix(other))(rhs))
     singular = M.tolil()
     singular[:, 0] = 0.0
     with pytest.raises(RuntimeError, match="singular"):
@@ -318,3 +326,52 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     monkeypatch.setattr(fv, "SET_BAND_MAX", kd - 1)
     unk._order.pop("set_band")
     assert fv._set_band(unk, K, G) is None
+
+
+def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
+    """The recess depth at the vertices, found once per mesh, is what the per-triangle test of the vertices
+    (the cut cells' check) and the plain thickness at the dofs (the result's h_min) took: the same values,
+    bit for bit, with circles and a rectangle (a bisected contour shape) among the recesses."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[*_dimpled().recesses, Recess(Rectangle((0.5, 0.0), (0.2, 0.1)), 0.7)])
+    mesh = grid_mesh(surface, 1 / 23)
+    t = mesh.mesh.t[:3]
+    px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+    depth = fv._vertex_depth(mesh)
+    assert fv._vertex_depth(mesh) is depth and np.count_nonzero(depth) > 20
+    assert np.array_equal(depth[t], fv._rows_depth(surface, px.T, pz.T).T)
+    film = UniformFilm(1.0)
+    doflocs = np.asarray(fv.operators(mesh).basis.doflocs)
+    assert np.array_equal(fv._dof_thickness(mesh, film, doflocs), fv._thickness(mesh, film, *doflocs))
+    assert fv._vertex_depth(grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)) is None
+
+
+def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
+    """The band subproblem of a nested start (:func:`_band_set`) is factored by banded LU in its reverse
+    Cuthill-McKee order where that order's half-bandwidth is at most SET_BAND_MAX: its solution equals SuperLU's
+    in the same order to 1e-12 of the largest (both backward stable; a well-conditioned set matrix of the
+    14 x 14 dimple grid's unknowns, round-off); a wider band keeps SuperLU."""
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    pattern = (abs(K) + abs(G)).tocsr()
+    order = np.asarray(reverse_cuthill_mckee(pattern, symmetric_mode=True))
+    banded = fv._band_factorize(pattern, order)
+    assert isinstance(banded, fv._BandedLU) and np.array_equal(banded.perm, order)
+    cav = np.zeros(b.size, bool)
+    cav[1::3] = True
+    M = fv._SetSolver(K, G, banded).matrix(cav)
+    rhs = np.random.default_rng(2).standard_normal(b.size)
+    want = fv._factorize_in_order(order)(M)(rhs)
+    got = banded(M)(rhs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    monkeypatch.setattr(fv, "SET_BAND_MAX", banded.kd - 1)
+    wide = fv._band_factorize(pattern, order)
+    assert not isinstance(wide, fv._BandedLU)
+    assert np.abs(wide(M)(rhs) - want).max() == 0.0
