@@ -67,7 +67,7 @@ size ``n`` is formed, and there is no size cap:
   matrix-free: the pressure block is ``K^-1 (K + c Jr)`` (``Jr = A_II + B_h
   C_I``), so its solve is GMRES on ``K + c Jr`` (right side ``K v``; no
   ``K^-1`` inside) with the same two-level preconditioner around the sparse
-  factors of ``c A_II + 12 sigma M_II``, and the rates' rows and the
+  factors of ``K``'s shifted-Laplacian model plus ``c A_II``, and the rates' rows and the
   ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
   solves per Newton matrix, one per Newton iteration), to
   :data:`NEWTON_TOLERANCE`. Only ``method="BDF"`` runs this way.
@@ -619,9 +619,8 @@ class _TwoLevel:
     """The preconditioner ``Q + S^-1 (I - A Q)``, ``Q = Z (Z^T A Z)^-1 Z^T``: the coarse patches solved exactly
     (dense, from the stored ``A Z``), the rest by the local ``S^-1`` (sparse factors).
 
-    The local part alone (``12 sigma M`` for ``K``) misjudges the smooth modes, on which the compliance's
-    influence adds up over the whole film (the row sums of ``C`` are about 30 times its diagonal on the pump
-    shoe): the coarse space takes them."""
+    A local part alone misjudges the smoothest modes, on which the compliance's influence adds up over the whole
+    film (the row sums of ``C`` are about 30 times its diagonal on the pump shoe): the coarse space takes them."""
 
     def __init__(self, Z: sp.csr_matrix, AZ: np.ndarray, local) -> None:
         self.Z, self.AZ, self.local = Z, AZ, local
@@ -633,18 +632,70 @@ class _TwoLevel:
         return self.Z @ e + self.local(v - self.AZ @ e)
 
 
+class _ShiftedLaplacian:
+    """The sparse model ``K ~ alpha^-1 D N^-1 F`` of ``K = 12 M_I C_I``, whose inverse is the local level of the
+    product path's preconditioners.
+
+    ``F = S + b lam M``, ``N = S + a lam M`` on the interior dofs (``S``, ``M``: the film's stiffness and mass
+    matrices [-], ``D`` the diagonal of ``M``, ``(a, b)`` :data:`K_LOCAL_SHIFTS` of ``lam``, the largest
+    ``S_ii / D_ii``), ``alpha`` making ``v . K P v = v . v`` on a fixed pseudo-random ``v`` (one compliance
+    product). ``K`` is of order -1 (the Boussinesq kernel ``1/r``), so ``K^-1`` is of order +1: between the
+    coarse patches' scale and the mesh's the model weighs a mode by a shifted Laplacian's eigenvalue, where the
+    former ``12 sigma M`` weighed all alike; the iterations per solve then stay flat in the mesh size.
+    """
+
+    def __init__(self, alpha: float, F: sp.csc_matrix, N: sp.csr_matrix, D: np.ndarray) -> None:
+        self.alpha, self.F, self.N, self.D = alpha, F, N, D
+        self._F = spla.splu(F)
+
+    @classmethod
+    def of(cls, pc: "_InteriorCompliance", ops) -> "_ShiftedLaplacian":
+        """The model of ``pc``'s ``K`` on the operators ``ops`` of its mesh.
+
+        Raises
+        ------
+        ValueError
+            The compliance does not open the film under the probe's pressure (``alpha`` not positive).
+        """
+        a, b = K_LOCAL_SHIFTS
+        S = ops.laplace.tocsr()[pc.I][:, pc.I]
+        M = ops.mass.tocsr()[pc.I][:, pc.I]
+        D = M.diagonal()
+        lam = float((S.diagonal() / D).max())
+        model = cls(1.0, (S + b * lam * M).tocsc(), (S + a * lam * M).tocsr(), D)
+        v = np.random.default_rng(0).standard_normal(pc.I.size)
+        alpha = float(v @ v) / float(v @ pc.K(model.solve(v)))
+        if not (math.isfinite(alpha) and alpha > 0):
+            raise ValueError(f"the {pc.compliance.model!r} compliance gives v . K P v <= 0 on the interior dofs: "
+                             "the deflection squeeze needs a compliance that opens the film under its own pressure")
+        model.alpha = alpha
+        return model
+
+    def solve(self, v: np.ndarray) -> np.ndarray:
+        """``alpha F^-1 N D^-1 v``: the model's ``K^-1 v``."""
+        return self.alpha * self._F.solve(self.N @ (v / self.D))
+
+    def newton(self, A: sp.spmatrix, c: float) -> Callable[[np.ndarray], np.ndarray]:
+        """``v -> (model K + c A)^-1 v = (F / alpha + c N D^-1 A)^-1 N D^-1 v`` (one sparse factorization of a
+        matrix of two rings of neighbours): the local level of the integrator's Newton matrix ``K + c Jr``."""
+        ND = (self.N @ sp.diags(1.0 / self.D)).tocsr()
+        lu = spla.splu((self.F / self.alpha + c * (ND @ A)).tocsc())
+        return lambda v: lu.solve(ND @ v)
+
+
 class _InteriorCompliance:
     """A compliance held as its product, on the interior pressures: ``C_I x``, ``K x = 12 M_I C_I x`` and ``K^-1``.
 
     ``K^-1 b`` is GMRES on the products, preconditioned on two levels
     (:class:`_TwoLevel`): about :data:`COARSE_PATCHES` patches of interior dofs
-    solved exactly, the rest by a shifted film Laplacian (:meth:`_K_local`).
-    ``K`` is a smoothing map of order -1 (the Boussinesq kernel ``1/r``): its
-    condition grows only like ``sqrt(N)``, and the local level takes its fine
-    modes as an operator of order +1, so the iterations per solve stay flat in
-    the mesh size (:data:`K_LOCAL_SHIFTS`). ``sigma``, the mean self-influence
-    of a few interior dofs (the compliance's diagonal, read off its products),
-    scales the local level of the Newton matrix's preconditioner. Memory: ``C_I Z`` and ``K Z``, ``O(N k)``. Counters:
+    solved exactly, the rest by the inverse of ``K``'s sparse model
+    (:class:`_ShiftedLaplacian`, :attr:`model`). ``K`` is a smoothing map of
+    order -1 (the Boussinesq kernel ``1/r``): its condition grows only like
+    ``sqrt(N)``, and the model takes its fine modes as an operator of order
+    +1, so the iterations per solve stay flat in the mesh size
+    (:data:`K_LOCAL_SHIFTS`). ``sigma``: the mean self-influence of a few
+    interior dofs (the compliance's diagonal, read off its products), which
+    must be positive. Memory: ``C_I Z`` and ``K Z``, ``O(N k)``. Counters:
     ``products`` (of the compliance, columns counted) and ``iterations`` (of
     GMRES).
     """
@@ -653,7 +704,6 @@ class _InteriorCompliance:
         self.compliance, self.I, self.n = compliance, ops.interior, compliance.n_dofs
         mass = ops.mass.tocsr()
         self.M_I = mass[self.I]
-        self.M12_II = (12.0 * mass[self.I][:, self.I]).tocsc()  # 12 M_II: the squeeze term of K = 12 M C
         m = self.I.size
         probes = self.I[np.unique(np.linspace(0, m - 1, min(m, 5)).astype(int))]
         unit = np.zeros((self.n, probes.size))
@@ -669,42 +719,10 @@ class _InteriorCompliance:
         self.Z = _patches(ops.basis.doflocs[:, self.I], COARSE_PATCHES)
         self.CZ = self.columns(self.Z.toarray())            # (n, k): C_I Z
         KZ = 12.0 * (self.M_I @ self.CZ)
-        self._K_pre = _TwoLevel(self.Z, KZ, self._K_local(ops))
+        #: the sparse model of K whose inverse is the local level of the preconditioners
+        self.model = _ShiftedLaplacian.of(self, ops)
+        self._K_pre = _TwoLevel(self.Z, KZ, self.model.solve)
         self._last = None
-
-    def _K_local(self, ops) -> Callable[[np.ndarray], np.ndarray]:
-        """The local level of ``K^-1``'s preconditioner: ``v -> alpha (S + b lam M)^-1 (S + a lam M) D^-1 v`` on
-        the interior dofs (``S``, ``M``: the film's stiffness and mass matrices [-], ``D`` the diagonal of ``M``,
-        ``(a, b)`` :data:`K_LOCAL_SHIFTS` of ``lam``, the largest ``S_ii / D_ii``), with ``alpha`` making
-        ``v . K P v = v . v`` on a fixed pseudo-random ``v`` (one compliance product).
-
-        ``K`` is of order -1 (the Boussinesq kernel ``1/r``), so ``K^-1`` is of order +1: between the coarse
-        patches' scale and the mesh's this weighs a mode by a shifted Laplacian's eigenvalue, where the former
-        ``(12 sigma M)^-1`` weighed all alike; the iterations per solve then stay flat in the mesh size.
-
-        Raises
-        ------
-        ValueError
-            The compliance does not open the film under the probe's pressure (``alpha`` not positive).
-        """
-        a, b = K_LOCAL_SHIFTS
-        S = ops.laplace.tocsr()[self.I][:, self.I]
-        M = ops.mass.tocsr()[self.I][:, self.I]
-        diagonal = M.diagonal()
-        lam = float((S.diagonal() / diagonal).max())
-        far = spla.splu((S + b * lam * M).tocsc())
-        near = (S + a * lam * M).tocsr()
-
-        def local(v: np.ndarray) -> np.ndarray:
-            return far.solve(near @ (v / diagonal))
-
-        v = np.random.default_rng(0).standard_normal(self.I.size)
-        alpha = float(v @ v) / float(v @ self.K(local(v)))
-        if not (math.isfinite(alpha) and alpha > 0):
-            raise ValueError(f"the {self.compliance.model!r} compliance gives v . K P v <= 0 on the interior "
-                             "dofs: the deflection squeeze needs a compliance that opens the film under its own "
-                             "pressure")
-        return lambda v: alpha * local(v)
 
     def columns(self, x: np.ndarray) -> np.ndarray:
         """``C_I x`` [c] for interior pressures ``x``, shape ``(m,)`` or ``(m, k)``."""
@@ -777,9 +795,9 @@ class _NewtonSolve:
     """Solves with the integrator's Newton matrix ``N = I - c J`` of a :class:`_SqueezeJacobian`, exactly up to GMRES.
 
     The pressure block is ``T = I - c Da = K^-1 (K + c Jr)``, so ``T^-1 v = (K + c Jr)^-1 K v``: GMRES on
-    ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned by the sparse factors
-    of ``c A_II + 12 sigma M_II`` (the film's operator for the fine modes, the compliance's local part for the
-    coarse ones). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
+    ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned on two levels: the
+    coarse patches exactly, the rest by the sparse factors of ``K``'s model plus ``c A_II``
+    (:meth:`_ShiftedLaplacian.newton`; the film's operator for the fine modes, the compliance's for the coarser). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
     ``(gamma, delta)``), taken exactly: with ``x = T^-1 v``, ``Da x = (x - v)/c`` gives ``Rp x`` with no
     further solve, and a 4x4 system joins the pieces (four solves with ``T`` per Newton matrix, one per solve).
     """
@@ -788,9 +806,8 @@ class _NewtonSolve:
         self.J, self.c = J, c
         model = J.model
         pc = model.product
-        local = spla.splu((c * J.A + pc.sigma * pc.M12_II).tocsc())
         TZ = 12.0 * (pc.M_I @ pc.CZ) + c * (J.A @ pc.Z + J.Bh @ pc.CZ)
-        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), local.solve)
+        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), pc.model.newton(J.A, c))
         cols = np.column_stack([J.Jg[2:], J.B])
         X = np.column_stack([self._T_solve(cols[:, k]) for k in range(4)])
         rho = np.column_stack([self._rho(cols[:, k], X[:, k]) for k in range(4)])
