@@ -67,8 +67,8 @@ size ``n`` is formed, and there is no size cap:
   matrix-free: the pressure block is ``K^-1 (K + c Jr)`` (``Jr = A_II + B_h
   C_I``), so its solve is GMRES on ``K + c Jr`` (right side ``K v``; no
   ``K^-1`` inside) with the same two-level preconditioner around the sparse
-  factors of ``K``'s shifted-Laplacian model plus ``c A_II``, and the rates' rows and the
-  ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
+  factors of ``K``'s shifted-Laplacian model plus ``c A_II``, and the rates'
+  rows and the ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
   solves per Newton matrix, one per Newton iteration), to
   :data:`NEWTON_TOLERANCE`. Only ``method="BDF"`` runs this way.
 
@@ -597,10 +597,10 @@ COARSE_PATCHES = 32
 #: Shifts ``(a, b)`` of the local level of ``K^-1``'s preconditioner, ``(S + b lam M)^-1 (S + a lam M) D^-1``, as
 #: fractions of ``lam``, the largest ``S_ii / D_ii`` (``D`` the mass matrix's diagonal; about the largest eigenvalue of
 #: the film's Laplacian). Measured on the shipped pump's shoe (pump_mesh 0.035, 0.02, 0.0105 of the grid half-space:
-#: 781, 2,423, 8,897 interior dofs; three right sides, cold starts, to K_TOLERANCE): GMRES iterations per solve 17,
-#: 17.3, 18.7 against 25.3, 34, 48.3 with the former local level ``(12 sigma M)^-1``; CPU time of the three solves
-#: (one BLAS thread) 28, 71, 341 ms against 42, 129, 743 ms. With the lumped mass for ``D``: a in 0.001-0.01 and b in
-#: 3-100 within three iterations of each other, b = 0.3 or a = 0.1 up to twice as many.
+#: 781, 2,423, 8,897 interior dofs; three right sides, cold starts, to K_TOLERANCE; 256 coarse patches then): GMRES
+#: iterations per solve 17, 17.3, 18.7 against 25.3, 34, 48.3 with the former local level ``(12 sigma M)^-1``; CPU
+#: time of the three solves (one BLAS thread) 28, 71, 341 ms against 42, 129, 743 ms. With the lumped mass for ``D``:
+#: a in 0.001-0.01 and b in 3-100 within three iterations of each other, b = 0.3 or a = 0.1 up to twice as many.
 K_LOCAL_SHIFTS = (0.003, 30.0)
 
 
