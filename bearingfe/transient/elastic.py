@@ -60,14 +60,15 @@ size ``n`` is formed, and there is no size cap:
   product each), warm-started from the last right side's, to
   :data:`K_TOLERANCE`, preconditioned on two levels: about
   :data:`COARSE_PATCHES` patches of interior dofs solved exactly (dense
-  ``Z^T K Z``, from ``C_I Z`` computed once), the rest by the sparse factors of
-  ``12 sigma M_II`` (``sigma`` the compliance's self-influence);
+  ``Z^T K Z``, from ``C_I Z`` computed once), the rest by a shifted film
+  Laplacian (``K`` is of order -1, ``K^-1`` of order +1: :data:`K_LOCAL_SHIFTS`),
+  which keeps the iterations per solve flat in the mesh size;
 * the integrator is scipy's BDF with its Newton matrix ``I - c J`` solved
   matrix-free: the pressure block is ``K^-1 (K + c Jr)`` (``Jr = A_II + B_h
   C_I``), so its solve is GMRES on ``K + c Jr`` (right side ``K v``; no
   ``K^-1`` inside) with the same two-level preconditioner around the sparse
-  factors of ``c A_II + 12 sigma M_II``, and the rates' rows and the
-  ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
+  factors of ``K``'s shifted-Laplacian model plus ``c A_II``, and the rates'
+  rows and the ``(gamma, delta)`` columns are a rank-4 correction taken exactly (four such
   solves per Newton matrix, one per Newton iteration), to
   :data:`NEWTON_TOLERANCE`. Only ``method="BDF"`` runs this way.
 
@@ -93,7 +94,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 import scipy
@@ -585,8 +586,22 @@ NEWTON_TOLERANCE = 1e-6
 KRYLOV_MAX_ITERATIONS = 2000
 
 
-#: Patches of the coarse space of the product path's preconditioners (about; fewer on small meshes).
-COARSE_PATCHES = 256
+#: Patches of the coarse space of the product path's preconditioners (about; fewer on small meshes). With the
+#: shifted-Laplacian local level (:class:`_ShiftedLaplacian`) the coarse space takes only the smoothest modes: on the
+#: shipped pump's K^-1 solves (2,423 and 8,897 interior dofs, three cold right sides) 32 patches took 19 and 20
+#: iterations a solve against 17.3 and 18.7 with 256, whose build (256 compliance products) cost 5 times more; the
+#: elastic_fft part's transient (CPU time, one run each) 9.2 s against 10.7 s at 2,678 dofs, 50.3 s against 60.5 s
+#: at 9,386 dofs (16 patches: 5 % more iterations than 32).
+COARSE_PATCHES = 32
+
+#: Shifts ``(a, b)`` of the local level of ``K^-1``'s preconditioner, ``(S + b lam M)^-1 (S + a lam M) D^-1``, as
+#: fractions of ``lam``, the largest ``S_ii / D_ii`` (``D`` the mass matrix's diagonal; about the largest eigenvalue of
+#: the film's Laplacian). Measured on the shipped pump's shoe (pump_mesh 0.035, 0.02, 0.0105 of the grid half-space:
+#: 781, 2,423, 8,897 interior dofs; three right sides, cold starts, to K_TOLERANCE; 256 coarse patches then): GMRES
+#: iterations per solve 17, 17.3, 18.7 against 25.3, 34, 48.3 with the former local level ``(12 sigma M)^-1``; CPU
+#: time of the three solves (one BLAS thread) 28, 71, 341 ms against 42, 129, 743 ms. With the lumped mass for ``D``:
+#: a in 0.001-0.01 and b in 3-100 within three iterations of each other, b = 0.3 or a = 0.1 up to twice as many.
+K_LOCAL_SHIFTS = (0.003, 30.0)
 
 
 def _patches(points: np.ndarray, count: int) -> sp.csr_matrix:
@@ -609,9 +624,8 @@ class _TwoLevel:
     """The preconditioner ``Q + S^-1 (I - A Q)``, ``Q = Z (Z^T A Z)^-1 Z^T``: the coarse patches solved exactly
     (dense, from the stored ``A Z``), the rest by the local ``S^-1`` (sparse factors).
 
-    The local part alone (``12 sigma M`` for ``K``) misjudges the smooth modes, on which the compliance's
-    influence adds up over the whole film (the row sums of ``C`` are about 30 times its diagonal on the pump
-    shoe): the coarse space takes them."""
+    A local part alone misjudges the smoothest modes, on which the compliance's influence adds up over the whole
+    film (the row sums of ``C`` are about 30 times its diagonal on the pump shoe): the coarse space takes them."""
 
     def __init__(self, Z: sp.csr_matrix, AZ: np.ndarray, local) -> None:
         self.Z, self.AZ, self.local = Z, AZ, local
@@ -623,18 +637,70 @@ class _TwoLevel:
         return self.Z @ e + self.local(v - self.AZ @ e)
 
 
+class _ShiftedLaplacian:
+    """The sparse model ``K ~ alpha^-1 D N^-1 F`` of ``K = 12 M_I C_I``, whose inverse is the local level of the
+    product path's preconditioners.
+
+    ``F = S + b lam M``, ``N = S + a lam M`` on the interior dofs (``S``, ``M``: the film's stiffness and mass
+    matrices [-], ``D`` the diagonal of ``M``, ``(a, b)`` :data:`K_LOCAL_SHIFTS` of ``lam``, the largest
+    ``S_ii / D_ii``), ``alpha`` making ``v . K P v = v . v`` on a fixed pseudo-random ``v`` (one compliance
+    product). ``K`` is of order -1 (the Boussinesq kernel ``1/r``), so ``K^-1`` is of order +1: between the
+    coarse patches' scale and the mesh's the model weighs a mode by a shifted Laplacian's eigenvalue, where the
+    former ``12 sigma M`` weighed all alike; the iterations per solve then stay flat in the mesh size.
+    """
+
+    def __init__(self, alpha: float, F: sp.csc_matrix, N: sp.csr_matrix, D: np.ndarray) -> None:
+        self.alpha, self.F, self.N, self.D = alpha, F, N, D
+        self._F = spla.splu(F)
+
+    @classmethod
+    def of(cls, pc: "_InteriorCompliance", ops) -> "_ShiftedLaplacian":
+        """The model of ``pc``'s ``K`` on the operators ``ops`` of its mesh.
+
+        Raises
+        ------
+        ValueError
+            The compliance does not open the film under the probe's pressure (``alpha`` not positive).
+        """
+        a, b = K_LOCAL_SHIFTS
+        S = ops.laplace.tocsr()[pc.I][:, pc.I]
+        M = ops.mass.tocsr()[pc.I][:, pc.I]
+        D = M.diagonal()
+        lam = float((S.diagonal() / D).max())
+        model = cls(1.0, (S + b * lam * M).tocsc(), (S + a * lam * M).tocsr(), D)
+        v = np.random.default_rng(0).standard_normal(pc.I.size)
+        alpha = float(v @ v) / float(v @ pc.K(model.solve(v)))
+        if not (math.isfinite(alpha) and alpha > 0):
+            raise ValueError(f"the {pc.compliance.model!r} compliance gives v . K P v <= 0 on the interior dofs: "
+                             "the deflection squeeze needs a compliance that opens the film under its own pressure")
+        model.alpha = alpha
+        return model
+
+    def solve(self, v: np.ndarray) -> np.ndarray:
+        """``alpha F^-1 N D^-1 v``: the model's ``K^-1 v``."""
+        return self.alpha * self._F.solve(self.N @ (v / self.D))
+
+    def newton(self, A: sp.spmatrix, c: float) -> Callable[[np.ndarray], np.ndarray]:
+        """``v -> (model K + c A)^-1 v = (F / alpha + c N D^-1 A)^-1 N D^-1 v`` (one sparse factorization of a
+        matrix of two rings of neighbours): the local level of the integrator's Newton matrix ``K + c Jr``."""
+        ND = (self.N @ sp.diags(1.0 / self.D)).tocsr()
+        lu = spla.splu((self.F / self.alpha + c * (ND @ A)).tocsc())
+        return lambda v: lu.solve(ND @ v)
+
+
 class _InteriorCompliance:
     """A compliance held as its product, on the interior pressures: ``C_I x``, ``K x = 12 M_I C_I x`` and ``K^-1``.
 
     ``K^-1 b`` is GMRES on the products, preconditioned on two levels
     (:class:`_TwoLevel`): about :data:`COARSE_PATCHES` patches of interior dofs
-    solved exactly, the rest by the sparse factors of ``12 sigma M_II`` with
-    ``sigma`` the mean self-influence of a few interior dofs (the compliance's
-    diagonal, read off its products). ``K`` is a smoothing map of order -1 (the
-    Boussinesq kernel ``1/r``): its condition grows only like ``sqrt(N)``. On
-    the pump shoe (343 dofs, one revolution) the solves took 11 iterations on
-    average (warm-started), the Newton matrix's 8; the local level alone took
-    twice as many. Memory: ``C_I Z`` and ``K Z``, ``O(N k)``. Counters:
+    solved exactly, the rest by the inverse of ``K``'s sparse model
+    (:class:`_ShiftedLaplacian`, :attr:`model`). ``K`` is a smoothing map of
+    order -1 (the Boussinesq kernel ``1/r``): its condition grows only like
+    ``sqrt(N)``, and the model takes its fine modes as an operator of order
+    +1, so the iterations per solve stay flat in the mesh size
+    (:data:`K_LOCAL_SHIFTS`). ``sigma``: the mean self-influence of a few
+    interior dofs (the compliance's diagonal, read off its products), which
+    must be positive. Memory: ``C_I Z`` and ``K Z``, ``O(N k)``. Counters:
     ``products`` (of the compliance, columns counted) and ``iterations`` (of
     GMRES).
     """
@@ -643,7 +709,6 @@ class _InteriorCompliance:
         self.compliance, self.I, self.n = compliance, ops.interior, compliance.n_dofs
         mass = ops.mass.tocsr()
         self.M_I = mass[self.I]
-        self.M12_II = (12.0 * mass[self.I][:, self.I]).tocsc()  # 12 M_II: the squeeze term of K = 12 M C
         m = self.I.size
         probes = self.I[np.unique(np.linspace(0, m - 1, min(m, 5)).astype(int))]
         unit = np.zeros((self.n, probes.size))
@@ -655,12 +720,13 @@ class _InteriorCompliance:
                              "its own pressure")
         self.products = probes.size
         self.iterations = 0
-        self._K_local = spla.splu(self.sigma * self.M12_II)
         # the coarse space: indicators of patches of interior dofs, and the compliance's columns on them
         self.Z = _patches(ops.basis.doflocs[:, self.I], COARSE_PATCHES)
         self.CZ = self.columns(self.Z.toarray())            # (n, k): C_I Z
         KZ = 12.0 * (self.M_I @ self.CZ)
-        self._K_pre = _TwoLevel(self.Z, KZ, self._K_local.solve)
+        #: the sparse model of K whose inverse is the local level of the preconditioners
+        self.model = _ShiftedLaplacian.of(self, ops)
+        self._K_pre = _TwoLevel(self.Z, KZ, self.model.solve)
         self._last = None
 
     def columns(self, x: np.ndarray) -> np.ndarray:
@@ -734,9 +800,9 @@ class _NewtonSolve:
     """Solves with the integrator's Newton matrix ``N = I - c J`` of a :class:`_SqueezeJacobian`, exactly up to GMRES.
 
     The pressure block is ``T = I - c Da = K^-1 (K + c Jr)``, so ``T^-1 v = (K + c Jr)^-1 K v``: GMRES on
-    ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned by the sparse factors
-    of ``c A_II + 12 sigma M_II`` (the film's operator for the fine modes, the compliance's local part for the
-    coarse ones). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
+    ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned on two levels: the
+    coarse patches exactly, the rest by the sparse factors of ``K``'s model plus ``c A_II``
+    (:meth:`_ShiftedLaplacian.newton`; the film's operator for the fine modes, the compliance's for the coarser). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
     ``(gamma, delta)``), taken exactly: with ``x = T^-1 v``, ``Da x = (x - v)/c`` gives ``Rp x`` with no
     further solve, and a 4x4 system joins the pieces (four solves with ``T`` per Newton matrix, one per solve).
     """
@@ -745,9 +811,8 @@ class _NewtonSolve:
         self.J, self.c = J, c
         model = J.model
         pc = model.product
-        local = spla.splu((c * J.A + pc.sigma * pc.M12_II).tocsc())
         TZ = 12.0 * (pc.M_I @ pc.CZ) + c * (J.A @ pc.Z + J.Bh @ pc.CZ)
-        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), local.solve)
+        self._pre = _TwoLevel(pc.Z, np.asarray(TZ), pc.model.newton(J.A, c))
         cols = np.column_stack([J.Jg[2:], J.B])
         X = np.column_stack([self._T_solve(cols[:, k]) for k in range(4)])
         rho = np.column_stack([self._rho(cols[:, k], X[:, k]) for k in range(4)])
