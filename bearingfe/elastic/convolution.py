@@ -238,11 +238,7 @@ class GridConvolution:
 
 def grid_convolution(mesh: SupportMesh) -> GridConvolution:
     """The :class:`GridConvolution` of ``mesh``, cached on the mesh (built once per mesh)."""
-    cache = mesh._cache
-    conv = cache.get("half_space_fft")
-    if conv is None:
-        conv = cache["half_space_fft"] = GridConvolution(mesh)
-    return conv
+    return mesh.cached("half_space_fft", lambda: GridConvolution(mesh))
 
 
 def _pockets(conv: GridConvolution, mesh: SupportMesh) -> np.ndarray:

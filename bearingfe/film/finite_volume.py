@@ -157,15 +157,9 @@ class _Dual:
     midpoint: np.ndarray   # (2, n) segment midpoint (strictly inside its triangle)
 
 
-_DUALS: "weakref.WeakKeyDictionary[SupportMesh, _Dual]" = weakref.WeakKeyDictionary()
-
-
 def _dual(mesh: SupportMesh) -> _Dual:
-    if mesh in _DUALS:
-        return _DUALS[mesh]
-    d = median_dual(mesh.mesh)
-    _DUALS[mesh] = d
-    return d
+    """The median dual of ``mesh`` (kept on the mesh)."""
+    return mesh.cached("finite_volume.dual", lambda: median_dual(mesh.mesh))
 
 
 def median_dual(m) -> _Dual:
@@ -201,11 +195,8 @@ class _GridFaces:
     box: np.ndarray    # (4, n_nodes) box cell of each node: phi_lo, phi_hi, z_lo, z_hi
 
 
-_GRIDS: "weakref.WeakKeyDictionary[SupportMesh, _GridFaces]" = weakref.WeakKeyDictionary()
-
-
 def _grid_faces(mesh: SupportMesh) -> _GridFaces:
-    """Faces of the box cells of a tensor-grid mesh (``grid_mesh``, ``strip_mesh``).
+    """Faces of the box cells of a tensor-grid mesh (``grid_mesh``, ``strip_mesh``; kept on the mesh).
 
     The grid may have holes (the pockets of ``grid_mesh``, whole cells left out): a face between two
     ``phi``-neighbours then spans only the halves of the two grid rows that lie in the mesh.
@@ -215,8 +206,11 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     ValueError
         If the mesh is not a tensor grid (possibly with whole cells left out) split into triangles.
     """
-    if mesh in _GRIDS:
-        return _GRIDS[mesh]
+    return mesh.cached("finite_volume.grid_faces", lambda: _build_grid_faces(mesh))
+
+
+def _build_grid_faces(mesh: SupportMesh) -> _GridFaces:
+    """:func:`_grid_faces` built afresh."""
     m = mesh.mesh
     p = m.p
     tol = 1e-9 * float(max(np.ptp(p[0]), np.ptp(p[1]), 1e-300))
@@ -255,10 +249,8 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
     hi = np.where(above, yhi[None, :], ys[None, :])
     keep = (below | above).ravel()
     x0 = np.repeat(xs[:-1], ny)
-    faces = _GridFaces(i=grid[:-1].ravel()[keep], j=grid[1:].ravel()[keep], box=box,
-                       x0=x0[keep], x1=np.repeat(xs[1:], ny)[keep], lo=lo.ravel()[keep], hi=hi.ravel()[keep])
-    _GRIDS[mesh] = faces
-    return faces
+    return _GridFaces(i=grid[:-1].ravel()[keep], j=grid[1:].ravel()[keep], box=box,
+                      x0=x0[keep], x1=np.repeat(xs[1:], ny)[keep], lo=lo.ravel()[keep], hi=hi.ravel()[keep])
 
 
 # -- limited linear reconstruction of theta on the median dual ------------------------------------
@@ -370,18 +362,15 @@ def _streamline_weights(mesh: SupportMesh, d: _Dual, direction, grad: np.ndarray
     return np.tile(t, (1, 3)), w.reshape(3, 3 * nt)
 
 
-_WEIGHTS: "weakref.WeakKeyDictionary[SupportMesh, dict]" = weakref.WeakKeyDictionary()
-
-
 def _aligned_weights(mesh: SupportMesh, d: _Dual, sign: float, grad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_streamline_weights` for sliding along ``sign * e_phi``, found once per mesh and sign (read-only
     arrays: the flux's callers copy before they change them)."""
-    per_mesh = _WEIGHTS.setdefault(mesh, {})
-    if sign not in per_mesh:
+    def build() -> tuple[np.ndarray, np.ndarray]:
         nodes, w = _streamline_weights(mesh, d, sign, grad)
         nodes.flags.writeable = w.flags.writeable = False
-        per_mesh[sign] = (nodes, w)
-    return per_mesh[sign]
+        return nodes, w
+
+    return mesh.cached(("finite_volume.aligned_weights", sign), build)
 
 
 @dataclass(frozen=True, eq=False)
@@ -505,12 +494,13 @@ class _Cells:
     n: int             # nodes (dofs)
 
 
-_CELLS: "weakref.WeakKeyDictionary[SupportMesh, _Cells]" = weakref.WeakKeyDictionary()
-
-
 def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
-    if mesh in _CELLS:
-        return _CELLS[mesh]
+    """The P1 triangles of ``mesh`` with their gradients and quadrature (kept on the mesh)."""
+    return mesh.cached("finite_volume.cells", lambda: _build_cells(mesh, ops))
+
+
+def _build_cells(mesh: SupportMesh, ops: Operators) -> _Cells:
+    """:func:`_cells` built afresh."""
     m = mesh.mesh
     p, t = m.p, m.t[:3]
     grad = np.empty((2, 3, t.shape[1]))   # written block by block: no temporaries of all triangles
@@ -522,10 +512,8 @@ def _cells(mesh: SupportMesh, ops: Operators) -> _Cells:
             np.subtract(x[b], x[a], out=grad[1, k, block])
         grad[:, :, block] /= det
     X = np.asarray(ops.basis.X)
-    cells = _Cells(t=t, grad=grad, lam=np.array([1.0 - X[0] - X[1], X[0], X[1]]), dx=np.asarray(ops.basis.dx),
-                   n=int(m.nvertices))
-    _CELLS[mesh] = cells
-    return cells
+    return _Cells(t=t, grad=grad, lam=np.array([1.0 - X[0] - X[1], X[0], X[1]]), dx=np.asarray(ops.basis.dx),
+                  n=int(m.nvertices))
 
 
 def _integrals(cells: _Cells, f_q: np.ndarray) -> np.ndarray:
@@ -912,24 +900,13 @@ def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np
     return out
 
 
-_FACE_RECESS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
-
-
 def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
     """:func:`_face_film` of the box faces ``g`` of ``mesh``, the recess part found once per mesh."""
     surface = mesh.surface
     if surface is None or not surface.recesses:
         return _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
-    depth = _FACE_RECESS.get(mesh)
-    if depth is None:
-        depth = _FACE_RECESS[mesh] = _face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    depth = mesh.cached("finite_volume.face_recess", lambda: _face_recess(surface, g.x0, g.x1, g.lo, g.hi))
     return _face_smooth(film, g.x0, g.x1, g.lo, g.hi) + depth
-
-
-_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
-
-
-_VERTEX_DEPTHS: "weakref.WeakKeyDictionary[SupportMesh, np.ndarray]" = weakref.WeakKeyDictionary()
 
 
 def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
@@ -938,12 +915,12 @@ def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
     surface = mesh.surface
     if surface is None or not getattr(surface, "recesses", ()):
         return None
-    depth = _VERTEX_DEPTHS.get(mesh)
-    if depth is None:
-        p = mesh.mesh.p
-        depth = _VERTEX_DEPTHS[mesh] = _recess_depth(surface, p[0], p[1])
+    def build() -> np.ndarray:
+        depth = _recess_depth(surface, mesh.mesh.p[0], mesh.mesh.p[1])
         depth.flags.writeable = False
-    return depth
+        return depth
+
+    return mesh.cached("finite_volume.vertex_depth", build)
 
 
 def _dof_thickness(mesh: SupportMesh, film: Film, doflocs: np.ndarray) -> np.ndarray:
@@ -960,10 +937,8 @@ def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
     surface = mesh.surface
     if surface is None or not getattr(surface, "recesses", ()):
         return None
-    depth = _DEPTHS.get(mesh)
-    if depth is None or depth.shape != x.shape[1:]:
-        depth = _DEPTHS[mesh] = _rows_depth(surface, x[0], x[1])   # (n_triangles, n_points)
-    return depth
+    # (n_triangles, n_points), per quadrature rule
+    return mesh.cached(("finite_volume.quadrature_depth", x.shape[1:]), lambda: _rows_depth(surface, x[0], x[1]))
 
 
 def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
@@ -1013,15 +988,14 @@ def _with_cell_means(cells: _Cells, means, h_q: np.ndarray, inv_q: np.ndarray, w
     w[cut] = _integrals_of(np.repeat(h3[:, None], h_q.shape[1], axis=1) / 12.0, cells.dx[cut])
 
 
-_CUTS: "weakref.WeakKeyDictionary[SupportMesh, tuple]" = weakref.WeakKeyDictionary()
-
-
 def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     """The triangles of a grid mesh a recess contour cuts, the centroids of their ``subdivisions**2``
     sub-triangles ``(2, n_cut, n_sub)`` and the recess depth there (film-independent: found once per mesh)."""
-    hit = _CUTS.get(mesh)
-    if hit is not None and hit[0] == subdivisions:
-        return hit[1]
+    return mesh.cached(("finite_volume.cut_cells", subdivisions), lambda: _build_cut_cells(mesh, x, subdivisions))
+
+
+def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
+    """:func:`_cut_cells` built afresh."""
     surface = mesh.surface
     m = mesh.mesh
     t = m.t[:3]
@@ -1041,9 +1015,7 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
     cx, cz = px[:, cut], pz[:, cut]   # each recess tests the cut cells near it
     depth = _boxed_depth(surface, cx.min(axis=0), cx.max(axis=0), cz.min(axis=0), cz.max(axis=0), pts[0], pts[1])
-    out = (cut, pts, depth)
-    _CUTS[mesh] = (subdivisions, out)
-    return out
+    return cut, pts, depth
 
 
 
@@ -1157,15 +1129,9 @@ class FVUnknowns:
     _order: dict = dataclasses.field(default_factory=dict, repr=False)   # the order, found once
 
 
-_UNKNOWNS: "weakref.WeakKeyDictionary[SupportMesh, FVUnknowns]" = weakref.WeakKeyDictionary()
-
-
 def _unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
     """The unknowns of ``mesh`` (cached on it, with the fill-reducing order found for them)."""
-    unk = _UNKNOWNS.get(mesh)
-    if unk is None or unk.S.shape[0] != ops.n_dofs:
-        unk = _UNKNOWNS[mesh] = _build_unknowns(mesh, ops)
-    return unk
+    return mesh.cached(("finite_volume.unknowns", ops.n_dofs), lambda: _build_unknowns(mesh, ops))
 
 
 def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
@@ -2260,9 +2226,6 @@ NESTED_CELL_MEANS = False
 NESTED_FIXED_SIGN = True
 
 
-_COARSER: "weakref.WeakKeyDictionary[SupportMesh, SupportMesh | None]" = weakref.WeakKeyDictionary()
-
-
 def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     """The grid mesh of ``mesh.surface`` on every other grid line of ``mesh`` (the outline's and the
     pockets' edges kept); None if ``mesh`` is not a ``grid_mesh`` or has too few lines to coarsen.
@@ -2270,11 +2233,7 @@ def _coarser_grid(mesh: SupportMesh) -> SupportMesh | None:
     Kept per mesh (while ``mesh`` lives; the coarser levels together have about a third of its nodes): a
     repeated cold solve on ``mesh`` reuses the coarse levels and what is cached on them (operators, faces,
     recess integrals, orders) instead of meshing and setting them up again."""
-    if mesh in _COARSER:
-        return _COARSER[mesh]
-    coarse = _coarser_lines(mesh)
-    _COARSER[mesh] = coarse
-    return coarse
+    return mesh.cached("finite_volume.coarser_grid", lambda: _coarser_lines(mesh))
 
 
 def _coarser_lines(mesh: SupportMesh) -> SupportMesh | None:

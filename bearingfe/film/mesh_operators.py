@@ -163,10 +163,7 @@ def operators(mesh: SupportMesh, element: str = "P1") -> Operators:
         raise ValueError(f"mesh must be a bearingfe.SupportMesh, got {type(mesh).__name__}")
     if element not in ELEMENTS:
         raise ValueError(f"element must be one of {list(ELEMENTS)}, got {element!r}")
-    key = ("operators", element)
-    if key not in mesh._cache:
-        mesh._cache[key] = _build_operators(mesh, element)
-    return mesh._cache[key]
+    return mesh.cached(("operators", element), lambda: _build_operators(mesh, element))
 
 
 def quadrature_order(element: str) -> int:

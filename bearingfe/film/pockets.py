@@ -89,14 +89,14 @@ def _pocket_mesh(mesh: SupportMesh, name: str, names: Sequence[str]) -> SupportM
     the same dofs, so its unit inlet field is pocket ``name``'s and its ``inlet`` flow is that pocket's."""
     if len(names) == 1:
         return mesh
-    key = ("pocket mesh", name)
-    if key not in mesh._cache:
+    def build() -> SupportMesh:
         bnd = mesh.boundaries
         others = [np.asarray(bnd[n]) for n in names if n != name]
         new = dict(bnd, inlet=np.asarray(bnd[name]), outer=np.union1d(bnd["outer"], np.concatenate(others)))
-        mesh._cache[key] = SupportMesh(mesh=_replacing_boundaries(mesh.mesh, new), surface=mesh.surface,
-                                       size=mesh.size, source=mesh.source)
-    return mesh._cache[key]
+        return SupportMesh(mesh=_replacing_boundaries(mesh.mesh, new), surface=mesh.surface, size=mesh.size,
+                           source=mesh.source)
+
+    return mesh.cached(("pocket mesh", name), build)
 
 
 def _replacing_boundaries(m, boundaries: Mapping[str, np.ndarray]):

@@ -20,7 +20,7 @@ import pickle
 import threading
 from dataclasses import InitVar, dataclass, field
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Callable, Hashable, Iterator, TypeVar
 
 import numpy as np
 import skfem
@@ -30,6 +30,8 @@ from .geofiles import (GeometryFileError, MeshData, check_element_count, estimat
 from .surface import Surface
 from .runner import ALONG_PHI
 from ..core.tempdirs import private_tempdir
+
+T = TypeVar("T")
 
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_marked", "refine_once",
            "mesh_from_data", "check_triangles", "check_support_mesh",
@@ -92,11 +94,26 @@ class SupportMesh:
         # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
         # in another process refine_once then splits its triangles
         state = dict(self.__dict__)
-        try:
+        state["_cache"] = {}   # the per-mesh structures are rebuilt where they are needed (some hold
+        try:                   # scikit-fem objects that do not pickle)
             pickle.dumps(state["refinement"])
         except (pickle.PicklingError, AttributeError, TypeError):
             state["refinement"] = None
         return state
+
+    def cached(self, key: Hashable, build: Callable[[], T]) -> T:
+        """What ``build()`` returns, built once per mesh and kept on it under ``key``.
+
+        The one home of per-mesh structures (operators, finite-volume duals and faces, FFT kernels, ...):
+        they live as long as the mesh (a pickled mesh travels without them: they are rebuilt where they
+        are needed). ``key`` names the structure
+        (a string, or a tuple of a string and what the structure depends on besides the mesh).
+        """
+        try:
+            return self._cache[key]
+        except KeyError:
+            value = self._cache[key] = build()
+            return value
 
     @property
     def boundaries(self) -> dict[str, np.ndarray]:

@@ -429,3 +429,38 @@ def test_named_locally_refined_meshes_have_scikit_fems_own_facets():
     assert all(np.isin(f, facets).all() for f in named.boundaries.values())
     assert np.array_equal(np.sort(named.boundaries["outer"]),
                           np.sort(facets[~np.isin(facets, named.boundaries["inlet"])]))
+
+
+def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
+    """SupportMesh.cached is the one home of per-mesh structures: built once per key, kept per mesh (the
+    operators and the finite-volume structures all go through it). A mesh solved on still pickles: its
+    structures stay behind (scikit-fem bases do not pickle) and are rebuilt in the copy, to the same answer."""
+    import pickle
+
+    from bearingfe.film.finite_volume import solve_jfo
+    from bearingfe.film.thickness import UniformFilm
+
+    def dimpled():   # one dimple on a parallel slider: it cavitates (the JFO caches are all exercised)
+        shape = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[bf.Recess(Circle((0.5, 0.0), 0.2), 0.8)])
+        return bf.grid_mesh(shape, 1.0 / 24)
+
+    def solve(m):
+        return solve_jfo(m, UniformFilm(1.0), cavitation_pressure=-0.02, couette="grid")
+
+    mesh, calls = dimpled(), []
+    first = mesh.cached(("probe", 1), lambda: calls.append(1) or np.arange(3.0))
+    again = mesh.cached(("probe", 1), lambda: calls.append(2) or np.zeros(3))
+    other = mesh.cached(("probe", 2), lambda: calls.append(3) or np.ones(3))
+    assert again is first and calls == [1, 3] and np.array_equal(other, np.ones(3))
+    assert dimpled()._cache == {}   # not shared between meshes
+    res = solve(mesh)
+    assert res.cavitated_fraction > 0.01
+    kept = {k if isinstance(k, str) else k[0] for k in mesh._cache}
+    assert {"finite_volume.grid_faces", "finite_volume.cells", "finite_volume.unknowns",
+            "finite_volume.vertex_depth", "finite_volume.cut_cells"} <= kept
+    # the kept structures give the same answer as a fresh mesh, bit for bit; so does a pickled copy
+    assert np.array_equal(solve(mesh).pressure, res.pressure)
+    assert np.array_equal(solve(dimpled()).pressure, res.pressure)
+    copy = pickle.loads(pickle.dumps(mesh))
+    assert copy._cache == {} and mesh._cache
+    assert np.array_equal(solve(copy).pressure, res.pressure)
