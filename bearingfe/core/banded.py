@@ -79,14 +79,30 @@ class BandLimits:
 #: solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in minimum degree; P2 sets of
 #: 1,990 unknowns with kd 74 (work 1.1e7, refused by the work cap) 1.56 against 2.8 ms, so the cap is on the
 #: safe side there (raising it would change those sets' answers in round-off).
+#:
+#: ``full_film_guess`` (the mass-conserving solver's full-film system, the Poiseuille operator alone, factored
+#: once per cold solve for its first cavity; Cholesky): measured (CPU time, 20 solves, the 5 x 5 dimple slider
+#: on ``grid_mesh``) 2,401 unknowns, half-bandwidth 49: 1.2 against 3.5 ms for SuperLU in the active set's
+#: order; 4,761 unknowns, 69: 2.4 against 6.9 ms. Not tried above ``96**2`` unknowns (a square grid's band is
+#: then wider; larger systems start from a coarse level).
+#:
+#: ``active_set_lu`` (the mass-conserving solver's active-set matrices, nonsymmetric: banded LU with partial
+#: pivoting, LAPACK ``dgbtrf``, in the reverse Cuthill-McKee order of ``|K| + |G|``; the rule is the same, the
+#: factorization is :mod:`bearingfe.film.finite_volume`'s): measured (CPU time, 20 factorizations and a solve
+#: of an active-set matrix of the 5 x 5 dimple slider on ``grid_mesh``) 2,401 unknowns, half-bandwidth 52:
+#: 1.65 against 2.4 ms in the nested-dissection order; 3,481 unknowns, 92: 4.6-6.0 against 3.4 ms; whole
+#: solves at 70 cells per side were slower with 72 than with 64 (the banded Woodbury solves cost more).
+#: Not tried above ``64**2`` unknowns.
 BAND_LIMITS: dict[str, BandLimits] = {
     "kept_pattern": BandLimits(kd_max=64),
     "new_pattern": BandLimits(kd_max=80, work_max=5000 * 40**2, size_max=5000),
+    "full_film_guess": BandLimits(kd_max=96, size_max=96**2),
+    "active_set_lu": BandLimits(kd_max=64, size_max=64**2),
 }
 
 
 def band_limits(kind: str) -> BandLimits:
-    """The limits of :data:`BAND_LIMITS` for ``kind`` (``"kept_pattern"`` or ``"new_pattern"``)."""
+    """The limits of :data:`BAND_LIMITS` for ``kind`` (one of its keys)."""
     try:
         return BAND_LIMITS[kind]
     except KeyError:

@@ -96,6 +96,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from .thickness import Film
 from .forms import along
 from .flows import edge_groups
+from ..core.banded import band_cholesky, band_limits, band_plan, band_worth_trying
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -1266,20 +1267,19 @@ def _ordered_splu(unk: FVUnknowns, K: sp.csc_matrix, G: sp.csc_matrix) -> Factor
     return _factorize_in_order(order)
 
 
-#: Largest half-bandwidth (reverse Cuthill-McKee order of the pattern of ``|K| + |G|``) at which the active-set
-#: matrices are factored by banded LU with partial pivoting (LAPACK ``dgbtrf``, one BLAS thread) instead of
-#: SuperLU. Measured (CPU time, 20 factorizations and a solve of an active-set matrix of the 5x5 dimple slider
-#: on ``grid_mesh``): 2,401 unknowns, half-bandwidth 52: 1.65 against 2.4 ms in the nested-dissection order;
-#: 3,481 unknowns, 92: 4.6-6.0 against 3.4 ms.
-SET_BAND_MAX = 64
+def _set_band_max() -> int:
+    """Largest half-bandwidth (reverse Cuthill-McKee order of the pattern of ``|K| + |G|``) at which the
+    active-set matrices are factored by banded LU with partial pivoting (LAPACK ``dgbtrf``, one BLAS thread)
+    instead of SuperLU: :data:`bearingfe.core.banded.BAND_LIMITS` ``["active_set_lu"]`` (read at each call)."""
+    return band_limits("active_set_lu").kd_max
 
 
 def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarray, int] | None:
     """The reverse Cuthill-McKee order of the unknowns for the pattern of ``|K| + |G|`` and its
-    half-bandwidth, kept on ``unk`` per pattern; None if that exceeds :data:`SET_BAND_MAX`, or at once for
-    more than ``SET_BAND_MAX**2`` unknowns (a square grid's band is then wider: no pattern or order built on a
-    fresh larger mesh, only a strip much longer than wide would have fitted)."""
-    if K.shape[0] > SET_BAND_MAX**2:
+    half-bandwidth, kept on ``unk`` per pattern; None if that exceeds :func:`_set_band_max`, or at once for
+    more unknowns than the ``"active_set_lu"`` limits try (a square grid's band is then wider: no pattern or
+    order built on a fresh larger mesh, only a strip much longer than wide would have fitted)."""
+    if not band_worth_trying(K.shape[0], "active_set_lu"):
         return None
     kept = unk._order.get("set_band")
     given = ((K.format, K.indptr, K.indices, G.format, G.indptr, G.indices)
@@ -1295,7 +1295,7 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
         inverse = np.argsort(perm)
         rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
         kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
-        kept = (pattern.indptr.copy(), pattern.indices.copy(), (perm, kd) if kd <= SET_BAND_MAX else None)
+        kept = (pattern.indptr.copy(), pattern.indices.copy(), (perm, kd) if kd <= _set_band_max() else None)
     # with the given matrices' own patterns: the next call with the same ones skips the union pattern
     unk._order["set_band"] = kept[:3] + (None if given is None else
                                          tuple(a if isinstance(a, str) else a.copy() for a in given),)
@@ -1690,14 +1690,14 @@ TWO_GRID_ITERATIONS = 20
 
 def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
     """The factorization of :func:`_band_set`'s band matrices (of ``pattern``) in the fill-reducing ``order``:
-    banded LU (:func:`_factorize_banded`) where the half-bandwidth in that order is at most :data:`SET_BAND_MAX`
+    banded LU (:func:`_factorize_banded`) where the half-bandwidth in that order is at most :func:`_set_band_max`
     (the band around the fronts is thin: 17-31 on the 5 x 5 dimples at 100-200 cells per side), else SuperLU
     in it (:func:`_factorize_in_order`)."""
     order = np.asarray(order, np.int64)
     inverse = np.argsort(order)
     rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
     kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
-    return _factorize_banded(order, kd) if kd <= SET_BAND_MAX else _factorize_in_order(order)
+    return _factorize_banded(order, kd) if kd <= _set_band_max() else _factorize_in_order(order)
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
@@ -1888,22 +1888,13 @@ def _initial_cavity(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c:
     return P < 0
 
 
-#: Largest half-bandwidth (reverse Cuthill-McKee order) at which :func:`_initial_cavity` solves the full-film
-#: system (symmetric positive definite: the Poiseuille operator alone) by banded Cholesky, one BLAS thread,
-#: instead of SuperLU in the active set's order. Measured (CPU time, 20 solves, the 5x5 dimple slider on
-#: ``grid_mesh``): 2,401 unknowns, half-bandwidth 49: 1.2 against 3.5 ms; 4,761 unknowns, 69: 2.4 against
-#: 6.9 ms. Larger systems start from a coarse level (:data:`NESTED_MIN`) or keep SuperLU.
-FIRST_GUESS_BAND_MAX = 96
-
-
 def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.ndarray | None:
-    """``K^-1 rhs`` by banded Cholesky (:func:`bearingfe.film.compiled.band_plan`, the plan kept on ``unk``
-    for ``K``'s pattern); None where ``K`` is not symmetric, its half-bandwidth exceeds
-    :data:`FIRST_GUESS_BAND_MAX` (at once above ``FIRST_GUESS_BAND_MAX**2`` unknowns, as :func:`_set_band`),
-    or it is not positive definite."""
-    from .compiled import band_cholesky, band_plan
-
-    if K.shape[0] > FIRST_GUESS_BAND_MAX**2:
+    """``K^-1 rhs`` by banded Cholesky in the reverse Cuthill-McKee order (:func:`bearingfe.core.banded.band_plan`,
+    the plan kept on ``unk`` for ``K``'s pattern), the full-film system of :func:`_initial_cavity` (symmetric
+    positive definite: the Poiseuille operator alone); None where ``K`` is not symmetric, the band does not pay
+    (:data:`bearingfe.core.banded.BAND_LIMITS` ``["full_film_guess"]``; larger systems start from a coarse
+    level, :data:`NESTED_MIN`, or keep SuperLU), or it is not positive definite."""
+    if not band_worth_trying(K.shape[0], "full_film_guess"):
         return None
     K = sp.csr_matrix(K)
     K.sort_indices()
@@ -1911,7 +1902,7 @@ def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.
     if kept is not None and np.array_equal(kept[0], K.indptr) and np.array_equal(kept[1], K.indices):
         plan = kept[2]
     else:
-        plan = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], FIRST_GUESS_BAND_MAX)
+        plan = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], kind="full_film_guess")
         unk._order["band"] = (K.indptr.copy(), K.indices.copy(), plan)
     if plan is None or (K != K.T).nnz:
         return None

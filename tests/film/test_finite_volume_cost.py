@@ -68,7 +68,9 @@ def test_grid_factorizations_are_ordered_from_fewer_unknowns(monkeypatch):
     # on a grid_mesh the closed-form dissection order is taken from ORDERED_FROM_GRID unknowns (a 40 x 40 grid of
     # the dimple: 1,521 unknowns, below ORDERED_FROM): the same iterations and the COLAMD answer to round-off
     # (the banded LU that takes such small grids first is turned off: the ordered SuperLU is the path tested)
-    monkeypatch.setattr(fv, "SET_BAND_MAX", 0)
+    from bearingfe.core.banded import BAND_LIMITS, BandLimits
+
+    monkeypatch.setitem(BAND_LIMITS, "active_set_lu", BandLimits(kd_max=0, size_max=64**2))
     surface = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.25), 1.0)])
     options = dict(cavitation_pressure=-0.05, couette="grid")
     mesh = grid_mesh(surface, 1 / 40)

@@ -252,11 +252,11 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     banded Cholesky: the pressures equal SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
     backward stable, the matrix of 14 x 14 cells well conditioned: round-off), hence the same guessed cavity; the
     band plan kept on the unknowns for the next film is the one built afresh from the matrix's pattern. A
-    non-symmetric matrix, or a band wider than :data:`FIRST_GUESS_BAND_MAX`, is left to SuperLU (None)."""
+    non-symmetric matrix, or a band wider than the ``full_film_guess`` limit, is left to SuperLU (None)."""
     import scipy.sparse as sp
 
     from bearingfe.core.linalg import factorize_splu
-    from bearingfe.film.compiled import band_plan
+    from bearingfe.core.banded import BAND_LIMITS, BandLimits, band_plan
 
     mesh = grid_mesh(_dimpled(), 1 / 14)
     ops = fv.operators(mesh, "P1")
@@ -269,21 +269,21 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
     assert np.array_equal(got < 0, want < 0) and np.count_nonzero(want < 0) > 0
     kept = unk._order["band"][2]
-    fresh = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], fv.FIRST_GUESS_BAND_MAX)
+    fresh = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], kind="full_film_guess")
     assert kept.kd == fresh.kd and kept.n == fresh.n
     for name in ("perm", "inverse", "flat", "take"):
         assert np.array_equal(getattr(kept, name), getattr(fresh, name))
     assert np.array_equal(fv._full_film_banded(unk, K, rhs), got) and unk._order["band"][2] is kept   # reused
     skew = K + sp.csr_matrix(([1e-3], ([0], [1])), shape=K.shape)
     assert fv._full_film_banded(unk, skew, rhs) is None
-    monkeypatch.setattr(fv, "FIRST_GUESS_BAND_MAX", 1)
+    monkeypatch.setitem(BAND_LIMITS, "full_film_guess", BandLimits(kd_max=1, size_max=96**2))
     unk._order.pop("band")
     assert fv._full_film_banded(unk, K, rhs) is None
 
 
 def test_small_active_set_matrices_by_banded_lu(monkeypatch):
-    """Up to :data:`SET_BAND_MAX` the active-set matrices are factored by banded LU with partial pivoting: the
-    solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
+    """Up to the ``active_set_lu`` band limit the active-set matrices are factored by banded LU with partial
+    pivoting: the solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
     backward stable, a well-conditioned matrix of 14 x 14 cells: round-off); the order kept on the unknowns
     is the one found afresh; an exactly singular matrix falls back to SuperLU (which then refuses it as
     singular, as before); a wider band is left to SuperLU (None)."""
@@ -291,6 +291,7 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     import scipy.sparse as sp
     from scipy.sparse.csgraph import reverse_cuthill_mckee
 
+    from bearingfe.core.banded import BAND_LIMITS, BandLimits
     from bearingfe.core.linalg import factorize_splu
 
     mesh = grid_mesh(_dimpled(), 1 / 14)
@@ -310,7 +311,7 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     pattern = (abs(K) + abs(G)).tocsr()
     pattern = (pattern + pattern.T).tocsr()
     assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
-    assert 0 < kd <= fv.SET_BAND_MAX
+    assert 0 < kd <= BAND_LIMITS["active_set_lu"].kd_max == 64
     # the set solver's own factorization takes the picked values straight into the band storage: the same
     # band matrix as the sparse one, so the same factors and solution, bit for bit
     solver._refactorize(cav)
@@ -323,7 +324,7 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     singular[:, 0] = 0.0
     with pytest.raises(RuntimeError, match="singular"):
         fv._factorize_banded(perm, kd)(sp.csc_matrix(singular))
-    monkeypatch.setattr(fv, "SET_BAND_MAX", kd - 1)
+    monkeypatch.setitem(BAND_LIMITS, "active_set_lu", BandLimits(kd_max=kd - 1, size_max=64**2))
     unk._order.pop("set_band")
     assert fv._set_band(unk, K, G) is None
 
@@ -350,10 +351,12 @@ def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
 
 def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     """The band subproblem of a nested start (:func:`_band_set`) is factored by banded LU in its reverse
-    Cuthill-McKee order where that order's half-bandwidth is at most SET_BAND_MAX: its solution equals SuperLU's
-    in the same order to 1e-12 of the largest (both backward stable; a well-conditioned set matrix of the
-    14 x 14 dimple grid's unknowns, round-off); a wider band keeps SuperLU."""
+    Cuthill-McKee order where that order's half-bandwidth is within the ``active_set_lu`` band limit: its
+    solution equals SuperLU's in the same order to 1e-12 of the largest (both backward stable; a
+    well-conditioned set matrix of the 14 x 14 dimple grid's unknowns, round-off); a wider band keeps SuperLU."""
     from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from bearingfe.core.banded import BAND_LIMITS, BandLimits
 
     mesh = grid_mesh(_dimpled(), 1 / 14)
     ops = fv.operators(mesh, "P1")
@@ -371,7 +374,7 @@ def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     want = fv._factorize_in_order(order)(M)(rhs)
     got = banded(M)(rhs)
     assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
-    monkeypatch.setattr(fv, "SET_BAND_MAX", banded.kd - 1)
+    monkeypatch.setitem(BAND_LIMITS, "active_set_lu", BandLimits(kd_max=banded.kd - 1, size_max=64**2))
     wide = fv._band_factorize(pattern, order)
     assert not isinstance(wide, fv._BandedLU)
     assert np.abs(wide(M)(rhs) - want).max() == 0.0
