@@ -214,6 +214,25 @@ def test_turned_warm_start_gives_the_same_solution():
     assert sum(r.iterations for r in warm.results) < sum(r.iterations for r in cold.results)
 
 
+def test_turned_rupture_searched_within_its_reach_is_the_unbounded_nearest_one():
+    # a rupture set turned on its own mesh, searched only within |turn| (each turned dof's own dof is that far):
+    # the same nearest dof as the search without a bound (the previous path), on both pads and at turns from
+    # 1e-5 rad to 0.2 rad; a reach too small for some points falls back to the unbounded search for them
+    from bearingfe.bearings.journal import TURN_REACH_SLACK, _dof_tree, _nearest_rupture
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    for res in state.results:
+        points = np.asarray(res.basis.doflocs)
+        assert res.cavitated.any() and not res.cavitated.all()
+        for turn in (1e-5, -4e-3, 0.03, -0.2):
+            plain = _nearest_rupture(res, points, turn)
+            assert np.array_equal(_nearest_rupture(res, points, turn, abs(turn) * (1 + TURN_REACH_SLACK)), plain)
+            assert np.array_equal(_nearest_rupture(res, points, turn, 1e-3 * abs(turn)), plain)  # all fall back
+        # the dofs turned by a turn below the dof spacing: the own dof's state
+        nearest = _dof_tree(res.basis).query((points - [[1e-5], [0.0]]).T)[1]
+        assert np.array_equal(nearest, np.arange(points.shape[1]))
+
+
 def test_unrefined_structured_pads_miss_it():
     # the same grid without the rupture refinement misses the target (measured 2.0e-3, refined 1.6e-4): the
     # refinement is what brings the coefficients in

@@ -242,6 +242,26 @@ def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
     assert swift_stieber._GALERKIN[basis].states == 1 and swift_stieber._GALERKIN[basis].product is None
 
 
+def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
+    # before the plan, _galerkin multiplies by the CSC form of S kept per basis: the same products scipy makes
+    # from the CSR S (which it converts to CSC itself), so the same pattern and the same digits, on the first
+    # and on a later film state of a mesh (the kept form reused)
+    mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
+    sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
+    basis = sups[0].operators.basis
+    S, _ = swift_stieber._change_of(basis, sups[0].system.interior)
+    swift_stieber._GALERKIN.pop(basis, None)
+    for sup in sups:
+        expected = (S.T @ sup.system.matrix @ S).tocsr()
+        expected.sort_indices()
+        got = swift_stieber._galerkin(basis, S, sp.csr_matrix(sup.system.matrix))
+        assert swift_stieber._GALERKIN[basis].product is None and swift_stieber._GALERKIN[basis].S_csc is not None
+        np.testing.assert_array_equal(got.indptr, expected.indptr)
+        np.testing.assert_array_equal(got.indices, expected.indices)
+        np.testing.assert_array_equal(got.data, expected.data)
+    np.testing.assert_array_equal(swift_stieber._GALERKIN[basis].S_csc.toarray(), S.toarray())
+
+
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
     # the coarse grids depend on the dof coordinates only: the chain kept per basis (swift_stieber._chain_of)
     # gives the same start and coarse iterations as nested_start making its grids afresh, for two film states
