@@ -93,11 +93,19 @@ class BandLimits:
 #: 1.65 against 2.4 ms in the nested-dissection order; 3,481 unknowns, 92: 4.6-6.0 against 3.4 ms; whole
 #: solves at 70 cells per side were slower with 72 than with 64 (the banded Woodbury solves cost more).
 #: Not tried above ``64**2`` unknowns.
+#:
+#: ``front_band_lu`` (the same banded LU for the band subproblems around the cavity's fronts of the
+#: mass-conserving solver's two-grid start: thin but long, 5e3-6e4 unknowns): in-process CPU A/B on the 5 x 5
+#: dimple slider (median of 5 fresh meshes each): a whole cold solve 0.96x as costly with the band at 100 and
+#: 200 cells per side (band work ``n kd^2`` 4.7e6 and 2.7e6), 1.02x at 280 (6.5e7), 0.99x at 400 (6.3e7) and
+#: 1.03-1.05x at 600 (61,299 unknowns, half-bandwidth 38, 8.9e7): SuperLU in the nested-dissection order wins
+#: on the long bands, so the work is capped between the two groups.
 BAND_LIMITS: dict[str, BandLimits] = {
     "kept_pattern": BandLimits(kd_max=64),
     "new_pattern": BandLimits(kd_max=80, work_max=5000 * 40**2, size_max=5000),
     "full_film_guess": BandLimits(kd_max=96, size_max=96**2),
     "active_set_lu": BandLimits(kd_max=64, size_max=64**2),
+    "front_band_lu": BandLimits(kd_max=64, work_max=2e7),
 }
 
 

@@ -96,7 +96,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from .thickness import Film
 from .forms import along
 from .flows import edge_groups
-from ..core.banded import band_cholesky, band_limits, band_plan, band_worth_trying
+from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -1690,14 +1690,16 @@ TWO_GRID_ITERATIONS = 20
 
 def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
     """The factorization of :func:`_band_set`'s band matrices (of ``pattern``) in the fill-reducing ``order``:
-    banded LU (:func:`_factorize_banded`) where the half-bandwidth in that order is at most :func:`_set_band_max`
-    (the band around the fronts is thin: 17-31 on the 5 x 5 dimples at 100-200 cells per side), else SuperLU
-    in it (:func:`_factorize_in_order`)."""
+    banded LU (:func:`_factorize_banded`) where the band pays (:data:`bearingfe.core.banded.BAND_LIMITS`
+    ``["front_band_lu"]``: the band around the fronts is thin, half-bandwidth 17-31 on the 5 x 5 dimples at
+    100-200 cells per side; from 280 cells it is long enough for SuperLU to win), else SuperLU in it
+    (:func:`_factorize_in_order`)."""
     order = np.asarray(order, np.int64)
     inverse = np.argsort(order)
     rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
     kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
-    return _factorize_banded(order, kd) if kd <= _set_band_max() else _factorize_in_order(order)
+    pays = band_pays(pattern.shape[0], kd, "front_band_lu")
+    return _factorize_banded(order, kd) if pays else _factorize_in_order(order)
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,

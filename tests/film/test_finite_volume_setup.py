@@ -351,7 +351,7 @@ def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
 
 def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     """The band subproblem of a nested start (:func:`_band_set`) is factored by banded LU in its reverse
-    Cuthill-McKee order where that order's half-bandwidth is within the ``active_set_lu`` band limit: its
+    Cuthill-McKee order where the band pays (the ``front_band_lu`` limits: half-bandwidth and work): its
     solution equals SuperLU's in the same order to 1e-12 of the largest (both backward stable; a
     well-conditioned set matrix of the 14 x 14 dimple grid's unknowns, round-off); a wider band keeps SuperLU."""
     from scipy.sparse.csgraph import reverse_cuthill_mckee
@@ -374,7 +374,12 @@ def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     want = fv._factorize_in_order(order)(M)(rhs)
     got = banded(M)(rhs)
     assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
-    monkeypatch.setitem(BAND_LIMITS, "active_set_lu", BandLimits(kd_max=banded.kd - 1, size_max=64**2))
+    monkeypatch.setitem(BAND_LIMITS, "front_band_lu", BandLimits(kd_max=banded.kd - 1, work_max=2e7))
+    wide = fv._band_factorize(pattern, order)
+    assert not isinstance(wide, fv._BandedLU)
+    assert np.abs(wide(M)(rhs) - want).max() == 0.0
+    n = pattern.shape[0]   # a long band (work n kd^2 above the cap) keeps SuperLU too
+    monkeypatch.setitem(BAND_LIMITS, "front_band_lu", BandLimits(kd_max=64, work_max=n * banded.kd**2 - 1))
     wide = fv._band_factorize(pattern, order)
     assert not isinstance(wide, fv._BandedLU)
     assert np.abs(wide(M)(rhs) - want).max() == 0.0
