@@ -1429,8 +1429,9 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
         refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size,
-                                     max(size, REFORMATION_SIZE * rupture_size))
-                   for mesh, res, size in zip(meshes, state.results, sizes)]
+                                     max(size, REFORMATION_SIZE * rupture_size),
+                                     EDGE_SIZE * rupture_size * max(peaks) / peak if peak > 0 else math.inf)
+                   for mesh, res, size, peak in zip(meshes, state.results, sizes, peaks)]
         if all(r is None for r in refined):
             return meshes, state, at, steps
         moved = step(state, at) if step is not None else None
@@ -1455,8 +1456,9 @@ FRONT_PEAK_DISTANCE = 0.75
 #: supply groove, cut at an axial line 17 degrees behind its peak of 1.9) has the elements within this many
 #: peak-to-edge distances of the edge ...
 EDGE_REACH = 2.0
-#: ... refined to this times the size of the film's front (the pressure falls from its peak to zero there; a
-#: light pad's front size, ``RUPTURE_LIGHT rupture_size``, leaves its edge as it is). Neither alone made the
+#: ... refined to this times ``rupture_size / f`` (the pressure falls from its peak to zero there; ``f`` as for
+#: :data:`RUPTURE_LIGHT`, but not capped: the light pad of two_groove, f = 0.01, reaches its trailing edge in full
+#: film, and the cap split its elements there at rupture_size 0.02, 2 % more nodes). Neither alone made the
 #: supply groove robust: with the grading eccentricity fixed at 0.74-0.78, its errors at size 0.2, rupture_size
 #: 0.05 were 5.2e-4 to 36e-4; the front alone 4.0e-4 to 11.5e-4 (even rupture_size 0.02 everywhere: 3.3e-4 to
 #: 11.2e-4); both 2.2e-4 to 7.3e-4.
@@ -1492,21 +1494,21 @@ def _corners(shape) -> list[tuple[float, float]]:
 
 def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
                       rupture_size: float, corner_size: float = 0.0,
-                      reformation_size: float | None = None) -> SupportMesh | None:
+                      reformation_size: float | None = None, edge_size: float = math.inf) -> SupportMesh | None:
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
     longer than ``rupture_size`` (those where the film forms again, :func:`_reformation_elements`: no longer
     than ``reformation_size``, default ``rupture_size``), or it has no front. ``rupture_size`` is scaled down for a
-    front close behind its peak, and a loaded downstream edge gets its band (:func:`zone_ends`,
-    :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`, :data:`EDGE_SIZE`)."""
+    front close behind its peak, and a loaded downstream edge gets a band of elements no longer than ``edge_size``
+    (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
     to_front, to_edge = zone_ends(res)
-    edge_size = EDGE_SIZE * rupture_size
     rupture_size *= min(1.0, to_front / FRONT_PEAK_DISTANCE)
     phi = m.p[0, m.t].mean(axis=0)
-    edge = phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) else np.zeros_like(front)
+    edge = (phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) and math.isfinite(edge_size)
+            else np.zeros_like(front))
     # told apart only when some front element is longer than rupture_size (reformation_size is not smaller)
     reformation = (_reformation_elements(res, front)
                    if reformation_size is not None and np.any(diameters[front] > rupture_size * (1 + 1e-9))
