@@ -1461,8 +1461,9 @@ EDGE_REACH = 2.0
 #: film, and the cap split its elements there at rupture_size 0.02, 2 % more nodes). Neither alone made the
 #: supply groove robust: with the grading eccentricity fixed at 0.74-0.78, its errors at size 0.2, rupture_size
 #: 0.05 were 5.2e-4 to 36e-4; the front alone 4.0e-4 to 11.5e-4 (even rupture_size 0.02 everywhere: 3.3e-4 to
-#: 11.2e-4); both 2.2e-4 to 7.3e-4.
-EDGE_SIZE = 2.0
+#: 11.2e-4); both 2.1e-4 to 7.5e-4 on 2,130-2,260 nodes (7.8e-4 at most over the sweep with 4, 10.6e-4 with 5;
+#: with 2 the same errors on 12 % more nodes; EDGE_REACH 1 instead of 2 left 9.7e-4 at size 0.3).
+EDGE_SIZE = 3.0
 
 
 def zone_ends(res: ReynoldsResult) -> tuple[float, float]:
