@@ -1447,10 +1447,12 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
 
 
 #: A rupture front closer than this [-] (in units of the journal radius, along ``phi``) behind the pressure peak
-#: of its full-film zone (:func:`zone_ends`) has its elements refined to ``rupture_size`` times its distance over
-#: this. The plain pads of part ``journal_pads`` have their fronts 0.72-0.86 behind the peak on the coarse mesh
-#: (0.81-1.1 refined; their meshes are unchanged); the supply groove's front, 20 degrees behind a steep peak
-#: (0.30-0.40), then lies in elements of 0.018 instead of 0.035 at rupture_size 0.05 ...
+#: of its full-film zone (:func:`zone_ends`) has its elements refined to ``rupture_size`` times the square of its
+#: distance over this. The plain pads of part ``journal_pads`` have their fronts 0.72-0.86 behind the peak on the
+#: coarse mesh (0.81-1.1 refined; their meshes are unchanged); the supply groove's front, 20 degrees behind a
+#: steep peak (0.30-0.40), then lies in elements of about 0.01 instead of 0.035 at rupture_size 0.05. The plain
+#: ratio (no square: elements of 0.018) left errors up to 11.9e-4 at size 0.2 and 15-19e-4 at sizes 0.25 and 0.3
+#: over the grading sweep below (step 0.004 from 0.72 to 0.8; the square: 9.0e-4, 11.9e-4, 7.0e-4) ...
 FRONT_PEAK_DISTANCE = 0.75
 #: ... and a full-film zone that runs into the film's downstream edge (``p = 0`` there: the pocket-fed zone of the
 #: supply groove, cut at an axial line 17 degrees behind its peak of 1.9) has the elements within this many
@@ -1461,8 +1463,9 @@ EDGE_REACH = 2.0
 #: film, and the cap split its elements there at rupture_size 0.02, 2 % more nodes). Neither alone made the
 #: supply groove robust: with the grading eccentricity fixed at 0.74-0.78, its errors at size 0.2, rupture_size
 #: 0.05 were 5.2e-4 to 36e-4; the front alone 4.0e-4 to 11.5e-4 (even rupture_size 0.02 everywhere: 3.3e-4 to
-#: 11.2e-4); both 2.1e-4 to 7.5e-4 on 2,130-2,260 nodes (7.8e-4 at most over the sweep with 4, 10.6e-4 with 5;
-#: with 2 the same errors on 12 % more nodes; EDGE_REACH 1 instead of 2 left 9.7e-4 at size 0.3).
+#: 11.2e-4); both (the plain ratio) 2.1e-4 to 7.5e-4 on 2,130-2,260 nodes (7.8e-4 at most with 4, 10.6e-4 with
+#: 5; with 2 the same errors on 12 % more nodes; EDGE_REACH 1 instead of 2 left 9.7e-4 at size 0.3); with the
+#: square 1.6e-4 to 9.0e-4 over 0.72-0.8 on 2,450-3,400 nodes (main: 4.6e-4 to 36e-4 on 1,090-1,170).
 EDGE_SIZE = 3.0
 
 
@@ -1506,7 +1509,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     front = _front_elements(res)
     diameters = cell_diameters(m)
     to_front, to_edge = zone_ends(res)
-    rupture_size *= min(1.0, to_front / FRONT_PEAK_DISTANCE)
+    rupture_size *= min(1.0, to_front / FRONT_PEAK_DISTANCE) ** 2
     phi = m.p[0, m.t].mean(axis=0)
     edge = (phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) and math.isfinite(edge_size)
             else np.zeros_like(front))

@@ -30,7 +30,7 @@ REF_PARTIAL = (0.6070039618008299, [[1.5767537404466596, 0.2895793322140407], [-
                [[1.6014460256284333, -1.7784124119741826], [-1.7784124119741849, 6.898776969449451]])
 REF_SUPPLY = (0.7610474403853972, [[4.884519017996365, 0.06277581088017187], [-5.780678379575545, 4.89196942608784]],
               [[5.446019188176204, -4.178598015055321], [-4.178598015055334, 6.8458141600819085]])
-#: name -> (bearing, reference, tolerance): 4.9e-4, 7.9e-4 and 6.4e-4 at the setting of :func:`solved`
+#: name -> (bearing, reference, tolerance): 4.9e-4, 7.9e-4 and 7.1e-4 at the setting of :func:`solved`
 REFERENCES = {
     "two_groove": (TWO_GROOVE, REF_TWO, 1e-3),
     "partial_arc": (PARTIAL, REF_PARTIAL, 1e-3),
@@ -104,9 +104,10 @@ def test_rupture_refined_pads_take_as_few_newton_steps_as_the_full_bearing(refin
     # the polar Newton from the short-bearing guess, the coarse tolerance 5e-2 and a Newton step before each
     # refinement level's solve: 4 steps on two_groove and partial_arc (the full bearing of the same L/D and
     # load takes 4 at this setting); the supply groove (first guess at half its load, corrected by the solve
-    # there) 6. Before them: 5 and 8; before the corrected guess, the supply groove's 7
+    # there) 6, and 7 since its front close behind its peak takes one more refinement level (zone_ends; 6 at
+    # rupture_size 0.05). Before them: 5 and 8; before the corrected guess, the supply groove's 7
     name, eq, _, _, _ = refined
-    assert eq.newton_iterations <= (6 if name == "supply_groove" else 4), name
+    assert eq.newton_iterations <= (7 if name == "supply_groove" else 4), name
 
 
 def test_short_bearing_guess_in_closed_form():
@@ -393,12 +394,13 @@ def test_the_structured_journal_mesh_keeps_the_facets_it_named():
     assert np.all(np.isin(m.facets[:, mesh.boundaries["outer"]], fresh.boundary_nodes()))
 
 
-@pytest.mark.parametrize("grading", [0.74, 0.767])
+@pytest.mark.parametrize("grading", [0.74, 0.753, 0.767])
 def test_supply_groove_within_1e3_whatever_eccentricity_grades_its_meshes(monkeypatch, grading):
     # The coarse meshes graded at a fixed eccentricity near the answer's (0.761): before the front was refined by
-    # its distance behind the peak (front_peak_distance 0.30-0.40 here, 0.8-1.1 on plain pads) and the loaded
-    # trailing edge at the cut (zone_ends), the error against REF_SUPPLY was 36e-4 at 0.74 and 21e-4 at 0.767
-    # (5e-4 to 13e-4 between them); now 2.1e-4 and 6.9e-4 (the sweep 0.74-0.78 stays within 7.5e-4)
+    # its distance behind the peak (zone_ends: 0.30-0.40 here, 0.8-1.1 on plain pads) and the loaded trailing
+    # edge at the cut, the error against REF_SUPPLY was 36e-4, 9.6e-4 and 21e-4 at these gradings
+    # (4.6e-4 to 36e-4 over 0.72-0.8); now 2.2e-4, 2.9e-4 and 6.1e-4 (that sweep, step 0.004, within 9e-4;
+    # 0.753 is where the front refined by the plain distance ratio instead of its square still had 11.9e-4)
     from bearingfe.bearings import journal
     made = journal.structured_meshes
 
