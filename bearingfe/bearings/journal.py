@@ -1454,6 +1454,9 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
 #: ratio (no square: elements of 0.018) left errors up to 11.9e-4 at size 0.2 and 15-19e-4 at sizes 0.25 and 0.3
 #: over the grading sweep below (step 0.004 from 0.72 to 0.8; the square: 9.0e-4, 11.9e-4, 7.0e-4) ...
 FRONT_PEAK_DISTANCE = 0.75
+#: ... but not below this fraction of it (a tiny full-film zone, a few dofs from peak to front, would otherwise ask
+#: for elements without bound; the supply groove's factor is 0.16-0.28) ...
+FRONT_PEAK_FLOOR = 0.1
 #: ... and a full-film zone that runs into the film's downstream edge (``p = 0`` there: the pocket-fed zone of the
 #: supply groove, cut at an axial line 17 degrees behind its peak of 1.9) has the elements within this many
 #: peak-to-edge distances of the edge ...
@@ -1467,6 +1470,12 @@ EDGE_REACH = 2.0
 #: 5; with 2 the same errors on 12 % more nodes; EDGE_REACH 1 instead of 2 left 9.7e-4 at size 0.3); with the
 #: square 1.6e-4 to 9.0e-4 over 0.72-0.8 on 2,450-3,400 nodes (main: 4.6e-4 to 36e-4 on 1,090-1,170).
 EDGE_SIZE = 3.0
+
+
+def front_size_factor(distance: float) -> float:
+    """Factor on the front's element size for a rupture front ``distance`` [-] behind its zone's pressure peak
+    (:func:`zone_ends`): ``(distance / FRONT_PEAK_DISTANCE)^2`` within ``[FRONT_PEAK_FLOOR, 1]``."""
+    return max(min(1.0, distance / FRONT_PEAK_DISTANCE) ** 2, FRONT_PEAK_FLOOR)
 
 
 def zone_ends(res: ReynoldsResult) -> tuple[float, float]:
@@ -1509,7 +1518,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     front = _front_elements(res)
     diameters = cell_diameters(m)
     to_front, to_edge = zone_ends(res)
-    rupture_size *= min(1.0, to_front / FRONT_PEAK_DISTANCE) ** 2
+    rupture_size *= front_size_factor(to_front)
     phi = m.p[0, m.t].mean(axis=0)
     edge = (phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) and math.isfinite(edge_size)
             else np.zeros_like(front))

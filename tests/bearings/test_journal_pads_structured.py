@@ -422,3 +422,15 @@ def test_zone_ends_measure_the_peak_to_front_and_peak_to_edge_distances():
     eq, _ = solved("two_groove")
     front, edge = zone_ends(eq.state.results[1])
     assert 0.75 < front < 1.0 and edge == math.inf
+
+
+def test_front_size_factor_is_the_squared_distance_ratio_within_its_floor(monkeypatch):
+    # (distance / FRONT_PEAK_DISTANCE)^2, 1 for a front at least FRONT_PEAK_DISTANCE behind its peak (or none),
+    # FRONT_PEAK_FLOOR for a front a few dofs behind (read at call time)
+    from bearingfe.bearings import journal
+    assert journal.front_size_factor(math.inf) == 1.0
+    assert journal.front_size_factor(journal.FRONT_PEAK_DISTANCE) == 1.0
+    assert journal.front_size_factor(0.5 * journal.FRONT_PEAK_DISTANCE) == pytest.approx(0.25, rel=1e-15)
+    assert journal.front_size_factor(1e-9) == journal.FRONT_PEAK_FLOOR
+    monkeypatch.setattr(journal, "FRONT_PEAK_FLOOR", 0.3)
+    assert journal.front_size_factor(0.5 * journal.FRONT_PEAK_DISTANCE) == 0.3
