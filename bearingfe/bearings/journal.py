@@ -1083,7 +1083,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 5)``: a
         lightly loaded pad's front weighs less on the coefficients; where the
         film forms again, e.g. upstream of a supply pocket, ``5 rupture_size``
-        at least), each
+        at least; a front closer than 0.75 behind its zone's pressure peak
+        smaller, and a full film running into a pad's downstream edge gets
+        a refined band there: :func:`zone_ends`), each
         level solved at a Newton step on from the level before; then Newton
         to ``tol`` on those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
