@@ -1083,7 +1083,9 @@ def equilibrium(bearing: JournalBearing, load, *, size: float = 0.08, min_size: 
         ``f`` of the bearing's largest, ``rupture_size min(1/f, 5)``: a
         lightly loaded pad's front weighs less on the coefficients; where the
         film forms again, e.g. upstream of a supply pocket, ``5 rupture_size``
-        at least), each
+        at least; a front closer than 0.75 behind its zone's pressure peak
+        smaller, and a full film running into a pad's downstream edge gets
+        a refined band there: :func:`zone_ends`), each
         level solved at a Newton step on from the level before; then Newton
         to ``tol`` on those meshes (the returned ``meshes``, which
         :func:`dynamic_coefficients` reuses). The coefficients are
@@ -1411,7 +1413,10 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
     longer than ``rupture_size min(1 / f, RUPTURE_LIGHT)`` on a film whose largest pressure is a fraction
     ``f`` of that (the coefficients' error from a front grows with the pressures around it); where the film forms
     again (:func:`_reformation_elements`) no longer than ``rupture_size REFORMATION_SIZE`` (or the film's size,
-    if larger). Per level: the elements within :data:`RUPTURE_REACH` diameters of a front element
+    if larger). A front closer than :data:`FRONT_PEAK_DISTANCE` behind its zone's pressure peak is refined further
+    in proportion, and a zone running into the film's downstream edge has a band along that edge refined to
+    :data:`EDGE_SIZE` times the front's size (:func:`zone_ends`). Per level: the elements within
+    :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
     from the previous level's rupture sets (nested iteration).
 
@@ -1426,8 +1431,9 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
         peaks = [max(float(np.max(res.pressure)), 0.0) for res in state.results]
         sizes = [rupture_size * min(max(peaks) / peak, RUPTURE_LIGHT) if peak > 0 else math.inf for peak in peaks]
         refined = [_refined_at_front(bearing, mesh, res, size, CORNER_SIZE * rupture_size,
-                                     max(size, REFORMATION_SIZE * rupture_size))
-                   for mesh, res, size in zip(meshes, state.results, sizes)]
+                                     max(size, REFORMATION_SIZE * rupture_size),
+                                     EDGE_SIZE * rupture_size * max(peaks) / peak if peak > 0 else math.inf)
+                   for mesh, res, size, peak in zip(meshes, state.results, sizes, peaks)]
         if all(r is None for r in refined):
             return meshes, state, at, steps
         moved = step(state, at) if step is not None else None
@@ -1442,6 +1448,58 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
                        f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
 
 
+#: A rupture front closer than this [-] (in units of the journal radius, along ``phi``) behind the pressure peak
+#: of its full-film zone (:func:`zone_ends`) has its elements refined to ``rupture_size`` times the square of its
+#: distance over this. The plain pads of part ``journal_pads`` have their fronts 0.72-0.86 behind the peak on the
+#: coarse mesh (0.81-1.1 refined; their meshes are unchanged); the supply groove's front, 20 degrees behind a
+#: steep peak (0.30-0.40), then lies in elements of about 0.01 instead of 0.035 at rupture_size 0.05. The plain
+#: ratio (no square: elements of 0.018) left errors up to 11.9e-4 at size 0.2 and 15-19e-4 at sizes 0.25 and 0.3
+#: over the grading sweep below (step 0.004 from 0.72 to 0.8; the square: 9.0e-4, 11.9e-4, 7.0e-4) ...
+FRONT_PEAK_DISTANCE = 0.75
+#: ... but not below this fraction of it (a tiny full-film zone, a few dofs from peak to front, would otherwise ask
+#: for elements without bound; the supply groove's factor is 0.16-0.28) ...
+FRONT_PEAK_FLOOR = 0.1
+#: ... and a full-film zone that runs into the film's downstream edge (``p = 0`` there: the pocket-fed zone of the
+#: supply groove, cut at an axial line 17 degrees behind its peak of 1.9) has the elements within this many
+#: peak-to-edge distances of the edge ...
+EDGE_REACH = 2.0
+#: ... refined to this times ``rupture_size / f`` (the pressure falls from its peak to zero there; ``f`` as for
+#: :data:`RUPTURE_LIGHT`, but not capped: the light pad of two_groove, f = 0.01, reaches its trailing edge in full
+#: film, and the cap split its elements there at rupture_size 0.02, 2 % more nodes). Neither alone made the
+#: supply groove robust: with the grading eccentricity fixed at 0.74-0.78, its errors at size 0.2, rupture_size
+#: 0.05 were 5.2e-4 to 36e-4; the front alone 4.0e-4 to 11.5e-4 (even rupture_size 0.02 everywhere: 3.3e-4 to
+#: 11.2e-4); both (the plain ratio) 2.1e-4 to 7.5e-4 on 2,130-2,260 nodes (7.8e-4 at most with 4, 10.6e-4 with
+#: 5; with 2 the same errors on 12 % more nodes; EDGE_REACH 1 instead of 2 left 9.7e-4 at size 0.3); with the
+#: square 1.6e-4 to 9.0e-4 over 0.72-0.8 on 2,450-3,400 nodes (main: 4.6e-4 to 36e-4 on 1,090-1,170).
+EDGE_SIZE = 3.0
+
+
+def front_size_factor(distance: float) -> float:
+    """Factor on the front's element size for a rupture front ``distance`` [-] behind its zone's pressure peak
+    (:func:`zone_ends`): ``(distance / FRONT_PEAK_DISTANCE)^2`` within ``[FRONT_PEAK_FLOOR, 1]``."""
+    return max(min(1.0, distance / FRONT_PEAK_DISTANCE) ** 2, FRONT_PEAK_FLOOR)
+
+
+def zone_ends(res: ReynoldsResult) -> tuple[float, float]:
+    """Shortest distances [-] (along ``phi``, on the row of dofs nearest the mid-plane ``z = 0``) from the largest
+    pressure of a full-film zone forward to where the zone ends: ``(front, edge)``, the first over zones ending at
+    a rupture front, the second over a zone ending at the film's downstream edge (``inf`` where there is none). A
+    zone that ends close behind a steep peak needs smaller elements there than one far behind a flat one."""
+    x = np.asarray(res.basis.doflocs)
+    row = np.flatnonzero(np.abs(x[1]) <= np.min(np.abs(x[1])) + 1e-9)
+    row = row[np.argsort(x[0, row])]
+    phi, p, cavitated = x[0, row], np.asarray(res.pressure)[row], np.asarray(res.cavitated, bool)[row]
+    change = np.diff(np.concatenate([[0], (~cavitated & (p > 0)).astype(np.int8), [0]]))
+    front = edge = math.inf
+    last = len(row) - 1
+    for start, end in zip(np.flatnonzero(change == 1), np.flatnonzero(change == -1)):  # zone: dofs start..end-1
+        end = min(end, last)  # the first dof after the zone (the edge's, if the zone reaches it)
+        if cavitated[end] or end == last:
+            distance = float(phi[end] - phi[start + int(np.argmax(p[start:end]))])
+            front, edge = (min(front, distance), edge) if cavitated[end] else (front, distance)
+    return front, edge
+
+
 def _corners(shape) -> list[tuple[float, float]]:
     """The four corners of an axis-aligned rectangular pocket."""
     xy = shape.boundary()
@@ -1451,19 +1509,27 @@ def _corners(shape) -> list[tuple[float, float]]:
 
 def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsResult,
                       rupture_size: float, corner_size: float = 0.0,
-                      reformation_size: float | None = None) -> SupportMesh | None:
+                      reformation_size: float | None = None, edge_size: float = math.inf) -> SupportMesh | None:
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
     longer than ``rupture_size`` (those where the film forms again, :func:`_reformation_elements`: no longer
-    than ``reformation_size``, default ``rupture_size``), or it has no front."""
+    than ``reformation_size``, default ``rupture_size``), or it has no front. ``rupture_size`` is scaled down for a
+    front close behind its peak, and a loaded downstream edge gets a band of elements no longer than ``edge_size``
+    (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
+    to_front, to_edge = zone_ends(res)
+    rupture_size *= front_size_factor(to_front)
+    phi = m.p[0, m.t].mean(axis=0)
+    edge = (phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) and math.isfinite(edge_size)
+            else np.zeros_like(front))
     # told apart only when some front element is longer than rupture_size (reformation_size is not smaller)
     reformation = (_reformation_elements(res, front)
                    if reformation_size is not None and np.any(diameters[front] > rupture_size * (1 + 1e-9))
                    else np.zeros_like(front))
-    groups = [(mask, size) for mask, size in ((front & ~reformation, rupture_size), (reformation, reformation_size))
+    groups = [(mask, size) for mask, size in ((front & ~reformation, rupture_size), (reformation, reformation_size),
+                                              (edge, edge_size))
               if mask.any() and math.isfinite(size) and diameters[mask].max() > size * (1 + 1e-9)]
     if groups:
         centroids = m.p[:, m.t].mean(axis=1)
