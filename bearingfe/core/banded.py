@@ -29,7 +29,8 @@ import scipy.sparse as sp
 from scipy.linalg.lapack import dpbtrf, dpbtrs
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-__all__ = ["BandLimits", "BAND_LIMITS", "band_limits", "band_pays", "band_worth_trying", "BandPlan", "band_plan",
+__all__ = ["BandLimits", "BAND_LIMITS", "band_limits", "band_pays", "band_worth_trying", "half_bandwidth", "BandPlan",
+           "band_plan",
            "band_plan_in_order", "band_cholesky"]
 
 
@@ -129,6 +130,16 @@ def band_pays(n: int, kd: int, kind: str, kd_max: int | None = None) -> bool:
     limits = band_limits(kind)
     kd_max = limits.kd_max if kd_max is None else kd_max
     return kd <= kd_max and n * kd**2 <= limits.work_max and n <= limits.size_max
+
+
+def half_bandwidth(pattern: sp.csr_matrix, perm: np.ndarray) -> int:
+    """Half-bandwidth of the CSR ``pattern`` (square) in the elimination order ``perm`` (band position ->
+    unknown): the largest ``|position(i) - position(j)|`` over its entries."""
+    perm = np.asarray(perm, np.int64)
+    inverse = np.empty_like(perm)
+    inverse[perm] = np.arange(perm.size)
+    rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
+    return int(np.abs(inverse[rows] - inverse[pattern.indices]).max(initial=0))
 
 
 @dataclass(frozen=True, eq=False)

@@ -96,7 +96,7 @@ from scipy.sparse.csgraph import reverse_cuthill_mckee
 from .thickness import Film
 from .forms import along
 from .flows import edge_groups
-from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying
+from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -916,6 +916,7 @@ def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
     surface = mesh.surface
     if surface is None or not getattr(surface, "recesses", ()):
         return None
+
     def build() -> np.ndarray:
         depth = _recess_depth(surface, mesh.mesh.p[0], mesh.mesh.p[1])
         depth.flags.writeable = False
@@ -1292,9 +1293,7 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     kept = unk._order.get("set_band")
     if kept is None or not (np.array_equal(kept[0], pattern.indptr) and np.array_equal(kept[1], pattern.indices)):
         perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
-        inverse = np.argsort(perm)
-        rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
-        kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
+        kd = half_bandwidth(pattern, perm)
         kept = (pattern.indptr.copy(), pattern.indices.copy(), (perm, kd) if kd <= _set_band_max() else None)
     # with the given matrices' own patterns: the next call with the same ones skips the union pattern
     unk._order["set_band"] = kept[:3] + (None if given is None else
@@ -1492,13 +1491,17 @@ class _SetSolver:
         dropped: the same entries as the sparse products and sum (above, those products)."""
         if self.K.shape[0] > CHOICE_UP_TO:
             return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
-        if self._choice is None:
-            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
-        pattern, k_data, g_data, column = self._choice
+        pattern, k_data, g_data, column = self._picked()
         M = sp.csc_matrix((np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy()),
                           shape=pattern.shape)
         M.eliminate_zeros()   # in place: hence the copies of the kept pattern
         return M
+
+    def _picked(self) -> tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray]:
+        """:func:`_column_choice` of ``K`` and ``G`` (found once per solver, the pattern part kept on the unknowns)."""
+        if self._choice is None:
+            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
+        return self._choice
 
     def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix | None = None) -> None:
         """Factorizes the set ``cav`` (its matrix ``M``, built here where not given): a banded factorization
@@ -1516,9 +1519,7 @@ class _SetSolver:
         """The entries of ``M(cav)`` on the union pattern (those :meth:`matrix` drops as explicit zeros are
         zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
         storage of :attr:`factorize` (found once per solver)."""
-        if self._choice is None:
-            self._choice = _column_choice(self.K, self.G, None if self.unk is None else self.unk._order)
-        pattern, k_data, g_data, column = self._choice
+        pattern, k_data, g_data, column = self._picked()
         if self._places is None:
             self._places = self.factorize.places(pattern.indices, column)
         return np.where(cav[column], g_data, k_data) + 0.0, self._places
@@ -1695,9 +1696,7 @@ def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
     100-200 cells per side; from 280 cells it is long enough for SuperLU to win), else SuperLU in it
     (:func:`_factorize_in_order`)."""
     order = np.asarray(order, np.int64)
-    inverse = np.argsort(order)
-    rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
-    kd = int(np.max(np.abs(inverse[rows] - inverse[pattern.indices]), initial=0))
+    kd = half_bandwidth(pattern, order)
     pays = band_pays(pattern.shape[0], kd, "front_band_lu")
     return _factorize_banded(order, kd) if pays else _factorize_in_order(order)
 

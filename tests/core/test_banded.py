@@ -91,3 +91,21 @@ def test_limits_are_read_at_the_call(monkeypatch):
     assert plan is not None
     monkeypatch.setitem(banded.BAND_LIMITS, "kept_pattern", banded.BandLimits(kd_max=plan.kd - 1))
     assert banded.band_plan(np.arange(A.nnz), A.indices, A.indptr, A.shape[0]) is None
+
+
+def test_half_bandwidth_is_the_largest_distance_of_an_entry_from_the_diagonal_in_the_order():
+    """half_bandwidth against its definition on a 1-D chain: tridiagonal in the natural order (1); in the order
+    that visits every other unknown first, the neighbours 0-1 sit n/2 apart; and the same number as the band
+    plan finds for that order."""
+    import scipy.sparse as sp
+
+    from bearingfe.core.banded import band_plan_in_order, half_bandwidth
+
+    n = 10
+    chain = sp.diags([np.ones(n - 1), 2 * np.ones(n), np.ones(n - 1)], [-1, 0, 1], format="csr")
+    assert half_bandwidth(chain, np.arange(n)) == 1
+    evens_first = np.concatenate([np.arange(0, n, 2), np.arange(1, n, 2)])
+    assert half_bandwidth(chain, evens_first) == n // 2
+    coo = chain.tocoo()
+    plan = band_plan_in_order(coo.row, coo.col, n, evens_first, kd_max=n)
+    assert plan.kd == half_bandwidth(chain, evens_first)
