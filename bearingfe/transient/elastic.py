@@ -802,7 +802,8 @@ class _NewtonSolve:
     The pressure block is ``T = I - c Da = K^-1 (K + c Jr)``, so ``T^-1 v = (K + c Jr)^-1 K v``: GMRES on
     ``K + c Jr`` (one compliance product per iteration, no ``K^-1``), right-preconditioned on two levels: the
     coarse patches exactly, the rest by the sparse factors of ``K``'s model plus ``c A_II``
-    (:meth:`_ShiftedLaplacian.newton`; the film's operator for the fine modes, the compliance's for the coarser). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
+    (:meth:`_ShiftedLaplacian.newton`; the film's operator for the fine modes, the compliance's for the
+    coarser). The rest of ``N`` is a rank-4 correction (the rates' rows ``Rp`` and the columns of
     ``(gamma, delta)``), taken exactly: with ``x = T^-1 v``, ``Da x = (x - v)/c`` gives ``Rp x`` with no
     further solve, and a 4x4 system joins the pieces (four solves with ``T`` per Newton matrix, one per solve).
     """
