@@ -211,12 +211,17 @@ class ObstacleProblem:
             return solve, 0
         return self._factor(free), 1
 
+    def _mask(self, mask: np.ndarray, name: str) -> np.ndarray:
+        """``mask`` as a boolean array of the unknowns; ValueError naming ``name`` if it has another shape."""
+        mask = np.asarray(mask, bool)
+        if mask.shape != (self.n,):
+            raise ValueError(f"{name} must be a boolean mask of length {self.n}")
+        return mask
+
     def add_factorization(self, free: np.ndarray, solve) -> None:
         """Put a factorization of ``A[free][:, free]`` made elsewhere in the cache: the
         preconditioner of the next sets' conjugate-gradient solves."""
-        free = np.asarray(free, bool)
-        if free.shape != (self.n,):
-            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        free = self._mask(free, "free")
         self._store(np.packbits(free).tobytes(), solve)
         self._reference = (free.copy(), solve)
 
@@ -224,9 +229,7 @@ class ObstacleProblem:
         """Take a factorization of a nearby matrix's ``A'[free][:, free]`` (the same unknowns, e.g. the previous
         state of a film being iterated on) as the preconditioner of the next sets' conjugate-gradient solves;
         unlike :meth:`add_factorization` it is not taken as a solve of this matrix."""
-        free = np.asarray(free, bool)
-        if free.shape != (self.n,):
-            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        free = self._mask(free, "free")
         self._reference = (free.copy(), solve)
 
     def _solve_free(self, free: np.ndarray, b_free: np.ndarray, rtol: float | None = None,
@@ -274,9 +277,7 @@ class ObstacleProblem:
     def factorization(self, free: np.ndarray):
         """The solve ``b -> A[free][:, free]^-1 b`` by a factorization: the cached one of that set (the
         active-set iteration's, when it ended on a factored set), else a new one, kept in the cache."""
-        free = np.asarray(free, bool)
-        if free.shape != (self.n,):
-            raise ValueError(f"free must be a boolean mask of length {self.n}")
+        free = self._mask(free, "free")
         return self._solver(free)[0]
 
     def solve_fixed(self, b: np.ndarray, active: np.ndarray) -> np.ndarray:
@@ -312,9 +313,7 @@ class ObstacleProblem:
         b = np.asarray(b, float)
         if b.shape != (self.n,) or not np.all(np.isfinite(b)):
             raise ValueError(f"b must be a finite vector of length {self.n}")
-        active = np.zeros(self.n, bool) if active is None else np.asarray(active, bool).copy()
-        if active.shape != (self.n,):
-            raise ValueError(f"active must be a boolean mask of length {self.n}")
+        active = np.zeros(self.n, bool) if active is None else self._mask(active, "active").copy()
         seen: set[bytes] = set()
         made = self.factorization_count
         scale_b = float(np.abs(b).max(initial=0.0))
