@@ -106,8 +106,8 @@ class SupportMesh:
 
         The one home of per-mesh structures (operators, finite-volume duals and faces, FFT kernels, ...):
         they live as long as the mesh (a pickled mesh travels without them: they are rebuilt where they
-        are needed). ``key`` names the structure
-        (a string, or a tuple of a string and what the structure depends on besides the mesh).
+        are needed). ``key`` names the structure: a string, or a tuple of a string and what the structure
+        depends on besides the mesh.
         """
         try:
             return self._cache[key]
