@@ -1524,19 +1524,22 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     phi = m.p[0, m.t].mean(axis=0)
     edge = (phi > phi.max() - EDGE_REACH * to_edge if math.isfinite(to_edge) and math.isfinite(edge_size)
             else np.zeros_like(front))
-    # told apart only when some front element is longer than rupture_size (reformation_size is not smaller)
-    reformation = (_reformation_elements(res, front)
-                   if reformation_size is not None and np.any(diameters[front] > rupture_size * (1 + 1e-9))
-                   else np.zeros_like(front))
+    # told apart only where it matters: among the front elements longer than rupture_size (reformation_size is not
+    # smaller; each element is told apart by the dofs around it alone), and for all of them if some is to be split
+    long = front & (diameters > rupture_size * (1 + 1e-9))
+    reformation = np.zeros_like(front)
+    if reformation_size is not None and long.any():
+        reformation = _reformation_elements(res, long)
+        if np.any(long & ~reformation) or np.any(diameters[reformation] > reformation_size * (1 + 1e-9)):
+            reformation = _reformation_elements(res, front)
     groups = [(mask, size) for mask, size in ((front & ~reformation, rupture_size), (reformation, reformation_size),
                                               (edge, edge_size))
               if mask.any() and math.isfinite(size) and diameters[mask].max() > size * (1 + 1e-9)]
+    d, centroids = diameters, m.p[:, m.t].mean(axis=1)  # of m, made afresh after each split
     if groups:
-        centroids = m.p[:, m.t].mean(axis=1)
         centres = [(centroids[:, mask].T, RUPTURE_REACH * diameters[mask], size) for mask, size in groups]
         for _ in range(RUPTURE_SPLITS):
-            d = cell_diameters(m)
-            tree = cKDTree(m.p[:, m.t].mean(axis=1).T)
+            tree = cKDTree(centroids.T)
             marked = np.zeros(m.nelements, bool)
             for points, reach, size in centres:
                 near = np.zeros(m.nelements, bool)
@@ -1547,16 +1550,17 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
             if not marked.size:
                 break
             m = refine_marked(m, marked)
+            d, centroids = cell_diameters(m), m.p[:, m.t].mean(axis=1)
             changed = True
     # the corners of the supply pockets (the pressure gradient is singular there): graded down to corner_size
     corners = np.array([(x, z) for g in mesh.surface.inlets for x, z in _corners(g)]) if corner_size else np.zeros((0, 2))
     for _ in range(64 if corners.size else 0):
-        d = cell_diameters(m)
-        gap = np.min(np.hypot(*(m.p[:, m.t].mean(axis=1)[:, :, None] - corners.T[:, None, :])), axis=1)
+        gap = np.min(np.hypot(*(centroids[:, :, None] - corners.T[:, None, :])), axis=1)
         marked = np.flatnonzero((gap < CORNER_REACH * d) & (d > corner_size * (1 + 1e-9)))
         if not marked.size:
             break
         m = refine_marked(m, marked)
+        d, centroids = cell_diameters(m), m.p[:, m.t].mean(axis=1)
         changed = True
     if not changed:
         return None
