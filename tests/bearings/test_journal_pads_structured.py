@@ -233,6 +233,21 @@ def test_turned_rupture_searched_within_its_reach_is_the_unbounded_nearest_one()
         assert np.array_equal(nearest, np.arange(points.shape[1]))
 
 
+
+def test_rupture_turned_in_place_is_the_nearest_one():
+    # the rupture set turned on its own mesh without a search when no two dofs lie within twice the turn: the same
+    # mask as the unbounded nearest-dof search (the previous path), on both pads, at turns from 1e-5 rad (below
+    # half the dof spacing: the mask itself) to 0.2 rad (above it: the search)
+    from bearingfe.bearings.journal import _nearest_rupture, _turned_in_place
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    for res in state.results:
+        points = np.asarray(res.basis.doflocs)
+        for turn in (1e-5, -4e-5, 4e-3, -0.03, 0.2):
+            assert np.array_equal(_turned_in_place(res, turn), _nearest_rupture(res, points, turn))
+        assert np.array_equal(_turned_in_place(res, 1e-5), res.cavitated)
+        assert not np.array_equal(_turned_in_place(res, 0.2), res.cavitated)
+
 def test_unrefined_structured_pads_miss_it():
     # the same grid without the rupture refinement misses the target (measured 2.0e-3, refined 1.6e-4): the
     # refinement is what brings the coefficients in
