@@ -1649,7 +1649,8 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
     rotation = theta_load - math.atan2(F[1], F[0])
     xy = _rot(rotation) @ np.array([-eps, 0.0])
     att = math.degrees(math.atan2(abs(F[1]), -F[0]))
-    state = _State(results=state.results, sups=state.sups, force=_rot(rotation) @ F, rotation=rotation)
+    # the joined problem kept: the coefficients' linearization reuses the factorization of the final rupture set
+    state = replace(state, force=_rot(rotation) @ F, rotation=rotation)
     return Equilibrium(eps=eps, attitude=att, position=xy, force=state.force, newton_iterations=k_total,
                        residual=res, active_set_iterations=opts.iterations, element=opts.element, state=state,
                        meshes=meshes, bearing=bearing)
