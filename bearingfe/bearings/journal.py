@@ -500,6 +500,9 @@ class _State:
     force: np.ndarray          # on the shoe/bore = applied load on the journal at equilibrium
     rotation: float            # mesh frame -> bearing frame angle
     joined: "_Joined | None" = None  # the films' joined obstacle problem, when they were solved as one
+    #: per film, the derivatives of its interior unknowns in the journal's (x, y, xdot, ydot) on its rupture set
+    #: (columns), once :func:`_linearized` made them: the next Newton position's rupture set is predicted from them
+    perturbations: list = field(default_factory=list)
 
 
 def _check_eps(eps: float) -> float:
@@ -733,6 +736,7 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         solved = state.joined.solve_fixed([r for _, _, r, _ in systems], [a for _, _, _, a in systems])
     else:
         solved = [fp.solve_fixed(rhs, active) for _, fp, rhs, active in systems]
+    state.perturbations[:] = solved
     for (co, fp, _, _), U in zip(systems, solved):
         u = np.zeros((co.n_dofs, 4))
         u[fp.interior] = U
@@ -1153,12 +1157,19 @@ class _Solves:
 
     def solve(self, bearing: JournalBearing, meshes, x: float, y: float, start=None) -> _State:
         """``start``: rupture masks (one per pad) to start from instead of the previous state. The previous
-        state's rupture sets are turned with the line of centres (:func:`_turn`) when it turned."""
+        state's rupture sets are turned with the line of centres (:func:`_turn`) when it turned and, once it was
+        linearized (a Newton step's stiffness), joined by the dofs its linearization predicts ruptured at
+        ``(x, y)`` (:func:`_predicted_rupture`)."""
         warm = start if start is not None else self.previous if self.warm else None
         if start is None and warm is not None and self.at is not None and self.cavitation == "reynolds":
             turn = _turn(self.at, (x, y))
-            if turn and all(r.basis.mesh is m.mesh for r, m in zip(warm.results, meshes)):
+            same = all(r.basis.mesh is m.mesh for r, m in zip(warm.results, meshes))
+            previous = warm
+            if turn and same:
                 warm = tuple(_turned_in_place(r, turn) for r in warm.results)
+            if same and previous.perturbations:
+                warm = _predicted_rupture(previous, warm.results if isinstance(warm, _State) else warm,
+                                          np.array([x - self.at[0], y - self.at[1]]))
         state = _solve_state(bearing, meshes, x, y, self.cavitation, element=self.element, warm_start=warm)
         # solved as one (joined): one active-set iteration for all films, each result carries its count
         self.iterations += state.results[0].iterations if state.joined else sum(r.iterations for r in state.results)
@@ -1580,6 +1591,23 @@ def _dof_tree(basis) -> cKDTree:
 #: Relative slack of the search radius of a rupture set turned on its own mesh (:meth:`_Solves.solve`): the turned
 #: dof's distance to its own dof is ``|turn|`` but for the rounding of the subtraction.
 TURN_REACH_SLACK = 1e-6
+
+
+def _predicted_rupture(previous: _State, starts, step: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Rupture masks to start the films of ``previous`` (on its meshes) from, with the journal moved by ``step``
+    (mesh frame): ``starts`` (one per film: a result or a mask of its dofs) with the dofs added whose constrained
+    unknown the linearization of ``previous`` (:attr:`_State.perturbations`) predicts below zero there,
+    ``v = T (u + du/d(x, y) step) < -tol max |v|`` (the active-set iteration's own test). The front moves with
+    the journal; the first-order step puts the dofs it passes over in the start (a Newton step on the refined pads
+    of two_groove_ld1 had one dof to rupture, which took one more active-set iteration of 3,182 unknowns)."""
+    masks = []
+    for res, sup, du, start in zip(previous.results, previous.sups, previous.perturbations, starts):
+        fp = obstacle_problem(sup)
+        mask = np.array(start.cavitated if isinstance(start, ReynoldsResult) else start, bool)
+        v = fp.coefficients(np.asarray(res.pressure)[fp.interior] + du[:, :2] @ step)
+        mask[fp.interior] |= v < -fp.problem.tol * float(np.abs(v).max(initial=0.0))
+        masks.append(mask)
+    return tuple(masks)
 
 
 def _turned_in_place(res: ReynoldsResult, turn: float) -> np.ndarray:

@@ -248,6 +248,36 @@ def test_rupture_turned_in_place_is_the_nearest_one():
         assert np.array_equal(_turned_in_place(res, 1e-5), res.cavitated)
         assert not np.array_equal(_turned_in_place(res, 0.2), res.cavitated)
 
+
+def test_rupture_set_predicted_by_the_linearization_starts_nearer():
+    # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
+    # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
+    # previous state's linearization predicts ruptured there (what _Solves.solve does once that state was
+    # linearized) the start is the answer's set, one active-set iteration instead of two, and the solution
+    # is the cold start's (the previous path's answer: same sets, pressures to 1e-12)
+    from bearingfe.bearings.journal import _linearized, _predicted_rupture, _Solves, _turn, _turned_in_place
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    a, b = (0.40, -0.42), (0.405, -0.43)
+    cold = position_state(TWO_GROOVE, meshes, *b, "reynolds", element="P2")
+    iterations = []
+    for linearize in (False, True):
+        opts = _Solves(cavitation="reynolds", element="P2", warm=True)
+        previous = opts.solve(TWO_GROOVE, meshes, *a)
+        if linearize:
+            _linearized(previous)
+        before = opts.iterations
+        state = opts.solve(TWO_GROOVE, meshes, *b)
+        iterations.append(opts.iterations - before)
+        for x, y in zip(state.results, cold.results):
+            assert np.array_equal(x.cavitated, y.cavitated)
+            assert np.abs(x.pressure - y.pressure).max() <= 1e-12 * np.abs(y.pressure).max()
+    assert iterations == [2, 1]
+    turned = [_turned_in_place(r, _turn(a, b)) for r in previous.results]
+    predicted = _predicted_rupture(previous, turned, np.subtract(b, a))
+    assert [int(np.count_nonzero(t != r.cavitated)) for t, r in zip(turned, cold.results)] == [0, 1]
+    for t, p, r in zip(turned, predicted, cold.results):
+        assert np.array_equal(p, r.cavitated) and np.all(p[t])  # the turned set, and the one dof more
+
 def test_unrefined_structured_pads_miss_it():
     # the same grid without the rupture refinement misses the target (measured 2.0e-3, refined 1.6e-4): the
     # refinement is what brings the coefficients in
