@@ -1595,7 +1595,7 @@ TURN_REACH_SLACK = 1e-6
 
 def _predicted_rupture(previous: _State, starts, step: np.ndarray) -> tuple[np.ndarray, ...]:
     """Rupture masks to start the films of ``previous`` (on its meshes) from, with the journal moved by ``step``
-    (mesh frame): ``starts`` (one per film: a result or a mask of its dofs) with the dofs added whose constrained
+    [c] (mesh frame): ``starts`` (one per film: a result or a mask of its dofs) with the dofs added whose constrained
     unknown the linearization of ``previous`` (:attr:`_State.perturbations`) predicts below zero there,
     ``v = T (u + du/d(x, y) step) < -tol max |v|`` (the active-set iteration's own test). The front moves with
     the journal; the first-order step puts the dofs it passes over in the start (a Newton step on the refined pads
