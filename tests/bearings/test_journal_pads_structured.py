@@ -249,7 +249,7 @@ def test_rupture_turned_in_place_is_the_nearest_one():
         assert not np.array_equal(_turned_in_place(res, 0.2), res.cavitated)
 
 
-def test_rupture_set_predicted_by_the_linearization_starts_nearer():
+def test_rupture_set_predicted_by_the_linearization_starts_nearer(monkeypatch):
     # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
     # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
     # previous state's linearization predicts ruptured there (what _Solves.solve does once that state was
@@ -272,6 +272,14 @@ def test_rupture_set_predicted_by_the_linearization_starts_nearer():
             assert np.array_equal(x.cavitated, y.cavitated)
             assert np.abs(x.pressure - y.pressure).max() <= 1e-12 * np.abs(y.pressure).max()
     assert iterations == [2, 1]
+    # a step beyond PREDICTED_STEP of the thinnest film (set to 0.02: 0.0084 against the step's 0.011) is not predicted
+    import bearingfe.bearings.journal as journal
+    monkeypatch.setattr(journal, "PREDICTED_STEP", 0.02)
+    opts = _Solves(cavitation="reynolds", element="P2", warm=True)
+    _linearized(opts.solve(TWO_GROOVE, meshes, *a))
+    before = opts.iterations
+    opts.solve(TWO_GROOVE, meshes, *b)
+    assert opts.iterations - before == 2
     turned = [_turned_in_place(r, _turn(a, b)) for r in previous.results]
     predicted = _predicted_rupture(previous, turned, np.subtract(b, a))
     assert [int(np.count_nonzero(t != r.cavitated)) for t, r in zip(turned, cold.results)] == [0, 1]
