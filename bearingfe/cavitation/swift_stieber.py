@@ -74,6 +74,8 @@ class FilmProblem:
         Dirichlet data of the unit sources.
     change : sparse matrix or None
         ``S[I, I]`` of :func:`bernstein_change` (None: ``v = u``).
+    inverse : sparse matrix or None
+        Its inverse ``T``: ``v = inverse @ u[I]`` (None with ``change``).
     """
 
     problem: ObstacleProblem
@@ -82,10 +84,15 @@ class FilmProblem:
     rhs: np.ndarray
     lift: np.ndarray
     change: sp.csr_matrix | None = None
+    inverse: sp.csr_matrix | None = None
 
     def unknowns(self, v: np.ndarray) -> np.ndarray:
         """The interior nodal unknowns from the constrained ones."""
         return v if self.change is None else self.change @ v
+
+    def coefficients(self, u: np.ndarray) -> np.ndarray:
+        """The constrained unknowns from the interior nodal ones (the inverse of :meth:`unknowns`)."""
+        return u if self.change is None else self.inverse @ u
 
     def right_side(self, weights: np.ndarray) -> np.ndarray:
         """The right side of the problem in ``v`` at the operating point ``weights``."""
@@ -297,7 +304,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
         solve = system.solve if S is None else (lambda r, solve=system.solve: T @ solve(T.T @ r))
         problem.add_factorization(np.ones(problem.n, bool), solve)
     fp = FilmProblem(problem=problem, interior=system.interior, boundary=system.boundary, rhs=system.rhs,
-                     lift=system.lift, change=S)
+                     lift=system.lift, change=S, inverse=T)
     _PROBLEMS[sup] = fp
     return fp
 

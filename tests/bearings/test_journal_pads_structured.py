@@ -233,6 +233,59 @@ def test_turned_rupture_searched_within_its_reach_is_the_unbounded_nearest_one()
         assert np.array_equal(nearest, np.arange(points.shape[1]))
 
 
+
+def test_rupture_turned_in_place_is_the_nearest_one():
+    # the rupture set turned on its own mesh without a search when no two dofs lie within twice the turn: the same
+    # mask as the unbounded nearest-dof search (the previous path), on both pads, at turns from 1e-5 rad (below
+    # half the dof spacing: the mask itself) to 0.2 rad (above it: the search)
+    from bearingfe.bearings.journal import _nearest_rupture, _turned_in_place
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    for res in state.results:
+        points = np.asarray(res.basis.doflocs)
+        for turn in (1e-5, -4e-5, 4e-3, -0.03, 0.2):
+            assert np.array_equal(_turned_in_place(res, turn), _nearest_rupture(res, points, turn))
+        assert np.array_equal(_turned_in_place(res, 1e-5), res.cavitated)
+        assert not np.array_equal(_turned_in_place(res, 0.2), res.cavitated)
+
+
+def test_rupture_set_predicted_by_the_linearization_starts_nearer(monkeypatch):
+    # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
+    # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
+    # previous state's linearization predicts ruptured there (what _Solves.solve does once that state was
+    # linearized) the start is the answer's set, one active-set iteration instead of two, and the solution
+    # is the cold start's (the previous path's answer: same sets, pressures to 1e-12)
+    from bearingfe.bearings.journal import _linearized, _predicted_rupture, _Solves, _turn, _turned_in_place
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    a, b = (0.40, -0.42), (0.405, -0.43)
+    cold = position_state(TWO_GROOVE, meshes, *b, "reynolds", element="P2")
+    iterations = []
+    for linearize in (False, True):
+        opts = _Solves(cavitation="reynolds", element="P2", warm=True)
+        previous = opts.solve(TWO_GROOVE, meshes, *a)
+        if linearize:
+            _linearized(previous)
+        before = opts.iterations
+        state = opts.solve(TWO_GROOVE, meshes, *b)
+        iterations.append(opts.iterations - before)
+        for x, y in zip(state.results, cold.results):
+            assert np.array_equal(x.cavitated, y.cavitated)
+            assert np.abs(x.pressure - y.pressure).max() <= 1e-12 * np.abs(y.pressure).max()
+    assert iterations == [2, 1]
+    # a step beyond PREDICTED_STEP of the thinnest film (set to 0.02: 0.0084 against the step's 0.011) is not predicted
+    import bearingfe.bearings.journal as journal
+    monkeypatch.setattr(journal, "PREDICTED_STEP", 0.02)
+    opts = _Solves(cavitation="reynolds", element="P2", warm=True)
+    _linearized(opts.solve(TWO_GROOVE, meshes, *a))
+    before = opts.iterations
+    opts.solve(TWO_GROOVE, meshes, *b)
+    assert opts.iterations - before == 2
+    turned = [_turned_in_place(r, _turn(a, b)) for r in previous.results]
+    predicted = _predicted_rupture(previous, turned, np.subtract(b, a))
+    assert [int(np.count_nonzero(t != r.cavitated)) for t, r in zip(turned, cold.results)] == [0, 1]
+    for t, p, r in zip(turned, predicted, cold.results):
+        assert np.array_equal(p, r.cavitated) and np.all(p[t])  # the turned set, and the one dof more
+
 def test_unrefined_structured_pads_miss_it():
     # the same grid without the rupture refinement misses the target (measured 2.0e-3, refined 1.6e-4): the
     # refinement is what brings the coefficients in

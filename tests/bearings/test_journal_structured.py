@@ -101,6 +101,23 @@ def test_linearized_coefficients_match_finite_differences_on_the_refined_mesh(re
     assert np.abs(lin.C - fd.C).max() < 1e-4 * np.abs(lin.C).max()
 
 
+
+def test_coefficients_reuse_the_joined_factorization_of_the_equilibrium(refined):
+    # the full bearing's equilibrium state keeps its joined obstacle problem (turned into the bearing frame), so
+    # the coefficients' linearization solves on the factorization of the final rupture set the active-set
+    # iteration made; the same numbers as the film's own problem (the previous path: a new factorization of the
+    # same set) to 1e-12 of the largest coefficient
+    from dataclasses import replace
+    eq, dc = refined
+    joined = eq.state.joined
+    assert joined is not None
+    made = joined.problem.factorization_count
+    again = dynamic_coefficients(eq)
+    assert joined.problem.factorization_count == made  # no new factorization
+    own = dynamic_coefficients(replace(eq, state=replace(eq.state, joined=None)))
+    for a, b in ((again.K, own.K), (again.C, own.C), (dc.K, own.K)):
+        assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max()
+
 def test_structured_equilibrium_agrees_with_gmsh_at_equal_size():
     # both P2 at size 0.2: the position is resolved far below 1e-3 by either mesh
     a = equilibrium(BEARING, (0.0, -REF_LOAD), element="P2", structured=True, size=0.2)

@@ -218,3 +218,14 @@ def test_cold_start_on_a_large_grid_settles_instead_of_chattering():
     res = bf.solve_reynolds(mesh, bf.CosineFilm(0.6, math.pi + 0.3), formulation="direct", cavitation="reynolds")
     assert res.iterations <= 10
     assert np.mean(res.cavitated) > 0.2 and res.pressure.min() >= 0.0
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_coefficients_invert_the_nodal_unknowns(journal_mesh, element):
+    # FilmProblem.coefficients is the inverse of FilmProblem.unknowns (u = S v on P2, the identity on P1): the
+    # Bernstein coefficients of a pressure and back, to round-off
+    sup = superpose(journal_mesh, CosineFilm(0.7, 0.0), formulation="direct", element=element)
+    fp = obstacle_problem(sup)
+    v = np.random.default_rng(3).standard_normal(fp.interior.size)
+    assert np.abs(fp.coefficients(fp.unknowns(v)) - v).max() <= 1e-13
+    assert np.abs(fp.unknowns(fp.coefficients(v)) - v).max() <= 1e-13
