@@ -1481,7 +1481,7 @@ class _SetSolver:
         self.z: dict[int, np.ndarray] = {}
         self.factorizations = 0
         self._choice: tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._places: np.ndarray | None = None   # band storage places of the union pattern (_band_values)
+        self._places: tuple | None = None   # K's and G's entries with their band storage places (_band_values)
 
     def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
         """``M(cav) = K diag(~cav) + G diag(cav)``: column ``j`` of ``G`` where ``cav[j]``, else of ``K``.
@@ -1505,9 +1505,9 @@ class _SetSolver:
 
     def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix | None = None) -> None:
         """Factorizes the set ``cav`` (its matrix ``M``, built here where not given): a banded factorization
-        (:class:`_BandedLU`) up to :data:`CHOICE_UP_TO` unknowns takes the picked values on the union pattern
-        straight into its band storage (:meth:`_band_values`), without a sparse matrix per set."""
-        if M is None and isinstance(self.factorize, _BandedLU) and self.K.shape[0] <= CHOICE_UP_TO:
+        (:class:`_BandedLU`) takes the values of ``K`` and ``G`` straight into its band storage
+        (:meth:`_band_values`), without a sparse matrix per set."""
+        if M is None and isinstance(self.factorize, _BandedLU):
             values, places = self._band_values(cav)
             solve = self.factorize.from_band(values, places, lambda: self.matrix(cav))
         else:
@@ -1516,13 +1516,16 @@ class _SetSolver:
         self.factorizations += 1
 
     def _band_values(self, cav: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The entries of ``M(cav)`` on the union pattern (those :meth:`matrix` drops as explicit zeros are
-        zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
-        storage of :attr:`factorize` (found once per solver)."""
-        pattern, k_data, g_data, column = self._picked()
+        """The entries of ``M(cav)``, ``K``'s in the columns outside ``cav`` and ``G``'s in those in it (``+ 0.0``
+        turns a ``-0.0`` into the ``0`` of an absent entry; an explicit zero is the same zero), and their places
+        in the band storage of :attr:`factorize`: the same band as :meth:`matrix`'s entries placed there. Each
+        matrix's places and columns are found once per solver (no union pattern of the two)."""
         if self._places is None:
-            self._places = self.factorize.places(pattern.indices, column)
-        return np.where(cav[column], g_data, k_data) + 0.0, self._places
+            self._places = (_band_entries(self.K, self.factorize), _band_entries(self.G, self.factorize))
+        (k_data, k_places, k_column), (g_data, g_places, g_column) = self._places
+        keep_k, keep_g = ~cav[k_column], cav[g_column]
+        return (np.concatenate([k_data[keep_k], g_data[keep_g]]) + 0.0,
+                np.concatenate([k_places[keep_k], g_places[keep_g]]))
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
@@ -1554,6 +1557,16 @@ class _SetSolver:
             return w - Z @ np.linalg.solve(C, w[J])
         except np.linalg.LinAlgError:
             return None
+
+
+def _band_entries(A: sp.csc_matrix, banded: _BandedLU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The stored values of the CSC matrix ``A`` (duplicates summed), their places in the band storage of
+    ``banded`` and their column indices."""
+    if not A.has_canonical_format:
+        A = sp.csc_matrix(A, copy=True)
+        A.sum_duplicates()
+    column = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+    return A.data, banded.places(A.indices, column), column
 
 
 def _column_change(K: sp.csc_matrix, G: sp.csc_matrix, columns: np.ndarray, sign: np.ndarray) -> np.ndarray:

@@ -281,6 +281,47 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     assert fv._full_film_banded(unk, K, rhs) is None
 
 
+def test_banded_set_values_are_the_set_matrix_in_band_storage(monkeypatch):
+    """A banded set factorization takes ``K``'s columns outside the set and ``G``'s inside straight into LAPACK's
+    band storage (:meth:`_SetSolver._band_values`, no union pattern): the same storage, bit for bit, as the set's
+    sparse matrix (:meth:`_SetSolver.matrix`) placed there, for several sets, whether that matrix is picked on
+    the union pattern or built by the sparse products (above ``CHOICE_UP_TO``); a ``K`` with its entries stored
+    twice as halves (not canonical: summed first) gives the same storage."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    banded = solver.factorize
+    assert isinstance(banded, fv._BandedLU)
+
+    def storage(values, places):
+        ab = np.zeros((3 * banded.kd + 1) * b.size)
+        ab[places] = values
+        return ab
+
+    def placed(M):
+        A = sp.coo_matrix(M)
+        return storage(A.data, banded.places(A.row, A.col))
+
+    rng = np.random.default_rng(3)
+    sets = [np.zeros(b.size, bool), np.ones(b.size, bool)] + [rng.random(b.size) < q for q in (0.2, 0.5, 0.8)]
+    for cav in sets:
+        assert np.array_equal(storage(*solver._band_values(cav)), placed(solver.matrix(cav)))
+    monkeypatch.setattr(fv, "CHOICE_UP_TO", 0)   # the set matrices by the sparse products
+    for cav in sets:
+        assert np.array_equal(storage(*solver._band_values(cav)), placed(solver.matrix(cav)))
+    other = fv._SetSolver(K, G, banded)   # each entry of K stored twice, as two halves (exact)
+    Kc = other.K
+    other.K = sp.csc_matrix((np.repeat(0.5 * Kc.data, 2), np.repeat(Kc.indices, 2), 2 * Kc.indptr), shape=Kc.shape)
+    assert not other.K.has_canonical_format
+    for cav in sets:
+        assert np.array_equal(storage(*other._band_values(cav)), storage(*solver._band_values(cav)))
+
+
 def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     """Up to the ``active_set_lu`` band limit the active-set matrices are factored by banded LU with partial
     pivoting: the solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
