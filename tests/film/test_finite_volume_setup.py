@@ -322,6 +322,50 @@ def test_banded_set_values_are_the_set_matrix_in_band_storage(monkeypatch):
         assert np.array_equal(storage(*other._band_values(cav)), storage(*solver._band_values(cav)))
 
 
+def test_banded_storage_serves_again_once_its_solve_is_gone():
+    """A banded factorization's band storage is kept for the next one only once its solve is gone: while a solve
+    lives, a new factorization takes new storage and the old solve still solves its own matrix (bit for bit as
+    before); once dropped, the next factorization reuses its storage (zeroed first) and solves exactly as one
+    on new storage."""
+    import gc
+
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    perm, kd = solver.factorize.perm, solver.factorize.kd
+    rhs = np.random.default_rng(4).standard_normal(b.size)
+    a, c = np.zeros(b.size, bool), np.ones(b.size, bool)
+    a[::3] = True
+    want_a = fv._factorize_banded(perm, kd)(solver.matrix(a))(rhs)   # each on its own new storage
+    want_c = fv._factorize_banded(perm, kd)(solver.matrix(c))(rhs)
+    banded = fv._factorize_banded(perm, kd)
+    solve_a = banded(solver.matrix(a))
+    solve_c = banded(solver.matrix(c))   # solve_a lives: new storage
+    assert banded._spare == []
+    assert np.array_equal(solve_a(rhs), want_a) and np.array_equal(solve_c(rhs), want_c)
+    del solve_a
+    gc.collect()
+    assert len(banded._spare) == 1
+    kept = banded._spare[0]
+    solve_c2 = banded(sp.csc_matrix(solver.matrix(c)))   # a's storage, zeroed and filled with c's matrix
+    assert banded._spare == [] and np.array_equal(solve_c2(rhs), want_c)
+    del solve_c2
+    gc.collect()
+    assert banded._spare[-1] is kept
+    solver._refactorize(a)   # the set solver drops its last solve before factorizing: one storage serves all
+    solver._refactorize(c)
+    solver._refactorize(a)
+    assert np.array_equal(solver.solve(rhs), want_a) and solver.factorize._spare == []   # none left over
+    solver.solve = None
+    gc.collect()
+    assert len(solver.factorize._spare) == 1
+
+
 def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     """Up to the ``active_set_lu`` band limit the active-set matrices are factored by banded LU with partial
     pivoting: the solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
