@@ -1982,10 +1982,17 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
         h = h + _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)   # not in place: h may be the film's array
-    cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
-    fill = np.minimum(1.0, cc / h)
+    outlet = ~np.isfinite(c)   # no downstream face: box-wise (the mean film of those boxes only)
+    if outlet.any():   # (c is this function's own array)
+        c[outlet] = theta[emptied[outlet]] * h[outlet].mean(axis=1)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
-    return float(np.sum(w * (1.0 - fill) / h)), float(np.sum(w * (fill < 1.0 - 1e-12)))
+    fill = np.divide(c[:, None], h)   # min(1, c / h), in place from here: no temporaries of all points
+    np.minimum(fill, 1.0, out=fill)
+    partial = fill < 1.0 - 1e-12
+    term = np.subtract(1.0, fill, out=fill)
+    np.multiply(w, term, out=term)
+    deficit = float(np.sum(np.divide(term, h, out=term)))
+    return deficit, float(np.sum(np.multiply(w, partial, out=term)))
 
 
 # -- flows ------------------------------------------------------------------------------

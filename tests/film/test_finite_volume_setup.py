@@ -189,6 +189,35 @@ def test_box_fill_in_blocks_sums_the_same_integrals(monkeypatch):
     assert np.allclose(blocks, whole, rtol=1e-13, atol=0.0)
 
 
+def test_box_fill_block_is_its_formula_with_boxes_without_a_downstream_face():
+    """The fill of an emptied box is ``min(1, theta hbar / h)`` at its sample points, its deficit ``int (1 -
+    fill) / h`` and its emptied area ``int [fill < 1]`` (midpoint rule); a box without a downstream face (no
+    ``hbar``) takes its own mean film instead: equal bit for bit to the formula written out on the points, on a
+    dimpled grid's boxes with every third emptied box's face removed."""
+    mesh = grid_mesh(_dimpled(), 1.0 / 20)
+    film = UniformFilm(1.0)
+    box = fv._grid_faces(mesh).box
+    rng = np.random.default_rng(5)
+    n = box.shape[1]
+    theta = rng.uniform(0.2, 1.0, n)
+    hbar = rng.uniform(1.0, 3.0, n)
+    emptied = np.flatnonzero(np.isfinite(box[0]))[::2]
+    hbar[emptied[::3]] = np.nan   # no downstream face
+    samples = 8
+    b = box[:, emptied]
+    t = (np.arange(samples) + 0.5) / samples
+    X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
+    Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
+    h = 1.0 + fv._recess_depth(mesh.surface, X, Z)
+    c = theta[emptied] * hbar[emptied]
+    cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]
+    fill = np.minimum(1.0, cc / h)
+    w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
+    want = (float(np.sum(w * (1.0 - fill) / h)), float(np.sum(w * (fill < 1.0 - 1e-12))))
+    assert np.any(h > 1.0) and np.any(fill < 1.0) and np.any(fill == 1.0)   # dimples, emptied and full points
+    assert fv._box_fill_block(mesh, film, box, theta, hbar, emptied, samples) == want
+
+
 def test_the_full_film_first_guess_is_counted():
     """A cold solve guesses its cavity from one full-film factorization, reported beside the active set's
     own count: on its own grid below the nested sizes, on the coarsest grid of a nested start above; a warm
