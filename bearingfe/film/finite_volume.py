@@ -1224,6 +1224,12 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 #: against 2 (0.40 against 0.51 s CPU, one cold solve each); the same sets, the answers equal to round-off (1e-13
 #: relative in theta).
 LOW_RANK_SWITCHES = 24
+#: A banded factorization (:class:`_BandedLU`) of half-bandwidth ``kd`` takes at most ``kd //`` this many new
+#: columns by a low-rank update (fewer than :data:`LOW_RANK_SWITCHES` below a half-bandwidth of 72): a column
+#: costs a banded solve, about ``3 kd`` multiply-adds per unknown, a refactorization about ``kd^2`` (measured in
+#: the cold solves of the 5 x 5 dimples, CPU: 0.2 ms a column against 1-2 ms a refactorization at 6,676 unknowns
+#: and half-bandwidth 18, 0.24 against 2.7-3.4 ms at 4,846 and 31, 0.09-0.13 against 1.2-1.7 ms at 2,401 and 49).
+BANDED_KD_PER_COLUMN = 3
 #: Unknowns from which the active-set matrices are factored in a nested-dissection order of the unknowns'
 #: coordinates (:func:`bearingfe.core.ordering.nested_dissection`), found once per mesh, with diagonal
 #: pivots preferred (SuperLU's symmetric mode, threshold :data:`PIVOT_THRESHOLD`) instead of SuperLU's
@@ -1456,7 +1462,8 @@ class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
     A set that differs from the last factorized one in ``k`` columns, at most :data:`LOW_RANK_SWITCHES` of
-    them not solved for yet on that factorization and ``2 LOW_RANK_SWITCHES`` in all, is solved by
+    them not solved for yet on that factorization and ``2 LOW_RANK_SWITCHES`` in all (a banded factorization:
+    fewer, :data:`BANDED_KD_PER_COLUMN`), is solved by
     Sherman-Morrison-Woodbury on it (an extra triangular solve per new column, cached per column while the
     factorization lives), accepted with its residual at a fresh factorization's accuracy; larger changes, or a
     residual that is not at round-off, refactorize.
@@ -1545,7 +1552,7 @@ class _SetSolver:
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
             J = np.flatnonzero(cav != self.base)
-            limit = LOW_RANK_SWITCHES
+            limit = self._low_rank_limit()
             if 0 < J.size <= 2 * limit and sum(1 for j in J if j not in self.z) <= limit:
                 y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
                 if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
@@ -1555,6 +1562,13 @@ class _SetSolver:
                 return np.asarray(self.solve(rhs), float)
         self._refactorize(cav)
         return np.asarray(self.solve(rhs), float)
+
+    def _low_rank_limit(self) -> int:
+        """:data:`LOW_RANK_SWITCHES`; for a banded factorization (:class:`_BandedLU`) at most its half-bandwidth
+        over :data:`BANDED_KD_PER_COLUMN` (read at each call)."""
+        if isinstance(self.factorize, _BandedLU):
+            return min(LOW_RANK_SWITCHES, max(1, self.factorize.kd // BANDED_KD_PER_COLUMN))
+        return LOW_RANK_SWITCHES
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
         new = [j for j in J if j not in self.z]

@@ -395,6 +395,38 @@ def test_banded_storage_serves_again_once_its_solve_is_gone():
     assert len(solver.factorize._spare) == 1
 
 
+def test_banded_low_rank_limit_reaches_the_same_set_as_refactorizing(monkeypatch):
+    """A banded set factorization of half-bandwidth ``kd`` takes at most ``kd // BANDED_KD_PER_COLUMN`` new
+    columns by a low-rank update (SuperLU's: ``LOW_RANK_SWITCHES``). On the dimpled slider of docs/jfo_gmsh.md
+    at grid size 0.04 (676 nodes, all sets banded) the low-rank route with the plain limit (24), the default
+    and refactorizing at almost every change (limit 1) end on the same cavity, with pressures and fill
+    fractions equal to 1e-12 (round-off of the Sherman-Morrison-Woodbury steps); fewer low-rank columns take
+    more factorizations (measured 2, 4 and 5)."""
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.25), 1.0)])
+    results = {}
+    for share in (1e-9, fv.BANDED_KD_PER_COLUMN, 1e9):
+        monkeypatch.setattr(fv, "BANDED_KD_PER_COLUMN", share)
+        results[share] = solve_jfo(grid_mesh(surface, 0.04), UniformFilm(1.0), cavitation_pressure=-0.05,
+                                   couette="grid")
+    plain = results[1e-9]
+    for res in results.values():
+        assert np.array_equal(res.cavitated, plain.cavitated)
+        assert np.abs(res.pressure - plain.pressure).max() <= 1e-12 * np.abs(plain.pressure).max()
+        assert np.abs(res.theta - plain.theta).max() <= 1e-12
+    counts = [results[k].cost["factorizations"] for k in sorted(results)]
+    assert counts[0] <= counts[1] <= counts[2] and counts[0] < counts[2]
+    mesh = grid_mesh(_dimpled(), 1 / 14)   # the limit itself: kd // 3, at least 1, at most LOW_RANK_SWITCHES
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, _ = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    monkeypatch.setattr(fv, "BANDED_KD_PER_COLUMN", 3)
+    perm = np.arange(K.shape[0])
+    assert [fv._SetSolver(K, G, fv._factorize_banded(perm, kd))._low_rank_limit() for kd in (2, 18, 49, 90)] == \
+        [1, 6, 16, fv.LOW_RANK_SWITCHES]
+    assert fv._SetSolver(K, G, fv._factorize_in_order(perm))._low_rank_limit() == fv.LOW_RANK_SWITCHES
+
+
 def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     """Up to the ``active_set_lu`` band limit the active-set matrices are factored by banded LU with partial
     pivoting: the solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
