@@ -1224,6 +1224,12 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
 #: against 2 (0.40 against 0.51 s CPU, one cold solve each); the same sets, the answers equal to round-off (1e-13
 #: relative in theta).
 LOW_RANK_SWITCHES = 24
+#: A banded factorization (:class:`_BandedLU`) of half-bandwidth ``kd`` takes at most ``kd //`` this many new
+#: columns by a low-rank update (fewer than :data:`LOW_RANK_SWITCHES` below a half-bandwidth of 72): a column
+#: costs a banded solve, about ``3 kd`` multiply-adds per unknown, a refactorization about ``kd^2`` (measured in
+#: the cold solves of the 5 x 5 dimples, CPU: 0.2 ms a column against 1-2 ms a refactorization at 6,676 unknowns
+#: and half-bandwidth 18, 0.24 against 2.7-3.4 ms at 4,846 and 31, 0.09-0.13 against 1.2-1.7 ms at 2,401 and 49).
+BANDED_KD_PER_COLUMN = 3
 #: Unknowns from which the active-set matrices are factored in a nested-dissection order of the unknowns'
 #: coordinates (:func:`bearingfe.core.ordering.nested_dissection`), found once per mesh, with diagonal
 #: pivots preferred (SuperLU's symmetric mode, threshold :data:`PIVOT_THRESHOLD`) instead of SuperLU's
@@ -1321,6 +1327,17 @@ class _BandedLU:
     def __init__(self, perm: np.ndarray, kd: int):
         self.perm, self.kd = perm, kd
         self.inverse = np.argsort(perm)
+        self._spare: list[np.ndarray] = []   # band storage of factorizations no longer in use (_storage)
+
+    def _storage(self) -> np.ndarray:
+        """Zeroed band storage ``(3 kd + 1) n`` (flat): the array of a factorization whose solve is gone, where
+        there is one, else a new one. A new array of a few MB is memory the system supplies page by page, which
+        cost as much as a third of a factorization (2,401 unknowns, half-bandwidth 49: 0.6 of 1.7 ms)."""
+        if self._spare:
+            ab = self._spare.pop()
+            ab.fill(0.0)
+            return ab
+        return np.zeros((3 * self.kd + 1) * self.perm.size)
 
     def places(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
         """Flat (column-major) places in the band storage of the entries ``(rows, cols)`` (unknown numbers)."""
@@ -1339,12 +1356,13 @@ class _BandedLU:
 
         kd, perm, inverse = self.kd, self.perm, self.inverse
         n = perm.size
-        ab = np.zeros((3 * kd + 1) * n)
-        ab[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill
-        ab = ab.reshape((3 * kd + 1, n), order="F")
+        flat = self._storage()
+        flat[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill
+        ab = flat.reshape((3 * kd + 1, n), order="F")
         with dense_threads(1):
             lu, piv, info = dgbtrf(ab, kd, kd, overwrite_ab=1)
         if info != 0:
+            self._spare.append(flat)
             return factorize_splu(matrix())
 
         def solve(b: np.ndarray) -> np.ndarray:
@@ -1353,6 +1371,8 @@ class _BandedLU:
                 x, _ = dgbtrs(lu, kd, kd, b[perm], piv)
             return x[inverse]
 
+        if np.shares_memory(lu, flat):   # the factors in place: the storage serves again once solve is gone
+            weakref.finalize(solve, self._spare.append, flat)
         return solve
 
 
@@ -1442,7 +1462,8 @@ class _SetSolver:
     """Solves of the active-set systems ``M(cav) y = rhs``, ``M = K diag(full) + G diag(cav)``.
 
     A set that differs from the last factorized one in ``k`` columns, at most :data:`LOW_RANK_SWITCHES` of
-    them not solved for yet on that factorization and ``2 LOW_RANK_SWITCHES`` in all, is solved by
+    them not solved for yet on that factorization and ``2 LOW_RANK_SWITCHES`` in all (a banded factorization:
+    fewer, :data:`BANDED_KD_PER_COLUMN`), is solved by
     Sherman-Morrison-Woodbury on it (an extra triangular solve per new column, cached per column while the
     factorization lives), accepted with its residual at a fresh factorization's accuracy; larger changes, or a
     residual that is not at round-off, refactorize.
@@ -1481,7 +1502,7 @@ class _SetSolver:
         self.z: dict[int, np.ndarray] = {}
         self.factorizations = 0
         self._choice: tuple[sp.csc_matrix, np.ndarray, np.ndarray, np.ndarray] | None = None
-        self._places: np.ndarray | None = None   # band storage places of the union pattern (_band_values)
+        self._places: tuple | None = None   # K's and G's entries with their band storage places (_band_values)
 
     def matrix(self, cav: np.ndarray) -> sp.csc_matrix:
         """``M(cav) = K diag(~cav) + G diag(cav)``: column ``j`` of ``G`` where ``cav[j]``, else of ``K``.
@@ -1505,9 +1526,10 @@ class _SetSolver:
 
     def _refactorize(self, cav: np.ndarray, M: sp.csc_matrix | None = None) -> None:
         """Factorizes the set ``cav`` (its matrix ``M``, built here where not given): a banded factorization
-        (:class:`_BandedLU`) up to :data:`CHOICE_UP_TO` unknowns takes the picked values on the union pattern
-        straight into its band storage (:meth:`_band_values`), without a sparse matrix per set."""
-        if M is None and isinstance(self.factorize, _BandedLU) and self.K.shape[0] <= CHOICE_UP_TO:
+        (:class:`_BandedLU`) takes the values of ``K`` and ``G`` straight into its band storage
+        (:meth:`_band_values`), without a sparse matrix per set."""
+        self.solve, self.z = None, {}   # the last factorization's storage may serve the new one
+        if M is None and isinstance(self.factorize, _BandedLU):
             values, places = self._band_values(cav)
             solve = self.factorize.from_band(values, places, lambda: self.matrix(cav))
         else:
@@ -1516,18 +1538,21 @@ class _SetSolver:
         self.factorizations += 1
 
     def _band_values(self, cav: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The entries of ``M(cav)`` on the union pattern (those :meth:`matrix` drops as explicit zeros are
-        zeros, ``+ 0.0`` turns a ``-0.0`` into the ``0`` of an absent entry) and their places in the band
-        storage of :attr:`factorize` (found once per solver)."""
-        pattern, k_data, g_data, column = self._picked()
+        """The entries of ``M(cav)``, ``K``'s in the columns outside ``cav`` and ``G``'s in those in it (``+ 0.0``
+        turns a ``-0.0`` into the ``0`` of an absent entry; an explicit zero is the same zero), and their places
+        in the band storage of :attr:`factorize`: the same band as :meth:`matrix`'s entries placed there. Each
+        matrix's places and columns are found once per solver (no union pattern of the two)."""
         if self._places is None:
-            self._places = self.factorize.places(pattern.indices, column)
-        return np.where(cav[column], g_data, k_data) + 0.0, self._places
+            self._places = (_band_entries(self.K, self.factorize), _band_entries(self.G, self.factorize))
+        (k_data, k_places, k_column), (g_data, g_places, g_column) = self._places
+        keep_k, keep_g = ~cav[k_column], cav[g_column]
+        return (np.concatenate([k_data[keep_k], g_data[keep_g]]) + 0.0,
+                np.concatenate([k_places[keep_k], g_places[keep_g]]))
 
     def __call__(self, cav: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.solve is not None:
             J = np.flatnonzero(cav != self.base)
-            limit = LOW_RANK_SWITCHES
+            limit = self._low_rank_limit()
             if 0 < J.size <= 2 * limit and sum(1 for j in J if j not in self.z) <= limit:
                 y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
                 if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
@@ -1537,6 +1562,13 @@ class _SetSolver:
                 return np.asarray(self.solve(rhs), float)
         self._refactorize(cav)
         return np.asarray(self.solve(rhs), float)
+
+    def _low_rank_limit(self) -> int:
+        """:data:`LOW_RANK_SWITCHES`; for a banded factorization (:class:`_BandedLU`) at most its half-bandwidth
+        over :data:`BANDED_KD_PER_COLUMN` (read at each call)."""
+        if isinstance(self.factorize, _BandedLU):
+            return min(LOW_RANK_SWITCHES, max(1, self.factorize.kd // BANDED_KD_PER_COLUMN))
+        return LOW_RANK_SWITCHES
 
     def _woodbury(self, J: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
         new = [j for j in J if j not in self.z]
@@ -1554,6 +1586,16 @@ class _SetSolver:
             return w - Z @ np.linalg.solve(C, w[J])
         except np.linalg.LinAlgError:
             return None
+
+
+def _band_entries(A: sp.csc_matrix, banded: _BandedLU) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The stored values of the CSC matrix ``A`` (duplicates summed), their places in the band storage of
+    ``banded`` and their column indices."""
+    if not A.has_canonical_format:
+        A = sp.csc_matrix(A, copy=True)
+        A.sum_duplicates()
+    column = np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))
+    return A.data, banded.places(A.indices, column), column
 
 
 def _column_change(K: sp.csc_matrix, G: sp.csc_matrix, columns: np.ndarray, sign: np.ndarray) -> np.ndarray:
@@ -1954,10 +1996,17 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
     surface = mesh.surface
     if surface is not None and getattr(surface, "recesses", ()):   # each recess tests the boxes near it
         h = h + _boxed_depth(surface, b[0], b[1], b[2], b[3], X, Z)   # not in place: h may be the film's array
-    cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]   # no downstream face: box-wise
-    fill = np.minimum(1.0, cc / h)
+    outlet = ~np.isfinite(c)   # no downstream face: box-wise (the mean film of those boxes only)
+    if outlet.any():   # (c is this function's own array)
+        c[outlet] = theta[emptied[outlet]] * h[outlet].mean(axis=1)
     w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
-    return float(np.sum(w * (1.0 - fill) / h)), float(np.sum(w * (fill < 1.0 - 1e-12)))
+    fill = np.divide(c[:, None], h)   # min(1, c / h), in place from here: no temporaries of all points
+    np.minimum(fill, 1.0, out=fill)
+    partial = fill < 1.0 - 1e-12
+    term = np.subtract(1.0, fill, out=fill)
+    np.multiply(w, term, out=term)
+    deficit = float(np.sum(np.divide(term, h, out=term)))
+    return deficit, float(np.sum(np.multiply(w, partial, out=term)))
 
 
 # -- flows ------------------------------------------------------------------------------

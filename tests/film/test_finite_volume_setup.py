@@ -189,6 +189,35 @@ def test_box_fill_in_blocks_sums_the_same_integrals(monkeypatch):
     assert np.allclose(blocks, whole, rtol=1e-13, atol=0.0)
 
 
+def test_box_fill_block_is_its_formula_with_boxes_without_a_downstream_face():
+    """The fill of an emptied box is ``min(1, theta hbar / h)`` at its sample points, its deficit ``int (1 -
+    fill) / h`` and its emptied area ``int [fill < 1]`` (midpoint rule); a box without a downstream face (no
+    ``hbar``) takes its own mean film instead: equal bit for bit to the formula written out on the points, on a
+    dimpled grid's boxes with every third emptied box's face removed."""
+    mesh = grid_mesh(_dimpled(), 1.0 / 20)
+    film = UniformFilm(1.0)
+    box = fv._grid_faces(mesh).box
+    rng = np.random.default_rng(5)
+    n = box.shape[1]
+    theta = rng.uniform(0.2, 1.0, n)
+    hbar = rng.uniform(1.0, 3.0, n)
+    emptied = np.flatnonzero(np.isfinite(box[0]))[::2]
+    hbar[emptied[::3]] = np.nan   # no downstream face
+    samples = 8
+    b = box[:, emptied]
+    t = (np.arange(samples) + 0.5) / samples
+    X = (b[0][:, None] + (b[1] - b[0])[:, None] * t).repeat(samples, axis=1)
+    Z = np.tile(b[2][:, None] + (b[3] - b[2])[:, None] * t, (1, samples))
+    h = 1.0 + fv._recess_depth(mesh.surface, X, Z)
+    c = theta[emptied] * hbar[emptied]
+    cc = np.where(np.isfinite(c), c, theta[emptied] * h.mean(axis=1))[:, None]
+    fill = np.minimum(1.0, cc / h)
+    w = ((b[1] - b[0]) * (b[3] - b[2]) / samples**2)[:, None]
+    want = (float(np.sum(w * (1.0 - fill) / h)), float(np.sum(w * (fill < 1.0 - 1e-12))))
+    assert np.any(h > 1.0) and np.any(fill < 1.0) and np.any(fill == 1.0)   # dimples, emptied and full points
+    assert fv._box_fill_block(mesh, film, box, theta, hbar, emptied, samples) == want
+
+
 def test_the_full_film_first_guess_is_counted():
     """A cold solve guesses its cavity from one full-film factorization, reported beside the active set's
     own count: on its own grid below the nested sizes, on the coarsest grid of a nested start above; a warm
@@ -279,6 +308,123 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     monkeypatch.setitem(BAND_LIMITS, "full_film_guess", BandLimits(kd_max=1, size_max=96**2))
     unk._order.pop("band")
     assert fv._full_film_banded(unk, K, rhs) is None
+
+
+def test_banded_set_values_are_the_set_matrix_in_band_storage(monkeypatch):
+    """A banded set factorization takes ``K``'s columns outside the set and ``G``'s inside straight into LAPACK's
+    band storage (:meth:`_SetSolver._band_values`, no union pattern): the same storage, bit for bit, as the set's
+    sparse matrix (:meth:`_SetSolver.matrix`) placed there, for several sets, whether that matrix is picked on
+    the union pattern or built by the sparse products (above ``CHOICE_UP_TO``); a ``K`` with its entries stored
+    twice as halves (not canonical: summed first) gives the same storage."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    banded = solver.factorize
+    assert isinstance(banded, fv._BandedLU)
+
+    def storage(values, places):
+        ab = np.zeros((3 * banded.kd + 1) * b.size)
+        ab[places] = values
+        return ab
+
+    def placed(M):
+        A = sp.coo_matrix(M)
+        return storage(A.data, banded.places(A.row, A.col))
+
+    rng = np.random.default_rng(3)
+    sets = [np.zeros(b.size, bool), np.ones(b.size, bool)] + [rng.random(b.size) < q for q in (0.2, 0.5, 0.8)]
+    for cav in sets:
+        assert np.array_equal(storage(*solver._band_values(cav)), placed(solver.matrix(cav)))
+    monkeypatch.setattr(fv, "CHOICE_UP_TO", 0)   # the set matrices by the sparse products
+    for cav in sets:
+        assert np.array_equal(storage(*solver._band_values(cav)), placed(solver.matrix(cav)))
+    other = fv._SetSolver(K, G, banded)   # each entry of K stored twice, as two halves (exact)
+    Kc = other.K
+    other.K = sp.csc_matrix((np.repeat(0.5 * Kc.data, 2), np.repeat(Kc.indices, 2), 2 * Kc.indptr), shape=Kc.shape)
+    assert not other.K.has_canonical_format
+    for cav in sets:
+        assert np.array_equal(storage(*other._band_values(cav)), storage(*solver._band_values(cav)))
+
+
+def test_banded_storage_serves_again_once_its_solve_is_gone():
+    """A banded factorization's band storage is kept for the next one only once its solve is gone: while a solve
+    lives, a new factorization takes new storage and the old solve still solves its own matrix (bit for bit as
+    before); once dropped, the next factorization reuses its storage (zeroed first) and solves exactly as one
+    on new storage."""
+    import gc
+
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    perm, kd = solver.factorize.perm, solver.factorize.kd
+    rhs = np.random.default_rng(4).standard_normal(b.size)
+    a, c = np.zeros(b.size, bool), np.ones(b.size, bool)
+    a[::3] = True
+    want_a = fv._factorize_banded(perm, kd)(solver.matrix(a))(rhs)   # each on its own new storage
+    want_c = fv._factorize_banded(perm, kd)(solver.matrix(c))(rhs)
+    banded = fv._factorize_banded(perm, kd)
+    solve_a = banded(solver.matrix(a))
+    solve_c = banded(solver.matrix(c))   # solve_a lives: new storage
+    assert banded._spare == []
+    assert np.array_equal(solve_a(rhs), want_a) and np.array_equal(solve_c(rhs), want_c)
+    del solve_a
+    gc.collect()
+    assert len(banded._spare) == 1
+    kept = banded._spare[0]
+    solve_c2 = banded(sp.csc_matrix(solver.matrix(c)))   # a's storage, zeroed and filled with c's matrix
+    assert banded._spare == [] and np.array_equal(solve_c2(rhs), want_c)
+    del solve_c2
+    gc.collect()
+    assert banded._spare[-1] is kept
+    solver._refactorize(a)   # the set solver drops its last solve before factorizing: one storage serves all
+    solver._refactorize(c)
+    solver._refactorize(a)
+    assert np.array_equal(solver.solve(rhs), want_a) and solver.factorize._spare == []   # none left over
+    solver.solve = None
+    gc.collect()
+    assert len(solver.factorize._spare) == 1
+
+
+def test_banded_low_rank_limit_reaches_the_same_set_as_refactorizing(monkeypatch):
+    """A banded set factorization of half-bandwidth ``kd`` takes at most ``kd // BANDED_KD_PER_COLUMN`` new
+    columns by a low-rank update (SuperLU's: ``LOW_RANK_SWITCHES``). On the dimpled slider of docs/jfo_gmsh.md
+    at grid size 0.04 (676 nodes, all sets banded) the low-rank route with the plain limit (24), the default
+    and refactorizing at almost every change (limit 1) end on the same cavity, with pressures and fill
+    fractions equal to 1e-12 (round-off of the Sherman-Morrison-Woodbury steps); fewer low-rank columns take
+    more factorizations (measured 2, 4 and 5)."""
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.25), 1.0)])
+    results = {}
+    for share in (1e-9, fv.BANDED_KD_PER_COLUMN, 1e9):
+        monkeypatch.setattr(fv, "BANDED_KD_PER_COLUMN", share)
+        results[share] = solve_jfo(grid_mesh(surface, 0.04), UniformFilm(1.0), cavitation_pressure=-0.05,
+                                   couette="grid")
+    plain = results[1e-9]
+    for res in results.values():
+        assert np.array_equal(res.cavitated, plain.cavitated)
+        assert np.abs(res.pressure - plain.pressure).max() <= 1e-12 * np.abs(plain.pressure).max()
+        assert np.abs(res.theta - plain.theta).max() <= 1e-12
+    counts = [results[k].cost["factorizations"] for k in sorted(results)]
+    assert counts[0] <= counts[1] <= counts[2] and counts[0] < counts[2]
+    mesh = grid_mesh(_dimpled(), 1 / 14)   # the limit itself: kd // 3, at least 1, at most LOW_RANK_SWITCHES
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, _ = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    monkeypatch.setattr(fv, "BANDED_KD_PER_COLUMN", 3)
+    perm = np.arange(K.shape[0])
+    assert [fv._SetSolver(K, G, fv._factorize_banded(perm, kd))._low_rank_limit() for kd in (2, 18, 49, 90)] == \
+        [1, 6, 16, fv.LOW_RANK_SWITCHES]
+    assert fv._SetSolver(K, G, fv._factorize_in_order(perm))._low_rank_limit() == fv.LOW_RANK_SWITCHES
 
 
 def test_small_active_set_matrices_by_banded_lu(monkeypatch):
