@@ -103,7 +103,7 @@ from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
 from ..geometry.surface import Circle
-from .mesh_operators import Operators, operators, pocket_moments
+from .mesh_operators import Operators, boundary_facet_triangles, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
 __all__ = ["JFOError", "solve_jfo", "FVSystem", "FVUnknowns", "active_set", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
@@ -1977,24 +1977,6 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
 
 # -- flows ------------------------------------------------------------------------------
 
-def _facet_elements(m, facets: np.ndarray) -> np.ndarray:
-    """The triangle of each boundary facet: scikit-fem's ``f2t`` where the mesh has it already, else found
-    among the triangles with two nodes on the facets (a few corner facets: not the inverse map of every
-    facet, 5 ms at 7,500 nodes, built for them alone on a gmsh mesh without pockets)."""
-    if hasattr(m, "_f2t"):   # scikit-fem's cache of the map
-        return m.f2t[0, facets]
-    a, b = m.facets[:, facets]
-    t = m.t[:3]
-    mark = np.zeros(m.nvertices, bool)
-    mark[a], mark[b] = True, True
-    cand = np.flatnonzero(mark[t].sum(axis=0) >= 2)
-    tc = t[:, cand]
-    match = (tc[:, None, :] == a[None, :, None]).any(axis=0) & (tc[:, None, :] == b[None, :, None]).any(axis=0)
-    if not np.all(match.sum(axis=1) == 1):   # not each a boundary facet of one triangle
-        return m.f2t[0, facets]
-    return cand[np.argmax(match, axis=1)]
-
-
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
                 facets) -> np.ndarray | dict[str, np.ndarray]:
     """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node; ``facets`` an array,
@@ -2010,7 +1992,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
     if every.size:
         a, b = m.facets[:, every]
-        elem = _facet_elements(m, every)
+        elem = boundary_facet_triangles(m, every)
         pa, pb = m.p[:, a], m.p[:, b]
         tvec = pb - pa
         length = np.linalg.norm(tvec, axis=0)

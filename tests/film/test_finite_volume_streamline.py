@@ -253,12 +253,13 @@ def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
     from bearingfe.film import finite_volume as fv
+    from bearingfe.film.mesh_operators import boundary_facet_triangles
 
     mesh = mesh_surface(dimple().surface, 0.05)   # no pockets: nothing else builds the map
     fv.solve_jfo(mesh, dimple().film, cavitation_pressure=-0.05)
     assert not hasattr(mesh.mesh, "_f2t")
     facets = np.asarray(mesh.boundaries["outer"])
-    found = fv._facet_elements(mesh.mesh, facets)
+    found = boundary_facet_triangles(mesh.mesh, facets)
     assert np.array_equal(found, mesh.mesh.f2t[0, facets])
 
 
