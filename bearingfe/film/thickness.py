@@ -575,16 +575,35 @@ def _pieces(s: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.nd
     return k, s[k], h[k], h[k + 1] - h[k], np.where(span > 0, span, 1.0)
 
 
+#: Points :func:`_interpolate` takes at a time: its half-dozen temporaries of a block stay in cache (at 86,000
+#: quadrature points, 7,375 nodes: 0.7 against 2.1 ms CPU in one piece, mean of 50 calls).
+INTERPOLATE_BLOCK = 16384
+
+
 def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
     """Piecewise-linear ``h(x)`` through the knots ``(s, h)``, constant beyond the ends and right-continuous
     at a step (two knots at one abscissa: the film at the step is the second one).
 
     Each point's piece is the last whose start is ``<= x`` (clipped to the first and last; up to
     :data:`COMPARED_KNOTS` knots counted by comparisons, else by a binary search), moved past steps
-    (:func:`_pieces`, per piece once); in it ``h_k + (h_{k+1} - h_k) (x - s_k) / (s_{k+1} - s_k)``."""
+    (:func:`_pieces`, per piece once); in it ``h_k + (h_{k+1} - h_k) (x - s_k) / (s_{k+1} - s_k)``; by blocks
+    of :data:`INTERPOLATE_BLOCK` points."""
     x = np.asarray(x, float)
+    pieces = _pieces(s, h)
+    if x.size <= INTERPOLATE_BLOCK:
+        return _interpolate_block(x, s, h, pieces)
+    out = np.empty(x.shape)
+    flat, into = x.reshape(-1), out.reshape(-1)
+    for lo in range(0, flat.size, INTERPOLATE_BLOCK):
+        block = slice(lo, lo + INTERPOLATE_BLOCK)
+        into[block] = _interpolate_block(flat[block], s, h, pieces)
+    return out
+
+
+def _interpolate_block(x: np.ndarray, s: np.ndarray, h: np.ndarray, pieces) -> np.ndarray:
+    """:func:`_interpolate` of some points, the pieces (:func:`_pieces`) given."""
     n = len(s) - 1
-    move, s0, h0, rise, span = _pieces(s, h)
+    move, s0, h0, rise, span = pieces
     if len(s) <= COMPARED_KNOTS:
         k = np.zeros(x.shape, np.intp)
         for j in range(1, n):

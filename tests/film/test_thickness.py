@@ -209,17 +209,20 @@ def _profile_by_definition(x: float, s: list[float], h: list[float]) -> float:
     return h[k] + (h[k + 1] - h[k]) * (x - s[k]) / (s[k + 1] - s[k])
 
 
-@pytest.mark.parametrize("compared", [8, 0])   # pieces found by comparisons, or by the binary search
+@pytest.mark.parametrize("compared, block", [(8, 16384), (0, 16384), (8, 7)])   # pieces found by comparisons or
+# by binary search; the points in one block or in blocks of 7
 @pytest.mark.parametrize("points", [((0.0, 2.0), (0.5, 1.0), (1.0, 2.0)),
                                     ((0.0, 1.866), (0.7, 1.866), (0.7, 1.0), (1.0, 1.0)),
                                     ((0.0, 1.0), (0.2, 2.0), (0.2, 3.0), (0.2, 4.0), (0.5, 5.0), (0.5, 6.0)),
                                     tuple((k / 11, 1.0 + (k % 3) / 7) for k in range(12))])
-def test_profile_film_interpolates_by_its_definition(points, compared, monkeypatch):
+def test_profile_film_interpolates_by_its_definition(points, compared, block, monkeypatch):
     """``ProfileFilm.thickness`` equals the definition bit for bit (steps, repeated knots, points at and next
-    to the knots, beyond the ends), with its pieces found by comparisons and by binary search."""
+    to the knots, beyond the ends), with its pieces found by comparisons and by binary search, in one block of
+    points or in several (a two-dimensional, non-contiguous array of points keeps its shape)."""
     from bearingfe.film import thickness
 
     monkeypatch.setattr(thickness, "COMPARED_KNOTS", compared)
+    monkeypatch.setattr(thickness, "INTERPOLATE_BLOCK", block)
     film = bf.ProfileFilm(points)
     s, h = [p[0] for p in points], [p[1] for p in points]
     knots = np.array(s)
@@ -227,3 +230,5 @@ def test_profile_film_interpolates_by_its_definition(points, compared, monkeypat
                         np.nextafter(knots, -1.0)])
     got = film.thickness(x, np.zeros_like(x))
     assert np.array_equal(got, [_profile_by_definition(v, s, h) for v in x])
+    grid = x[:-(x.size % 6) or None].reshape(6, -1).T   # (n, 6), not contiguous
+    assert np.array_equal(film.thickness(grid, np.zeros(grid.shape)), got[:grid.size].reshape(6, -1).T)
