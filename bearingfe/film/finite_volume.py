@@ -1216,7 +1216,17 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
     if system.C_cavity is None:
         return system
     cav = (unk.S @ cavity.astype(float)) > 0.5
-    C = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    C, Cc = system.C, system.C_cavity
+    if (C.format == Cc.format == "csr" and C.has_canonical_format and Cc.has_canonical_format
+            and np.array_equal(C.indptr, Cc.indptr) and np.array_equal(C.indices, Cc.indices)):
+        # one pattern (the streamline flux's): each stored entry from one of the two, as the column products
+        # and their sum below, without them (0.05 against 0.45 ms CPU at 810 nodes); canonical, where the
+        # products' sum keeps each row's cavitated columns first (the flows' sums then add in another order)
+        M = sp.csr_matrix((np.where(cav[C.indices], Cc.data, C.data), C.indices.copy(), C.indptr.copy()),
+                          shape=C.shape)
+        M.eliminate_zeros()
+        return dataclasses.replace(system, C=M, C_cavity=None)
+    C = (C @ sp.diags((~cav).astype(float)) + Cc @ sp.diags(cav.astype(float))).tocsr()
     return dataclasses.replace(system, C=C, C_cavity=None)
 
 

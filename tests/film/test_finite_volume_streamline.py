@@ -286,3 +286,34 @@ def test_nested_start_reads_the_fed_groove_as_full_film(monkeypatch):
     assert own.iterations < zero.iterations and own.cost["factorizations"] < zero.cost["factorizations"]
     assert np.array_equal(own.cavitated, zero.cavitated)
     assert np.abs(own.pressure - zero.pressure).max() <= 1e-12 * np.abs(zero.pressure).max()
+
+
+def test_effective_operator_picks_each_entry_as_the_column_products_do(monkeypatch):
+    # the flows' single Couette operator (cavitated columns from C_cavity) picked entry by entry on the two
+    # operators' common pattern: the same entries and values, bit for bit, as the column products and their sum
+    # (which keep each row's cavitated columns first), canonical; operators of two patterns take the products
+    import dataclasses
+
+    import scipy.sparse as sp
+
+    from bearingfe.film import finite_volume as fv
+
+    seen = {}
+    effective = fv._effective
+    monkeypatch.setattr(fv, "_effective", lambda system, unk, cavity: seen.setdefault(
+        "args", (system, unk, cavity)) and effective(system, unk, cavity))
+    case = dimple()
+    solve_jfo(mesh_surface(case.surface, 0.05), case.film, cavitation_pressure=-0.05)
+    system, unk, cavity = seen["args"]
+    assert system.C_cavity is not None and cavity.any() and not cavity.all()
+    cav = (unk.S @ cavity.astype(float)) > 0.5
+    want = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    want.sort_indices()
+    got = effective(system, unk, cavity)
+    assert got.C_cavity is None and got.C.has_canonical_format
+    assert np.array_equal(got.C.indptr, want.indptr) and np.array_equal(got.C.indices, want.indices)
+    assert np.array_equal(got.C.data, want.data)
+    assert (system.C != system.C_cavity).nnz > 0 and np.count_nonzero(system.C.data == 0.0) > 0   # a real pick
+    other = dataclasses.replace(system, C_cavity=(system.C_cavity + sp.eye(system.C.shape[0], k=7)).tocsr())
+    want = (system.C @ sp.diags((~cav).astype(float)) + other.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    assert (effective(other, unk, cavity).C != want).nnz == 0
