@@ -397,12 +397,11 @@ class _Streamline:
         if upwinded.any():   # the upwinded segments' first weight goes to their upwind node's column
             pair = np.arange(upwinded.size) // nt
             first = np.where(upwinded, np.where(self.up == self.d.i, pair, (pair + 1) % 3), 0)
-        C = _streamline_flux(n, t, self.flux, w, first)
         if self.scale is None:
-            return C, None
+            return _streamline_flux(n, t, self.flux, w, first), None
         s = self.scale.copy()
         s[0] = np.where(upwinded, self.up_scale, s[0])
-        return C, _streamline_flux(n, t, self.flux, w * s, first)
+        return _streamline_fluxes(n, t, self.flux, w, w * s, first)
 
 
 def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
@@ -447,7 +446,34 @@ def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
     n_triangles)``; ``first``: per segment the local node (0..2) that takes the weight ``w[0]`` (default 0).
     Summed per triangle into its 3 x 3 block first (the P1 stiffness's pattern: 9 entries a triangle for
     the sort into CSR, not 18 per segment triple)."""
+    rows, cols = _block_places(t)
+    return sp.csr_matrix((_flux_blocks(t.shape[1], f, w, first), (rows, cols)), shape=(n, n))
+
+
+def _streamline_fluxes(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray, w2: np.ndarray,
+                       first: np.ndarray | None = None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """:func:`_streamline_flux` of the weights ``w`` and of ``w2`` (the full and the cavitated nodes' theta of
+    a surface with recesses), sorted into CSR at once: the two as the real and imaginary parts of one complex
+    matrix, whose sort and sums of duplicates are those of each part alone (the places depend on the indices
+    only, the sums are per part in the same order): the same matrices bit for bit, 0.36 against 0.44 ms CPU
+    at 810 nodes, 5.0 against 6.6 ms at 11,903 (the dimple, mean of 10-120 calls)."""
+    rows, cols = _block_places(t)
     nt = t.shape[1]
+    both = np.empty(9 * nt, complex)
+    both.real = _flux_blocks(nt, f, w, first)
+    both.imag = _flux_blocks(nt, f, w2, first)
+    Z = sp.csr_matrix((both, (rows, cols)), shape=(n, n))
+    return (sp.csr_matrix((Z.data.real.copy(), Z.indices, Z.indptr), shape=(n, n)),
+            sp.csr_matrix((Z.data.imag.copy(), Z.indices.copy(), Z.indptr.copy()), shape=(n, n)))
+
+
+def _block_places(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows and columns of the 3 x 3 blocks of the triangles ``t`` (:func:`_flux_blocks`' entries)."""
+    return np.repeat(t, 3, axis=0).ravel(), np.tile(t, (3, 1)).ravel()
+
+
+def _flux_blocks(nt: int, f: np.ndarray, w: np.ndarray, first: np.ndarray | None) -> np.ndarray:
+    """The 3 x 3 blocks ``(row node, column node, triangle)``, flat, of :func:`_streamline_flux`."""
     local = np.zeros((3, 3, nt))   # (row node, column node, triangle)
     flat = local.reshape(-1)
     k = np.arange(nt)
@@ -463,9 +489,7 @@ def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
             else:
                 local[a, c] += v
                 local[b, c] -= v
-    rows = np.repeat(t, 3, axis=0).ravel()
-    cols = np.tile(t, (3, 1)).ravel()
-    return sp.csr_matrix((flat, (rows, cols)), shape=(n, n))
+    return flat
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------

@@ -317,3 +317,37 @@ def test_effective_operator_picks_each_entry_as_the_column_products_do(monkeypat
     other = dataclasses.replace(system, C_cavity=(system.C_cavity + sp.eye(system.C.shape[0], k=7)).tocsr())
     want = (system.C @ sp.diags((~cav).astype(float)) + other.C_cavity @ sp.diags(cav.astype(float))).tocsr()
     assert (effective(other, unk, cavity).C != want).nnz == 0
+
+
+@pytest.mark.parametrize("upwind_every", [0, 5])
+def test_full_and_cavity_fluxes_sorted_at_once_are_each_sorted_alone(upwind_every):
+    # the streamline flux of the full and of the cavitated nodes' theta (a surface with recesses), sorted into
+    # CSR as one complex matrix: each part's indices, pointers and values are those of its own sort, bit for
+    # bit, also with upwinded segments (their first weight moved to the upwind node's column)
+    from bearingfe.film import finite_volume as fv
+
+    case = dimple()
+    mesh = mesh_surface(case.surface, 0.05)
+    ops = fv.operators(mesh)
+    system = fv._assemble(ops, mesh, case.film, 1.0, (0.0, 0.0), None, None, "streamline")
+    st = system.reconstruction
+    upwinded = np.zeros(st.up.size, bool)
+    if upwind_every:
+        upwinded[::upwind_every] = True
+    C, C_cavity = st.matrices(ops.n_dofs, upwinded)
+    # the same weights as matrices() gives them, each sorted alone
+    w = np.where(upwinded, 0.0, st.weights)
+    w[0] += np.where(upwinded, 1.0, 0.0)
+    nt = st.nodes.shape[1] // 3
+    first = None
+    if upwinded.any():
+        pair = np.arange(upwinded.size) // nt
+        first = np.where(upwinded, np.where(st.up == st.d.i, pair, (pair + 1) % 3), 0)
+    s = st.scale.copy()
+    s[0] = np.where(upwinded, st.up_scale, s[0])
+    t = st.nodes[:, :nt]
+    for got, want in ((C, fv._streamline_flux(ops.n_dofs, t, st.flux, w, first)),
+                      (C_cavity, fv._streamline_flux(ops.n_dofs, t, st.flux, w * s, first))):
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data) and np.array_equal(np.signbit(got.data), np.signbit(want.data))
+    assert (C != C_cavity).nnz > 0
