@@ -44,6 +44,7 @@ import skfem
 from .compliance import Compliance, check_dense_size, contact_modulus
 from ..core.scales import Scale
 from ..film import operators
+from ..film.mesh_operators import boundary_facet_triangles
 from ..geometry.meshing import SupportMesh
 
 __all__ = ["influence_matrix", "rectangle_deflection", "half_space", "element_integrals", "pocket_integrals"]
@@ -143,7 +144,7 @@ def pocket_integrals(x: np.ndarray, m: skfem.Mesh, facets: np.ndarray) -> np.nda
         return np.zeros(x.shape[1])
     ends = m.facets[:, facets]
     a, b = m.p[:, ends[0]], m.p[:, ends[1]]
-    t = m.t[:3, m.f2t[0, facets]]
+    t = m.t[:3, boundary_facet_triangles(m, facets)]   # without the facet-to-triangle map of every facet
     third = m.p[:, np.where((t != ends[0]) & (t != ends[1]), t, -1).max(axis=0)]
     ccw = (b[0] - a[0]) * (third[1] - a[1]) - (b[1] - a[1]) * (third[0] - a[0]) > 0
     sign = np.where(ccw, -1.0, 1.0)  # the film lies left of a -> b when ccw: the pocket right

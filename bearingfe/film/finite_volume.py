@@ -103,7 +103,7 @@ from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs
 from ..geometry.runner import is_along_phi, velocity_at
 from ..geometry.surface import Circle
-from .mesh_operators import Operators, operators, pocket_moments
+from .mesh_operators import Operators, boundary_facet_triangles, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
 __all__ = ["JFOError", "solve_jfo", "FVSystem", "FVUnknowns", "active_set", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
@@ -397,12 +397,11 @@ class _Streamline:
         if upwinded.any():   # the upwinded segments' first weight goes to their upwind node's column
             pair = np.arange(upwinded.size) // nt
             first = np.where(upwinded, np.where(self.up == self.d.i, pair, (pair + 1) % 3), 0)
-        C = _streamline_flux(n, t, self.flux, w, first)
         if self.scale is None:
-            return C, None
+            return _streamline_flux(n, t, self.flux, w, first), None
         s = self.scale.copy()
         s[0] = np.where(upwinded, self.up_scale, s[0])
-        return C, _streamline_flux(n, t, self.flux, w * s, first)
+        return _streamline_fluxes(n, t, self.flux, w, w * s, first)
 
 
 def _contour_scales(mesh: SupportMesh, film: Film, d: _Dual, f: np.ndarray):
@@ -447,7 +446,34 @@ def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
     n_triangles)``; ``first``: per segment the local node (0..2) that takes the weight ``w[0]`` (default 0).
     Summed per triangle into its 3 x 3 block first (the P1 stiffness's pattern: 9 entries a triangle for
     the sort into CSR, not 18 per segment triple)."""
+    rows, cols = _block_places(t)
+    return sp.csr_matrix((_flux_blocks(t.shape[1], f, w, first), (rows, cols)), shape=(n, n))
+
+
+def _streamline_fluxes(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray, w2: np.ndarray,
+                       first: np.ndarray | None = None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """:func:`_streamline_flux` of the weights ``w`` and of ``w2`` (the full and the cavitated nodes' theta of
+    a surface with recesses), sorted into CSR at once: the two as the real and imaginary parts of one complex
+    matrix, whose sort and sums of duplicates are those of each part alone (the places depend on the indices
+    only, the sums are per part in the same order): the same matrices bit for bit, 0.36 against 0.44 ms CPU
+    at 810 nodes, 5.0 against 6.6 ms at 11,903 (the dimple, mean of 10-120 calls)."""
+    rows, cols = _block_places(t)
     nt = t.shape[1]
+    both = np.empty(9 * nt, complex)
+    both.real = _flux_blocks(nt, f, w, first)
+    both.imag = _flux_blocks(nt, f, w2, first)
+    Z = sp.csr_matrix((both, (rows, cols)), shape=(n, n))
+    return (sp.csr_matrix((Z.data.real.copy(), Z.indices, Z.indptr), shape=(n, n)),
+            sp.csr_matrix((Z.data.imag.copy(), Z.indices.copy(), Z.indptr.copy()), shape=(n, n)))
+
+
+def _block_places(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rows and columns of the 3 x 3 blocks of the triangles ``t`` (:func:`_flux_blocks`' entries)."""
+    return np.repeat(t, 3, axis=0).ravel(), np.tile(t, (3, 1)).ravel()
+
+
+def _flux_blocks(nt: int, f: np.ndarray, w: np.ndarray, first: np.ndarray | None) -> np.ndarray:
+    """The 3 x 3 blocks ``(row node, column node, triangle)``, flat, of :func:`_streamline_flux`."""
     local = np.zeros((3, 3, nt))   # (row node, column node, triangle)
     flat = local.reshape(-1)
     k = np.arange(nt)
@@ -463,9 +489,7 @@ def _streamline_flux(n: int, t: np.ndarray, f: np.ndarray, w: np.ndarray,
             else:
                 local[a, c] += v
                 local[b, c] -= v
-    rows = np.repeat(t, 3, axis=0).ravel()
-    cols = np.tile(t, (3, 1)).ravel()
-    return sp.csr_matrix((flat, (rows, cols)), shape=(n, n))
+    return flat
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
@@ -563,13 +587,19 @@ def _weighted(values: np.ndarray, weights: np.ndarray) -> np.ndarray:
     return out
 
 
+#: Triangles :func:`_interpolate` takes at a time (its temporaries of 2,048 x 6 points stay in cache): 0.65
+#: against 0.94 ms CPU at 7,375 nodes, 1.03-1.09 against 1.67 ms at 11,903 (blocks of 1,024-8,192 alike; the
+#: 16,384 of :data:`BLOCK` spill; mean of 40 calls).
+INTERPOLATE_BLOCK = 2048
+
+
 def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """A P1 field's values at the quadrature points ``(n_triangles, n_points)`` and its gradient
     ``(2, n_triangles)`` (constant per triangle)."""
     ut = u[cells.t]
     g, lam = cells.grad, cells.lam
     values = np.empty((ut.shape[1], lam.shape[1]))
-    for b in _blocks(ut.shape[1]):   # no temporaries of all points
+    for b in _blocks(ut.shape[1], INTERPOLATE_BLOCK):   # no temporaries of all points
         values[b] = ut[0, b, None] * lam[0] + ut[1, b, None] * lam[1] + ut[2, b, None] * lam[2]
     return values, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
 
@@ -1210,7 +1240,17 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
     if system.C_cavity is None:
         return system
     cav = (unk.S @ cavity.astype(float)) > 0.5
-    C = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    C, Cc = system.C, system.C_cavity
+    if (C.format == Cc.format == "csr" and C.has_canonical_format and Cc.has_canonical_format
+            and np.array_equal(C.indptr, Cc.indptr) and np.array_equal(C.indices, Cc.indices)):
+        # one pattern (the streamline flux's): each stored entry from one of the two, as the column products
+        # and their sum below, without them (0.05 against 0.45 ms CPU at 810 nodes); canonical, where the
+        # products' sum keeps each row's cavitated columns first (the flows' sums then add in another order)
+        M = sp.csr_matrix((np.where(cav[C.indices], Cc.data, C.data), C.indices.copy(), C.indptr.copy()),
+                          shape=C.shape)
+        M.eliminate_zeros()
+        return dataclasses.replace(system, C=M, C_cavity=None)
+    C = (C @ sp.diags((~cav).astype(float)) + Cc @ sp.diags(cav.astype(float))).tocsr()
     return dataclasses.replace(system, C=C, C_cavity=None)
 
 
@@ -1293,9 +1333,7 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
              if K.format in ("csr", "csc") and G.format in ("csr", "csc") else None)
     if kept is not None and given is not None and kept[3] is not None and _same_pattern(kept[3], given):
         return kept[2]   # the same matrices' patterns as last time: the same union pattern
-    pattern = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
-    pattern = (pattern + pattern.T).tocsr()
-    pattern.sort_indices()
+    pattern = _union_pattern(K, G)
     kept = unk._order.get("set_band")
     if kept is None or not (np.array_equal(kept[0], pattern.indptr) and np.array_equal(kept[1], pattern.indices)):
         perm = reverse_cuthill_mckee(pattern, symmetric_mode=True).astype(np.int64)
@@ -1305,6 +1343,23 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     unk._order["set_band"] = kept[:3] + (None if given is None else
                                          tuple(a if isinstance(a, str) else a.copy() for a in given),)
     return kept[2]
+
+
+def _union_pattern(K: sp.spmatrix, G: sp.spmatrix) -> sp.csr_matrix:
+    """The symmetric pattern of ``|K| + |G|`` and its transpose (sorted CSR, entries that sum to zero dropped,
+    as scipy's sums drop them). Two canonical matrices of one compressed format are read as they are (a CSC
+    matrix's arrays are its transpose's CSR arrays: the same symmetric pattern), without the conversions to
+    CSR: 0.13 against 0.19 ms CPU at 433 unknowns, 0.27 against 0.44 at 2,855 (mean of 300 calls; the same
+    arrays, values included)."""
+    if K.format == G.format and K.format in ("csr", "csc") and K.has_canonical_format and G.has_canonical_format:
+        A = sp.csr_matrix((np.abs(K.data), K.indices, K.indptr), shape=K.shape[::-1] if K.format == "csc" else K.shape)
+        B = sp.csr_matrix((np.abs(G.data), G.indices, G.indptr), shape=G.shape[::-1] if G.format == "csc" else G.shape)
+        U = A + B
+    else:
+        U = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
+    pattern = (U + U.T).tocsr()
+    pattern.sort_indices()
+    return pattern
 
 
 def _same_pattern(a: tuple, b: tuple) -> bool:
@@ -2011,24 +2066,6 @@ def _box_fill_block(mesh: SupportMesh, film: Film, box: np.ndarray, theta: np.nd
 
 # -- flows ------------------------------------------------------------------------------
 
-def _facet_elements(m, facets: np.ndarray) -> np.ndarray:
-    """The triangle of each boundary facet: scikit-fem's ``f2t`` where the mesh has it already, else found
-    among the triangles with two nodes on the facets (a few corner facets: not the inverse map of every
-    facet, 5 ms at 7,500 nodes, built for them alone on a gmsh mesh without pockets)."""
-    if hasattr(m, "_f2t"):   # scikit-fem's cache of the map
-        return m.f2t[0, facets]
-    a, b = m.facets[:, facets]
-    t = m.t[:3]
-    mark = np.zeros(m.nvertices, bool)
-    mark[a], mark[b] = True, True
-    cand = np.flatnonzero(mark[t].sum(axis=0) >= 2)
-    tc = t[:, cand]
-    match = (tc[:, None, :] == a[None, :, None]).any(axis=0) & (tc[:, None, :] == b[None, :, None]).any(axis=0)
-    if not np.all(match.sum(axis=1) == 1):   # not each a boundary facet of one triangle
-        return m.f2t[0, facets]
-    return cand[np.argmax(match, axis=1)]
-
-
 def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray, theta: np.ndarray,
                 facets) -> np.ndarray | dict[str, np.ndarray]:
     """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node; ``facets`` an array,
@@ -2044,7 +2081,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
     if every.size:
         a, b = m.facets[:, every]
-        elem = _facet_elements(m, every)
+        elem = boundary_facet_triangles(m, every)
         pa, pb = m.p[:, a], m.p[:, b]
         tvec = pb - pa
         length = np.linalg.norm(tvec, axis=0)

@@ -554,19 +554,65 @@ def _piecewise_slope(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
     return out
 
 
+#: Knots up to which :func:`_interpolate` finds each point's piece by comparisons with the inner knots (one
+#: vectorized comparison per knot) instead of a binary search (``np.searchsorted``): the same piece, 2.3x less
+#: CPU time at 3 knots (48 against 111 us at 6,000 points, best of 2,000 calls).
+COMPARED_KNOTS = 8
+
+
+def _pieces(s: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per piece ``k`` of the knots ``(s, h)``: the piece that holds its points (a zero-length piece, a step,
+    never does: the next one, as often as needed), and that piece's start ``s``, start ``h``, rise in ``h`` and
+    length (1 for a step that remains, the last piece)."""
+    last = len(s) - 2
+    k = np.arange(last + 1)
+    while True:
+        flat = (s[k + 1] <= s[k]) & (k < last)
+        if not np.any(flat):
+            break
+        k = np.where(flat, k + 1, k)
+    span = s[k + 1] - s[k]
+    return k, s[k], h[k], h[k + 1] - h[k], np.where(span > 0, span, 1.0)
+
+
+#: Points :func:`_interpolate` takes at a time: its half-dozen temporaries of a block stay in cache (at 86,000
+#: quadrature points, 7,375 nodes: 0.7 against 2.1 ms CPU in one piece, mean of 50 calls).
+INTERPOLATE_BLOCK = 16384
+
+
 def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
     """Piecewise-linear ``h(x)`` through the knots ``(s, h)``, constant beyond the ends and right-continuous
-    at a step (two knots at one abscissa: the film at the step is the second one)."""
+    at a step (two knots at one abscissa: the film at the step is the second one).
+
+    Each point's piece is the last whose start is ``<= x`` (clipped to the first and last; up to
+    :data:`COMPARED_KNOTS` knots counted by comparisons, else by a binary search), moved past steps
+    (:func:`_pieces`, per piece once); in it ``h_k + (h_{k+1} - h_k) (x - s_k) / (s_{k+1} - s_k)``; by blocks
+    of :data:`INTERPOLATE_BLOCK` points."""
     x = np.asarray(x, float)
-    k = np.clip(np.searchsorted(s, x, side="right") - 1, 0, len(s) - 2)
-    while True:  # a zero-length segment (a step) is never the one that holds x: move to the next
-        flat = s[k + 1] <= s[k]
-        if not np.any(flat & (k < len(s) - 2)):
-            break
-        k = np.where(flat & (k < len(s) - 2), k + 1, k)
-    span = s[k + 1] - s[k]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inner = h[k] + (h[k + 1] - h[k]) * (x - s[k]) / np.where(span > 0, span, 1.0)
+    pieces = _pieces(s, h)
+    if x.size <= INTERPOLATE_BLOCK:
+        return _interpolate_block(x, s, h, pieces)
+    out = np.empty(x.shape)
+    flat, into = x.reshape(-1), out.reshape(-1)
+    for lo in range(0, flat.size, INTERPOLATE_BLOCK):
+        block = slice(lo, lo + INTERPOLATE_BLOCK)
+        into[block] = _interpolate_block(flat[block], s, h, pieces)
+    return out
+
+
+def _interpolate_block(x: np.ndarray, s: np.ndarray, h: np.ndarray, pieces) -> np.ndarray:
+    """:func:`_interpolate` of some points, the pieces (:func:`_pieces`) given."""
+    n = len(s) - 1
+    move, s0, h0, rise, span = pieces
+    if len(s) <= COMPARED_KNOTS:
+        k = np.zeros(x.shape, np.intp)
+        for j in range(1, n):
+            k += x >= s[j]
+    else:
+        k = np.clip(np.searchsorted(s, x, side="right") - 1, 0, n - 1)
+    k = move[k]
+    with np.errstate(invalid="ignore"):   # x = +-inf on a flat piece: inf * 0, replaced by the end value
+        inner = h0[k] + rise[k] * (x - s0[k]) / span[k]
     return np.where(x < s[0], h[0], np.where(x >= s[-1], h[-1], inner))
 
 

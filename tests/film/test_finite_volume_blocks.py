@@ -34,6 +34,7 @@ def test_quadrature_points_and_weights_are_scikit_fems(kind):
 
 def _systems(monkeypatch, block):
     monkeypatch.setattr(fv, "BLOCK", block)
+    monkeypatch.setattr(fv, "INTERPOLATE_BLOCK", block)
     mesh = grid_mesh(_dimpled(), 1 / 70)   # 5,041 nodes: a nested start
     ops = fv.operators(mesh)
     system = fv._assemble(ops, mesh, FILM, 1.0, (0.0, 0.0), None, None, "grid")

@@ -529,3 +529,32 @@ def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     wide = fv._band_factorize(pattern, order)
     assert not isinstance(wide, fv._BandedLU)
     assert np.abs(wide(M)(rhs) - want).max() == 0.0
+
+
+def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
+    """The set matrices' symmetric union pattern read from the CSC (or CSR) arrays equals the sums
+    ``|K| + |G|`` plus its transpose made through CSR (indices, pointers and values, bit for bit), also with
+    entries that cancel (an explicit zero) and for mixed or non-canonical formats (those take the sums)."""
+    import scipy.sparse as sp
+
+    mesh = grid_mesh(_dimpled(), 1 / 9)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "median")
+    unk = fv._unknowns(mesh, ops)
+    K, G, _ = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    K = K.tocsr()
+    assert K[0, 60] == 0 and K[3, 40] == 0 and K[40, 3] == 0
+    # an entry outside K's pattern (one of the union and of its transpose) and an explicit zero where K has
+    # no entry (no entry of the union: scipy's sums drop it)
+    G = (G.tocsr() + sp.csr_matrix(([1.5, 1.0], ([3, 0], [40, 60])), shape=G.shape)).tocsr()
+    G.data[G.indptr[0] + np.flatnonzero(G.indices[G.indptr[0]:G.indptr[1]] == 60)] = 0.0
+    assert G.has_canonical_format and G[0, 60] == 0 and 60 in G.indices[G.indptr[0]:G.indptr[1]]
+    want = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
+    want = (want + want.T).tocsr()
+    want.sort_indices()
+    for k, g in ((K.tocsc(), G.tocsc()), (K.tocsr(), G.tocsr()), (K.tocsr(), G.tocsc()), (K.tocoo(), G)):
+        got = fv._union_pattern(k, g)
+        assert got.format == "csr" and got.has_sorted_indices
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    assert want[3, 40] == want[40, 3] == 1.5 and want[0, 60] == 0 and 60 not in want.indices[:want.indptr[1]]

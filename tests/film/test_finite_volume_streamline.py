@@ -253,12 +253,13 @@ def test_corner_facet_triangles_found_without_the_inverse_map():
     # the flows' direct facet fluxes need the triangle of a few boundary facets: found among the triangles
     # with two nodes on them, the same as scikit-fem's facet-to-triangle map (built afterwards for the check)
     from bearingfe.film import finite_volume as fv
+    from bearingfe.film.mesh_operators import boundary_facet_triangles
 
     mesh = mesh_surface(dimple().surface, 0.05)   # no pockets: nothing else builds the map
     fv.solve_jfo(mesh, dimple().film, cavitation_pressure=-0.05)
     assert not hasattr(mesh.mesh, "_f2t")
     facets = np.asarray(mesh.boundaries["outer"])
-    found = fv._facet_elements(mesh.mesh, facets)
+    found = boundary_facet_triangles(mesh.mesh, facets)
     assert np.array_equal(found, mesh.mesh.f2t[0, facets])
 
 
@@ -285,3 +286,68 @@ def test_nested_start_reads_the_fed_groove_as_full_film(monkeypatch):
     assert own.iterations < zero.iterations and own.cost["factorizations"] < zero.cost["factorizations"]
     assert np.array_equal(own.cavitated, zero.cavitated)
     assert np.abs(own.pressure - zero.pressure).max() <= 1e-12 * np.abs(zero.pressure).max()
+
+
+def test_effective_operator_picks_each_entry_as_the_column_products_do(monkeypatch):
+    # the flows' single Couette operator (cavitated columns from C_cavity) picked entry by entry on the two
+    # operators' common pattern: the same entries and values, bit for bit, as the column products and their sum
+    # (which keep each row's cavitated columns first), canonical; operators of two patterns take the products
+    import dataclasses
+
+    import scipy.sparse as sp
+
+    from bearingfe.film import finite_volume as fv
+
+    seen = {}
+    effective = fv._effective
+    monkeypatch.setattr(fv, "_effective", lambda system, unk, cavity: seen.setdefault(
+        "args", (system, unk, cavity)) and effective(system, unk, cavity))
+    case = dimple()
+    solve_jfo(mesh_surface(case.surface, 0.05), case.film, cavitation_pressure=-0.05)
+    system, unk, cavity = seen["args"]
+    assert system.C_cavity is not None and cavity.any() and not cavity.all()
+    cav = (unk.S @ cavity.astype(float)) > 0.5
+    want = (system.C @ sp.diags((~cav).astype(float)) + system.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    want.sort_indices()
+    got = effective(system, unk, cavity)
+    assert got.C_cavity is None and got.C.has_canonical_format
+    assert np.array_equal(got.C.indptr, want.indptr) and np.array_equal(got.C.indices, want.indices)
+    assert np.array_equal(got.C.data, want.data)
+    assert (system.C != system.C_cavity).nnz > 0 and np.count_nonzero(system.C.data == 0.0) > 0   # a real pick
+    other = dataclasses.replace(system, C_cavity=(system.C_cavity + sp.eye(system.C.shape[0], k=7)).tocsr())
+    want = (system.C @ sp.diags((~cav).astype(float)) + other.C_cavity @ sp.diags(cav.astype(float))).tocsr()
+    assert (effective(other, unk, cavity).C != want).nnz == 0
+
+
+@pytest.mark.parametrize("upwind_every", [0, 5])
+def test_full_and_cavity_fluxes_sorted_at_once_are_each_sorted_alone(upwind_every):
+    # the streamline flux of the full and of the cavitated nodes' theta (a surface with recesses), sorted into
+    # CSR as one complex matrix: each part's indices, pointers and values are those of its own sort, bit for
+    # bit, also with upwinded segments (their first weight moved to the upwind node's column)
+    from bearingfe.film import finite_volume as fv
+
+    case = dimple()
+    mesh = mesh_surface(case.surface, 0.05)
+    ops = fv.operators(mesh)
+    system = fv._assemble(ops, mesh, case.film, 1.0, (0.0, 0.0), None, None, "streamline")
+    st = system.reconstruction
+    upwinded = np.zeros(st.up.size, bool)
+    if upwind_every:
+        upwinded[::upwind_every] = True
+    C, C_cavity = st.matrices(ops.n_dofs, upwinded)
+    # the same weights as matrices() gives them, each sorted alone
+    w = np.where(upwinded, 0.0, st.weights)
+    w[0] += np.where(upwinded, 1.0, 0.0)
+    nt = st.nodes.shape[1] // 3
+    first = None
+    if upwinded.any():
+        pair = np.arange(upwinded.size) // nt
+        first = np.where(upwinded, np.where(st.up == st.d.i, pair, (pair + 1) % 3), 0)
+    s = st.scale.copy()
+    s[0] = np.where(upwinded, st.up_scale, s[0])
+    t = st.nodes[:, :nt]
+    for got, want in ((C, fv._streamline_flux(ops.n_dofs, t, st.flux, w, first)),
+                      (C_cavity, fv._streamline_flux(ops.n_dofs, t, st.flux, w * s, first))):
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data) and np.array_equal(np.signbit(got.data), np.signbit(want.data))
+    assert (C != C_cavity).nnz > 0

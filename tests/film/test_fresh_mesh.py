@@ -250,3 +250,34 @@ def test_facet_dofs_are_scikit_fems(element):
         mine = film_operators.facet_dofs(ops.basis, facets)
         np.testing.assert_array_equal(mine, expected)
         assert mine.dtype == expected.dtype and mine.size > 0
+
+
+@pytest.mark.parametrize("surface, order", [(RECTANGLE, 1), (RECTANGLE, 2), (CIRCLE, 2)])
+def test_boundary_facet_triangles_without_the_inverse_map(surface, order):
+    # the triangles of boundary facets found among the triangles with two nodes on them are scikit-fem's
+    # facet-to-triangle map's (built afterwards, on a copy); facets of two triangles take the map; the
+    # pockets' moments of a fresh mesh, which no longer builds the map, are the same numbers bit for bit
+    import copy
+
+    from bearingfe.geometry.meshing import give_facet_triangles
+
+    mesh = bf.mesh_surface(surface, 0.25, corner_size=0.05, order=order)
+    m = copy.deepcopy(mesh.mesh)
+    assert not hasattr(m, "_f2t")
+    outer, inlet = np.asarray(mesh.boundaries["outer"]), np.asarray(mesh.boundaries["inlet"])
+    every = np.concatenate([inlet, outer[::-1]])
+    interior = np.flatnonzero(mesh.mesh.f2t[1] >= 0)[:7]
+    got = film_operators.boundary_facet_triangles(m, every)
+    assert not hasattr(m, "_f2t")
+    assert np.array_equal(got, mesh.mesh.f2t[0, every])
+    assert np.array_equal(film_operators.boundary_facet_triangles(m, np.concatenate([every[:3], interior])),
+                          mesh.mesh.f2t[0, np.concatenate([every[:3], interior])])
+    element = "P1" if order == 1 else "P2"
+    fresh = copy.deepcopy(mesh)
+    fresh.mesh.__dict__.pop("_f2t", None)
+    moments = operators(fresh, element).pocket_moments
+    assert not hasattr(fresh.mesh, "_f2t")
+    mapped = copy.deepcopy(fresh)
+    mapped._cache.clear()
+    give_facet_triangles(mapped.mesh)
+    assert np.array_equal(moments, operators(mapped, element).pocket_moments)

@@ -195,3 +195,40 @@ def test_finite_differences_take_the_step_too():
     assert err[1] < err[0] / 3 and err[1] < 3e-3  # observed 1.0e-2, 2.2e-3
     with pytest.raises(ValueError, match="formulation='pi' needs a smooth film"):
         bf.solve_reynolds_fd(surface, film, (101, 9))
+
+
+def _profile_by_definition(x: float, s: list[float], h: list[float]) -> float:
+    """A piecewise-linear profile at one point, by its definition: constant beyond the ends, right-continuous at a
+    step (the piece that holds ``x`` is the last with a start ``<= x`` and a positive length), in each piece
+    ``h_k + (h_{k+1} - h_k) (x - s_k) / (s_{k+1} - s_k)`` (the formula's own order of operations)."""
+    if x < s[0]:
+        return h[0]
+    if x >= s[-1]:
+        return h[-1]
+    k = max(j for j in range(len(s) - 1) if s[j] <= x and s[j + 1] > s[j])
+    return h[k] + (h[k + 1] - h[k]) * (x - s[k]) / (s[k + 1] - s[k])
+
+
+@pytest.mark.parametrize("compared, block", [(8, 16384), (0, 16384), (8, 7)])   # pieces found by comparisons or
+# by binary search; the points in one block or in blocks of 7
+@pytest.mark.parametrize("points", [((0.0, 2.0), (0.5, 1.0), (1.0, 2.0)),
+                                    ((0.0, 1.866), (0.7, 1.866), (0.7, 1.0), (1.0, 1.0)),
+                                    ((0.0, 1.0), (0.2, 2.0), (0.2, 3.0), (0.2, 4.0), (0.5, 5.0), (0.5, 6.0)),
+                                    tuple((k / 11, 1.0 + (k % 3) / 7) for k in range(12))])
+def test_profile_film_interpolates_by_its_definition(points, compared, block, monkeypatch):
+    """``ProfileFilm.thickness`` equals the definition bit for bit (steps, repeated knots, points at and next
+    to the knots, beyond the ends), with its pieces found by comparisons and by binary search, in one block of
+    points or in several (a two-dimensional, non-contiguous array of points keeps its shape)."""
+    from bearingfe.film import thickness
+
+    monkeypatch.setattr(thickness, "COMPARED_KNOTS", compared)
+    monkeypatch.setattr(thickness, "INTERPOLATE_BLOCK", block)
+    film = bf.ProfileFilm(points)
+    s, h = [p[0] for p in points], [p[1] for p in points]
+    knots = np.array(s)
+    x = np.concatenate([np.random.default_rng(3).uniform(-0.3, 1.3, 500), knots, np.nextafter(knots, 2.0),
+                        np.nextafter(knots, -1.0)])
+    got = film.thickness(x, np.zeros_like(x))
+    assert np.array_equal(got, [_profile_by_definition(v, s, h) for v in x])
+    grid = x[:-(x.size % 6) or None].reshape(6, -1).T   # (n, 6), not contiguous
+    assert np.array_equal(film.thickness(grid, np.zeros(grid.shape)), got[:grid.size].reshape(6, -1).T)
