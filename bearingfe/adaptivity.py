@@ -48,7 +48,7 @@ from .geometry.surface import Surface
 from .core.checks import ResolutionWarning
 from .core.linalg import DEFAULT_SOLVER, get_linear_solver
 from .geometry.locate import cell_diameters
-from .geometry.meshing import SupportMesh, mesh_surface
+from .geometry.meshing import SupportMesh, give_facet_triangles, mesh_surface
 from .core.parameters import Discretization, OperatingPoint, takes
 from .film import forms
 from .film.forms import along, film_flux, mapping, pressure_from_unknown, unknown_scale
@@ -307,6 +307,8 @@ class _Bases:
     @property
     def sides(self):
         """Both sides of the interior facets (``None`` without any)."""
+        if self._sides is None:
+            give_facet_triangles(self.mesh)   # the package's build of the map, cheaper than scikit-fem's
         if self._sides is None and np.any(self.mesh.f2t[1] >= 0):
             self._sides = [skfem.InteriorFacetBasis(self.mesh, self.basis.elem, mapping=mapping(self.mesh),
                                                     side=k, intorder=self.intorder) for k in (0, 1)]
