@@ -1469,9 +1469,11 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
         # not turned with the line of centres (as a Newton step's start is, :meth:`_Solves.solve`): the front
         # moves with the refinement more than with the level's step, and the turned set started the pads of
         # part ``journal_pads`` further from their answer (two_groove at size 0.3, rupture_size 0.05: 14
-        # active-set iterations instead of 13)
-        start = tuple(_nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
-                      for mesh, res in zip(meshes, state.results))
+        # active-set iterations instead of 13); a film not refined at this level keeps its set as it is (each
+        # of its dofs is its own nearest)
+        start = tuple(res.cavitated if r is None else
+                      _nearest_rupture(res, np.asarray(operators(mesh, opts.element).basis.doflocs))
+                      for mesh, res, r in zip(meshes, state.results, refined))
         state = opts.solve(bearing, meshes, *at, start=start)
     raise RuntimeError(f"journal equilibrium: the rupture front still crosses elements longer than rupture_size = "
                        f"{rupture_size:g} after {levels} refinement levels (it moves as the mesh is refined)")
