@@ -91,6 +91,7 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from skfem import MeshTri1
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .thickness import Film
@@ -755,10 +756,17 @@ def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.nd
     rectangle overlaps its bounding box (:func:`_recess_boxes`, the box :func:`_recess_plan` also trusts),
     the recesses added in their order: the same values as the plain test, without sorting the points (cells
     and boxes of a grid, each near one recess contour, sampled many times)."""
+    return _depth_on_rows(surface, _overlaps(surface, x0, x1, z0, z1), X, Z)
+
+
+def _depth_on_rows(surface, rows: list[np.ndarray], X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """The recess depth at the points ``X``, ``Z`` (``(n, k_points)``), each recess of ``surface`` tested on
+    its own ``rows`` only (one index array per recess, in order: at least the rows with a point in its
+    bounding box, :func:`_recess_boxes`; more rows give the same values), the recesses added in their order."""
     out = np.zeros(np.shape(X))
-    for r, rows in zip(surface.recesses, _overlaps(surface, x0, x1, z0, z1)):
-        if rows.size:
-            out[rows] += r.depth * r.shape.contains(X[rows], Z[rows])
+    for r, idx in zip(surface.recesses, rows):
+        if idx.size:
+            out[idx] += r.depth * r.shape.contains(X[idx], Z[idx])
     return out
 
 
@@ -965,12 +973,36 @@ def _dof_thickness(mesh: SupportMesh, film: Film, doflocs: np.ndarray) -> np.nda
 
 
 def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
-    """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses."""
+    """The recess depth at the quadrature points ``x`` of ``mesh`` (found once per mesh); None without recesses.
+    On straight triangles each recess tests the triangles near it (:func:`_triangle_recesses`, shared with the
+    cut cells); else the points' own bounding boxes (:func:`_rows_depth`): the same values."""
     surface = mesh.surface
     if surface is None or not getattr(surface, "recesses", ()):
         return None
+
+    def build() -> np.ndarray:
+        rows = _triangle_recesses(mesh) if x.shape[1] == mesh.mesh.t.shape[1] else None
+        return _rows_depth(surface, x[0], x[1]) if rows is None else _depth_on_rows(surface, rows, x[0], x[1])
+
     # (n_triangles, n_points), per quadrature rule
-    return mesh.cached(("finite_volume.quadrature_depth", x.shape[1:]), lambda: _rows_depth(surface, x[0], x[1]))
+    return mesh.cached(("finite_volume.quadrature_depth", x.shape[1:]), build)
+
+
+def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
+    """Per recess of ``mesh.surface`` (in order), the triangles whose corners' bounding box overlaps its box
+    (:func:`_overlaps`, increasing indices), found once per mesh; None unless the triangles are straight
+    (``MeshTri1``: every point of a triangle, its quadrature points and sub-cell centroids, lies in its
+    corners' box up to round-off, outside any recess box the recess test trusts)."""
+    if type(mesh.mesh) is not MeshTri1:
+        return None
+
+    def build() -> list[np.ndarray]:
+        t = mesh.mesh.t[:3]
+        px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+        return [np.sort(rows) for rows in _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0),
+                                                   pz.min(axis=0), pz.max(axis=0))]
+
+    return mesh.cached("finite_volume.triangle_recesses", build)
 
 
 def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
@@ -1027,12 +1059,19 @@ def _cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
 
 
 def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
-    """:func:`_cut_cells` built afresh."""
+    """:func:`_cut_cells` built afresh: each recess tests the triangles near it (:func:`_triangle_recesses`,
+    the quadrature depth's own lists)."""
     surface = mesh.surface
     m = mesh.mesh
     t = m.t[:3]
-    px, pz = m.p[0, t], m.p[1, t]
-    near = np.flatnonzero(_near_recess(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0)))
+    over = _triangle_recesses(mesh)
+    if over is None:
+        px, pz = m.p[0, t], m.p[1, t]
+        over = _overlaps(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
+    mask = np.zeros(t.shape[1], bool)
+    for rows in over:
+        mask[rows] = True
+    near = np.flatnonzero(mask)
     dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _vertex_depth(mesh)[t[:, near]]   # the depth is pointwise: as tested per triangle
     varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
@@ -1045,10 +1084,10 @@ def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    cx, cz = px[:, cut], pz[:, cut]   # each recess tests the cut cells near it
-    depth = _boxed_depth(surface, cx.min(axis=0), cx.max(axis=0), cz.min(axis=0), cz.max(axis=0), pts[0], pts[1])
-    return cut, pts, depth
-
+    where = np.full(t.shape[1], -1)   # each recess tests the cut cells near it
+    where[cut] = np.arange(cut.size)
+    rows = [w[w >= 0] for w in (where[r] for r in over)]
+    return cut, pts, _depth_on_rows(surface, rows, pts[0], pts[1])
 
 
 def _rate(film: Film, phi: np.ndarray, z: np.ndarray, squeeze) -> np.ndarray:

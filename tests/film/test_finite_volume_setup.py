@@ -495,6 +495,34 @@ def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
     assert fv._vertex_depth(grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)) is None
 
 
+def test_triangle_recesses_give_the_previous_quadrature_depth_and_cut_cells():
+    """The triangles near each recess (their corners' boxes, found once per mesh) serve the quadrature depth and
+    the cut cells: the same values, bit for bit, as the previous computation (the quadrature points' own boxes,
+    :func:`_rows_depth`, equal to the surface's plain test; the cut cells' boxes, :func:`_boxed_depth`), with
+    circles and a rectangle among the recesses, and on a quadratic mesh (its own boxes: no shared lists)."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[*_dimpled().recesses, Recess(Rectangle((0.5, 0.0), (0.2, 0.1)), 0.7)])
+    mesh = grid_mesh(surface, 1 / 23)
+    x = fv.operators(mesh).x
+    over = fv._triangle_recesses(mesh)
+    assert len(over) == 5 and all(np.all(np.diff(rows) > 0) for rows in over)
+    depth = fv._quadrature_depth(mesh, x)
+    assert np.count_nonzero(depth) > 100
+    assert np.array_equal(depth, fv._rows_depth(surface, x[0], x[1]))
+    assert np.array_equal(depth, surface.recess_depth(x[0], x[1]))
+    cut, pts, cut_depth = fv._cut_cells(mesh, x, 8)
+    t = mesh.mesh.t[:3, cut]
+    px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+    assert cut.size > 50
+    assert np.array_equal(cut_depth, fv._boxed_depth(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0),
+                                                     pz.max(axis=0), pts[0], pts[1]))
+    assert np.array_equal(cut_depth, surface.recess_depth(pts[0], pts[1]))
+    curved = mesh_surface(surface, 0.1, order=2)
+    assert fv._triangle_recesses(curved) is None
+
+
 def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
     """The band subproblem of a nested start (:func:`_band_set`) is factored by banded LU in its reverse
     Cuthill-McKee order where the band pays (the ``front_band_lu`` limits: half-bandwidth and work): its
