@@ -223,9 +223,10 @@ def _build_grid_faces(mesh: SupportMesh) -> _GridFaces:
     grid[kx, ky] = np.arange(p.shape[1])
     t = m.t[:3]
     cells = np.zeros((max(nx - 1, 1), max(ny - 1, 1)), np.int64)   # triangles per grid cell (2: in the mesh)
-    tri_ok = (np.ptp(kx[t], axis=0) == 1) & (np.ptp(ky[t], axis=0) == 1)
+    kt, lt = kx[t], ky[t]
+    tri_ok = (np.ptp(kt, axis=0) == 1) & (np.ptp(lt, axis=0) == 1)
     if np.all(tri_ok):   # counted by bincount (numpy's add.at is several times slower)
-        flat = kx[t].min(axis=0) * cells.shape[1] + ky[t].min(axis=0)
+        flat = kt.min(axis=0) * cells.shape[1] + lt.min(axis=0)
         cells = np.bincount(flat, minlength=cells.size).reshape(cells.shape)
     if (nx < 2 or ny < 2 or np.bincount(kx * ny + ky, minlength=nx * ny).max() > 1 or not np.all(tri_ok)
             or np.any((cells != 0) & (cells != 2))):
@@ -239,9 +240,7 @@ def _build_grid_faces(mesh: SupportMesh) -> _GridFaces:
     yhi = np.concatenate([0.5 * (ys[:-1] + ys[1:]), [ys[-1]]])
     xlo = np.concatenate([[xs[0]], 0.5 * (xs[:-1] + xs[1:])])
     xhi = np.concatenate([0.5 * (xs[:-1] + xs[1:]), [xs[-1]]])
-    box = np.full((4, p.shape[1]), np.nan)
-    box[0, grid[kx, ky]], box[1, grid[kx, ky]] = xlo[kx], xhi[kx]
-    box[2, grid[kx, ky]], box[3, grid[kx, ky]] = ylo[ky], yhi[ky]
+    box = np.array([xlo[kx], xhi[kx], ylo[ky], yhi[ky]])   # node n at grid[kx[n], ky[n]] (one node per point)
     # face between (k, l) and (k + 1, l): its lower half lies in the cell (k, l - 1), its upper half in (k, l)
     below = np.zeros((nx - 1, ny), bool)
     above = np.zeros((nx - 1, ny), bool)

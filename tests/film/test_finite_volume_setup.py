@@ -189,6 +189,27 @@ def test_box_fill_in_blocks_sums_the_same_integrals(monkeypatch):
     assert np.allclose(blocks, whole, rtol=1e-13, atol=0.0)
 
 
+def test_grid_box_cells_reach_midway_to_the_neighbouring_grid_lines():
+    """Each node's box cell spans from midway to the previous grid line to midway to the next (the outline's
+    lines: to the line itself) in ``phi`` and in ``z``, every node with a finite box, on a grid with lines
+    through the edges of a pocket (a hole of whole cells): the formula written out node by node (the same
+    before and after the boxes were written without the node-to-grid map)."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))],
+                      recesses=_dimpled().recesses)
+    mesh = grid_mesh(surface, 1.0 / 17)
+    p = mesh.mesh.p
+    box = fv._grid_faces(mesh).box
+    assert box.shape == (4, p.shape[1]) and np.all(np.isfinite(box))
+    for axis, rows in ((0, (0, 1)), (1, (2, 3))):
+        lines = np.unique(p[axis])
+        k = np.searchsorted(lines, p[axis])
+        below = np.where(k > 0, 0.5 * (lines[np.maximum(k - 1, 0)] + lines[k]), lines[k])
+        above = np.where(k < lines.size - 1, 0.5 * (lines[k] + lines[np.minimum(k + 1, lines.size - 1)]), lines[k])
+        assert np.array_equal(box[rows[0]], below) and np.array_equal(box[rows[1]], above)
+
+
 def test_box_fill_block_is_its_formula_with_boxes_without_a_downstream_face():
     """The fill of an emptied box is ``min(1, theta hbar / h)`` at its sample points, its deficit ``int (1 -
     fill) / h`` and its emptied area ``int [fill < 1]`` (midpoint rule); a box without a downstream face (no
