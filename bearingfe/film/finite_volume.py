@@ -662,7 +662,7 @@ _BOXES: dict = {}
 
 def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
     """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size and 1e-12), found once
-    per surface (:func:`_near_recess`, :func:`_recess_plan`, :func:`_line_recess`)."""
+    per surface (:func:`_overlaps`, :func:`_recess_plan`, :func:`_line_recess`)."""
     key = id(surface)
     hit = _BOXES.get(key)
     if hit is not None and hit[0] is surface:
@@ -702,14 +702,14 @@ def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) ->
 _GAUSS = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
 
-def _near_recess(surface, x0, x1, z0, z1) -> np.ndarray:
-    """Mask of the rectangles ``[x0, x1] x [z0, z1]`` that overlap the bounding box of a recess (with a
-    margin of 1 % of its size, :func:`_recess_boxes`): elsewhere the recess depth is zero and need not be
-    sampled."""
-    near = np.zeros(np.size(x0), bool)
-    for rows in _overlaps(surface, x0, x1, z0, z1):
-        near[rows] = True
-    return near.reshape(np.shape(x0))
+def _in_any(rows: list[np.ndarray], n: int) -> np.ndarray:
+    """Mask of the ``n`` rectangles in any of the index arrays ``rows`` (per recess, :func:`_overlaps`): near a
+    recess's bounding box (with a margin of 1 % of its size, :func:`_recess_boxes`); elsewhere the recess depth
+    is zero and need not be sampled."""
+    near = np.zeros(n, bool)
+    for r in rows:
+        near[r] = True
+    return near
 
 
 #: Rectangles from which :func:`_overlaps` sorts them into strips along ``phi`` (with 4 recesses or more).
@@ -793,7 +793,7 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     test), each round testing ``sections - 1`` points of every bracket at once and keeping the part where
     the test changes: ``log2(sections)`` halvings per round. Where every recess is a circle, each line
     takes its chords' overlap with ``[lo, hi]`` directly (no samples, no condition on the recess width)."""
-    if all(isinstance(r.shape, Circle) for r in surface.recesses):
+    if _all_circles(surface):
         return _line_circles(surface, x, lo, hi)
     z = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, pieces + 1)
     d = _rows_depth(surface, x[:, None] + 0.0 * z, z)
@@ -829,12 +829,19 @@ def _line_recess(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray, pieces:
     return piece.sum(axis=1)
 
 
-def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+def _all_circles(surface) -> bool:
+    """Whether every recess of ``surface`` is a circle (line integrals in closed form, :func:`_line_circles`)."""
+    return all(isinstance(r.shape, Circle) for r in surface.recesses)
+
+
+def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray,
+                  rows: list[np.ndarray] | None = None) -> np.ndarray:
     """:func:`_line_recess` where every recess is a circle (recesses do not overlap): the depth times the
     part of each chord ``|z - cz| < sqrt(r^2 - (x - cx)^2)`` in ``[lo, hi]``, the lines near each circle's
-    box only."""
+    box only: ``rows`` per recess (:func:`_overlaps` of the lines by default; more lines give the same values,
+    a line off a circle having no chord in it)."""
     out = np.zeros(np.shape(x))
-    for r, near in zip(surface.recesses, _overlaps(surface, x, x, lo, hi)):
+    for r, near in zip(surface.recesses, _overlaps(surface, x, x, lo, hi) if rows is None else rows):
         if near.size:
             (cx, cz), radius = r.shape.center, r.shape.radius
             half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
@@ -919,13 +926,25 @@ def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np
                  lines: int = 8) -> np.ndarray:
     """The recess part of :func:`_face_film` (film-independent): the mean over ``x0 < phi < x1`` of
     ``int depth dz`` on ``lo < z < hi``, by the midpoint rule on ``lines`` lines where the outer and the
-    middle lines disagree, else by the middle line."""
+    middle lines disagree, else by the middle line. The rectangles near each recess are found once
+    (:func:`_overlaps`); where every recess is a circle, a rectangle's lines are taken near the recesses it is
+    near (the lines lie in it)."""
     out = np.zeros_like(x0)
-    near = np.flatnonzero(_near_recess(surface, x0, x1, lo, hi))
+    over = _overlaps(surface, x0, x1, lo, hi)
+    near = np.flatnonzero(_in_any(over, np.size(x0)))
     x0, x1, lo, hi = x0[near], x1[near], lo[near], hi[near]
+    circles = _all_circles(surface)
+
     def lines_at(ks, idx):   # line integrals on the lines ks of the rectangles idx, shape (len(ks), len(idx))
         x = np.concatenate([x0[idx] + (k + 0.5) / lines * (x1[idx] - x0[idx]) for k in ks])
-        return _line_recess(surface, x, np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))).reshape(len(ks), -1)
+        a, b = np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))
+        if not circles:
+            return _line_recess(surface, x, a, b).reshape(len(ks), -1)
+        where = np.full(out.size, -1)   # a rectangle's place among idx: its lines at it + j len(idx)
+        where[near[idx]] = np.arange(idx.size)
+        places = [w[w >= 0] for w in (where[rows] for rows in over)]
+        rows = [(w[None, :] + idx.size * np.arange(len(ks))[:, None]).ravel() for w in places]
+        return _line_circles(surface, x, a, b, rows).reshape(len(ks), -1)
 
     outer = (0, lines // 2, lines - 1)
     first, middle, last = lines_at(outer, np.arange(near.size))
@@ -1067,10 +1086,7 @@ def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     if over is None:
         px, pz = m.p[0, t], m.p[1, t]
         over = _overlaps(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
-    mask = np.zeros(t.shape[1], bool)
-    for rows in over:
-        mask[rows] = True
-    near = np.flatnonzero(mask)
+    near = np.flatnonzero(_in_any(over, t.shape[1]))
     dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _vertex_depth(mesh)[t[:, near]]   # the depth is pointwise: as tested per triangle
     varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])

@@ -33,6 +33,21 @@ def test_line_recess_meets_the_chord_lengths():
     assert np.abs(got - expected).max() < 1e-9
 
 
+def test_face_recess_lines_near_their_faces_recesses_are_the_lines_own_test():
+    """The recess part of the grid faces' film, each face's lines taken near the recesses the face is near (the
+    faces' overlaps found once): bit for bit the midpoint rule written out with each line's own overlap test
+    (:func:`_line_circles` by default), the middle line where the outer and middle lines agree, else all 8."""
+    surface = _dimpled()
+    g = fv._grid_faces(grid_mesh(surface, 1 / 29))
+    got = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    lines = np.array([fv._line_circles(surface, g.x0 + (k + 0.5) / 8 * (g.x1 - g.x0), g.lo, g.hi) for k in range(8)])
+    cut = (lines[0] != lines[4]) | (lines[4] != lines[7])
+    others = lines[[1, 2, 3, 5, 6]].sum(axis=0)
+    expected = np.where(cut, (others + lines[0] + lines[4] + lines[7]) / 8, lines[4])
+    assert np.count_nonzero(cut) > 50 and np.count_nonzero(expected) > 200
+    assert np.array_equal(got, expected)
+
+
 def test_line_recess_on_part_of_a_chord():
     """Segments ending inside a dimple: depth times the part of the chord in ``[lo, hi]`` (closed form)."""
     surface = _dimpled()
