@@ -712,18 +712,20 @@ def _in_any(rows: list[np.ndarray], n: int) -> np.ndarray:
     return near
 
 
-#: Rectangles from which :func:`_overlaps` sorts them into strips along ``phi`` (with 4 recesses or more).
-OVERLAPS_SORTED_FROM = 16384
+#: Rectangles from which :func:`_overlaps` sorts them by ``x0`` (with 4 recesses or more). Measured (CPU time,
+#: best of 5 x 20 calls, the 5 x 5 dimples' grid triangles and faces): the plain test 0.45 against 0.50 ms at 20,000
+#: rectangles, 0.90 against 0.80 ms at 39,200, 2.99 against 1.48 ms at 80,000.
+OVERLAPS_SORTED_FROM = 32768
 
 
-def _overlaps(surface, x0, x1, z0, z1, buckets: int = 4096) -> list[np.ndarray]:
-    """Per recess of ``surface`` (in order), the indices of the rectangles ``[x0, x1] x [z0, z1]`` (1-D arrays)
-    that overlap its bounding box (:func:`_recess_boxes`, found once per surface).
+def _overlaps(surface, x0, x1, z0, z1) -> list[np.ndarray]:
+    """Per recess of ``surface`` (in order), the indices of the rectangles ``[x0, x1] x [z0, z1]`` (1-D arrays,
+    increasing) that overlap its bounding box (:func:`_recess_boxes`, found once per surface).
 
-    From :data:`OVERLAPS_SORTED_FROM` rectangles and 4 recesses on, the rectangles are sorted once into
-    ``buckets`` strips by ``x0`` (a linear-time sort of small integers, as :func:`_recess_plan`) and each recess
-    tests only those of the strips its box can reach (``x0`` within the widest rectangle of it): the same
-    indices as testing all of them (not in increasing order), at a fraction of the cost on many recesses.
+    From :data:`OVERLAPS_SORTED_FROM` rectangles and 4 recesses on, the rectangles are sorted once by ``x0`` and
+    each recess tests only those whose ``x0`` lies between its box's ends, the lower end moved back by twice the
+    widest rectangle (and a margin for rounding): two binary searches per recess, the same indices as testing all
+    of them, at a fraction of the cost on many recesses.
     """
     boxes = _recess_boxes(surface)
     x0, x1, z0, z1 = (np.ravel(v) for v in (x0, x1, z0, z1))
@@ -737,16 +739,13 @@ def _overlaps(surface, x0, x1, z0, z1, buckets: int = 4096) -> list[np.ndarray]:
     reach = float(np.max(x1 - x0)) if x0.size else math.nan
     if len(boxes) < 4 or x0.size < OVERLAPS_SORTED_FROM or not math.isfinite(first + last + reach):
         return [overlapping(lo, hi) for lo, hi in boxes]
-    width = (last - first) / buckets or 1.0
-    key = np.clip(((x0 - first) / width).astype(np.int64), 0, buckets - 1).astype(np.int16)
-    order = np.argsort(key, kind="stable")
-    starts = np.searchsorted(key[order], np.arange(buckets + 1))
-    out = []
-    for lo, hi in boxes:   # one strip more on each side: the strips' edges rounded
-        k0 = min(max(math.floor((lo[0] - reach - first) / width) - 1, 0), buckets - 1)
-        k1 = min(max(math.floor((hi[0] - first) / width) + 1, 0), buckets - 1)
-        out.append(overlapping(lo, hi, order[starts[k0]:starts[k1 + 1]]))
-    return out
+    order = np.argsort(x0, kind="stable")
+    xs = x0[order]
+    lo0, hi0 = np.array([lo[0] for lo, _ in boxes]), np.array([hi[0] for _, hi in boxes])
+    # x1 >= lo0 needs x0 >= lo0 - (x1 - x0) >= lo0 - 2 reach (reach: the widest x1 - x0, rounded)
+    start = np.searchsorted(xs, lo0 - 2.0 * reach - 1e-15 * np.abs(lo0), "left")
+    stop = np.searchsorted(xs, hi0, "right")
+    return [np.sort(overlapping(lo, hi, order[a:b])) for (lo, hi), a, b in zip(boxes, start, stop)]
 
 
 def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.ndarray:
@@ -1017,8 +1016,7 @@ def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
     def build() -> list[np.ndarray]:
         t = mesh.mesh.t[:3]
         px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
-        return [np.sort(rows) for rows in _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0),
-                                                   pz.min(axis=0), pz.max(axis=0))]
+        return _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
 
     return mesh.cached("finite_volume.triangle_recesses", build)
 
