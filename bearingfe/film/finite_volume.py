@@ -838,15 +838,19 @@ def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray,
     """:func:`_line_recess` where every recess is a circle (recesses do not overlap): the depth times the
     part of each chord ``|z - cz| < sqrt(r^2 - (x - cx)^2)`` in ``[lo, hi]``, the lines near each circle's
     box only: ``rows`` per recess (:func:`_overlaps` of the lines by default; more lines give the same values,
-    a line off a circle having no chord in it)."""
+    a line off a circle having no chord in it). All pairs of a line and a circle at once, each line's terms
+    summed in the circles' order (``bincount`` adds its weights in their order)."""
     out = np.zeros(np.shape(x))
-    for r, near in zip(surface.recesses, _overlaps(surface, x, x, lo, hi) if rows is None else rows):
-        if near.size:
-            (cx, cz), radius = r.shape.center, r.shape.radius
-            half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
-            chord = np.minimum(hi[near], cz + half) - np.maximum(lo[near], cz - half)
-            out[near] += r.depth * np.maximum(chord, 0.0)
-    return out
+    rows = _overlaps(surface, x, x, lo, hi) if rows is None else rows
+    if not rows or sum(r.size for r in rows) == 0:
+        return out
+    idx = np.concatenate(rows)
+    which = np.repeat(np.arange(len(rows)), [r.size for r in rows])
+    cx, cz, radius, depth = (np.array(v)[which] for v in zip(*[
+        (r.shape.center[0], r.shape.center[1], r.shape.radius, r.depth) for r in surface.recesses]))
+    half = np.sqrt(np.maximum(radius * radius - (x[idx] - cx) ** 2, 0.0))
+    chord = np.minimum(hi[idx], cz + half) - np.maximum(lo[idx], cz - half)
+    return out + np.bincount(idx, weights=depth * np.maximum(chord, 0.0), minlength=out.size).reshape(out.shape)
 
 
 def _circle_crossing(circle: Circle, x: np.ndarray, inside: np.ndarray) -> np.ndarray:

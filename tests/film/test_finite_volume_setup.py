@@ -48,6 +48,24 @@ def test_face_recess_lines_near_their_faces_recesses_are_the_lines_own_test():
     assert np.array_equal(got, expected)
 
 
+def test_line_circles_at_once_are_the_chords_added_circle_by_circle():
+    """All line-circle pairs at once (summed by ``bincount``) give bit for bit the chords added circle by circle
+    in the circles' order (the previous loop, written out), lines crossing two dimples among them."""
+    surface = _dimpled()
+    rng = np.random.default_rng(7)
+    x = rng.uniform(0.0, 1.0, 400)
+    lo = rng.uniform(-0.5, 0.0, 400)
+    hi = lo + rng.uniform(0.0, 0.8, 400)
+    expected = np.zeros(x.size)
+    for r, near in zip(surface.recesses, fv._overlaps(surface, x, x, lo, hi)):
+        (cx, cz), radius = r.shape.center, r.shape.radius
+        half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
+        expected[near] += r.depth * np.maximum(np.minimum(hi[near], cz + half) - np.maximum(lo[near], cz - half), 0.0)
+    got = fv._line_circles(surface, x, lo, hi)
+    assert np.count_nonzero(expected) > 100 and np.array_equal(got, expected)
+    assert np.array_equal(fv._line_circles(surface, x[:0], lo[:0], hi[:0]), np.zeros(0))
+
+
 def test_line_recess_on_part_of_a_chord():
     """Segments ending inside a dimple: depth times the part of the chord in ``[lo, hi]`` (closed form)."""
     surface = _dimpled()
