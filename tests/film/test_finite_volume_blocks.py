@@ -76,20 +76,27 @@ def test_assembly_equals_the_formulas_over_all_points(monkeypatch):
     assert result.force[1] == np.sum(pq * np.sin(x[0]) * cells.dx)
 
 
-def test_overlaps_sorted_into_strips_are_those_of_the_plain_test(monkeypatch):
+def test_overlaps_sorted_by_x0_are_those_of_the_plain_test(monkeypatch):
+    """The overlaps found on the rectangles sorted by ``x0`` (two binary searches per recess) are those of the
+    plain test and of the formula written out, in the same (increasing) order: random rectangles, lines among
+    them."""
     surface = _dimpled(n_side=4)
     rng = np.random.default_rng(3)
-    n = 3 * fv.OVERLAPS_SORTED_FROM   # the strips' path (16 recesses)
+    n = 3 * fv.OVERLAPS_SORTED_FROM   # the sorted path (16 recesses)
     x0, z0 = rng.uniform(-0.1, 1.1, n), rng.uniform(-0.6, 0.6, n)
     x1, z1 = x0 + rng.uniform(0.0, 0.05, n), z0 + rng.uniform(0.0, 0.05, n)
     x0[:5] = x1[:5] = np.linspace(0.0, 1.0, 5)   # lines (no width)
+    lo, hi = fv._recess_boxes(surface)[5]   # the widest rectangles ending on a box's lower phi end, and lines there
+    x1[5:8], x0[5:8], z0[5:8], z1[5:8] = lo[0], lo[0] - 0.06, lo[1], hi[1]
+    x0[8], x1[8], z0[8], z1[8] = lo[0], lo[0], lo[1], lo[1]
     sorted_ = fv._overlaps(surface, x0, x1, z0, z1)
     monkeypatch.setattr(fv, "OVERLAPS_SORTED_FROM", 10**12)
     plain = fv._overlaps(surface, x0, x1, z0, z1)
     assert len(sorted_) == len(plain) == 16 and sum(p.size for p in plain) > 1000
+    assert {5, 6, 7, 8} <= set(sorted_[5].tolist())
     for (lo, hi), s, p in zip(fv._recess_boxes(surface), sorted_, plain):
         brute = np.flatnonzero((x1 >= lo[0]) & (x0 <= hi[0]) & (z1 >= lo[1]) & (z0 <= hi[1]))
-        assert np.array_equal(np.sort(s), brute) and np.array_equal(p, brute)
+        assert np.array_equal(s, brute) and np.array_equal(p, brute)
 
 
 def test_barycentric_gradients_by_blocks_are_the_stacked_formula(monkeypatch):

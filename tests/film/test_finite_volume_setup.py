@@ -33,6 +33,39 @@ def test_line_recess_meets_the_chord_lengths():
     assert np.abs(got - expected).max() < 1e-9
 
 
+def test_face_recess_lines_near_their_faces_recesses_are_the_lines_own_test():
+    """The recess part of the grid faces' film, each face's lines taken near the recesses the face is near (the
+    faces' overlaps found once): bit for bit the midpoint rule written out with each line's own overlap test
+    (:func:`_line_circles` by default), the middle line where the outer and middle lines agree, else all 8."""
+    surface = _dimpled()
+    g = fv._grid_faces(grid_mesh(surface, 1 / 29))
+    got = fv._face_recess(surface, g.x0, g.x1, g.lo, g.hi)
+    lines = np.array([fv._line_circles(surface, g.x0 + (k + 0.5) / 8 * (g.x1 - g.x0), g.lo, g.hi) for k in range(8)])
+    cut = (lines[0] != lines[4]) | (lines[4] != lines[7])
+    others = lines[[1, 2, 3, 5, 6]].sum(axis=0)
+    expected = np.where(cut, (others + lines[0] + lines[4] + lines[7]) / 8, lines[4])
+    assert np.count_nonzero(cut) > 50 and np.count_nonzero(expected) > 200
+    assert np.array_equal(got, expected)
+
+
+def test_line_circles_at_once_are_the_chords_added_circle_by_circle():
+    """All line-circle pairs at once (summed by ``bincount``) give bit for bit the chords added circle by circle
+    in the circles' order (the previous loop, written out), lines crossing two dimples among them."""
+    surface = _dimpled()
+    rng = np.random.default_rng(7)
+    x = rng.uniform(0.0, 1.0, 400)
+    lo = rng.uniform(-0.5, 0.0, 400)
+    hi = lo + rng.uniform(0.0, 0.8, 400)
+    expected = np.zeros(x.size)
+    for r, near in zip(surface.recesses, fv._overlaps(surface, x, x, lo, hi)):
+        (cx, cz), radius = r.shape.center, r.shape.radius
+        half = np.sqrt(np.maximum(radius * radius - (x[near] - cx) ** 2, 0.0))
+        expected[near] += r.depth * np.maximum(np.minimum(hi[near], cz + half) - np.maximum(lo[near], cz - half), 0.0)
+    got = fv._line_circles(surface, x, lo, hi)
+    assert np.count_nonzero(expected) > 100 and np.array_equal(got, expected)
+    assert np.array_equal(fv._line_circles(surface, x[:0], lo[:0], hi[:0]), np.zeros(0))
+
+
 def test_line_recess_on_part_of_a_chord():
     """Segments ending inside a dimple: depth times the part of the chord in ``[lo, hi]`` (closed form)."""
     surface = _dimpled()
@@ -187,6 +220,27 @@ def test_box_fill_in_blocks_sums_the_same_integrals(monkeypatch):
     blocks = real(*args, **kwargs)
     assert whole[0] > 0.0 and 0.0 < whole[1] < 1.0   # a deficit, and an area within the unit pad
     assert np.allclose(blocks, whole, rtol=1e-13, atol=0.0)
+
+
+def test_grid_box_cells_reach_midway_to_the_neighbouring_grid_lines():
+    """Each node's box cell spans from midway to the previous grid line to midway to the next (the outline's
+    lines: to the line itself) in ``phi`` and in ``z``, every node with a finite box, on a grid with lines
+    through the edges of a pocket (a hole of whole cells): the formula written out node by node (the same
+    before and after the boxes were written without the node-to-grid map)."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))],
+                      recesses=_dimpled().recesses)
+    mesh = grid_mesh(surface, 1.0 / 17)
+    p = mesh.mesh.p
+    box = fv._grid_faces(mesh).box
+    assert box.shape == (4, p.shape[1]) and np.all(np.isfinite(box))
+    for axis, rows in ((0, (0, 1)), (1, (2, 3))):
+        lines = np.unique(p[axis])
+        k = np.searchsorted(lines, p[axis])
+        below = np.where(k > 0, 0.5 * (lines[np.maximum(k - 1, 0)] + lines[k]), lines[k])
+        above = np.where(k < lines.size - 1, 0.5 * (lines[k] + lines[np.minimum(k + 1, lines.size - 1)]), lines[k])
+        assert np.array_equal(box[rows[0]], below) and np.array_equal(box[rows[1]], above)
 
 
 def test_box_fill_block_is_its_formula_with_boxes_without_a_downstream_face():
@@ -493,6 +547,34 @@ def test_vertex_depth_kept_per_mesh_is_the_pointwise_depth():
     doflocs = np.asarray(fv.operators(mesh).basis.doflocs)
     assert np.array_equal(fv._dof_thickness(mesh, film, doflocs), fv._thickness(mesh, film, *doflocs))
     assert fv._vertex_depth(grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)) is None
+
+
+def test_triangle_recesses_give_the_previous_quadrature_depth_and_cut_cells():
+    """The triangles near each recess (their corners' boxes, found once per mesh) serve the quadrature depth and
+    the cut cells: the same values, bit for bit, as the previous computation (the quadrature points' own boxes,
+    :func:`_rows_depth`, equal to the surface's plain test; the cut cells' boxes, :func:`_boxed_depth`), with
+    circles and a rectangle among the recesses, and on a quadratic mesh (its own boxes: no shared lists)."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[*_dimpled().recesses, Recess(Rectangle((0.5, 0.0), (0.2, 0.1)), 0.7)])
+    mesh = grid_mesh(surface, 1 / 23)
+    x = fv.operators(mesh).x
+    over = fv._triangle_recesses(mesh)
+    assert len(over) == 5 and all(np.all(np.diff(rows) > 0) for rows in over)
+    depth = fv._quadrature_depth(mesh, x)
+    assert np.count_nonzero(depth) > 100
+    assert np.array_equal(depth, fv._rows_depth(surface, x[0], x[1]))
+    assert np.array_equal(depth, surface.recess_depth(x[0], x[1]))
+    cut, pts, cut_depth = fv._cut_cells(mesh, x, 8)
+    t = mesh.mesh.t[:3, cut]
+    px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+    assert cut.size > 50
+    assert np.array_equal(cut_depth, fv._boxed_depth(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0),
+                                                     pz.max(axis=0), pts[0], pts[1]))
+    assert np.array_equal(cut_depth, surface.recess_depth(pts[0], pts[1]))
+    curved = mesh_surface(surface, 0.1, order=2)
+    assert fv._triangle_recesses(curved) is None
 
 
 def test_band_subproblem_factored_by_banded_lu_where_thin(monkeypatch):
