@@ -364,6 +364,17 @@ def test_full_film_first_guess_by_banded_cholesky(monkeypatch):
     assert fv._full_film_banded(unk, K, rhs) is None
 
 
+def _dimpled_set_solver():
+    """The reduced ``K``, ``G``, right side and the active-set solver of the dimpled grid (14 cells per side,
+    cavity pressure -0.05): a banded set solver."""
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    return K, G, b, fv._SetSolver(K, G, fv.factorize_splu, unk)
+
+
 def test_banded_set_values_are_the_set_matrix_in_band_storage(monkeypatch):
     """A banded set factorization takes ``K``'s columns outside the set and ``G``'s inside straight into LAPACK's
     band storage (:meth:`_SetSolver._band_values`, no union pattern): the same storage, bit for bit, as the set's
@@ -372,12 +383,7 @@ def test_banded_set_values_are_the_set_matrix_in_band_storage(monkeypatch):
     twice as halves (not canonical: summed first) gives the same storage."""
     import scipy.sparse as sp
 
-    mesh = grid_mesh(_dimpled(), 1 / 14)
-    ops = fv.operators(mesh, "P1")
-    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
-    unk = fv._unknowns(mesh, ops)
-    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
-    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    K, G, b, solver = _dimpled_set_solver()
     banded = solver.factorize
     assert isinstance(banded, fv._BandedLU)
 
@@ -414,12 +420,7 @@ def test_banded_storage_serves_again_once_its_solve_is_gone():
 
     import scipy.sparse as sp
 
-    mesh = grid_mesh(_dimpled(), 1 / 14)
-    ops = fv.operators(mesh, "P1")
-    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
-    unk = fv._unknowns(mesh, ops)
-    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
-    solver = fv._SetSolver(K, G, fv.factorize_splu, unk)
+    K, G, b, solver = _dimpled_set_solver()
     perm, kd = solver.factorize.perm, solver.factorize.kd
     rhs = np.random.default_rng(4).standard_normal(b.size)
     a, c = np.zeros(b.size, bool), np.ones(b.size, bool)
