@@ -12,6 +12,7 @@ module            what it does
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
 ``banded``        Banded Cholesky of sparse symmetric positive definite matrices, and the rule for when a band pays.
 ``ordering``      Fill-reducing orderings found from the sparsity pattern alone (nested dissection).
+``blocks``        Blocks of consecutive indices: long vectorized passes cut into pieces that stay in cache.
 ``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
 ``parallel``      Independent jobs of one run shared with forked processes when more than one core is free.
 ``lazy``          Packages whose public names load their modules on first use (PEP 562).

@@ -98,6 +98,7 @@ from .thickness import Film
 from .forms import along
 from .flows import edge_groups
 from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
+from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -500,12 +501,6 @@ def _flux_blocks(nt: int, f: np.ndarray, w: np.ndarray, first: np.ndarray | None
 BLOCK = 16384
 
 
-def _blocks(n: int, size: int | None = None) -> list[slice]:
-    """Consecutive slices of at most ``size`` (default :data:`BLOCK`) of ``range(n)``."""
-    size = BLOCK if size is None else size
-    return [slice(lo, min(lo + size, n)) for lo in range(0, n, size)]
-
-
 @dataclass(frozen=True, eq=False)
 class _Cells:
     """What the P1 integrals of the scheme need, per mesh: the triangles, the gradients of their
@@ -529,7 +524,7 @@ def _build_cells(mesh: SupportMesh, ops: Operators) -> _Cells:
     m = mesh.mesh
     p, t = m.p, m.t[:3]
     grad = np.empty((2, 3, t.shape[1]))   # written block by block: no temporaries of all triangles
-    for block in _blocks(t.shape[1]):
+    for block in blocks(t.shape[1], BLOCK):
         x, y = p[0][t[:, block]], p[1][t[:, block]]
         det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0])
         for k, (a, b) in enumerate(((1, 2), (2, 0), (0, 1))):
@@ -599,7 +594,7 @@ def _interpolate(cells: _Cells, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     ut = u[cells.t]
     g, lam = cells.grad, cells.lam
     values = np.empty((ut.shape[1], lam.shape[1]))
-    for b in _blocks(ut.shape[1], INTERPOLATE_BLOCK):   # no temporaries of all points
+    for b in blocks(ut.shape[1], INTERPOLATE_BLOCK):   # no temporaries of all points
         values[b] = ut[0, b, None] * lam[0] + ut[1, b, None] * lam[1] + ut[2, b, None] * lam[2]
     return values, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2]
 
@@ -610,7 +605,7 @@ def _point_sum(term: Callable[[slice], np.ndarray], out: np.ndarray) -> float:
     n_points)``, overwritten) and summed once, without the temporaries of all points. The sum of the whole
     product in C order: the same rounding as ``np.sum`` of it written at once (C-ordered where its first
     factor is, as the P1 values of :func:`_interpolate` and ``1/h`` are)."""
-    for b in _blocks(out.shape[0]):
+    for b in blocks(out.shape[0], BLOCK):
         out[b] = term(b)
     return float(np.sum(out))
 
@@ -907,7 +902,7 @@ def _face_smooth(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi:
     if np.ndim(x0) != 1:
         return _face_smooth_block(film, x0, x1, lo, hi)
     mean = np.empty(np.shape(x0))
-    for b in _blocks(mean.size):
+    for b in blocks(mean.size, BLOCK):
         mean[b] = _face_smooth_block(film, x0[b], x1[b], lo[b], hi[b])
     return mean
 
@@ -1030,7 +1025,7 @@ def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:
     depth found once per mesh; the film called once per :data:`BLOCK` triangles."""
     depth = _quadrature_depth(mesh, x)
     h = np.empty(x.shape[1:])
-    for b in _blocks(h.shape[0]):
+    for b in blocks(h.shape[0], BLOCK):
         h[b] = _film_at(film, x[0, b], x[1, b])
         if depth is not None:
             h[b] += depth[b]
@@ -1043,7 +1038,7 @@ def _film_integrals(cells: _Cells, h_q: np.ndarray) -> tuple[np.ndarray, np.ndar
     held."""
     inv_q = np.empty(h_q.shape)
     w = np.empty(h_q.shape[0])
-    for b in _blocks(h_q.shape[0]):
+    for b in blocks(h_q.shape[0], BLOCK):
         np.divide(1.0, h_q[b], out=inv_q[b])
         w[b] = _integrals_of(h_q[b] ** 3 / 12.0, cells.dx[b])
     return inv_q, w

@@ -23,6 +23,7 @@ from .assembly import ASSEMBLIES, DEFAULT_ASSEMBLY, Assembly
 from .compiled import CompiledOperator
 from .forms import mapping
 from .flows import edge_groups
+from ..core.blocks import blocks
 from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh
 
@@ -141,13 +142,12 @@ def affine_points(mapping: MappingAffine, X: np.ndarray) -> np.ndarray:
     A, b = mapping.A, mapping.b
     n_cells = A.shape[2]
     out = np.empty((2, n_cells, X.shape[1]))
-    for lo in range(0, n_cells, AFFINE_BLOCK):
-        hi = min(lo + AFFINE_BLOCK, n_cells)
+    for cells in blocks(n_cells, AFFINE_BLOCK):
         for i in range(2):
-            o = out[i, lo:hi]
-            np.multiply(A[i, 0, lo:hi, None], X[0], out=o)
-            o += A[i, 1, lo:hi, None] * X[1]
-            o += b[i, lo:hi, None]
+            o = out[i, cells]
+            np.multiply(A[i, 0, cells, None], X[0], out=o)
+            o += A[i, 1, cells, None] * X[1]
+            o += b[i, cells, None]
     return out
 
 

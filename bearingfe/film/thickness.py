@@ -37,6 +37,7 @@ from typing import Protocol, Sequence, runtime_checkable
 
 import numpy as np
 
+from ..core.blocks import blocks
 from ..core.checks import MAX_GAMMA, check_angle
 
 __all__ = ["Film", "CosineFilm", "UniformFilm", "TaperFilm", "TaperLandFilm", "ProfileFilm", "StepFilm", "SumFilm",
@@ -594,8 +595,7 @@ def _interpolate(x: np.ndarray, s: np.ndarray, h: np.ndarray) -> np.ndarray:
         return _interpolate_block(x, s, h, pieces)
     out = np.empty(x.shape)
     flat, into = x.reshape(-1), out.reshape(-1)
-    for lo in range(0, flat.size, INTERPOLATE_BLOCK):
-        block = slice(lo, lo + INTERPOLATE_BLOCK)
+    for block in blocks(flat.size, INTERPOLATE_BLOCK):
         into[block] = _interpolate_block(flat[block], s, h, pieces)
     return out
 
