@@ -697,6 +697,14 @@ def _thickness(mesh: SupportMesh, film: Film, phi: np.ndarray, z: np.ndarray) ->
 _GAUSS = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
 
+def _renumbered(rows: list[np.ndarray], chosen: np.ndarray, n: int) -> list[np.ndarray]:
+    """Each index array of ``rows`` (indices below ``n``, per recess: :func:`_overlaps`) restricted to the
+    indices ``chosen`` and given as places in ``chosen`` (in the order of ``rows``)."""
+    place = np.full(n, -1)
+    place[chosen] = np.arange(np.size(chosen))
+    return [p[p >= 0] for p in (place[r] for r in rows)]
+
+
 def _in_any(rows: list[np.ndarray], n: int) -> np.ndarray:
     """Mask of the ``n`` rectangles in any of the index arrays ``rows`` (per recess, :func:`_overlaps`): near a
     recess's bounding box (with a margin of 1 % of its size, :func:`_recess_boxes`); elsewhere the recess depth
@@ -938,9 +946,7 @@ def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np
         a, b = np.tile(lo[idx], len(ks)), np.tile(hi[idx], len(ks))
         if not circles:
             return _line_recess(surface, x, a, b).reshape(len(ks), -1)
-        where = np.full(out.size, -1)   # a rectangle's place among idx: its lines at it + j len(idx)
-        where[near[idx]] = np.arange(idx.size)
-        places = [w[w >= 0] for w in (where[rows] for rows in over)]
+        places = _renumbered(over, near[idx], out.size)   # a rectangle's lines at its place + j len(idx)
         rows = [(w[None, :] + idx.size * np.arange(len(ks))[:, None]).ravel() for w in places]
         return _line_circles(surface, x, a, b, rows).reshape(len(ks), -1)
 
@@ -1096,9 +1102,7 @@ def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     lam = np.array([(1 - a - b, a, b) for a, b in lam])                  # (n^2, 3)
     corners = m.p[:, t[:, cut]]                                          # (2, 3, n_cut)
     pts = np.einsum("sk,dkc->dcs", lam, corners)                         # (2, n_cut, n^2)
-    where = np.full(t.shape[1], -1)   # each recess tests the cut cells near it
-    where[cut] = np.arange(cut.size)
-    rows = [w[w >= 0] for w in (where[r] for r in over)]
+    rows = _renumbered(over, cut, t.shape[1])   # each recess tests the cut cells near it
     return cut, pts, _depth_on_rows(surface, rows, pts[0], pts[1])
 
 
