@@ -143,7 +143,8 @@ def solve(case: Case, kind: str, size: float):
 
 def floor_seconds(mesh, film, repeats: int = 2) -> float:
     """The linear floor: best of ``repeats`` sparse LU factorizations plus one solve of the full-film matrix
-    of the same unknowns (what one Reynolds solve on the mesh costs)."""
+    of the same unknowns: one factorization's worth, the assembly and the set-up of the mesh left out
+    (:func:`linear_seconds` times the whole linear solve)."""
     from bearingfe.core.linalg import factorize_splu
     from bearingfe.film import finite_volume as fv
 
