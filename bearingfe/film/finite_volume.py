@@ -102,7 +102,7 @@ from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.parameters import Discretization, OperatingPoint, takes
-from ..geometry.meshing import SupportMesh, periodic_pairs
+from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
 from ..geometry.runner import is_along_phi, velocity_at
 from ..geometry.surface import Circle
 from .mesh_operators import Operators, boundary_facet_triangles, operators, pocket_moments
@@ -213,8 +213,28 @@ def _grid_faces(mesh: SupportMesh) -> _GridFaces:
 
 
 def _build_grid_faces(mesh: SupportMesh) -> _GridFaces:
-    """:func:`_grid_faces` built afresh."""
-    m = mesh.mesh
+    """:func:`_grid_faces` built afresh: on a whole ``grid_mesh`` its numbering from its lines
+    (:func:`~bearingfe.geometry.meshing.tensor_lines`), else found and checked from the nodes
+    (:func:`_grid_numbering`)."""
+    lines = tensor_lines(mesh)
+    if lines is None:
+        kx, ky, grid, inside = _grid_numbering(mesh.mesh)
+    else:   # node iz + nz ix, every cell in the mesh
+        nx, nz = lines[0].size, lines[1].size
+        k = np.arange(nx * nz, dtype=np.int64)
+        kx, ky, grid, inside = k // nz, k % nz, k.reshape(nx, nz), np.ones((nx - 1, nz - 1), bool)
+    return _faces_on_grid(mesh.mesh.p, kx, ky, grid, inside)
+
+
+def _grid_numbering(m) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The grid line numbers ``kx``, ``ky`` of each node of the mesh ``m``, the node at each grid point
+    (``(nx, ny)``, -1 where none) and which grid cells are in the mesh (``(nx - 1, ny - 1)``).
+
+    Raises
+    ------
+    ValueError
+        If the mesh is not a tensor grid (possibly with whole cells left out) split into triangles.
+    """
     p = m.p
     tol = 1e-9 * float(max(np.ptp(p[0]), np.ptp(p[1]), 1e-300))
     ux, kx = np.unique(np.round(p[0] / tol).astype(np.int64), return_inverse=True)
@@ -233,10 +253,16 @@ def _build_grid_faces(mesh: SupportMesh) -> _GridFaces:
             or np.any((cells != 0) & (cells != 2))):
         raise ValueError("couette='grid' needs a tensor-grid mesh (bearingfe.geometry.meshing.grid_mesh or strip_mesh): "
                          "nodes on the lines of a rectangular grid, each cell split into two triangles")
+    return kx, ky, grid, cells == 2
+
+
+def _faces_on_grid(p: np.ndarray, kx: np.ndarray, ky: np.ndarray, grid: np.ndarray,
+                   inside: np.ndarray) -> _GridFaces:
+    """The box faces of the grid numbered as :func:`_grid_numbering` numbers it (nodes ``p``)."""
+    nx, ny = grid.shape
     xs = np.empty(nx)
     ys = np.empty(ny)
     xs[kx[::-1]], ys[ky[::-1]] = p[0, ::-1], p[1, ::-1]   # each grid line at its first node's coordinate
-    inside = cells == 2
     ylo = np.concatenate([[ys[0]], 0.5 * (ys[:-1] + ys[1:])])
     yhi = np.concatenate([0.5 * (ys[:-1] + ys[1:]), [ys[-1]]])
     xlo = np.concatenate([[xs[0]], 0.5 * (xs[:-1] + xs[1:])])
@@ -1019,11 +1045,36 @@ def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
         return None
 
     def build() -> list[np.ndarray]:
+        lines = tensor_lines(mesh)
+        if lines is not None:
+            return _tensor_overlaps(mesh.surface, *lines)
         t = mesh.mesh.t[:3]
         px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
         return _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
 
     return mesh.cached("finite_volume.triangle_recesses", build)
+
+
+def _tensor_overlaps(surface, xs: np.ndarray, zs: np.ndarray) -> list[np.ndarray]:
+    """:func:`_overlaps` of the triangles of a whole tensor grid on the lines ``xs``, ``zs``
+    (:func:`~bearingfe.geometry.meshing.tensor_lines`), from the lines: a triangle's corners' box is its cell, so
+    each recess's box (:func:`_recess_boxes`) takes the cells whose column and row ranges meet its own (two
+    binary searches per axis), both triangles of each. The same increasing indices, without a test per
+    triangle."""
+    nx, nz = xs.size - 1, zs.size - 1   # cells per axis
+    out = []
+    for lo, hi in _recess_boxes(surface):
+        # column ix meets [lo, hi] where xs[ix + 1] >= lo and xs[ix] <= hi
+        i0 = max(int(np.searchsorted(xs, lo[0], "left")) - 1, 0)
+        i1 = min(int(np.searchsorted(xs, hi[0], "right")) - 1, nx - 1)
+        j0 = max(int(np.searchsorted(zs, lo[1], "left")) - 1, 0)
+        j1 = min(int(np.searchsorted(zs, hi[1], "right")) - 1, nz - 1)
+        if i0 > i1 or j0 > j1:
+            out.append(np.zeros(0, np.int64))
+            continue
+        cells = (nz * np.arange(i0, i1 + 1, dtype=np.int64)[:, None] + np.arange(j0, j1 + 1)[None, :]).ravel()
+        out.append(np.concatenate([cells, cells + nx * nz]))
+    return out
 
 
 def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:

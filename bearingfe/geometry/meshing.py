@@ -36,7 +36,7 @@ T = TypeVar("T")
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_marked", "refine_once",
            "mesh_from_data", "check_triangles", "check_support_mesh",
            "strip_mesh", "grid_mesh", "name_surface_boundaries", "with_named_boundaries", "periodic_pairs",
-           "give_facet_triangles"]
+           "give_facet_triangles", "tensor_lines"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -1058,9 +1058,28 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
     bnd = _surface_boundaries(m, surface, pockets)
     again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
     valid = _grid_cells_valid(xs, zs)   # else check_triangles names the fault
-    return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
+    grid = SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
                        size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again,
                        cells_checked=valid, connected=valid and not pockets)   # a whole grid is one piece
+    if valid and not pockets:
+        lines = (np.array(xs, float), np.array(zs, float))
+        grid.cached(TENSOR_LINES, lambda: lines)
+    return grid
+
+
+#: Key of :func:`tensor_lines` in a grid mesh's cache (:meth:`SupportMesh.cached`).
+TENSOR_LINES = "meshing.tensor_lines"
+
+
+def tensor_lines(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray] | None:
+    """The grid lines ``(phi, z)`` (increasing, read-only by convention) of a whole tensor grid made by
+    :func:`grid_mesh` without pockets, kept on it where it was made; None for any other mesh (pockets, another
+    maker, a mesh that travelled through pickle: its cache stays behind).
+
+    On such a grid of ``nx`` by ``nz`` lines, node ``iz + nz ix`` lies at ``(phi[ix], z[iz])`` and the cell
+    ``c = iz + (nz - 1) ix`` is split into the triangles ``c`` and ``c + (nx - 1)(nz - 1)``
+    (``skfem.MeshTri1.init_tensor``'s numbering), each of whose corners span the whole cell."""
+    return mesh._cache.get(TENSOR_LINES)
 
 
 def _tensor_facets(m: skfem.MeshTri1, nx: int, nz: int) -> None:
