@@ -1062,17 +1062,21 @@ def _tensor_overlaps(surface, xs: np.ndarray, zs: np.ndarray) -> list[np.ndarray
     binary searches per axis), both triangles of each. The same increasing indices, without a test per
     triangle."""
     nx, nz = xs.size - 1, zs.size - 1   # cells per axis
+    boxes = _recess_boxes(surface)
+    if not boxes:
+        return []
+    lo, hi = np.array([b[0] for b in boxes]).T, np.array([b[1] for b in boxes]).T
+    # column ix meets [lo, hi] where xs[ix + 1] >= lo and xs[ix] <= hi (rows alike)
+    i0 = np.maximum(np.searchsorted(xs, lo[0], "left") - 1, 0).tolist()
+    i1 = np.minimum(np.searchsorted(xs, hi[0], "right") - 1, nx - 1).tolist()
+    j0 = np.maximum(np.searchsorted(zs, lo[1], "left") - 1, 0).tolist()
+    j1 = np.minimum(np.searchsorted(zs, hi[1], "right") - 1, nz - 1).tolist()
     out = []
-    for lo, hi in _recess_boxes(surface):
-        # column ix meets [lo, hi] where xs[ix + 1] >= lo and xs[ix] <= hi
-        i0 = max(int(np.searchsorted(xs, lo[0], "left")) - 1, 0)
-        i1 = min(int(np.searchsorted(xs, hi[0], "right")) - 1, nx - 1)
-        j0 = max(int(np.searchsorted(zs, lo[1], "left")) - 1, 0)
-        j1 = min(int(np.searchsorted(zs, hi[1], "right")) - 1, nz - 1)
-        if i0 > i1 or j0 > j1:
+    for a, b, c, d in zip(i0, i1, j0, j1):
+        if a > b or c > d:
             out.append(np.zeros(0, np.int64))
             continue
-        cells = (nz * np.arange(i0, i1 + 1, dtype=np.int64)[:, None] + np.arange(j0, j1 + 1)[None, :]).ravel()
+        cells = (nz * np.arange(a, b + 1, dtype=np.int64)[:, None] + np.arange(c, d + 1)[None, :]).ravel()
         out.append(np.concatenate([cells, cells + nx * nz]))
     return out
 
