@@ -955,14 +955,14 @@ def _face_smooth_block(film: Film, x0: np.ndarray, x1: np.ndarray, lo: np.ndarra
 
 
 def _face_recess(surface, x0: np.ndarray, x1: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-                 lines: int = 8) -> np.ndarray:
+                 lines: int = 8, over: list[np.ndarray] | None = None) -> np.ndarray:
     """The recess part of :func:`_face_film` (film-independent): the mean over ``x0 < phi < x1`` of
     ``int depth dz`` on ``lo < z < hi``, by the midpoint rule on ``lines`` lines where the outer and the
     middle lines disagree, else by the middle line. The rectangles near each recess are found once
-    (:func:`_overlaps`); where every recess is a circle, a rectangle's lines are taken near the recesses it is
-    near (the lines lie in it)."""
+    (:func:`_overlaps`, or ``over`` where the caller has them); where every recess is a circle, a rectangle's
+    lines are taken near the recesses it is near (the lines lie in it)."""
     out = np.zeros_like(x0)
-    over = _overlaps(surface, x0, x1, lo, hi)
+    over = _overlaps(surface, x0, x1, lo, hi) if over is None else over
     near = np.flatnonzero(_in_any(over, np.size(x0)))
     x0, x1, lo, hi = x0[near], x1[near], lo[near], hi[near]
     circles = _all_circles(surface)
@@ -992,19 +992,38 @@ def _grid_face_film(mesh: SupportMesh, film: Film, g: _GridFaces) -> np.ndarray:
     surface = mesh.surface
     if surface is None or not surface.recesses:
         return _face_film(mesh, film, g.x0, g.x1, g.lo, g.hi)
-    depth = mesh.cached("finite_volume.face_recess", lambda: _face_recess(surface, g.x0, g.x1, g.lo, g.hi))
+    depth = mesh.cached("finite_volume.face_recess",
+                        lambda: _face_recess(surface, g.x0, g.x1, g.lo, g.hi, over=_face_overlaps(mesh, g)))
     return _face_smooth(film, g.x0, g.x1, g.lo, g.hi) + depth
 
 
+def _face_overlaps(mesh: SupportMesh, g: _GridFaces) -> list[np.ndarray] | None:
+    """:func:`_overlaps` of the box faces ``g`` of a whole grid (:func:`~bearingfe.geometry.meshing.tensor_lines`)
+    from its lines (:func:`_tensor_overlaps`): there every face is kept, face ``iz + nz ix`` spanning
+    ``[phi_ix, phi_ix+1] x [lo_iz, hi_iz]``; None on any other mesh."""
+    lines = tensor_lines(mesh)
+    if lines is None:
+        return None
+    xs, nz = lines[0], lines[1].size
+    return _tensor_overlaps(mesh.surface, (xs[:-1], xs[1:]), (g.lo[:nz], g.hi[:nz]))
+
+
 def _vertex_depth(mesh: SupportMesh) -> np.ndarray | None:
-    """The recess depth at the mesh's vertices (:func:`_recess_depth`, found once per mesh; read-only); None
-    without recesses."""
+    """The recess depth at the mesh's vertices (:func:`_recess_depth`, found once per mesh; read-only; on a whole
+    grid each recess tests the nodes in its box, found from the grid lines: the same values); None without
+    recesses."""
     surface = mesh.surface
     if surface is None or not getattr(surface, "recesses", ()):
         return None
 
     def build() -> np.ndarray:
-        depth = _recess_depth(surface, mesh.mesh.p[0], mesh.mesh.p[1])
+        p, lines = mesh.mesh.p, tensor_lines(mesh)
+        if lines is None:
+            depth = _recess_depth(surface, p[0], p[1])
+        else:   # node iz + nz ix at (phi_ix, z_iz): each recess tests the nodes in its box (_tensor_overlaps)
+            xs, zs = lines
+            rows = _tensor_overlaps(surface, (xs, xs), (zs, zs))
+            depth = _depth_on_rows(surface, rows, p[0][:, None], p[1][:, None])[:, 0]
         depth.flags.writeable = False
         return depth
 
@@ -1046,8 +1065,9 @@ def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
 
     def build() -> list[np.ndarray]:
         lines = tensor_lines(mesh)
-        if lines is not None:
-            return _tensor_overlaps(mesh.surface, *lines)
+        if lines is not None:   # both triangles of each cell: the cell's box
+            xs, zs = lines
+            return _tensor_overlaps(mesh.surface, (xs[:-1], xs[1:]), (zs[:-1], zs[1:]), copies=2)
         t = mesh.mesh.t[:3]
         px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
         return _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
@@ -1055,29 +1075,30 @@ def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
     return mesh.cached("finite_volume.triangle_recesses", build)
 
 
-def _tensor_overlaps(surface, xs: np.ndarray, zs: np.ndarray) -> list[np.ndarray]:
-    """:func:`_overlaps` of the triangles of a whole tensor grid on the lines ``xs``, ``zs``
-    (:func:`~bearingfe.geometry.meshing.tensor_lines`), from the lines: a triangle's corners' box is its cell, so
-    each recess's box (:func:`_recess_boxes`) takes the cells whose column and row ranges meet its own (two
-    binary searches per axis), both triangles of each. The same increasing indices, without a test per
-    triangle."""
-    nx, nz = xs.size - 1, zs.size - 1   # cells per axis
+def _tensor_overlaps(surface, x: tuple[np.ndarray, np.ndarray], z: tuple[np.ndarray, np.ndarray],
+                     copies: int = 1) -> list[np.ndarray]:
+    """:func:`_overlaps` of the rectangles of a tensor product, ``[x_lo[i], x_hi[i]] x [z_lo[j], z_hi[j]]`` numbered
+    ``j + nz i`` (``x = (x_lo, x_hi)``, ``z`` alike, each array increasing), and of ``copies - 1`` more copies of
+    them numbered on (``+ nx nz`` each: a grid's two triangles per cell, :func:`~bearingfe.geometry.meshing.
+    tensor_lines`): each recess's box (:func:`_recess_boxes`) takes the rectangles whose column and row ranges meet
+    its own, found by two binary searches per axis for all boxes at once. The same increasing indices, without a
+    test per rectangle."""
+    (x_lo, x_hi), (z_lo, z_hi) = x, z
+    nx, nz = x_lo.size, z_lo.size
     boxes = _recess_boxes(surface)
     if not boxes:
         return []
     lo, hi = np.array([b[0] for b in boxes]).T, np.array([b[1] for b in boxes]).T
-    # column ix meets [lo, hi] where xs[ix + 1] >= lo and xs[ix] <= hi (rows alike)
-    i0 = np.maximum(np.searchsorted(xs, lo[0], "left") - 1, 0).tolist()
-    i1 = np.minimum(np.searchsorted(xs, hi[0], "right") - 1, nx - 1).tolist()
-    j0 = np.maximum(np.searchsorted(zs, lo[1], "left") - 1, 0).tolist()
-    j1 = np.minimum(np.searchsorted(zs, hi[1], "right") - 1, nz - 1).tolist()
+    # column i meets [lo, hi] where x_hi[i] >= lo and x_lo[i] <= hi (rows alike)
+    i0, i1 = np.searchsorted(x_hi, lo[0], "left").tolist(), (np.searchsorted(x_lo, hi[0], "right") - 1).tolist()
+    j0, j1 = np.searchsorted(z_hi, lo[1], "left").tolist(), (np.searchsorted(z_lo, hi[1], "right") - 1).tolist()
     out = []
     for a, b, c, d in zip(i0, i1, j0, j1):
         if a > b or c > d:
             out.append(np.zeros(0, np.int64))
             continue
         cells = (nz * np.arange(a, b + 1, dtype=np.int64)[:, None] + np.arange(c, d + 1)[None, :]).ravel()
-        out.append(np.concatenate([cells, cells + nx * nz]))
+        out.append(np.concatenate([cells + k * nx * nz for k in range(copies)]) if copies > 1 else cells)
     return out
 
 
