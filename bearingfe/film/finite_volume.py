@@ -1168,7 +1168,9 @@ def _build_cut_cells(mesh: SupportMesh, x: np.ndarray, subdivisions: int):
     near = np.flatnonzero(_in_any(over, t.shape[1]))
     dep_q = _quadrature_depth(mesh, x)[near]
     dep_v = _vertex_depth(mesh)[t[:, near]]   # the depth is pointwise: as tested per triangle
-    varies = (np.ptp(dep_v, axis=0) > 0) | (dep_v[0] != dep_q[:, 0])
+    # not all equal, by rows (numpy's reduction along the short first axis of this gathered, not C-ordered
+    # array, np.ptp, took 0.25 against 0.01 ms at 3,528 triangles)
+    varies = (dep_v[1] != dep_v[0]) | (dep_v[2] != dep_v[0]) | (dep_v[0] != dep_q[:, 0])
     for k in range(1, dep_q.shape[1]):   # a depth that varies over the points (numpy's ptp along a short last
         varies |= dep_q[:, k] != dep_q[:, 0]   # axis is many times slower)
     cut = near[varies]
@@ -2455,10 +2457,11 @@ def _coarser_lines(mesh: SupportMesh) -> SupportMesh | None:
     pockets = tuple(meshing._axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets))
     a1, a2 = surface.arc
     a = surface.half_width
+    known = tensor_lines(mesh)   # a whole grid's lines: the nodes' distinct coordinates, without sorting them
     lines = []
     for axis, keep in ((0, [a1, a2] + [x for r in pockets for x in r[:2]]),
                        (1, [-a, a] + [z for r in pockets for z in r[2:]])):
-        u = np.unique(mesh.mesh.p[axis])
+        u = np.unique(mesh.mesh.p[axis]) if known is None else known[axis]
         if u.size < 9:
             return None
         tol = 1e-9 * float(np.ptp(u))

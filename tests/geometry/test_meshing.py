@@ -439,6 +439,7 @@ def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
 
     from bearingfe.film.finite_volume import solve_jfo
     from bearingfe.film.thickness import UniformFilm
+    from bearingfe.geometry import meshing
 
     def dimpled():   # one dimple on a parallel slider: it cavitates (the JFO caches are all exercised)
         shape = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[bf.Recess(Circle((0.5, 0.0), 0.2), 0.8)])
@@ -452,7 +453,8 @@ def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
     again = mesh.cached(("probe", 1), lambda: calls.append(2) or np.zeros(3))
     other = mesh.cached(("probe", 2), lambda: calls.append(3) or np.ones(3))
     assert again is first and calls == [1, 3] and np.array_equal(other, np.ones(3))
-    assert dimpled()._cache == {}   # not shared between meshes
+    fresh = dimpled()   # not shared between meshes (a new grid holds only the lines grid_mesh keeps, tensor_lines)
+    assert fresh._cache is not mesh._cache and set(fresh._cache) == {meshing.TENSOR_LINES}
     res = solve(mesh)
     assert res.cavitated_fraction > 0.01
     kept = {k if isinstance(k, str) else k[0] for k in mesh._cache}
