@@ -36,7 +36,7 @@ T = TypeVar("T")
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_marked", "refine_once",
            "mesh_from_data", "check_triangles", "check_support_mesh",
            "strip_mesh", "grid_mesh", "name_surface_boundaries", "with_named_boundaries", "periodic_pairs",
-           "give_facet_triangles"]
+           "give_facet_triangles", "tensor_lines"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -77,6 +77,10 @@ class SupportMesh:
         The maker already proved every triangle valid (:func:`mesh_from_data`
         checks them, a grid's lines prove them): only the boundaries are
         checked here. Not stored.
+    connected : bool
+        The maker already proved the mesh one connected piece that touches
+        ``outer`` (a tensor grid without holes): the connected components are
+        not searched (:func:`check_support_mesh`). Not stored.
     """
 
     mesh: skfem.Mesh
@@ -86,9 +90,10 @@ class SupportMesh:
     refinement: Callable[[], "SupportMesh"] | None = field(default=None, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, repr=False, compare=False)
     cells_checked: InitVar[bool] = False
+    connected: InitVar[bool] = False
 
-    def __post_init__(self, cells_checked: bool) -> None:
-        check_support_mesh(self.mesh, self.source, triangles=not cells_checked)
+    def __post_init__(self, cells_checked: bool, connected: bool) -> None:
+        check_support_mesh(self.mesh, self.source, triangles=not cells_checked, components=not connected)
 
     def __getstate__(self) -> dict:
         # a mesh made with a local size function (e.g. film_graded_size's) still pickles, without its recipe:
@@ -858,7 +863,8 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
 DIRICHLET = ("outer", "inlet")
 
 
-def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh", *, triangles: bool = True) -> None:
+def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh", *, triangles: bool = True,
+                       components: bool = True) -> None:
     """Refuse a mesh no solver can use, whoever built it (a file, gmsh, the API).
 
     Parameters
@@ -872,6 +878,10 @@ def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh", *, triangles: bool 
         by construction whose cells were checked otherwise (a tensor grid on
         increasing grid lines, :func:`grid_mesh`): the per-triangle check
         sorts every edge, half the time of meshing a large grid.
+    components : bool
+        Search the connected components (default). False only for a mesh
+        connected by construction whose every piece touches ``outer`` (a
+        tensor grid without holes, :func:`grid_mesh`).
 
     Raises
     ------
@@ -897,7 +907,8 @@ def check_support_mesh(mesh: skfem.Mesh, name: str = "mesh", *, triangles: bool 
     boundaries = mesh.boundaries or {}
     if "outer" not in boundaries:
         raise GeometryFileError(f"{name}: no boundary named 'outer' (the outline, where the pressure is fixed)")
-    _check_components(mesh, t, nv, boundaries, name)
+    if components:
+        _check_components(mesh, t, nv, boundaries, name)
 
 
 def _check_components(mesh: skfem.Mesh, t: np.ndarray, nv: int, boundaries: dict, name: str) -> None:
@@ -1041,12 +1052,57 @@ def _grid_on_lines(surface: Surface, xs: np.ndarray, zs: np.ndarray, pockets: tu
     m = skfem.MeshTri1.init_tensor(xs, zs)
     if pockets:
         m = _without_pockets(m, pockets)
-    _init_facets(m)
+        _init_facets(m)
+    else:
+        _tensor_facets(m, xs.size, zs.size)
     bnd = _surface_boundaries(m, surface, pockets)
     again = functools.partial(_grid_on_lines, surface, _halved(xs), _halved(zs), pockets, max_elements)
-    return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
+    valid = _grid_cells_valid(xs, zs)   # else check_triangles names the fault
+    grid = SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface,
                        size=float(max(np.diff(xs).max(), np.diff(zs).max())), source="grid", refinement=again,
-                       cells_checked=_grid_cells_valid(xs, zs))  # else check_triangles names the fault
+                       cells_checked=valid, connected=valid and not pockets)   # a whole grid is one piece
+    if valid and not pockets:
+        lines = (np.array(xs, float), np.array(zs, float))
+        grid.cached(TENSOR_LINES, lambda: lines)
+    return grid
+
+
+#: Key of :func:`tensor_lines` in a grid mesh's cache (:meth:`SupportMesh.cached`).
+TENSOR_LINES = "meshing.tensor_lines"
+
+
+def tensor_lines(mesh: SupportMesh) -> tuple[np.ndarray, np.ndarray] | None:
+    """The grid lines ``(phi, z)`` (increasing, read-only by convention) of a whole tensor grid made by
+    :func:`grid_mesh` without pockets, kept on it where it was made; None for any other mesh (pockets, another
+    maker, a mesh that travelled through pickle: its cache stays behind).
+
+    On such a grid of ``nx`` by ``nz`` lines, node ``iz + nz ix`` lies at ``(phi[ix], z[iz])`` and the cell
+    ``c = iz + (nz - 1) ix`` is split into the triangles ``c`` and ``c + (nx - 1)(nz - 1)``
+    (``skfem.MeshTri1.init_tensor``'s numbering), each of whose corners span the whole cell."""
+    return mesh._cache.get(TENSOR_LINES)
+
+
+def _tensor_facets(m: skfem.MeshTri1, nx: int, nz: int) -> None:
+    """Give the tensor mesh ``m`` (``skfem.MeshTri1.init_tensor`` on ``nx`` by ``nz`` lines, nothing removed)
+    the facets and triangle-to-facet map of :func:`_init_facets` (the same arrays), in closed form: node
+    ``k = iz + nz ix`` starts the facets to ``k + 1`` (up), ``k + nz`` (right) and ``k + nz + 1`` (the
+    diagonal), in this lexicographic order, those that exist. No sort: 0.8 against 1.9 ms CPU at 71 x 71 lines,
+    5.6 against 23 ms at 201 x 201 (mean of 20)."""
+    nv = nx * nz
+    k = np.arange(nv, dtype=np.int64)
+    up, right = k % nz < nz - 1, k // nz < nx - 1
+    has = np.stack([up, right, up & right], axis=1)             # (nv, 3): the facets node k starts
+    second = np.stack([k + 1, k + nz, k + nz + 1], axis=1)[has]
+    first = np.repeat(k, has.sum(axis=1))
+    start = np.cumsum(has.sum(axis=1)) - has.sum(axis=1)        # the first facet node k starts
+    t = m.t
+    local = m.elem.refdom.facets
+    a = np.hstack([t[i] for i, _ in local]).astype(np.int64)
+    b = np.hstack([t[j] for _, j in local]).astype(np.int64)
+    lo, step = np.minimum(a, b), np.abs(a - b)
+    place = start[lo] + np.where(step == 1, 0, np.where(step == nz, up[lo], up[lo] + right[lo].astype(np.int64)))
+    m._facets = np.ascontiguousarray(np.vstack([first, second]).astype(t.dtype))
+    m._t2f = place.reshape(len(local), t.shape[1])
 
 
 def _grid_cells_valid(xs: np.ndarray, zs: np.ndarray) -> bool:

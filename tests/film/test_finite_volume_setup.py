@@ -641,3 +641,44 @@ def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
         assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
         assert np.array_equal(got.data, want.data)
     assert want[3, 40] == want[40, 3] == 1.5 and want[0, 60] == 0 and 60 not in want.indices[:want.indptr[1]]
+
+
+def test_whole_grids_find_triangles_and_faces_from_their_lines():
+    """A whole grid_mesh (no pockets) keeps its lines (tensor_lines): the triangles and the box faces near each
+    recess (_tensor_overlaps, two binary searches per axis) and the box faces themselves come from them, the same
+    arrays, bit for bit, as the tests per rectangle (_overlaps of the triangles' corners' boxes and of the faces)
+    and the faces found from the nodes (_grid_numbering), and the recess depth at the nodes (each recess testing
+    the nodes in its box) equals the surface's test; on square and uneven lines (size_z), one cell wider than a recess. A grid with a
+    pocket, and a mesh that travelled through pickle, keep no lines (the general paths)."""
+    import pickle
+
+    from bearingfe import Rectangle
+    from bearingfe.geometry.meshing import tensor_lines
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5,
+                      recesses=[*_dimpled().recesses, Recess(Circle((0.88, 0.38), 0.1), 0.3)])
+    for size, size_z in ((1 / 23, None), (1 / 17, 1 / 9), (0.5, None)):
+        mesh = grid_mesh(surface, size, size_z=size_z)
+        xs, zs = tensor_lines(mesh)
+        assert np.array_equal(xs, np.unique(mesh.mesh.p[0])) and np.array_equal(zs, np.unique(mesh.mesh.p[1]))
+        t = mesh.mesh.t[:3]
+        px, pz = mesh.mesh.p[0, t], mesh.mesh.p[1, t]
+        tested = fv._overlaps(surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
+        ours = fv._triangle_recesses(mesh)
+        assert len(ours) == 5 and sum(r.size for r in ours) > 0
+        assert all(np.array_equal(a, b) and a.dtype == b.dtype for a, b in zip(ours, tested))
+        faces = fv._build_grid_faces(mesh)
+        found = fv._faces_on_grid(mesh.mesh.p, *fv._grid_numbering(mesh.mesh))
+        for name in ("i", "j", "x0", "x1", "lo", "hi", "box"):
+            assert np.array_equal(getattr(faces, name), getattr(found, name))
+            assert getattr(faces, name).dtype == getattr(found, name).dtype
+        tested = fv._overlaps(surface, faces.x0, faces.x1, faces.lo, faces.hi)
+        ours = fv._face_overlaps(mesh, faces)
+        assert len(ours) == 5 and sum(r.size for r in ours) > 0
+        assert all(np.array_equal(a, b) and a.dtype == b.dtype for a, b in zip(ours, tested))
+        depth = fv._vertex_depth(mesh)
+        assert depth.shape == (mesh.n_nodes,) and (np.count_nonzero(depth) > 0 or mesh.n_nodes < 10)
+        assert np.array_equal(depth, fv._recess_depth(surface, mesh.mesh.p[0], mesh.mesh.p[1]))
+    pocketed = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))])
+    assert tensor_lines(grid_mesh(pocketed, 1 / 10)) is None
+    assert tensor_lines(pickle.loads(pickle.dumps(grid_mesh(surface, 1 / 10)))) is None

@@ -439,6 +439,7 @@ def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
 
     from bearingfe.film.finite_volume import solve_jfo
     from bearingfe.film.thickness import UniformFilm
+    from bearingfe.geometry import meshing
 
     def dimpled():   # one dimple on a parallel slider: it cavitates (the JFO caches are all exercised)
         shape = Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[bf.Recess(Circle((0.5, 0.0), 0.2), 0.8)])
@@ -452,7 +453,8 @@ def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
     again = mesh.cached(("probe", 1), lambda: calls.append(2) or np.zeros(3))
     other = mesh.cached(("probe", 2), lambda: calls.append(3) or np.ones(3))
     assert again is first and calls == [1, 3] and np.array_equal(other, np.ones(3))
-    assert dimpled()._cache == {}   # not shared between meshes
+    fresh = dimpled()   # not shared between meshes (a new grid holds only the lines grid_mesh keeps, tensor_lines)
+    assert fresh._cache is not mesh._cache and set(fresh._cache) == {meshing.TENSOR_LINES}
     res = solve(mesh)
     assert res.cavitated_fraction > 0.01
     kept = {k if isinstance(k, str) else k[0] for k in mesh._cache}
@@ -464,3 +466,40 @@ def test_per_mesh_structures_are_built_once_per_key_and_kept_per_mesh():
     copy = pickle.loads(pickle.dumps(mesh))
     assert copy._cache == {} and mesh._cache
     assert np.array_equal(solve(copy).pressure, res.pressure)
+
+
+def test_tensor_facets_in_closed_form_are_scikit_fems_own():
+    """A grid without pockets gets its facets and triangle-to-facet map in closed form (_tensor_facets): the
+    same arrays (values and dtypes) as the counting sort (_init_facets) and as scikit-fem's own sort, on
+    uneven lines of several shapes, down to one cell."""
+    from bearingfe.geometry import meshing
+
+    rng = np.random.default_rng(5)
+    for nx, nz in ((2, 2), (3, 7), (9, 2), (36, 36), (40, 13)):
+        xs, zs = np.sort(rng.random(nx)), np.sort(rng.random(nz))
+        ours = skfem.MeshTri1.init_tensor(xs, zs)
+        meshing._tensor_facets(ours, nx, nz)
+        sorted_ = skfem.MeshTri1.init_tensor(xs, zs)
+        meshing._init_facets(sorted_)
+        theirs = skfem.MeshTri1.init_tensor(xs, zs)
+        for ref in (sorted_._facets, theirs.facets):
+            assert np.array_equal(ours._facets, ref) and ours._facets.dtype == ref.dtype
+        for ref in (sorted_._t2f, theirs.t2f):
+            assert np.array_equal(ours._t2f, ref) and ours._t2f.dtype == ref.dtype
+
+
+def test_whole_grids_skip_the_component_search_pocketed_ones_do_not(monkeypatch):
+    """A grid without pockets is one piece touching ``outer`` by construction: grid_mesh (and the nested
+    start's coarser grids, made the same way) skip the connected-component search; a grid with a pocket (a
+    hole that could cut it in pieces) and a support mesh made elsewhere still search."""
+    from bearingfe.geometry import meshing
+
+    calls = []
+    real = meshing._check_components
+    monkeypatch.setattr(meshing, "_check_components", lambda *a, **k: calls.append(1) or real(*a, **k))
+    whole = bf.grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5), 0.1)
+    assert calls == [] and "connected" not in vars(whole)   # an init-only flag, not stored
+    bf.grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.5, 0.0), (0.2, 0.2))]), 0.1)
+    assert calls == [1]
+    SupportMesh(mesh=whole.mesh, surface=whole.surface, source="grid")
+    assert calls == [1, 1]
