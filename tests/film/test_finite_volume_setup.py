@@ -641,3 +641,33 @@ def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
         assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
         assert np.array_equal(got.data, want.data)
     assert want[3, 40] == want[40, 3] == 1.5 and want[0, 60] == 0 and 60 not in want.indices[:want.indptr[1]]
+
+
+def test_selection_by_mask_equals_scipys_indexing():
+    """:func:`_selected` of a canonical CSR matrix (picked by a mask over the stored entries) equals scipy's
+    ``A[rows][:, rows]`` with its explicit zeros dropped and indices sorted, bit for bit: random matrices with
+    stored zeros and random increasing rows, the empty selection and all rows; a matrix with unsorted indices
+    takes scipy's path, with the same answer."""
+    import scipy.sparse as sp
+
+    def indexed(A, rows):
+        B = A[rows][:, rows].tocsr()
+        B.eliminate_zeros()
+        B.sort_indices()
+        return B
+
+    rng = np.random.default_rng(7)
+    for trial in range(60):
+        n = int(rng.integers(1, 40))
+        A = sp.random(n, n, density=float(rng.uniform(0.05, 0.5)), random_state=trial, format="csr")
+        A.data[rng.uniform(size=A.nnz) < 0.2] = 0.0   # stored zeros
+        for rows in (np.flatnonzero(rng.uniform(size=n) < 0.6), np.zeros(0, np.int64), np.arange(n)):
+            got, want = fv._selected(A, rows), indexed(A, rows)
+            assert got.shape == want.shape and got.has_canonical_format
+            assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+            assert np.array_equal(got.data, want.data)
+    A = sp.csr_matrix(np.array([[1.0, 2.0, 0.0], [0.0, 3.0, 4.0], [5.0, 0.0, 6.0]]))
+    A.indices[:2], A.data[:2] = A.indices[:2][::-1].copy(), A.data[:2][::-1].copy()   # row 0 unsorted
+    A.has_sorted_indices = False
+    got = fv._selected(A, np.array([0, 2]))
+    assert np.array_equal(got.toarray(), np.array([[1.0, 0.0], [5.0, 6.0]]))
