@@ -671,3 +671,20 @@ def test_selection_by_mask_equals_scipys_indexing():
     A.has_sorted_indices = False
     got = fv._selected(A, np.array([0, 2]))
     assert np.array_equal(got.toarray(), np.array([[1.0, 0.0], [5.0, 6.0]]))
+
+
+def test_couette_operator_plus_zero_storage_is_scipys_sum():
+    """:func:`_with_storage` without storage (a copy of the canonical operator without its zeros) equals scipy's
+    ``C + diag(0)`` bit for bit, stored zeros (also ``-0.0``) dropped; with storage it is scipy's sum."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(3)
+    C = sp.random(30, 30, density=0.2, random_state=4, format="csr")
+    C.data -= 0.5
+    C.data[:3] = [0.0, -0.0, 0.0]
+    for storage in (np.zeros(30), rng.uniform(0.0, 1.0, 30)):
+        got, want = fv._with_storage(C, storage), (C + sp.diags(storage)).tocsr()
+        assert got.nnz == want.nnz < C.nnz + (30 if storage.any() else 0)
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    assert C.data[0] == 0.0   # the operator itself is left as it was
