@@ -2443,7 +2443,17 @@ NESTED_MIN_UNSTRUCTURED = 1500
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
     """A ``grid_mesh`` of ``mesh.surface`` with about a quarter of ``mesh``'s nodes (cells twice the mean
     spacing), for the nested start of an unstructured mesh; None where there is no such grid (no surface,
-    an outline or pockets a grid cannot follow, a runner not along ``phi``)."""
+    an outline or pockets a grid cannot follow, a runner not along ``phi``).
+
+    Kept per mesh, as :func:`_coarser_grid`: a repeated cold solve on ``mesh`` reuses the grid and what is
+    cached on it (operators, cells, unknowns, orders) instead of meshing and setting it up again (CPU of repeated
+    cold solves of docs/jfo_gmsh.md's streamline pocket pad on one mesh, 3 interleaved process pairs of 30 solves,
+    load ~5: 19.2-22.5 against 25.4-28.3 ms at 1,936 nodes; a fresh mesh the same)."""
+    return mesh.cached("finite_volume.grid_under", lambda: _build_grid_under(mesh))
+
+
+def _build_grid_under(mesh: SupportMesh) -> SupportMesh | None:
+    """:func:`_grid_under` built afresh."""
     from ..geometry.meshing import grid_mesh
 
     surface = mesh.surface
