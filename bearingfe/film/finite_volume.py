@@ -583,13 +583,104 @@ def _stiffness_of(cells: _Cells, w: np.ndarray) -> sp.csr_matrix:
     a triangle, so each triangle contributes ``int_T c`` times their products). Summed from the 3 edges of each
     triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
     entries a triangle into the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to
-    4e-16 relative; the entries that sum to exactly zero, across the diagonals of a square grid, are left out)."""
+    4e-16 relative; the entries that sum to exactly zero, across the diagonals of a square grid, are left out).
+    From a mesh's third stiffness on, ``A + A^T`` is summed on a plan of its pattern (:func:`_edge_sum`)."""
     g, t = cells.grad, cells.t
     a, b = [0, 1, 2], [1, 2, 0]
     vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
-    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
-    A = U + U.T
+    A = _edge_sum(cells, vals)
     return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+
+
+#: Plans of :func:`_edge_sum` per cells (a mesh's): None once a first stiffness was summed by scipy, then
+#: the plan (or False where the pattern does not take one).
+_EDGE_PLANS: "weakref.WeakKeyDictionary[_Cells, object]" = weakref.WeakKeyDictionary()
+_UNSEEN = object()
+
+
+@dataclass(frozen=True, eq=False)
+class _EdgePlan:
+    """Where the edge terms of :func:`_edge_sum` go: each term's directed edge (``slot``, at most two terms an
+    edge), and per entry of the symmetric pattern ``(indptr, indices)`` its edge and the reverse one
+    (``forward``, ``backward``; ``n_slots``: an absent one, whose value is 0) and its row."""
+
+    slot: np.ndarray
+    n_slots: int
+    forward: np.ndarray
+    backward: np.ndarray
+    rows: np.ndarray
+    indptr: np.ndarray
+    indices: np.ndarray
+
+
+def _edge_sum(cells: _Cells, vals: np.ndarray) -> sp.csr_matrix:
+    """``U + U^T`` for ``U`` the sum of the terms ``vals`` at the directed edges ``(t[e], t[e + 1])`` of the
+    triangles (edge-pair major, as :func:`_stiffness_of` writes them): scipy's sparse sum, entries that are zero
+    dropped. From a mesh's third call on it is summed on a plan of the pattern (:class:`_EdgePlan`, found at the
+    second from scipy's ``U``): each directed edge takes at most two terms (a sum in either order is the same
+    number) and each entry is the sum of its two directions, so the same arrays bit for bit without the COO
+    conversion, its sort and the sparse sum (:func:`_stiffness_of`, CPU, docs/jfo_gmsh.md's pocket pad, mean of
+    30-300 calls, load ~5: 0.28-0.35 against 0.56-0.62 ms at 529 nodes, 1.2-1.6 against 2.2-2.7 ms at 7,375; the
+    plan, paid once at the second call, 0.65 and 5.9 ms). A mesh solved once pays no plan; a pattern where an edge
+    takes more terms keeps scipy's sums."""
+    t, n = cells.t, cells.n
+    plan = _EDGE_PLANS.get(cells, _UNSEEN)
+    if not isinstance(plan, _EdgePlan):
+        a, b = [0, 1, 2], [1, 2, 0]
+        i, j = t[a].ravel(), t[b].ravel()
+        U = sp.csr_matrix((vals, (i, j)), shape=(n, n))
+        if plan is None:   # the second call: plan the pattern from U's
+            _EDGE_PLANS[cells] = _edge_plan(U, i, j) or False
+        elif plan is _UNSEEN:
+            _EDGE_PLANS[cells] = None
+        return U + U.T
+    u = np.zeros(plan.n_slots + 1)
+    u[:plan.n_slots] = np.bincount(plan.slot, weights=vals, minlength=plan.n_slots)
+    data = u[plan.forward] + u[plan.backward]
+    indices, indptr = plan.indices, plan.indptr
+    if not np.all(data):   # the sum drops the entries that are zero
+        keep = data != 0
+        data, indices = data[keep], indices[keep]
+        indptr = np.zeros_like(plan.indptr)
+        np.cumsum(np.bincount(plan.rows[keep], minlength=n), out=indptr[1:])
+    A = sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(n, n))
+    A.has_sorted_indices = True
+    A.has_canonical_format = True
+    return A
+
+
+def _edge_plan(U: sp.csr_matrix, i: np.ndarray, j: np.ndarray) -> _EdgePlan | None:
+    """:class:`_EdgePlan` of the terms at the directed edges ``(i, j)`` summed into the canonical CSR ``U``;
+    None where a directed edge takes more than two terms. The terms bucketed by row (scipy's COO conversion of
+    the terms' numbers) and each row's by column (scipy's ``sort_indices``): equal edges side by side, numbered
+    in ``U``'s order; each entry's reverse found by a transpose of the entries' numbers."""
+    n, m = U.shape[0], i.size
+    R = sp.csr_matrix((np.ones(m), (i, np.arange(m))), shape=(n, m))   # the terms bucketed by row, in order
+    order, indptr = R.indices, R.indptr
+    B = sp.csr_matrix((order.astype(float), j[order], indptr), shape=U.shape)
+    B.sort_indices()   # each row's terms by column: equal directed edges side by side
+    row_of = np.repeat(np.arange(n), np.diff(indptr))
+    new = np.ones(m, bool)
+    new[1:] = (B.indices[1:] != B.indices[:-1]) | (row_of[1:] != row_of[:-1])
+    slot = np.empty(m, np.int64)
+    slot[B.data.astype(np.int64)] = np.cumsum(new) - 1
+    n_slots = int(np.count_nonzero(new))
+    if n_slots != U.nnz or (m and np.bincount(slot).max() > 2):
+        return None
+    ones = sp.csr_matrix((np.ones(U.nnz), U.indices, U.indptr), shape=U.shape)
+    P = (ones + ones.T).tocsr()   # the entries of U and of U^T (all positive: none cancels)
+    P.sort_indices()
+    rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(P.indptr))
+    keys = np.repeat(np.arange(n, dtype=np.int64), np.diff(U.indptr)) * n + U.indices   # sorted: U is canonical
+    pkeys = rows * n + P.indices                                                        # sorted too
+    found = np.minimum(np.searchsorted(keys, pkeys), max(n_slots - 1, 0))
+    forward = np.where(keys[found] == pkeys, found, n_slots) if n_slots else np.zeros(pkeys.size, np.int64)
+    # the place of (c, r) for each entry (r, c): P's pattern is symmetric, so its transpose has P's places
+    numbers = sp.csr_matrix((np.arange(1.0, P.nnz + 1.0), P.indices, P.indptr), shape=P.shape).T.tocsr()
+    numbers.sort_indices()
+    backward = forward[numbers.data.astype(np.int64) - 1]
+    return _EdgePlan(slot=slot, n_slots=n_slots, forward=forward, backward=backward, rows=rows.astype(np.int32),
+                     indptr=P.indptr.astype(np.int32), indices=P.indices.astype(np.int32))
 
 
 def _load(cells: _Cells, f_q: np.ndarray | None) -> np.ndarray:
@@ -1331,7 +1422,7 @@ def _reduced(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float)
 
 
 def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float):
-    K, G = system.K, (system.C + sp.diags(system.storage)).tocsr()
+    K, G = system.K, _with_storage(system.C, system.storage)
     p0 = np.full(p_fixed.size, p_c)
     p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
     theta0 = np.zeros(p_fixed.size)
@@ -1353,7 +1444,25 @@ def _selects(unk: FVUnknowns) -> bool:
 
 
 def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
-    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives)."""
+    """``A[rows][:, rows]`` without its explicit zeros, indices sorted (canonical, as a sparse product gives).
+    ``rows`` increasing without repeats and ``A`` canonical CSR: the kept entries picked by a mask over the stored
+    ones and renumbered (the same arrays, bit for bit, as scipy's two fancy indexings and clean-ups, without
+    them: 0.10 against 0.15 ms CPU at 529 nodes, mean of 2,000 calls, load ~4)."""
+    n = A.shape[0]
+    if (A.format == "csr" and A.has_canonical_format and A.shape[0] == A.shape[1] and rows.ndim == 1
+            and (rows.size < 2 or bool(np.all(rows[1:] > rows[:-1])))
+            and (rows.size == 0 or 0 <= rows[0] <= rows[-1] < n)):
+        number = np.full(n, -1, dtype=A.indices.dtype)
+        number[rows] = np.arange(rows.size, dtype=A.indices.dtype)
+        row_of = np.repeat(number, np.diff(A.indptr))
+        keep = (row_of >= 0) & (number[A.indices] >= 0) & (A.data != 0)
+        counts = np.bincount(row_of[keep], minlength=rows.size) if rows.size else np.zeros(0, np.int64)
+        indptr = np.zeros(rows.size + 1, dtype=A.indptr.dtype)
+        np.cumsum(counts, out=indptr[1:])
+        B = sp.csr_matrix((A.data[keep], number[A.indices[keep]], indptr), shape=(rows.size, rows.size))
+        B.has_sorted_indices = True   # an increasing renumbering of sorted rows without repeats: canonical
+        B.has_canonical_format = True
+        return B
     B = A[rows][:, rows].tocsr()
     B.eliminate_zeros()
     B.sort_indices()
@@ -1365,7 +1474,19 @@ def _reduced_cavity(system: FVSystem, unk: FVUnknowns, G: sp.csr_matrix) -> sp.c
     if system.C_cavity is None:
         return G
     St = unk.S.T.tocsr()
-    return (St @ (system.C_cavity + sp.diags(system.storage)) @ unk.S).tocsr()
+    return (St @ _with_storage(system.C_cavity, system.storage) @ unk.S).tocsr()
+
+
+def _with_storage(C: sp.csr_matrix, storage: np.ndarray) -> sp.csr_matrix:
+    """``C + diag(storage)`` as scipy's sum gives it (CSR, entries that are zero dropped). Without storage (a
+    steady solve without squeeze) a canonical ``C`` is copied without its zeros instead: ``c + 0`` is ``c``, so the
+    same arrays bit for bit, without the diagonal matrix and the sparse sum (0.04 against 0.16 ms CPU at 529
+    nodes, mean of 2,000 calls)."""
+    if C.format == "csr" and C.has_canonical_format and not np.any(storage):
+        G = C.copy()
+        G.eliminate_zeros()
+        return G
+    return (C + sp.diags(storage)).tocsr()
 
 
 def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSystem:
@@ -2203,7 +2324,7 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
                 facets) -> np.ndarray | dict[str, np.ndarray]:
     """Outward flux ``q . n`` through the half-facets of boundary ``facets``, per node; ``facets`` an array,
     or a dict of named arrays (one pass over all of them: their triangles found and the film evaluated once;
-    a dict of the named results).
+    a dict of the named results). The facets' geometry is kept on the mesh (:func:`_facet_frame`).
 
     ``grad_p`` is the (element-wise constant) P1 pressure gradient, shape (2, n_elements).
     """
@@ -2213,28 +2334,62 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     results = {k: np.zeros(m.nvertices) for k in named}
     every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
     if every.size:
-        a, b = m.facets[:, every]
-        elem = boundary_facet_triangles(m, every)
-        pa, pb = m.p[:, a], m.p[:, b]
-        tvec = pb - pa
-        length = np.linalg.norm(tvec, axis=0)
-        n = np.array([tvec[1], -tvec[0]]) / length
-        centre = m.p[:, m.t[:, elem]].mean(axis=1)
-        n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
-        g = grad_p[:, elem]
-        quarters = np.concatenate([0.75 * pa + 0.25 * pb, 0.25 * pa + 0.75 * pb], axis=1)   # near a, near b
-        h2 = _thickness(mesh, film, quarters[0], quarters[1])
-        u2 = velocity_at(mesh.runner, quarters)
+        fr = _facet_frame(mesh, every)
+        n, u2 = fr.normal, fr.velocity
+        g = grad_p[:, fr.elem]
+        h2 = _thickness(mesh, film, fr.quarters[0], fr.quarters[1])
         ends = np.cumsum([0] + sizes)
-        for side, node in enumerate((a, b)):
+        for side, node in enumerate((fr.a, fr.b)):
             part = slice(side * every.size, (side + 1) * every.size)
             h = h2[part]
             un = n[0] if u2 is None else u2[0][part] * n[0] + u2[1][part] * n[1]
             qn = -h**3 / 12.0 * np.sum(g * n, axis=0) + 0.5 * wedge * theta[node] * h * un
-            contribution = 0.5 * length * qn
+            contribution = 0.5 * fr.length * qn
             for k, lo, hi in zip(named, ends[:-1], ends[1:]):   # each group's own sums, in its facets' order
                 np.add.at(results[k], node[lo:hi], contribution[lo:hi])
     return results if isinstance(facets, dict) else results[None]
+
+
+@dataclass(frozen=True, eq=False)
+class _FacetFrame:
+    """The geometry of some boundary facets for :func:`_facet_flux`: their nodes, triangles, lengths, outward
+    unit normals, the points a quarter along them from each end (``(2, 2 n)``: near ``a``, then near ``b``) and
+    the runner's velocity there (None: along ``phi``)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    elem: np.ndarray
+    length: np.ndarray
+    normal: np.ndarray
+    quarters: np.ndarray
+    velocity: tuple | None
+
+
+def _facet_frame(mesh: SupportMesh, facets: np.ndarray) -> _FacetFrame:
+    """:class:`_FacetFrame` of the boundary ``facets`` (int64 array), kept on the mesh per facet list: a repeated
+    solve on the mesh finds its flows' facets' triangles and normals once (the flows' facet fluxes of the pocket pad
+    of docs/jfo_gmsh.md 0.12 against 0.25 ms CPU at 529 nodes, 0.14 against 0.41 at 7,375, mean of 300-2,000
+    calls; the same numbers bit for bit)."""
+    return mesh.cached(("finite_volume.facet_frame", facets.tobytes()), lambda: _build_facet_frame(mesh, facets))
+
+
+def _build_facet_frame(mesh: SupportMesh, facets: np.ndarray) -> _FacetFrame:
+    """:func:`_facet_frame` built afresh."""
+    m = mesh.mesh
+    a, b = m.facets[:, facets]
+    elem = boundary_facet_triangles(m, facets)
+    pa, pb = m.p[:, a], m.p[:, b]
+    tvec = pb - pa
+    length = np.linalg.norm(tvec, axis=0)
+    n = np.array([tvec[1], -tvec[0]]) / length
+    centre = m.p[:, m.t[:, elem]].mean(axis=1)
+    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
+    quarters = np.concatenate([0.75 * pa + 0.25 * pb, 0.25 * pa + 0.75 * pb], axis=1)   # near a, near b
+    frame = _FacetFrame(a=a, b=b, elem=elem, length=length, normal=n, quarters=quarters,
+                        velocity=velocity_at(mesh.runner, quarters))
+    for x in (a, b, elem, length, n, quarters):   # shared by the solves on the mesh
+        x.flags.writeable = False
+    return frame
 
 
 def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedge: float,
@@ -2492,7 +2647,17 @@ NESTED_MIN_UNSTRUCTURED = 1500
 def _grid_under(mesh: SupportMesh) -> SupportMesh | None:
     """A ``grid_mesh`` of ``mesh.surface`` with about a quarter of ``mesh``'s nodes (cells twice the mean
     spacing), for the nested start of an unstructured mesh; None where there is no such grid (no surface,
-    an outline or pockets a grid cannot follow, a runner not along ``phi``)."""
+    an outline or pockets a grid cannot follow, a runner not along ``phi``).
+
+    Kept per mesh, as :func:`_coarser_grid`: a repeated cold solve on ``mesh`` reuses the grid and what is
+    cached on it (operators, cells, unknowns, orders) instead of meshing and setting it up again (CPU of repeated
+    cold solves of docs/jfo_gmsh.md's streamline pocket pad on one mesh, 3 interleaved process pairs of 30 solves,
+    load ~5: 19.2-22.5 against 25.4-28.3 ms at 1,936 nodes; a fresh mesh the same)."""
+    return mesh.cached("finite_volume.grid_under", lambda: _build_grid_under(mesh))
+
+
+def _build_grid_under(mesh: SupportMesh) -> SupportMesh | None:
+    """:func:`_grid_under` built afresh."""
     from ..geometry.meshing import grid_mesh
 
     surface = mesh.surface

@@ -96,3 +96,33 @@ def test_missing_optional_package_names_the_pip_package(monkeypatch):
     with pytest.raises(ImportError, match="pip install pypardiso"):
         LINEAR_SOLVERS["pardiso"](sp.identity(3, format="csc"))
     assert "pardiso" not in available_solvers()
+
+
+def test_dense_threads_inside_a_cap_as_tight_changes_nothing():
+    """Inside an open ``dense_threads(1)`` a nested one with the same cap changes nothing (no threadpoolctl call:
+    a null context) and the BLAS threads stay at 1 after it closes; another cap inside it is still passed to
+    threadpoolctl (it sets the count while open, as before), and on leaving the outer one the counts are
+    restored."""
+    import contextlib
+
+    from threadpoolctl import threadpool_info
+
+    from bearingfe.core import linalg
+    from bearingfe.core.linalg import dense_threads
+
+    def blas():
+        return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+    before = blas()
+    with dense_threads(1):
+        inner = dense_threads(1)
+        assert isinstance(inner, contextlib.nullcontext)
+        with inner:
+            assert all(n == 1 for n in blas())
+        assert all(n == 1 for n in blas()) and linalg._open_caps() == [1]
+        wider = dense_threads(2)
+        assert not isinstance(wider, contextlib.nullcontext)
+        with wider:
+            assert linalg._open_caps() == [1, 2]
+        assert all(n == 1 for n in blas())
+    assert blas() == before and linalg._open_caps() == []

@@ -151,3 +151,19 @@ def test_no_nested_start_where_no_grid_fits():
     assert fv._grid_under(mesh) is None
     res = fv.solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
     assert res.cost.get("nested_levels") is None and abs(res.mass_balance) < 1e-10
+
+
+def test_grid_under_an_unstructured_mesh_is_kept_on_it():
+    """The nested start's grid under a gmsh mesh is built once per mesh: a second cold solve on the mesh takes
+    the same grid object and gives the first solve's answers bit for bit (the same coarse level, so the same
+    start and the same fine iterations)."""
+    case = pocket_pad()
+    mesh = mesh_surface(case.surface, 0.025, recess_size=0.025)   # 1,936 nodes: above NESTED_MIN_UNSTRUCTURED
+    grid = fv._grid_under(mesh)
+    assert grid is not None and fv._grid_under(mesh) is grid
+    first = fv.solve_jfo(mesh, case.film, couette="streamline", **_options(case))
+    again = fv.solve_jfo(mesh, case.film, couette="streamline", **_options(case))
+    assert first.cost["nested_levels"] == again.cost["nested_levels"] == 1.0
+    assert fv._grid_under(mesh) is grid
+    assert np.array_equal(first.pressure, again.pressure) and np.array_equal(first.theta, again.theta)
+    assert first.iterations == again.iterations and first.flows == again.flows

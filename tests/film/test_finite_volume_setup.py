@@ -682,3 +682,108 @@ def test_whole_grids_find_triangles_and_faces_from_their_lines():
     pocketed = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))])
     assert tensor_lines(grid_mesh(pocketed, 1 / 10)) is None
     assert tensor_lines(pickle.loads(pickle.dumps(grid_mesh(surface, 1 / 10)))) is None
+
+
+def test_selection_by_mask_equals_scipys_indexing():
+    """:func:`_selected` of a canonical CSR matrix (picked by a mask over the stored entries) equals scipy's
+    ``A[rows][:, rows]`` with its explicit zeros dropped and indices sorted, bit for bit: random matrices with
+    stored zeros and random increasing rows, the empty selection and all rows; a matrix with unsorted indices
+    takes scipy's path, with the same answer."""
+    import scipy.sparse as sp
+
+    def indexed(A, rows):
+        B = A[rows][:, rows].tocsr()
+        B.eliminate_zeros()
+        B.sort_indices()
+        return B
+
+    rng = np.random.default_rng(7)
+    for trial in range(60):
+        n = int(rng.integers(1, 40))
+        A = sp.random(n, n, density=float(rng.uniform(0.05, 0.5)), random_state=trial, format="csr")
+        A.data[rng.uniform(size=A.nnz) < 0.2] = 0.0   # stored zeros
+        for rows in (np.flatnonzero(rng.uniform(size=n) < 0.6), np.zeros(0, np.int64), np.arange(n)):
+            got, want = fv._selected(A, rows), indexed(A, rows)
+            assert got.shape == want.shape and got.has_canonical_format
+            assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+            assert np.array_equal(got.data, want.data)
+    A = sp.csr_matrix(np.array([[1.0, 2.0, 0.0], [0.0, 3.0, 4.0], [5.0, 0.0, 6.0]]))
+    A.indices[:2], A.data[:2] = A.indices[:2][::-1].copy(), A.data[:2][::-1].copy()   # row 0 unsorted
+    A.has_sorted_indices = False
+    got = fv._selected(A, np.array([0, 2]))
+    assert np.array_equal(got.toarray(), np.array([[1.0, 0.0], [5.0, 6.0]]))
+
+
+def test_couette_operator_plus_zero_storage_is_scipys_sum():
+    """:func:`_with_storage` without storage (a copy of the canonical operator without its zeros) equals scipy's
+    ``C + diag(0)`` bit for bit, stored zeros (also ``-0.0``) dropped; with storage it is scipy's sum."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(3)
+    C = sp.random(30, 30, density=0.2, random_state=4, format="csr")
+    C.data -= 0.5
+    C.data[:3] = [0.0, -0.0, 0.0]
+    for storage in (np.zeros(30), rng.uniform(0.0, 1.0, 30)):
+        got, want = fv._with_storage(C, storage), (C + sp.diags(storage)).tocsr()
+        assert got.nnz == want.nnz < C.nnz + (30 if storage.any() else 0)
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+    assert C.data[0] == 0.0   # the operator itself is left as it was
+
+
+def test_facet_geometry_is_kept_on_the_mesh_with_the_same_fluxes():
+    """The boundary facets' geometry of the facet fluxes is built once per mesh and facet list: a second call
+    takes the same frame and gives the first call's fluxes bit for bit, which equal those on a fresh copy of the
+    mesh (a gmsh mesh with a pocket; the flows' three groups in one pass)."""
+    from bearingfe import Rectangle
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    film = UniformFilm(1.0)
+    fluxes = []
+    for mesh in (mesh_surface(surface, 0.1), mesh_surface(surface, 0.1)):
+        ops = fv.operators(mesh, "P1")
+        rng = np.random.default_rng(5)
+        grad_p = rng.normal(size=(2, mesh.mesh.t.shape[1]))
+        theta = rng.uniform(0.2, 1.0, mesh.mesh.nvertices)
+        groups = {k: ops.facet_groups[k] for k in ("arc_start", "arc_end", "side")}
+        first = fv._facet_flux(mesh, film, 1.0, grad_p, theta, groups)
+        every = np.concatenate([np.asarray(f, np.int64) for f in groups.values()])
+        frame = fv._facet_frame(mesh, every)
+        again = fv._facet_flux(mesh, film, 1.0, grad_p, theta, groups)
+        assert fv._facet_frame(mesh, every) is frame and not frame.normal.flags.writeable
+        assert all(np.array_equal(first[k], again[k]) for k in groups)
+        fluxes.append(first)
+    assert all(np.array_equal(fluxes[0][k], fluxes[1][k]) for k in fluxes[0])
+
+
+def test_stiffness_on_its_kept_plan_equals_scipys_sums():
+    """From a mesh's third stiffness on, ``U + U^T`` is summed on the plan of its pattern (:func:`_edge_sum`):
+    the stiffness equals, bit for bit, the sparse sums it replaces (``U`` by the COO conversion, ``U + U^T``,
+    the rows' sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket, a periodic gmsh mesh
+    and a grid (whose diagonals' entries sum to exactly zero and are left out)."""
+    import scipy.sparse as sp
+
+    from benchmarks.jfo_gmsh import grooved_journal
+    from bearingfe import Rectangle
+
+    def summed(cells, w):
+        g, t = cells.grad, cells.t
+        a, b = [0, 1, 2], [1, 2, 0]
+        vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+        U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
+        A = U + U.T
+        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+
+    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    journal = grooved_journal().surface
+    rng = np.random.default_rng(11)
+    for mesh in (mesh_surface(pad, 0.08), mesh_surface(journal, 0.3), grid_mesh(_dimpled(), 1 / 10)):
+        cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+        for call in range(4):   # scipy's sums, the plan found, then the plan
+            w = rng.uniform(0.5, 2.0, cells.t.shape[1])
+            got, want = fv._stiffness_of(cells, w), summed(cells, w)
+            assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+            assert np.array_equal(got.data, want.data)
+        assert isinstance(fv._EDGE_PLANS[cells], fv._EdgePlan)
+        if mesh.source == "grid":
+            assert want.nnz < fv._EDGE_PLANS[cells].indices.size + cells.n   # the zero entries left out
