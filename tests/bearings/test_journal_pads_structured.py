@@ -280,6 +280,29 @@ def test_points_apart_agrees_with_the_exact_pair_search():
         _points_apart(grid, -1.0)
 
 
+def test_position_sources_kept_per_mesh_are_the_previous_path_numbers():
+    # the linearization's mesh-only parts, kept per compiled operator: dh/d(x, y) = -(cos phi, sin phi) at the
+    # quadrature points and the source derivatives int 6 dh/d(x, y) dv/dphi, -int 12 dh/d(x, y) v, equal bit for
+    # bit to what _linearized computed at every call before (from cos and sin of the points), on a P2 pad of
+    # two_groove and a P1 one; a second state of the same mesh gets the same arrays, read-only
+    from bearingfe.bearings.journal import _position_sources
+    meshes = structured_meshes(TWO_GROOVE, 0.3, eps=0.6, phi0=D(130))
+    for element in ("P2", "P1"):
+        state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element=element)
+        for sup in state.sups:
+            co = sup.operators.compiled
+            phi = co.x[0]
+            hx, hy = -np.cos(phi), -np.sin(phi)
+            slopes, wedge, squeeze = _position_sources(co)
+            assert np.array_equal(slopes, np.stack([hx, hy]))
+            assert np.array_equal(wedge, co.maps.integrate_gradient((6.0 * co.dx * np.stack([hx, hy])).T, 0))
+            assert np.array_equal(squeeze, co.maps.integrate_value((-12.0 * co.dx * np.stack([hx, hy])).T))
+            assert wedge.shape == squeeze.shape == (co.n_dofs, 2) and not wedge.flags.writeable
+        again = position_state(TWO_GROOVE, meshes, 0.41, -0.43, "reynolds", element=element)
+        assert all(_position_sources(a.operators.compiled)[1] is _position_sources(b.operators.compiled)[1]
+                   for a, b in zip(state.sups, again.sups))
+
+
 def test_rupture_set_predicted_by_the_linearization_starts_nearer(monkeypatch):
     # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
     # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
