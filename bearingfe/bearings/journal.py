@@ -702,6 +702,31 @@ def _lumped_area(res: ReynoldsResult) -> np.ndarray:
     return forms.load.assemble(res.basis, f=np.ones_like(res.basis.dx))
 
 
+_POSITION_SOURCES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _position_sources(co) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """What :func:`_linearized` needs of a mesh alone (its compiled operator ``co``), kept per operator:
+    ``dh/d(x, y) = (-cos phi, -sin phi)`` at the quadrature points ``(2, n_q)`` (from the operator's own cosines
+    and sines, the same numbers as ``cos`` of its points) and the derivatives of the sources in the journal
+    position, ``int 6 dh/d(x, y) dv/dphi`` and ``-int 12 dh/d(x, y) v`` ``(n_dofs, 2)`` each: they depend on the
+    film's shape only through ``h``'s position derivatives, which do not depend on the position. A mesh is
+    linearized one to three times in an equilibrium (its coarse Newton steps, a refinement level's step, the
+    last Newton step and the coefficients): 0.64 ms a call at 2,159 P2 dofs (two_groove's refined pads; CPU
+    time, 300 repetitions) for the sources, 0.28 ms for the cosines and sines of the points."""
+    kept = _POSITION_SOURCES.get(co)
+    if kept is None:
+        cos, sin = co.angles
+        slopes = -np.stack([np.ravel(cos), np.ravel(sin)])
+        dx = co.dx
+        kept = (slopes, co.maps.integrate_gradient((6.0 * dx * slopes).T, 0),
+                co.maps.integrate_value((-12.0 * dx * slopes).T))
+        for a in kept:  # shared by every film state of the mesh
+            a.flags.writeable = False
+        _POSITION_SOURCES[co] = kept
+    return kept
+
+
 def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
     """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
     differentiating the discrete equation on the fixed rupture sets.
@@ -717,18 +742,15 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
             raise ValueError("linearization is defined for cavitation='reynolds' or 'none'")
         co = sup.operators.compiled
         m, dx = co.maps, co.dx
-        phi = co.x[0]
         h = np.asarray(sup.at.h, float).reshape(-1)
-        hx, hy = -np.cos(phi), -np.sin(phi)
+        slopes, wedge, squeeze = _position_sources(co)
         p = res.pressure
         # A(h) p = int 6 h dv/dphi - int 12 dh/dt v (the wedge in conservative form); differentiate in
         # x, y, xdot, ydot. dA/dx p = int 3 h^2 dh/dx grad p . grad v; the wedge source's derivative is
         # -int 6 (dh/dx) dv/dphi. All by the per-element maps (mat-vecs, no matrix assembled)
         grad_p = (m.gradient(p, 0).ravel(), m.gradient(p, 1).ravel())
-        weights = (3.0 * dx * h**2) * np.stack([hx, hy])  # (2, n_q): dx 3 h^2 dh/d(x, y)
+        weights = (3.0 * dx * h**2) * slopes  # (2, n_q): dx 3 h^2 dh/d(x, y)
         dA_p = m.integrate_gradient((weights * grad_p[0]).T, 0) + m.integrate_gradient((weights * grad_p[1]).T, 1)
-        wedge = m.integrate_gradient((6.0 * dx * np.stack([hx, hy])).T, 0)  # int 6 dh/d(x, y) dv/dphi
-        squeeze = m.integrate_value((-12.0 * dx * np.stack([hx, hy])).T)  # -int 12 dh/d(x, y) v
         fp = obstacle_problem(sup)
         rhs = np.column_stack([wedge - dA_p, squeeze])[fp.interior]
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
@@ -1651,15 +1673,52 @@ def _turned_in_place(res: ReynoldsResult, turn: float) -> np.ndarray:
     that reach, every turned dof's nearest dof is its own (any other is farther than the reach from it), so the
     mask is returned as it is, without the search: the Newton steps near the answer turn by 1e-5 to 1e-4 rad
     against a dof spacing of 1e-2 (a pair search within the tiny radius costs half the bounded search,
-    0.20 against 0.42 ms at 1,823 P2 dofs; CPU time, 500 repetitions)."""
+    0.20 against 0.42 ms at 1,823 P2 dofs; CPU time, 500 repetitions). The cell hash of :func:`_points_apart`
+    decides first, the k-d tree's pair search only where it cannot."""
     reach = abs(turn) * (1 + TURN_REACH_SLACK)
     cavitated = np.asarray(res.cavitated, bool)
     dofs = np.asarray(res.basis.doflocs)
     edge = res.basis.element_dofs[:2, 0]  # two dofs of an element: within twice the reach, no pair search
     if 2 * reach < float(np.hypot(*(dofs[:, edge[0]] - dofs[:, edge[1]]))) \
-            and not _dof_tree(res.basis).query_pairs(2 * reach, output_type="ndarray").size:
+            and (_points_apart(dofs, 2 * reach)
+                 or not _dof_tree(res.basis).query_pairs(2 * reach, output_type="ndarray").size):
         return cavitated.copy()
     return _nearest_rupture(res, dofs, turn, reach)
+
+
+def _points_apart(points: np.ndarray, distance: float) -> bool:
+    """Whether no two of ``points`` (shape (2, n)) lie within ``distance`` [same units] of each other, by hashing
+    them into square cells a little wider than ``distance`` (two points within it share a cell or lie in
+    neighbouring ones): True only if every cell holds one point and no two occupied cells touch. False means
+    only that some two points are that close to touching cells (:func:`_turned_in_place` then asks the k-d tree's
+    exact pair search). Spares the tree of a mesh whose rupture set is turned once and never searched (the
+    refined pads' last Newton solve): 0.16 against 0.51 ms for the tree and its pair search at 1,823 P2 dofs
+    (CPU time, 500 repetitions). Cells narrower than ``1e-9`` of the points' extent are not made (the
+    integer cell numbers stay far inside int64): a tinier ``distance`` is tested at that width, which implies
+    it."""
+    points = np.asarray(points, float)
+    if points.ndim != 2 or points.shape[0] != 2:
+        raise ValueError(f"points must have shape (2, n), got {points.shape}")
+    if not (math.isfinite(distance) and distance >= 0):
+        raise ValueError(f"distance must be finite and >= 0, got {distance!r}")
+    if points.shape[1] < 2:
+        return True
+    low = points.min(axis=1, keepdims=True)
+    extent = float(np.max(points.max(axis=1) - low[:, 0]))
+    cell = max(distance, 1e-9 * extent) * (1 + 1e-6)
+    if cell == 0:  # all points at one place
+        return False
+    ij = np.floor((points - low) / cell).astype(np.int64)
+    width = int(ij[1].max()) + 3  # a column of cells and a spare cell below and above: no neighbour wraps
+    keys = np.sort(ij[0] * width + ij[1] + 1)
+    if np.any(keys[1:] == keys[:-1]):
+        return False
+    last = keys.size - 1
+    for offset in (1, width - 1, width, width + 1):  # the neighbour above, and the three in the next column
+        shifted = keys + offset
+        if np.any(keys[np.minimum(np.searchsorted(keys, shifted), last)] == shifted):
+            return False
+    return True
 
 
 def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0,

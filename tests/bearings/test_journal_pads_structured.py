@@ -249,6 +249,60 @@ def test_rupture_turned_in_place_is_the_nearest_one():
         assert not np.array_equal(_turned_in_place(res, 0.2), res.cavitated)
 
 
+def test_points_apart_agrees_with_the_exact_pair_search():
+    # the cell hash that spares the k-d tree of a rupture set turned in place: True only where the tree's exact pair
+    # search within the distance finds no pair (the previous path's test), on the dofs of both pads of two_groove
+    # (P2, size 0.25) from far below their spacing to above it, on random points, on a grid whose spacing is the
+    # distance itself (pairs at exactly that distance count as within it, as for the tree), and on bad input
+    from scipy.spatial import cKDTree
+
+    from bearingfe.bearings.journal import _points_apart
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2")
+    rng = np.random.default_rng(3)
+    clouds = [np.asarray(res.basis.doflocs) for res in state.results] + [rng.uniform(-1, 5, (2, 400))]
+    for points in clouds:
+        tree = cKDTree(points.T)
+        answers = []
+        for distance in (1e-14, 1e-9, 4e-5, 1e-3, 1e-2, 3e-2, 0.1):
+            exact = not tree.query_pairs(distance, output_type="ndarray").size
+            apart = _points_apart(points, distance)
+            assert not apart or exact, distance  # never apart where the exact search finds a pair
+            answers.append(apart)
+        assert answers[:3] == [True, True, True]  # far below the spacing: decided by the hash alone
+        assert not answers[-1]
+    grid = np.stack(np.meshgrid(np.arange(5) * 0.1, np.arange(3) * 0.1)).reshape(2, -1)
+    assert not _points_apart(grid, 0.1) and _points_apart(grid, 0.049)  # (0.099: neighbouring cells, undecided)
+    assert _points_apart(grid[:, :1], 1.0) and not _points_apart(np.zeros((2, 2)), 0.0)
+    with pytest.raises(ValueError, match="points"):
+        _points_apart(np.zeros((3, 4)), 0.1)
+    with pytest.raises(ValueError, match="distance"):
+        _points_apart(grid, -1.0)
+
+
+def test_position_sources_kept_per_mesh_are_the_previous_path_numbers():
+    # the linearization's mesh-only parts, kept per compiled operator: dh/d(x, y) = -(cos phi, sin phi) at the
+    # quadrature points and the source derivatives int 6 dh/d(x, y) dv/dphi, -int 12 dh/d(x, y) v, equal bit for
+    # bit to what _linearized computed at every call before (from cos and sin of the points), on a P2 pad of
+    # two_groove and a P1 one; a second state of the same mesh gets the same arrays, read-only
+    from bearingfe.bearings.journal import _position_sources
+    meshes = structured_meshes(TWO_GROOVE, 0.3, eps=0.6, phi0=D(130))
+    for element in ("P2", "P1"):
+        state = position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element=element)
+        for sup in state.sups:
+            co = sup.operators.compiled
+            phi = co.x[0]
+            hx, hy = -np.cos(phi), -np.sin(phi)
+            slopes, wedge, squeeze = _position_sources(co)
+            assert np.array_equal(slopes, np.stack([hx, hy]))
+            assert np.array_equal(wedge, co.maps.integrate_gradient((6.0 * co.dx * np.stack([hx, hy])).T, 0))
+            assert np.array_equal(squeeze, co.maps.integrate_value((-12.0 * co.dx * np.stack([hx, hy])).T))
+            assert wedge.shape == squeeze.shape == (co.n_dofs, 2) and not wedge.flags.writeable
+        again = position_state(TWO_GROOVE, meshes, 0.41, -0.43, "reynolds", element=element)
+        assert all(_position_sources(a.operators.compiled)[1] is _position_sources(b.operators.compiled)[1]
+                   for a, b in zip(state.sups, again.sups))
+
+
 def test_rupture_set_predicted_by_the_linearization_starts_nearer(monkeypatch):
     # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
     # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
