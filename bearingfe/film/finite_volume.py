@@ -1945,7 +1945,7 @@ BAND_PASSES = 3
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
               y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
               passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
-              iterations: int = BAND_ITERATIONS) -> np.ndarray:
+              iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
@@ -1955,8 +1955,10 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     convergence, so the band only changes which sets are factorized on the way. ``seed``: the unknowns the band
     grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
     correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
-    and its active-set iterations in a pass at most."""
-    pattern = (abs(K) + abs(Gc)).tocsr()
+    and its active-set iterations in a pass at most; ``pattern``: ``|K| + |Gc|`` (CSR) where the caller has it
+    (built here otherwise)."""
+    if pattern is None:
+        pattern = (abs(K) + abs(Gc)).tocsr()
     band = (new != cav) if seed is None else seed.copy()
     for _ in range(rings):
         band = band | (pattern @ band.astype(float) > 0)
@@ -2065,7 +2067,7 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
     rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
     return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS)
+                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS, pattern=pattern)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
