@@ -101,6 +101,7 @@ from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band
 from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
+from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
 from ..geometry.runner import is_along_phi, velocity_at
@@ -2893,7 +2894,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
                          "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     p_c = float(cavitation_pressure)
-    with dense_threads(1):   # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine
+    # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine; the large arrays on small pages
+    # (bearingfe.core.pages: no wait for the kernel's compaction into huge pages)
+    with dense_threads(1), small_pages():
         t1, ops, system, unk, sol, upwinded, nested = _complementarity(
             mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation,
             factorize, tol, max_iterations, warm_start, start)
@@ -2905,8 +2908,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     theta = np.where(free, unk.S @ sol.theta, 1.0)
     cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
     cost = {"assembly": t1 - start, "cavitation": t2 - t1}
-    result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p, theta,
-                     cavitated, sol, cost, start, cavitation)
+    with small_pages():
+        result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p,
+                         theta, cavitated, sol, cost, start, cavitation)
     # counts, not times: added after the postprocess time (the time left over from the timed entries)
     counts = dict(nested, **({"upwinded_segments": float(upwinded)}
                              if couette == "streamline" and cavitation == "jfo" else {}))
