@@ -3,11 +3,16 @@
 import numpy as np
 import pytest
 
-from bearingfe import grid_mesh
+from bearingfe import Circle, Recess, Surface, grid_mesh
 from bearingfe.core import pages
 from bearingfe.film import finite_volume as fv
 from bearingfe.film.thickness import UniformFilm
-from tests.film.test_finite_volume_setup import _dimpled
+
+
+def _dimpled():
+    """Two circular dimples on a unit slider: a cavitating JFO case."""
+    return Surface(arc=(0.0, 1.0), half_width=0.5,
+                   recesses=[Recess(Circle((0.3, 0.0), 0.15), 0.5), Recess(Circle((0.7, 0.0), 0.15), 1.0)])
 
 
 class _Switch:
