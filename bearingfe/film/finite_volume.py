@@ -586,11 +586,25 @@ def _stiffness_of(cells: _Cells, w: np.ndarray) -> sp.csr_matrix:
     entries a triangle into the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to
     4e-16 relative; the entries that sum to exactly zero, across the diagonals of a square grid, are left out).
     From a mesh's third stiffness on, ``A + A^T`` is summed on a plan of its pattern (:func:`_edge_sum`)."""
-    g, t = cells.grad, cells.t
-    a, b = [0, 1, 2], [1, 2, 0]
-    vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
-    A = _edge_sum(cells, vals)
+    A = _edge_sum(cells, _edge_terms(cells, w))
     return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+
+
+def _edge_terms(cells: _Cells, w: np.ndarray) -> np.ndarray:
+    """The terms ``w (grad lambda_k . grad lambda_k+1)`` of :func:`_stiffness_of` at the triangles' edges ``(k,
+    k + 1)``, edge-pair major (flat, ``3 n_triangles``), written block by block (:data:`BLOCK` triangles): the
+    same numbers as the products of the gathered gradient rows at once, without their five temporaries of all
+    edges (600 x 600 dimple cells, 7.2e5 triangles: 5.8 against 23-25 ms CPU, mean of 10 calls, load ~3)."""
+    g = cells.grad
+    vals = np.empty((3, w.size))
+    for block in blocks(w.size, BLOCK):
+        wb = w[block]
+        for k in range(3):
+            o = vals[k, block]
+            np.multiply(g[0, k, block], g[0, (k + 1) % 3, block], out=o)
+            o += g[1, k, block] * g[1, (k + 1) % 3, block]
+            o *= wb
+    return vals.ravel()
 
 
 #: Plans of :func:`_edge_sum` per cells (a mesh's): None once a first stiffness was summed by scipy, then

@@ -812,3 +812,16 @@ def test_band_set_with_the_callers_pattern_proposes_the_same_set():
         got = fv._band_set(K, Gc, G, b, cav, y, new, 1e-10, 1e-10, pattern=pattern, **kwargs)
         assert np.array_equal(got, want)
     assert not np.array_equal(want, new)   # the band's iteration moved the set: a case that tests something
+
+
+def test_edge_terms_in_blocks_are_the_products_at_once(monkeypatch):
+    """The stiffness's edge terms written block by block (:func:`_edge_terms`, several blocks and a partial last
+    one) equal, bit for bit, the products of the gathered gradient rows computed at once (the previous formula)."""
+    mesh = grid_mesh(_dimpled(), 1 / 12)
+    cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+    w = np.random.default_rng(5).uniform(0.5, 2.0, cells.t.shape[1])
+    g, a, b = cells.grad, [0, 1, 2], [1, 2, 0]
+    want = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+    monkeypatch.setattr(fv, "BLOCK", 37)   # read at call time
+    assert cells.t.shape[1] % 37 and cells.t.shape[1] > 3 * 37
+    assert np.array_equal(fv._edge_terms(cells, w), want)
