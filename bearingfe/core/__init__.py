@@ -13,6 +13,7 @@ module            what it does
 ``banded``        Banded Cholesky of sparse symmetric positive definite matrices, and the rule for when a band pays.
 ``ordering``      Fill-reducing orderings found from the sparsity pattern alone (nested dissection).
 ``blocks``        Blocks of consecutive indices: long vectorized passes cut into pieces that stay in cache.
+``pages``         Large arrays on ordinary memory pages while a solve runs (no wait for huge-page compaction).
 ``tempdirs``      Private temporary folders that a killed process does not leave behind for good.
 ``parallel``      Independent jobs of one run shared with forked processes when more than one core is free.
 ``lazy``          Packages whose public names load their modules on first use (PEP 562).

@@ -232,12 +232,13 @@ def grid_dissection(index: np.ndarray, leaf: int = LEAF_SIZE) -> np.ndarray:
         boxes = np.arange(lo.shape[1])
         axis = (extent[1] > extent[0]).astype(np.int64)
         mid = lo[axis, boxes] + extent[axis, boxes] // 2
-        line = index[axis[box], vertex]
-        cut = line == mid[box]
-        other = index[1 - axis[box], vertex]
-        sep = np.lexsort((other[cut], box[cut]))
-        separators.append(vertex[cut][sep])
-        right = line > mid[box]
+        axis_of = axis[box]   # per vertex: its box's cut axis and line, gathered once
+        line, mid_of = index[axis_of, vertex], mid[box]
+        cut = line == mid_of
+        on = vertex[cut]      # the separators' other line number: gathered for them alone
+        sep = np.lexsort((index[1 - axis_of[cut], on], box[cut]))
+        separators.append(on[sep])
+        right = line > mid_of
         keep = ~cut
         vertex, box = vertex[keep], 2 * box[keep] + right[keep]
         # the children's boxes: the left one ends at the cut line, the right one starts after it

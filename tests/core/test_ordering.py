@@ -136,3 +136,18 @@ def test_factorize_splu_sym_with_coordinates_gives_minimum_degrees_solution(monk
         x = linalg.factorize_splu_sym(A, xy)(rhs)
         assert x.shape == ref.shape
         assert np.abs(x - ref).max() <= 1e-12 * np.abs(reference).max()
+
+
+def test_grid_dissection_order_is_the_one_of_record():
+    """The exact order on a 7 x 5 grid of lines, whole (leaves of 2) and with a hole on its middle line (leaves of
+    3): the order the implementation gave before its separators' second line numbers were gathered for them
+    alone (recorded from it; a change of order changes the factorizations' round-off)."""
+    i, j = np.meshgrid(np.arange(7), np.arange(5), indexing="ij")
+    index = np.stack([i.ravel(), j.ravel()])
+    assert grid_dissection(index, leaf=2).tolist() == [
+        0, 1, 10, 11, 3, 4, 13, 14, 20, 21, 30, 31, 23, 24, 33, 34, 5, 6, 8, 9, 25, 26, 28, 29, 2, 7, 12, 22, 27, 32,
+        15, 16, 17, 18, 19]
+    keep = ~((index[0] == 3) & (index[1] >= 1) & (index[1] <= 2))
+    assert grid_dissection(index[:, keep], leaf=3).tolist() == [
+        0, 1, 10, 11, 3, 4, 13, 14, 18, 19, 28, 29, 21, 22, 31, 32, 5, 6, 8, 9, 23, 24, 26, 27, 2, 7, 12, 20, 25, 30,
+        15, 16, 17]

@@ -787,3 +787,41 @@ def test_stiffness_on_its_kept_plan_equals_scipys_sums():
         assert isinstance(fv._EDGE_PLANS[cells], fv._EdgePlan)
         if mesh.source == "grid":
             assert want.nnz < fv._EDGE_PLANS[cells].indices.size + cells.n   # the zero entries left out
+
+
+def test_band_set_with_the_callers_pattern_proposes_the_same_set():
+    """:func:`_band_set` given the caller's ``|K| + |Gc|`` (as :func:`_two_grid_set` passes the one it found its
+    fronts on) proposes the same set as when it builds that pattern itself (the same pattern: the same band, the
+    same arithmetic), with and without a global correction, on the 14 x 14 dimple grid's unknowns."""
+    mesh = grid_mesh(_dimpled(), 1 / 14)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+    unk = fv._unknowns(mesh, ops)
+    K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+    Gc = G
+    pattern = (abs(K) + abs(Gc)).tocsr()
+    cav = np.zeros(b.size, bool)
+    cav[b.size // 3: b.size // 2] = True
+    new = cav.copy()
+    new[b.size // 2: b.size // 2 + 5] = True
+    solve = fv._SetSolver(K, G, fv.factorize_splu).matrix(cav)
+    correct = fv.factorize_splu(solve)
+    y = correct(-b)
+    for kwargs in ({}, dict(solve=correct), dict(solve=correct, converge=True, passes=3)):
+        want = fv._band_set(K, Gc, G, b, cav, y, new, 1e-10, 1e-10, **kwargs)
+        got = fv._band_set(K, Gc, G, b, cav, y, new, 1e-10, 1e-10, pattern=pattern, **kwargs)
+        assert np.array_equal(got, want)
+    assert not np.array_equal(want, new)   # the band's iteration moved the set: a case that tests something
+
+
+def test_edge_terms_in_blocks_are_the_products_at_once(monkeypatch):
+    """The stiffness's edge terms written block by block (:func:`_edge_terms`, several blocks and a partial last
+    one) equal, bit for bit, the products of the gathered gradient rows computed at once (the previous formula)."""
+    mesh = grid_mesh(_dimpled(), 1 / 12)
+    cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+    w = np.random.default_rng(5).uniform(0.5, 2.0, cells.t.shape[1])
+    g, a, b = cells.grad, [0, 1, 2], [1, 2, 0]
+    want = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+    monkeypatch.setattr(fv, "BLOCK", 37)   # read at call time
+    assert cells.t.shape[1] % 37 and cells.t.shape[1] > 3 * 37
+    assert np.array_equal(fv._edge_terms(cells, w), want)

@@ -1,0 +1,86 @@
+"""NumPy's huge-page advice switched off while a large solve runs (:mod:`bearingfe.core.pages`)."""
+
+import numpy as np
+import pytest
+
+from bearingfe import Circle, Recess, Surface, grid_mesh
+from bearingfe.core import pages
+from bearingfe.film import finite_volume as fv
+from bearingfe.film.thickness import UniformFilm
+
+
+def _dimpled():
+    """Two circular dimples on a unit slider: a cavitating JFO case."""
+    return Surface(arc=(0.0, 1.0), half_width=0.5,
+                   recesses=[Recess(Circle((0.3, 0.0), 0.15), 0.5), Recess(Circle((0.7, 0.0), 0.15), 1.0)])
+
+
+class _Switch:
+    """A stand-in for NumPy's switch: records the settings it is given and returns the previous one."""
+
+    def __init__(self, setting: bool):
+        self.setting, self.calls = setting, []
+
+    def __call__(self, new: bool) -> bool:
+        self.calls.append(new)
+        previous, self.setting = self.setting, bool(new)
+        return previous
+
+
+@pytest.mark.parametrize("before", [True, False])
+def test_small_pages_switches_the_advice_off_and_restores_it(monkeypatch, before):
+    switch = _Switch(before)
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    with pages.small_pages():
+        assert switch.setting is False
+        with pages.small_pages():   # nested: still off, and off again after the inner exit
+            assert switch.setting is False
+        assert switch.setting is False
+    assert switch.setting is before
+
+
+def test_small_pages_restores_the_advice_after_an_error(monkeypatch):
+    switch = _Switch(True)
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    with pytest.raises(RuntimeError), pages.small_pages():
+        raise RuntimeError("inside")
+    assert switch.setting is True
+
+
+def test_small_pages_off_or_without_numpys_switch_changes_nothing(monkeypatch):
+    switch = _Switch(True)
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    monkeypatch.setattr(pages, "SMALL_PAGES", False)   # read at call time
+    with pages.small_pages():
+        assert switch.setting is True
+    assert switch.calls == []
+    monkeypatch.setattr(pages, "SMALL_PAGES", True)
+    monkeypatch.setattr(pages, "_advice_switch", lambda: None)
+    with pages.small_pages():
+        pass
+
+
+def test_this_numpy_has_the_switch():
+    """The switch is found on the NumPy this project runs on (else the context would silently do nothing)."""
+    assert callable(pages._advice_switch())
+
+
+def test_jfo_solve_runs_on_small_pages_with_the_same_answer(monkeypatch):
+    """:func:`solve_jfo` assembles, solves and postprocesses with the advice off and restores it; the pages an
+    array lies on change no value: pressure and theta equal bit for bit to a solve with the advice left on."""
+    mesh = grid_mesh(_dimpled(), 1 / 20)
+    want = fv.solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
+    switch = _Switch(True)
+    seen = []
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    assemble = fv._assemble
+
+    def spy(*args, **kwargs):
+        seen.append(switch.setting)
+        return assemble(*args, **kwargs)
+
+    monkeypatch.setattr(fv, "_assemble", spy)
+    got = fv.solve_jfo(grid_mesh(_dimpled(), 1 / 20), UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert seen and not any(seen)
+    assert switch.setting is True and switch.calls == [False, True, False, True]
+    assert np.array_equal(got.pressure, want.pressure) and np.array_equal(got.theta, want.theta)
