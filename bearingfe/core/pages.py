@@ -26,6 +26,8 @@ __all__ = ["SMALL_PAGES", "small_pages"]
 SMALL_PAGES = True
 
 _LOCK = threading.Lock()
+#: Open :func:`small_pages` contexts in the process (any thread) and the advice before the first of them opened.
+_OPEN = {"count": 0, "previous": True}
 
 
 def _advice_switch():
@@ -39,11 +41,13 @@ def _advice_switch():
 @contextlib.contextmanager
 def small_pages() -> Iterator[None]:
     """Context in which NumPy allocates its arrays without the transparent-huge-page advice (where
-    :data:`SMALL_PAGES` is set and NumPy has the switch); the previous setting is restored on exit.
+    :data:`SMALL_PAGES` is set and NumPy has the switch); the setting before the first open context is
+    restored when the last one closes.
 
     Arrays allocated inside keep their pages after the exit; it changes no value. The setting is NumPy's,
     for the whole process: a thread that allocates while another thread's context is open allocates without
-    the advice too (the same values, a different cost).
+    the advice too (the same values, a different cost). The contexts are counted across threads, so contexts
+    of two threads that open and close interleaved leave the advice as it was before the first.
     """
     switch = _advice_switch() if SMALL_PAGES else None
     if switch is None:
@@ -51,8 +55,13 @@ def small_pages() -> Iterator[None]:
         return
     with _LOCK:
         previous = bool(switch(False))
+        if _OPEN["count"] == 0:
+            _OPEN["previous"] = previous
+        _OPEN["count"] += 1
     try:
         yield
     finally:
         with _LOCK:
-            switch(previous)
+            _OPEN["count"] -= 1
+            if _OPEN["count"] == 0:
+                switch(_OPEN["previous"])

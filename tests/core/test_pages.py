@@ -84,3 +84,19 @@ def test_jfo_solve_runs_on_small_pages_with_the_same_answer(monkeypatch):
     assert seen and not any(seen)
     assert switch.setting is True and switch.calls == [False, True, False, True]
     assert np.array_equal(got.pressure, want.pressure) and np.array_equal(got.theta, want.theta)
+
+
+@pytest.mark.parametrize("before", [True, False])
+def test_interleaved_contexts_leave_the_advice_as_before_the_first(monkeypatch, before):
+    """Two contexts that close in the order they opened (as two threads' solves may: A opens, B opens, A closes,
+    B closes) keep the advice off until the last closes, then restore the setting before the first; a context
+    that restored its own previous setting would leave it off for good (B's previous is A's "off")."""
+    switch = _Switch(before)
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    a, b = pages.small_pages(), pages.small_pages()
+    a.__enter__()
+    b.__enter__()
+    a.__exit__(None, None, None)
+    assert switch.setting is False   # B still open
+    b.__exit__(None, None, None)
+    assert switch.setting is before and pages._OPEN["count"] == 0
