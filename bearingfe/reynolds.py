@@ -52,6 +52,7 @@ from typing import Callable, Mapping
 from .cavitation import CAVITATION, MODELS, ModelOptions, solve_model
 from .core.checks import ResolutionWarning, check_operating_point, note_resolution
 from .core.linalg import DEFAULT_SOLVER, Factorize
+from .core.pages import small_pages
 from .core.parameters import ELEMENTS, FORMULATIONS, Discretization, OperatingPoint, takes
 from .elastic import Compliance, compliance_on, solve_elastic
 from .film import (ERROR_TOLERANCE, SOURCES, CoercivityError, CondensedSystem, Film, Operators, ReynoldsResult,
@@ -118,9 +119,12 @@ def _rigid_finite_element(mesh, film, operating: OperatingPoint, discretization:
         pf = pocket_film(mesh, film, discretization, on_indefinite)
         result = solve_pocket_state(pf, pocket_names(mesh), operating.inlet_pressure, operating, cavitation, options)
         return note_resolution(result, mesh, film, stacklevel=4)
-    sup = superpose(mesh, film, formulation=discretization.formulation, element=discretization.element,
-                    solver=discretization.solver, on_indefinite=on_indefinite)
-    result = solve_model(sup, operating.weights, cavitation, options)
+    # the large arrays of the assembly, the model's solves and the result on small pages (bearingfe.core.pages:
+    # no wait for the kernel's compaction into huge pages)
+    with small_pages():
+        sup = superpose(mesh, film, formulation=discretization.formulation, element=discretization.element,
+                        solver=discretization.solver, on_indefinite=on_indefinite)
+        result = solve_model(sup, operating.weights, cavitation, options)
     return note_resolution(result, mesh, film, stacklevel=4)  # each path notes its film's resolution
 
 

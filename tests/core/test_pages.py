@@ -100,3 +100,31 @@ def test_interleaved_contexts_leave_the_advice_as_before_the_first(monkeypatch, 
     assert switch.setting is False   # B still open
     b.__exit__(None, None, None)
     assert switch.setting is before and pages._OPEN["count"] == 0
+
+
+@pytest.mark.parametrize("cavitation", ["none", "reynolds", "gumbel"])
+def test_finite_element_solve_runs_on_small_pages_with_the_same_answer(monkeypatch, cavitation):
+    """:func:`bearingfe.solve_reynolds` on the finite-element path assembles and solves its model with the advice
+    off and restores it; the pressure (and the rupture set) equal bit for bit to a solve with the advice left on
+    (the pages an array lies on change no value)."""
+    from bearingfe import CosineFilm, mesh_surface, reynolds, solve_reynolds
+
+    surface, film = Surface(arc=(0.0, 2.0), half_width=0.5), CosineFilm(0.6, 3.4)
+    mesh = mesh_surface(surface, 0.1)
+    want = solve_reynolds(mesh, film, cavitation=cavitation)
+    switch = _Switch(True)
+    seen = []
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    solve_model = reynolds.solve_model
+
+    def spy(*args, **kwargs):
+        seen.append(switch.setting)
+        return solve_model(*args, **kwargs)
+
+    monkeypatch.setattr(reynolds, "solve_model", spy)
+    got = solve_reynolds(mesh, film, cavitation=cavitation)
+    assert seen == [False]
+    assert switch.setting is True and switch.calls == [False, True]
+    assert np.array_equal(got.pressure, want.pressure)
+    if cavitation != "none":
+        assert got.cavitated is not None and np.array_equal(got.cavitated, want.cavitated)
