@@ -53,6 +53,7 @@ from ..cavitation import MODELS, ModelOptions, rates_for_load, solve_model
 from ..cavitation.swift_stieber import cached_problem, obstacle_problem
 from ..core.checks import check_elastic, check_operating_point, note_resolution
 from ..core.linalg import DEFAULT_SOLVER, dense_threads
+from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..film import Film, operators, source_weights, superpose
 from ..film.compiled import interpolation_maps
@@ -573,7 +574,8 @@ def solve_elastic(mesh: SupportMesh, film: Film, compliance: Compliance, *, wedg
         return compliance.matrix @ _sensitivity(res, interior, cavitation)
 
     w0 = np.zeros(basis.N) if initial is None else np.asarray(initial, float)
-    out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations)
+    with small_pages():  # each Newton step's film solve and Jacobian: large fresh arrays (bearingfe.core.pages)
+        out = newton(evaluate, jacobian, w0, tol=tol, max_iterations=max_iterations)
     result = dataclasses.replace(out.payload, deflection=out.deflection, elastic_iterations=out.iterations)
     result = _checked(result, out.deflection, compliance, mesh, film)
     return ElasticSolution(result=result, deflection=out.deflection, iterations=out.iterations,

@@ -128,3 +128,33 @@ def test_finite_element_solve_runs_on_small_pages_with_the_same_answer(monkeypat
     assert np.array_equal(got.pressure, want.pressure)
     if cavitation != "none":
         assert got.cavitated is not None and np.array_equal(got.cavitated, want.cavitated)
+
+
+def test_elastic_solve_runs_on_small_pages_with_the_same_answer(monkeypatch):
+    """:func:`bearingfe.elastic.solve_elastic` runs its Newton iteration (a film solve and a Jacobian a step) with
+    the advice off and restores it; pressure and deflection equal bit for bit to a solve with the advice left on.
+    The case: the kinds benchmark's film on two steel half-spaces at the pump's scale (its largest opening is
+    a fraction of the clearance, so the coupling matters), Swift-Stieber cavitation, a coarse grid."""
+    from bearingfe import CosineFilm, Material, Scale
+    from bearingfe.elastic import coupled, half_space_fft, solve_elastic
+
+    mesh, film = grid_mesh(Surface(arc=(-1.0, 1.0), half_width=0.5), 1 / 10), CosineFilm(0.6, 3.44)
+    steel = Material("steel", 210e9, poisson_ratio=0.3)
+    compliance = half_space_fft(mesh, Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08),
+                                (steel, steel))
+    want = solve_elastic(mesh, film, compliance, cavitation="reynolds")
+    switch = _Switch(True)
+    seen = []
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    newton = coupled.newton
+
+    def spy(*args, **kwargs):
+        seen.append(switch.setting)
+        return newton(*args, **kwargs)
+
+    monkeypatch.setattr(coupled, "newton", spy)
+    got = solve_elastic(mesh, film, compliance, cavitation="reynolds")
+    assert seen == [False] and want.max_deflection > 0
+    assert switch.setting is True and switch.calls == [False, True]
+    assert np.array_equal(got.result.pressure, want.result.pressure)
+    assert np.array_equal(got.deflection, want.deflection)
