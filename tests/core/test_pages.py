@@ -27,6 +27,21 @@ class _Switch:
         return previous
 
 
+def _switch_and_spy(monkeypatch, module, name: str) -> tuple[_Switch, list]:
+    """A stand-in switch (the advice on) installed for :mod:`bearingfe.core.pages`, and ``module.name`` wrapped to
+    record the switch's setting at each call: the list it records into."""
+    switch, seen = _Switch(True), []
+    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
+    original = getattr(module, name)
+
+    def spy(*args, **kwargs):
+        seen.append(switch.setting)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, spy)
+    return switch, seen
+
+
 @pytest.mark.parametrize("before", [True, False])
 def test_small_pages_switches_the_advice_off_and_restores_it(monkeypatch, before):
     switch = _Switch(before)
@@ -70,16 +85,7 @@ def test_jfo_solve_runs_on_small_pages_with_the_same_answer(monkeypatch):
     array lies on change no value: pressure and theta equal bit for bit to a solve with the advice left on."""
     mesh = grid_mesh(_dimpled(), 1 / 20)
     want = fv.solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=-0.05)
-    switch = _Switch(True)
-    seen = []
-    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
-    assemble = fv._assemble
-
-    def spy(*args, **kwargs):
-        seen.append(switch.setting)
-        return assemble(*args, **kwargs)
-
-    monkeypatch.setattr(fv, "_assemble", spy)
+    switch, seen = _switch_and_spy(monkeypatch, fv, "_assemble")
     got = fv.solve_jfo(grid_mesh(_dimpled(), 1 / 20), UniformFilm(1.0), cavitation_pressure=-0.05)
     assert seen and not any(seen)
     assert switch.setting is True and switch.calls == [False, True, False, True]
@@ -112,16 +118,7 @@ def test_finite_element_solve_runs_on_small_pages_with_the_same_answer(monkeypat
     surface, film = Surface(arc=(0.0, 2.0), half_width=0.5), CosineFilm(0.6, 3.4)
     mesh = mesh_surface(surface, 0.1)
     want = solve_reynolds(mesh, film, cavitation=cavitation)
-    switch = _Switch(True)
-    seen = []
-    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
-    solve_model = reynolds.solve_model
-
-    def spy(*args, **kwargs):
-        seen.append(switch.setting)
-        return solve_model(*args, **kwargs)
-
-    monkeypatch.setattr(reynolds, "solve_model", spy)
+    switch, seen = _switch_and_spy(monkeypatch, reynolds, "solve_model")
     got = solve_reynolds(mesh, film, cavitation=cavitation)
     assert seen == [False]
     assert switch.setting is True and switch.calls == [False, True]
@@ -143,16 +140,7 @@ def test_elastic_solve_runs_on_small_pages_with_the_same_answer(monkeypatch):
     compliance = half_space_fft(mesh, Scale(radius=0.05, clearance=20e-6, viscosity=0.03, speed=157.08),
                                 (steel, steel))
     want = solve_elastic(mesh, film, compliance, cavitation="reynolds")
-    switch = _Switch(True)
-    seen = []
-    monkeypatch.setattr(pages, "_advice_switch", lambda: switch)
-    newton = coupled.newton
-
-    def spy(*args, **kwargs):
-        seen.append(switch.setting)
-        return newton(*args, **kwargs)
-
-    monkeypatch.setattr(coupled, "newton", spy)
+    switch, seen = _switch_and_spy(monkeypatch, coupled, "newton")
     got = solve_elastic(mesh, film, compliance, cavitation="reynolds")
     assert seen == [False] and want.max_deflection > 0
     assert switch.setting is True and switch.calls == [False, True]
