@@ -362,7 +362,3 @@ class _Capped:
     def __exit__(self, *exc):
         _open_caps().pop()
         return self.limiter.__exit__(*exc)
-
-    def restore_original_limits(self) -> None:
-        """Restore the thread counts (threadpoolctl's call, for a limit used without ``with``)."""
-        self.limiter.restore_original_limits()
