@@ -2908,21 +2908,20 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
                          "use couette='streamline' (the default for it) or 'median'")
     factorize = factorize_splu if solver in ("splu", "splu_sym") else get_linear_solver(solver)
     p_c = float(cavitation_pressure)
-    # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine; the large arrays on small pages
-    # (bearingfe.core.pages: no wait for the kernel's compaction into huge pages)
-    with dense_threads(1), small_pages():
-        t1, ops, system, unk, sol, upwinded, nested = _complementarity(
-            mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation,
-            factorize, tol, max_iterations, warm_start, start)
-    t2 = time.perf_counter()
-    free = np.zeros(ops.n_dofs, bool)
-    free[ops.interior] = True
-    p_fixed = _pocket_values(mesh, ops, inlet_pressure)
-    p = np.where(free, unk.S @ sol.p, p_fixed)
-    theta = np.where(free, unk.S @ sol.theta, 1.0)
-    cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
-    cost = {"assembly": t1 - start, "cavitation": t2 - t1}
+    # the large arrays on small pages (bearingfe.core.pages: no wait for the kernel's compaction into huge pages)
     with small_pages():
+        with dense_threads(1):   # SuperLU's solves call BLAS: threaded, its threads wait on a busy machine
+            t1, ops, system, unk, sol, upwinded, nested = _complementarity(
+                mesh, film, float(wedge), sq, _pressures(inlet_pressure), p_c, dt, previous, couette, cavitation,
+                factorize, tol, max_iterations, warm_start, start)
+        t2 = time.perf_counter()
+        free = np.zeros(ops.n_dofs, bool)
+        free[ops.interior] = True
+        p_fixed = _pocket_values(mesh, ops, inlet_pressure)
+        p = np.where(free, unk.S @ sol.p, p_fixed)
+        theta = np.where(free, unk.S @ sol.theta, 1.0)
+        cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+        cost = {"assembly": t1 - start, "cavitation": t2 - t1}
         result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p,
                          theta, cavitated, sol, cost, start, cavitation)
     # counts, not times: added after the postprocess time (the time left over from the timed entries)
