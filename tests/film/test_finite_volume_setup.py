@@ -825,3 +825,28 @@ def test_edge_terms_in_blocks_are_the_products_at_once(monkeypatch):
     monkeypatch.setattr(fv, "BLOCK", 37)   # read at call time
     assert cells.t.shape[1] % 37 and cells.t.shape[1] > 3 * 37
     assert np.array_equal(fv._edge_terms(cells, w), want)
+
+
+def test_load_direction_on_grid_columns_is_the_pointwise_cos_and_sin(monkeypatch):
+    """:func:`_phi_trig` on a whole grid (each column's cos and sin once, repeated along z) gives the pointwise
+    ``np.cos`` and ``np.sin`` of phi at every quadrature point bit for bit, on square and uneven lines; a grid
+    with a pocket (no lines kept) takes the pointwise path; and a JFO solve's load and integral are the same
+    numbers as with the pointwise functions (the previous path)."""
+    from bearingfe import Rectangle
+    from bearingfe.geometry.meshing import tensor_lines
+
+    for size, size_z in ((1 / 23, None), (1 / 17, 1 / 9), (0.5, None)):
+        mesh = grid_mesh(_dimpled(), size, size_z=size_z)
+        assert tensor_lines(mesh) is not None
+        x0 = fv.operators(mesh, "P1").x[0]
+        c, s = fv._phi_trig(mesh, x0)
+        assert np.array_equal(c, np.cos(x0)) and np.array_equal(s, np.sin(x0))
+    pocketed = grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))]), 1 / 10)
+    x0 = fv.operators(pocketed, "P1").x[0]
+    c, s = fv._phi_trig(pocketed, x0)
+    assert np.array_equal(c, np.cos(x0)) and np.array_equal(s, np.sin(x0))
+    fast = solve_jfo(grid_mesh(_dimpled(), 1 / 40), UniformFilm(1.0), cavitation_pressure=-0.05)
+    monkeypatch.setattr(fv, "_phi_trig", lambda mesh, x0: (np.cos(x0), np.sin(x0)))
+    plain = solve_jfo(grid_mesh(_dimpled(), 1 / 40), UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert fast.cavitated.any()
+    assert np.array_equal(fast.force, plain.force) and fast.integral == plain.integral
