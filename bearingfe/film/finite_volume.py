@@ -1676,6 +1676,17 @@ def _factorize_banded(perm: np.ndarray, kd: int) -> "_BandedLU":
     return _BandedLU(perm, kd)
 
 
+#: LAPACK's banded LU (``dgbtrf``) works by blocks only where the lower half-bandwidth reaches its block size (32
+#: in OpenBLAS's and the reference ``ilaenv``); narrower, its unblocked loop is slower per entry. A half-bandwidth
+#: from :data:`BAND_PAD_FROM` up to it is therefore stored and factored as this one (:class:`_BandedLU`: zero
+#: extra diagonals, the same pivots, rounding only). ``dgbtrf`` alone (CPU, best of 3 x 20, 4,846 unknowns, the
+#: front band of the 5 x 5 dimples at 100 x 100 cells): half-bandwidth 24 1.39 ms, 28 1.71, 31 2.29, 32 1.59,
+#: 33 1.62, 34 1.80 ms.
+BAND_BLOCK = 32
+#: Smallest half-bandwidth :class:`_BandedLU` widens to :data:`BAND_BLOCK` (read when it is made).
+BAND_PAD_FROM = 28
+
+
 class _BandedLU:
     """:func:`_factorize_banded`'s factorization: called with a sparse matrix, or (:meth:`from_band`) with the
     values of a pattern whose places in LAPACK's band storage were found once (:meth:`places`), which skips the
@@ -1683,6 +1694,8 @@ class _BandedLU:
 
     def __init__(self, perm: np.ndarray, kd: int):
         self.perm, self.kd = perm, kd
+        # the band as stored and factored: kd, or LAPACK's block size where kd lies just below it (BAND_PAD_FROM)
+        self.width = BAND_BLOCK if BAND_PAD_FROM <= kd < BAND_BLOCK else kd
         self.inverse = np.argsort(perm)
         self._spare: list[np.ndarray] = []   # band storage of factorizations no longer in use (_storage)
 
@@ -1694,12 +1707,12 @@ class _BandedLU:
             ab = self._spare.pop()
             ab.fill(0.0)
             return ab
-        return np.zeros((3 * self.kd + 1) * self.perm.size)
+        return np.zeros((3 * self.width + 1) * self.perm.size)
 
     def places(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
         """Flat (column-major) places in the band storage of the entries ``(rows, cols)`` (unknown numbers)."""
         i, j = self.inverse[rows], self.inverse[cols]
-        return (2 * self.kd + i - j) + (3 * self.kd + 1) * j.astype(np.int64)
+        return (2 * self.width + i - j) + (3 * self.width + 1) * j.astype(np.int64)
 
     def __call__(self, M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         A = sp.coo_matrix(M)
@@ -1711,7 +1724,7 @@ class _BandedLU:
         among them are no entries); ``matrix()`` builds it as a sparse matrix for the singular fallback."""
         from scipy.linalg.lapack import dgbtrf, dgbtrs
 
-        kd, perm, inverse = self.kd, self.perm, self.inverse
+        kd, perm, inverse = self.width, self.perm, self.inverse
         n = perm.size
         flat = self._storage()
         flat[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill

@@ -902,3 +902,34 @@ def test_grid_line_band_order_gives_the_reverse_cuthill_mckee_band_and_answers(m
     periodic = grid_mesh(Surface(arc=(0.0, 2 * np.pi), half_width=0.5, periodic=True), 0.2)
     seamed = fv._unknowns(periodic, fv.operators(periodic, "P1"))
     assert not seamed.on_grid and fv._grid_band_order(seamed) is None
+
+
+def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatch):
+    """A banded LU of half-bandwidth from ``BAND_PAD_FROM`` up to ``BAND_BLOCK`` (32) is stored and factored as
+    one of ``BAND_BLOCK`` (LAPACK's blocked path; zero extra diagonals, the same pivots): its solution equals the
+    unwidened factorization's and SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest on random
+    nonsymmetric band matrices (well conditioned, shuffled unknowns); other widths are stored as they are."""
+    import scipy.sparse as sp
+
+    from bearingfe.core.linalg import factorize_splu
+
+    rng = np.random.default_rng(5)
+    n = 700
+    for kd in (27, 28, 31, 32, 40):
+        offsets = np.arange(-kd, kd + 1)
+        M = sp.diags([rng.standard_normal(n - abs(k)) for k in offsets], offsets, format="csc")
+        M = (M + 3.0 * kd * sp.identity(n)).tocsc()
+        perm = rng.permutation(n)   # the band order of a shuffled numbering
+        inverse = np.argsort(perm)
+        A = M[inverse][:, inverse].tocsc()   # unknown perm[k] at band position k
+        rhs = rng.standard_normal(n)
+        banded = fv._factorize_banded(perm, kd)
+        assert banded.kd == kd and banded.width == (32 if 28 <= kd < 32 else kd)
+        got = banded(A)(rhs)
+        want = factorize_splu(A)(rhs)
+        assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+        monkeypatch.setattr(fv, "BAND_PAD_FROM", 10**9)
+        plain = fv._factorize_banded(perm, kd)
+        assert plain.width == kd
+        assert np.abs(plain(A)(rhs) - got).max() <= 1e-12 * np.abs(want).max()
+        monkeypatch.setattr(fv, "BAND_PAD_FROM", 28)
