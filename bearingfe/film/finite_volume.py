@@ -1592,11 +1592,17 @@ def _set_band_max() -> int:
 
 def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarray, int] | None:
     """The reverse Cuthill-McKee order of the unknowns for the pattern of ``|K| + |G|`` and its
-    half-bandwidth, kept on ``unk`` per pattern; None if that exceeds :func:`_set_band_max`, or at once for
+    half-bandwidth, kept on ``unk`` per pattern (on a grid without a seam its lines' order,
+    :func:`_grid_band_order`, where its band fits); None if that exceeds :func:`_set_band_max`, or at once for
     more unknowns than the ``"active_set_lu"`` limits try (a square grid's band is then wider: no pattern or
     order built on a fresh larger mesh, only a strip much longer than wide would have fitted)."""
     if not band_worth_trying(K.shape[0], "active_set_lu"):
         return None
+    grid = _grid_band_order(unk)
+    if grid is not None:   # the grid's line order: no union pattern, no graph search (else as below)
+        kd = max(half_bandwidth(K, grid), half_bandwidth(G, grid))   # |i - j|: CSR or CSC alike
+        if kd <= _set_band_max():
+            return grid, kd
     kept = unk._order.get("set_band")
     given = ((K.format, K.indptr, K.indices, G.format, G.indptr, G.indices)
              if K.format in ("csr", "csc") and G.format in ("csr", "csc") else None)
@@ -1612,6 +1618,33 @@ def _set_band(unk: FVUnknowns, K: sp.spmatrix, G: sp.spmatrix) -> tuple[np.ndarr
     unk._order["set_band"] = kept[:3] + (None if given is None else
                                          tuple(a if isinstance(a, str) else a.copy() for a in given),)
     return kept[2]
+
+
+#: Whether the banded LU of the active-set matrices of a grid's unknowns (``FVUnknowns.on_grid``: a ``grid_mesh``
+#: without a seam) takes its lines' order (:func:`_grid_band_order`) instead of the reverse Cuthill-McKee order of
+#: the union pattern of ``|K| + |G|`` (:func:`_set_band`): the same half-bandwidth on the square grids of
+#: docs/jfo_dimples.md (49 at 50 x 50 cells, 29 at 30 x 30; narrower on uneven cells) without the union pattern and
+#: the graph search: :func:`_set_band` 0.16-0.18 against 0.60-0.66 ms, the factorizations the same 5.15 ms, the
+#: cold solve at 50 x 50 cells 0.25-0.65 ms less (CPU, 40 interleaved fresh solves, load 4 on 2 cores). The factors
+#: differ in rounding only. Left out for the full-film guess's banded Cholesky (:func:`_full_film_banded`): its
+#: plan in this order saved 0.2 ms but the factorization took 0.95 against 0.80 ms.
+GRID_BAND_ORDER = True
+
+
+def _grid_band_order(unk: FVUnknowns) -> np.ndarray | None:
+    """The unknowns of a grid without a seam (``unk.on_grid``) line by line across the axis with more lines, each
+    line's from its largest coordinate down (kept on ``unk``): a grid_mesh's diagonals join ``(ix, iz)`` to
+    ``(ix + 1, iz + 1)``, so in this order the half-bandwidth is one line's unknowns, as reverse Cuthill-McKee
+    finds on a square grid; None elsewhere or without :data:`GRID_BAND_ORDER` (read at each call)."""
+    if not (GRID_BAND_ORDER and unk.on_grid) or unk.coordinates is None:
+        return None
+    order = unk._order.get("grid_band")
+    if order is None:
+        phi, z = unk.coordinates
+        inner, outer = (z, phi) if np.unique(z).size <= np.unique(phi).size else (phi, z)
+        order = np.lexsort((-inner, outer)).astype(np.int64)
+        unk._order["grid_band"] = order
+    return order
 
 
 def _union_pattern(K: sp.spmatrix, G: sp.spmatrix) -> sp.csr_matrix:
@@ -1643,6 +1676,17 @@ def _factorize_banded(perm: np.ndarray, kd: int) -> "_BandedLU":
     return _BandedLU(perm, kd)
 
 
+#: LAPACK's banded LU (``dgbtrf``) works by blocks only where the lower half-bandwidth reaches its block size (32
+#: in OpenBLAS's and the reference ``ilaenv``); narrower, its unblocked loop is slower per entry. A half-bandwidth
+#: from :data:`BAND_PAD_FROM` up to it is therefore stored and factored as this one (:class:`_BandedLU`: zero
+#: extra diagonals, the same pivots, rounding only). ``dgbtrf`` alone (CPU, best of 3 x 20, 4,846 unknowns, the
+#: front band of the 5 x 5 dimples at 100 x 100 cells): half-bandwidth 24 1.39 ms, 28 1.71, 31 2.29, 32 1.59,
+#: 33 1.62, 34 1.80 ms.
+BAND_BLOCK = 32
+#: Smallest half-bandwidth :class:`_BandedLU` widens to :data:`BAND_BLOCK` (read when it is made).
+BAND_PAD_FROM = 28
+
+
 class _BandedLU:
     """:func:`_factorize_banded`'s factorization: called with a sparse matrix, or (:meth:`from_band`) with the
     values of a pattern whose places in LAPACK's band storage were found once (:meth:`places`), which skips the
@@ -1650,6 +1694,8 @@ class _BandedLU:
 
     def __init__(self, perm: np.ndarray, kd: int):
         self.perm, self.kd = perm, kd
+        # the band as stored and factored: kd, or LAPACK's block size where kd lies just below it (BAND_PAD_FROM)
+        self.width = BAND_BLOCK if BAND_PAD_FROM <= kd < BAND_BLOCK else kd
         self.inverse = np.argsort(perm)
         self._spare: list[np.ndarray] = []   # band storage of factorizations no longer in use (_storage)
 
@@ -1661,12 +1707,12 @@ class _BandedLU:
             ab = self._spare.pop()
             ab.fill(0.0)
             return ab
-        return np.zeros((3 * self.kd + 1) * self.perm.size)
+        return np.zeros((3 * self.width + 1) * self.perm.size)
 
     def places(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
         """Flat (column-major) places in the band storage of the entries ``(rows, cols)`` (unknown numbers)."""
         i, j = self.inverse[rows], self.inverse[cols]
-        return (2 * self.kd + i - j) + (3 * self.kd + 1) * j.astype(np.int64)
+        return (2 * self.width + i - j) + (3 * self.width + 1) * j.astype(np.int64)
 
     def __call__(self, M: sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         A = sp.coo_matrix(M)
@@ -1678,7 +1724,7 @@ class _BandedLU:
         among them are no entries); ``matrix()`` builds it as a sparse matrix for the singular fallback."""
         from scipy.linalg.lapack import dgbtrf, dgbtrs
 
-        kd, perm, inverse = self.kd, self.perm, self.inverse
+        kd, perm, inverse = self.width, self.perm, self.inverse
         n = perm.size
         flat = self._storage()
         flat[places] = values   # LAPACK band storage with kd extra rows for the pivoting's fill
@@ -2933,6 +2979,25 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
     return result if dt is not None else note_resolution(result, mesh, film, stacklevel=3)
 
 
+def _phi_trig(mesh: SupportMesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``cos`` and ``sin`` of ``phi`` at the quadrature points ``x0`` ``(n_triangles, n_points)`` [rad] of
+    ``mesh`` (the load's direction). On a whole tensor grid (:func:`~bearingfe.geometry.meshing.tensor_lines`:
+    triangle ``c`` and ``c + (nx - 1)(nz - 1)`` split cell ``c = iz + (nz - 1) ix``), where every triangle of a
+    grid column has the same ``phi`` at its points as the column's first of its half (checked: the same
+    numbers), each column's are taken once and repeated along ``z``: the same values without a ``cos`` and a
+    ``sin`` of every point (CPU, mean of 50 calls: 0.07 against 0.24 ms at 50 x 50 cells, 0.33 against 1.02 ms
+    at 100 x 100)."""
+    lines = tensor_lines(mesh)
+    if lines is not None and x0.ndim == 2:
+        nx, nz = lines[0].size - 1, lines[1].size - 1
+        if x0.shape[0] == 2 * nx * nz and nz > 1:
+            cells = x0.reshape(2, nx, nz, x0.shape[1])
+            first = np.ascontiguousarray(cells[:, :, :1, :])
+            if bool(np.all(cells == first)):
+                return tuple(np.repeat(f(first), nz, axis=2).reshape(x0.shape) for f in (np.cos, np.sin))
+    return np.cos(x0), np.sin(x0)
+
+
 def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p, theta, cavitated, sol,
             cost, start, model) -> ReynoldsResult:
     basis = ops.basis
@@ -2959,8 +3024,9 @@ def _result(mesh, ops, film, system, wedge, sq, inlet_pressure, p_c, sliding, p,
         friction = float(np.sum((theta_q * sliding * speed2 * system.inv_h_q
                                  + 0.5 * system.h_q * along(u, dp)) * dx))
     pm = _pocket_loads(mesh, ops, inlet_pressure)
-    force = np.array([_point_sum(lambda b: pq[b] * np.cos(x[0, b]) * dx[b], buffer),
-                      _point_sum(lambda b: pq[b] * np.sin(x[0, b]) * dx[b], buffer)])
+    cos_x, sin_x = _phi_trig(mesh, x[0])
+    force = np.array([_point_sum(lambda b: pq[b] * cos_x[b] * dx[b], buffer),
+                      _point_sum(lambda b: pq[b] * sin_x[b] * dx[b], buffer)])
     force = force + pm[1:]
     integral = float(_point_sum(lambda b: pq[b] * dx[b], buffer) + pm[0])
     if isinstance(inlet_pressure, tuple):

@@ -487,7 +487,8 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     pivoting: the solution of a set's system equals SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest (both
     backward stable, a well-conditioned matrix of 14 x 14 cells: round-off); the order kept on the unknowns
     is the one found afresh; an exactly singular matrix falls back to SuperLU (which then refuses it as
-    singular, as before); a wider band is left to SuperLU (None)."""
+    singular, as before); a wider band is left to SuperLU (None). The reverse Cuthill-McKee order (a grid's own
+    line order switched off: its test below)."""
     import pytest
     import scipy.sparse as sp
     from scipy.sparse.csgraph import reverse_cuthill_mckee
@@ -495,6 +496,7 @@ def test_small_active_set_matrices_by_banded_lu(monkeypatch):
     from bearingfe.core.banded import BAND_LIMITS, BandLimits
     from bearingfe.core.linalg import factorize_splu
 
+    monkeypatch.setattr(fv, "GRID_BAND_ORDER", False)
     mesh = grid_mesh(_dimpled(), 1 / 14)
     ops = fv.operators(mesh, "P1")
     system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
@@ -825,3 +827,109 @@ def test_edge_terms_in_blocks_are_the_products_at_once(monkeypatch):
     monkeypatch.setattr(fv, "BLOCK", 37)   # read at call time
     assert cells.t.shape[1] % 37 and cells.t.shape[1] > 3 * 37
     assert np.array_equal(fv._edge_terms(cells, w), want)
+
+
+def test_load_direction_on_grid_columns_is_the_pointwise_cos_and_sin(monkeypatch):
+    """:func:`_phi_trig` on a whole grid (each column's cos and sin once, repeated along z) gives the pointwise
+    ``np.cos`` and ``np.sin`` of phi at every quadrature point bit for bit, on square and uneven lines; a grid
+    with a pocket (no lines kept) takes the pointwise path; and a JFO solve's load and integral are the same
+    numbers as with the pointwise functions (the previous path)."""
+    from bearingfe import Rectangle
+    from bearingfe.geometry.meshing import tensor_lines
+
+    for size, size_z in ((1 / 23, None), (1 / 17, 1 / 9), (0.5, None)):
+        mesh = grid_mesh(_dimpled(), size, size_z=size_z)
+        assert tensor_lines(mesh) is not None
+        x0 = fv.operators(mesh, "P1").x[0]
+        c, s = fv._phi_trig(mesh, x0)
+        assert np.array_equal(c, np.cos(x0)) and np.array_equal(s, np.sin(x0))
+    pocketed = grid_mesh(Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.5, 0.0), (0.1, 0.1))]), 1 / 10)
+    x0 = fv.operators(pocketed, "P1").x[0]
+    c, s = fv._phi_trig(pocketed, x0)
+    assert np.array_equal(c, np.cos(x0)) and np.array_equal(s, np.sin(x0))
+    fast = solve_jfo(grid_mesh(_dimpled(), 1 / 40), UniformFilm(1.0), cavitation_pressure=-0.05)
+    monkeypatch.setattr(fv, "_phi_trig", lambda mesh, x0: (np.cos(x0), np.sin(x0)))
+    plain = solve_jfo(grid_mesh(_dimpled(), 1 / 40), UniformFilm(1.0), cavitation_pressure=-0.05)
+    assert fast.cavitated.any()
+    assert np.array_equal(fast.force, plain.force) and fast.integral == plain.integral
+
+
+def test_grid_line_band_order_gives_the_reverse_cuthill_mckee_band_and_answers(monkeypatch):
+    """On a grid without a seam the active set's banded LU takes the grid's line order (:func:`_grid_band_order`,
+    line by line across the axis with more lines, each line from its largest coordinate down): a permutation of
+    the unknowns whose half-bandwidth of ``|K| + |G|`` equals reverse Cuthill-McKee's on square cells (narrower on
+    uneven ones: 8 against 9 at 17 x 9 cells), a set matrix's solution within 1e-12 of the largest of that in
+    reverse Cuthill-McKee order, and the same cold JFO solution (cavity, factorizations) as the reverse
+    Cuthill-McKee order (the previous path) with pressures and fill within 1e-11 (both banded LU with partial
+    pivoting, backward stable: orders that differ in rounding only, well-conditioned grids of 9 to 30 cells); a
+    periodic grid (a seam: not on_grid) keeps reverse Cuthill-McKee."""
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from bearingfe.core.banded import half_bandwidth
+
+    for size, size_z in ((1 / 14, None), (1 / 30, None), (1 / 17, 1 / 9), (1 / 9, 1 / 17)):
+        mesh = grid_mesh(_dimpled(), size, size_z=size_z)
+        ops = fv.operators(mesh, "P1")
+        system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "grid")
+        unk = fv._unknowns(mesh, ops)
+        K, G, b = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.05)
+        order = fv._grid_band_order(unk)
+        assert unk.on_grid and np.array_equal(np.sort(order), np.arange(b.size))
+        pattern = (abs(K) + abs(G)).tocsr()
+        pattern = (pattern + pattern.T).tocsr()
+        rcm = reverse_cuthill_mckee(pattern, symmetric_mode=True)
+        assert half_bandwidth(pattern, order) <= half_bandwidth(pattern, rcm)
+        if size_z is None:   # square cells: the same band
+            assert half_bandwidth(pattern, order) == half_bandwidth(pattern, rcm)
+        perm, kd = fv._set_band(unk, K.tocsc(), G.tocsc())
+        assert perm is order and kd == half_bandwidth(pattern, order) and "set_band" not in unk._order
+        cav = np.zeros(b.size, bool)
+        cav[::3] = True
+        M = fv._SetSolver(K, G, fv.factorize_splu, unk).matrix(cav)
+        rhs = np.random.default_rng(2).standard_normal(b.size)
+        lines = fv._factorize_banded(perm, kd)(M)(rhs)
+        monkeypatch.setattr(fv, "GRID_BAND_ORDER", False)
+        graph = fv._factorize_banded(*fv._set_band(unk, K.tocsc(), G.tocsc()))(M)(rhs)
+        assert not np.array_equal(unk._order["set_band"][2][0], order)
+        assert np.abs(lines - graph).max() <= 1e-12 * np.abs(graph).max()
+        plain = solve_jfo(grid_mesh(_dimpled(), size, size_z=size_z), UniformFilm(1.0), cavitation_pressure=-0.05)
+        monkeypatch.setattr(fv, "GRID_BAND_ORDER", True)
+        ours = solve_jfo(grid_mesh(_dimpled(), size, size_z=size_z), UniformFilm(1.0), cavitation_pressure=-0.05)
+        assert ours.cavitated.any() and np.array_equal(ours.cavitated, plain.cavitated)
+        assert ours.cost["factorizations"] == plain.cost["factorizations"]
+        assert np.abs(ours.pressure - plain.pressure).max() <= 1e-11 * np.abs(plain.pressure).max()
+        assert np.abs(ours.theta - plain.theta).max() <= 1e-11
+    periodic = grid_mesh(Surface(arc=(0.0, 2 * np.pi), half_width=0.5, periodic=True), 0.2)
+    seamed = fv._unknowns(periodic, fv.operators(periodic, "P1"))
+    assert not seamed.on_grid and fv._grid_band_order(seamed) is None
+
+
+def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatch):
+    """A banded LU of half-bandwidth from ``BAND_PAD_FROM`` up to ``BAND_BLOCK`` (32) is stored and factored as
+    one of ``BAND_BLOCK`` (LAPACK's blocked path; zero extra diagonals, the same pivots): its solution equals the
+    unwidened factorization's and SuperLU's (COLAMD, partial pivoting) to 1e-12 of the largest on random
+    nonsymmetric band matrices (well conditioned, shuffled unknowns); other widths are stored as they are."""
+    import scipy.sparse as sp
+
+    from bearingfe.core.linalg import factorize_splu
+
+    rng = np.random.default_rng(5)
+    n = 700
+    for kd in (27, 28, 31, 32, 40):
+        offsets = np.arange(-kd, kd + 1)
+        M = sp.diags([rng.standard_normal(n - abs(k)) for k in offsets], offsets, format="csc")
+        M = (M + 3.0 * kd * sp.identity(n)).tocsc()
+        perm = rng.permutation(n)   # the band order of a shuffled numbering
+        inverse = np.argsort(perm)
+        A = M[inverse][:, inverse].tocsc()   # unknown perm[k] at band position k
+        rhs = rng.standard_normal(n)
+        banded = fv._factorize_banded(perm, kd)
+        assert banded.kd == kd and banded.width == (32 if 28 <= kd < 32 else kd)
+        got = banded(A)(rhs)
+        want = factorize_splu(A)(rhs)
+        assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+        monkeypatch.setattr(fv, "BAND_PAD_FROM", 10**9)
+        plain = fv._factorize_banded(perm, kd)
+        assert plain.width == kd
+        assert np.abs(plain(A)(rhs) - got).max() <= 1e-12 * np.abs(want).max()
+        monkeypatch.setattr(fv, "BAND_PAD_FROM", 28)
