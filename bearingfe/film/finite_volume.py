@@ -106,7 +106,7 @@ from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
 from ..geometry.runner import is_along_phi, velocity_at
 from ..geometry.surface import Circle
-from .mesh_operators import Operators, boundary_facet_triangles, operators, pocket_moments
+from .mesh_operators import Operators, boundary_facets, operators, pocket_moments
 from .result import ReynoldsResult, runner_of
 
 __all__ = ["JFOError", "solve_jfo", "FVSystem", "FVUnknowns", "active_set", "MAX_ITERATIONS", "TOLERANCE", "COUETTE_FLUXES", "LIMITER_SWEEPS", "ALIGNED_SOURCES",
@@ -2398,14 +2398,8 @@ def _facet_frame(mesh: SupportMesh, facets: np.ndarray) -> _FacetFrame:
 def _build_facet_frame(mesh: SupportMesh, facets: np.ndarray) -> _FacetFrame:
     """:func:`_facet_frame` built afresh."""
     m = mesh.mesh
-    a, b = m.facets[:, facets]
-    elem = boundary_facet_triangles(m, facets)
+    a, b, elem, length, n = boundary_facets(m, facets)
     pa, pb = m.p[:, a], m.p[:, b]
-    tvec = pb - pa
-    length = np.linalg.norm(tvec, axis=0)
-    n = np.array([tvec[1], -tvec[0]]) / length
-    centre = m.p[:, m.t[:, elem]].mean(axis=1)
-    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
     quarters = np.concatenate([0.75 * pa + 0.25 * pb, 0.25 * pa + 0.75 * pb], axis=1)   # near a, near b
     frame = _FacetFrame(a=a, b=b, elem=elem, length=length, normal=n, quarters=quarters,
                         velocity=velocity_at(mesh.runner, quarters))
