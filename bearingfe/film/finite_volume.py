@@ -2468,7 +2468,8 @@ def _facet_flux(mesh: SupportMesh, film: Film, wedge: float, grad_p: np.ndarray,
     m = mesh.mesh
     named = facets if isinstance(facets, dict) else {None: facets}
     sizes = [np.size(f) for f in named.values()]
-    results = {k: np.zeros(m.nvertices) for k in named}
+    n_nodes = m.nvertices   # (scikit-fem finds it at each call: the largest node number of t)
+    results = {k: np.zeros(n_nodes) for k in named}
     every = np.concatenate([np.asarray(f, np.int64) for f in named.values()]) if named else np.zeros(0, np.int64)
     if every.size:
         fr = _facet_frame(mesh, every)

@@ -364,12 +364,13 @@ def boundary_facet_triangles(m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
     facets = np.asarray(facets)
     if hasattr(m, "_f2t") or facets.size == 0:   # scikit-fem's cache of the map
         return m.f2t[0, facets]
-    n = np.int64(m.nvertices)
+    n = np.int64(m.nvertices)   # (scikit-fem's nvertices is the largest node number of t, found at each call)
     a, b = m.facets[:, facets].astype(np.int64)
     t = m.t[:3]
-    mark = np.zeros(m.nvertices, bool)
+    mark = np.zeros(n, bool)
     mark[a], mark[b] = True, True
-    cand = np.flatnonzero(mark[t].sum(axis=0) >= 2)
+    m0, m1, m2 = mark[t[0]], mark[t[1]], mark[t[2]]
+    cand = np.flatnonzero((m0 & m1) | (m2 & (m0 | m1)))   # the triangles with two nodes or more on the facets
     tc = t[:, cand].astype(np.int64)
     keys = np.minimum(a, b) * n + np.maximum(a, b)          # each facet's node pair
     order = np.argsort(keys)
