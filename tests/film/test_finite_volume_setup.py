@@ -884,3 +884,29 @@ def test_p1_pattern_needs_the_meshs_edges_of_the_triangles():
     shuffled._cache.clear()
     shuffled.mesh.t = shuffled.mesh.t[[1, 2, 0]]   # the same triangles, their nodes in another order
     assert fv._p1_pattern(shuffled) is None
+
+
+def test_symmetric_compares_a_matrix_with_its_transpose():
+    """:func:`_symmetric` (the full-film guess's test before banded Cholesky) agrees with ``(K != K^T).nnz == 0``
+    on the pocket pad's full-film matrix and on changed copies: a value off its mirror, an entry without its
+    mirror; an explicit zero without its mirror counts as a difference (a conservative no: SuperLU then)."""
+    import scipy.sparse as sp
+
+    from bearingfe import Rectangle
+
+    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    mesh = mesh_surface(pad, 0.08)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "streamline")
+    unk = fv._unknowns(mesh, ops)
+    K = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.5), 0.0)[0]
+    assert fv._symmetric(K) and (K != K.T).nnz == 0
+    changed = K.copy()
+    changed.data[1] *= 1.0 + 1e-15   # an off-diagonal entry (the first is the diagonal of row 0)
+    assert changed.indices[1] != 0 and not fv._symmetric(changed) and (changed != changed.T).nnz > 0
+    lower = sp.tril(K).tocsr()
+    lower.sort_indices()
+    assert not fv._symmetric(lower) and (lower != lower.T).nnz > 0
+    zero = sp.csr_matrix((np.array([1.0, 0.0, 1.0]), np.array([0, 1, 1]), np.array([0, 2, 3])), shape=(2, 2))
+    assert not fv._symmetric(zero)
+    assert not fv._symmetric(sp.csr_matrix(np.ones((2, 3))))
