@@ -28,7 +28,8 @@ from ..core.parameters import ELEMENTS
 from ..geometry.meshing import SupportMesh
 
 __all__ = ["Operators", "operators", "facet_basis", "facet_geometry", "facet_tables", "FacetTables",
-           "quadrature_order", "LeanCellBasis", "pocket_moments", "affine_points", "boundary_facet_triangles"]
+           "quadrature_order", "LeanCellBasis", "pocket_moments", "affine_points", "boundary_facet_triangles",
+           "BoundaryFacets", "boundary_facets"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -363,12 +364,13 @@ def boundary_facet_triangles(m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
     facets = np.asarray(facets)
     if hasattr(m, "_f2t") or facets.size == 0:   # scikit-fem's cache of the map
         return m.f2t[0, facets]
-    n = np.int64(m.nvertices)
+    n = np.int64(m.nvertices)   # (scikit-fem's nvertices is the largest node number of t, found at each call)
     a, b = m.facets[:, facets].astype(np.int64)
     t = m.t[:3]
-    mark = np.zeros(m.nvertices, bool)
+    mark = np.zeros(n, bool)
     mark[a], mark[b] = True, True
-    cand = np.flatnonzero(mark[t].sum(axis=0) >= 2)
+    m0, m1, m2 = mark[t[0]], mark[t[1]], mark[t[2]]
+    cand = np.flatnonzero((m0 & m1) | (m2 & (m0 | m1)))   # the triangles with two nodes or more on the facets
     tc = t[:, cand].astype(np.int64)
     keys = np.minimum(a, b) * n + np.maximum(a, b)          # each facet's node pair
     order = np.argsort(keys)
@@ -384,6 +386,32 @@ def boundary_facet_triangles(m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
     if not np.all(count == 1):   # a facet of two triangles (or of none, or a repeated facet): the map
         return m.f2t[0, facets]
     return found
+
+
+class BoundaryFacets(NamedTuple):
+    """Straight boundary facets of a triangle mesh (:func:`boundary_facets`), in the units of the mesh."""
+
+    a: np.ndarray        # (n_facets,) first node (scikit-fem's facet order)
+    b: np.ndarray        # (n_facets,) second node
+    elem: np.ndarray     # (n_facets,) the facet's triangle
+    length: np.ndarray   # (n_facets,)
+    normal: np.ndarray   # (2, n_facets) outward unit normal (away from the triangle)
+
+
+def boundary_facets(m: skfem.Mesh, facets: np.ndarray) -> BoundaryFacets:
+    """The nodes, triangle (:func:`boundary_facet_triangles`), length and outward unit normal of each of the
+    boundary ``facets`` of a straight triangle mesh ``m``: the tangent ``b - a`` turned and pointed away from the
+    triangle's centroid (the one home of this normal: the flows' facet fluxes and the pockets' moments)."""
+    facets = np.asarray(facets)
+    a, b = m.facets[:, facets]
+    elem = boundary_facet_triangles(m, facets)
+    pa, pb = m.p[:, a], m.p[:, b]
+    tvec = pb - pa
+    length = np.linalg.norm(tvec, axis=0)
+    n = np.array([tvec[1], -tvec[0]]) / length
+    centre = m.p[:, m.t[:3, elem]].mean(axis=1)
+    n[:, np.sum(n * (0.5 * (pa + pb) - centre), axis=0) < 0] *= -1
+    return BoundaryFacets(a=a, b=b, elem=elem, length=length, normal=n)
 
 
 def facet_geometry(basis: skfem.CellBasis, facets: np.ndarray, intorder: int
@@ -421,9 +449,21 @@ def pocket_moments(basis: skfem.CellBasis, inlet_facets) -> np.ndarray:
     normal (pointing into the pocket),
     ``int_P 1 = -oint phi n_phi``, ``int_P cos = -oint sin(phi) n_phi``,
     ``int_P sin = oint cos(phi) n_phi``.
+
+    On straight facets (an affine map) the points, normals and weights are computed from the facets' ends
+    (:func:`boundary_facets`) instead of scikit-fem's facet map and its inverse (the same numbers to round-off:
+    0.03 against 0.18 ms CPU for the 16 pocket facets at 529 nodes of docs/jfo_gmsh.md's pocket pad).
     """
     if inlet_facets is None or len(inlet_facets) == 0:
         return np.zeros(3)
-    x, n, dx = facet_geometry(basis, np.asarray(inlet_facets), 8)  # only the points, normals and weights
-    phi, nphi = x[0], n[0]
+    m = basis.mesh
+    if type(basis.mapping) is MappingAffine and m.dim() == 2 and m.t.shape[0] == 3:   # straight facets
+        X, W = quadrature_rule(m.brefdom, 8)
+        fr = boundary_facets(m, inlet_facets)
+        pa, pb = m.p[:, fr.a], m.p[:, fr.b]
+        phi = pa[0][:, None] + (pb[0] - pa[0])[:, None] * X[0]   # the points a + X (b - a)
+        nphi, dx = fr.normal[0][:, None], fr.length[:, None] * W
+    else:
+        x, n, dx = facet_geometry(basis, np.asarray(inlet_facets), 8)  # only the points, normals and weights
+        phi, nphi = x[0], n[0]
     return np.array([-np.sum(phi * nphi * dx), -np.sum(np.sin(phi) * nphi * dx), np.sum(np.cos(phi) * nphi * dx)])

@@ -196,3 +196,19 @@ def test_woodbury_columns_from_the_csc_arrays_are_the_sparse_difference():
     assert not doubled.has_canonical_format
     assert np.array_equal(fv._column_change(doubled, G, cols, sign),
                           ((G[:, cols] - doubled[:, cols]) @ sp.diags(sign)).toarray())
+
+
+@pytest.mark.parametrize("block", [7, 2048])
+def test_interpolated_values_are_the_broadcast_sum_of_the_three_nodes(monkeypatch, block):
+    """:func:`_interpolate`'s values (numpy's ``einsum`` over the triangles' three nodes, block by block) equal,
+    bit for bit, the broadcast expression ``u_0 lambda_0 + u_1 lambda_1 + u_2 lambda_2`` (the previous path), and
+    its gradient ``sum_k u_k grad lambda_k``, for a random field on a gmsh mesh (blocks of 7 triangles and one)."""
+    monkeypatch.setattr(fv, "INTERPOLATE_BLOCK", block)
+    mesh = mesh_surface(_dimpled(), 0.08)
+    cells = fv._cells(mesh, operators(mesh))
+    u = np.random.default_rng(5).standard_normal(cells.n)
+    values, grad = fv._interpolate(cells, u)
+    ut, lam, g = u[cells.t], cells.lam, cells.grad
+    assert values.flags.c_contiguous and values.shape == (cells.t.shape[1], lam.shape[1])
+    assert np.array_equal(values, ut[0][:, None] * lam[0] + ut[1][:, None] * lam[1] + ut[2][:, None] * lam[2])
+    assert np.array_equal(grad, g[:, 0] * ut[0] + g[:, 1] * ut[1] + g[:, 2] * ut[2])

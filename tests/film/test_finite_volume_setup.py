@@ -933,3 +933,88 @@ def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatc
         assert plain.width == kd
         assert np.abs(plain(A)(rhs) - got).max() <= 1e-12 * np.abs(want).max()
         monkeypatch.setattr(fv, "BAND_PAD_FROM", 28)
+
+
+def test_stiffness_and_streamline_flux_on_the_p1_pattern_equal_the_sparse_sums():
+    """On the mesh's P1 pattern (:func:`_p1_pattern`, from scikit-fem's edges of the triangles) the stiffness
+    equals the sparse sums bit for bit (the previous path: ``U`` by the COO conversion, ``U + U^T``, the rows'
+    sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket and a periodic gmsh mesh; on a
+    grid (entries that sum to exactly zero) it keeps the sparse sums. The triangles' 3 x 3 blocks summed onto it
+    (:func:`_on_pattern`) have the pattern of their conversion into CSR, explicit zeros kept, the off-diagonal
+    entries (two terms) bit for bit and the diagonal to round-off (1e-15 of the largest entry: another order)."""
+    import scipy.sparse as sp
+
+    from benchmarks.jfo_gmsh import grooved_journal
+    from bearingfe import Rectangle
+
+    def summed(cells, w):
+        g, t = cells.grad, cells.t
+        a, b = [0, 1, 2], [1, 2, 0]
+        vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+        U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
+        A = U + U.T
+        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+
+    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    rng = np.random.default_rng(12)
+    journal = grooved_journal().surface
+    for mesh in (mesh_surface(pad, 0.08), mesh_surface(journal, 0.3), grid_mesh(_dimpled(), 1 / 10)):
+        cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+        pattern = fv._p1_pattern(mesh)
+        assert pattern is not None
+        w = rng.uniform(0.5, 2.0, cells.t.shape[1])
+        got, want = fv._stiffness_of(cells, w, pattern), summed(cells, w)
+        assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        assert np.array_equal(got.data, want.data)
+        assert (fv._stiffness_on(pattern, fv._edge_terms(cells, w)) is None) == (mesh.source == "grid")
+        blocks = rng.standard_normal(9 * cells.t.shape[1])
+        blocks[::11] = 0.0
+        rows, cols = fv._block_places(cells.t)
+        ref = sp.csr_matrix((blocks, (rows, cols)), shape=(cells.n, cells.n))
+        on = fv._on_pattern(pattern, blocks)
+        assert np.array_equal(on.indptr, ref.indptr) and np.array_equal(on.indices, ref.indices)
+        off = on.indices != np.repeat(np.arange(cells.n), np.diff(on.indptr))
+        assert np.array_equal(on.data[off], ref.data[off])
+        assert np.abs(on.data - ref.data).max() <= 1e-15 * np.abs(ref.data).max()
+
+
+def test_p1_pattern_needs_the_meshs_edges_of_the_triangles():
+    """Without scikit-fem's edges of the triangles at hand (``t2f``) or with triangles that do not match them,
+    no pattern: the solve keeps the sparse sums (and the same answers to round-off)."""
+    import copy
+
+    mesh = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5), 0.2)
+    bare = copy.deepcopy(mesh)
+    bare._cache.clear()
+    bare.mesh.__dict__.pop("_t2f", None)
+    assert fv._p1_pattern(bare) is None and not hasattr(bare.mesh, "_t2f")
+    shuffled = copy.deepcopy(mesh)
+    shuffled._cache.clear()
+    shuffled.mesh.t = shuffled.mesh.t[[1, 2, 0]]   # the same triangles, their nodes in another order
+    assert fv._p1_pattern(shuffled) is None
+
+
+def test_symmetric_compares_a_matrix_with_its_transpose():
+    """:func:`_symmetric` (the full-film guess's test before banded Cholesky) agrees with ``(K != K^T).nnz == 0``
+    on the pocket pad's full-film matrix and on changed copies: a value off its mirror, an entry without its
+    mirror; an explicit zero without its mirror counts as a difference (a conservative no: SuperLU then)."""
+    import scipy.sparse as sp
+
+    from bearingfe import Rectangle
+
+    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    mesh = mesh_surface(pad, 0.08)
+    ops = fv.operators(mesh, "P1")
+    system = fv._assemble(ops, mesh, UniformFilm(1.0), 1.0, (0.0, 0.0), None, None, "streamline")
+    unk = fv._unknowns(mesh, ops)
+    K = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.5), 0.0)[0]
+    assert fv._symmetric(K) and (K != K.T).nnz == 0
+    changed = K.copy()
+    changed.data[1] *= 1.0 + 1e-15   # an off-diagonal entry (the first is the diagonal of row 0)
+    assert changed.indices[1] != 0 and not fv._symmetric(changed) and (changed != changed.T).nnz > 0
+    lower = sp.tril(K).tocsr()
+    lower.sort_indices()
+    assert not fv._symmetric(lower) and (lower != lower.T).nnz > 0
+    zero = sp.csr_matrix((np.array([1.0, 0.0, 1.0]), np.array([0, 1, 1]), np.array([0, 2, 3])), shape=(2, 2))
+    assert not fv._symmetric(zero)
+    assert not fv._symmetric(sp.csr_matrix(np.ones((2, 3))))
