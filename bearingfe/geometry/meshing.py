@@ -113,6 +113,12 @@ class SupportMesh:
         they live as long as the mesh (a pickled mesh travels without them: they are rebuilt where they
         are needed). ``key`` names the structure: a string, or a tuple of a string and what the structure
         depends on besides the mesh.
+
+        Structures that belong to an object derived from a mesh rather than to the mesh itself (a compiled
+        operator, a superposition, an assembled system, a finite-volume system's cells) are kept by their module
+        in a ``weakref.WeakKeyDictionary`` keyed by that object, so that they go when it goes (e.g.
+        ``finite_volume._EDGE_PLANS``, ``journal._POSITION_SOURCES``, the ``swift_stieber`` chains): a key
+        of this cache could not name such an object without keeping it alive as long as the mesh.
         """
         try:
             return self._cache[key]
