@@ -1590,11 +1590,14 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
             else np.zeros_like(front))
     # told apart only where it matters: among the front elements longer than rupture_size (reformation_size is not
     # smaller; each element is told apart by the dofs around it alone), and for all of them if some is to be split
+    # (unless they are all long: then that is the verdict for all of them already; the supply groove's first two
+    # levels, two_groove's first)
     long = front & (diameters > rupture_size * (1 + 1e-9))
     reformation = np.zeros_like(front)
     if reformation_size is not None and long.any():
         reformation = _reformation_elements(res, long)
-        if np.any(long & ~reformation) or np.any(diameters[reformation] > reformation_size * (1 + 1e-9)):
+        if not np.array_equal(long, front) and (
+                np.any(long & ~reformation) or np.any(diameters[reformation] > reformation_size * (1 + 1e-9))):
             reformation = _reformation_elements(res, front)
     rupture = front & ~reformation
     # (mask, size, reach in diameters): a front close behind its peak is split to plain_size as any front, and
