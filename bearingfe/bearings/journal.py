@@ -1463,8 +1463,9 @@ def _refine_rupture(bearing: JournalBearing, meshes: tuple, state: "_State", at,
     ``f`` of that (the coefficients' error from a front grows with the pressures around it); where the film forms
     again (:func:`_reformation_elements`) no longer than ``rupture_size REFORMATION_SIZE`` (or the film's size,
     if larger). A front closer than :data:`FRONT_PEAK_DISTANCE` behind its zone's pressure peak is refined further
-    in proportion, and a zone running into the film's downstream edge has a band along that edge refined to
-    :data:`EDGE_SIZE` times the front's size (:func:`zone_ends`). Per level: the elements within
+    in proportion (in a narrower band, :data:`FRONT_PEAK_REACH`), and a zone running into the film's downstream
+    edge has a band along that edge refined to :data:`EDGE_SIZE` times the front's size (:func:`zone_ends`). Per
+    level: the elements within
     :data:`RUPTURE_REACH` diameters of a front element
     are split :data:`RUPTURE_SPLITS` times, then one solve with the journal at ``at`` (mesh frame) started
     from the previous level's rupture sets (nested iteration).
@@ -1577,8 +1578,9 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     """One level of :func:`_refine_rupture` on one film, or None if its front already lies in elements no
     longer than ``rupture_size`` (those where the film forms again, :func:`_reformation_elements`: no longer
     than ``reformation_size``, default ``rupture_size``), or it has no front. ``rupture_size`` is scaled down for a
-    front close behind its peak, and a loaded downstream edge gets a band of elements no longer than ``edge_size``
-    (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
+    front close behind its peak (within :data:`FRONT_PEAK_REACH` element diameters of the front; within
+    :data:`RUPTURE_REACH` to ``rupture_size`` itself), and a loaded downstream edge gets a band of elements no longer
+    than ``edge_size`` (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
     m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
     changed = False
     front = _front_elements(res)
