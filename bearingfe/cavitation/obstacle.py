@@ -36,7 +36,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying
+from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying, peripheral_cuthill_mckee
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
@@ -462,18 +462,24 @@ _RCM_LOCK = threading.Lock()
 
 
 def _pattern_rcm(A: sp.csr_matrix) -> np.ndarray:
-    """The reverse Cuthill-McKee order of ``A``'s pattern, found once per pattern up to :data:`BLOCKS_UP_TO`
-    unknowns (0.4 ms at 3e3 unknowns, a third of a banded factorization there; the look-up compares the
-    pattern's index arrays, some 20 us)."""
+    """The reverse Cuthill-McKee order of ``A``'s pattern from pseudo-peripheral starts
+    (:func:`~bearingfe.core.banded.peripheral_cuthill_mckee`), found once per pattern up to :data:`BLOCKS_UP_TO`
+    unknowns (about 1 ms at 2e3 unknowns, a banded factorization there; the look-up compares the pattern's index
+    arrays, some 20 us).
+
+    From scipy's start (the node of least degree) the two-groove journal's rupture-refined P2 pads had a
+    half-bandwidth of 159 (1,216 unknowns), their free sets 124-139, so every set's band in this order was refused
+    and the set ordered again on its own (58-69); from pseudo-peripheral starts the whole band is 65 and the sets'
+    60-62, factored banded in this order at once. The 360-degree bearing's: 110 -> 68, its sets' 62 -> 63."""
     if A.shape[0] > BLOCKS_UP_TO:
-        return reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
+        return peripheral_cuthill_mckee(A)
     with _RCM_LOCK:  # film states solved in threads share the list
         for k, (indptr, indices, order) in enumerate(_RCM_ORDERS):
             if indptr.size == A.indptr.size and indices.size == A.indices.size \
                     and np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices):
                 _RCM_ORDERS.append(_RCM_ORDERS.pop(k))
                 return order
-    order = reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
+    order = peripheral_cuthill_mckee(A)
     with _RCM_LOCK:
         _RCM_ORDERS.append((A.indptr.copy(), A.indices.copy(), order))
         del _RCM_ORDERS[:-RCM_PATTERNS_KEPT]

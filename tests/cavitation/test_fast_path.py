@@ -299,19 +299,19 @@ def test_blocks_by_scipy_slicing_above_the_limit_give_the_same_answer(journal_me
 
 
 def test_rcm_order_kept_per_pattern():
-    # the reverse Cuthill-McKee order is found once per sparsity pattern: a matrix of the same pattern with other
-    # values (the next film state of a mesh) gets the same order object, equal to scipy's order of the pattern;
-    # another pattern gets its own
+    # the reverse Cuthill-McKee order (from pseudo-peripheral starts) is found once per sparsity pattern: a matrix
+    # of the same pattern with other values (the next film state of a mesh) gets the same order object, equal to
+    # band_rule.peripheral_cuthill_mckee of the pattern; another pattern gets its own
     A = _laplacian(20)
     first = obstacle._pattern_rcm(A)
-    np.testing.assert_array_equal(first, reverse_cuthill_mckee(A, symmetric_mode=True))
+    np.testing.assert_array_equal(first, band_rule.peripheral_cuthill_mckee(A))
     B = A.copy()
     B.data = B.data * np.linspace(1.0, 2.0, B.data.size)
     assert obstacle._pattern_rcm(B) is first
     C = _laplacian(21)
     other = obstacle._pattern_rcm(C)
     assert other is not first and other.size == C.shape[0]
-    np.testing.assert_array_equal(other, reverse_cuthill_mckee(C, symmetric_mode=True))
+    np.testing.assert_array_equal(other, band_rule.peripheral_cuthill_mckee(C))
     for k in range(obstacle.RCM_PATTERNS_KEPT):  # older patterns drop out: found again, equal
         obstacle._pattern_rcm(_laplacian(22 + k))
     again = obstacle._pattern_rcm(A)

@@ -109,3 +109,49 @@ def test_half_bandwidth_is_the_largest_distance_of_an_entry_from_the_diagonal_in
     coo = chain.tocoo()
     plan = band_plan_in_order(coo.row, coo.col, n, evens_first, kd_max=n)
     assert plan.kd == half_bandwidth(chain, evens_first)
+
+
+def _grid_with_pendant(nx: int, ny: int) -> sp.csr_matrix:
+    """The 5-point Laplacian on an ``nx x ny`` grid (``nx`` long) with one more node hung on the middle of a long
+    side (degree 1: the least, so the start of scipy's reverse Cuthill-McKee order)."""
+    one = lambda m: sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(m, m))  # noqa: E731
+    grid = (sp.kron(one(nx), sp.eye(ny)) + sp.kron(sp.eye(nx), one(ny))).tolil()
+    n = nx * ny
+    A = sp.lil_matrix((n + 1, n + 1))
+    A[:n, :n] = grid
+    middle = (nx // 2) * ny
+    A[n, middle] = A[middle, n] = -1.0
+    A[n, n] = 1.0
+    return A.tocsr()
+
+
+def test_peripheral_cuthill_mckee_starts_at_an_end_of_the_long_side():
+    """From a pseudo-peripheral start the level sets run across the short side: on a 40 x 6 grid with a pendant
+    node at the middle of a long side the half-bandwidth is 7 (at most the short side plus one, as in the
+    column-by-column order, 6), where scipy's order, started from the pendant node in the middle, has 13."""
+    A = _grid_with_pendant(40, 6)
+    order = banded.peripheral_cuthill_mckee(A)
+    np.testing.assert_array_equal(np.sort(order), np.arange(A.shape[0]))
+    assert banded.half_bandwidth(A, order) == 7
+    assert banded.half_bandwidth(A, reverse_cuthill_mckee(A, symmetric_mode=True)) == 13
+
+
+def test_peripheral_cuthill_mckee_orders_every_component_and_an_unsymmetric_pattern():
+    """Two components (block diagonal): every unknown ordered once, each block contiguous, the band the wider
+    block's alone; an entry stored on one side only (cancelled on the other) counts on both."""
+    first, second = _grid_with_pendant(40, 6), _laplacian(5)
+    A = sp.block_diag([first, second], format="csr")
+    order = banded.peripheral_cuthill_mckee(A)
+    np.testing.assert_array_equal(np.sort(order), np.arange(A.shape[0]))
+    in_first = order < first.shape[0]
+    assert np.count_nonzero(np.diff(in_first.astype(int))) == 1  # one switch between the blocks
+    assert banded.half_bandwidth(A, order) == banded.half_bandwidth(first, banded.peripheral_cuthill_mckee(first))
+    # a chain whose link 0-1 is stored in row 0 only: still one component, a band of 1 (an end first)
+    n = 6
+    chain = sp.diags([np.ones(n - 1), 2 * np.ones(n), np.ones(n - 1)], [-1, 0, 1], format="lil")
+    chain[1, 0] = 0.0
+    chain = chain.tocsr()
+    chain.eliminate_zeros()
+    order = banded.peripheral_cuthill_mckee(chain)
+    np.testing.assert_array_equal(np.sort(order), np.arange(n))
+    assert banded.half_bandwidth(chain, order) == 1
