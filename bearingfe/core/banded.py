@@ -76,9 +76,10 @@ class BandLimits:
 #: at 1e3 P2 unknowns (load 5) the Swift-Stieber solve took 15.7 ms with a limit of 40 (SuperLU took the
 #: kd = 42 sets), 10.5 ms with 80. The work cap was first that of 5,000 unknowns with a half-bandwidth of 40
 #: (8e6; raised below); blocks of more than 5,000 unknowns are not tried (a 2-D set that large has a wider
-#: band). Measured again on the journal's free sets (360-degree bearing, L/D 1/2, P1 and P2; CPU, median of 100, factorization and one
-#: solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in minimum degree; P2 sets of
-#: 1,990 unknowns with kd 74 (work 1.1e7, then refused by the work cap of 8e6) 1.56 against 2.8 ms. Raised to a
+#: band). Measured again on the journal's free sets (360-degree bearing, L/D 1/2, P1 and P2; CPU, median of
+#: 100, factorization and one solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in
+#: minimum degree; P2 sets of 1,990 unknowns with kd 74 (work 1.1e7, then refused by the work cap of 8e6) 1.56
+#: against 2.8 ms. Raised to a
 #: half-bandwidth of 128 and a work of 2e7 from the journals' P2 free sets in reverse Cuthill-McKee orders from
 #: pseudo-peripheral starts (part ``journal_pads``'s two-groove pads and the full bearings, L/D 1/2 and 1, size
 #: 0.3, rupture_size 0.05; CPU, median of 30, factorization and one solve, one BLAS thread as its callers run

@@ -299,19 +299,19 @@ def test_blocks_by_scipy_slicing_above_the_limit_give_the_same_answer(journal_me
 
 
 def test_rcm_order_kept_per_pattern():
-    # the reverse Cuthill-McKee order (from pseudo-peripheral starts) is found once per sparsity pattern: a matrix
-    # of the same pattern with other values (the next film state of a mesh) gets the same order object, equal to
-    # band_rule.peripheral_cuthill_mckee of the pattern; another pattern gets its own
+    # the reverse Cuthill-McKee order is found once per sparsity pattern: a matrix of the same pattern with other
+    # values (the next film state of a mesh) gets the same order object, equal to scipy's order of the pattern;
+    # another pattern gets its own
     A = _laplacian(20)
     first = obstacle._pattern_rcm(A)
-    np.testing.assert_array_equal(first, band_rule.peripheral_cuthill_mckee(A))
+    np.testing.assert_array_equal(first, reverse_cuthill_mckee(A, symmetric_mode=True))
     B = A.copy()
     B.data = B.data * np.linspace(1.0, 2.0, B.data.size)
     assert obstacle._pattern_rcm(B) is first
     C = _laplacian(21)
     other = obstacle._pattern_rcm(C)
     assert other is not first and other.size == C.shape[0]
-    np.testing.assert_array_equal(other, band_rule.peripheral_cuthill_mckee(C))
+    np.testing.assert_array_equal(other, reverse_cuthill_mckee(C, symmetric_mode=True))
     for k in range(obstacle.RCM_PATTERNS_KEPT):  # older patterns drop out: found again, equal
         obstacle._pattern_rcm(_laplacian(22 + k))
     again = obstacle._pattern_rcm(A)
@@ -446,3 +446,34 @@ def test_a_nearby_matrix_preconditions_to_the_same_answer(journal_mesh, monkeypa
     np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
     with pytest.raises(ValueError, match="free"):
         problem.precondition(free[:-1], nearby)
+
+
+def test_a_refused_band_tries_the_order_from_pseudo_peripheral_starts(monkeypatch):
+    # a 40 x 6 grid Laplacian (shifted: SPD) with a node hung on the middle of a long side: scipy's reverse
+    # Cuthill-McKee order starts there (least degree), half-bandwidth 13; from pseudo-peripheral starts 7. With
+    # the obstacle sets' band limit at 10, the set's band in scipy's order is refused, the narrower order is found,
+    # kept for the pattern (and for the next problem of that pattern), and the set factored banded in it; the
+    # solve against scipy's sparse direct solve (round-off: 1e-10 of the largest)
+    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=10, size_max=5000))
+    monkeypatch.setattr(obstacle, "_RCM_ORDERS", [])
+    nx, ny = 40, 6
+    one = lambda m: sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(m, m))  # noqa: E731
+    n = nx * ny
+    A = sp.lil_matrix((n + 1, n + 1))
+    A[:n, :n] = sp.kron(one(nx), sp.eye(ny)) + sp.kron(sp.eye(nx), one(ny))
+    A[n, (nx // 2) * ny] = A[(nx // 2) * ny, n] = -1.0
+    A[n, n] = 2.0
+    A = (A + 0.1 * sp.eye(n + 1)).tocsr()
+    assert band_rule.half_bandwidth(A, reverse_cuthill_mckee(A, symmetric_mode=True)) == 13
+    problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
+    free = np.ones(n + 1, bool)
+    free[[0, n - 1]] = False  # two corners ruptured
+    solve = problem._factor(free)
+    assert solve.__qualname__.startswith("band_cholesky")
+    assert band_rule.half_bandwidth(A, problem._rcm) == 7
+    assert obstacle._pattern_rcm(A) is problem._rcm  # kept for the pattern
+    b = np.linspace(1.0, 2.0, int(free.sum()))
+    reference = spla.spsolve(A[free][:, free].tocsc(), b)
+    np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    again = ObstacleProblem(A.copy(), obstacle.factorize_splu_sym)
+    assert again._rcm_order() is problem._rcm
