@@ -36,7 +36,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying, half_bandwidth, peripheral_cuthill_mckee
+from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
@@ -184,15 +184,6 @@ class ObstacleProblem:
             self._rcm = _pattern_rcm(self.A)
         return self._rcm
 
-    def _narrower_order(self) -> np.ndarray | None:
-        """The pattern's order after trying pseudo-peripheral starts (:func:`_pattern_narrower_rcm`) if it is not
-        :meth:`_rcm_order`'s (then kept as this problem's order too), else None."""
-        narrower = _pattern_narrower_rcm(self.A)
-        if narrower is None or narrower is self._rcm:
-            return None
-        self._rcm = narrower
-        return narrower
-
     def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
             del self._cache[key]
@@ -208,19 +199,15 @@ class ObstacleProblem:
         solve = None
         if default and band_worth_trying(size, "new_pattern") and size < self._band_refused_from:
             # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
-            # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2); if
-            # refused, in the whole matrix's order from pseudo-peripheral starts (found once per pattern, and kept
-            # if narrower); else in the set's own
+            # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
+            # in the set's own
             if block is not None:  # (a whole-matrix order for a small set of a large matrix: not made)
                 solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
-                narrower = self._narrower_order() if solve is None else None
-                if narrower is not None:
-                    solve = _factor_banded(None, block, _restricted(narrower, free))
             solve = _factor_banded(self._block_matrix(free, block), block) if solve is None else solve
             if solve is None:
                 # refused in every order: the next sets of this problem (a layer or two of dofs apart, their bands
                 # alike) as large or larger go to SuperLU at once (on the L/D 1 two-groove journal's level-3 sets,
-                # 1,724-1,970 unknowns, bands 173-518 in every order, each try cost an order and a plan for nothing)
+                # 1,724-1,970 unknowns, bands 173-518 in either order, each try cost an order and a plan for nothing)
                 self._band_refused_from = size
         if solve is None and not size:
             solve = lambda b: np.zeros_like(b)  # noqa: E731
@@ -473,71 +460,30 @@ class _Blocks:
         return sp.csr_matrix((values, cols, indptr), shape=(m, m))
 
 
-#: Reverse Cuthill-McKee orders of the last few sparsity patterns: ``[indptr, indices, order, peripheral]``, newest
-#: last; ``peripheral``: whether the order from pseudo-peripheral starts was tried (``order`` is then the narrower).
-_RCM_ORDERS: list[list] = []
+#: Reverse Cuthill-McKee orders of the last few sparsity patterns: ``(indptr, indices, order)``, newest last.
+_RCM_ORDERS: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
 #: Patterns kept in :data:`_RCM_ORDERS` (a mesh's film states share one, its coarse grids one each).
 RCM_PATTERNS_KEPT = 8
 _RCM_LOCK = threading.Lock()
 
 
-def _pattern_entry(A: sp.csr_matrix) -> list | None:
-    """``A``'s pattern's entry of :data:`_RCM_ORDERS` (moved to the newest place), or None; the caller holds the
-    lock."""
-    for k, entry in enumerate(_RCM_ORDERS):
-        indptr, indices = entry[0], entry[1]
-        if indptr.size == A.indptr.size and indices.size == A.indices.size \
-                and np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices):
-            _RCM_ORDERS.append(_RCM_ORDERS.pop(k))
-            return entry
-    return None
-
-
 def _pattern_rcm(A: sp.csr_matrix) -> np.ndarray:
     """The reverse Cuthill-McKee order of ``A``'s pattern, found once per pattern up to :data:`BLOCKS_UP_TO`
     unknowns (0.4 ms at 3e3 unknowns, a third of a banded factorization there; the look-up compares the
-    pattern's index arrays, some 20 us): scipy's, or the narrower one :func:`_pattern_narrower_rcm` found."""
+    pattern's index arrays, some 20 us)."""
     if A.shape[0] > BLOCKS_UP_TO:
         return reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
     with _RCM_LOCK:  # film states solved in threads share the list
-        entry = _pattern_entry(A)
-        if entry is not None:
-            return entry[2]
+        for k, (indptr, indices, order) in enumerate(_RCM_ORDERS):
+            if indptr.size == A.indptr.size and indices.size == A.indices.size \
+                    and np.array_equal(indptr, A.indptr) and np.array_equal(indices, A.indices):
+                _RCM_ORDERS.append(_RCM_ORDERS.pop(k))
+                return order
     order = reverse_cuthill_mckee(A, symmetric_mode=True).astype(np.int64)
     with _RCM_LOCK:
-        _RCM_ORDERS.append([A.indptr.copy(), A.indices.copy(), order, False])
+        _RCM_ORDERS.append((A.indptr.copy(), A.indices.copy(), order))
         del _RCM_ORDERS[:-RCM_PATTERNS_KEPT]
     return order
-
-
-def _pattern_narrower_rcm(A: sp.csr_matrix) -> np.ndarray | None:
-    """The reverse Cuthill-McKee order of ``A``'s pattern from pseudo-peripheral starts
-    (:func:`~bearingfe.core.banded.peripheral_cuthill_mckee`), tried once per pattern after scipy's
-    (:func:`_pattern_rcm`) gave a free set a band that was refused, and kept in its place if its band is
-    narrower; returns the pattern's order then (the same object from then on).
-
-    Not made first: it costs about 1.5 ms at 2e3 unknowns (scipy's 0.15 ms), and scipy's order serves most
-    patterns. From scipy's start (the node of least degree, a corner) the two-groove journal's rupture-refined
-    P2 pads (part ``journal_pads``, size 0.3, rupture_size 0.05) had a half-bandwidth of 159 at level 1 of the
-    nested start (1,216 unknowns), their free sets' 124-139, every one refused and ordered again on its own
-    (58-69); from pseudo-peripheral starts 65, the sets' 60-62, factored banded at once; level 2: 282 -> 135
-    (sets 182-188 -> 101-104)."""
-    with _RCM_LOCK:
-        entry = _pattern_entry(A)
-    if entry is None:
-        _pattern_rcm(A)
-        with _RCM_LOCK:
-            entry = _pattern_entry(A)
-    if entry is None:  # (more patterns than kept, made in other threads meanwhile)
-        return None
-    if entry[3]:
-        return entry[2]
-    order = peripheral_cuthill_mckee(A)
-    with _RCM_LOCK:
-        entry[3] = True
-        if half_bandwidth(A, order) < half_bandwidth(A, entry[2]):
-            entry[2] = order
-        return entry[2]
 
 
 def _restricted(order: np.ndarray, free: np.ndarray) -> np.ndarray:

@@ -27,10 +27,10 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg.lapack import dpbtrf, dpbtrs
-from scipy.sparse.csgraph import breadth_first_order, reverse_cuthill_mckee
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 __all__ = ["BandLimits", "BAND_LIMITS", "band_limits", "band_pays", "band_worth_trying", "half_bandwidth", "BandPlan",
-           "band_plan", "peripheral_cuthill_mckee",
+           "band_plan",
            "band_plan_in_order", "band_cholesky"]
 
 
@@ -79,13 +79,11 @@ class BandLimits:
 #: band). Measured again on the journal's free sets (360-degree bearing, L/D 1/2, P1 and P2; CPU, median of
 #: 100, factorization and one solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in
 #: minimum degree; P2 sets of 1,990 unknowns with kd 74 (work 1.1e7, then refused by the work cap of 8e6) 1.56
-#: against 2.8 ms. Raised to a
-#: half-bandwidth of 128 and a work of 2e7 from the journals' P2 free sets in reverse Cuthill-McKee orders from
-#: pseudo-peripheral starts (part ``journal_pads``'s two-groove pads and the full bearings, L/D 1/2 and 1, size
-#: 0.3, rupture_size 0.05; CPU, median of 30, factorization and one solve, one BLAS thread as its callers run
-#: it): 1,012-1,257 unknowns with kd 101-117 (work 1.1-1.4e7) 1.3-1.6 ms banded against 2.0-2.4 ms for
-#: SuperLU; 1,724-1,960 unknowns with kd 173-189 (work 5.7-6.4e7) 4.2-4.7 against 3.7-4.4 ms, where SuperLU
-#: wins.
+#: against 2.8 ms. Raised to a half-bandwidth of 128 and a work of 2e7 from the journals' P2 free sets (part
+#: ``journal_pads``'s two-groove pads and the full bearings, L/D 1/2 and 1, size 0.3, rupture_size 0.05; CPU,
+#: median of 30, factorization and one solve, one BLAS thread as its callers run it): 1,012-1,257 unknowns
+#: with kd 101-117 (work 1.1-1.4e7) 1.3-1.6 ms banded against 2.0-2.4 ms for SuperLU; 1,724-1,960 unknowns
+#: with kd 173-189 (work 5.7-6.4e7) 4.2-4.7 against 3.7-4.4 ms, where SuperLU wins.
 #:
 #: ``full_film_guess`` (the mass-conserving solver's full-film system, the Poiseuille operator alone, factored
 #: once per cold solve for its first cavity; Cholesky): measured (CPU time, 20 solves, the 5 x 5 dimple slider
@@ -146,57 +144,6 @@ def half_bandwidth(pattern: sp.csr_matrix, perm: np.ndarray) -> int:
     inverse[perm] = np.arange(perm.size)
     rows = np.repeat(np.arange(pattern.shape[0]), np.diff(pattern.indptr))
     return int(np.abs(inverse[rows] - inverse[pattern.indices]).max(initial=0))
-
-
-def peripheral_cuthill_mckee(pattern: sp.spmatrix) -> np.ndarray:
-    """Reverse Cuthill-McKee order of a symmetric ``pattern`` started, in each connected component, from a
-    pseudo-peripheral node (George & Liu, ACM TOMS 5 (1979) 284: from the component's node of least degree, the
-    node of least degree in the last level of its level structure, while that gets deeper).
-
-    scipy's :func:`~scipy.sparse.csgraph.reverse_cuthill_mckee` starts from the node of least degree, a corner,
-    which on a graded mesh may be far from the end of the long side: on the two-groove journal's rupture-refined
-    P2 pads (946 unknowns on the loaded pad) its half-bandwidth is 159, from a pseudo-peripheral node 65.
-    Returns band position -> unknown.
-    """
-    pattern = sp.csr_matrix(pattern)
-    n = pattern.shape[0]
-    # the pattern made symmetric (a condensed matrix may store an entry that cancels to zero on one side only)
-    pattern = sp.csr_matrix((np.ones(pattern.nnz), pattern.indices, pattern.indptr), shape=(n, n))
-    pattern = (pattern + pattern.T).tocsr()
-    degree = np.diff(pattern.indptr)
-    # relabelled by ascending degree, a breadth-first search visits each node's neighbours by ascending degree
-    # (scipy's search takes them in the order of the stored columns): the Cuthill-McKee order, searched in C
-    rank = np.argsort(degree, kind="stable")
-    graph = pattern[rank][:, rank]
-    graph.sort_indices()
-    orders = []
-    placed = np.zeros(n, bool)
-    while len(orders) == 0 or not placed.all():
-        start = int(np.argmin(placed))  # the least degree among the nodes not yet ordered: a new component's
-        order, depth, last = _search(graph, start)
-        while True:  # from the last level's node of least degree, while that gets deeper
-            further, further_depth, further_last = _search(graph, last)
-            if further_depth <= depth:
-                break
-            order, depth, last = further, further_depth, further_last
-        placed[order] = True
-        orders.append(order)
-    order = np.concatenate(orders)[::-1]
-    return np.ascontiguousarray(rank[order], dtype=np.int64)
-
-
-def _search(graph: sp.csr_matrix, start: int) -> tuple[np.ndarray, int, int]:
-    """Breadth-first order of ``start``'s component (each node's neighbours in stored order), its depth (levels
-    below ``start``) and the node of least label in its last level."""
-    order, predecessor = breadth_first_order(graph, start, directed=True, return_predecessors=True)  # (symmetric)
-    # every node's depth by pointer jumping up the tree of predecessors (log2 of the depth steps)
-    up = np.where(predecessor >= 0, predecessor, start)
-    depth = (predecessor >= 0).astype(np.int64)
-    while np.any(up != start):
-        depth += depth[up]
-        up = up[up]
-    depth = depth[order]
-    return order, int(depth[-1]), int(order[depth == depth[-1]].min())
 
 
 @dataclass(frozen=True, eq=False)

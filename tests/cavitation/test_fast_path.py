@@ -448,37 +448,6 @@ def test_a_nearby_matrix_preconditions_to_the_same_answer(journal_mesh, monkeypa
         problem.precondition(free[:-1], nearby)
 
 
-def test_a_refused_band_tries_the_order_from_pseudo_peripheral_starts(monkeypatch):
-    # a 40 x 6 grid Laplacian (shifted: SPD) with a node hung on the middle of a long side: scipy's reverse
-    # Cuthill-McKee order starts there (least degree), half-bandwidth 13; from pseudo-peripheral starts 7. With
-    # the obstacle sets' band limit at 10, the set's band in scipy's order is refused, the narrower order is found,
-    # kept for the pattern (and for the next problem of that pattern), and the set factored banded in it; the
-    # solve against scipy's sparse direct solve (round-off: 1e-10 of the largest)
-    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=10, size_max=5000))
-    monkeypatch.setattr(obstacle, "_RCM_ORDERS", [])
-    nx, ny = 40, 6
-    one = lambda m: sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(m, m))  # noqa: E731
-    n = nx * ny
-    A = sp.lil_matrix((n + 1, n + 1))
-    A[:n, :n] = sp.kron(one(nx), sp.eye(ny)) + sp.kron(sp.eye(nx), one(ny))
-    A[n, (nx // 2) * ny] = A[(nx // 2) * ny, n] = -1.0
-    A[n, n] = 2.0
-    A = (A + 0.1 * sp.eye(n + 1)).tocsr()
-    assert band_rule.half_bandwidth(A, reverse_cuthill_mckee(A, symmetric_mode=True)) == 13
-    problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
-    free = np.ones(n + 1, bool)
-    free[[0, n - 1]] = False  # two corners ruptured
-    solve = problem._factor(free)
-    assert solve.__qualname__.startswith("band_cholesky")
-    assert band_rule.half_bandwidth(A, problem._rcm) == 7
-    assert obstacle._pattern_rcm(A) is problem._rcm  # kept for the pattern
-    b = np.linspace(1.0, 2.0, int(free.sum()))
-    reference = spla.spsolve(A[free][:, free].tocsc(), b)
-    np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
-    again = ObstacleProblem(A.copy(), obstacle.factorize_splu_sym)
-    assert again._rcm_order() is problem._rcm
-
-
 def test_a_set_refused_in_every_order_spares_the_tries_of_larger_sets(monkeypatch):
     # with the obstacle sets' band limit at 5, a 20 x 20 Laplacian's free sets (bands about 20) are refused in every
     # order; after the first refusal, sets as large or larger are not ordered and planned again (the tries are
