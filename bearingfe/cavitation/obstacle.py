@@ -152,6 +152,7 @@ class ObstacleProblem:
         self._diag = self.A.diagonal()
         self._block_plan = None  # _Blocks of A, made on the first block taken
         self._rcm = None  # reverse Cuthill-McKee order of A, made on the first banded factorization
+        self._band_refused_from = math.inf  # free sets this large or larger are not tried banded (see _factor)
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
@@ -196,13 +197,18 @@ class ObstacleProblem:
         size = int(np.count_nonzero(free))
         block = self._blocks.coo(free) if size and self.n <= BLOCKS_UP_TO else None
         solve = None
-        if default and band_worth_trying(size, "new_pattern"):
+        if default and band_worth_trying(size, "new_pattern") and size < self._band_refused_from:
             # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
             # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
             # in the set's own
             if block is not None:  # (a whole-matrix order for a small set of a large matrix: not made)
                 solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
             solve = _factor_banded(self._block_matrix(free, block), block) if solve is None else solve
+            if solve is None:
+                # refused in every order: the next sets of this problem (a layer or two of dofs apart, their bands
+                # alike) as large or larger go to SuperLU at once (on the L/D 1 two-groove journal's level-3 sets,
+                # 1,724-1,970 unknowns, bands 173-518 in either order, each try cost an order and a plan for nothing)
+                self._band_refused_from = size
         if solve is None and not size:
             solve = lambda b: np.zeros_like(b)  # noqa: E731
         elif solve is None and factorize is factorize_splu_sym and self.order is not None:

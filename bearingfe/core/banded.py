@@ -74,12 +74,16 @@ class BandLimits:
 #: ordering and extraction included, 0.21 ms against 0.68 ms at 509 unknowns, 0.66 against 2.1 ms at 1,572
 #: (the solves cost the same). P2 free sets of 500 unknowns have a half-bandwidth of 42, of 1,600 have 68:
 #: at 1e3 P2 unknowns (load 5) the Swift-Stieber solve took 15.7 ms with a limit of 40 (SuperLU took the
-#: kd = 42 sets), 10.5 ms with 80. The work cap is that of 5,000 unknowns with a half-bandwidth of 40; blocks
-#: of more than 5,000 unknowns are not tried (a 2-D set that large has a wider band). Measured again on the
-#: journal's free sets (360-degree bearing, L/D 1/2, P1 and P2; CPU, median of 100, factorization and one
-#: solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in minimum degree; P2 sets of
-#: 1,990 unknowns with kd 74 (work 1.1e7, refused by the work cap) 1.56 against 2.8 ms, so the cap is on the
-#: safe side there (raising it would change those sets' answers in round-off).
+#: kd = 42 sets), 10.5 ms with 80. The work cap was first that of 5,000 unknowns with a half-bandwidth of 40
+#: (8e6; raised below); blocks of more than 5,000 unknowns are not tried (a 2-D set that large has a wider
+#: band). Measured again on the journal's free sets (360-degree bearing, L/D 1/2, P1 and P2; CPU, median of
+#: 100, factorization and one solve): 1,973 unknowns, kd 38, 0.53 ms banded against 2.8 ms for SuperLU in
+#: minimum degree; P2 sets of 1,990 unknowns with kd 74 (work 1.1e7, then refused by the work cap of 8e6) 1.56
+#: against 2.8 ms. Raised to a half-bandwidth of 128 and a work of 2e7 from the journals' P2 free sets (part
+#: ``journal_pads``'s two-groove pads and the full bearings, L/D 1/2 and 1, size 0.3, rupture_size 0.05; CPU,
+#: median of 30, factorization and one solve, one BLAS thread as its callers run it): 1,012-1,257 unknowns
+#: with kd 101-117 (work 1.1-1.4e7) 1.3-1.6 ms banded against 2.0-2.4 ms for SuperLU; 1,724-1,960 unknowns
+#: with kd 173-189 (work 5.7-6.4e7) 4.2-4.7 against 3.7-4.4 ms, where SuperLU wins.
 #:
 #: ``full_film_guess`` (the mass-conserving solver's full-film system, the Poiseuille operator alone, factored
 #: once per cold solve for its first cavity; Cholesky): measured (CPU time, 20 solves, the 5 x 5 dimple slider
@@ -103,7 +107,7 @@ class BandLimits:
 #: on the long bands, so the work is capped between the two groups.
 BAND_LIMITS: dict[str, BandLimits] = {
     "kept_pattern": BandLimits(kd_max=64),
-    "new_pattern": BandLimits(kd_max=80, work_max=5000 * 40**2, size_max=5000),
+    "new_pattern": BandLimits(kd_max=128, work_max=2e7, size_max=5000),
     "full_film_guess": BandLimits(kd_max=96, size_max=96**2),
     "active_set_lu": BandLimits(kd_max=64, size_max=64**2),
     "front_band_lu": BandLimits(kd_max=64, work_max=2e7),

@@ -446,3 +446,28 @@ def test_a_nearby_matrix_preconditions_to_the_same_answer(journal_mesh, monkeypa
     np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
     with pytest.raises(ValueError, match="free"):
         problem.precondition(free[:-1], nearby)
+
+
+def test_a_set_refused_in_every_order_spares_the_tries_of_larger_sets(monkeypatch):
+    # with the obstacle sets' band limit at 5, a 20 x 20 Laplacian's free sets (bands about 20) are refused in every
+    # order; after the first refusal, sets as large or larger are not ordered and planned again (the tries are
+    # counted), a smaller one is; every solve against scipy's sparse direct solve (round-off: 1e-10 of the largest)
+    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=5, size_max=5000))
+    tries = []
+    real = obstacle._factor_banded
+    monkeypatch.setattr(obstacle, "_factor_banded", lambda *a, **k: tries.append(1) or real(*a, **k))
+    A = _laplacian(20)
+    problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
+    rng = np.random.default_rng(3)
+    counts = []
+    for ruptured in (40, 30, 60):  # free sets of 360, 370 and 340 unknowns
+        free = np.ones(A.shape[0], bool)
+        free[rng.choice(A.shape[0], ruptured, replace=False)] = False
+        before = len(tries)
+        solve = problem._factor(free)
+        counts.append(len(tries) - before)
+        b = np.linspace(1.0, 2.0, int(free.sum()))
+        reference = spla.spsolve(A[free][:, free].tocsc(), b)
+        np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    assert counts[0] >= 2 and counts[1] == 0 and counts[2] >= 2
+    assert problem._band_refused_from == 340

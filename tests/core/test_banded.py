@@ -74,10 +74,10 @@ def test_plan_in_a_given_order_and_refusals():
 def test_one_rule_takes_the_matrix_kind():
     kept, new = banded.band_limits("kept_pattern"), banded.band_limits("new_pattern")
     assert (kept.kd_max, kept.work_max, kept.size_max) == (64, np.inf, np.inf)
-    assert (new.kd_max, new.work_max, new.size_max) == (80, 5000 * 40**2, 5000)
+    assert (new.kd_max, new.work_max, new.size_max) == (128, 2e7, 5000)
     assert banded.band_pays(10**5, 64, "kept_pattern") and not banded.band_pays(100, 65, "kept_pattern")
-    assert banded.band_pays(1250, 80, "new_pattern") and not banded.band_pays(100, 81, "new_pattern")
-    assert banded.band_pays(5000, 40, "new_pattern") and not banded.band_pays(5000, 41, "new_pattern")  # work
+    assert banded.band_pays(1220, 128, "new_pattern") and not banded.band_pays(100, 129, "new_pattern")
+    assert banded.band_pays(5000, 63, "new_pattern") and not banded.band_pays(5000, 64, "new_pattern")  # work
     assert banded.band_pays(100, 96, "kept_pattern", kd_max=96)  # a caller's own widest half-bandwidth
     assert banded.band_worth_trying(5000, "new_pattern") and not banded.band_worth_trying(5001, "new_pattern")
     assert not banded.band_worth_trying(0, "kept_pattern")
