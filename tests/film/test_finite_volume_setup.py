@@ -758,32 +758,39 @@ def test_facet_geometry_is_kept_on_the_mesh_with_the_same_fluxes():
     assert all(np.array_equal(fluxes[0][k], fluxes[1][k]) for k in fluxes[0])
 
 
+def _sparse_stiffness(cells, w):
+    """The stiffness of the cell integrals ``w`` by scipy's sparse sums, the path the kept plans and the P1
+    pattern replace: ``U`` by the COO conversion, ``U + U^T``, the rows' sums on the diagonal."""
+    import scipy.sparse as sp
+
+    g, t = cells.grad, cells.t
+    a, b = [0, 1, 2], [1, 2, 0]
+    vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
+    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
+    A = U + U.T
+    return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+
+
+def _stiffness_meshes():
+    """A gmsh mesh with a pocket, a periodic gmsh mesh and a grid (whose diagonals' entries sum to exactly zero)."""
+    from benchmarks.jfo_gmsh import grooved_journal
+    from bearingfe import Rectangle
+
+    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
+    return mesh_surface(pad, 0.08), mesh_surface(grooved_journal().surface, 0.3), grid_mesh(_dimpled(), 1 / 10)
+
+
 def test_stiffness_on_its_kept_plan_equals_scipys_sums():
     """From a mesh's third stiffness on, ``U + U^T`` is summed on the plan of its pattern (:func:`_edge_sum`):
     the stiffness equals, bit for bit, the sparse sums it replaces (``U`` by the COO conversion, ``U + U^T``,
     the rows' sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket, a periodic gmsh mesh
     and a grid (whose diagonals' entries sum to exactly zero and are left out)."""
-    import scipy.sparse as sp
-
-    from benchmarks.jfo_gmsh import grooved_journal
-    from bearingfe import Rectangle
-
-    def summed(cells, w):
-        g, t = cells.grad, cells.t
-        a, b = [0, 1, 2], [1, 2, 0]
-        vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
-        U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
-        A = U + U.T
-        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
-
-    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
-    journal = grooved_journal().surface
     rng = np.random.default_rng(11)
-    for mesh in (mesh_surface(pad, 0.08), mesh_surface(journal, 0.3), grid_mesh(_dimpled(), 1 / 10)):
+    for mesh in _stiffness_meshes():
         cells = fv._cells(mesh, fv.operators(mesh, "P1"))
         for call in range(4):   # scipy's sums, the plan found, then the plan
             w = rng.uniform(0.5, 2.0, cells.t.shape[1])
-            got, want = fv._stiffness_of(cells, w), summed(cells, w)
+            got, want = fv._stiffness_of(cells, w), _sparse_stiffness(cells, w)
             assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
             assert np.array_equal(got.data, want.data)
         assert isinstance(fv._EDGE_PLANS[cells], fv._EdgePlan)
@@ -944,26 +951,13 @@ def test_stiffness_and_streamline_flux_on_the_p1_pattern_equal_the_sparse_sums()
     entries (two terms) bit for bit and the diagonal to round-off (1e-15 of the largest entry: another order)."""
     import scipy.sparse as sp
 
-    from benchmarks.jfo_gmsh import grooved_journal
-    from bearingfe import Rectangle
-
-    def summed(cells, w):
-        g, t = cells.grad, cells.t
-        a, b = [0, 1, 2], [1, 2, 0]
-        vals = (w * (g[0][a] * g[0][b] + g[1][a] * g[1][b])).ravel()
-        U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(cells.n, cells.n))
-        A = U + U.T
-        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
-
-    pad = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[Rectangle((0.7, 0.0), (0.2, 0.2))])
     rng = np.random.default_rng(12)
-    journal = grooved_journal().surface
-    for mesh in (mesh_surface(pad, 0.08), mesh_surface(journal, 0.3), grid_mesh(_dimpled(), 1 / 10)):
+    for mesh in _stiffness_meshes():
         cells = fv._cells(mesh, fv.operators(mesh, "P1"))
         pattern = fv._p1_pattern(mesh)
         assert pattern is not None
         w = rng.uniform(0.5, 2.0, cells.t.shape[1])
-        got, want = fv._stiffness_of(cells, w, pattern), summed(cells, w)
+        got, want = fv._stiffness_of(cells, w, pattern), _sparse_stiffness(cells, w)
         assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
         assert np.array_equal(got.data, want.data)
         assert (fv._stiffness_on(pattern, fv._edge_terms(cells, w)) is None) == (mesh.source == "grid")
