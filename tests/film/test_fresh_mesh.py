@@ -106,25 +106,6 @@ def test_pocket_moments_of_a_rectangle_are_its_area_and_cosine_moments():
         np.testing.assert_allclose(operators(_mesh(), element).pocket_moments, exact, rtol=1e-12, atol=1e-14)
 
 
-@pytest.mark.parametrize("order", [1, 2])
-def test_pocket_moments_from_the_facets_ends_are_scikit_fems_facet_map(order):
-    """On straight facets :func:`pocket_moments` takes the points, normals and weights from the facets' ends
-    (:func:`boundary_facets`): the sums of scikit-fem's facet map (:func:`facet_geometry`, the previous path) to
-    :data:`RTOL`, for a circular pocket (facets of every direction) on a fresh mesh; a curved quadratic mesh
-    keeps scikit-fem's map (the same numbers exactly)."""
-    mesh = bf.mesh_surface(CIRCLE, 0.1, order=order)
-    basis = operators(mesh, "P1" if order == 1 else "P2").basis
-    facets = np.asarray(mesh.boundaries["inlet"])
-    x, n, dx = film_operators.facet_geometry(basis, facets, 8)
-    before = [-np.sum(x[0] * n[0] * dx), -np.sum(np.sin(x[0]) * n[0] * dx), np.sum(np.cos(x[0]) * n[0] * dx)]
-    got = film_operators.pocket_moments(basis, facets)
-    if type(basis.mapping) is MappingAffine:
-        np.testing.assert_allclose(got, before, rtol=RTOL, atol=0)
-        assert 0.9 * np.pi * 0.2**2 < got[0] < np.pi * 0.2**2   # the area of a polygon inscribed in the circle
-    else:
-        assert np.array_equal(got, before)
-
-
 def test_boundary_facets_normals_point_out_of_the_film():
     """:func:`boundary_facets` of the outline of a rectangle: unit normals along -phi, +phi, -z, +z on the four
     sides (their centres on the sides), lengths summing to the perimeter 4, the facets' own triangles."""
