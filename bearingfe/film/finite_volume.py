@@ -81,6 +81,7 @@ equations and their derivation are in ``docs/jfo.md``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import time
 import weakref
@@ -537,7 +538,7 @@ def _flux_blocks(nt: int, f: np.ndarray, w: np.ndarray, first: np.ndarray | None
 @dataclass(frozen=True, eq=False)
 class _P1Pattern:
     """The CSR pattern of the P1 matrices of a triangle mesh (each node with itself and its edge neighbours,
-    sorted) and where the terms go on it, from scikit-fem's edges of the triangles (:func:`_p1_pattern`).
+    sorted) and where the terms go on it, from the edges of the triangles (:func:`_p1_pattern`).
 
     The values are gathered per slot first: edge ``e`` from its lower to its higher node is slot ``e``, the
     other way ``n_edges + e``, the diagonal of node ``i`` slot ``2 n_edges + i``; ``take`` maps each stored
@@ -549,27 +550,82 @@ class _P1Pattern:
     diagonal: np.ndarray    # (n,) the place of each node's diagonal entry
     off: np.ndarray         # (nnz,) bool: the off-diagonal entries
     edge: np.ndarray        # (3, n_triangles): the edge of each triangle's node pair (e, e + 1) (the mesh's t2f)
-    block_slot: np.ndarray  # (9 n_triangles,) the slot of each entry of :func:`_flux_blocks`' 3 x 3 blocks
+    t: np.ndarray           # (3, n_triangles): the triangles, nodes increasing
     n_edges: int
+
+    @functools.cached_property
+    def block_slot(self) -> np.ndarray:
+        """(9 n_triangles,) the slot of each entry of :func:`_flux_blocks`' 3 x 3 blocks (built at the first
+        flux: a stiffness alone does not need it)."""
+        t, edge, n_edges = self.t, self.edge, self.n_edges
+        block_slot = np.empty((3, 3, t.shape[1]), np.int64)   # (row node, column node, triangle): _flux_blocks'
+        pair = {(0, 1): 0, (1, 2): 1, (0, 2): 2}
+        for a in range(3):
+            for c in range(3):   # (the row's node is the higher one where a > c: nodes increasing)
+                if a == c:
+                    np.add(t[a], 2 * n_edges, out=block_slot[a, c])
+                else:
+                    np.add(edge[pair[min(a, c), max(a, c)]], n_edges if a > c else 0, out=block_slot[a, c])
+        return block_slot.ravel()
 
 
 def _p1_pattern(mesh: SupportMesh) -> _P1Pattern | None:
-    """:class:`_P1Pattern` of a straight triangle mesh (kept on the mesh); None where scikit-fem's edges of the
-    triangles are not at hand (``t2f``, built with the mesh's facets: finding them would cost more than the sorts
-    it saves), do not match the triangles (or their nodes are not increasing), or an edge has more than two
-    triangles. Kept: about 120 bytes a
-    triangle (the blocks' slots 72, the entries' slots and places 40, the rows 4 a node)."""
+    """:class:`_P1Pattern` of a straight triangle mesh from scikit-fem's edges of the triangles (kept on the
+    mesh); None where they are not at hand (``t2f``, built with the mesh's facets: finding them would cost more
+    than the sorts it saves on a mesh solved once; :func:`_stiffness_pattern` finds its own at a mesh's second
+    stiffness) or the pattern does not take the triangles (:func:`_pattern_of`). Kept: about 120 bytes a
+    triangle (the blocks' slots 72, built at the first flux, the entries' slots and places 40, the rows 4 a
+    node). The streamline flux is summed on this one only (on it the flux's diagonal differs from the scipy
+    conversion's by round-off: :func:`_on_pattern`), so a mesh keeps the one or the other from its first solve."""
     return mesh.cached("finite_volume.p1_pattern", lambda: _build_p1_pattern(mesh.mesh))
 
 
 def _build_p1_pattern(m) -> _P1Pattern | None:
-    """:func:`_p1_pattern` built afresh: the pattern by one conversion of its entries, each numbered by its slot,
-    into CSR (each entry once: the slot numbers come back as the values, in the CSR order). Triangles whose nodes
-    are not increasing (scikit-fem sorts them) take no pattern."""
+    """:func:`_p1_pattern` built afresh from scikit-fem's facets and ``t2f``."""
     if not (hasattr(m, "_t2f") and hasattr(m, "_facets")) or m.t.shape[0] != 3 or m.dim() != 2:
         return None
-    t, facets, n = m.t, np.asarray(m.facets), int(m.nvertices)
-    edge = np.asarray(m.t2f)   # scikit-fem's facets (0, 1), (1, 2), (0, 2) of each triangle: the pairs (e, e + 1)
+    return _pattern_of(m.t, int(m.nvertices), np.asarray(m.facets), np.asarray(m.t2f))
+
+
+def _stiffness_pattern(mesh: SupportMesh, flux: bool = False) -> _P1Pattern | None:
+    """The pattern the mesh's stiffness is summed on (:func:`_stiffness_on`), the one place that decides when
+    it is built. Where the streamline flux is summed on it too (``flux``) and scikit-fem's edges are at hand,
+    :func:`_p1_pattern` from the first stiffness; else from the mesh's second stiffness on (None at the first:
+    :func:`_stiffness_of` keeps scipy's sums, and a mesh solved once pays no pattern): :func:`_p1_pattern`
+    where scikit-fem's edges are at hand, else the pattern of the triangles' own edges
+    (:func:`_triangle_edges`, the same arrays)."""
+    if flux:
+        pattern = _p1_pattern(mesh)
+        if pattern is not None:
+            return pattern
+    kept = mesh.cached("finite_volume.stiffness_pattern", dict)   # {"seen": True} after the first, then "pattern"
+    if "pattern" not in kept:
+        if not kept.get("seen"):
+            kept["seen"] = True
+            return None
+        m = mesh.mesh
+        pattern = _p1_pattern(mesh) if hasattr(m, "_t2f") else None
+        if pattern is None and m.t.shape[0] == 3 and m.dim() == 2:
+            pattern = _pattern_of(m.t, int(m.nvertices), *_triangle_edges(m.t, int(m.nvertices)))
+        kept["pattern"] = pattern
+    return kept["pattern"]
+
+
+def _triangle_edges(t: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The edges ``(2, n_edges)`` (lower node, higher node; sorted) of the triangles ``t`` and the edge of each
+    triangle's node pairs (0, 1), (1, 2), (0, 2) (``(3, n_triangles)``): scikit-fem's ``facets`` and ``t2f`` for
+    triangles whose nodes are increasing."""
+    a, b = t[[0, 1, 0]], t[[1, 2, 2]]
+    keys = np.minimum(a, b).astype(np.int64) * n + np.maximum(a, b)
+    unique, edge = np.unique(keys.ravel(), return_inverse=True)
+    return np.array([unique // n, unique % n]), edge.reshape(t.shape)
+
+
+def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> _P1Pattern | None:
+    """:class:`_P1Pattern` of the triangles ``t`` with the edges ``facets`` and each triangle's ``edge`` of its
+    node pairs (0, 1), (1, 2), (0, 2): the pattern by one conversion of its entries, each numbered by its slot,
+    into CSR (each entry once: the slot numbers come back as the values, in the CSR order). None where the
+    triangles' nodes are not increasing, the edges do not match them, or an edge has more than two triangles."""
     n_edges = facets.shape[1]
     # each triangle's nodes increasing (scikit-fem sorts them): the pairs' lower nodes are 0, 1, 0, higher 1, 2, 2
     if (edge.shape != t.shape or not (np.all(t[0] < t[1]) and np.all(t[1] < t[2]))
@@ -587,16 +643,8 @@ def _build_p1_pattern(m) -> _P1Pattern | None:
     is_diagonal = take >= 2 * n_edges
     diagonal = np.empty(n, np.int64)
     diagonal[take[is_diagonal] - 2 * n_edges] = np.flatnonzero(is_diagonal)
-    block_slot = np.empty((3, 3, t.shape[1]), np.int64)   # (row node, column node, triangle): _flux_blocks' order
-    pair = {(0, 1): 0, (1, 2): 1, (0, 2): 2}
-    for a in range(3):
-        for c in range(3):   # (the row's node is the higher one where a > c: nodes increasing)
-            if a == c:
-                np.add(t[a], 2 * n_edges, out=block_slot[a, c])
-            else:
-                np.add(edge[pair[min(a, c), max(a, c)]], n_edges if a > c else 0, out=block_slot[a, c])
     return _P1Pattern(indptr=P.indptr, indices=P.indices, take=take, diagonal=diagonal,
-                      off=~is_diagonal, edge=edge, block_slot=block_slot.ravel(), n_edges=n_edges)
+                      off=~is_diagonal, edge=edge, t=t, n_edges=n_edges)
 
 
 def _on_pattern(pattern: _P1Pattern, blocks_flat: np.ndarray) -> sp.csr_matrix:
@@ -675,38 +723,55 @@ def _stiffness_of(cells: _Cells, w: np.ndarray, pattern: _P1Pattern | None = Non
     """``int c grad phi_i . grad phi_j`` from ``w = int_T c`` per triangle (P1: the gradients are constant on
     a triangle, so each triangle contributes ``int_T c`` times their products). Summed from the 3 edges of each
     triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
-    entries a triangle into the CSR sort instead of 9 (0.07 against 0.21-0.51 s at 7.2e5 triangles, equal to
-    4e-16 relative; the entries that sum to exactly zero, across the diagonals of a square grid, are left out).
-    From a mesh's third stiffness on, ``A + A^T`` is summed on a plan of its pattern (:func:`_edge_sum`); with
-    the mesh's P1 ``pattern`` (:func:`_p1_pattern`) from the first on (:func:`_stiffness_on`)."""
+    entries a triangle instead of 9; the entries that sum to exactly zero, across the diagonals of a square
+    grid, are left out. On the mesh's P1 ``pattern`` (:func:`_stiffness_pattern`) without a sort
+    (:func:`_stiffness_on`); without one by scipy's sparse sums (the COO conversion of ``U``, ``U + U^T``, the
+    rows' sums), which the pattern's give bit for bit (CPU, mean of 300 calls, load ~4: 0.17-0.18 against
+    0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against 0.88-0.93 ms on a 70 x 70 grid; a
+    mesh's second call, the pattern built from scikit-fem's edges, 0.75 and 2.5 ms)."""
     vals = _edge_terms(cells, w)
-    K = None if pattern is None else _stiffness_on(pattern, vals)
-    if K is not None:
-        return K
-    A = _edge_sum(cells, vals)
+    if pattern is not None:
+        return _stiffness_on(pattern, vals)
+    t, n = cells.t, cells.n
+    a, b = [0, 1, 2], [1, 2, 0]
+    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(n, n))
+    A = U + U.T
     return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
 
 
-def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix | None:
+def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix:
     """:func:`_stiffness_of` from the edge terms ``vals`` on the mesh's P1 ``pattern``: each edge's (at most two)
-    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), each row's off-diagonal
-    entries summed in their order by numpy's ``add.reduceat`` (as scipy's ``sum(axis=1)``) and negated onto the
-    diagonal. The same arrays bit for bit as the sparse sums, without their sorts; None where an entry is zero
-    (scipy's sums leave it out, and a row's sum then runs over fewer terms: those keep the sparse sums)."""
+    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), the entries that are zero
+    left out (as scipy's sums drop them), each row's remaining off-diagonal entries summed by numpy's
+    ``add.reduceat`` over the rows that have any (as scipy's ``sum(axis=1)``) and negated onto the diagonal, a
+    zero diagonal left out. The same arrays bit for bit as the sparse sums, without their sorts."""
     n_edges, n = pattern.n_edges, pattern.diagonal.size
     per_edge = np.bincount(pattern.edge.ravel(), weights=vals, minlength=n_edges)
-    if not (np.all(per_edge) and np.all(np.diff(pattern.indptr) > 1)):   # (or a node without neighbours)
-        return None
     slots = np.zeros(2 * n_edges + n)
     slots[:n_edges] = per_edge
     slots[n_edges:2 * n_edges] = per_edge
     data = slots[pattern.take]
-    off_starts = pattern.indptr[:-1] - np.arange(n)   # each row's first off-diagonal entry among them (one a row)
-    sums = np.add.reduceat(data[pattern.off], off_starts) if n else np.zeros(0)
-    if not np.all(sums):
-        return None
+    off = data[pattern.off]
+    off_ptr = pattern.indptr - np.arange(n + 1)   # each row's off-diagonal entries among them (one diagonal a row)
+    if not np.all(off):   # (grids' diagonals): the rows' sums run over the nonzero entries only, as scipy's
+        nonzero = off != 0
+        off = off[nonzero]
+        counts = np.zeros(nonzero.size + 1, np.int64)
+        np.cumsum(nonzero, out=counts[1:])
+        off_ptr = counts[off_ptr]
+    sums = np.zeros(n)
+    rows = np.flatnonzero(off_ptr[1:] > off_ptr[:-1])
+    if rows.size:
+        sums[rows] = np.add.reduceat(off, off_ptr[rows])
     data[pattern.diagonal] = -sums
-    K = sp.csr_matrix((data, pattern.indices.copy(), pattern.indptr.copy()), shape=(n, n))
+    indices, indptr = pattern.indices, pattern.indptr
+    if not np.all(data):
+        keep = data != 0
+        data, indices = data[keep], indices[keep]
+        counts = np.zeros(keep.size + 1, np.int64)
+        np.cumsum(keep, out=counts[1:])
+        indptr = counts[indptr].astype(pattern.indptr.dtype)
+    K = sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(n, n))
     K.has_sorted_indices = True
     K.has_canonical_format = True
     return K
@@ -727,97 +792,6 @@ def _edge_terms(cells: _Cells, w: np.ndarray) -> np.ndarray:
             o += g[1, k, block] * g[1, (k + 1) % 3, block]
             o *= wb
     return vals.ravel()
-
-
-#: Plans of :func:`_edge_sum` per cells (a mesh's): None once a first stiffness was summed by scipy, then
-#: the plan (or False where the pattern does not take one).
-_EDGE_PLANS: "weakref.WeakKeyDictionary[_Cells, object]" = weakref.WeakKeyDictionary()
-_UNSEEN = object()
-
-
-@dataclass(frozen=True, eq=False)
-class _EdgePlan:
-    """Where the edge terms of :func:`_edge_sum` go: each term's directed edge (``slot``, at most two terms an
-    edge), and per entry of the symmetric pattern ``(indptr, indices)`` its edge and the reverse one
-    (``forward``, ``backward``; ``n_slots``: an absent one, whose value is 0) and its row."""
-
-    slot: np.ndarray
-    n_slots: int
-    forward: np.ndarray
-    backward: np.ndarray
-    rows: np.ndarray
-    indptr: np.ndarray
-    indices: np.ndarray
-
-
-def _edge_sum(cells: _Cells, vals: np.ndarray) -> sp.csr_matrix:
-    """``U + U^T`` for ``U`` the sum of the terms ``vals`` at the directed edges ``(t[e], t[e + 1])`` of the
-    triangles (edge-pair major, as :func:`_stiffness_of` writes them): scipy's sparse sum, entries that are zero
-    dropped. From a mesh's third call on it is summed on a plan of the pattern (:class:`_EdgePlan`, found at the
-    second from scipy's ``U``): each directed edge takes at most two terms (a sum in either order is the same
-    number) and each entry is the sum of its two directions, so the same arrays bit for bit without the COO
-    conversion, its sort and the sparse sum (:func:`_stiffness_of`, CPU, docs/jfo_gmsh.md's pocket pad, mean of
-    30-300 calls, load ~5: 0.28-0.35 against 0.56-0.62 ms at 529 nodes, 1.2-1.6 against 2.2-2.7 ms at 7,375; the
-    plan, paid once at the second call, 0.65 and 5.9 ms). A mesh solved once pays no plan; a pattern where an edge
-    takes more terms keeps scipy's sums."""
-    t, n = cells.t, cells.n
-    plan = _EDGE_PLANS.get(cells, _UNSEEN)
-    if not isinstance(plan, _EdgePlan):
-        a, b = [0, 1, 2], [1, 2, 0]
-        i, j = t[a].ravel(), t[b].ravel()
-        U = sp.csr_matrix((vals, (i, j)), shape=(n, n))
-        if plan is None:   # the second call: plan the pattern from U's
-            _EDGE_PLANS[cells] = _edge_plan(U, i, j) or False
-        elif plan is _UNSEEN:
-            _EDGE_PLANS[cells] = None
-        return U + U.T
-    u = np.zeros(plan.n_slots + 1)
-    u[:plan.n_slots] = np.bincount(plan.slot, weights=vals, minlength=plan.n_slots)
-    data = u[plan.forward] + u[plan.backward]
-    indices, indptr = plan.indices, plan.indptr
-    if not np.all(data):   # the sum drops the entries that are zero
-        keep = data != 0
-        data, indices = data[keep], indices[keep]
-        indptr = np.zeros_like(plan.indptr)
-        np.cumsum(np.bincount(plan.rows[keep], minlength=n), out=indptr[1:])
-    A = sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(n, n))
-    A.has_sorted_indices = True
-    A.has_canonical_format = True
-    return A
-
-
-def _edge_plan(U: sp.csr_matrix, i: np.ndarray, j: np.ndarray) -> _EdgePlan | None:
-    """:class:`_EdgePlan` of the terms at the directed edges ``(i, j)`` summed into the canonical CSR ``U``;
-    None where a directed edge takes more than two terms. The terms bucketed by row (scipy's COO conversion of
-    the terms' numbers) and each row's by column (scipy's ``sort_indices``): equal edges side by side, numbered
-    in ``U``'s order; each entry's reverse found by a transpose of the entries' numbers."""
-    n, m = U.shape[0], i.size
-    R = sp.csr_matrix((np.ones(m), (i, np.arange(m))), shape=(n, m))   # the terms bucketed by row, in order
-    order, indptr = R.indices, R.indptr
-    B = sp.csr_matrix((order.astype(float), j[order], indptr), shape=U.shape)
-    B.sort_indices()   # each row's terms by column: equal directed edges side by side
-    row_of = np.repeat(np.arange(n), np.diff(indptr))
-    new = np.ones(m, bool)
-    new[1:] = (B.indices[1:] != B.indices[:-1]) | (row_of[1:] != row_of[:-1])
-    slot = np.empty(m, np.int64)
-    slot[B.data.astype(np.int64)] = np.cumsum(new) - 1
-    n_slots = int(np.count_nonzero(new))
-    if n_slots != U.nnz or (m and np.bincount(slot).max() > 2):
-        return None
-    ones = sp.csr_matrix((np.ones(U.nnz), U.indices, U.indptr), shape=U.shape)
-    P = (ones + ones.T).tocsr()   # the entries of U and of U^T (all positive: none cancels)
-    P.sort_indices()
-    rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(P.indptr))
-    keys = np.repeat(np.arange(n, dtype=np.int64), np.diff(U.indptr)) * n + U.indices   # sorted: U is canonical
-    pkeys = rows * n + P.indices                                                        # sorted too
-    found = np.minimum(np.searchsorted(keys, pkeys), max(n_slots - 1, 0))
-    forward = np.where(keys[found] == pkeys, found, n_slots) if n_slots else np.zeros(pkeys.size, np.int64)
-    # the place of (c, r) for each entry (r, c): P's pattern is symmetric, so its transpose has P's places
-    numbers = sp.csr_matrix((np.arange(1.0, P.nnz + 1.0), P.indices, P.indptr), shape=P.shape).T.tocsr()
-    numbers.sort_indices()
-    backward = forward[numbers.data.astype(np.int64) - 1]
-    return _EdgePlan(slot=slot, n_slots=n_slots, forward=forward, backward=backward, rows=rows.astype(np.int32),
-                     indptr=P.indptr.astype(np.int32), indices=P.indices.astype(np.int32))
 
 
 def _load(cells: _Cells, f_q: np.ndarray | None) -> np.ndarray:
@@ -1459,8 +1433,8 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
     means = None if rough else _cell_means(mesh, film, x)
     if means is not None:
         _with_cell_means(cells, means, h_q, inv_h_q, w)
-    pattern = _p1_pattern(mesh) if couette == "streamline" else None   # the flux's pattern is the stiffness's
-    K = _stiffness_of(cells, w, pattern)
+    K = _stiffness_of(cells, w, _stiffness_pattern(mesh, flux=couette == "streamline"))
+    pattern = _p1_pattern(mesh) if couette == "streamline" else None   # the flux's: scikit-fem's edges only
     rec = None
     if couette == "grid":   # box cells: flux wedge/2 theta int h dz through the faces normal to phi
         g = _grid_faces(mesh)

@@ -117,7 +117,7 @@ class SupportMesh:
         Structures that belong to an object derived from a mesh rather than to the mesh itself (a compiled
         operator, a superposition, an assembled system, a finite-volume system's cells) are kept by their module
         in a ``weakref.WeakKeyDictionary`` keyed by that object, so that they go when it goes (e.g.
-        ``finite_volume._EDGE_PLANS``, ``journal._POSITION_SOURCES``, the ``swift_stieber`` chains): a key
+        ``finite_volume._REDUCED``, ``journal._POSITION_SOURCES``, the ``swift_stieber`` chains): a key
         of this cache could not name such an object without keeping it alive as long as the mesh.
         """
         try:

@@ -759,8 +759,8 @@ def test_facet_geometry_is_kept_on_the_mesh_with_the_same_fluxes():
 
 
 def _sparse_stiffness(cells, w):
-    """The stiffness of the cell integrals ``w`` by scipy's sparse sums, the path the kept plans and the P1
-    pattern replace: ``U`` by the COO conversion, ``U + U^T``, the rows' sums on the diagonal."""
+    """The stiffness of the cell integrals ``w`` by scipy's sparse sums, the path the P1 pattern replaces: ``U``
+    by the COO conversion, ``U + U^T``, the rows' sums on the diagonal."""
     import scipy.sparse as sp
 
     g, t = cells.grad, cells.t
@@ -780,22 +780,37 @@ def _stiffness_meshes():
     return mesh_surface(pad, 0.08), mesh_surface(grooved_journal().surface, 0.3), grid_mesh(_dimpled(), 1 / 10)
 
 
-def test_stiffness_on_its_kept_plan_equals_scipys_sums():
-    """From a mesh's third stiffness on, ``U + U^T`` is summed on the plan of its pattern (:func:`_edge_sum`):
-    the stiffness equals, bit for bit, the sparse sums it replaces (``U`` by the COO conversion, ``U + U^T``,
-    the rows' sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket, a periodic gmsh mesh
-    and a grid (whose diagonals' entries sum to exactly zero and are left out)."""
+def test_stiffness_on_the_pattern_found_at_the_second_call_equals_scipys_sums():
+    """Without a streamline flux to share it, a mesh's first stiffness is scipy's sparse sums and from its
+    second on it is summed on the P1 pattern (:func:`_stiffness_pattern`): scikit-fem's edges' where they are at
+    hand, else the triangles' own (the same arrays). The stiffness equals, bit for bit, the sparse sums (``U`` by
+    the COO conversion, ``U + U^T``, the rows' sums on the diagonal) for random cell integrals, on a gmsh mesh with
+    a pocket, a periodic gmsh mesh and a grid (whose diagonals' entries sum to exactly zero and are left out); with
+    the streamline flux the pattern of scikit-fem's edges serves from the first stiffness."""
+    import copy
+
     rng = np.random.default_rng(11)
     for mesh in _stiffness_meshes():
-        cells = fv._cells(mesh, fv.operators(mesh, "P1"))
-        for call in range(4):   # scipy's sums, the plan found, then the plan
-            w = rng.uniform(0.5, 2.0, cells.t.shape[1])
-            got, want = fv._stiffness_of(cells, w), _sparse_stiffness(cells, w)
-            assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
-            assert np.array_equal(got.data, want.data)
-        assert isinstance(fv._EDGE_PLANS[cells], fv._EdgePlan)
-        if mesh.source == "grid":
-            assert want.nnz < fv._EDGE_PLANS[cells].indices.size + cells.n   # the zero entries left out
+        skfem = fv._p1_pattern(mesh)
+        assert fv._stiffness_pattern(mesh, flux=True) is skfem
+        for edges in (True, False):
+            copied = copy.deepcopy(mesh)
+            copied._cache.clear()
+            if not edges:
+                copied.mesh.__dict__.pop("_t2f", None)
+            cells = fv._cells(copied, fv.operators(copied, "P1"))
+            for call in range(4):   # scipy's sums, then the pattern found at the second call
+                pattern = fv._stiffness_pattern(copied)
+                assert (pattern is None) == (call == 0)
+                w = rng.uniform(0.5, 2.0, cells.t.shape[1])
+                got, want = fv._stiffness_of(cells, w, pattern), _sparse_stiffness(cells, w)
+                assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+                assert np.array_equal(got.data, want.data)
+            assert (fv._p1_pattern(copied) is pattern) == edges
+            for name in ("indptr", "indices", "take", "diagonal", "off", "edge", "block_slot"):
+                assert np.array_equal(getattr(pattern, name), getattr(skfem, name))
+            if mesh.source == "grid":
+                assert want.nnz < pattern.indices.size   # the zero entries left out
 
 
 def test_band_set_with_the_callers_pattern_proposes_the_same_set():
@@ -945,8 +960,8 @@ def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatc
 def test_stiffness_and_streamline_flux_on_the_p1_pattern_equal_the_sparse_sums():
     """On the mesh's P1 pattern (:func:`_p1_pattern`, from scikit-fem's edges of the triangles) the stiffness
     equals the sparse sums bit for bit (the previous path: ``U`` by the COO conversion, ``U + U^T``, the rows'
-    sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket and a periodic gmsh mesh; on a
-    grid (entries that sum to exactly zero) it keeps the sparse sums. The triangles' 3 x 3 blocks summed onto it
+    sums on the diagonal) for random cell integrals, on a gmsh mesh with a pocket, a periodic gmsh mesh and a
+    grid (whose entries that sum to exactly zero are left out). The triangles' 3 x 3 blocks summed onto it
     (:func:`_on_pattern`) have the pattern of their conversion into CSR, explicit zeros kept, the off-diagonal
     entries (two terms) bit for bit and the diagonal to round-off (1e-15 of the largest entry: another order)."""
     import scipy.sparse as sp
@@ -960,7 +975,7 @@ def test_stiffness_and_streamline_flux_on_the_p1_pattern_equal_the_sparse_sums()
         got, want = fv._stiffness_of(cells, w, pattern), _sparse_stiffness(cells, w)
         assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
         assert np.array_equal(got.data, want.data)
-        assert (fv._stiffness_on(pattern, fv._edge_terms(cells, w)) is None) == (mesh.source == "grid")
+        assert (want.nnz < pattern.indices.size) == (mesh.source == "grid")   # the zero entries left out
         blocks = rng.standard_normal(9 * cells.t.shape[1])
         blocks[::11] = 0.0
         rows, cols = fv._block_places(cells.t)
@@ -986,6 +1001,7 @@ def test_p1_pattern_needs_the_meshs_edges_of_the_triangles():
     shuffled._cache.clear()
     shuffled.mesh.t = shuffled.mesh.t[[1, 2, 0]]   # the same triangles, their nodes in another order
     assert fv._p1_pattern(shuffled) is None
+    assert fv._stiffness_pattern(shuffled) is None and fv._stiffness_pattern(shuffled) is None   # first, second
 
 
 def test_symmetric_compares_a_matrix_with_its_transpose():
