@@ -885,26 +885,56 @@ def _planned_depth(plan, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
     return out.reshape(np.shape(phi))
 
 
-_BOXES: dict = {}
+@dataclass(frozen=True)
+class _RecessTable:
+    """The recesses of a surface as arrays, found once per surface (:func:`_recess_table`): their bounding boxes
+    (their boundary's, padded by 1 % of their size and 1e-12) as ``(lo, hi)`` pairs and as ``(2, n)`` arrays
+    ``lo``, ``hi``, their depths [units of c], and, where every recess is a circle, the centres ``(2, n)``, the
+    radii and their squares [-] (else None): one vectorised test of all recesses instead of one per recess."""
+
+    surface: object
+    boxes: list[tuple[np.ndarray, np.ndarray]]
+    lo: np.ndarray
+    hi: np.ndarray
+    depth: np.ndarray
+    centre: np.ndarray | None
+    radius: np.ndarray | None
+    radius2: np.ndarray | None
 
 
-def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size and 1e-12), found once
-    per surface (:func:`_overlaps`, :func:`_recess_plan`, :func:`_line_recess`)."""
+_TABLES: dict = {}
+
+
+def _recess_table(surface) -> _RecessTable:
+    """:class:`_RecessTable` of ``surface``, kept per surface object (a small table keyed by its id, holding the
+    surface so the id is not reused while kept)."""
     key = id(surface)
-    hit = _BOXES.get(key)
-    if hit is not None and hit[0] is surface:
-        return hit[1]
+    hit = _TABLES.get(key)
+    if hit is not None and hit.surface is surface:
+        return hit
     boxes = []
     for r in surface.recesses:
         b = r.shape.boundary()
         lo, hi = b.min(axis=1), b.max(axis=1)
         pad = 0.01 * (hi - lo) + 1e-12
         boxes.append((lo - pad, hi + pad))
-    if len(_BOXES) > 64:
-        _BOXES.clear()
-    _BOXES[key] = (surface, boxes)
-    return boxes
+    lo, hi = (np.array([b[k] for b in boxes]).reshape(-1, 2).T.copy() for k in (0, 1))
+    circles = _all_circles(surface)
+    table = _RecessTable(
+        surface, boxes, lo, hi, np.array([float(r.depth) for r in surface.recesses]),
+        np.array([r.shape.center for r in surface.recesses]).reshape(-1, 2).T.copy() if circles else None,
+        np.array([r.shape.radius for r in surface.recesses]) if circles else None,
+        np.array([r.shape.radius**2 for r in surface.recesses]) if circles else None)
+    if len(_TABLES) > 64:
+        _TABLES.clear()
+    _TABLES[key] = table
+    return table
+
+
+def _recess_boxes(surface) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Bounding boxes of the recesses (their boundary's, padded by 1 % of their size and 1e-12), found once
+    per surface (:func:`_recess_table`; :func:`_overlaps`, :func:`_recess_plan`, :func:`_line_recess`)."""
+    return _recess_table(surface).boxes
 
 
 # -- film with recesses --------------------------------------------------------------
@@ -977,7 +1007,7 @@ def _overlaps(surface, x0, x1, z0, z1) -> list[np.ndarray]:
         return [overlapping(lo, hi) for lo, hi in boxes]
     order = np.argsort(x0, kind="stable")
     xs = x0[order]
-    lo0, hi0 = np.array([lo[0] for lo, _ in boxes]), np.array([hi[0] for _, hi in boxes])
+    lo0, hi0 = _recess_table(surface).lo[0], _recess_table(surface).hi[0]
     # x1 >= lo0 needs x0 >= lo0 - (x1 - x0) >= lo0 - 2 reach (reach: the widest x1 - x0, rounded)
     start = np.searchsorted(xs, lo0 - 2.0 * reach - 1e-15 * np.abs(lo0), "left")
     stop = np.searchsorted(xs, hi0, "right")
@@ -996,11 +1026,50 @@ def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.nd
 def _depth_on_rows(surface, rows: list[np.ndarray], X: np.ndarray, Z: np.ndarray) -> np.ndarray:
     """The recess depth at the points ``X``, ``Z`` (``(n, k_points)``), each recess of ``surface`` tested on
     its own ``rows`` only (one index array per recess, in order: at least the rows with a point in its
-    bounding box, :func:`_recess_boxes`; more rows give the same values), the recesses added in their order."""
+    bounding box, :func:`_recess_boxes`; more rows give the same values), the recesses added in their order.
+    Where every recess is a circle, all (row, recess) pairs are tested at once (:func:`_circle_depth`)."""
+    table = _recess_table(surface)
+    if table.centre is not None and rows:
+        sizes = [r.size for r in rows]
+        return _circle_depth(table, np.concatenate(rows), np.repeat(np.arange(len(rows)), sizes), X, Z)
     out = np.zeros(np.shape(X))
     for r, idx in zip(surface.recesses, rows):
         if idx.size:
             out[idx] += r.depth * r.shape.contains(X[idx], Z[idx])
+    return out
+
+
+#: Points :func:`_circle_depth` tests at a time (its temporaries stay in cache; read at each call).
+CIRCLE_POINTS = 4096
+
+
+def _circle_depth(table: _RecessTable, idx: np.ndarray, which: np.ndarray, X: np.ndarray,
+                  Z: np.ndarray) -> np.ndarray:
+    """:func:`_depth_on_rows` of circular recesses (``table.centre`` set) from the pairs ``(idx[k], which[k])``
+    of a row of ``X``, ``Z`` and a recess: each pair's points tested as
+    :meth:`~bearingfe.geometry.surface.Circle.contains` does (the same arithmetic), in blocks of about
+    :data:`CIRCLE_POINTS` points, the terms ``depth * inside`` added onto 0 in the pairs' order (a row in several
+    recesses' lists by ``np.add.at``): the same values bit for bit as the loop over recesses."""
+    out = np.zeros(np.shape(X))
+    if idx.size == 0:
+        return out
+    once = np.zeros(out.shape[0], bool)
+    once[idx] = True
+    once = np.count_nonzero(once) == idx.size   # each row in one recess's list: its term alone
+    col = (slice(None),) + (None,) * (out.ndim - 1)
+    for b in blocks(idx.size, max(1, CIRCLE_POINTS // max(1, out[0].size))):
+        i, w = idx[b], which[b]
+        x, z = X[i], Z[i]
+        x -= table.centre[0][w][col]
+        x *= x
+        z -= table.centre[1][w][col]
+        z *= z
+        x += z
+        terms = table.depth[w][col] * (x < table.radius2[w][col])
+        if once:
+            out[i] = terms
+        else:
+            np.add.at(out, i, terms)
     return out
 
 
@@ -1082,8 +1151,8 @@ def _line_circles(surface, x: np.ndarray, lo: np.ndarray, hi: np.ndarray,
         return out
     idx = np.concatenate(rows)
     which = np.repeat(np.arange(len(rows)), [r.size for r in rows])
-    cx, cz, radius, depth = (np.array(v)[which] for v in zip(*[
-        (r.shape.center[0], r.shape.center[1], r.shape.radius, r.depth) for r in surface.recesses]))
+    table = _recess_table(surface)
+    cx, cz, radius, depth = table.centre[0][which], table.centre[1][which], table.radius[which], table.depth[which]
     half = np.sqrt(np.maximum(radius * radius - (x[idx] - cx) ** 2, 0.0))
     chord = np.minimum(hi[idx], cz + half) - np.maximum(lo[idx], cz - half)
     return out + np.bincount(idx, weights=depth * np.maximum(chord, 0.0), minlength=out.size).reshape(out.shape)
@@ -1292,10 +1361,10 @@ def _tensor_overlaps(surface, x: tuple[np.ndarray, np.ndarray], z: tuple[np.ndar
     test per rectangle."""
     (x_lo, x_hi), (z_lo, z_hi) = x, z
     nx, nz = x_lo.size, z_lo.size
-    boxes = _recess_boxes(surface)
-    if not boxes:
+    table = _recess_table(surface)
+    if not table.boxes:
         return []
-    lo, hi = np.array([b[0] for b in boxes]).T, np.array([b[1] for b in boxes]).T
+    lo, hi = table.lo, table.hi
     # column i meets [lo, hi] where x_hi[i] >= lo and x_lo[i] <= hi (rows alike)
     i0, i1 = np.searchsorted(x_hi, lo[0], "left").tolist(), (np.searchsorted(x_lo, hi[0], "right") - 1).tolist()
     j0, j1 = np.searchsorted(z_hi, lo[1], "left").tolist(), (np.searchsorted(z_lo, hi[1], "right") - 1).tolist()

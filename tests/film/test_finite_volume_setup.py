@@ -1028,3 +1028,36 @@ def test_symmetric_compares_a_matrix_with_its_transpose():
     zero = sp.csr_matrix((np.array([1.0, 0.0, 1.0]), np.array([0, 1, 1]), np.array([0, 2, 3])), shape=(2, 2))
     assert not fv._symmetric(zero)
     assert not fv._symmetric(sp.csr_matrix(np.ones((2, 3))))
+
+
+def test_circle_depth_at_once_is_the_loop_over_recesses():
+    """Circular recesses tested all at once (:func:`_circle_depth`, from the surface's recess table) give bit for
+    bit the loop over recesses it replaces (each recess's rows, ``out[rows] += depth * contains``, in order) and the
+    surface's own ``recess_depth``: rows in two recesses' lists (boxes across two dimples' boxes, added by
+    ``np.add.at``) and rows in one only, points of 16 per row and of one; a surface with a rectangle keeps the loop."""
+    from bearingfe import Rectangle
+
+    rng = np.random.default_rng(11)
+    x0, z0 = rng.uniform(0.0, 0.9, 600), rng.uniform(-0.5, 0.4, 600)
+    x1, z1 = x0 + rng.uniform(0.0, 0.5, 600), z0 + rng.uniform(0.0, 0.5, 600)
+    s = rng.uniform(0.0, 1.0, (2, 600, 16))
+    X, Z = x0[:, None] + (x1 - x0)[:, None] * s[0], z0[:, None] + (z1 - z0)[:, None] * s[1]
+    mixed = Surface(arc=(0.0, 1.0), half_width=0.5,
+                    recesses=[Recess(Circle((0.3, 0.0), 0.2), 0.3), Recess(Rectangle((0.75, 0.25), (0.2, 0.15)), 0.7)])
+    for surface in (_dimpled(), mixed):
+        rows = fv._overlaps(surface, x0, x1, z0, z1)
+        for xs, zs in ((X, Z), (X[:, :1], Z[:, :1])):
+            expected = np.zeros(xs.shape)
+            for r, idx in zip(surface.recesses, rows):
+                expected[idx] += r.depth * r.shape.contains(xs[idx], zs[idx])
+            got = fv._depth_on_rows(surface, rows, xs, zs)
+            assert np.array_equal(got, expected) and np.array_equal(got, surface.recess_depth(xs, zs))
+        shared = np.bincount(np.concatenate(rows), minlength=600)
+        assert np.count_nonzero(shared > 1) > 10 and np.count_nonzero(shared == 1) > 100
+    assert fv._recess_table(_dimpled()).centre is not None and fv._recess_table(mixed).centre is None
+    small = (x0, x0 + 0.05 * (x1 - x0), z0, z0 + 0.05 * (z1 - z0))   # boxes within 0.025: each row near one dimple
+    Xs = small[0][:, None] + (small[1] - small[0])[:, None] * s[0]
+    Zs = small[2][:, None] + (small[3] - small[2])[:, None] * s[1]
+    rows = fv._overlaps(_dimpled(), *small)
+    assert np.bincount(np.concatenate(rows)).max() == 1 and sum(r.size for r in rows) > 100
+    assert np.array_equal(fv._depth_on_rows(_dimpled(), rows, Xs, Zs), _dimpled().recess_depth(Xs, Zs))
