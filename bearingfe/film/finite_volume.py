@@ -1357,8 +1357,8 @@ def _tensor_overlaps(surface, x: tuple[np.ndarray, np.ndarray], z: tuple[np.ndar
     ``j + nz i`` (``x = (x_lo, x_hi)``, ``z`` alike, each array increasing), and of ``copies - 1`` more copies of
     them numbered on (``+ nx nz`` each: a grid's two triangles per cell, :func:`~bearingfe.geometry.meshing.
     tensor_lines`): each recess's box (:func:`_recess_boxes`) takes the rectangles whose column and row ranges meet
-    its own, found by two binary searches per axis for all boxes at once. The same increasing indices, without a
-    test per rectangle."""
+    its own, found by two binary searches per axis for all boxes at once, and their cells numbered for all boxes
+    at once (no loop over the recesses). The same increasing indices, without a test per rectangle."""
     (x_lo, x_hi), (z_lo, z_hi) = x, z
     nx, nz = x_lo.size, z_lo.size
     table = _recess_table(surface)
@@ -1366,16 +1366,21 @@ def _tensor_overlaps(surface, x: tuple[np.ndarray, np.ndarray], z: tuple[np.ndar
         return []
     lo, hi = table.lo, table.hi
     # column i meets [lo, hi] where x_hi[i] >= lo and x_lo[i] <= hi (rows alike)
-    i0, i1 = np.searchsorted(x_hi, lo[0], "left").tolist(), (np.searchsorted(x_lo, hi[0], "right") - 1).tolist()
-    j0, j1 = np.searchsorted(z_hi, lo[1], "left").tolist(), (np.searchsorted(z_lo, hi[1], "right") - 1).tolist()
-    out = []
-    for a, b, c, d in zip(i0, i1, j0, j1):
-        if a > b or c > d:
-            out.append(np.zeros(0, np.int64))
-            continue
-        cells = (nz * np.arange(a, b + 1, dtype=np.int64)[:, None] + np.arange(c, d + 1)[None, :]).ravel()
-        out.append(np.concatenate([cells + k * nx * nz for k in range(copies)]) if copies > 1 else cells)
-    return out
+    i0, i1 = np.searchsorted(x_hi, lo[0], "left"), np.searchsorted(x_lo, hi[0], "right") - 1
+    j0, j1 = np.searchsorted(z_hi, lo[1], "left"), np.searchsorted(z_lo, hi[1], "right") - 1
+    # box k spans columns i0..i1 and rows j0..j1: its cell r (w = j1 - j0 + 1 rows a column) is
+    # nz (i0 + r // w) + j0 + r % w, column by column as the rows increase
+    w = np.maximum(j1 - j0 + 1, 0)
+    count = np.maximum(i1 - i0 + 1, 0) * w
+    start = np.cumsum(count) - count
+    total = int(start[-1] + count[-1])
+    r = np.arange(total, dtype=np.int64) - np.repeat(start, count)
+    wr = np.repeat(w, count)
+    cells = nz * (np.repeat(i0, count) + r // wr) + np.repeat(j0, count) + r % wr
+    if copies > 1:   # each box's cells, then their copies
+        cells = cells[None, :] + nx * nz * np.arange(copies, dtype=np.int64)[:, None]
+        return [cells[:, a:a + k].ravel() for a, k in zip(start.tolist(), count.tolist())]
+    return [cells[a:a + k] for a, k in zip(start.tolist(), count.tolist())]
 
 
 def _film_q(mesh: SupportMesh, film: Film, x: np.ndarray) -> np.ndarray:

@@ -1061,3 +1061,26 @@ def test_circle_depth_at_once_is_the_loop_over_recesses():
     rows = fv._overlaps(_dimpled(), *small)
     assert np.bincount(np.concatenate(rows)).max() == 1 and sum(r.size for r in rows) > 100
     assert np.array_equal(fv._depth_on_rows(_dimpled(), rows, Xs, Zs), _dimpled().recess_depth(Xs, Zs))
+
+
+def test_tensor_overlaps_numbered_at_once_are_the_rectangles_own_test():
+    """:func:`_tensor_overlaps` numbers every box's cells at once: the same increasing indices as testing each
+    rectangle of the tensor product against each recess box (:func:`_recess_boxes`), with and without a copy of
+    the rectangles, on lines so sparse that some boxes meet no node (empty lists) and on dense ones."""
+    surface = _dimpled()
+    boxes = fv._recess_boxes(surface)
+    sparse_lines = (np.array([0.0, 0.25, 0.5, 1.0]), np.linspace(-0.5, 0.5, 6))   # no node in two dimples' boxes
+    for xs, zs in (sparse_lines,
+                   (np.linspace(0.0, 1.0, 41), np.sort(np.random.default_rng(5).uniform(-0.5, 0.5, 37)))):
+        for x, z in (((xs[:-1], xs[1:]), (zs[:-1], zs[1:])), ((xs, xs), (zs, zs))):
+            X0, Z0 = np.meshgrid(x[0], z[0], indexing="ij")
+            X1, Z1 = np.meshgrid(x[1], z[1], indexing="ij")
+            X0, X1, Z0, Z1 = X0.ravel(), X1.ravel(), Z0.ravel(), Z1.ravel()
+            expected = [np.flatnonzero((X1 >= lo[0]) & (X0 <= hi[0]) & (Z1 >= lo[1]) & (Z0 <= hi[1]))
+                        for lo, hi in boxes]
+            for copies in (1, 2):
+                got = fv._tensor_overlaps(surface, x, z, copies=copies)
+                want = [np.concatenate([e + k * X0.size for k in range(copies)]) for e in expected]
+                assert len(got) == len(want) and all(np.array_equal(g, w) for g, w in zip(got, want))
+    sparse = fv._tensor_overlaps(surface, (sparse_lines[0],) * 2, (sparse_lines[1],) * 2)
+    assert any(r.size == 0 for r in sparse) and any(r.size for r in sparse)
