@@ -1019,19 +1019,23 @@ def _boxed_depth(surface, x0, x1, z0, z1, X: np.ndarray, Z: np.ndarray) -> np.nd
     (``(n, k_points)``) lies in ``[x0_k, x1_k] x [z0_k, z1_k]``. Each recess tests only the rows whose
     rectangle overlaps its bounding box (:func:`_recess_boxes`, the box :func:`_recess_plan` also trusts),
     the recesses added in their order: the same values as the plain test, without sorting the points (cells
-    and boxes of a grid, each near one recess contour, sampled many times)."""
-    return _depth_on_rows(surface, _overlaps(surface, x0, x1, z0, z1), X, Z)
+    and boxes of a grid, each near one recess contour, sampled many times). Circular recesses take a rectangle
+    wholly inside or outside a circle from its box alone (:func:`_circle_depth`)."""
+    rows = _overlaps(surface, x0, x1, z0, z1)
+    return _depth_on_rows(surface, rows, X, Z, (np.ravel(x0), np.ravel(x1), np.ravel(z0), np.ravel(z1)))
 
 
-def _depth_on_rows(surface, rows: list[np.ndarray], X: np.ndarray, Z: np.ndarray) -> np.ndarray:
+def _depth_on_rows(surface, rows: list[np.ndarray], X: np.ndarray, Z: np.ndarray,
+                   boxes: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """The recess depth at the points ``X``, ``Z`` (``(n, k_points)``), each recess of ``surface`` tested on
     its own ``rows`` only (one index array per recess, in order: at least the rows with a point in its
     bounding box, :func:`_recess_boxes`; more rows give the same values), the recesses added in their order.
-    Where every recess is a circle, all (row, recess) pairs are tested at once (:func:`_circle_depth`)."""
+    Where every recess is a circle, all (row, recess) pairs are tested at once (:func:`_circle_depth`, which
+    takes the rows' rectangles ``boxes`` where given)."""
     table = _recess_table(surface)
     if table.centre is not None and rows:
         sizes = [r.size for r in rows]
-        return _circle_depth(table, np.concatenate(rows), np.repeat(np.arange(len(rows)), sizes), X, Z)
+        return _circle_depth(table, np.concatenate(rows), np.repeat(np.arange(len(rows)), sizes), X, Z, boxes)
     out = np.zeros(np.shape(X))
     for r, idx in zip(surface.recesses, rows):
         if idx.size:
@@ -1041,18 +1045,42 @@ def _depth_on_rows(surface, rows: list[np.ndarray], X: np.ndarray, Z: np.ndarray
 
 #: Points :func:`_circle_depth` tests at a time (its temporaries stay in cache; read at each call).
 CIRCLE_POINTS = 4096
+#: Relative margin on ``r^2`` by which :func:`_circle_depth` takes a rectangle as inside or outside a circle
+#: without testing its points (far above the rounding of a point's test and of its place in the rectangle).
+CIRCLE_MARGIN = 1e-9
 
 
-def _circle_depth(table: _RecessTable, idx: np.ndarray, which: np.ndarray, X: np.ndarray,
-                  Z: np.ndarray) -> np.ndarray:
+def _circle_depth(table: _RecessTable, idx: np.ndarray, which: np.ndarray, X: np.ndarray, Z: np.ndarray,
+                  boxes: tuple[np.ndarray, ...] | None = None) -> np.ndarray:
     """:func:`_depth_on_rows` of circular recesses (``table.centre`` set) from the pairs ``(idx[k], which[k])``
     of a row of ``X``, ``Z`` and a recess: each pair's points tested as
     :meth:`~bearingfe.geometry.surface.Circle.contains` does (the same arithmetic), in blocks of about
     :data:`CIRCLE_POINTS` points, the terms ``depth * inside`` added onto 0 in the pairs' order (a row in several
-    recesses' lists by ``np.add.at``): the same values bit for bit as the loop over recesses."""
+    recesses' lists by ``np.add.at``): the same values bit for bit as the loop over recesses.
+
+    ``boxes``: ``(x0, x1, z0, z1)``, row ``k``'s points lie in ``[x0_k, x1_k] x [z0_k, z1_k]``. A pair whose
+    rectangle lies inside its circle (its farthest corner within ``1 - CIRCLE_MARGIN`` of ``r^2``) gives its row
+    the depth at every point, one outside it (its nearest point beyond ``1 + CIRCLE_MARGIN``) nothing, untested:
+    the margin is far above the rounding of the points' test, so the same values (recesses do not overlap: a row
+    inside one circle has no point in another)."""
     out = np.zeros(np.shape(X))
     if idx.size == 0:
         return out
+    inside = None
+    if boxes is not None:
+        x0, x1, z0, z1 = (v[idx] for v in boxes)
+        cx, cz, r2 = table.centre[0][which], table.centre[1][which], table.radius2[which]
+        x0 -= cx
+        x1 -= cx
+        z0 -= cz
+        z1 -= cz
+        far = np.maximum(x0 * x0, x1 * x1) + np.maximum(z0 * z0, z1 * z1)
+        dx, dz = np.maximum(np.maximum(x0, -x1), 0.0), np.maximum(np.maximum(z0, -z1), 0.0)
+        inside = far < r2 * (1.0 - CIRCLE_MARGIN)
+        cut = ~inside & (dx * dx + dz * dz <= r2 * (1.0 + CIRCLE_MARGIN))
+        inside = np.flatnonzero(inside)
+        idx_all, which_all = idx, which
+        idx, which = idx[cut], which[cut]
     once = np.zeros(out.shape[0], bool)
     once[idx] = True
     once = np.count_nonzero(once) == idx.size   # each row in one recess's list: its term alone
@@ -1070,6 +1098,8 @@ def _circle_depth(table: _RecessTable, idx: np.ndarray, which: np.ndarray, X: np
             out[i] = terms
         else:
             np.add.at(out, i, terms)
+    if inside is not None and inside.size:   # after the tested pairs: their zeros in such a row are no term
+        out[idx_all[inside]] = table.depth[which_all[inside]][col]
     return out
 
 
@@ -1325,7 +1355,9 @@ def _quadrature_depth(mesh: SupportMesh, x: np.ndarray) -> np.ndarray | None:
 
     def build() -> np.ndarray:
         rows = _triangle_recesses(mesh) if x.shape[1] == mesh.mesh.t.shape[1] else None
-        return _rows_depth(surface, x[0], x[1]) if rows is None else _depth_on_rows(surface, rows, x[0], x[1])
+        if rows is None:
+            return _rows_depth(surface, x[0], x[1])
+        return _depth_on_rows(surface, rows, x[0], x[1], _triangle_boxes(mesh))
 
     # (n_triangles, n_points), per quadrature rule
     return mesh.cached(("finite_volume.quadrature_depth", x.shape[1:]), build)
@@ -1349,6 +1381,19 @@ def _triangle_recesses(mesh: SupportMesh) -> list[np.ndarray] | None:
         return _overlaps(mesh.surface, px.min(axis=0), px.max(axis=0), pz.min(axis=0), pz.max(axis=0))
 
     return mesh.cached("finite_volume.triangle_recesses", build)
+
+
+def _triangle_boxes(mesh: SupportMesh) -> tuple[np.ndarray, ...] | None:
+    """``(x0, x1, z0, z1)`` per triangle of a whole tensor grid (:func:`~bearingfe.geometry.meshing.tensor_lines`):
+    its cell's box, which its corners span (triangles ``c`` and ``c + n_cells`` of cell ``c = iz + nz ix``, ``nz``
+    cells a column); None on any other mesh."""
+    lines = tensor_lines(mesh)
+    if lines is None:
+        return None
+    xs, zs = lines
+    nx, nz = xs.size - 1, zs.size - 1
+    return (np.tile(np.repeat(xs[:-1], nz), 2), np.tile(np.repeat(xs[1:], nz), 2),
+            np.tile(zs[:-1], 2 * nx), np.tile(zs[1:], 2 * nx))
 
 
 def _tensor_overlaps(surface, x: tuple[np.ndarray, np.ndarray], z: tuple[np.ndarray, np.ndarray],

@@ -1084,3 +1084,29 @@ def test_tensor_overlaps_numbered_at_once_are_the_rectangles_own_test():
                 assert len(got) == len(want) and all(np.array_equal(g, w) for g, w in zip(got, want))
     sparse = fv._tensor_overlaps(surface, (sparse_lines[0],) * 2, (sparse_lines[1],) * 2)
     assert any(r.size == 0 for r in sparse) and any(r.size for r in sparse)
+
+
+def test_circle_depth_from_boxes_is_the_points_own_test():
+    """Circular recesses take a rectangle wholly inside or outside a circle from its box (:func:`_circle_depth`
+    with ``boxes``): the same values, bit for bit, as the surface's ``recess_depth`` of its points, on rectangles
+    inside the dimples, across their contours, just outside them and away; and the grid triangles' boxes
+    (:func:`_triangle_boxes`, their cells') are their corners' own, so the quadrature depth of a grid is its points'."""
+    surface = _dimpled()
+    rng = np.random.default_rng(13)
+    centres = np.array([r.shape.center for r in surface.recesses])[rng.integers(0, 4, 900)]
+    angle, radius = rng.uniform(0.0, 2 * np.pi, 900), 0.15 * rng.uniform(0.0, 1.3, 900)
+    x0, z0 = centres[:, 0] + radius * np.cos(angle), centres[:, 1] + radius * np.sin(angle)
+    size = rng.uniform(0.0, 0.05, (2, 900))
+    x1, z1 = x0 + size[0], z0 + size[1]
+    s = rng.uniform(0.0, 1.0, (2, 900, 16))
+    X, Z = x0[:, None] + (x1 - x0)[:, None] * s[0], z0[:, None] + (z1 - z0)[:, None] * s[1]
+    got = fv._boxed_depth(surface, x0, x1, z0, z1, X, Z)
+    assert np.array_equal(got, surface.recess_depth(X, Z))
+    whole = np.all(got == got[:, :1], axis=1)
+    assert np.count_nonzero(whole & (got[:, 0] > 0)) > 100 and np.count_nonzero(~whole) > 100
+    mesh = grid_mesh(surface, 1 / 23)
+    t, p = mesh.mesh.t, mesh.mesh.p
+    boxes = fv._triangle_boxes(mesh)
+    assert all(np.array_equal(b, f(p[k, t], axis=0)) for b, k, f in zip(boxes, (0, 0, 1, 1), (np.min, np.max) * 2))
+    x = fv.operators(mesh, "P1").basis.mapping.F(np.array([[1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]))
+    assert np.array_equal(fv._quadrature_depth(mesh, x), surface.recess_depth(x[0], x[1]))
