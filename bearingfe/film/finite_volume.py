@@ -2880,6 +2880,15 @@ NESTED_CELL_MEANS = False
 #: the grooved journal of docs/jfo_gmsh.md on meshes refined at the groove (many fine nodes there): 2 against 4
 #: fine factorizations at 2,548 nodes, 2 against 6 at 4,419, 1 against 6 at 7,731 (94 against 187 ms); the
 #: other cases of that page and the 5 x 5 dimples the same counts (their edges are at or near ``p_c``).
+#: Measured and left out: widening the carried cavity by a ring of neighbours (``|K|``'s pattern) where a level
+#: iterates from it alone (below :data:`TWO_GRID_FROM`). On the 5 x 5 dimples of docs/jfo_dimples.md at 70 x 70
+#: cells the carried set (1,393 unknowns: 250 not in the final cavity of 1,246, 103 of it missing) widens to a
+#: superset that the active set shrinks in 2 fine factorizations against 3 (44 against 52 ms CPU, median of 8
+#: interleaved, load ~8); but the carried sets of docs/jfo_gmsh.md's pocket pad (5,280 nodes) and of a journal
+#: with a fed 20-degree groove (100 x 40 grid, 8,028 nodes) are within 25-36 nodes of their final ones, and the ring's
+#: 150-170 extra nodes cost a factorization more (3 against 2). Widening only downstream (the upwind Couette
+#: operator's neighbours) left every count as it was; only upstream took 3 against 2 on the journal and the
+#: gmsh-page dimple.
 NESTED_FIXED_SIGN = True
 
 
