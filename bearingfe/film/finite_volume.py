@@ -885,7 +885,7 @@ def _planned_depth(plan, phi: np.ndarray, z: np.ndarray) -> np.ndarray:
     return out.reshape(np.shape(phi))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class _RecessTable:
     """The recesses of a surface as arrays, found once per surface (:func:`_recess_table`): their bounding boxes
     (their boundary's, padded by 1 % of their size and 1e-12) as ``(lo, hi)`` pairs and as ``(2, n)`` arrays
