@@ -645,6 +645,54 @@ def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
     assert want[3, 40] == want[40, 3] == 1.5 and want[0, 60] == 0 and 60 not in want.indices[:want.indptr[1]]
 
 
+
+def test_union_pattern_kernels_are_scipys_sums_and_transpose():
+    """_csr_sum and _csr_transposed (scipy's kernels on int32 arrays, no checks between) give the arrays of scipy's
+    ``A + B`` and ``A.T.tocsr()`` bit for bit, entries that cancel dropped, on random canonical matrices of
+    several shapes; and the union pattern of int64-indexed matrices (scipy's sums) equals the int32 one's."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(5)
+    for k in range(12):
+        n, m = (int(x) for x in rng.integers(1, 40, size=2))
+        A = sp.random(n, m, density=0.2, random_state=k, format="csr")
+        B = sp.random(n, m, density=0.2, random_state=k + 50, format="csr")
+        A.data -= 0.5
+        B = (B - B.multiply(A != 0)).tocsr()   # no entry where A has one ...
+        cut = sp.csr_matrix(A, copy=True)
+        cut.data[3:] = 0.0
+        cut.eliminate_zeros()
+        B = (B - cut).tocsr()                  # ... but minus A's first three: they cancel in A + B
+        B.sum_duplicates()
+        for x in (A, B):
+            assert x.indices.dtype == np.int32 and x.has_canonical_format
+        want, got = A + B, fv._csr_sum(A, B)
+        assert A.nnz < 3 or want.nnz == A.nnz + B.nnz - 6   # three shared entries, which cancel
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+        assert got.shape == want.shape and got.has_canonical_format
+        want_t, got_t = A.T.tocsr(), fv._csr_transposed(A)
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got_t, name), getattr(want_t, name))
+        assert got_t.shape == (m, n)
+        want_c, got_c = A.tocsc(), fv._csc_of(A)
+        assert got_c.format == "csc" and got_c.shape == (n, m) and got_c.has_canonical_format
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got_c, name), getattr(want_c, name))
+        twice = sp.csr_matrix(([1.0, 2.0, 3.0, 4.0], [0, 1, 1, 0], [0, 1, 3, 4]), shape=(3, 2))   # (1, 1) twice
+        assert not twice.has_canonical_format   # a repeated entry: scipy's conversion; the transpose keeps it
+        assert fv._csc_of(twice).nnz == 4 and np.array_equal(fv._csc_of(twice).toarray(), twice.toarray())
+        assert not fv._csr_transposed(twice).has_canonical_format
+        assert np.array_equal(fv._csr_transposed(twice).toarray(), twice.T.toarray())
+        assert fv._symmetric(A + A.T) if n == m else not fv._symmetric(A)
+        if n == m:
+            wide = [sp.csr_matrix(x) for x in (A, B)]
+            for x in wide:
+                x.indices, x.indptr = x.indices.astype(np.int64), x.indptr.astype(np.int64)
+            P, Q = fv._union_pattern(A, B), fv._union_pattern(*wide)
+            for name in ("indptr", "indices", "data"):
+                assert np.array_equal(getattr(P, name), getattr(Q, name))
+
 def test_whole_grids_find_triangles_and_faces_from_their_lines():
     """A whole grid_mesh (no pockets) keeps its lines (tensor_lines): the triangles and the box faces near each
     recess (_tensor_overlaps, two binary searches per axis) and the box faces themselves come from them, the same
