@@ -1510,13 +1510,29 @@ def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
         rep_of[end] = start
         reps = np.unique(rep_of[I])
         cols = np.searchsorted(reps, rep_of[I])
-    else:   # each interior dof its own unknown
-        reps, cols = I, np.arange(I.size)
-    S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+        S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+    else:   # each interior dof its own unknown: S selects them (row I[k] has a 1 in column k)
+        reps, S = I, _selection(I, n)
     fixed = np.ones(n, bool)
     fixed[I] = False
-    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps],
-                      on_grid=mesh.source == "grid" and not start.size)
+    unk = FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps],
+                     on_grid=mesh.source == "grid" and not start.size)
+    if not start.size:
+        unk._order["selects"] = True   # (_selects: S was built as the selection of the dofs rep)
+    return unk
+
+
+def _selection(rows: np.ndarray, n: int) -> sp.csr_matrix:
+    """``sp.csr_matrix((np.ones(m), (rows, np.arange(m))), shape=(n, m))`` for ``m`` increasing ``rows`` without
+    repeats, written as its CSR arrays (a row's pointer steps by one at each of ``rows``): the same arrays as
+    scipy's conversion of those entries, without its sort (0.01 against 0.08 ms CPU at 529 dofs)."""
+    m = rows.size
+    if n >= 2**31 - 1:
+        return sp.csr_matrix((np.ones(m), (rows, np.arange(m))), shape=(n, m))
+    indptr = np.zeros(n + 1, np.int32)
+    indptr[rows + 1] = 1
+    np.cumsum(indptr, out=indptr)
+    return compressed(np.ones(m), np.arange(m, dtype=np.int32), indptr, (n, m), canonical=True)
 
 
 _REDUCED: "weakref.WeakKeyDictionary[FVSystem, tuple]" = weakref.WeakKeyDictionary()
@@ -1548,11 +1564,15 @@ def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
 
 
 def _selects(unk: FVUnknowns) -> bool:
-    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]``."""
-    S = sp.csr_matrix(unk.S)
-    m = S.shape[1]
-    return (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
-            and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
+    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]`` (found
+    once, kept on ``unk``; :func:`_build_unknowns` notes it where it built ``S`` so)."""
+    kept = unk._order.get("selects")
+    if kept is None:
+        S = sp.csr_matrix(unk.S)
+        m = S.shape[1]
+        kept = unk._order["selects"] = (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
+                                        and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
+    return kept
 
 
 def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:

@@ -1076,3 +1076,34 @@ def test_symmetric_compares_a_matrix_with_its_transpose():
     zero = sp.csr_matrix((np.array([1.0, 0.0, 1.0]), np.array([0, 1, 1]), np.array([0, 2, 3])), shape=(2, 2))
     assert not fv._symmetric(zero)
     assert not fv._symmetric(sp.csr_matrix(np.ones((2, 3))))
+
+
+def test_unknowns_selection_is_scipys_conversion():
+    """A mesh without a periodic seam takes its unknowns' selection S from _selection (its CSR arrays written
+    directly): the same arrays, dtypes and canonical flag as scipy's conversion of the entries (ones at
+    (I[k], k)), noted as a selection for _selects; a periodic mesh keeps the conversion and _selects finds it
+    is none. Also at the edges: no rows, every row, the last row only."""
+    import scipy.sparse as sp
+
+    for rows, n in ((np.array([2, 3, 7, 8, 11]), 13), (np.zeros(0, np.int64), 4), (np.arange(6), 6),
+                    (np.array([5]), 6)):
+        want = sp.csr_matrix((np.ones(rows.size), (rows, np.arange(rows.size))), shape=(n, rows.size))
+        got = fv._selection(rows, n)
+        assert got.shape == want.shape and got.has_canonical_format
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+            assert getattr(got, name).dtype == getattr(want, name).dtype
+    mesh = mesh_surface(_dimpled(), 0.2)
+    ops = fv.operators(mesh, "P1")
+    unk = fv._unknowns(mesh, ops)
+    want = sp.csr_matrix((np.ones(ops.interior.size), (ops.interior, np.arange(ops.interior.size))),
+                         shape=(ops.n_dofs, ops.interior.size))
+    assert np.array_equal(unk.S.indptr, want.indptr) and np.array_equal(unk.S.indices, want.indices)
+    assert unk._order["selects"] is True and fv._selects(fv.FVUnknowns(S=want, rep=unk.rep, fixed=unk.fixed))
+    import math
+
+    from bearingfe.bearings.journal import Groove, JournalBearing
+    (surface,) = JournalBearing(1.0, periodic=True, grooves=(Groove(math.pi / 2, math.radians(20.0), 0.8),)).surfaces()
+    seam = mesh_surface(surface, 0.5)
+    unk = fv._unknowns(seam, fv.operators(seam, "P1"))
+    assert "selects" not in unk._order and not fv._selects(unk) and unk._order["selects"] is False
