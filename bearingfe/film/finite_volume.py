@@ -636,8 +636,7 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
     nodes = np.arange(n)
     rows = np.concatenate([facets[0], facets[1], nodes])
     cols = np.concatenate([facets[1], facets[0], nodes])
-    P = sp.csr_matrix((np.arange(rows.size, dtype=float), (rows, cols)), shape=(n, n))
-    P.sort_indices()
+    P = _sorted_entries(rows, cols, np.arange(rows.size, dtype=float), n)
     take = P.data.astype(np.int64)
     if take.size != rows.size:   # (repeated facets)
         return None
@@ -646,6 +645,26 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
     diagonal[take[is_diagonal] - 2 * n_edges] = np.flatnonzero(is_diagonal)
     return _P1Pattern(indptr=P.indptr, indices=P.indices, take=take, diagonal=diagonal,
                       off=~is_diagonal, edge=edge, t=t, n_edges=n_edges)
+
+
+def _sorted_entries(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, n: int) -> sp.csr_matrix:
+    """``sp.csr_matrix((values, (rows, cols)), shape=(n, n))`` with sorted indices, for at most one entry per place:
+    scipy's kernels of that conversion (``coo_tocsr``, then ``csr_sort_indices``) on ``int32`` copies of the
+    places, without the sparse objects' checks between them (0.05 against 0.11 ms CPU for the P1 pattern of 529
+    nodes); the same arrays. Entries sharing a place (which scipy's conversion sums), or more than ``2**31 - 1``
+    rows or entries, take scipy's conversion."""
+    size = rows.size
+    if n < 2**31 - 1 and size < 2**31 - 1:
+        indptr = np.empty(n + 1, np.int32)
+        indices = np.empty(size, np.int32)
+        data = np.empty(size, values.dtype)
+        _sparsetools.coo_tocsr(n, n, size, rows.astype(np.int32), cols.astype(np.int32), values, indptr, indices, data)
+        _sparsetools.csr_sort_indices(n, indptr, indices, data)
+        if _sparsetools.csr_has_canonical_format(n, indptr, indices):   # no place twice
+            return compressed(data, indices, indptr, (n, n), canonical=True)
+    P = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
+    P.sort_indices()
+    return P
 
 
 def _on_pattern(pattern: _P1Pattern, blocks_flat: np.ndarray) -> sp.csr_matrix:

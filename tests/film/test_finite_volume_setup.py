@@ -1107,3 +1107,36 @@ def test_unknowns_selection_is_scipys_conversion():
     seam = mesh_surface(surface, 0.5)
     unk = fv._unknowns(seam, fv.operators(seam, "P1"))
     assert "selects" not in unk._order and not fv._selects(unk) and unk._order["selects"] is False
+
+
+def test_sorted_entries_are_scipys_conversion():
+    """_sorted_entries (scipy's coo_tocsr and csr_sort_indices kernels) gives scipy's conversion of the entries
+    with sorted indices, bit for bit (arrays and dtypes), on random places in random order; places given twice
+    take scipy's conversion (their entries summed); and the P1 pattern of a gmsh mesh is the one built through
+    scipy's conversion (its take, the entries' slots, included)."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(11)
+    for n in (1, 7, 40):
+        places = rng.permutation(n * n)[: max(1, n * n // 3)]
+        rows, cols = places // n, places % n
+        values = rng.normal(size=places.size)
+        want = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
+        want.sort_indices()
+        got = fv._sorted_entries(rows, cols, values, n)
+        assert got.has_canonical_format and got.shape == (n, n)
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+            assert getattr(got, name).dtype == getattr(want, name).dtype
+    twice = fv._sorted_entries(np.array([0, 1, 0]), np.array([1, 0, 1]), np.array([1.0, 2.0, 3.0]), 2)
+    assert twice.nnz == 2 and twice[0, 1] == 4.0
+    mesh = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.2), 1.0)]), 0.1)
+    m = mesh.mesh
+    t, n, facets, edge = m.t, int(m.nvertices), np.asarray(m.facets), np.asarray(m.t2f)
+    pattern = fv._pattern_of(t, n, facets, edge)
+    nodes = np.arange(n)
+    rows, cols = np.concatenate([facets[0], facets[1], nodes]), np.concatenate([facets[1], facets[0], nodes])
+    P = sp.csr_matrix((np.arange(rows.size, dtype=float), (rows, cols)), shape=(n, n))
+    P.sort_indices()
+    assert np.array_equal(pattern.indptr, P.indptr) and np.array_equal(pattern.indices, P.indices)
+    assert np.array_equal(pattern.take, P.data.astype(np.int64))
