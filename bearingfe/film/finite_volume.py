@@ -102,7 +102,7 @@ from .flows import edge_groups
 from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
 from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
-from ..core.linalg import Factorize, compressed, dense_threads, factorize_splu, get_linear_solver
+from ..core.linalg import Factorize, compressed, dense_threads, factorize_splu, get_linear_solver, matvec
 from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
@@ -1574,7 +1574,7 @@ def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
     theta0 = np.zeros(p_fixed.size)
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
-    r = K @ p0 + G @ theta0 + system.source
+    r = matvec(K, p0) + matvec(G, theta0) + system.source
     if _selects(unk):                    # each unknown one dof (no periodic seam): S selects the dofs rep
         rep = unk.rep                    # the same matrices as S^T A S, whose products drop exact zeros
         return _selected(K, rep), _selected(G, rep), r[rep]
@@ -1642,7 +1642,7 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
     """The system with one Couette operator: the cavitated columns from ``C_cavity`` (for the flows)."""
     if system.C_cavity is None:
         return system
-    cav = (unk.S @ cavity.astype(float)) > 0.5
+    cav = matvec(unk.S, cavity.astype(float)) > 0.5
     C, Cc = system.C, system.C_cavity
     if (C.format == Cc.format == "csr" and C.has_canonical_format and Cc.has_canonical_format
             and np.array_equal(C.indptr, Cc.indptr) and np.array_equal(C.indices, Cc.indices)):
@@ -2101,7 +2101,8 @@ class _SetSolver:
             limit = self._low_rank_limit()
             if 0 < J.size <= 2 * limit and sum(1 for j in J if j not in self.z) <= limit:
                 y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
-                if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
+                if y is not None and np.abs(matvec(self.K, np.where(cav, 0.0, y))
+                                            + matvec(self.G, np.where(cav, y, 0.0))
                                             - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
                     return y
             elif J.size == 0:
@@ -2329,7 +2330,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
-        rhs = -b - GII @ full.astype(float)
+        rhs = -b - matvec(GII, full.astype(float))
         y = solver(cav, rhs)
         if not np.all(np.isfinite(y)):
             raise JFOError("the linear solve of the JFO active-set step returned non-finite values "
@@ -2348,7 +2349,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
-            res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
+            res = matvec(KII, P) + matvec(GII, full.astype(float)) + matvec(GcII, np.where(cav, theta, 0.0)) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale,
                              factorizations=solver.factorizations, solve=solver.solve)
@@ -2443,10 +2444,10 @@ def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_
                 raise
             mark = np.zeros(unk.rep.size)
             mark[switching] = 1.0
-            bad = (unk.S @ mark) > 0.5
+            bad = matvec(unk.S, mark) > 0.5
             cavity = start
         else:
-            bad = np.where(free, unk.S @ sol.theta, 1.0) < -tol
+            bad = np.where(free, matvec(unk.S, sol.theta), 1.0) < -tol
             if not bad.any():
                 return _effective(system, unk, sol.cavity), sol, int(upwinded.sum())
             cavity = sol.cavity
@@ -2467,7 +2468,7 @@ def _initial_cavity(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c:
     active-set matrices (:func:`_ordered_splu`, the order found here is theirs too): about half COLAMD's time
     from :data:`ORDERED_FROM` unknowns on."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
-    rhs = -b - GII @ np.ones(b.size)
+    rhs = -b - matvec(GII, np.ones(b.size))
     if factorize is factorize_splu:
         P = _full_film_banded(unk, KII, rhs)
         if P is not None:
@@ -2646,7 +2647,8 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     ``grad_p``: the P1 gradient of ``p`` per triangle, if the caller has it."""
     basis = ops.basis
     storage = system.storage * theta + system.source
-    balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
+    # outflow through interior segments + storage
+    balance_rest = matvec(system.K, p) + matvec(system.C, theta) + storage
     outflow = -balance_rest   # what leaves a boundary dof's cell through the boundary
     groups = {k: ops.flow_groups[k][0] for k in edge_groups(mesh.boundaries)}
     count = np.zeros(basis.N)
@@ -3147,9 +3149,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         free = np.zeros(ops.n_dofs, bool)
         free[ops.interior] = True
         p_fixed = _pocket_values(mesh, ops, inlet_pressure)
-        p = np.where(free, unk.S @ sol.p, p_fixed)
-        theta = np.where(free, unk.S @ sol.theta, 1.0)
-        cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+        p = np.where(free, matvec(unk.S, sol.p), p_fixed)
+        theta = np.where(free, matvec(unk.S, sol.theta), 1.0)
+        cavitated = matvec(unk.S, sol.cavity.astype(float)) > 0.5
         cost = {"assembly": t1 - start, "cavitation": t2 - t1}
         result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p,
                          theta, cavitated, sol, cost, start, cavitation)
