@@ -93,6 +93,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import MeshTri1
+from scipy.sparse import _sparsetools
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .thickness import Film
@@ -101,7 +102,7 @@ from .flows import edge_groups
 from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
 from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
-from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
+from ..core.linalg import Factorize, compressed, dense_threads, factorize_splu, get_linear_solver, matvec
 from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
@@ -635,8 +636,7 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
     nodes = np.arange(n)
     rows = np.concatenate([facets[0], facets[1], nodes])
     cols = np.concatenate([facets[1], facets[0], nodes])
-    P = sp.csr_matrix((np.arange(rows.size, dtype=float), (rows, cols)), shape=(n, n))
-    P.sort_indices()
+    P = _sorted_entries(rows, cols, np.arange(rows.size, dtype=float), n)
     take = P.data.astype(np.int64)
     if take.size != rows.size:   # (repeated facets)
         return None
@@ -647,6 +647,26 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
                       off=~is_diagonal, edge=edge, t=t, n_edges=n_edges)
 
 
+def _sorted_entries(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, n: int) -> sp.csr_matrix:
+    """``sp.csr_matrix((values, (rows, cols)), shape=(n, n))`` with sorted indices, for at most one entry per place:
+    scipy's kernels of that conversion (``coo_tocsr``, then ``csr_sort_indices``) on ``int32`` copies of the
+    places, without the sparse objects' checks between them (0.05 against 0.11 ms CPU for the P1 pattern of 529
+    nodes); the same arrays. Entries sharing a place (which scipy's conversion sums), or more than ``2**31 - 1``
+    rows or entries, take scipy's conversion."""
+    size = rows.size
+    if n < 2**31 - 1 and size < 2**31 - 1:
+        indptr = np.empty(n + 1, np.int32)
+        indices = np.empty(size, np.int32)
+        data = np.empty(size, values.dtype)
+        _sparsetools.coo_tocsr(n, n, size, rows.astype(np.int32), cols.astype(np.int32), values, indptr, indices, data)
+        _sparsetools.csr_sort_indices(n, indptr, indices, data)
+        if _sparsetools.csr_has_canonical_format(n, indptr, indices):   # no place twice
+            return compressed(data, indices, indptr, (n, n), canonical=True)
+    P = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
+    P.sort_indices()
+    return P
+
+
 def _on_pattern(pattern: _P1Pattern, blocks_flat: np.ndarray) -> sp.csr_matrix:
     """The matrix of the triangles' 3 x 3 blocks (:func:`_flux_blocks`' flat order) on ``pattern``: each slot the
     sum of its entries (``np.bincount``, in the blocks' order), explicit zeros kept (as scipy's conversion keeps
@@ -654,10 +674,7 @@ def _on_pattern(pattern: _P1Pattern, blocks_flat: np.ndarray) -> sp.csr_matrix:
     edge, any order: bit for bit; a node's diagonal sums its triangles' terms in another order: round-off)."""
     slots = np.bincount(pattern.block_slot, weights=blocks_flat, minlength=2 * pattern.n_edges + pattern.diagonal.size)
     n = pattern.diagonal.size
-    M = sp.csr_matrix((slots[pattern.take], pattern.indices.copy(), pattern.indptr.copy()), shape=(n, n))
-    M.has_sorted_indices = True
-    M.has_canonical_format = True
-    return M
+    return compressed(slots[pattern.take], pattern.indices.copy(), pattern.indptr.copy(), (n, n), canonical=True)
 
 
 # -- P1 cell formulas on the arrays (no scikit-fem assembly) -------------------------------------------
@@ -771,10 +788,7 @@ def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix:
         counts = np.zeros(keep.size + 1, np.int64)
         np.cumsum(keep, out=counts[1:])
         indptr = counts[indptr].astype(pattern.indptr.dtype)
-    K = sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(n, n))
-    K.has_sorted_indices = True
-    K.has_canonical_format = True
-    return K
+    return compressed(data, indices.copy(), indptr.copy(), (n, n), canonical=True)
 
 
 def _edge_terms(cells: _Cells, w: np.ndarray) -> np.ndarray:
@@ -1634,13 +1648,29 @@ def _build_unknowns(mesh: SupportMesh, ops: Operators) -> FVUnknowns:
         rep_of[end] = start
         reps = np.unique(rep_of[I])
         cols = np.searchsorted(reps, rep_of[I])
-    else:   # each interior dof its own unknown
-        reps, cols = I, np.arange(I.size)
-    S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+        S = sp.csr_matrix((np.ones(I.size), (I, cols)), shape=(n, reps.size))
+    else:   # each interior dof its own unknown: S selects them (row I[k] has a 1 in column k)
+        reps, S = I, _selection(I, n)
     fixed = np.ones(n, bool)
     fixed[I] = False
-    return FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps],
-                      on_grid=mesh.source == "grid" and not start.size)
+    unk = FVUnknowns(S=S, rep=reps, fixed=np.flatnonzero(fixed), coordinates=np.asarray(ops.basis.doflocs)[:, reps],
+                     on_grid=mesh.source == "grid" and not start.size)
+    if not start.size:
+        unk._order["selects"] = True   # (_selects: S was built as the selection of the dofs rep)
+    return unk
+
+
+def _selection(rows: np.ndarray, n: int) -> sp.csr_matrix:
+    """``sp.csr_matrix((np.ones(m), (rows, np.arange(m))), shape=(n, m))`` for ``m`` increasing ``rows`` without
+    repeats, written as its CSR arrays (a row's pointer steps by one at each of ``rows``): the same arrays as
+    scipy's conversion of those entries, without its sort (0.01 against 0.08 ms CPU at 529 dofs)."""
+    m = rows.size
+    if n >= 2**31 - 1:
+        return sp.csr_matrix((np.ones(m), (rows, np.arange(m))), shape=(n, m))
+    indptr = np.zeros(n + 1, np.int32)
+    indptr[rows + 1] = 1
+    np.cumsum(indptr, out=indptr)
+    return compressed(np.ones(m), np.arange(m, dtype=np.int32), indptr, (n, m), canonical=True)
 
 
 _REDUCED: "weakref.WeakKeyDictionary[FVSystem, tuple]" = weakref.WeakKeyDictionary()
@@ -1663,7 +1693,7 @@ def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     p0[unk.fixed] = p_fixed[unk.fixed]   # P = p - p_c on the unknowns
     theta0 = np.zeros(p_fixed.size)
     theta0[unk.fixed] = 1.0              # edges and pockets feed full film
-    r = K @ p0 + G @ theta0 + system.source
+    r = matvec(K, p0) + matvec(G, theta0) + system.source
     if _selects(unk):                    # each unknown one dof (no periodic seam): S selects the dofs rep
         rep = unk.rep                    # the same matrices as S^T A S, whose products drop exact zeros
         return _selected(K, rep), _selected(G, rep), r[rep]
@@ -1672,11 +1702,15 @@ def _condensed(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
 
 
 def _selects(unk: FVUnknowns) -> bool:
-    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]``."""
-    S = sp.csr_matrix(unk.S)
-    m = S.shape[1]
-    return (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
-            and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
+    """Whether ``unk.S`` is the selection of the dofs ``unk.rep`` (increasing), unknown ``k`` dof ``rep[k]`` (found
+    once, kept on ``unk``; :func:`_build_unknowns` notes it where it built ``S`` so)."""
+    kept = unk._order.get("selects")
+    if kept is None:
+        S = sp.csr_matrix(unk.S)
+        m = S.shape[1]
+        kept = unk._order["selects"] = (S.nnz == m and np.array_equal(np.flatnonzero(np.diff(S.indptr)), unk.rep)
+                                        and np.array_equal(S.indices, np.arange(m)) and bool(np.all(S.data == 1.0)))
+    return kept
 
 
 def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
@@ -1695,10 +1729,8 @@ def _selected(A: sp.csr_matrix, rows: np.ndarray) -> sp.csr_matrix:
         counts = np.bincount(row_of[keep], minlength=rows.size) if rows.size else np.zeros(0, np.int64)
         indptr = np.zeros(rows.size + 1, dtype=A.indptr.dtype)
         np.cumsum(counts, out=indptr[1:])
-        B = sp.csr_matrix((A.data[keep], number[A.indices[keep]], indptr), shape=(rows.size, rows.size))
-        B.has_sorted_indices = True   # an increasing renumbering of sorted rows without repeats: canonical
-        B.has_canonical_format = True
-        return B
+        # an increasing renumbering of sorted rows without repeats: canonical
+        return compressed(A.data[keep], number[A.indices[keep]], indptr, (rows.size, rows.size), canonical=True)
     B = A[rows][:, rows].tocsr()
     B.eliminate_zeros()
     B.sort_indices()
@@ -1729,15 +1761,14 @@ def _effective(system: FVSystem, unk: FVUnknowns, cavity: np.ndarray) -> FVSyste
     """The system with one Couette operator: the cavitated columns from ``C_cavity`` (for the flows)."""
     if system.C_cavity is None:
         return system
-    cav = (unk.S @ cavity.astype(float)) > 0.5
+    cav = matvec(unk.S, cavity.astype(float)) > 0.5
     C, Cc = system.C, system.C_cavity
     if (C.format == Cc.format == "csr" and C.has_canonical_format and Cc.has_canonical_format
             and np.array_equal(C.indptr, Cc.indptr) and np.array_equal(C.indices, Cc.indices)):
         # one pattern (the streamline flux's): each stored entry from one of the two, as the column products
         # and their sum below, without them (0.05 against 0.45 ms CPU at 810 nodes); canonical, where the
         # products' sum keeps each row's cavitated columns first (the flows' sums then add in another order)
-        M = sp.csr_matrix((np.where(cav[C.indices], Cc.data, C.data), C.indices.copy(), C.indptr.copy()),
-                          shape=C.shape)
+        M = compressed(np.where(cav[C.indices], Cc.data, C.data), C.indices.copy(), C.indptr.copy(), C.shape)
         M.eliminate_zeros()
         return dataclasses.replace(system, C=M, C_cavity=None)
     C = (C @ sp.diags((~cav).astype(float)) + Cc @ sp.diags(cav.astype(float))).tocsr()
@@ -1873,16 +1904,59 @@ def _union_pattern(K: sp.spmatrix, G: sp.spmatrix) -> sp.csr_matrix:
     as scipy's sums drop them). Two canonical matrices of one compressed format are read as they are (a CSC
     matrix's arrays are its transpose's CSR arrays: the same symmetric pattern), without the conversions to
     CSR: 0.13 against 0.19 ms CPU at 433 unknowns, 0.27 against 0.44 at 2,855 (mean of 300 calls; the same
-    arrays, values included)."""
+    arrays, values included); with ``int32`` indices the sums and the transpose by scipy's own kernels
+    (:func:`_csr_sum`, :func:`_csr_transposed`) without its sparse matrices' checks in between."""
     if K.format == G.format and K.format in ("csr", "csc") and K.has_canonical_format and G.has_canonical_format:
-        A = sp.csr_matrix((np.abs(K.data), K.indices, K.indptr), shape=K.shape[::-1] if K.format == "csc" else K.shape)
-        B = sp.csr_matrix((np.abs(G.data), G.indices, G.indptr), shape=G.shape[::-1] if G.format == "csc" else G.shape)
+        A = compressed(np.abs(K.data), K.indices, K.indptr, K.shape[::-1] if K.format == "csc" else K.shape,
+                       canonical=True)
+        B = compressed(np.abs(G.data), G.indices, G.indptr, G.shape[::-1] if G.format == "csc" else G.shape,
+                       canonical=True)
+        if all(x.dtype == np.int32 for x in (A.indices, A.indptr, B.indices, B.indptr)):
+            U = _csr_sum(A, B)
+            return _csr_sum(U, _csr_transposed(U))
         U = A + B
     else:
         U = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (U + U.T).tocsr()
     pattern.sort_indices()
     return pattern
+
+
+def _csr_sum(A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matrix:
+    """``A + B`` of two canonical CSR matrices of one shape with ``int32`` indices: scipy's kernel of that sum
+    (``csr_plus_csr``: each row's entries merged in order, entries that sum to zero dropped) on their arrays, the
+    arrays scipy's ``A + B`` gives, without its checks and index dtype search (canonical: sorted, no repeats)."""
+    n, m = A.shape
+    size = A.nnz + B.nnz
+    indptr = np.empty(n + 1, np.int32)
+    indices = np.empty(size, np.int32)
+    data = np.empty(size, np.result_type(A.data, B.data))
+    _sparsetools.csr_plus_csr(n, m, A.indptr, A.indices, A.data, B.indptr, B.indices, B.data, indptr, indices, data)
+    nnz = int(indptr[-1])
+    return compressed(data[:nnz], indices[:nnz], indptr, (n, m), canonical=True)
+
+
+def _csr_transposed(A: sp.csr_matrix) -> sp.csr_matrix:
+    """``A.T.tocsr()`` of a CSR matrix with ``int32`` indices by scipy's kernel of that conversion (``csr_tocsc``:
+    the same arrays, each row's indices sorted, repeated entries kept), without its checks; canonical where ``A``
+    is."""
+    n, m = A.shape
+    indptr = np.empty(m + 1, np.int32)
+    indices = np.empty(A.nnz, np.int32)
+    data = np.empty(A.nnz, A.data.dtype)
+    _sparsetools.csr_tocsc(n, m, A.indptr, A.indices, A.data, indptr, indices, data)
+    T = compressed(data, indices, indptr, (m, n), canonical=A.has_canonical_format)
+    T.has_sorted_indices = True
+    return T
+
+
+def _csc_of(A: sp.csr_matrix) -> sp.csc_matrix:
+    """``A.tocsc()``: for a canonical CSR matrix with ``int32`` indices the arrays of :func:`_csr_transposed` (the
+    kernel of scipy's conversion: the same arrays) without scipy's checks, else scipy's conversion."""
+    if not (A.format == "csr" and A.indices.dtype == A.indptr.dtype == np.int32 and A.has_canonical_format):
+        return A.tocsc()
+    T = _csr_transposed(A)
+    return compressed(T.data, T.indices, T.indptr, A.shape, fmt="csc", canonical=True)
 
 
 def _same_pattern(a: tuple, b: tuple) -> bool:
@@ -2083,7 +2157,7 @@ class _SetSolver:
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
-        self.K, self.G = K.tocsc(), G.tocsc()
+        self.K, self.G = _csc_of(K), _csc_of(G)
         self.factorize = factorize
         self.unk = unk
         if factorize is factorize_splu and unk is not None:
@@ -2104,8 +2178,8 @@ class _SetSolver:
         if self.K.shape[0] > CHOICE_UP_TO:
             return (self.K @ sp.diags((~cav).astype(float)) + self.G @ sp.diags(cav.astype(float))).tocsc()
         pattern, k_data, g_data, column = self._picked()
-        M = sp.csc_matrix((np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy()),
-                          shape=pattern.shape)
+        M = compressed(np.where(cav[column], g_data, k_data), pattern.indices.copy(), pattern.indptr.copy(),
+                       pattern.shape, fmt="csc")
         M.eliminate_zeros()   # in place: hence the copies of the kept pattern
         return M
 
@@ -2146,7 +2220,8 @@ class _SetSolver:
             limit = self._low_rank_limit()
             if 0 < J.size <= 2 * limit and sum(1 for j in J if j not in self.z) <= limit:
                 y = self._woodbury(J, rhs)   # its residual M y - rhs without forming M
-                if y is not None and np.abs(self.K @ np.where(cav, 0.0, y) + self.G @ np.where(cav, y, 0.0)
+                if y is not None and np.abs(matvec(self.K, np.where(cav, 0.0, y))
+                                            + matvec(self.G, np.where(cav, y, 0.0))
                                             - rhs).max() <= 1e-11 * max(np.abs(rhs).max(), 1e-300):
                     return y
             elif J.size == 0:
@@ -2374,7 +2449,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
         cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
-        rhs = -b - GII @ full.astype(float)
+        rhs = -b - matvec(GII, full.astype(float))
         y = solver(cav, rhs)
         if not np.all(np.isfinite(y)):
             raise JFOError("the linear solve of the JFO active-set step returned non-finite values "
@@ -2393,7 +2468,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
                 raise JFOError(f"fill fraction theta = {theta.min():.3g} < 0 at the converged cavity: the "
                                "film empties faster than the Couette flow refills it (time step too long, "
                                "or a squeeze rate no oil film can follow)")
-            res = KII @ P + GII @ full.astype(float) + GcII @ np.where(cav, theta, 0.0) + b
+            res = matvec(KII, P) + matvec(GII, full.astype(float)) + matvec(GcII, np.where(cav, theta, 0.0)) + b
             return _Solution(p=P + p_c, theta=theta, cavity=cav, iterations=it,
                              residual=float(np.abs(res).max(initial=0.0)) / scale,
                              factorizations=solver.factorizations, solve=solver.solve)
@@ -2488,10 +2563,10 @@ def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_
                 raise
             mark = np.zeros(unk.rep.size)
             mark[switching] = 1.0
-            bad = (unk.S @ mark) > 0.5
+            bad = matvec(unk.S, mark) > 0.5
             cavity = start
         else:
-            bad = np.where(free, unk.S @ sol.theta, 1.0) < -tol
+            bad = np.where(free, matvec(unk.S, sol.theta), 1.0) < -tol
             if not bad.any():
                 return _effective(system, unk, sol.cavity), sol, int(upwinded.sum())
             cavity = sol.cavity
@@ -2512,7 +2587,7 @@ def _initial_cavity(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c:
     active-set matrices (:func:`_ordered_splu`, the order found here is theirs too): about half COLAMD's time
     from :data:`ORDERED_FROM` unknowns on."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
-    rhs = -b - GII @ np.ones(b.size)
+    rhs = -b - matvec(GII, np.ones(b.size))
     if factorize is factorize_splu:
         P = _full_film_banded(unk, KII, rhs)
         if P is not None:
@@ -2554,7 +2629,7 @@ def _symmetric(K: sp.csr_matrix) -> bool:
     unknowns, 0.10 against 0.16 at 1,800 (the pocket pad's full-film matrix, mean of 500 calls)."""
     if K.shape[0] != K.shape[1]:
         return False
-    T = K.T.tocsr()
+    T = _csr_transposed(K) if K.indices.dtype == K.indptr.dtype == np.int32 else K.T.tocsr()
     return (np.array_equal(T.indptr, K.indptr) and np.array_equal(T.indices, K.indices)
             and np.array_equal(T.data, K.data))
 
@@ -2691,7 +2766,8 @@ def _flows(mesh: SupportMesh, ops: Operators, film: Film, system: FVSystem, wedg
     ``grad_p``: the P1 gradient of ``p`` per triangle, if the caller has it."""
     basis = ops.basis
     storage = system.storage * theta + system.source
-    balance_rest = system.K @ p + system.C @ theta + storage   # outflow through interior segments + storage
+    # outflow through interior segments + storage
+    balance_rest = matvec(system.K, p) + matvec(system.C, theta) + storage
     outflow = -balance_rest   # what leaves a boundary dof's cell through the boundary
     groups = {k: ops.flow_groups[k][0] for k in edge_groups(mesh.boundaries)}
     count = np.zeros(basis.N)
@@ -3201,9 +3277,9 @@ def solve_jfo(mesh: SupportMesh, film: Film, *, wedge: float = 1.0, squeeze=(0.0
         free = np.zeros(ops.n_dofs, bool)
         free[ops.interior] = True
         p_fixed = _pocket_values(mesh, ops, inlet_pressure)
-        p = np.where(free, unk.S @ sol.p, p_fixed)
-        theta = np.where(free, unk.S @ sol.theta, 1.0)
-        cavitated = (unk.S @ sol.cavity.astype(float)) > 0.5
+        p = np.where(free, matvec(unk.S, sol.p), p_fixed)
+        theta = np.where(free, matvec(unk.S, sol.theta), 1.0)
+        cavitated = matvec(unk.S, sol.cavity.astype(float)) > 0.5
         cost = {"assembly": t1 - start, "cavitation": t2 - t1}
         result = _result(mesh, ops, film, system, float(wedge), sq, _pressures(inlet_pressure), p_c, sliding, p,
                          theta, cavitated, sol, cost, start, cavitation)

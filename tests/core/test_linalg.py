@@ -126,3 +126,58 @@ def test_dense_threads_inside_a_cap_as_tight_changes_nothing():
             assert linalg._open_caps() == [1, 2]
         assert all(n == 1 for n in blas())
     assert blas() == before and linalg._open_caps() == []
+
+
+@pytest.mark.parametrize("fmt", ["csr", "csc"])
+def test_compressed_is_scipys_matrix_of_the_same_arrays(fmt):
+    """compressed() holds the given int32 arrays themselves and gives the matrix scipy's constructor gives (the
+    same class, shape, arrays and products); other index dtypes go through scipy's constructor (int64 indices
+    of a small matrix come back as scipy's int32)."""
+    from bearingfe.core.linalg import compressed
+
+    cls = sp.csr_matrix if fmt == "csr" else sp.csc_matrix
+    A = cls(sp.random(40, 30, density=0.2, random_state=3))
+    A.sum_duplicates()
+    data, indices, indptr = A.data, A.indices.astype(np.int32), A.indptr.astype(np.int32)
+    B = compressed(data, indices, indptr, A.shape, fmt=fmt, canonical=True)
+    ref = cls((data, indices, indptr), shape=A.shape)
+    assert type(B) is type(ref) and B.shape == ref.shape and B.format == fmt
+    assert B.data is data and B.indices is indices and B.indptr is indptr
+    assert B.has_canonical_format and B.has_sorted_indices
+    x = np.arange(30.0)
+    assert np.array_equal(B @ x, ref @ x) and np.array_equal((B + ref).toarray(), 2 * ref.toarray())
+    assert repr(B) == repr(ref)
+    wide = compressed(data, indices.astype(np.int64), indptr.astype(np.int64), A.shape, fmt=fmt)
+    assert wide.indices.dtype == ref.indices.dtype and np.array_equal(wide.toarray(), ref.toarray())
+    with pytest.raises(ValueError, match="index pointer"):   # inconsistent arrays: scipy's checks see them
+        compressed(data[:-1], indices[:-1], indptr, A.shape, fmt=fmt)
+
+
+def test_compressed_refuses_an_unknown_format():
+    from bearingfe.core.linalg import compressed
+
+    with pytest.raises(ValueError, match="fmt"):
+        compressed(np.ones(1), np.zeros(1, np.int32), np.array([0, 1], np.int32), (1, 1), fmt="coo")
+
+
+@pytest.mark.parametrize("fmt", ["csr", "csc"])
+def test_matvec_is_scipys_product(fmt):
+    """matvec() calls scipy's kernel of A @ x directly: the same vector bit for bit on random matrices (int32 and
+    int64 indices, a strided vector); other inputs (a coo matrix, a 2-D right side, integer values) go through
+    A @ x and give its answer."""
+    from bearingfe.core.linalg import matvec
+
+    rng = np.random.default_rng(2)
+    for k in range(6):
+        n, m = (int(v) for v in rng.integers(1, 50, size=2))
+        A = sp.random(n, m, density=0.3, random_state=k, format=fmt)
+        x = rng.normal(size=2 * m)[::2]   # strided
+        assert np.array_equal(matvec(A, x), A @ x)
+        wide = A.copy()
+        wide.indices, wide.indptr = wide.indices.astype(np.int64), wide.indptr.astype(np.int64)
+        assert np.array_equal(matvec(wide, x), A @ x)
+    X = rng.normal(size=(m, 3))
+    assert np.array_equal(matvec(A, X), A @ X)
+    assert np.array_equal(matvec(A.tocoo(), x), A @ x)
+    ints = np.arange(m)
+    assert np.array_equal(matvec(A, ints), A @ ints)

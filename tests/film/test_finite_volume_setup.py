@@ -645,6 +645,54 @@ def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
     assert want[3, 40] == want[40, 3] == 1.5 and want[0, 60] == 0 and 60 not in want.indices[:want.indptr[1]]
 
 
+
+def test_union_pattern_kernels_are_scipys_sums_and_transpose():
+    """_csr_sum and _csr_transposed (scipy's kernels on int32 arrays, no checks between) give the arrays of scipy's
+    ``A + B`` and ``A.T.tocsr()`` bit for bit, entries that cancel dropped, on random canonical matrices of
+    several shapes; and the union pattern of int64-indexed matrices (scipy's sums) equals the int32 one's."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(5)
+    for k in range(12):
+        n, m = (int(x) for x in rng.integers(1, 40, size=2))
+        A = sp.random(n, m, density=0.2, random_state=k, format="csr")
+        B = sp.random(n, m, density=0.2, random_state=k + 50, format="csr")
+        A.data -= 0.5
+        B = (B - B.multiply(A != 0)).tocsr()   # no entry where A has one ...
+        cut = sp.csr_matrix(A, copy=True)
+        cut.data[3:] = 0.0
+        cut.eliminate_zeros()
+        B = (B - cut).tocsr()                  # ... but minus A's first three: they cancel in A + B
+        B.sum_duplicates()
+        for x in (A, B):
+            assert x.indices.dtype == np.int32 and x.has_canonical_format
+        want, got = A + B, fv._csr_sum(A, B)
+        assert A.nnz < 3 or want.nnz == A.nnz + B.nnz - 6   # three shared entries, which cancel
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+        assert got.shape == want.shape and got.has_canonical_format
+        want_t, got_t = A.T.tocsr(), fv._csr_transposed(A)
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got_t, name), getattr(want_t, name))
+        assert got_t.shape == (m, n)
+        want_c, got_c = A.tocsc(), fv._csc_of(A)
+        assert got_c.format == "csc" and got_c.shape == (n, m) and got_c.has_canonical_format
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got_c, name), getattr(want_c, name))
+        twice = sp.csr_matrix(([1.0, 2.0, 3.0, 4.0], [0, 1, 1, 0], [0, 1, 3, 4]), shape=(3, 2))   # (1, 1) twice
+        assert not twice.has_canonical_format   # a repeated entry: scipy's conversion; the transpose keeps it
+        assert fv._csc_of(twice).nnz == 4 and np.array_equal(fv._csc_of(twice).toarray(), twice.toarray())
+        assert not fv._csr_transposed(twice).has_canonical_format
+        assert np.array_equal(fv._csr_transposed(twice).toarray(), twice.T.toarray())
+        assert fv._symmetric(A + A.T) if n == m else not fv._symmetric(A)
+        if n == m:
+            wide = [sp.csr_matrix(x) for x in (A, B)]
+            for x in wide:
+                x.indices, x.indptr = x.indices.astype(np.int64), x.indptr.astype(np.int64)
+            P, Q = fv._union_pattern(A, B), fv._union_pattern(*wide)
+            for name in ("indptr", "indices", "data"):
+                assert np.array_equal(getattr(P, name), getattr(Q, name))
+
 def test_whole_grids_find_triangles_and_faces_from_their_lines():
     """A whole grid_mesh (no pockets) keeps its lines (tensor_lines): the triangles and the box faces near each
     recess (_tensor_overlaps, two binary searches per axis) and the box faces themselves come from them, the same
@@ -1110,3 +1158,67 @@ def test_circle_depth_from_boxes_is_the_points_own_test():
     assert all(np.array_equal(b, f(p[k, t], axis=0)) for b, k, f in zip(boxes, (0, 0, 1, 1), (np.min, np.max) * 2))
     x = fv.operators(mesh, "P1").basis.mapping.F(np.array([[1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]))
     assert np.array_equal(fv._quadrature_depth(mesh, x), surface.recess_depth(x[0], x[1]))
+
+
+def test_unknowns_selection_is_scipys_conversion():
+    """A mesh without a periodic seam takes its unknowns' selection S from _selection (its CSR arrays written
+    directly): the same arrays, dtypes and canonical flag as scipy's conversion of the entries (ones at
+    (I[k], k)), noted as a selection for _selects; a periodic mesh keeps the conversion and _selects finds it
+    is none. Also at the edges: no rows, every row, the last row only."""
+    import scipy.sparse as sp
+
+    for rows, n in ((np.array([2, 3, 7, 8, 11]), 13), (np.zeros(0, np.int64), 4), (np.arange(6), 6),
+                    (np.array([5]), 6)):
+        want = sp.csr_matrix((np.ones(rows.size), (rows, np.arange(rows.size))), shape=(n, rows.size))
+        got = fv._selection(rows, n)
+        assert got.shape == want.shape and got.has_canonical_format
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+            assert getattr(got, name).dtype == getattr(want, name).dtype
+    mesh = mesh_surface(_dimpled(), 0.2)
+    ops = fv.operators(mesh, "P1")
+    unk = fv._unknowns(mesh, ops)
+    want = sp.csr_matrix((np.ones(ops.interior.size), (ops.interior, np.arange(ops.interior.size))),
+                         shape=(ops.n_dofs, ops.interior.size))
+    assert np.array_equal(unk.S.indptr, want.indptr) and np.array_equal(unk.S.indices, want.indices)
+    assert unk._order["selects"] is True and fv._selects(fv.FVUnknowns(S=want, rep=unk.rep, fixed=unk.fixed))
+    import math
+
+    from bearingfe.bearings.journal import Groove, JournalBearing
+    (surface,) = JournalBearing(1.0, periodic=True, grooves=(Groove(math.pi / 2, math.radians(20.0), 0.8),)).surfaces()
+    seam = mesh_surface(surface, 0.5)
+    unk = fv._unknowns(seam, fv.operators(seam, "P1"))
+    assert "selects" not in unk._order and not fv._selects(unk) and unk._order["selects"] is False
+
+
+def test_sorted_entries_are_scipys_conversion():
+    """_sorted_entries (scipy's coo_tocsr and csr_sort_indices kernels) gives scipy's conversion of the entries
+    with sorted indices, bit for bit (arrays and dtypes), on random places in random order; places given twice
+    take scipy's conversion (their entries summed); and the P1 pattern of a gmsh mesh is the one built through
+    scipy's conversion (its take, the entries' slots, included)."""
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(11)
+    for n in (1, 7, 40):
+        places = rng.permutation(n * n)[: max(1, n * n // 3)]
+        rows, cols = places // n, places % n
+        values = rng.normal(size=places.size)
+        want = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
+        want.sort_indices()
+        got = fv._sorted_entries(rows, cols, values, n)
+        assert got.has_canonical_format and got.shape == (n, n)
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
+            assert getattr(got, name).dtype == getattr(want, name).dtype
+    twice = fv._sorted_entries(np.array([0, 1, 0]), np.array([1, 0, 1]), np.array([1.0, 2.0, 3.0]), 2)
+    assert twice.nnz == 2 and twice[0, 1] == 4.0
+    mesh = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.2), 1.0)]), 0.1)
+    m = mesh.mesh
+    t, n, facets, edge = m.t, int(m.nvertices), np.asarray(m.facets), np.asarray(m.t2f)
+    pattern = fv._pattern_of(t, n, facets, edge)
+    nodes = np.arange(n)
+    rows, cols = np.concatenate([facets[0], facets[1], nodes]), np.concatenate([facets[1], facets[0], nodes])
+    P = sp.csr_matrix((np.arange(rows.size, dtype=float), (rows, cols)), shape=(n, n))
+    P.sort_indices()
+    assert np.array_equal(pattern.indptr, P.indptr) and np.array_equal(pattern.indices, P.indices)
+    assert np.array_equal(pattern.take, P.data.astype(np.int64))

@@ -298,3 +298,32 @@ def test_boundary_facet_triangles_without_the_inverse_map(surface, order):
     mapped._cache.clear()
     give_facet_triangles(mapped.mesh)
     assert np.array_equal(moments, operators(mapped, element).pocket_moments)
+
+
+@pytest.mark.parametrize("surface, order", [(RECTANGLE, 1), (CIRCLE, 1), (CIRCLE, 2)])
+def test_boundary_facet_triangles_from_t2f_are_the_node_pair_searchs(surface, order):
+    # where the mesh has scikit-fem's triangle-to-facet map t2f (gmsh meshes keep it), the triangles of boundary
+    # facets are read off it: the same as the node-pair search (the mesh without t2f) and scikit-fem's
+    # facet-to-triangle map, without building the latter; repeated, interior or unknown facets take the map
+    import copy
+
+    mesh = bf.mesh_surface(surface, 0.25, corner_size=0.05, order=order)
+    m = copy.deepcopy(mesh.mesh)
+    assert hasattr(m, "_t2f") and not hasattr(m, "_f2t")
+    bare = copy.deepcopy(m)
+    del bare.__dict__["_t2f"]
+    outer, inlet = np.asarray(mesh.boundaries["outer"]), np.asarray(mesh.boundaries["inlet"])
+    every = np.concatenate([inlet, outer[::-1]])
+    for facets in (inlet, outer[::-1], every, every[::7]):
+        got = film_operators.boundary_facet_triangles(m, facets)
+        assert np.array_equal(got, film_operators.boundary_facet_triangles(bare, facets))
+        assert np.array_equal(got, mesh.mesh.f2t[0, facets]) and got.dtype == np.int64
+    assert not hasattr(m, "_f2t") and not hasattr(bare, "_t2f")
+    interior = np.flatnonzero(mesh.mesh.f2t[1] >= 0)[:7]
+    n_facets = m.facets.shape[1]
+    assert film_operators._facet_owners(m.t2f, np.concatenate([every[:3], interior]), n_facets) is None
+    assert film_operators._facet_owners(m.t2f, np.concatenate([inlet, inlet[:2]]), n_facets) is None
+    assert film_operators._facet_owners(m.t2f, np.concatenate([interior[:1], every[:1]]), n_facets) is None
+    for facets in (np.concatenate([every[:3], interior]), np.concatenate([inlet, inlet[:2]])):
+        assert np.array_equal(film_operators.boundary_facet_triangles(copy.deepcopy(m), facets),
+                              mesh.mesh.f2t[0, facets])
