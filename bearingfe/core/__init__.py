@@ -10,6 +10,7 @@ module            what it does
 ``machine``       The drive and the materials every machine shares (SI, frozen, validated).
 ``parameters``    Parameter objects for arguments that travel together: the operating point and the discretization.
 ``linalg``        Pluggable sparse linear solvers for the condensed Reynolds systems.
+``compressed``    Sparse matrices from arrays at hand: scipy's own kernels without its objects' checks, checked once.
 ``banded``        Banded Cholesky of sparse symmetric positive definite matrices, and the rule for when a band pays.
 ``ordering``      Fill-reducing orderings found from the sparsity pattern alone (nested dissection).
 ``blocks``        Blocks of consecutive indices: long vectorized passes cut into pieces that stay in cache.

@@ -16,13 +16,11 @@ from typing import Callable
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from scipy.sparse import _sparsetools
 
 from .ordering import NESTED_DISSECTION_FROM, nested_dissection
 
 __all__ = ["DEFAULT_SOLVER", "LINEAR_SOLVERS", "get_linear_solver", "available_solvers", "PatternFactorizer", "factorize_splu",
-           "factorize_splu_sym", "factorize_splu_small", "SMALL_PANELS_UP_TO", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy", "dense_threads",
-           "compressed", "matvec"]
+           "factorize_splu_sym", "factorize_splu_small", "SMALL_PANELS_UP_TO", "factorize_amg", "factorize_cholmod", "factorize_pardiso", "factorize_cholespy", "dense_threads"]
 
 Solve = Callable[[np.ndarray], np.ndarray]
 Factorize = Callable[[sp.spmatrix], Solve]
@@ -305,60 +303,6 @@ class PatternFactorizer:
             return lu.solve(b[order])[inverse]
 
         return solve
-
-
-# -- sparse matrices from arrays at hand ----------------------------------------------------
-
-_COMPRESSED = {"csr": sp.csr_matrix, "csc": sp.csc_matrix}
-
-
-def compressed(data: np.ndarray, indices: np.ndarray, indptr: np.ndarray, shape: tuple[int, int],
-               fmt: str = "csr", canonical: bool = False) -> sp.csr_matrix | sp.csc_matrix:
-    """``sp.csr_matrix((data, indices, indptr), shape=shape)`` (or ``csc_matrix``, ``fmt``) holding the given
-    arrays themselves (no copies), without scipy's checks where they would change nothing: ``int32`` indices and
-    index pointers (the dtype scipy's checks choose for a matrix of fewer than 2**31 entries and rows), 1-D,
-    ``indptr`` of ``shape[major] + 1`` entries from 0 to ``data.size == indices.size``. Any other input goes
-    through scipy's constructor. The indices are not scanned: the caller vouches that they lie in range and
-    that ``indptr`` does not decrease. ``canonical``: the caller vouches too that each row's (column's) indices
-    increase without repeats (scipy's ``has_canonical_format``, which scipy would otherwise find at first use).
-
-    scipy's constructor costs about 13 us CPU a matrix (its index dtype search and format checks), this one
-    under 1 us: the small systems of a film solve build a dozen such matrices.
-    """
-    cls = _COMPRESSED.get(fmt)
-    if cls is None:
-        raise ValueError(f"fmt must be 'csr' or 'csc', got {fmt!r}")
-    major = shape[0] if fmt == "csr" else shape[1]
-    if not (indices.dtype == indptr.dtype == np.int32 and data.ndim == indices.ndim == indptr.ndim == 1
-            and indptr.size == major + 1 and indices.size == data.size and max(shape) < 2**31 - 1
-            and int(indptr[0]) == 0 and int(indptr[-1]) == data.size):
-        A = cls((data, indices, indptr), shape=shape)
-    else:
-        A = cls.__new__(cls)
-        A.maxprint = _MAXPRINT
-        A._shape = (int(shape[0]), int(shape[1]))
-        A.data, A.indices, A.indptr = data, indices, indptr
-    if canonical:
-        A.has_canonical_format = True
-    return A
-
-
-def matvec(A: sp.spmatrix, x: np.ndarray) -> np.ndarray:
-    """``A @ x`` for a CSR or CSC matrix of float64 values and a float64 vector: scipy's kernel of that product
-    (``csr_matvec`` or ``csc_matvec``, into zeros: the same sums in the same order, the same array) called
-    directly, without scipy's dispatch (about 2.5 us CPU a product, a dozen and more of them in a film solve's
-    active-set steps); anything else through ``A @ x``."""
-    fmt = getattr(A, "format", None)
-    if (fmt in ("csr", "csc") and type(x) is np.ndarray and x.ndim == 1 and x.dtype == np.float64
-            and A.data.dtype == np.float64 and A.indices.dtype == A.indptr.dtype and x.size == A.shape[1]):
-        M, N = A.shape
-        y = np.zeros(M)
-        (_sparsetools.csr_matvec if fmt == "csr" else _sparsetools.csc_matvec)(M, N, A.indptr, A.indices, A.data, x, y)
-        return y
-    return A @ x
-
-
-_MAXPRINT = sp.csr_matrix((1, 1)).maxprint   # scipy's default number of entries printed
 
 
 # -- dense linear algebra on a shared machine ------------------------------------------

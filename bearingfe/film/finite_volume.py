@@ -93,7 +93,6 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from skfem import MeshTri1
-from scipy.sparse import _sparsetools
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from .thickness import Film
@@ -102,7 +101,8 @@ from .flows import edge_groups
 from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
 from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
-from ..core.linalg import Factorize, compressed, dense_threads, factorize_splu, get_linear_solver, matvec
+from ..core.compressed import compressed, csc_of, csr_sum, csr_transposed, matvec, sorted_entries
+from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
 from ..geometry.meshing import SupportMesh, periodic_pairs, tensor_lines
@@ -636,7 +636,7 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
     nodes = np.arange(n)
     rows = np.concatenate([facets[0], facets[1], nodes])
     cols = np.concatenate([facets[1], facets[0], nodes])
-    P = _sorted_entries(rows, cols, np.arange(rows.size, dtype=float), n)
+    P = sorted_entries(rows, cols, np.arange(rows.size, dtype=float), n)
     take = P.data.astype(np.int64)
     if take.size != rows.size:   # (repeated facets)
         return None
@@ -645,26 +645,6 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
     diagonal[take[is_diagonal] - 2 * n_edges] = np.flatnonzero(is_diagonal)
     return _P1Pattern(indptr=P.indptr, indices=P.indices, take=take, diagonal=diagonal,
                       off=~is_diagonal, edge=edge, t=t, n_edges=n_edges)
-
-
-def _sorted_entries(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, n: int) -> sp.csr_matrix:
-    """``sp.csr_matrix((values, (rows, cols)), shape=(n, n))`` with sorted indices, for at most one entry per place:
-    scipy's kernels of that conversion (``coo_tocsr``, then ``csr_sort_indices``) on ``int32`` copies of the
-    places, without the sparse objects' checks between them (0.05 against 0.11 ms CPU for the P1 pattern of 529
-    nodes); the same arrays. Entries sharing a place (which scipy's conversion sums), or more than ``2**31 - 1``
-    rows or entries, take scipy's conversion."""
-    size = rows.size
-    if n < 2**31 - 1 and size < 2**31 - 1:
-        indptr = np.empty(n + 1, np.int32)
-        indices = np.empty(size, np.int32)
-        data = np.empty(size, values.dtype)
-        _sparsetools.coo_tocsr(n, n, size, rows.astype(np.int32), cols.astype(np.int32), values, indptr, indices, data)
-        _sparsetools.csr_sort_indices(n, indptr, indices, data)
-        if _sparsetools.csr_has_canonical_format(n, indptr, indices):   # no place twice
-            return compressed(data, indices, indptr, (n, n), canonical=True)
-    P = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
-    P.sort_indices()
-    return P
 
 
 def _on_pattern(pattern: _P1Pattern, blocks_flat: np.ndarray) -> sp.csr_matrix:
@@ -1905,58 +1885,21 @@ def _union_pattern(K: sp.spmatrix, G: sp.spmatrix) -> sp.csr_matrix:
     matrix's arrays are its transpose's CSR arrays: the same symmetric pattern), without the conversions to
     CSR: 0.13 against 0.19 ms CPU at 433 unknowns, 0.27 against 0.44 at 2,855 (mean of 300 calls; the same
     arrays, values included); with ``int32`` indices the sums and the transpose by scipy's own kernels
-    (:func:`_csr_sum`, :func:`_csr_transposed`) without its sparse matrices' checks in between."""
+    (:func:`~bearingfe.core.compressed.csr_sum`, :func:`~bearingfe.core.compressed.csr_transposed`) without its sparse matrices' checks in between."""
     if K.format == G.format and K.format in ("csr", "csc") and K.has_canonical_format and G.has_canonical_format:
         A = compressed(np.abs(K.data), K.indices, K.indptr, K.shape[::-1] if K.format == "csc" else K.shape,
                        canonical=True)
         B = compressed(np.abs(G.data), G.indices, G.indptr, G.shape[::-1] if G.format == "csc" else G.shape,
                        canonical=True)
         if all(x.dtype == np.int32 for x in (A.indices, A.indptr, B.indices, B.indptr)):
-            U = _csr_sum(A, B)
-            return _csr_sum(U, _csr_transposed(U))
+            U = csr_sum(A, B)
+            return csr_sum(U, csr_transposed(U))
         U = A + B
     else:
         U = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (U + U.T).tocsr()
     pattern.sort_indices()
     return pattern
-
-
-def _csr_sum(A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matrix:
-    """``A + B`` of two canonical CSR matrices of one shape with ``int32`` indices: scipy's kernel of that sum
-    (``csr_plus_csr``: each row's entries merged in order, entries that sum to zero dropped) on their arrays, the
-    arrays scipy's ``A + B`` gives, without its checks and index dtype search (canonical: sorted, no repeats)."""
-    n, m = A.shape
-    size = A.nnz + B.nnz
-    indptr = np.empty(n + 1, np.int32)
-    indices = np.empty(size, np.int32)
-    data = np.empty(size, np.result_type(A.data, B.data))
-    _sparsetools.csr_plus_csr(n, m, A.indptr, A.indices, A.data, B.indptr, B.indices, B.data, indptr, indices, data)
-    nnz = int(indptr[-1])
-    return compressed(data[:nnz], indices[:nnz], indptr, (n, m), canonical=True)
-
-
-def _csr_transposed(A: sp.csr_matrix) -> sp.csr_matrix:
-    """``A.T.tocsr()`` of a CSR matrix with ``int32`` indices by scipy's kernel of that conversion (``csr_tocsc``:
-    the same arrays, each row's indices sorted, repeated entries kept), without its checks; canonical where ``A``
-    is."""
-    n, m = A.shape
-    indptr = np.empty(m + 1, np.int32)
-    indices = np.empty(A.nnz, np.int32)
-    data = np.empty(A.nnz, A.data.dtype)
-    _sparsetools.csr_tocsc(n, m, A.indptr, A.indices, A.data, indptr, indices, data)
-    T = compressed(data, indices, indptr, (m, n), canonical=A.has_canonical_format)
-    T.has_sorted_indices = True
-    return T
-
-
-def _csc_of(A: sp.csr_matrix) -> sp.csc_matrix:
-    """``A.tocsc()``: for a canonical CSR matrix with ``int32`` indices the arrays of :func:`_csr_transposed` (the
-    kernel of scipy's conversion: the same arrays) without scipy's checks, else scipy's conversion."""
-    if not (A.format == "csr" and A.indices.dtype == A.indptr.dtype == np.int32 and A.has_canonical_format):
-        return A.tocsc()
-    T = _csr_transposed(A)
-    return compressed(T.data, T.indices, T.indptr, A.shape, fmt="csc", canonical=True)
 
 
 def _same_pattern(a: tuple, b: tuple) -> bool:
@@ -2157,7 +2100,7 @@ class _SetSolver:
     """
 
     def __init__(self, K: sp.csr_matrix, G: sp.csr_matrix, factorize: Factorize, unk: FVUnknowns | None = None):
-        self.K, self.G = _csc_of(K), _csc_of(G)
+        self.K, self.G = csc_of(K), csc_of(G)
         self.factorize = factorize
         self.unk = unk
         if factorize is factorize_splu and unk is not None:
@@ -2629,7 +2572,7 @@ def _symmetric(K: sp.csr_matrix) -> bool:
     unknowns, 0.10 against 0.16 at 1,800 (the pocket pad's full-film matrix, mean of 500 calls)."""
     if K.shape[0] != K.shape[1]:
         return False
-    T = _csr_transposed(K) if K.indices.dtype == K.indptr.dtype == np.int32 else K.T.tocsr()
+    T = csr_transposed(K)
     return (np.array_equal(T.indptr, K.indptr) and np.array_equal(T.indices, K.indices)
             and np.array_equal(T.data, K.data))
 

@@ -4,6 +4,7 @@ import numpy as np
 import skfem
 
 from bearingfe import Circle, Recess, Surface, grid_mesh, mesh_surface
+from bearingfe.core.compressed import csc_of, csr_sum, csr_transposed, sorted_entries
 from bearingfe.film import finite_volume as fv
 from bearingfe.film.finite_volume import solve_jfo
 from bearingfe.film.thickness import UniformFilm
@@ -647,7 +648,7 @@ def test_union_pattern_read_from_compressed_arrays_is_the_sum_of_the_matrices():
 
 
 def test_union_pattern_kernels_are_scipys_sums_and_transpose():
-    """_csr_sum and _csr_transposed (scipy's kernels on int32 arrays, no checks between) give the arrays of scipy's
+    """csr_sum and csr_transposed (scipy's kernels on int32 arrays, no checks between) give the arrays of scipy's
     ``A + B`` and ``A.T.tocsr()`` bit for bit, entries that cancel dropped, on random canonical matrices of
     several shapes; and the union pattern of int64-indexed matrices (scipy's sums) equals the int32 one's."""
     import scipy.sparse as sp
@@ -666,24 +667,24 @@ def test_union_pattern_kernels_are_scipys_sums_and_transpose():
         B.sum_duplicates()
         for x in (A, B):
             assert x.indices.dtype == np.int32 and x.has_canonical_format
-        want, got = A + B, fv._csr_sum(A, B)
+        want, got = A + B, csr_sum(A, B)
         assert A.nnz < 3 or want.nnz == A.nnz + B.nnz - 6   # three shared entries, which cancel
         for name in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(got, name), getattr(want, name))
         assert got.shape == want.shape and got.has_canonical_format
-        want_t, got_t = A.T.tocsr(), fv._csr_transposed(A)
+        want_t, got_t = A.T.tocsr(), csr_transposed(A)
         for name in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(got_t, name), getattr(want_t, name))
         assert got_t.shape == (m, n)
-        want_c, got_c = A.tocsc(), fv._csc_of(A)
+        want_c, got_c = A.tocsc(), csc_of(A)
         assert got_c.format == "csc" and got_c.shape == (n, m) and got_c.has_canonical_format
         for name in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(got_c, name), getattr(want_c, name))
         twice = sp.csr_matrix(([1.0, 2.0, 3.0, 4.0], [0, 1, 1, 0], [0, 1, 3, 4]), shape=(3, 2))   # (1, 1) twice
         assert not twice.has_canonical_format   # a repeated entry: scipy's conversion; the transpose keeps it
-        assert fv._csc_of(twice).nnz == 4 and np.array_equal(fv._csc_of(twice).toarray(), twice.toarray())
-        assert not fv._csr_transposed(twice).has_canonical_format
-        assert np.array_equal(fv._csr_transposed(twice).toarray(), twice.T.toarray())
+        assert csc_of(twice).nnz == 4 and np.array_equal(csc_of(twice).toarray(), twice.toarray())
+        assert not csr_transposed(twice).has_canonical_format
+        assert np.array_equal(csr_transposed(twice).toarray(), twice.T.toarray())
         assert fv._symmetric(A + A.T) if n == m else not fv._symmetric(A)
         if n == m:
             wide = [sp.csr_matrix(x) for x in (A, B)]
@@ -1192,7 +1193,7 @@ def test_unknowns_selection_is_scipys_conversion():
 
 
 def test_sorted_entries_are_scipys_conversion():
-    """_sorted_entries (scipy's coo_tocsr and csr_sort_indices kernels) gives scipy's conversion of the entries
+    """sorted_entries (scipy's coo_tocsr and csr_sort_indices kernels) gives scipy's conversion of the entries
     with sorted indices, bit for bit (arrays and dtypes), on random places in random order; places given twice
     take scipy's conversion (their entries summed); and the P1 pattern of a gmsh mesh is the one built through
     scipy's conversion (its take, the entries' slots, included)."""
@@ -1205,12 +1206,12 @@ def test_sorted_entries_are_scipys_conversion():
         values = rng.normal(size=places.size)
         want = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
         want.sort_indices()
-        got = fv._sorted_entries(rows, cols, values, n)
+        got = sorted_entries(rows, cols, values, n)
         assert got.has_canonical_format and got.shape == (n, n)
         for name in ("indptr", "indices", "data"):
             assert np.array_equal(getattr(got, name), getattr(want, name))
             assert getattr(got, name).dtype == getattr(want, name).dtype
-    twice = fv._sorted_entries(np.array([0, 1, 0]), np.array([1, 0, 1]), np.array([1.0, 2.0, 3.0]), 2)
+    twice = sorted_entries(np.array([0, 1, 0]), np.array([1, 0, 1]), np.array([1.0, 2.0, 3.0]), 2)
     assert twice.nnz == 2 and twice[0, 1] == 4.0
     mesh = mesh_surface(Surface(arc=(0.0, 1.0), half_width=0.5, recesses=[Recess(Circle((0.5, 0.0), 0.2), 1.0)]), 0.1)
     m = mesh.mesh
