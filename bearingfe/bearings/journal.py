@@ -71,8 +71,8 @@ from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
 from ..geometry.locate import cell_diameters
-from ..geometry.meshing import (SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_marked,
-                                refine_uniformly, with_named_boundaries)
+from ..geometry.meshing import (SupportMesh, give_facet_triangles, give_facets, grid_mesh, mesh_surface,
+                                name_surface_boundaries, refine_marked, refine_uniformly, with_named_boundaries)
 from ..core.parameters import Discretization, takes
 from ..film import forms
 from ..core.parameters import ELEMENTS
@@ -440,7 +440,11 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
                      cells_checked: bool = False) -> SupportMesh:
     """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`;
     ``cells_checked``: its triangles are valid by construction (see
-    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`)."""
+    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`). Its facets and their triangles are built as
+    meshing builds them (scikit-fem's arrays: a counting sort and one stable sort instead of scikit-fem's
+    ``np.unique`` calls), or taken from the mesh (:func:`~bearingfe.geometry.meshing.refine_marked` built them)."""
+    give_facets(m)
+    give_facet_triangles(m)
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * (phis[1] - phis[0])
@@ -1583,7 +1587,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     front close behind its peak (within :data:`FRONT_PEAK_REACH` element diameters of the front; within
     :data:`RUPTURE_REACH` to ``rupture_size`` itself), and a loaded downstream edge gets a band of elements no longer
     than ``edge_size`` (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
-    m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
+    m = mesh.mesh  # refine_marked drops the named boundaries and splits on the facets the mesh has built
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
