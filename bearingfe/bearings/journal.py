@@ -46,6 +46,7 @@ solution. Non-dimensional as Lund's ``K c / W``, ``C c omega / W``.
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 import warnings
@@ -437,9 +438,9 @@ def structured_meshes(bearing: JournalBearing, size: float, *, min_size: float |
 
 
 def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float,
-                     cells_checked: bool = False) -> SupportMesh:
+                     cells_checked: bool = False, connected: bool = False) -> SupportMesh:
     """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`;
-    ``cells_checked``: its triangles are valid by construction (see
+    ``cells_checked``, ``connected``: its triangles are valid, its pieces touch the outline by construction (see
     :func:`~bearingfe.geometry.meshing.name_surface_boundaries`). Its facets and their triangles are built as
     meshing builds them (scikit-fem's arrays: a counting sort and one stable sort instead of scikit-fem's
     ``np.unique`` calls), or taken from the mesh (:func:`~bearingfe.geometry.meshing.refine_marked` built them)."""
@@ -452,7 +453,7 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
            "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
     bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
     return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface, size=float(cell_diameters(m).max()),
-                       source="structured", cells_checked=cells_checked)
+                       source="structured", cells_checked=cells_checked, connected=connected)
 
 
 def _reformation_elements(res: ReynoldsResult, front: np.ndarray) -> np.ndarray:
@@ -1623,8 +1624,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
             marked = np.zeros(m.nelements, bool)
             for points, reach, size in centres:
                 near = np.zeros(m.nelements, bool)
-                for hits in tree.query_ball_point(points, reach):
-                    near[hits] = True
+                near[np.fromiter(itertools.chain.from_iterable(tree.query_ball_point(points, reach)), np.intp)] = True
                 marked |= near & (d > size * (1 + 1e-9))
             marked = np.flatnonzero(marked)
             if not marked.size:
@@ -1645,10 +1645,11 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     if not changed:
         return None
     check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
-    # conforming splits of the checked mesh's triangles: valid by construction
+    # conforming splits of the checked mesh's triangles: valid, and its pieces (on the same outline), by construction
     if bearing.raimondi_boyd:
-        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width, cells_checked=True)
-    return name_surface_boundaries(m, mesh.surface, source="structured", cells_checked=True)
+        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width, cells_checked=True,
+                                connected=True)
+    return name_surface_boundaries(m, mesh.surface, source="structured", cells_checked=True, connected=True)
 
 
 _DOF_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()

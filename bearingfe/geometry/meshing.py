@@ -1222,7 +1222,7 @@ def _surface_boundaries(m: skfem.MeshTri1, surface: Surface, pockets) -> dict[st
 
 
 def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str = "grid",
-                            cells_checked: bool = False) -> SupportMesh:
+                            cells_checked: bool = False, connected: bool = False) -> SupportMesh:
     """A straight triangle mesh of a rectangular surface (e.g. a :func:`grid_mesh` refined locally by
     scikit-fem, which drops the named boundaries) with its boundaries named as :func:`grid_mesh` names them.
 
@@ -1238,6 +1238,10 @@ def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str 
         The triangles are valid by construction (e.g. :func:`refine_marked` of a checked mesh: conforming
         splits of valid triangles), so :func:`check_triangles` is skipped (as for :func:`grid_mesh`); the
         boundaries are checked as always.
+    connected : bool
+        Every connected piece of the mesh is known to touch a fixed-pressure boundary (e.g. :func:`refine_marked`
+        of a support mesh that passed :func:`check_support_mesh`: the splits keep its pieces, on the same
+        outline), so the connected components are not searched again.
     """
     if not surface.is_rectangular:
         raise ValueError("name_surface_boundaries needs the default rectangular outline (Surface(outer=None))")
@@ -1246,7 +1250,8 @@ def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str 
     p = m.p[:, m.t]
     edges = np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
     return SupportMesh(mesh=with_named_boundaries(m, _surface_boundaries(m, surface, pockets)), surface=surface,
-                       size=float(edges.max()), source=source, cells_checked=bool(cells_checked))
+                       size=float(edges.max()), source=source, cells_checked=bool(cells_checked),
+                       connected=bool(connected))
 
 
 def _graded_lines(breaks: list[float], size: float, width: Callable, max_elements: int | None) -> np.ndarray:

@@ -440,6 +440,25 @@ def test_refine_marked_builds_scikit_fems_facets_of_the_refined_mesh():
     assert np.array_equal(ours.subdomains["left"], theirs.subdomains["left"])
 
 
+def test_refined_meshes_named_as_connected_skip_the_component_search(monkeypatch):
+    """name_surface_boundaries(connected=True) (the rupture front's splits of a checked support mesh: the same
+    pieces on the same outline) does not search the connected components again; by default it does, and the
+    boundaries are the same either way."""
+    from bearingfe.geometry import meshing
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    grid = bf.grid_mesh(surface, 0.1).mesh
+    m = meshing.refine_marked(grid, np.arange(0, grid.nelements, 7))
+    calls = []
+    real = meshing._check_components
+    monkeypatch.setattr(meshing, "_check_components", lambda *a, **k: calls.append(1) or real(*a, **k))
+    known = meshing.name_surface_boundaries(m, surface, cells_checked=True, connected=True)
+    assert calls == []
+    searched = meshing.name_surface_boundaries(m, surface, cells_checked=True)
+    assert calls == [1]
+    assert all(np.array_equal(known.boundaries[k], searched.boundaries[k]) for k in searched.boundaries)
+
+
 def test_named_locally_refined_meshes_have_scikit_fems_own_facets():
     """name_surface_boundaries (a grid refined locally by scikit-fem, e.g. at a journal's rupture front) builds
     the facets by the same counting sort as grid_mesh: scikit-fem's own arrays, and the same named boundaries as
