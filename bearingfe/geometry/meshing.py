@@ -493,9 +493,12 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
     ends = m._facets[:, split]
     doflocs = np.hstack((m.p, .5 * (m.p[:, ends[0]] + m.p[:, ends[1]])))
     triangles = np.hstack([t[:, rest]] + [part[table.T].reshape(3, -1) for part, table in zip(parts, _SPLITS)])
-    refined = dataclasses.replace(m, doflocs=doflocs, t=triangles, _boundaries=None, _subdomains=None)
+    if m.sort_t:   # what the mesh's __post_init__ would do (np.sort(t, axis=0)), by a sorting network
+        triangles = _sorted_columns(triangles)
+    refined = dataclasses.replace(m, doflocs=doflocs, t=triangles, sort_t=False, _boundaries=None, _subdomains=None)
+    refined.sort_t = m.sort_t
     pairs = np.hstack([m._facets[:, ~split], np.vstack([ends[0], new[split]]), np.vstack([ends[1], new[split]])]
-                      + [np.sort(part[rows], axis=0) for part, edges in zip(parts, _INNER_EDGES) for rows in edges])
+                      + [_in_order(part[i], part[j]) for part, edges in zip(parts, _INNER_EDGES) for i, j in edges])
     _set_facets(refined, np.sort(pairs[0].astype(np.int64) * doflocs.shape[1] + pairs[1]))
     return refined
 
@@ -506,7 +509,7 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
 _SPLITS = (np.array([(0, 3, 5), (1, 3, 4), (2, 4, 5), (4, 5, 3)]), np.array([(1, 0, 5), (1, 4, 5), (2, 5, 4)]),
            np.array([(0, 3, 5), (5, 3, 1), (2, 5, 1)]), np.array([(1, 5, 0), (2, 5, 1)]))
 #: ... and the new edges inside it (the pairs of rows), per kind.
-_INNER_EDGES = (([3, 4], [4, 5], [3, 5]), ([1, 5], [4, 5]), ([3, 5], [1, 5]), ([1, 5],))
+_INNER_EDGES = (((3, 4), (4, 5), (3, 5)), ((1, 5), (4, 5)), ((3, 5), (1, 5)), ((1, 5),))
 
 
 def _longest_edge_first(p: np.ndarray, t: np.ndarray, t2f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -817,7 +820,7 @@ def _init_facets(m: skfem.Mesh) -> None:
     first node instead of scikit-fem's sort of structured rows (about twice as fast on a large grid)."""
     from scipy.sparse import csr_matrix
 
-    pairs = np.sort(np.hstack([m.t[ix] for ix in m.elem.refdom.facets]), axis=0)
+    pairs = _facet_pairs(m)
     nv = int(m.nvertices)
     graph = csr_matrix((np.ones(pairs.shape[1]), (pairs[0], pairs[1])), shape=(nv, nv))
     graph.sum_duplicates()   # rows then columns sorted, each pair once: the lexicographic unique pairs
@@ -829,12 +832,30 @@ def _set_facets(m: skfem.Mesh, code: np.ndarray, pairs: np.ndarray | None = None
     """Give ``m`` its facets and triangle-to-facet map from the codes ``first * nvertices + second`` of all its
     facets (node pairs ``first < second``), sorted and each once: scikit-fem's arrays (values and dtypes).
     ``pairs``: the sorted node pairs of every triangle's facets, facet by facet (made here if not given)."""
-    local = m.elem.refdom.facets
-    if pairs is None:
-        pairs = np.sort(np.hstack([m.t[ix] for ix in local]), axis=0)
+    pairs = _facet_pairs(m) if pairs is None else pairs
     nv = int(m.nvertices)
     m._facets = np.ascontiguousarray(np.vstack(np.divmod(code, nv)).astype(m.t.dtype))
-    m._t2f = np.searchsorted(code, pairs[0].astype(np.int64) * nv + pairs[1]).reshape(len(local), m.t.shape[1])
+    m._t2f = np.searchsorted(code, pairs[0].astype(np.int64) * nv + pairs[1]).reshape(-1, m.t.shape[1])
+
+
+def _facet_pairs(m: skfem.Mesh) -> np.ndarray:
+    """The node pairs (smaller first) of every triangle's facets, facet 0 of all triangles first: scikit-fem's
+    ``np.sort(..., axis=0)`` of them, by an elementwise minimum and maximum (a sort of two-element columns
+    costs a call per column)."""
+    local = m.elem.refdom.facets
+    return np.hstack([_in_order(m.t[i], m.t[j]) for i, j in local])
+
+
+def _sorted_columns(t: np.ndarray) -> np.ndarray:
+    """``np.sort(t, axis=0)`` of three rows, by a sorting network of elementwise minima and maxima."""
+    low, high = np.minimum(t[0], t[1]), np.maximum(t[0], t[1])
+    first, rest = np.minimum(low, t[2]), np.maximum(low, t[2])
+    return np.vstack([first, np.minimum(high, rest), np.maximum(high, rest)])
+
+
+def _in_order(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The pairs ``(a, b)`` as rows ``(min, max)``: ``np.sort(np.vstack([a, b]), axis=0)``, elementwise."""
+    return np.vstack([np.minimum(a, b), np.maximum(a, b)])
 
 
 def give_facets(m: skfem.Mesh) -> None:

@@ -428,6 +428,7 @@ def test_refine_marked_builds_scikit_fems_facets_of_the_refined_mesh():
             marked = rng.choice(theirs.nelements, max(1, theirs.nelements // (3 + level)), replace=False)
             ours, theirs = refine_marked(ours, marked), theirs.refined(marked)
             assert np.array_equal(ours.p, theirs.p) and np.array_equal(ours.t, theirs.t)
+            assert ours.t.dtype == theirs.t.dtype and ours.sort_t == theirs.sort_t
             fresh = skfem.MeshTri1(ours.p, ours.t)   # nothing built: scikit-fem sorts the facets itself
             assert np.array_equal(ours._facets, fresh.facets) and ours._facets.dtype == fresh.facets.dtype
             assert np.array_equal(ours._t2f, fresh.t2f) and ours._t2f.dtype == fresh.t2f.dtype
@@ -438,6 +439,22 @@ def test_refine_marked_builds_scikit_fems_facets_of_the_refined_mesh():
     ours, theirs = refine_marked(parts, marked), parts.refined(marked)
     assert np.array_equal(ours.p, theirs.p) and np.array_equal(ours.t, theirs.t)
     assert np.array_equal(ours.subdomains["left"], theirs.subdomains["left"])
+
+
+def test_sorting_networks_are_numpys_column_sorts():
+    """The facets' node pairs and a refined mesh's triangles are put in order by elementwise minima and maxima
+    instead of ``np.sort(..., axis=0)`` (a call per column): the same arrays and dtypes, ties included."""
+    from bearingfe.geometry import meshing
+
+    rng = np.random.default_rng(2)
+    for n, high in ((1, 3), (50, 4), (5000, 10**6)):
+        t = rng.integers(0, high, (3, n)).astype(np.int32)
+        assert np.array_equal(meshing._sorted_columns(t), np.sort(t, axis=0))
+        assert meshing._sorted_columns(t).dtype == t.dtype
+        assert np.array_equal(meshing._in_order(t[0], t[2]), np.sort(t[[0, 2]], axis=0))
+    m = skfem.MeshTri1.init_symmetric().refined(3)
+    expected = np.sort(np.hstack([m.t[ix] for ix in m.elem.refdom.facets]), axis=0)
+    assert np.array_equal(meshing._facet_pairs(m), expected) and meshing._facet_pairs(m).dtype == expected.dtype
 
 
 def test_refined_meshes_named_as_connected_skip_the_component_search(monkeypatch):
