@@ -772,7 +772,8 @@ def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
     codes = mesh.facets[0].astype(np.int64) * nv + mesh.facets[1]  # ascending: the facets are sorted pairs
     boundaries = {}
     for label, ends in data.curves.items():
-        ends = np.sort(renumber[compact[np.asarray(ends, dtype=np.int64)]], axis=0)
+        ends = renumber[compact[np.asarray(ends, dtype=np.int64)]]
+        ends = _in_order(ends[0], ends[1])
         wanted = ends[0] * nv + ends[1]
         at = np.minimum(np.searchsorted(codes, wanted), codes.size - 1)
         missing = int(np.count_nonzero((codes[at] != wanted) | (ends[0] < 0)))
@@ -933,14 +934,14 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
         raise GeometryFileError(
             f"{name}: {flat.size} degenerate (zero-area) triangle(s), e.g. triangle {k} at "
             f"({a[0, k]:.6g}, {a[1, k]:.6g}); remesh the surface")
-    key = np.sort(triangles, axis=0)
+    key = _sorted_columns(triangles)
     unique, counts = _unique_columns(key, points.shape[1])
     if np.any(counts > 1):
         k = int(np.argmax(counts > 1))
         raise GeometryFileError(
             f"{name}: {int(np.sum(counts - 1))} duplicated triangle(s) (same three nodes), e.g. nodes "
             f"{unique[:, k].tolist()}; a mesh must cover each point of the surface once")
-    edges = np.sort(np.hstack([triangles[[0, 1]], triangles[[1, 2]], triangles[[2, 0]]]), axis=0)
+    edges = np.hstack([_in_order(triangles[i], triangles[j]) for i, j in ((0, 1), (1, 2), (2, 0))])
     opposite = np.concatenate([triangles[2], triangles[0], triangles[1]])
     _, inverse, shared = _unique_columns(edges, points.shape[1], inverse=True)
     if np.any(shared > 2):
