@@ -46,6 +46,7 @@ solution. Non-dimensional as Lund's ``K c / W``, ``C c omega / W``.
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 import warnings
@@ -71,8 +72,8 @@ from ..geometry.surface import Rectangle, Surface
 from ..film.finite_volume import solve_jfo
 from ..geometry.geofiles import check_element_count
 from ..geometry.locate import cell_diameters
-from ..geometry.meshing import (SupportMesh, grid_mesh, mesh_surface, name_surface_boundaries, refine_marked,
-                                refine_uniformly, with_named_boundaries)
+from ..geometry.meshing import (SupportMesh, give_facet_triangles, give_facets, grid_mesh, mesh_surface,
+                                name_surface_boundaries, refine_marked, refine_uniformly, with_named_boundaries)
 from ..core.parameters import Discretization, takes
 from ..film import forms
 from ..core.parameters import ELEMENTS
@@ -437,10 +438,14 @@ def structured_meshes(bearing: JournalBearing, size: float, *, min_size: float |
 
 
 def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, float], a: float,
-                     cells_checked: bool = False) -> SupportMesh:
+                     cells_checked: bool = False, connected: bool = False) -> SupportMesh:
     """A mesh of the rectangle ``phis x (-a, a)`` with the boundaries of :func:`structured_journal_mesh`;
-    ``cells_checked``: its triangles are valid by construction (see
-    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`)."""
+    ``cells_checked``, ``connected``: its triangles are valid, its pieces touch the outline by construction (see
+    :func:`~bearingfe.geometry.meshing.name_surface_boundaries`). Its facets and their triangles are built as
+    meshing builds them (scikit-fem's arrays: a counting sort and one stable sort instead of scikit-fem's
+    ``np.unique`` calls), or taken from the mesh (:func:`~bearingfe.geometry.meshing.refine_marked` built them)."""
+    give_facets(m)
+    give_facet_triangles(m)
     facets = m.boundary_facets()
     mid = m.p[:, m.facets[:, facets]].mean(axis=1)
     tol = 1e-9 * (phis[1] - phis[0])
@@ -448,7 +453,7 @@ def _named_rectangle(m: skfem.MeshTri1, surface: Surface, phis: tuple[float, flo
            "side": facets[np.abs(np.abs(mid[1]) - a) < tol]}
     bnd["outer"] = np.sort(np.concatenate(list(bnd.values())))
     return SupportMesh(mesh=with_named_boundaries(m, bnd), surface=surface, size=float(cell_diameters(m).max()),
-                       source="structured", cells_checked=cells_checked)
+                       source="structured", cells_checked=cells_checked, connected=connected)
 
 
 def _reformation_elements(res: ReynoldsResult, front: np.ndarray) -> np.ndarray:
@@ -1583,7 +1588,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     front close behind its peak (within :data:`FRONT_PEAK_REACH` element diameters of the front; within
     :data:`RUPTURE_REACH` to ``rupture_size`` itself), and a loaded downstream edge gets a band of elements no longer
     than ``edge_size`` (:func:`zone_ends`, :data:`FRONT_PEAK_DISTANCE`, :data:`EDGE_REACH`)."""
-    m = skfem.MeshTri1(mesh.mesh.p, mesh.mesh.t)  # without named boundaries: refined() drops them (and logs it)
+    m = mesh.mesh  # refine_marked drops the named boundaries and splits on the facets the mesh has built
     changed = False
     front = _front_elements(res)
     diameters = cell_diameters(m)
@@ -1619,8 +1624,7 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
             marked = np.zeros(m.nelements, bool)
             for points, reach, size in centres:
                 near = np.zeros(m.nelements, bool)
-                for hits in tree.query_ball_point(points, reach):
-                    near[hits] = True
+                near[np.fromiter(itertools.chain.from_iterable(tree.query_ball_point(points, reach)), np.intp)] = True
                 marked |= near & (d > size * (1 + 1e-9))
             marked = np.flatnonzero(marked)
             if not marked.size:
@@ -1641,10 +1645,11 @@ def _refined_at_front(bearing: JournalBearing, mesh: SupportMesh, res: ReynoldsR
     if not changed:
         return None
     check_element_count(m.nelements, what=f"rupture_size = {rupture_size:g}")
-    # conforming splits of the checked mesh's triangles: valid by construction
+    # conforming splits of the checked mesh's triangles: valid, and its pieces (on the same outline), by construction
     if bearing.raimondi_boyd:
-        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width, cells_checked=True)
-    return name_surface_boundaries(m, mesh.surface, source="structured", cells_checked=True)
+        return _named_rectangle(m, mesh.surface, (0.0, 2 * math.pi), bearing.half_width, cells_checked=True,
+                                connected=True)
+    return name_surface_boundaries(m, mesh.surface, source="structured", cells_checked=True, connected=True)
 
 
 _DOF_TREES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()

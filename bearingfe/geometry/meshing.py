@@ -36,7 +36,7 @@ T = TypeVar("T")
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_marked", "refine_once",
            "mesh_from_data", "check_triangles", "check_support_mesh",
            "strip_mesh", "grid_mesh", "name_surface_boundaries", "with_named_boundaries", "periodic_pairs",
-           "give_facet_triangles", "tensor_lines"]
+           "give_facets", "give_facet_triangles", "tensor_lines"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -445,10 +445,13 @@ def refine_uniformly(mesh: SupportMesh, times: int = 1) -> SupportMesh:
 
 def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
     """``m.refined(marked)``: scikit-fem's conforming red-green-blue refinement of the triangles ``marked``,
-    the same mesh (nodes and triangles), with the facets of the mesh it splits found by the counting sort of
-    :func:`name_surface_boundaries` instead of scikit-fem's ``np.unique`` of node pairs (a rupture front's
-    refinement levels split a few hundred triangles several times per Newton step: 1.4 against 2.7 ms a split
-    at 930 nodes, 0.8 against 1.4 at 470, CPU time).
+    the same mesh (nodes and triangles, to the last index), split by index tables (one gather per kind of
+    split instead of scikit-fem's sixty stacks), with the facets of ``m`` taken from it where it has them
+    (a named mesh, or the previous split's result) and the refined mesh's facets and triangle-to-facet map
+    (scikit-fem's arrays) built from the split itself: each unsplit facet stays, each split one gives two
+    halves, each split triangle its inner edges; one sort of their codes orders them as scikit-fem would.
+    A rupture front's refinement levels split a few hundred triangles several times per level, and the
+    next split and the naming of the boundaries use those facets.
 
     Parameters
     ----------
@@ -461,6 +464,8 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
     Returns
     -------
     skfem.MeshTri1
+        With its facets and triangle-to-facet map built (unless ``m`` has subdomains: then scikit-fem's
+        own split, facets built on first use).
     """
     if type(m) is not skfem.MeshTri1:
         raise ValueError(f"m must be a scikit-fem MeshTri1 (straight triangles), got {type(m).__name__}")
@@ -468,12 +473,69 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
     if marked.ndim != 1 or not np.issubdtype(marked.dtype, np.integer) or (
             marked.size and (marked.min() < 0 or marked.max() >= m.t.shape[1])):
         raise ValueError(f"marked must be a 1-D array of triangle indices in [0, {m.t.shape[1]}), got {marked!r}")
-    # MeshTri1._adaptive, with the sorted mesh's facets given by _init_facets (the same arrays)
-    sorted_mesh = dataclasses.replace(m, t=m._adaptive_sort_mesh(m.p, m.t), sort_t=False)
-    _init_facets(sorted_mesh)
-    facets = m._adaptive_find_facets(sorted_mesh, marked)
-    doflocs, t, subdomains = m._adaptive_split_elements(sorted_mesh, facets, m._subdomains)
-    return dataclasses.replace(m, doflocs=doflocs, t=t, _boundaries=None, _subdomains=subdomains)
+    give_facets(m)
+    t, t2f = _longest_edge_first(m.p, m.t, m._t2f)
+    split = _closed_split(t2f, m._facets.shape[1], marked)
+    if m._subdomains is not None:  # MeshTri1._adaptive's own split, which carries the subdomains
+        sorted_mesh = dataclasses.replace(m, t=t, sort_t=False)
+        sorted_mesh._facets, sorted_mesh._t2f = m._facets, t2f
+        doflocs, t, subdomains = m._adaptive_split_elements(sorted_mesh, split.astype(np.int32), m._subdomains)
+        return dataclasses.replace(m, doflocs=doflocs, t=t, _boundaries=None, _subdomains=subdomains)
+    nv = m.p.shape[1]
+    new = np.full(split.size, -1, dtype=np.int64)
+    new[split] = np.arange(nv, nv + np.count_nonzero(split))
+    mid = new[t2f]   # (3, triangles): the new node on each local facet, -1 if it is not split
+    cut = mid >= 0
+    rest = ~cut[2]   # the closure splits facet 2 (the longest) of every triangle with a split facet
+    kinds = (cut[0] & cut[1], ~cut[0] & cut[1] & cut[2], cut[0] & ~cut[1] & cut[2], ~cut[0] & ~cut[1] & cut[2])
+    nodes = np.vstack([t, mid])  # rows 0-2 the vertices, 3-5 the new nodes on facets 0-2
+    parts = [nodes[:, kind] for kind in kinds]
+    ends = m._facets[:, split]
+    doflocs = np.hstack((m.p, .5 * (m.p[:, ends[0]] + m.p[:, ends[1]])))
+    triangles = np.hstack([t[:, rest]] + [part[table.T].reshape(3, -1) for part, table in zip(parts, _SPLITS)])
+    if m.sort_t:   # what the mesh's __post_init__ would do (np.sort(t, axis=0)), by a sorting network
+        triangles = _sorted_columns(triangles)
+    refined = dataclasses.replace(m, doflocs=doflocs, t=triangles, sort_t=False, _boundaries=None, _subdomains=None)
+    refined.sort_t = m.sort_t
+    pairs = np.hstack([m._facets[:, ~split], np.vstack([ends[0], new[split]]), np.vstack([ends[1], new[split]])]
+                      + [_in_order(part[i], part[j]) for part, edges in zip(parts, _INNER_EDGES) for i, j in edges])
+    _set_facets(refined, np.sort(pairs[0].astype(np.int64) * doflocs.shape[1] + pairs[1]))
+    return refined
+
+
+#: How :func:`refine_marked` splits a triangle (vertices 0-2 longest facet 2 = (0, 2), new nodes 3-5 on facets
+#: (0, 1), (1, 2), (0, 2)): the rows of its new triangles, per kind (scikit-fem's ``_adaptive_split_elements``:
+#: red, blue with facet 0 whole, blue with facet 1 whole, green), in scikit-fem's order.
+_SPLITS = (np.array([(0, 3, 5), (1, 3, 4), (2, 4, 5), (4, 5, 3)]), np.array([(1, 0, 5), (1, 4, 5), (2, 5, 4)]),
+           np.array([(0, 3, 5), (5, 3, 1), (2, 5, 1)]), np.array([(1, 5, 0), (2, 5, 1)]))
+#: ... and the new edges inside it (the pairs of rows), per kind.
+_INNER_EDGES = (((3, 4), (4, 5), (3, 5)), ((1, 5), (4, 5)), ((3, 5), (1, 5)), ((1, 5),))
+
+
+def _longest_edge_first(p: np.ndarray, t: np.ndarray, t2f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's ``MeshTri1._adaptive_sort_mesh`` (each triangle's vertices turned so that its facet 2,
+    ``(0, 2)``, is the strictly longest where one is; the same lengths and comparisons, from one gather of the
+    vertices) and the triangle-to-facet map turned alike (the facets do not change): where vertices 1 and 2
+    are swapped (facet 0 longest), facets 0 and 2 are; where vertices 0 and 1 (facet 1 longest), facets 1 and 2."""
+    q = p[:, t]
+    l01, l12, l02 = (np.sqrt(np.sum((q[:, i] - q[:, j]) ** 2, axis=0)) for i, j in ((0, 1), (1, 2), (0, 2)))
+    turned, t2f = t.copy(), t2f.copy()
+    for (i, j), k, swapped in (((1, 2), 0, (l01 > l02) & (l01 > l12)), ((0, 1), 1, (l12 > l01) & (l12 > l02))):
+        turned[i, swapped], turned[j, swapped] = t[j, swapped], t[i, swapped]
+        t2f[k, swapped], t2f[2, swapped] = t2f[2, swapped], t2f[k, swapped]
+    return turned, t2f
+
+
+def _closed_split(t2f: np.ndarray, n_facets: int, marked: np.ndarray) -> np.ndarray:
+    """scikit-fem's ``MeshTri1._adaptive_find_facets`` as a mask: the facets of the ``marked`` triangles, and
+    the longest facet (2) of every triangle with a split facet, until no more are added (conformity)."""
+    split = np.zeros(n_facets, dtype=bool)
+    split[t2f[:, marked]] = True
+    count = -1
+    while (now := np.count_nonzero(split)) > count:
+        count = now
+        split[t2f[2, split[t2f[0]] | split[t2f[1]]]] = True
+    return split
 
 
 def refine_once(mesh: SupportMesh) -> SupportMesh:
@@ -710,7 +772,8 @@ def mesh_from_data(data: MeshData, name: str = "mesh") -> skfem.Mesh:
     codes = mesh.facets[0].astype(np.int64) * nv + mesh.facets[1]  # ascending: the facets are sorted pairs
     boundaries = {}
     for label, ends in data.curves.items():
-        ends = np.sort(renumber[compact[np.asarray(ends, dtype=np.int64)]], axis=0)
+        ends = renumber[compact[np.asarray(ends, dtype=np.int64)]]
+        ends = _in_order(ends[0], ends[1])
         wanted = ends[0] * nv + ends[1]
         at = np.minimum(np.searchsorted(codes, wanted), codes.size - 1)
         missing = int(np.count_nonzero((codes[at] != wanted) | (ends[0] < 0)))
@@ -758,15 +821,50 @@ def _init_facets(m: skfem.Mesh) -> None:
     first node instead of scikit-fem's sort of structured rows (about twice as fast on a large grid)."""
     from scipy.sparse import csr_matrix
 
-    local = m.elem.refdom.facets
-    pairs = np.sort(np.hstack([m.t[ix] for ix in local]), axis=0)
+    pairs = _facet_pairs(m)
     nv = int(m.nvertices)
     graph = csr_matrix((np.ones(pairs.shape[1]), (pairs[0], pairs[1])), shape=(nv, nv))
     graph.sum_duplicates()   # rows then columns sorted, each pair once: the lexicographic unique pairs
     first = np.repeat(np.arange(nv, dtype=np.int64), np.diff(graph.indptr))
-    code = first * nv + graph.indices
-    m._facets = np.ascontiguousarray(np.vstack([first, graph.indices]).astype(m.t.dtype))
-    m._t2f = np.searchsorted(code, pairs[0].astype(np.int64) * nv + pairs[1]).reshape(len(local), m.t.shape[1])
+    _set_facets(m, first * nv + graph.indices, pairs)
+
+
+def _set_facets(m: skfem.Mesh, code: np.ndarray, pairs: np.ndarray | None = None) -> None:
+    """Give ``m`` its facets and triangle-to-facet map from the codes ``first * nvertices + second`` of all its
+    facets (node pairs ``first < second``), sorted and each once: scikit-fem's arrays (values and dtypes).
+    ``pairs``: the sorted node pairs of every triangle's facets, facet by facet (made here if not given)."""
+    pairs = _facet_pairs(m) if pairs is None else pairs
+    nv = int(m.nvertices)
+    m._facets = np.ascontiguousarray(np.vstack(np.divmod(code, nv)).astype(m.t.dtype))
+    m._t2f = np.searchsorted(code, pairs[0].astype(np.int64) * nv + pairs[1]).reshape(-1, m.t.shape[1])
+
+
+def _facet_pairs(m: skfem.Mesh) -> np.ndarray:
+    """The node pairs (smaller first) of every triangle's facets, facet 0 of all triangles first: scikit-fem's
+    ``np.sort(..., axis=0)`` of them, by an elementwise minimum and maximum (a sort of two-element columns
+    costs a call per column)."""
+    local = m.elem.refdom.facets
+    return np.hstack([_in_order(m.t[i], m.t[j]) for i, j in local])
+
+
+def _sorted_columns(t: np.ndarray) -> np.ndarray:
+    """``np.sort(t, axis=0)`` of three rows, by a sorting network of elementwise minima and maxima."""
+    low, high = np.minimum(t[0], t[1]), np.maximum(t[0], t[1])
+    first, rest = np.minimum(low, t[2]), np.maximum(low, t[2])
+    return np.vstack([first, np.minimum(high, rest), np.maximum(high, rest)])
+
+
+def _in_order(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The pairs ``(a, b)`` as rows ``(min, max)``: ``np.sort(np.vstack([a, b]), axis=0)``, elementwise."""
+    return np.vstack([np.minimum(a, b), np.maximum(a, b)])
+
+
+def give_facets(m: skfem.Mesh) -> None:
+    """Give ``m`` scikit-fem's facets and triangle-to-facet map (``Mesh.facets``, ``Mesh.t2f``: the same arrays)
+    unless it has them: built by the counting sort of the node pairs instead of scikit-fem's ``np.unique`` of
+    structured rows (a mesh from :func:`grid_mesh`, :func:`refine_marked` or a named copy of one has them)."""
+    if "_facets" not in vars(m) or "_t2f" not in vars(m):
+        _init_facets(m)
 
 
 def give_facet_triangles(m: skfem.Mesh) -> None:
@@ -836,14 +934,14 @@ def check_triangles(points: np.ndarray, triangles: np.ndarray, name: str = "mesh
         raise GeometryFileError(
             f"{name}: {flat.size} degenerate (zero-area) triangle(s), e.g. triangle {k} at "
             f"({a[0, k]:.6g}, {a[1, k]:.6g}); remesh the surface")
-    key = np.sort(triangles, axis=0)
+    key = _sorted_columns(triangles)
     unique, counts = _unique_columns(key, points.shape[1])
     if np.any(counts > 1):
         k = int(np.argmax(counts > 1))
         raise GeometryFileError(
             f"{name}: {int(np.sum(counts - 1))} duplicated triangle(s) (same three nodes), e.g. nodes "
             f"{unique[:, k].tolist()}; a mesh must cover each point of the surface once")
-    edges = np.sort(np.hstack([triangles[[0, 1]], triangles[[1, 2]], triangles[[2, 0]]]), axis=0)
+    edges = np.hstack([_in_order(triangles[i], triangles[j]) for i, j in ((0, 1), (1, 2), (2, 0))])
     opposite = np.concatenate([triangles[2], triangles[0], triangles[1]])
     _, inverse, shared = _unique_columns(edges, points.shape[1], inverse=True)
     if np.any(shared > 2):
@@ -1146,7 +1244,7 @@ def _surface_boundaries(m: skfem.MeshTri1, surface: Surface, pockets) -> dict[st
 
 
 def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str = "grid",
-                            cells_checked: bool = False) -> SupportMesh:
+                            cells_checked: bool = False, connected: bool = False) -> SupportMesh:
     """A straight triangle mesh of a rectangular surface (e.g. a :func:`grid_mesh` refined locally by
     scikit-fem, which drops the named boundaries) with its boundaries named as :func:`grid_mesh` names them.
 
@@ -1162,16 +1260,20 @@ def name_surface_boundaries(m: skfem.MeshTri1, surface: Surface, *, source: str 
         The triangles are valid by construction (e.g. :func:`refine_marked` of a checked mesh: conforming
         splits of valid triangles), so :func:`check_triangles` is skipped (as for :func:`grid_mesh`); the
         boundaries are checked as always.
+    connected : bool
+        Every connected piece of the mesh is known to touch a fixed-pressure boundary (e.g. :func:`refine_marked`
+        of a support mesh that passed :func:`check_support_mesh`: the splits keep its pieces, on the same
+        outline), so the connected components are not searched again.
     """
     if not surface.is_rectangular:
         raise ValueError("name_surface_boundaries needs the default rectangular outline (Surface(outer=None))")
     pockets = tuple(_axis_rectangle(shape, k) for k, shape in enumerate(surface.inlets))
-    if "_facets" not in vars(m):  # scikit-fem's facets by the counting sort (the same arrays, a third of the time)
-        _init_facets(m)
+    give_facets(m)  # scikit-fem's facets by the counting sort (the same arrays, a third of the time)
     p = m.p[:, m.t]
     edges = np.max([np.hypot(*(p[:, i] - p[:, j])) for i, j in ((0, 1), (1, 2), (2, 0))], axis=0)
     return SupportMesh(mesh=with_named_boundaries(m, _surface_boundaries(m, surface, pockets)), surface=surface,
-                       size=float(edges.max()), source=source, cells_checked=bool(cells_checked))
+                       size=float(edges.max()), source=source, cells_checked=bool(cells_checked),
+                       connected=bool(connected))
 
 
 def _graded_lines(breaks: list[float], size: float, width: Callable, max_elements: int | None) -> np.ndarray:

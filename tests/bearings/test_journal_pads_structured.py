@@ -529,6 +529,26 @@ def test_the_structured_journal_mesh_keeps_the_facets_it_named():
     assert np.all(np.isin(m.facets[:, mesh.boundaries["outer"]], fresh.boundary_nodes()))
 
 
+def test_rupture_refined_pads_are_named_on_scikit_fems_own_facets(refined):
+    """Each pad's rupture-refined mesh is split and named on the facets refine_marked built from its splits:
+    the facets, triangle-to-facet and facet-to-triangle maps scikit-fem sorts out of a fresh copy of its
+    triangles, and the boundaries name_surface_boundaries finds on that copy with every check run."""
+    import skfem
+
+    from bearingfe.geometry.meshing import name_surface_boundaries
+
+    name, eq, *_ = refined
+    for mesh in eq.meshes:
+        m = mesh.mesh
+        fresh = skfem.MeshTri1(m.p, m.t)
+        assert np.array_equal(m._facets, fresh.facets) and m._facets.dtype == fresh.facets.dtype, name
+        assert np.array_equal(m._t2f, fresh.t2f) and np.array_equal(m._f2t, fresh.f2t), name
+        checked = name_surface_boundaries(fresh, mesh.surface, source="structured")
+        assert mesh.boundaries.keys() == checked.boundaries.keys(), name
+        assert all(np.array_equal(mesh.boundaries[k], checked.boundaries[k]) for k in checked.boundaries), name
+        assert mesh.size == checked.size
+
+
 @pytest.mark.parametrize("grading", [0.74, 0.753, 0.767])
 def test_supply_groove_within_1e3_whatever_eccentricity_grades_its_meshes(monkeypatch, grading):
     # The coarse meshes graded at a fixed eccentricity near the answer's (0.761): before the front was refined by

@@ -66,6 +66,27 @@ def test_rupture_refinement_meets_the_1e3_target(refined):
     assert eq.residual < 1e-8 and eq.element == "P2"
 
 
+def test_refined_meshes_are_named_on_scikit_fems_own_facets(refined):
+    """The rupture-refined full-bearing mesh is split and named on the facets refine_marked built from its splits
+    (and their facet-to-triangle map by meshing's stable sort): scikit-fem's own arrays for a fresh copy of its
+    triangles, and the boundaries, size and source of the same naming on that copy with scikit-fem's facets and
+    every check run."""
+    import skfem
+
+    from bearingfe.bearings.journal import _named_rectangle
+
+    eq, _ = refined
+    mesh = eq.meshes[0]
+    m = mesh.mesh
+    fresh = skfem.MeshTri1(m.p, m.t)
+    assert np.array_equal(m._facets, fresh.facets) and m._facets.dtype == fresh.facets.dtype
+    assert np.array_equal(m._t2f, fresh.t2f) and np.array_equal(m._f2t, fresh.f2t)
+    checked = _named_rectangle(fresh, mesh.surface, (0.0, 2 * math.pi), BEARING.half_width)
+    assert list(mesh.boundaries) == list(checked.boundaries)
+    assert all(np.array_equal(mesh.boundaries[k], checked.boundaries[k]) for k in checked.boundaries)
+    assert (mesh.size, mesh.source) == (checked.size, checked.source)
+
+
 def test_the_unrefined_structured_mesh_of_the_same_size_does_not(refined):
     # the refinement is what brings the coefficients in: the same mesh without it misses the target
     # (measured 3.0e-3 against 3.1e-4 refined)

@@ -411,6 +411,71 @@ def test_refine_marked_is_scikit_fems_local_refinement():
         refine_marked(skfem.MeshQuad1(), np.array([0]))
 
 
+def test_refine_marked_builds_scikit_fems_facets_of_the_refined_mesh():
+    """refine_marked builds the refined mesh's facets and triangle-to-facet map from the split (unsplit facets,
+    halves, inner edges, one sort): the arrays (values and dtypes) scikit-fem sorts out of the refined triangles
+    itself, level after level, whether the mesh it splits has its facets already (a named mesh, the previous
+    split) or not; the nodes and triangles are scikit-fem's ``refined``'s, also for a mesh with subdomains
+    (scikit-fem's own split then)."""
+    from bearingfe.geometry.meshing import refine_marked
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    grid = bf.grid_mesh(surface, 0.1).mesh   # has its facets
+    rng = np.random.default_rng(11)
+    for start in (grid, skfem.MeshTri1(grid.p, grid.t), skfem.MeshTri1.init_symmetric().refined(2)):
+        ours, theirs = start, skfem.MeshTri1(start.p, start.t)
+        for level in range(4):
+            marked = rng.choice(theirs.nelements, max(1, theirs.nelements // (3 + level)), replace=False)
+            ours, theirs = refine_marked(ours, marked), theirs.refined(marked)
+            assert np.array_equal(ours.p, theirs.p) and np.array_equal(ours.t, theirs.t)
+            assert ours.t.dtype == theirs.t.dtype and ours.sort_t == theirs.sort_t
+            fresh = skfem.MeshTri1(ours.p, ours.t)   # nothing built: scikit-fem sorts the facets itself
+            assert np.array_equal(ours._facets, fresh.facets) and ours._facets.dtype == fresh.facets.dtype
+            assert np.array_equal(ours._t2f, fresh.t2f) and ours._t2f.dtype == fresh.t2f.dtype
+        assert np.array_equal(refine_marked(ours, np.array([], int)).t, ours.t)   # nothing marked: the same mesh
+    parts = skfem.MeshTri1.init_symmetric().refined(2)
+    parts = parts.with_subdomains({"left": lambda x: x[0] < 0.5})
+    marked = np.array([0, 5, 9])
+    ours, theirs = refine_marked(parts, marked), parts.refined(marked)
+    assert np.array_equal(ours.p, theirs.p) and np.array_equal(ours.t, theirs.t)
+    assert np.array_equal(ours.subdomains["left"], theirs.subdomains["left"])
+
+
+def test_sorting_networks_are_numpys_column_sorts():
+    """The facets' node pairs and a refined mesh's triangles are put in order by elementwise minima and maxima
+    instead of ``np.sort(..., axis=0)`` (a call per column): the same arrays and dtypes, ties included."""
+    from bearingfe.geometry import meshing
+
+    rng = np.random.default_rng(2)
+    for n, high in ((1, 3), (50, 4), (5000, 10**6)):
+        t = rng.integers(0, high, (3, n)).astype(np.int32)
+        assert np.array_equal(meshing._sorted_columns(t), np.sort(t, axis=0))
+        assert meshing._sorted_columns(t).dtype == t.dtype
+        assert np.array_equal(meshing._in_order(t[0], t[2]), np.sort(t[[0, 2]], axis=0))
+    m = skfem.MeshTri1.init_symmetric().refined(3)
+    expected = np.sort(np.hstack([m.t[ix] for ix in m.elem.refdom.facets]), axis=0)
+    assert np.array_equal(meshing._facet_pairs(m), expected) and meshing._facet_pairs(m).dtype == expected.dtype
+
+
+def test_refined_meshes_named_as_connected_skip_the_component_search(monkeypatch):
+    """name_surface_boundaries(connected=True) (the rupture front's splits of a checked support mesh: the same
+    pieces on the same outline) does not search the connected components again; by default it does, and the
+    boundaries are the same either way."""
+    from bearingfe.geometry import meshing
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    grid = bf.grid_mesh(surface, 0.1).mesh
+    m = meshing.refine_marked(grid, np.arange(0, grid.nelements, 7))
+    calls = []
+    real = meshing._check_components
+    monkeypatch.setattr(meshing, "_check_components", lambda *a, **k: calls.append(1) or real(*a, **k))
+    known = meshing.name_surface_boundaries(m, surface, cells_checked=True, connected=True)
+    assert calls == []
+    searched = meshing.name_surface_boundaries(m, surface, cells_checked=True)
+    assert calls == [1]
+    assert all(np.array_equal(known.boundaries[k], searched.boundaries[k]) for k in searched.boundaries)
+
+
 def test_named_locally_refined_meshes_have_scikit_fems_own_facets():
     """name_surface_boundaries (a grid refined locally by scikit-fem, e.g. at a journal's rupture front) builds
     the facets by the same counting sort as grid_mesh: scikit-fem's own arrays, and the same named boundaries as
