@@ -153,8 +153,7 @@ class ObstacleProblem:
         self._block_plan = None  # _Blocks of A, made on the first block taken
         self._rcm = None  # reverse Cuthill-McKee order of A, made on the first banded factorization
         self._band_refused_from = math.inf  # free sets this large or larger are not tried banded (see _factor)
-        self._first_order = 0  # the first of ORDERS a free set's band is tried in (see _factor)
-        self._symmetric_rcm = None  # reverse Cuthill-McKee order of A + A^T's pattern, made when first tried
+        self._own_order_first = False  # a set's own order took a band the whole matrix's refused (see _factor)
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
@@ -186,14 +185,6 @@ class ObstacleProblem:
             self._rcm = _pattern_rcm(self.A)
         return self._rcm
 
-    def _whole_order(self, kind: str) -> np.ndarray:
-        """The whole matrix's order of :data:`ORDERS` ``kind`` (``"whole"`` or ``"symmetric"``)."""
-        if kind == "whole":
-            return self._rcm_order()
-        if self._symmetric_rcm is None:
-            self._symmetric_rcm = reverse_cuthill_mckee(_symmetric_pattern(self.A), symmetric_mode=True)
-        return self._symmetric_rcm
-
     def _store(self, key: bytes, solve) -> None:
         if key in self._cache:
             del self._cache[key]
@@ -210,17 +201,19 @@ class ObstacleProblem:
         if default and band_worth_trying(size, "new_pattern") and size < self._band_refused_from:
             # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
             # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
-            # in that of the whole matrix's pattern made symmetric, else in the set's own (ORDERS). A problem
-            # whose set was refused in its first order and taken in a later one tries its next sets (a layer or
-            # two of dofs apart, their bands alike) in that order first.
+            # in the set's own. Once the set's own order took a band the whole matrix's refused, the whole
+            # matrix's order is a poor one (scipy's starts at its node of least degree, which on a rupture-refined
+            # mesh may lie inside it) and the next sets of this problem, a layer or two of dofs apart, are tried
+            # in their own order first: on the two-groove journal's refined pads (journal_pads, level 1 of the
+            # rupture refinement) the next three sets' bands 124-126 -> 58-69, their factorizations about half
             whole = block is not None  # (a whole-matrix order for a small set of a large matrix: not made)
-            tried = ORDERS[self._first_order:] + ORDERS[:self._first_order] if whole else ("own",)
-            for k, kind in enumerate(tried):
-                solve = _factor_banded(self._block_matrix(free, block), block) if kind == "own" else \
-                    _factor_banded(None, block, _restricted(self._whole_order(kind), free))
-                if solve is not None:
-                    self._first_order = ORDERS.index(kind) if whole and k > 0 else self._first_order
-                    break
+            if whole and not self._own_order_first:
+                solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
+            if solve is None:
+                solve = _factor_banded(self._block_matrix(free, block), block)
+                self._own_order_first = self._own_order_first or (solve is not None and whole)
+            if solve is None and whole and self._own_order_first:
+                solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
             if solve is None:
                 # refused in every order: the next sets of this problem (a layer or two of dofs apart, their bands
                 # alike) as large or larger go to SuperLU at once (on the L/D 1 two-groove journal's level-3 sets,
@@ -429,18 +422,6 @@ class ObstacleProblem:
             f"({int(active.sum())} ruptured dofs); raise max_iterations or check the mesh")
 
 
-#: The orders a free set's band is tried in, in turn (from the last one that took a set the first refused, see
-#: :meth:`ObstacleProblem._factor`): ``"whole"``, scipy's reverse Cuthill-McKee order of the whole matrix (kept
-#: per pattern) restricted to the set; ``"symmetric"``, the same of the pattern of ``A + A^T``; ``"own"``, the
-#: set's own. A condensed P2 matrix drops the entries whose sums cancel exactly, some on one side only (106 of
-#: 12,901 on the two-groove journal's refined pads of part ``journal_pads``), and scipy's order of the stored
-#: rows then swings with the rounding of the film state: on those pads the whole order's band was 159 at level 1
-#: of the rupture refinement and 148-282 at level 2 for one mesh; the symmetric pattern's 92 and 148-151. There
-#: the level-1 sets' bands 124-126 -> 75-83; on the L/D 1 pads the level-2 sets (1,146-1,257 unknowns, 172-190 in
-#: the whole and their own orders, then factored by SuperLU) are banded at 105-107.
-ORDERS = ("whole", "symmetric", "own")
-
-
 #: Free sets up to this many unknowns are factored, not solved by CG: a (banded) factorization costs less than
 #: the ten or twenty CG steps of a set there (each mostly interpreter time). Measured at 3e3 unknowns (free sets
 #: of 1,600-2,000, banded factorizations; CPU time, best of 30): P2 18.4 ms against 19.3 ms with 1,500 (a
@@ -513,13 +494,6 @@ def _pattern_rcm(A: sp.csr_matrix) -> np.ndarray:
         _RCM_ORDERS.append((A.indptr.copy(), A.indices.copy(), order))
         del _RCM_ORDERS[:-RCM_PATTERNS_KEPT]
     return order
-
-
-def _symmetric_pattern(A: sp.csr_matrix) -> sp.csr_matrix:
-    """The pattern of ``A + A^T`` (ones): a condensed matrix drops the entries whose sums cancel exactly, some on
-    one side only, and scipy's reverse Cuthill-McKee (``symmetric_mode``) follows the stored rows."""
-    P = sp.csr_matrix((np.ones(A.indices.size), A.indices, A.indptr), shape=A.shape)
-    return (P + P.T).tocsr()
 
 
 def _restricted(order: np.ndarray, free: np.ndarray) -> np.ndarray:

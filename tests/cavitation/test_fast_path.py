@@ -477,10 +477,9 @@ def test_a_set_banded_in_its_own_order_sends_the_next_sets_to_their_own_order_fi
     # a 40 x 6 grid Laplacian (shifted: SPD) with a node hung on the middle of a long side: scipy's reverse
     # Cuthill-McKee order of the whole matrix starts there (least degree), half-bandwidth 13. With the hung node
     # ruptured, a free set's own order starts at a corner (half-bandwidth 6 to 7, measured below). With the
-    # obstacle sets' band limit at 10, the first set's band in the whole matrix's orders (stored and symmetric
-    # pattern: the same here) is refused and its own order taken; the next set of the problem is tried in its own
-    # order first (one try, no whole-matrix order passed), and a new problem starts from the whole matrix's
-    # order again. Every solve against scipy's sparse
+    # obstacle sets' band limit at 10, the first set's band in the whole matrix's order is refused and its own
+    # order taken; the next set of the problem is tried in its own order first (one try, no whole-matrix order
+    # passed), and a new problem starts from the whole matrix's order again. Every solve against scipy's sparse
     # direct solve (round-off: 1e-10 of the largest).
     monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=10, size_max=5000))
     nx, ny = 40, 6
@@ -497,7 +496,7 @@ def test_a_set_banded_in_its_own_order_sends_the_next_sets_to_their_own_order_fi
     monkeypatch.setattr(obstacle, "_factor_banded", lambda M, block=None, perm=None:
                         tries.append(perm is None) or real(M, block, perm))
     problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
-    for ruptured, expected in ((0, [False, False, True]), (n - 1, [True]), (ny - 1, [True])):
+    for ruptured, expected in ((0, [False, True]), (n - 1, [True]), (ny - 1, [True])):
         free = np.ones(n + 1, bool)
         free[[n, ruptured]] = False  # the hung node and a corner ruptured
         sub = A[free][:, free]
@@ -510,39 +509,5 @@ def test_a_set_banded_in_its_own_order_sends_the_next_sets_to_their_own_order_fi
         np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
     del tries[:]
     ObstacleProblem(A, obstacle.factorize_splu_sym)._factor(free)
-    assert tries == [False, False, True]  # (the pattern is symmetric: its symmetric order is the whole order)
-
-
-def test_a_set_refused_in_the_whole_order_tries_the_symmetric_patterns_order_and_keeps_it(monkeypatch):
-    # the orders of ORDERS in turn: a 20 x 20 Laplacian whose "whole" order is made a poor one (a random
-    # permutation, half-bandwidth far above the limit of 30), its symmetric pattern's reverse Cuthill-McKee order
-    # a good one (about 20): the first set is tried in the whole order, then taken in the symmetric one; the next
-    # sets start from the symmetric one (one try each); the solves against spsolve within 1e-10 of the largest
-    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=30, size_max=5000))
-    A = _laplacian(20)
-    problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
-    poor = np.random.default_rng(5).permutation(A.shape[0])
-    monkeypatch.setattr(problem, "_rcm_order", lambda: poor)
-    tried = []
-    real = problem._whole_order
-    monkeypatch.setattr(problem, "_whole_order", lambda kind: tried.append(kind) or real(kind))
-    rng = np.random.default_rng(6)
-    for expected in (["whole", "symmetric"], ["symmetric"], ["symmetric"]):
-        free = np.ones(A.shape[0], bool)
-        free[rng.choice(A.shape[0], 30, replace=False)] = False
-        del tried[:]
-        solve = problem._factor(free)
-        assert tried == expected
-        b = np.linspace(1.0, 2.0, int(free.sum()))
-        reference = spla.spsolve(A[free][:, free].tocsc(), b)
-        np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
-
-
-def test_symmetric_pattern_has_the_entries_of_either_side():
-    # a pattern stored on one side only (an entry that cancelled on the other) is made symmetric: the entries of
-    # A and of A^T, values one
-    A = sp.csr_matrix(np.array([[2.0, 1.0, 0.0], [0.0, 2.0, 1.0], [0.0, 1.0, 2.0]]))
-    P = obstacle._symmetric_pattern(A)
-    expected = (np.abs(A.toarray()) + np.abs(A.toarray().T)) > 0
-    np.testing.assert_array_equal(P.toarray() != 0, expected)
+    assert tries == [False, True]
 
