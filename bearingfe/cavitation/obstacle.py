@@ -153,6 +153,7 @@ class ObstacleProblem:
         self._block_plan = None  # _Blocks of A, made on the first block taken
         self._rcm = None  # reverse Cuthill-McKee order of A, made on the first banded factorization
         self._band_refused_from = math.inf  # free sets this large or larger are not tried banded (see _factor)
+        self._own_order_first = False  # a set's own order took a band the whole matrix's refused (see _factor)
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
         self._low_memory = False  # a factorization failed for memory: CG with the reference only, no time cap
         #: conjugate-gradient iterations done on new free sets (instead of factorizations), in total
@@ -200,10 +201,19 @@ class ObstacleProblem:
         if default and band_worth_trying(size, "new_pattern") and size < self._band_refused_from:
             # in the reverse Cuthill-McKee order of the whole matrix restricted to the set (its band is no wider
             # than the whole's: measured the same as the set's own order on the journal's sets, P1 and P2), else
-            # in the set's own
-            if block is not None:  # (a whole-matrix order for a small set of a large matrix: not made)
+            # in the set's own. Once the set's own order took a band the whole matrix's refused, the whole
+            # matrix's order is a poor one (scipy's starts at its node of least degree, which on a rupture-refined
+            # mesh may lie inside it) and the next sets of this problem, a layer or two of dofs apart, are tried
+            # in their own order first: on the two-groove journal's refined pads (journal_pads, level 1 of the
+            # rupture refinement) the next three sets' bands 124-126 -> 58-69, their factorizations about half
+            whole = block is not None  # (a whole-matrix order for a small set of a large matrix: not made)
+            if whole and not self._own_order_first:
                 solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
-            solve = _factor_banded(self._block_matrix(free, block), block) if solve is None else solve
+            if solve is None:
+                solve = _factor_banded(self._block_matrix(free, block), block)
+                self._own_order_first = self._own_order_first or (solve is not None and whole)
+            if solve is None and whole and self._own_order_first:
+                solve = _factor_banded(None, block, _restricted(self._rcm_order(), free))
             if solve is None:
                 # refused in every order: the next sets of this problem (a layer or two of dofs apart, their bands
                 # alike) as large or larger go to SuperLU at once (on the L/D 1 two-groove journal's level-3 sets,

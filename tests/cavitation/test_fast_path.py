@@ -471,3 +471,43 @@ def test_a_set_refused_in_every_order_spares_the_tries_of_larger_sets(monkeypatc
         np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
     assert counts[0] >= 2 and counts[1] == 0 and counts[2] >= 2
     assert problem._band_refused_from == 340
+
+
+def test_a_set_banded_in_its_own_order_sends_the_next_sets_to_their_own_order_first(monkeypatch):
+    # a 40 x 6 grid Laplacian (shifted: SPD) with a node hung on the middle of a long side: scipy's reverse
+    # Cuthill-McKee order of the whole matrix starts there (least degree), half-bandwidth 13. With the hung node
+    # ruptured, a free set's own order starts at a corner (half-bandwidth 6 to 7, measured below). With the
+    # obstacle sets' band limit at 10, the first set's band in the whole matrix's order is refused and its own
+    # order taken; the next set of the problem is tried in its own order first (one try, no whole-matrix order
+    # passed), and a new problem starts from the whole matrix's order again. Every solve against scipy's sparse
+    # direct solve (round-off: 1e-10 of the largest).
+    monkeypatch.setitem(band_rule.BAND_LIMITS, "new_pattern", band_rule.BandLimits(kd_max=10, size_max=5000))
+    nx, ny = 40, 6
+    one = lambda m: sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(m, m))  # noqa: E731
+    n = nx * ny
+    A = sp.lil_matrix((n + 1, n + 1))
+    A[:n, :n] = sp.kron(one(nx), sp.eye(ny)) + sp.kron(sp.eye(nx), one(ny))
+    A[n, (nx // 2) * ny] = A[(nx // 2) * ny, n] = -1.0
+    A[n, n] = 2.0
+    A = (A + 0.1 * sp.eye(n + 1)).tocsr()
+    assert band_rule.half_bandwidth(A, reverse_cuthill_mckee(A, symmetric_mode=True)) == 13
+    tries = []
+    real = obstacle._factor_banded
+    monkeypatch.setattr(obstacle, "_factor_banded", lambda M, block=None, perm=None:
+                        tries.append(perm is None) or real(M, block, perm))
+    problem = ObstacleProblem(A, obstacle.factorize_splu_sym)
+    for ruptured, expected in ((0, [False, True]), (n - 1, [True]), (ny - 1, [True])):
+        free = np.ones(n + 1, bool)
+        free[[n, ruptured]] = False  # the hung node and a corner ruptured
+        sub = A[free][:, free]
+        assert band_rule.half_bandwidth(sub, reverse_cuthill_mckee(sub, symmetric_mode=True)) <= 7
+        del tries[:]
+        solve = problem._factor(free)
+        assert tries == expected  # (perm is None: the set's own order)
+        b = np.linspace(1.0, 2.0, int(free.sum()))
+        reference = spla.spsolve(sub.tocsc(), b)
+        np.testing.assert_allclose(solve(b), reference, rtol=0, atol=1e-10 * np.abs(reference).max())
+    del tries[:]
+    ObstacleProblem(A, obstacle.factorize_splu_sym)._factor(free)
+    assert tries == [False, True]
+
