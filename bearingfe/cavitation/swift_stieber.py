@@ -145,9 +145,10 @@ class GalerkinProduct:
     Two sparse products per film state (1.5 ms at 1e3 P2 unknowns, a fifth of the cavitating solve) become
     one sparse matrix-vector product; the result's pattern is that of all products of the pattern's entries
     (scipy's ``(S.T @ A @ S).tocsr()`` has the same entries, summed in another order: equal to round-off).
+    ``result``: that pattern (:class:`GalerkinPattern` of ``S`` and ``pattern``) if already made.
     """
 
-    def __init__(self, S: sp.csr_matrix, pattern: sp.csr_matrix) -> None:
+    def __init__(self, S: sp.csr_matrix, pattern: sp.csr_matrix, result: "GalerkinPattern | None" = None) -> None:
         S = sp.csr_matrix(S)
         S.sort_indices()
         pattern = sp.csr_matrix(pattern)
@@ -163,19 +164,13 @@ class GalerkinProduct:
         k, first = np.repeat(k, copies), np.repeat(first, copies)
         p, q, w = S.indices[first], S.indices[second], S.data[first] * S.data[second]
         m = S.shape[1]
-        # the result's pattern from scipy's products of the patterns (all values one: no entry cancels), and
-        # each product's place in it by a binary search of its sorted (row, column) keys (np.unique's sort of
-        # all products took twice as long: 9 against 5 ms at 2e3 P2 unknowns)
-        one = sp.csr_matrix((np.ones(S.indptr[-1]), S.indices, S.indptr), shape=S.shape)
-        C = (one.T.tocsr() @ sp.csr_matrix((np.ones(nnz), pattern.indices, pattern.indptr),
-                                           shape=pattern.shape) @ one).tocsr()
-        C.sort_indices()
+        # each product's place in the result's pattern (:class:`GalerkinPattern`) by a binary search of its sorted
+        # (row, column) keys (np.unique's sort of all products took twice as long: 9 against 5 ms at 2e3 P2 unknowns)
+        result = GalerkinPattern(S, pattern) if result is None else result
         self.shape = (m, m)
-        self.indices = C.indices.astype(np.int64)
-        self.indptr = C.indptr.astype(np.int64)
-        keys = np.repeat(np.arange(m, dtype=np.int64), np.diff(self.indptr)) * m + self.indices
-        target = np.searchsorted(keys, p.astype(np.int64) * m + q)
-        self.gather = sp.csr_matrix((w, (target, k)), shape=(keys.size, nnz))
+        self.indices, self.indptr = result.indices.astype(np.int64), result.indptr.astype(np.int64)
+        target = np.searchsorted(result.keys, p.astype(np.int64) * m + q)
+        self.gather = sp.csr_matrix((w, (target, k)), shape=(result.keys.size, nnz))
 
     def matches(self, A: sp.csr_matrix) -> bool:
         """Whether ``A`` has the pattern this product was made for."""
@@ -185,6 +180,47 @@ class GalerkinProduct:
     def __call__(self, A: sp.csr_matrix) -> sp.csr_matrix:
         """``S^T A S`` (CSR, sorted indices) of an ``A`` with the pattern (:meth:`matches`)."""
         return sp.csr_matrix((self.gather @ A.data, self.indices, self.indptr), shape=self.shape)
+
+
+class GalerkinPattern:
+    """The sparsity pattern of ``S^T A S`` for every ``A`` of one pattern: all products of the entries, also
+    those whose sums cancel (scipy's sparse products drop an exact zero, and which entries cancel depends on
+    the film state's rounding, some on one side of the diagonal only: 106 of 12,901 on the two-groove
+    journal's refined P2 pads). Placed on it (:meth:`place`), every film state of a mesh has one symmetric
+    pattern, so the orders found from the pattern (reverse Cuthill-McKee, kept per pattern by
+    :mod:`bearingfe.cavitation.obstacle`) are the mesh's, not the rounding's.
+
+    Parameters
+    ----------
+    S : sparse matrix, shape (n, m)
+        The change of unknowns (dimensionless).
+    pattern : sparse matrix, shape (n, n)
+        A matrix with ``A``'s pattern (its values are not read).
+    """
+
+    def __init__(self, S: sp.spmatrix, pattern: sp.spmatrix) -> None:
+        S, pattern = sp.csr_matrix(S), sp.csr_matrix(pattern)
+        # scipy's products of the patterns with every value one: no entry cancels
+        one = sp.csr_matrix((np.ones(S.indptr[-1]), S.indices, S.indptr), shape=S.shape)
+        C = (one.T.tocsr() @ sp.csr_matrix((np.ones(pattern.indptr[-1]), pattern.indices, pattern.indptr),
+                                           shape=pattern.shape) @ one).tocsr()
+        C.sort_indices()
+        m = S.shape[1]
+        self.shape = (m, m)
+        self.indices, self.indptr = C.indices, C.indptr  # scipy's index type, which its matrices keep
+        #: the entries' sorted keys ``row * m + column``
+        self.keys = np.repeat(np.arange(m, dtype=np.int64), np.diff(self.indptr)) * m + self.indices
+
+    def place(self, C: sp.csr_matrix) -> sp.csr_matrix:
+        """``C`` (CSR, sorted indices, its entries among the pattern's) on the whole pattern, an explicit zero
+        where ``C`` has no entry; ``C`` itself if it has them all (the index arrays are then ``C``'s)."""
+        if C.indptr[-1] == self.keys.size:
+            return C
+        m = self.shape[0]
+        rows = np.repeat(np.arange(m, dtype=np.int64), np.diff(C.indptr))
+        data = np.zeros(self.keys.size)
+        data[np.searchsorted(self.keys, rows * m + C.indices)] = C.data
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=self.shape)
 
 
 def _expand(indptr: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -230,6 +266,7 @@ class _KeptGalerkin:
     states: int = 0
     product: "GalerkinProduct | None" = None
     S_csc: sp.csc_matrix | None = None  # S in CSC, for scipy's second product (made on the first state)
+    pattern: GalerkinPattern | None = None  # the result's whole pattern (made on the first state)
 
     def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
         return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
@@ -246,12 +283,13 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
         kept = _GALERKIN[basis] = _KeptGalerkin(S, A.indptr.copy(), A.indices.copy())
     kept.states += 1
     if kept.product is None and kept.states > GALERKIN_PLAN_AFTER:
-        kept.product = GalerkinProduct(S, A)
+        kept.product = GalerkinProduct(S, A, kept.pattern)
     if kept.product is not None:
         return kept.product(A)
     if kept.S_csc is None:
         kept.S_csc = S.tocsc()
-    return _triple_product(S, A, kept.S_csc)
+        kept.pattern = GalerkinPattern(S, A)
+    return kept.pattern.place(_triple_product(S, A, kept.S_csc))
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
