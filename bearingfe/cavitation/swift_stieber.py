@@ -44,6 +44,7 @@ import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
+from ..core.compressed import compressed
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import bernstein_edges, ruptured_elements
@@ -216,11 +217,18 @@ class GalerkinPattern:
         where ``C`` has no entry; ``C`` itself if it has them all (the index arrays are then ``C``'s)."""
         if C.indptr[-1] == self.keys.size:
             return C
+        # an entry of a row with all the pattern's entries sits at the same offset in the pattern's row; only the
+        # few rows missing some are searched (a binary search of every entry's key took 0.28 ms at 1.8e3 P2
+        # unknowns, more than the reverse Cuthill-McKee order it spares)
+        counts = np.diff(C.indptr)
+        place = np.repeat((self.indptr[:-1] - C.indptr[:-1]).astype(np.int64), counts) + np.arange(C.indptr[-1])
+        short = np.repeat(counts < np.diff(self.indptr), counts)  # the entries of those rows
         m = self.shape[0]
-        rows = np.repeat(np.arange(m, dtype=np.int64), np.diff(C.indptr))
+        rows = np.repeat(np.arange(m, dtype=np.int64), counts)[short]
+        place[short] = np.searchsorted(self.keys, rows * m + C.indices[short])
         data = np.zeros(self.keys.size)
-        data[np.searchsorted(self.keys, rows * m + C.indices)] = C.data
-        return sp.csr_matrix((data, self.indices, self.indptr), shape=self.shape)
+        data[place] = C.data
+        return compressed(data, self.indices, self.indptr, self.shape, canonical=True)
 
 
 def _expand(indptr: np.ndarray, rows: np.ndarray) -> np.ndarray:

@@ -245,7 +245,8 @@ def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
 def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
     # before the plan, _galerkin multiplies by the CSC form of S kept per basis: the same products scipy makes
     # from the CSR S (which it converts to CSC itself), so the same pattern and the same digits, on the first
-    # and on a later film state of a mesh (the kept form reused)
+    # and on a later film state of a mesh (the kept form reused); on this gmsh mesh no entry cancels, so the
+    # whole pattern the result is placed on is scipy's
     mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
     sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
     basis = sups[0].operators.basis
