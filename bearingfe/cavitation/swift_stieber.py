@@ -146,10 +146,9 @@ class GalerkinProduct:
     Two sparse products per film state (1.5 ms at 1e3 P2 unknowns, a fifth of the cavitating solve) become
     one sparse matrix-vector product; the result's pattern is that of all products of the pattern's entries
     (scipy's ``(S.T @ A @ S).tocsr()`` has the same entries, summed in another order: equal to round-off).
-    ``result``: that pattern (:class:`GalerkinPattern` of ``S`` and ``pattern``) if already made.
     """
 
-    def __init__(self, S: sp.csr_matrix, pattern: sp.csr_matrix, result: "GalerkinPattern | None" = None) -> None:
+    def __init__(self, S: sp.csr_matrix, pattern: sp.csr_matrix) -> None:
         S = sp.csr_matrix(S)
         S.sort_indices()
         pattern = sp.csr_matrix(pattern)
@@ -165,13 +164,19 @@ class GalerkinProduct:
         k, first = np.repeat(k, copies), np.repeat(first, copies)
         p, q, w = S.indices[first], S.indices[second], S.data[first] * S.data[second]
         m = S.shape[1]
-        # each product's place in the result's pattern (:class:`GalerkinPattern`) by a binary search of its sorted
-        # (row, column) keys (np.unique's sort of all products took twice as long: 9 against 5 ms at 2e3 P2 unknowns)
-        result = GalerkinPattern(S, pattern) if result is None else result
+        # the result's pattern from scipy's products of the patterns (all values one: no entry cancels), and
+        # each product's place in it by a binary search of its sorted (row, column) keys (np.unique's sort of
+        # all products took twice as long: 9 against 5 ms at 2e3 P2 unknowns)
+        one = sp.csr_matrix((np.ones(S.indptr[-1]), S.indices, S.indptr), shape=S.shape)
+        C = (one.T.tocsr() @ sp.csr_matrix((np.ones(nnz), pattern.indices, pattern.indptr),
+                                           shape=pattern.shape) @ one).tocsr()
+        C.sort_indices()
         self.shape = (m, m)
-        self.indices, self.indptr = result.indices.astype(np.int64), result.indptr.astype(np.int64)
-        target = np.searchsorted(result.keys, p.astype(np.int64) * m + q)
-        self.gather = sp.csr_matrix((w, (target, k)), shape=(result.keys.size, nnz))
+        self.indices = C.indices.astype(np.int64)
+        self.indptr = C.indptr.astype(np.int64)
+        keys = np.repeat(np.arange(m, dtype=np.int64), np.diff(self.indptr)) * m + self.indices
+        target = np.searchsorted(keys, p.astype(np.int64) * m + q)
+        self.gather = sp.csr_matrix((w, (target, k)), shape=(keys.size, nnz))
 
     def matches(self, A: sp.csr_matrix) -> bool:
         """Whether ``A`` has the pattern this product was made for."""
@@ -183,50 +188,53 @@ class GalerkinProduct:
         return sp.csr_matrix((self.gather @ A.data, self.indices, self.indptr), shape=self.shape)
 
 
-class GalerkinPattern:
-    """The sparsity pattern of ``S^T A S`` for every ``A`` of one pattern: all products of the entries, also
-    those whose sums cancel (scipy's sparse products drop an exact zero, and which entries cancel depends on
-    the film state's rounding, some on one side of the diagonal only: 106 of 12,901 on the two-groove
-    journal's refined P2 pads). Placed on it (:meth:`place`), every film state of a mesh has one symmetric
-    pattern, so the orders found from the pattern (reverse Cuthill-McKee, kept per pattern by
+class FixedPattern:
+    """One CSR sparsity pattern on which matrices with entries among its own are stored whole (:meth:`place`).
+
+    scipy's sparse products drop the entries whose sums cancel exactly, and which entries cancel depends on the
+    rounding of the values: on the P2 films' ``S^T A S`` different ones per film state of a mesh, some on one
+    side of the diagonal only (106 of 12,901 on the two-groove journal's rupture-refined pads). On the Bernstein
+    change (:func:`bernstein_change`) a coefficient reads only the dofs of the elements around its edge, so
+    ``S^T A S`` couples only dofs that share an element: its entries lie in ``A``'s own pattern (the mesh's P2
+    couplings, symmetric), which :func:`_galerkin` places it on. Every film state of a mesh then has one pattern,
+    so the orders found from it (reverse Cuthill-McKee, kept per pattern by
     :mod:`bearingfe.cavitation.obstacle`) are the mesh's, not the rounding's.
 
     Parameters
     ----------
-    S : sparse matrix, shape (n, m)
-        The change of unknowns (dimensionless).
-    pattern : sparse matrix, shape (n, n)
-        A matrix with ``A``'s pattern (its values are not read).
+    indptr, indices : ndarray of int
+        The pattern's CSR arrays (sorted indices; kept, not copied).
+    shape : tuple of int
+        Rows and columns.
     """
 
-    def __init__(self, S: sp.spmatrix, pattern: sp.spmatrix) -> None:
-        S, pattern = sp.csr_matrix(S), sp.csr_matrix(pattern)
-        # scipy's products of the patterns with every value one: no entry cancels
-        one = sp.csr_matrix((np.ones(S.indptr[-1]), S.indices, S.indptr), shape=S.shape)
-        C = (one.T.tocsr() @ sp.csr_matrix((np.ones(pattern.indptr[-1]), pattern.indices, pattern.indptr),
-                                           shape=pattern.shape) @ one).tocsr()
-        C.sort_indices()
-        m = S.shape[1]
-        self.shape = (m, m)
-        self.indices, self.indptr = C.indices, C.indptr  # scipy's index type, which its matrices keep
-        #: the entries' sorted keys ``row * m + column``
-        self.keys = np.repeat(np.arange(m, dtype=np.int64), np.diff(self.indptr)) * m + self.indices
+    def __init__(self, indptr: np.ndarray, indices: np.ndarray, shape: tuple[int, int]) -> None:
+        self.indptr, self.indices, self.shape = indptr, indices, (int(shape[0]), int(shape[1]))
+        self._keys: np.ndarray | None = None  # sorted row * n_columns + column, made when first searched
 
-    def place(self, C: sp.csr_matrix) -> sp.csr_matrix:
-        """``C`` (CSR, sorted indices, its entries among the pattern's) on the whole pattern, an explicit zero
-        where ``C`` has no entry; ``C`` itself if it has them all (the index arrays are then ``C``'s)."""
-        if C.indptr[-1] == self.keys.size:
-            return C
-        # an entry of a row with all the pattern's entries sits at the same offset in the pattern's row; only the
-        # few rows missing some are searched (a binary search of every entry's key took 0.28 ms at 1.8e3 P2
-        # unknowns, more than the reverse Cuthill-McKee order it spares)
-        counts = np.diff(C.indptr)
+    def place(self, C: sp.csr_matrix) -> sp.csr_matrix | None:
+        """``C`` (CSR, sorted indices, the pattern's shape) with an explicit zero at each of the pattern's places
+        it has no entry at, or None if ``C`` has an entry outside the pattern; ``C`` itself if its index arrays
+        are the pattern's."""
+        if C.shape != self.shape:
+            return None
+        counts, whole = np.diff(C.indptr), np.diff(self.indptr)
+        if C.indptr[-1] == self.indptr[-1] and np.array_equal(C.indptr, self.indptr):
+            return C if np.array_equal(C.indices, self.indices) else None
+        if np.any(counts > whole):
+            return None
+        # an entry of a row with all the pattern's entries sits at its offset in the pattern's row; only the few
+        # rows missing some are searched (a binary search of every entry took 0.28 ms at 1.8e3 P2 unknowns)
         place = np.repeat((self.indptr[:-1] - C.indptr[:-1]).astype(np.int64), counts) + np.arange(C.indptr[-1])
-        short = np.repeat(counts < np.diff(self.indptr), counts)  # the entries of those rows
-        m = self.shape[0]
-        rows = np.repeat(np.arange(m, dtype=np.int64), counts)[short]
-        place[short] = np.searchsorted(self.keys, rows * m + C.indices[short])
-        data = np.zeros(self.keys.size)
+        short = np.repeat(counts < whole, counts)  # the entries of those rows
+        n = self.shape[1]
+        if self._keys is None:
+            self._keys = np.repeat(np.arange(self.shape[0], dtype=np.int64), whole) * n + self.indices
+        keys = np.repeat(np.arange(self.shape[0], dtype=np.int64), counts)[short] * n + C.indices[short]
+        place[short] = np.minimum(np.searchsorted(self._keys, keys), self._keys.size - 1)
+        if not np.array_equal(self.indices[place], C.indices):  # (also where the rows' offsets are assumed)
+            return None
+        data = np.zeros(self.indptr[-1])
         data[place] = C.data
         return compressed(data, self.indices, self.indptr, self.shape, canonical=True)
 
@@ -274,7 +282,7 @@ class _KeptGalerkin:
     states: int = 0
     product: "GalerkinProduct | None" = None
     S_csc: sp.csc_matrix | None = None  # S in CSC, for scipy's second product (made on the first state)
-    pattern: GalerkinPattern | None = None  # the result's whole pattern (made on the first state)
+    pattern: FixedPattern | None = None  # A's pattern, which S^T A S is placed on (made on the first state)
 
     def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
         return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
@@ -283,7 +291,8 @@ class _KeptGalerkin:
 def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
     """``S^T A S``: up to :data:`GALERKIN_UP_TO` unknowns, after :data:`GALERKIN_PLAN_AFTER` film states of one
     pattern on a basis by the :class:`GalerkinProduct` kept for it (remade when ``S`` or ``A``'s pattern change),
-    else by scipy's products."""
+    else by scipy's products, placed on ``A``'s pattern (:class:`FixedPattern`: the entries that cancel kept as
+    zeros, as the plan's pattern has them)."""
     if A.shape[0] > GALERKIN_UP_TO:
         return _triple_product(S, A)
     kept = _GALERKIN.get(basis)
@@ -291,13 +300,15 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
         kept = _GALERKIN[basis] = _KeptGalerkin(S, A.indptr.copy(), A.indices.copy())
     kept.states += 1
     if kept.product is None and kept.states > GALERKIN_PLAN_AFTER:
-        kept.product = GalerkinProduct(S, A, kept.pattern)
+        kept.product = GalerkinProduct(S, A)
     if kept.product is not None:
         return kept.product(A)
     if kept.S_csc is None:
         kept.S_csc = S.tocsc()
-        kept.pattern = GalerkinPattern(S, A)
-    return kept.pattern.place(_triple_product(S, A, kept.S_csc))
+        kept.pattern = FixedPattern(kept.indptr, kept.indices, A.shape)
+    C = _triple_product(S, A, kept.S_csc)
+    placed = kept.pattern.place(C)
+    return C if placed is None else placed
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 

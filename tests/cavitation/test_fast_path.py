@@ -266,42 +266,55 @@ def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
 def test_film_states_of_one_mesh_share_one_symmetric_p2_pattern():
     # on a structured journal mesh scipy's S^T A S drops entries that cancel exactly, different ones per film state
     # and some on one side of the diagonal only; the obstacle problems' matrices keep them as explicit zeros: both
-    # states have the pattern of all products (GalerkinPattern), symmetric, the same values as scipy's product
-    # (exactly: only zeros added), and so share one reverse Cuthill-McKee order (the per-pattern cache hits)
+    # states have A's pattern (the mesh's P2 couplings, symmetric; also the pattern of all products, which the
+    # product of the patterns with every value one gives), the same values as scipy's product (exactly: only zeros
+    # added), and so share one reverse Cuthill-McKee order (the per-pattern cache hits)
     from bearingfe.bearings.journal import JournalBearing, structured_journal_mesh
     mesh = structured_journal_mesh(JournalBearing(1.0), 0.3)
     sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
     basis = sups[0].operators.basis
     S, _ = swift_stieber._change_of(basis, sups[0].system.interior)
-    pattern = swift_stieber.GalerkinPattern(S, sups[0].system.matrix)
+    A0 = sp.csr_matrix(sups[0].system.matrix)
+    structure = sp.csr_matrix((np.ones(A0.nnz), A0.indices, A0.indptr), shape=A0.shape)
+    ones = sp.csr_matrix((np.ones(S.nnz), S.indices, S.indptr), shape=S.shape)
+    products = (ones.T @ structure @ ones).tocsr()
+    products.sort_indices()
+    np.testing.assert_array_equal(products.indptr, A0.indptr)
+    np.testing.assert_array_equal(products.indices, A0.indices)
+    assert (structure != structure.T).nnz == 0
     swift_stieber._GALERKIN.pop(basis, None)
     scipys, problems = [], []
     for sup in sups:
         scipys.append((S.T @ sup.system.matrix @ S).tocsr())
         problems.append(swift_stieber.obstacle_problem(sup).problem)
-    assert scipys[0].nnz < pattern.keys.size and scipys[1].nnz < pattern.keys.size  # the case this is about
+    assert scipys[0].nnz < A0.nnz and scipys[1].nnz < A0.nnz  # the case this is about
     assert not np.array_equal(abs(scipys[0]).toarray() > 0, abs(scipys[1]).toarray() > 0)
     for A, expected in zip((p.A for p in problems), scipys):
-        np.testing.assert_array_equal(A.indptr, pattern.indptr)
-        np.testing.assert_array_equal(A.indices, pattern.indices)
+        np.testing.assert_array_equal(A.indptr, A0.indptr)
+        np.testing.assert_array_equal(A.indices, A0.indices)
         np.testing.assert_array_equal(A.toarray(), expected.toarray())
-    structure = sp.csr_matrix((np.ones(pattern.keys.size), pattern.indices, pattern.indptr), shape=pattern.shape)
-    assert (structure != structure.T).nnz == 0
     obstacle._RCM_ORDERS.clear()
     assert obstacle._pattern_rcm(problems[0].A) is obstacle._pattern_rcm(problems[1].A)
 
 
-def test_galerkin_pattern_places_a_short_product_with_explicit_zeros():
-    # GalerkinPattern.place on a 3 x 3 example: S = I, A's pattern full, a product missing (0, 2) and (2, 1) gets
-    # them as stored zeros at their places; a product with every entry comes back as it is
-    S = sp.eye(3, format="csr")
-    pattern = swift_stieber.GalerkinPattern(S, sp.csr_matrix(np.ones((3, 3))))
+def test_fixed_pattern_places_a_short_matrix_with_explicit_zeros():
+    # FixedPattern.place on a 3 x 3 example with a full pattern: a matrix missing (0, 2) and (2, 1) gets them as
+    # stored zeros at their places; one with every entry comes back as it is; one with an entry outside a
+    # pattern (a tridiagonal pattern, an entry at (0, 2)) or another shape is refused (None)
+    full = sp.csr_matrix(np.ones((3, 3)))
+    pattern = swift_stieber.FixedPattern(full.indptr, full.indices, (3, 3))
     short = sp.csr_matrix(np.array([[4.0, -1.0, 0.0], [-1.0, 4.0, -1.0], [-1.0, 0.0, 4.0]]))
     placed = pattern.place(short)
-    assert placed.nnz == 9
+    np.testing.assert_array_equal(placed.indptr, full.indptr)
+    np.testing.assert_array_equal(placed.indices, full.indices)
     np.testing.assert_array_equal(placed.data, [4.0, -1.0, 0.0, -1.0, 4.0, -1.0, -1.0, 0.0, 4.0])
-    full = sp.csr_matrix(np.arange(1.0, 10.0).reshape(3, 3))
-    assert pattern.place(full) is full
+    every = sp.csr_matrix(np.arange(1.0, 10.0).reshape(3, 3))
+    assert pattern.place(every) is every
+    tri = sp.csr_matrix(np.array([[1.0, 1.0, 0.0], [1.0, 1.0, 1.0], [0.0, 1.0, 1.0]]))
+    narrow = swift_stieber.FixedPattern(tri.indptr, tri.indices, (3, 3))
+    assert narrow.place(sp.csr_matrix(np.array([[1.0, 0.0, 2.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]))) is None
+    assert narrow.place(sp.csr_matrix(np.eye(3))).nnz == 7
+    assert pattern.place(sp.csr_matrix(np.eye(2))) is None
 
 
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
