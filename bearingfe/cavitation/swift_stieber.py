@@ -44,7 +44,6 @@ import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
-from ..core.compressed import compressed
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import bernstein_edges, ruptured_elements
@@ -188,57 +187,6 @@ class GalerkinProduct:
         return sp.csr_matrix((self.gather @ A.data, self.indices, self.indptr), shape=self.shape)
 
 
-class FixedPattern:
-    """One CSR sparsity pattern on which matrices with entries among its own are stored whole (:meth:`place`).
-
-    scipy's sparse products drop the entries whose sums cancel exactly, and which entries cancel depends on the
-    rounding of the values: on the P2 films' ``S^T A S`` different ones per film state of a mesh, some on one
-    side of the diagonal only (106 of 12,901 on the two-groove journal's rupture-refined pads). On the Bernstein
-    change (:func:`bernstein_change`) a coefficient reads only the dofs of the elements around its edge, so
-    ``S^T A S`` couples only dofs that share an element: its entries lie in ``A``'s own pattern (the mesh's P2
-    couplings, symmetric), which :func:`_galerkin` places it on. Every film state of a mesh then has one pattern,
-    so the orders found from it (reverse Cuthill-McKee, kept per pattern by
-    :mod:`bearingfe.cavitation.obstacle`) are the mesh's, not the rounding's.
-
-    Parameters
-    ----------
-    indptr, indices : ndarray of int
-        The pattern's CSR arrays (sorted indices; kept, not copied).
-    shape : tuple of int
-        Rows and columns.
-    """
-
-    def __init__(self, indptr: np.ndarray, indices: np.ndarray, shape: tuple[int, int]) -> None:
-        self.indptr, self.indices, self.shape = indptr, indices, (int(shape[0]), int(shape[1]))
-        self._keys: np.ndarray | None = None  # sorted row * n_columns + column, made when first searched
-
-    def place(self, C: sp.csr_matrix) -> sp.csr_matrix | None:
-        """``C`` (CSR, sorted indices, the pattern's shape) with an explicit zero at each of the pattern's places
-        it has no entry at, or None if ``C`` has an entry outside the pattern; ``C`` itself if its index arrays
-        are the pattern's."""
-        if C.shape != self.shape:
-            return None
-        counts, whole = np.diff(C.indptr), np.diff(self.indptr)
-        if C.indptr[-1] == self.indptr[-1] and np.array_equal(C.indptr, self.indptr):
-            return C if np.array_equal(C.indices, self.indices) else None
-        if np.any(counts > whole):
-            return None
-        # an entry of a row with all the pattern's entries sits at its offset in the pattern's row; only the few
-        # rows missing some are searched (a binary search of every entry took 0.28 ms at 1.8e3 P2 unknowns)
-        place = np.repeat((self.indptr[:-1] - C.indptr[:-1]).astype(np.int64), counts) + np.arange(C.indptr[-1])
-        short = np.repeat(counts < whole, counts)  # the entries of those rows
-        n = self.shape[1]
-        if self._keys is None:
-            self._keys = np.repeat(np.arange(self.shape[0], dtype=np.int64), whole) * n + self.indices
-        keys = np.repeat(np.arange(self.shape[0], dtype=np.int64), counts)[short] * n + C.indices[short]
-        place[short] = np.minimum(np.searchsorted(self._keys, keys), self._keys.size - 1)
-        if not np.array_equal(self.indices[place], C.indices):  # (also where the rows' offsets are assumed)
-            return None
-        data = np.zeros(self.indptr[-1])
-        data[place] = C.data
-        return compressed(data, self.indices, self.indptr, self.shape, canonical=True)
-
-
 def _expand(indptr: np.ndarray, rows: np.ndarray) -> np.ndarray:
     """Positions of the stored entries of ``rows`` (repeated rows included) in a CSR ``indptr``, row after row."""
     count = np.diff(indptr)[rows]
@@ -282,7 +230,6 @@ class _KeptGalerkin:
     states: int = 0
     product: "GalerkinProduct | None" = None
     S_csc: sp.csc_matrix | None = None  # S in CSC, for scipy's second product (made on the first state)
-    pattern: FixedPattern | None = None  # A's pattern, which S^T A S is placed on (made on the first state)
 
     def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
         return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
@@ -291,8 +238,7 @@ class _KeptGalerkin:
 def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
     """``S^T A S``: up to :data:`GALERKIN_UP_TO` unknowns, after :data:`GALERKIN_PLAN_AFTER` film states of one
     pattern on a basis by the :class:`GalerkinProduct` kept for it (remade when ``S`` or ``A``'s pattern change),
-    else by scipy's products, placed on ``A``'s pattern (:class:`FixedPattern`: the entries that cancel kept as
-    zeros, as the plan's pattern has them)."""
+    else by scipy's products."""
     if A.shape[0] > GALERKIN_UP_TO:
         return _triple_product(S, A)
     kept = _GALERKIN.get(basis)
@@ -305,10 +251,7 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
         return kept.product(A)
     if kept.S_csc is None:
         kept.S_csc = S.tocsc()
-        kept.pattern = FixedPattern(kept.indptr, kept.indices, A.shape)
-    C = _triple_product(S, A, kept.S_csc)
-    placed = kept.pattern.place(C)
-    return C if placed is None else placed
+    return _triple_product(S, A, kept.S_csc)
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
@@ -351,11 +294,16 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     system = sup.system
     factorize = get_linear_solver(solver)
     S, T = _change_of(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
-    A = system.matrix if S is None else _galerkin(sup.operators.basis, S, sp.csr_matrix(system.matrix))
+    nodal = system.matrix
+    # on P2, S^T A S has its entries in A's pattern (a Bernstein coefficient reads only the dofs of the elements
+    # around its edge, so it couples only dofs that share an element), less those that cancel: A's pattern, the
+    # mesh's, orders the sets (every film state of the mesh the same order)
+    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, sp.csr_matrix(nodal)), nodal)
     # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
     order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
     problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations,
-                              order=order if order is not None and len(order) == A.shape[0] else None)
+                              order=order if order is not None and len(order) == A.shape[0] else None,
+                              pattern=pattern)
     if factorize is system.factorize:
         # the full film's factorization starts the cache; on P2 (S^T A S)^-1 = T A^-1 T^T
         solve = system.solve if S is None else (lambda r, solve=system.solve: T @ solve(T.T @ r))
@@ -408,7 +356,7 @@ COLD_RINGS = MappingProxyType({"P1": 2, "P2": 1})
 def cold_mask(fp: FilmProblem, sup: Superposition, wts: np.ndarray) -> np.ndarray:
     """The start of a system below :data:`~bearingfe.cavitation.coarse.NESTED_MIN` unknowns without a warm
     start: where the linear solution is negative, less :data:`COLD_RINGS` rings along its edge."""
-    return _grown(warm_mask(fp, sup, wts, None), fp.problem.A, COLD_RINGS.get(sup.operators.element, 0))
+    return _grown(warm_mask(fp, sup, wts, None), fp.problem.pattern, COLD_RINGS.get(sup.operators.element, 0))
 
 
 def _grown(active: np.ndarray, A: sp.spmatrix, rings: int) -> np.ndarray:
@@ -469,7 +417,7 @@ def _solve(sup: Superposition, weights: np.ndarray, options: "ModelOptions") -> 
             raise
         # the plain method: a factorization per active set, from the default start
         plain = ObstacleProblem(fp.problem.A, fp.problem.factorize, tol=options.tol,
-                                max_iterations=options.max_iterations, reuse=False)
+                                max_iterations=options.max_iterations, reuse=False, pattern=fp.problem.pattern)
         sol = plain.solve(b, warm_mask(fp, sup, weights, options.warm_start))
         notes += (f"cavitation: the nested/reused-factorization path failed ({exc}); solved by the plain "
                   "active-set method",)

@@ -263,12 +263,12 @@ def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
     np.testing.assert_array_equal(swift_stieber._GALERKIN[basis].S_csc.toarray(), S.toarray())
 
 
-def test_film_states_of_one_mesh_share_one_symmetric_p2_pattern():
+def test_film_states_of_one_mesh_share_one_p2_pattern_and_order():
     # on a structured journal mesh scipy's S^T A S drops entries that cancel exactly, different ones per film state
-    # and some on one side of the diagonal only; the obstacle problems' matrices keep them as explicit zeros: both
-    # states have A's pattern (the mesh's P2 couplings, symmetric; also the pattern of all products, which the
-    # product of the patterns with every value one gives), the same values as scipy's product (exactly: only zeros
-    # added), and so share one reverse Cuthill-McKee order (the per-pattern cache hits)
+    # and some on one side of the diagonal only; the obstacle problems order by A's pattern instead (the mesh's
+    # P2 couplings, symmetric; the product of the patterns with every value one gives it, so it holds every
+    # entry of S^T A S): both states have that pattern and share one reverse Cuthill-McKee order (the per-pattern
+    # cache hits); their matrices are scipy's products unchanged
     from bearingfe.bearings.journal import JournalBearing, structured_journal_mesh
     mesh = structured_journal_mesh(JournalBearing(1.0), 0.3)
     sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
@@ -289,32 +289,36 @@ def test_film_states_of_one_mesh_share_one_symmetric_p2_pattern():
         problems.append(swift_stieber.obstacle_problem(sup).problem)
     assert scipys[0].nnz < A0.nnz and scipys[1].nnz < A0.nnz  # the case this is about
     assert not np.array_equal(abs(scipys[0]).toarray() > 0, abs(scipys[1]).toarray() > 0)
-    for A, expected in zip((p.A for p in problems), scipys):
-        np.testing.assert_array_equal(A.indptr, A0.indptr)
-        np.testing.assert_array_equal(A.indices, A0.indices)
-        np.testing.assert_array_equal(A.toarray(), expected.toarray())
+    for problem, expected in zip(problems, scipys):
+        np.testing.assert_array_equal(problem.pattern.indptr, A0.indptr)
+        np.testing.assert_array_equal(problem.pattern.indices, A0.indices)
+        np.testing.assert_array_equal(problem.A.toarray(), expected.toarray())
     obstacle._RCM_ORDERS.clear()
-    assert obstacle._pattern_rcm(problems[0].A) is obstacle._pattern_rcm(problems[1].A)
+    assert problems[0]._rcm_order() is problems[1]._rcm_order()
+    np.testing.assert_array_equal(problems[0]._rcm_order(), reverse_cuthill_mckee(structure, symmetric_mode=True))
 
 
-def test_fixed_pattern_places_a_short_matrix_with_explicit_zeros():
-    # FixedPattern.place on a 3 x 3 example with a full pattern: a matrix missing (0, 2) and (2, 1) gets them as
-    # stored zeros at their places; one with every entry comes back as it is; one with an entry outside a
-    # pattern (a tridiagonal pattern, an entry at (0, 2)) or another shape is refused (None)
-    full = sp.csr_matrix(np.ones((3, 3)))
-    pattern = swift_stieber.FixedPattern(full.indptr, full.indices, (3, 3))
-    short = sp.csr_matrix(np.array([[4.0, -1.0, 0.0], [-1.0, 4.0, -1.0], [-1.0, 0.0, 4.0]]))
-    placed = pattern.place(short)
-    np.testing.assert_array_equal(placed.indptr, full.indptr)
-    np.testing.assert_array_equal(placed.indices, full.indices)
-    np.testing.assert_array_equal(placed.data, [4.0, -1.0, 0.0, -1.0, 4.0, -1.0, -1.0, 0.0, 4.0])
-    every = sp.csr_matrix(np.arange(1.0, 10.0).reshape(3, 3))
-    assert pattern.place(every) is every
-    tri = sp.csr_matrix(np.array([[1.0, 1.0, 0.0], [1.0, 1.0, 1.0], [0.0, 1.0, 1.0]]))
-    narrow = swift_stieber.FixedPattern(tri.indptr, tri.indices, (3, 3))
-    assert narrow.place(sp.csr_matrix(np.array([[1.0, 0.0, 2.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]))) is None
-    assert narrow.place(sp.csr_matrix(np.eye(3))).nnz == 7
-    assert pattern.place(sp.csr_matrix(np.eye(2))) is None
+def test_obstacle_pattern_orders_and_answers_as_before():
+    # an ObstacleProblem given a pattern holding A's (A with one coupling cancelled, the full Laplacian's pattern)
+    # orders by it and gives the answer of the problem without it to round-off (1e-12 relative: the same
+    # equations, factored in another order); a pattern of another shape is refused
+    n = 30
+    A = sp.diags([-np.ones(n - 1), 2.5 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="csr")
+    b = np.sin(np.linspace(0.0, 6.0, n))
+    cut = A.tolil()
+    cut[3, 4] = cut[4, 3] = 0.0
+    cut = cut.tocsr()
+    cut.eliminate_zeros()
+    plain = ObstacleProblem(cut, obstacle.factorize_splu_sym).solve(b)
+    ordered_problem = ObstacleProblem(cut, obstacle.factorize_splu_sym, pattern=A)
+    ordered = ordered_problem.solve(b)
+    assert ordered_problem.pattern.nnz == A.nnz
+    obstacle._RCM_ORDERS.clear()
+    np.testing.assert_array_equal(ordered_problem._rcm_order(), reverse_cuthill_mckee(A, symmetric_mode=True))
+    np.testing.assert_array_equal(ordered.active, plain.active)
+    np.testing.assert_allclose(ordered.u, plain.u, rtol=0, atol=1e-12 * np.abs(plain.u).max())
+    with pytest.raises(ValueError, match="pattern"):
+        ObstacleProblem(cut, obstacle.factorize_splu_sym, pattern=sp.eye(n + 1, format="csr"))
 
 
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
