@@ -190,9 +190,9 @@ class ObstacleProblem:
         return self.A[idx][:, idx].tocsr()
 
     def _rcm_order(self) -> np.ndarray:
-        """The reverse Cuthill-McKee order of the whole matrix (made once, and kept per sparsity pattern up to
-        :data:`BLOCKS_UP_TO` unknowns: every film state of a mesh, and every coarse grid of its nested start,
-        has the same pattern)."""
+        """The reverse Cuthill-McKee order of the whole matrix's pattern (``pattern``; made once, and kept per
+        sparsity pattern up to :data:`BLOCKS_UP_TO` unknowns: every film state of a mesh, and every coarse grid
+        of its nested start, has the same pattern)."""
         if self._rcm is None:
             self._rcm = _pattern_rcm(self.pattern)
         return self._rcm
