@@ -634,7 +634,9 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
              else None)
     problem = ObstacleProblem(_block_diagonal([fp.problem.A for fp in films]), films[0].problem.factorize,
                               tol=films[0].problem.tol, max_iterations=films[0].problem.max_iterations, order=order,
-                              factor_settled=True)  # every state is linearized on its rupture sets
+                              factor_settled=True,  # every state is linearized on its rupture sets
+                              pattern=films[0].problem.pattern if len(films) == 1 else
+                              _block_diagonal([fp.problem.pattern for fp in films]))
     joined = _Joined(problem=problem, films=films, offsets=offsets)
 
     def full_film(b, joined=joined):

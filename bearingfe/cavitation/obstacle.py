@@ -112,6 +112,13 @@ class ObstacleProblem:
         with the default solver a free set is then factored in this order restricted to it, which
         skips finding an order and fills less than minimum degree on the set (measured at 1e5 P1
         unknowns: 0.19 s against 0.49 s, and 30 % faster solves). Default: the solver's own order.
+    pattern : sparse matrix, shape (n, n), optional
+        A symmetric matrix whose sparsity pattern holds ``A``'s, from which the reverse Cuthill-McKee order of
+        the whole matrix is found (and kept per pattern, see :func:`_pattern_rcm`): a condensed matrix made by
+        sparse products (the P2 films' ``S^T A S``) drops the entries that cancel exactly, which ones depending
+        on the rounding of the film state and some on one side of the diagonal only, and the order found from
+        it then swings with the rounding; the mesh's pattern gives every film state of the mesh one order.
+        Default: ``A``.
     reuse : bool
         Solve on a new free set by conjugate gradients preconditioned with
         the last factorization (of a nearby free set) instead of factorizing
@@ -130,7 +137,8 @@ class ObstacleProblem:
 
     def __init__(self, A: sp.spmatrix, factorize: Factorize, *, tol: float = TOLERANCE,
                  max_iterations: int = MAX_ITERATIONS, cache_size: int = 4, reuse: bool = True,
-                 order: np.ndarray | None = None, factor_settled: bool = False) -> None:
+                 order: np.ndarray | None = None, factor_settled: bool = False,
+                 pattern: sp.spmatrix | None = None) -> None:
         if not (0 < tol < 1e-2):
             raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -151,7 +159,11 @@ class ObstacleProblem:
         self._cache_size = int(cache_size)
         self._diag = self.A.diagonal()
         self._block_plan = None  # _Blocks of A, made on the first block taken
-        self._rcm = None  # reverse Cuthill-McKee order of A, made on the first banded factorization
+        if pattern is not None and pattern.shape != self.A.shape:
+            raise ValueError(f"pattern must have A's shape {self.A.shape}, got {pattern.shape}")
+        #: the matrix whose sparsity pattern orders the factorizations (see the parameter)
+        self.pattern = self.A if pattern is None else sp.csr_matrix(pattern)
+        self._rcm = None  # reverse Cuthill-McKee order of the pattern, made on the first banded factorization
         self._band_refused_from = math.inf  # free sets this large or larger are not tried banded (see _factor)
         self._own_order_first = False  # a set's own order took a band the whole matrix's refused (see _factor)
         self._reference = None  # (free mask, solve) of the last factorization: the preconditioner
@@ -178,11 +190,11 @@ class ObstacleProblem:
         return self.A[idx][:, idx].tocsr()
 
     def _rcm_order(self) -> np.ndarray:
-        """The reverse Cuthill-McKee order of the whole matrix (made once, and kept per sparsity pattern up to
-        :data:`BLOCKS_UP_TO` unknowns: every film state of a mesh, and every coarse grid of its nested start,
-        has the same pattern)."""
+        """The reverse Cuthill-McKee order of the whole matrix's pattern (``pattern``; made once, and kept per
+        sparsity pattern up to :data:`BLOCKS_UP_TO` unknowns: every film state of a mesh, and every coarse grid
+        of its nested start, has the same pattern)."""
         if self._rcm is None:
-            self._rcm = _pattern_rcm(self.A)
+            self._rcm = _pattern_rcm(self.pattern)
         return self._rcm
 
     def _store(self, key: bytes, solve) -> None:

@@ -294,11 +294,16 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     system = sup.system
     factorize = get_linear_solver(solver)
     S, T = _change_of(sup.operators.basis, system.interior) if sup.operators.element == "P2" else (None, None)
-    A = system.matrix if S is None else _galerkin(sup.operators.basis, S, sp.csr_matrix(system.matrix))
+    nodal = system.matrix
+    # on P2, S^T A S has its entries in A's pattern (a Bernstein coefficient reads only the dofs of the elements
+    # around its edge, so it couples only dofs that share an element), less those that cancel: A's pattern, the
+    # mesh's, orders the sets (every film state of the mesh the same order)
+    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, sp.csr_matrix(nodal)), nodal)
     # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
     order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
     problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations,
-                              order=order if order is not None and len(order) == A.shape[0] else None)
+                              order=order if order is not None and len(order) == A.shape[0] else None,
+                              pattern=pattern)
     if factorize is system.factorize:
         # the full film's factorization starts the cache; on P2 (S^T A S)^-1 = T A^-1 T^T
         solve = system.solve if S is None else (lambda r, solve=system.solve: T @ solve(T.T @ r))
@@ -351,7 +356,7 @@ COLD_RINGS = MappingProxyType({"P1": 2, "P2": 1})
 def cold_mask(fp: FilmProblem, sup: Superposition, wts: np.ndarray) -> np.ndarray:
     """The start of a system below :data:`~bearingfe.cavitation.coarse.NESTED_MIN` unknowns without a warm
     start: where the linear solution is negative, less :data:`COLD_RINGS` rings along its edge."""
-    return _grown(warm_mask(fp, sup, wts, None), fp.problem.A, COLD_RINGS.get(sup.operators.element, 0))
+    return _grown(warm_mask(fp, sup, wts, None), fp.problem.pattern, COLD_RINGS.get(sup.operators.element, 0))
 
 
 def _grown(active: np.ndarray, A: sp.spmatrix, rings: int) -> np.ndarray:
@@ -412,7 +417,7 @@ def _solve(sup: Superposition, weights: np.ndarray, options: "ModelOptions") -> 
             raise
         # the plain method: a factorization per active set, from the default start
         plain = ObstacleProblem(fp.problem.A, fp.problem.factorize, tol=options.tol,
-                                max_iterations=options.max_iterations, reuse=False)
+                                max_iterations=options.max_iterations, reuse=False, pattern=fp.problem.pattern)
         sol = plain.solve(b, warm_mask(fp, sup, weights, options.warm_start))
         notes += (f"cavitation: the nested/reused-factorization path failed ({exc}); solved by the plain "
                   "active-set method",)

@@ -245,7 +245,8 @@ def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
 def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
     # before the plan, _galerkin multiplies by the CSC form of S kept per basis: the same products scipy makes
     # from the CSR S (which it converts to CSC itself), so the same pattern and the same digits, on the first
-    # and on a later film state of a mesh (the kept form reused)
+    # and on a later film state of a mesh (the kept form reused); on this gmsh mesh no entry cancels, so the
+    # whole pattern the result is placed on is scipy's
     mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
     sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
     basis = sups[0].operators.basis
@@ -260,6 +261,64 @@ def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
         np.testing.assert_array_equal(got.indices, expected.indices)
         np.testing.assert_array_equal(got.data, expected.data)
     np.testing.assert_array_equal(swift_stieber._GALERKIN[basis].S_csc.toarray(), S.toarray())
+
+
+def test_film_states_of_one_mesh_share_one_p2_pattern_and_order():
+    # on a structured journal mesh scipy's S^T A S drops entries that cancel exactly, different ones per film state
+    # and some on one side of the diagonal only; the obstacle problems order by A's pattern instead (the mesh's
+    # P2 couplings, symmetric; the product of the patterns with every value one gives it, so it holds every
+    # entry of S^T A S): both states have that pattern and share one reverse Cuthill-McKee order (the per-pattern
+    # cache hits); their matrices are scipy's products unchanged
+    from bearingfe.bearings.journal import JournalBearing, structured_journal_mesh
+    mesh = structured_journal_mesh(JournalBearing(1.0), 0.3)
+    sups = [superpose(mesh, CosineFilm(e, a), formulation="direct", element="P2") for e, a in ((0.6, 0.0), (0.3, 0.5))]
+    basis = sups[0].operators.basis
+    S, _ = swift_stieber._change_of(basis, sups[0].system.interior)
+    A0 = sp.csr_matrix(sups[0].system.matrix)
+    structure = sp.csr_matrix((np.ones(A0.nnz), A0.indices, A0.indptr), shape=A0.shape)
+    ones = sp.csr_matrix((np.ones(S.nnz), S.indices, S.indptr), shape=S.shape)
+    products = (ones.T @ structure @ ones).tocsr()
+    products.sort_indices()
+    np.testing.assert_array_equal(products.indptr, A0.indptr)
+    np.testing.assert_array_equal(products.indices, A0.indices)
+    assert (structure != structure.T).nnz == 0
+    swift_stieber._GALERKIN.pop(basis, None)
+    scipys, problems = [], []
+    for sup in sups:
+        scipys.append((S.T @ sup.system.matrix @ S).tocsr())
+        problems.append(swift_stieber.obstacle_problem(sup).problem)
+    assert scipys[0].nnz < A0.nnz and scipys[1].nnz < A0.nnz  # the case this is about
+    assert not np.array_equal(abs(scipys[0]).toarray() > 0, abs(scipys[1]).toarray() > 0)
+    for problem, expected in zip(problems, scipys):
+        np.testing.assert_array_equal(problem.pattern.indptr, A0.indptr)
+        np.testing.assert_array_equal(problem.pattern.indices, A0.indices)
+        np.testing.assert_array_equal(problem.A.toarray(), expected.toarray())
+    obstacle._RCM_ORDERS.clear()
+    assert problems[0]._rcm_order() is problems[1]._rcm_order()
+    np.testing.assert_array_equal(problems[0]._rcm_order(), reverse_cuthill_mckee(structure, symmetric_mode=True))
+
+
+def test_obstacle_pattern_orders_and_answers_as_before():
+    # an ObstacleProblem given a pattern holding A's (A with one coupling cancelled, the full Laplacian's pattern)
+    # orders by it and gives the answer of the problem without it to round-off (1e-12 relative: the same
+    # equations, factored in another order); a pattern of another shape is refused
+    n = 30
+    A = sp.diags([-np.ones(n - 1), 2.5 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1], format="csr")
+    b = np.sin(np.linspace(0.0, 6.0, n))
+    cut = A.tolil()
+    cut[3, 4] = cut[4, 3] = 0.0
+    cut = cut.tocsr()
+    cut.eliminate_zeros()
+    plain = ObstacleProblem(cut, obstacle.factorize_splu_sym).solve(b)
+    ordered_problem = ObstacleProblem(cut, obstacle.factorize_splu_sym, pattern=A)
+    ordered = ordered_problem.solve(b)
+    assert ordered_problem.pattern.nnz == A.nnz
+    obstacle._RCM_ORDERS.clear()
+    np.testing.assert_array_equal(ordered_problem._rcm_order(), reverse_cuthill_mckee(A, symmetric_mode=True))
+    np.testing.assert_array_equal(ordered.active, plain.active)
+    np.testing.assert_allclose(ordered.u, plain.u, rtol=0, atol=1e-12 * np.abs(plain.u).max())
+    with pytest.raises(ValueError, match="pattern"):
+        ObstacleProblem(cut, obstacle.factorize_splu_sym, pattern=sp.eye(n + 1, format="csr"))
 
 
 def test_coarse_chain_kept_per_mesh_gives_the_fresh_start(journal_mesh):
