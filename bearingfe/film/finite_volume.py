@@ -987,7 +987,8 @@ def _overlaps(surface, x0, x1, z0, z1) -> list[np.ndarray]:
     widest rectangle (and a margin for rounding): two binary searches per recess, the same indices as testing all
     of them, at a fraction of the cost on many recesses.
     """
-    boxes = _recess_boxes(surface)
+    table = _recess_table(surface)
+    boxes = table.boxes
     x0, x1, z0, z1 = (np.ravel(v) for v in (x0, x1, z0, z1))
 
     def overlapping(lo, hi, idx=None):
@@ -1001,7 +1002,7 @@ def _overlaps(surface, x0, x1, z0, z1) -> list[np.ndarray]:
         return [overlapping(lo, hi) for lo, hi in boxes]
     order = np.argsort(x0, kind="stable")
     xs = x0[order]
-    lo0, hi0 = _recess_table(surface).lo[0], _recess_table(surface).hi[0]
+    lo0, hi0 = table.lo[0], table.hi[0]
     # x1 >= lo0 needs x0 >= lo0 - (x1 - x0) >= lo0 - 2 reach (reach: the widest x1 - x0, rounded)
     start = np.searchsorted(xs, lo0 - 2.0 * reach - 1e-15 * np.abs(lo0), "left")
     stop = np.searchsorted(xs, hi0, "right")
