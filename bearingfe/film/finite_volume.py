@@ -1892,12 +1892,9 @@ def _union_pattern(K: sp.spmatrix, G: sp.spmatrix) -> sp.csr_matrix:
                        canonical=True)
         B = compressed(np.abs(G.data), G.indices, G.indptr, G.shape[::-1] if G.format == "csc" else G.shape,
                        canonical=True)
-        if all(x.dtype == np.int32 for x in (A.indices, A.indptr, B.indices, B.indptr)):
-            U = csr_sum(A, B)
-            return csr_sum(U, csr_transposed(U))
-        U = A + B
-    else:
-        U = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
+        U = csr_sum(A, B)   # (scipy's kernels on int32 arrays, else scipy's sums: the same arrays)
+        return csr_sum(U, csr_transposed(U))
+    U = (abs(sp.csr_matrix(K)) + abs(sp.csr_matrix(G))).tocsr()
     pattern = (U + U.T).tocsr()
     pattern.sort_indices()
     return pattern
