@@ -169,13 +169,14 @@ def cpu_timing(run: Callable[[object], object], prepare: Callable[[], object] | 
         raise ValueError(f"min_repeats must be an integer >= 1, got {min_repeats!r}")
     cpu, wall = [], []
     while True:
+        out = arg = None   # the last run's result and input freed here, outside the timing
         arg = prepare() if prepare is not None else None
         t0, c0 = time.perf_counter(), time.process_time()
         out = run(arg)
         c1, t1 = time.process_time(), time.perf_counter()
         cpu.append(c1 - c0)
         wall.append(t1 - t0)
-        if len(cpu) >= max(min_repeats, 1) and (sum(cpu) >= ROW_CPU_SECONDS or len(cpu) >= MAX_REPEATS):
+        if len(cpu) >= min_repeats and (sum(cpu) >= ROW_CPU_SECONDS or len(cpu) >= MAX_REPEATS):
             return Timing(min(cpu), statistics.median(cpu), min(wall), len(cpu)), out
 
 
