@@ -44,6 +44,7 @@ import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
+from ..core.compressed import csr_product, csr_transposed
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import bernstein_edges, ruptured_elements
@@ -210,11 +211,15 @@ GALERKIN_UP_TO = 20000
 GALERKIN_PLAN_AFTER = 12
 
 
-def _triple_product(S: sp.csr_matrix, A: sp.csr_matrix, S_csc: sp.csc_matrix | None = None) -> sp.csr_matrix:
-    """``S^T A S`` by scipy's two sparse products (CSR, sorted indices). ``S_csc``: ``S`` in CSC, kept by the
-    caller (the second product converts ``S`` to it otherwise, every time: 25 us of the 180 us of a 270-unknown
-    P2 pad; the same products, the same digits)."""
-    C = (S.T @ A @ (S if S_csc is None else S_csc)).tocsr()
+def _triple_product(S: sp.csr_matrix, A: sp.csr_matrix, S_T: sp.csr_matrix | None = None) -> sp.csr_matrix:
+    """``S^T A S`` as scipy's ``(S.T @ A @ S).tocsr()`` makes it (CSR, sorted indices), by the kernels of
+    :mod:`bearingfe.core.compressed` on the arrays scipy's products use: ``A^T S`` (``A`` converted to CSC, whose
+    arrays are ``A^T``'s CSR arrays, times ``S``), ``S^T (A^T S)`` (``S`` in CSC, ``S^T``'s CSR arrays, times it)
+    and that product's transpose: the same kernels on the same arrays, the same digits, without scipy's objects
+    between them. ``S_T``: ``S^T`` in CSR (:func:`~bearingfe.core.compressed.csr_transposed` of ``S``), kept by
+    the caller."""
+    S_T = csr_transposed(S) if S_T is None else S_T
+    C = csr_transposed(csr_product(S_T, csr_product(csr_transposed(A), S)))
     C.sort_indices()
     return C
 
@@ -229,7 +234,7 @@ class _KeptGalerkin:
     indices: np.ndarray
     states: int = 0
     product: "GalerkinProduct | None" = None
-    S_csc: sp.csc_matrix | None = None  # S in CSC, for scipy's second product (made on the first state)
+    S_T: sp.csr_matrix | None = None  # S^T in CSR, for the second product (made on the first state)
 
     def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
         return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
@@ -249,9 +254,9 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
         kept.product = GalerkinProduct(S, A)
     if kept.product is not None:
         return kept.product(A)
-    if kept.S_csc is None:
-        kept.S_csc = S.tocsc()
-    return _triple_product(S, A, kept.S_csc)
+    if kept.S_T is None:
+        kept.S_T = csr_transposed(S)
+    return _triple_product(S, A, kept.S_T)
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 

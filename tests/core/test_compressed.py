@@ -72,7 +72,8 @@ def test_scipys_kernels_are_usable_here():
 
 def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     """Each function of the module, on the kernels and with them declared unusable, gives the arrays of scipy's
-    public operation (reference: scipy's constructor, conversion, sum, transpose and product), bit for bit."""
+    public operation (reference: scipy's constructor, conversion, sum, transpose, sparse and vector products), bit
+    for bit."""
     rng = np.random.default_rng(19)
     n = 23
     A = sp.random(n, n, density=0.2, random_state=4, format="csr")
@@ -83,10 +84,10 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
 
     def results():
         return {"compressed": cm.compressed(A.data, A.indices, A.indptr, A.shape, canonical=True),
-                "sum": cm.csr_sum(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
+                "sum": cm.csr_sum(A, B), "product": cm.csr_product(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
                 "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x)}
 
-    want = {"compressed": A, "sum": (A + B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
+    want = {"compressed": A, "sum": (A + B).tocsr(), "product": (A @ B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
             "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x}
     want["sorted"].sort_indices()
     fast = results()
@@ -94,7 +95,7 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     public = results()
     for got in (fast, public):
         assert np.array_equal(got["matvec"], want["matvec"])
-        for key in ("compressed", "sum", "transposed", "csc", "sorted"):
+        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted"):
             assert got[key].format == want[key].format and got[key].shape == want[key].shape
             for name in ("indptr", "indices", "data"):
                 assert np.array_equal(getattr(got[key], name), getattr(want[key], name)), (key, name)
