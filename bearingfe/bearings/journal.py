@@ -64,6 +64,7 @@ from ..core.checks import ResolutionWarning
 from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
 from ..cavitation.coarse import NESTED_MIN
 from ..cavitation.swift_stieber import cold_mask, warm_mask
+from ..core.compressed import compressed, csr_of, matvec
 from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
 from ..film import build_result
 from ..film.superposition import source_weights
@@ -596,23 +597,27 @@ class _Joined:
     def solve_fixed(self, rhs: list[np.ndarray], active: list[np.ndarray]) -> list[np.ndarray]:
         """:meth:`FilmProblem.solve_fixed` of every film at once (one factorization of the joined free set):
         the interior nodal unknowns per film."""
-        b = np.concatenate([r if fp.change is None else fp.change.T @ r for fp, r in zip(self.films, rhs)])
+        b = np.concatenate([r if fp.change is None else matvec(fp.change_transposed, r)
+                            for fp, r in zip(self.films, rhs)])
         v = self.problem.solve_fixed(b, np.concatenate(active))
         return [fp.unknowns(x) for fp, x in zip(self.films, self.split(v))]
 
 
 def _block_diagonal(blocks) -> sp.csr_matrix:
     """The block-diagonal CSR matrix of square CSR blocks, by concatenating their arrays (``sp.block_diag``
-    goes through COO and costs about a millisecond more per Newton step at a few hundred unknowns)."""
-    blocks = [sp.csr_matrix(b) for b in blocks]
+    goes through COO and costs about a millisecond more per Newton step at a few hundred unknowns), made by
+    :func:`~bearingfe.core.compressed.compressed` on ``int32`` indices (the index type scipy's constructor
+    chooses for them) without scipy's checks."""
+    blocks = [csr_of(b) for b in blocks]
     sizes = np.array([b.shape[0] for b in blocks])
     offsets = np.concatenate([[0], np.cumsum(sizes)])
     nnz = np.concatenate([[0], np.cumsum([b.nnz for b in blocks])])
-    indptr = np.concatenate([[0]] + [b.indptr[1:] + z for b, z in zip(blocks, nnz[:-1])])
-    indices = np.concatenate([b.indices + o for b, o in zip(blocks, offsets[:-1])])
-    data = np.concatenate([b.data for b in blocks])
     n = int(offsets[-1])
-    return sp.csr_matrix((data, indices, indptr), shape=(n, n))
+    index = np.int32 if max(n, int(nnz[-1])) < 2**31 - 1 else np.int64
+    indptr = np.concatenate([np.zeros(1, index)] + [b.indptr[1:] + z for b, z in zip(blocks, nnz[:-1])], dtype=index)
+    indices = np.concatenate([b.indices + o for b, o in zip(blocks, offsets[:-1])], dtype=index)
+    data = np.concatenate([b.data for b in blocks])
+    return compressed(data, indices, indptr, (n, n))
 
 
 def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:

@@ -36,6 +36,7 @@ from __future__ import annotations
 import time
 import weakref
 from dataclasses import dataclass, replace
+from functools import cached_property
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
@@ -44,7 +45,7 @@ import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
-from ..core.compressed import csr_product, csr_transposed
+from ..core.compressed import compressed, csr_of, csr_product, csr_transposed, matvec, sorted_entries
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import bernstein_edges, ruptured_elements
@@ -87,25 +88,34 @@ class FilmProblem:
     change: sp.csr_matrix | None = None
     inverse: sp.csr_matrix | None = None
 
+    @cached_property
+    def change_transposed(self) -> sp.csc_matrix | None:
+        """``change.T`` as scipy's transpose makes it (CSC on ``change``'s own arrays), made once per problem
+        (scipy's ``change.T`` builds a new matrix each time)."""
+        if self.change is None:
+            return None
+        S = self.change
+        return compressed(S.data, S.indices, S.indptr, S.shape[::-1], fmt="csc")
+
     def unknowns(self, v: np.ndarray) -> np.ndarray:
         """The interior nodal unknowns from the constrained ones."""
-        return v if self.change is None else self.change @ v
+        return v if self.change is None else matvec(self.change, v)
 
     def coefficients(self, u: np.ndarray) -> np.ndarray:
         """The constrained unknowns from the interior nodal ones (the inverse of :meth:`unknowns`)."""
-        return u if self.change is None else self.inverse @ u
+        return u if self.change is None else matvec(self.inverse, u)
 
     def right_side(self, weights: np.ndarray) -> np.ndarray:
         """The right side of the problem in ``v`` at the operating point ``weights``."""
         b = self.rhs @ weights
-        return b if self.change is None else self.change.T @ b
+        return b if self.change is None else matvec(self.change_transposed, b)
 
     def solve_fixed(self, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Interior nodal unknowns of ``A[I, I] u = rhs`` with ``v = 0`` on ``active`` (a fixed rupture set:
         the linearization); ``rhs`` of the nodal equations, one or several columns."""
         if self.change is None:
             return self.problem.solve_fixed(rhs, active)
-        return self.change @ self.problem.solve_fixed(self.change.T @ rhs, active)
+        return matvec(self.change, self.problem.solve_fixed(matvec(self.change_transposed, rhs), active))
 
 
 def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -131,9 +141,9 @@ def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr
     rows = np.concatenate([plain, m, m, m])
     cols = np.concatenate([plain, m, a, b])
 
-    def matrix(mid: float, ends: float) -> sp.csr_matrix:
-        return sp.csr_matrix((np.concatenate([np.ones(plain.size), mid * ones, ends * ones, ends * ones]),
-                              (rows, cols)), shape=(n, n))
+    def matrix(mid: float, ends: float) -> sp.csr_matrix:  # one entry per place: sorted_entries is scipy's CSR
+        return sorted_entries(rows, cols, np.concatenate([np.ones(plain.size), mid * ones, ends * ones, ends * ones]),
+                              n)
 
     return matrix(0.5, 0.25), matrix(2.0, -0.5)
 
@@ -303,7 +313,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     # on P2, S^T A S has its entries in A's pattern (a Bernstein coefficient reads only the dofs of the elements
     # around its edge, so it couples only dofs that share an element), less those that cancel: A's pattern, the
     # mesh's, orders the sets (every film state of the mesh the same order)
-    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, sp.csr_matrix(nodal)), nodal)
+    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, csr_of(nodal)), nodal)
     # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
     order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
     problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations,
