@@ -43,8 +43,9 @@ def test_compressed_refuses_an_unknown_format():
 @pytest.mark.parametrize("fmt", ["csr", "csc"])
 def test_matvec_is_scipys_product(fmt):
     """matvec() calls scipy's kernel of A @ x directly: the same vector bit for bit on random matrices (int32 and
-    int64 indices, a strided vector); other inputs (a coo matrix, a 2-D right side, integer values) go through
-    A @ x and give its answer."""
+    int64 indices, a strided vector), and scipy's kernel of several columns on 2-D right sides (C and Fortran
+    order, a column slice); other inputs (a coo matrix, one column, integer values) go through A @ x and give its
+    answer."""
     from bearingfe.core.compressed import matvec
 
     rng = np.random.default_rng(2)
@@ -56,11 +57,25 @@ def test_matvec_is_scipys_product(fmt):
         wide = A.copy()
         wide.indices, wide.indptr = wide.indices.astype(np.int64), wide.indptr.astype(np.int64)
         assert np.array_equal(matvec(wide, x), A @ x)
-    X = rng.normal(size=(m, 3))
-    assert np.array_equal(matvec(A, X), A @ X)
+        X = rng.normal(size=(m, 5))
+        for right in (X, np.asfortranarray(X), X[:, 1:4], X[:, :1]):
+            got = matvec(A, right)
+            assert got.shape == (n, right.shape[1]) and np.array_equal(got, A @ right)
     assert np.array_equal(matvec(A.tocoo(), x), A @ x)
     ints = np.arange(m)
     assert np.array_equal(matvec(A, ints), A @ ints)
+
+
+def test_csr_of_keeps_a_csr_matrix_and_converts_the_rest():
+    """csr_of() returns a csr_matrix itself (the arrays scipy's constructor would wrap again) and converts any
+    other input as sp.csr_matrix does (CSC, COO, dense: the same arrays)."""
+    A = sp.random(9, 7, density=0.3, random_state=3, format="csr")
+    assert cm.csr_of(A) is A
+    for other in (A.tocsc(), A.tocoo(), A.toarray()):
+        got, want = cm.csr_of(other), sp.csr_matrix(other)
+        assert type(got) is sp.csr_matrix
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
 
 
 def test_scipys_kernels_are_usable_here():
