@@ -62,7 +62,7 @@ import skfem
 from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
-from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
+from ..cavitation import CavitationError, ObstacleProblem, obstacle, obstacle_problem, solve_cavitating
 from ..cavitation.coarse import NESTED_MIN
 from ..cavitation.swift_stieber import cold_mask, warm_mask
 from ..core.compressed import compressed, csr_of, matvec
@@ -636,7 +636,11 @@ def _joined_pattern(patterns) -> sp.csr_matrix:
     factorizations by its sparsity pattern alone: kept for the last :data:`JOINED_PATTERNS_KEPT` sets of
     patterns, found again when every film's pattern holds the same index arrays (the film states of a mesh hold
     its compiled operator's, see :meth:`~bearingfe.film.compiled.CompiledOperator.condensed`). Its values are
-    those of the first film state it was made for."""
+    those of the first film state it was made for. Up to :data:`~bearingfe.cavitation.obstacle.BLOCKS_UP_TO`
+    unknowns, as the orders found from it are kept (above, each state's problem finds its own order, and a kept
+    pattern would hold memory for nothing)."""
+    if sum(p.shape[0] for p in patterns) > obstacle.BLOCKS_UP_TO:
+        return _block_diagonal(patterns)
     arrays = [a for p in patterns for a in (p.indptr, p.indices)]
     with _JOINED_LOCK:  # film states solved in threads share the list
         for refs, joined in _JOINED_PATTERNS:

@@ -444,12 +444,13 @@ def test_pads_solved_as_one_give_each_pads_own_solution():
     assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
 
 
-def test_joined_matrix_and_pattern_are_the_block_diagonals_of_the_films():
+def test_joined_matrix_and_pattern_are_the_block_diagonals_of_the_films(monkeypatch):
     # the joined problem's matrix is scipy's block diagonal of the pads' matrices (the same arrays); its pattern,
     # which orders the factorizations, that of the pads' patterns, kept per set of meshes: a second film state on
     # the same meshes finds the same object, other meshes make their own; a bearing of one film takes the film's
-    # matrix and pattern themselves
+    # matrix and pattern themselves; above BLOCKS_UP_TO unknowns the pattern is joined for each state, not kept
     import scipy.sparse as sp
+    from bearingfe.cavitation import obstacle
     meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
     states = [position_state(TWO_GROOVE, meshes, x, y, "reynolds", element="P2") for x, y in ((0.40, -0.42),
                                                                                             (0.43, -0.44))]
@@ -466,6 +467,10 @@ def test_joined_matrix_and_pattern_are_the_block_diagonals_of_the_films():
     other = structured_meshes(TWO_GROOVE, 0.3, eps=0.6, phi0=D(130))
     moved = position_state(TWO_GROOVE, other, 0.40, -0.42, "reynolds", element="P2")
     assert moved.joined.problem.pattern is not states[0].joined.problem.pattern
+    monkeypatch.setattr(obstacle, "BLOCKS_UP_TO", 100)  # above it every state joins its own pattern, not kept
+    above = [position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2") for _ in range(2)]
+    assert above[0].joined.problem.pattern is not above[1].joined.problem.pattern
+    assert np.array_equal(above[0].joined.problem.pattern.indices, states[0].joined.problem.pattern.indices)
     alone = position_state(TWO_GROOVE, meshes[:1], 0.40, -0.42, "reynolds", element="P2")
     film = alone.joined.films[0].problem
     assert alone.joined.problem.A is film.A and alone.joined.problem.pattern is film.pattern
