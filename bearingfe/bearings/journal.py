@@ -48,6 +48,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import threading
 import time
 import warnings
 import weakref
@@ -61,9 +62,10 @@ import skfem
 from scipy.spatial import cKDTree
 
 from ..core.checks import ResolutionWarning
-from ..cavitation import CavitationError, ObstacleProblem, obstacle_problem, solve_cavitating
+from ..cavitation import CavitationError, ObstacleProblem, obstacle, obstacle_problem, solve_cavitating
 from ..cavitation.coarse import NESTED_MIN
 from ..cavitation.swift_stieber import cold_mask, warm_mask
+from ..core.compressed import compressed, csr_of, matvec
 from ..core.linalg import SMALL_PANELS_UP_TO, dense_threads
 from ..film import build_result
 from ..film.superposition import source_weights
@@ -613,23 +615,59 @@ class _Joined:
     def solve_fixed(self, rhs: list[np.ndarray], active: list[np.ndarray]) -> list[np.ndarray]:
         """:meth:`FilmProblem.solve_fixed` of every film at once (one factorization of the joined free set):
         the interior nodal unknowns per film."""
-        b = np.concatenate([r if fp.change is None else fp.change.T @ r for fp, r in zip(self.films, rhs)])
+        b = np.concatenate([r if fp.change is None else matvec(fp.change_transposed, r)
+                            for fp, r in zip(self.films, rhs)])
         v = self.problem.solve_fixed(b, np.concatenate(active))
         return [fp.unknowns(x) for fp, x in zip(self.films, self.split(v))]
 
 
 def _block_diagonal(blocks) -> sp.csr_matrix:
     """The block-diagonal CSR matrix of square CSR blocks, by concatenating their arrays (``sp.block_diag``
-    goes through COO and costs about a millisecond more per Newton step at a few hundred unknowns)."""
-    blocks = [sp.csr_matrix(b) for b in blocks]
+    goes through COO and costs about a millisecond more per Newton step at a few hundred unknowns), made by
+    :func:`~bearingfe.core.compressed.compressed` on ``int32`` indices (the index type scipy's constructor
+    chooses for them) without scipy's checks."""
+    blocks = [csr_of(b) for b in blocks]
     sizes = np.array([b.shape[0] for b in blocks])
     offsets = np.concatenate([[0], np.cumsum(sizes)])
     nnz = np.concatenate([[0], np.cumsum([b.nnz for b in blocks])])
-    indptr = np.concatenate([[0]] + [b.indptr[1:] + z for b, z in zip(blocks, nnz[:-1])])
-    indices = np.concatenate([b.indices + o for b, o in zip(blocks, offsets[:-1])])
-    data = np.concatenate([b.data for b in blocks])
     n = int(offsets[-1])
-    return sp.csr_matrix((data, indices, indptr), shape=(n, n))
+    index = np.int32 if max(n, int(nnz[-1])) < 2**31 - 1 else np.int64
+    indptr = np.concatenate([np.zeros(1, index)] + [b.indptr[1:] + z for b, z in zip(blocks, nnz[:-1])],
+                            dtype=index)
+    indices = np.concatenate([b.indices + o for b, o in zip(blocks, offsets[:-1])], dtype=index)
+    data = np.concatenate([b.data for b in blocks])
+    return compressed(data, indices, indptr, (n, n))
+
+
+#: The last few joined patterns of :func:`_joined_pattern`: ``(weak references to the films' patterns' index
+#: arrays, joined pattern)``, newest last.
+_JOINED_PATTERNS: list = []
+_JOINED_LOCK = threading.Lock()
+#: Joined patterns kept (the film states of one set of meshes share one; an equilibrium's refinement levels are
+#: a few sets).
+JOINED_PATTERNS_KEPT = 4
+
+
+def _joined_pattern(patterns) -> sp.csr_matrix:
+    """The block diagonal of the films' patterns (:func:`_block_diagonal`), which orders the joined problem's
+    factorizations by its sparsity pattern alone: kept for the last :data:`JOINED_PATTERNS_KEPT` sets of
+    patterns, found again when every film's pattern holds the same index arrays (the film states of a mesh hold
+    its compiled operator's, see :meth:`~bearingfe.film.compiled.CompiledOperator.condensed`). Its values are
+    those of the first film state it was made for. Up to :data:`~bearingfe.cavitation.obstacle.BLOCKS_UP_TO`
+    unknowns, as the orders found from it are kept (above, each state's problem finds its own order, and a kept
+    pattern would hold memory for nothing)."""
+    if sum(p.shape[0] for p in patterns) > obstacle.BLOCKS_UP_TO:
+        return _block_diagonal(patterns)
+    arrays = [a for p in patterns for a in (p.indptr, p.indices)]
+    with _JOINED_LOCK:  # film states solved in threads share the list
+        for refs, joined in _JOINED_PATTERNS:
+            if len(refs) == len(arrays) and all(r() is a for r, a in zip(refs, arrays)):
+                return joined
+    joined = _block_diagonal(patterns)
+    with _JOINED_LOCK:
+        _JOINED_PATTERNS.append(([weakref.ref(a) for a in arrays], joined))
+        del _JOINED_PATTERNS[:-JOINED_PATTERNS_KEPT]
+    return joined
 
 
 def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
@@ -649,11 +687,13 @@ def _solve_joined(sups, weights, warm) -> tuple[list[ReynoldsResult], _Joined]:
     orders = [fp.problem.order for fp in films]
     order = (np.concatenate([o + a for o, a in zip(orders, offsets)]) if all(o is not None for o in orders)
              else None)
-    problem = ObstacleProblem(_block_diagonal([fp.problem.A for fp in films]), films[0].problem.factorize,
-                              tol=films[0].problem.tol, max_iterations=films[0].problem.max_iterations, order=order,
+    one = len(films) == 1  # the film's own matrix and pattern (a block diagonal of one block copies them)
+    problem = ObstacleProblem(films[0].problem.A if one else _block_diagonal([fp.problem.A for fp in films]),
+                              films[0].problem.factorize, tol=films[0].problem.tol,
+                              max_iterations=films[0].problem.max_iterations, order=order,
                               factor_settled=True,  # every state is linearized on its rupture sets
-                              pattern=films[0].problem.pattern if len(films) == 1 else
-                              _block_diagonal([fp.problem.pattern for fp in films]))
+                              pattern=films[0].problem.pattern if one else
+                              _joined_pattern([fp.problem.pattern for fp in films]))
     joined = _Joined(problem=problem, films=films, offsets=offsets)
 
     def full_film(b, joined=joined):

@@ -37,6 +37,7 @@ import scipy.sparse.linalg as spla
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
 from ..core.banded import band_cholesky, band_plan_in_order, band_worth_trying
+from ..core.compressed import csr_of, matvec
 from ..core.linalg import SMALL_PANELS_UP_TO, Factorize, factorize_splu_small, factorize_splu_sym
 
 __all__ = ["CavitationError", "ObstacleSolution", "ObstacleProblem", "TOLERANCE", "MAX_ITERATIONS"]
@@ -143,7 +144,7 @@ class ObstacleProblem:
             raise ValueError(f"tol must be in (0, 1e-2), got {tol!r}")
         if not (isinstance(max_iterations, int) and max_iterations >= 1):
             raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
-        self.A = sp.csr_matrix(A)
+        self.A = csr_of(A)
         self.n = self.A.shape[0]
         self.factorize = factorize
         self.tol = float(tol)
@@ -162,7 +163,7 @@ class ObstacleProblem:
         if pattern is not None and pattern.shape != self.A.shape:
             raise ValueError(f"pattern must have A's shape {self.A.shape}, got {pattern.shape}")
         #: the matrix whose sparsity pattern orders the factorizations (see the parameter)
-        self.pattern = self.A if pattern is None else sp.csr_matrix(pattern)
+        self.pattern = self.A if pattern is None else csr_of(pattern)
         self._rcm = None  # reverse Cuthill-McKee order of the pattern, made on the first banded factorization
         self._band_refused_from = math.inf  # free sets this large or larger are not tried banded (see _factor)
         self._own_order_first = False  # a set's own order took a band the whole matrix's refused (see _factor)
@@ -351,7 +352,7 @@ class ObstacleProblem:
     def _next_set(self, u: np.ndarray, b: np.ndarray, active: np.ndarray, free: np.ndarray,
                   scale_b: float) -> tuple[np.ndarray, np.ndarray]:
         """The multiplier of ``u`` and the active set it asks for (primal-dual rule, sign tolerances)."""
-        lam = self.A @ u - b
+        lam = matvec(self.A, u) - b
         lam[free] = 0.0
         tol_u = self.tol * float(np.abs(u).max(initial=0.0))
         tol_l = self.tol * max(scale_b, float(np.abs(lam).max(initial=0.0)))

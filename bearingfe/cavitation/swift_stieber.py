@@ -36,6 +36,7 @@ from __future__ import annotations
 import time
 import weakref
 from dataclasses import dataclass, replace
+from functools import cached_property
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
@@ -44,6 +45,7 @@ import scipy.sparse as sp
 
 from .coarse import NESTED_MIN, CoarseChain, nested_start
 from .obstacle import MAX_ITERATIONS, TOLERANCE, CavitationError, ObstacleProblem
+from ..core.compressed import compressed, csr_of, csr_product, csr_transposed, matvec, sorted_entries
 from ..core.linalg import DEFAULT_SOLVER, SMALL_PANELS_UP_TO, Factorize, dense_threads, get_linear_solver
 from ..film import ReynoldsResult, Superposition, build_result
 from ..film.flows import bernstein_edges, ruptured_elements
@@ -86,25 +88,34 @@ class FilmProblem:
     change: sp.csr_matrix | None = None
     inverse: sp.csr_matrix | None = None
 
+    @cached_property
+    def change_transposed(self) -> sp.csc_matrix | None:
+        """``change.T`` as scipy's transpose makes it (CSC on ``change``'s own arrays), made once per problem
+        (scipy's ``change.T`` builds a new matrix each time)."""
+        if self.change is None:
+            return None
+        S = self.change
+        return compressed(S.data, S.indices, S.indptr, S.shape[::-1], fmt="csc")
+
     def unknowns(self, v: np.ndarray) -> np.ndarray:
         """The interior nodal unknowns from the constrained ones."""
-        return v if self.change is None else self.change @ v
+        return v if self.change is None else matvec(self.change, v)
 
     def coefficients(self, u: np.ndarray) -> np.ndarray:
         """The constrained unknowns from the interior nodal ones (the inverse of :meth:`unknowns`)."""
-        return u if self.change is None else self.inverse @ u
+        return u if self.change is None else matvec(self.inverse, u)
 
     def right_side(self, weights: np.ndarray) -> np.ndarray:
         """The right side of the problem in ``v`` at the operating point ``weights``."""
         b = self.rhs @ weights
-        return b if self.change is None else self.change.T @ b
+        return b if self.change is None else matvec(self.change_transposed, b)
 
     def solve_fixed(self, rhs: np.ndarray, active: np.ndarray) -> np.ndarray:
         """Interior nodal unknowns of ``A[I, I] u = rhs`` with ``v = 0`` on ``active`` (a fixed rupture set:
         the linearization); ``rhs`` of the nodal equations, one or several columns."""
         if self.change is None:
             return self.problem.solve_fixed(rhs, active)
-        return self.change @ self.problem.solve_fixed(self.change.T @ rhs, active)
+        return matvec(self.change, self.problem.solve_fixed(matvec(self.change_transposed, rhs), active))
 
 
 def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr_matrix]:
@@ -130,9 +141,9 @@ def bernstein_change(basis, interior: np.ndarray) -> tuple[sp.csr_matrix, sp.csr
     rows = np.concatenate([plain, m, m, m])
     cols = np.concatenate([plain, m, a, b])
 
-    def matrix(mid: float, ends: float) -> sp.csr_matrix:
-        return sp.csr_matrix((np.concatenate([np.ones(plain.size), mid * ones, ends * ones, ends * ones]),
-                              (rows, cols)), shape=(n, n))
+    def matrix(mid: float, ends: float) -> sp.csr_matrix:  # one entry per place: sorted_entries is scipy's CSR
+        return sorted_entries(rows, cols, np.concatenate([np.ones(plain.size), mid * ones, ends * ones, ends * ones]),
+                              n)
 
     return matrix(0.5, 0.25), matrix(2.0, -0.5)
 
@@ -210,11 +221,15 @@ GALERKIN_UP_TO = 20000
 GALERKIN_PLAN_AFTER = 12
 
 
-def _triple_product(S: sp.csr_matrix, A: sp.csr_matrix, S_csc: sp.csc_matrix | None = None) -> sp.csr_matrix:
-    """``S^T A S`` by scipy's two sparse products (CSR, sorted indices). ``S_csc``: ``S`` in CSC, kept by the
-    caller (the second product converts ``S`` to it otherwise, every time: 25 us of the 180 us of a 270-unknown
-    P2 pad; the same products, the same digits)."""
-    C = (S.T @ A @ (S if S_csc is None else S_csc)).tocsr()
+def _triple_product(S: sp.csr_matrix, A: sp.csr_matrix, S_T: sp.csr_matrix | None = None) -> sp.csr_matrix:
+    """``S^T A S`` as scipy's ``(S.T @ A @ S).tocsr()`` makes it (CSR, sorted indices), by the kernels of
+    :mod:`bearingfe.core.compressed` on the arrays scipy's products use: ``A^T S`` (``A`` converted to CSC, whose
+    arrays are ``A^T``'s CSR arrays, times ``S``), ``S^T (A^T S)`` (``S`` in CSC, ``S^T``'s CSR arrays, times it)
+    and that product's transpose: the same kernels on the same arrays, the same digits, without scipy's objects
+    between them. ``S_T``: ``S^T`` in CSR (:func:`~bearingfe.core.compressed.csr_transposed` of ``S``), kept by
+    the caller."""
+    S_T = csr_transposed(S) if S_T is None else S_T
+    C = csr_transposed(csr_product(S_T, csr_product(csr_transposed(A), S)))
     C.sort_indices()
     return C
 
@@ -229,7 +244,7 @@ class _KeptGalerkin:
     indices: np.ndarray
     states: int = 0
     product: "GalerkinProduct | None" = None
-    S_csc: sp.csc_matrix | None = None  # S in CSC, for scipy's second product (made on the first state)
+    S_T: sp.csr_matrix | None = None  # S^T in CSR, for the second product (made on the first state)
 
     def matches(self, S: sp.csr_matrix, A: sp.csr_matrix) -> bool:
         return self.S is S and np.array_equal(A.indptr, self.indptr) and np.array_equal(A.indices, self.indices)
@@ -249,9 +264,9 @@ def _galerkin(basis, S: sp.csr_matrix, A: sp.csr_matrix) -> sp.csr_matrix:
         kept.product = GalerkinProduct(S, A)
     if kept.product is not None:
         return kept.product(A)
-    if kept.S_csc is None:
-        kept.S_csc = S.tocsc()
-    return _triple_product(S, A, kept.S_csc)
+    if kept.S_T is None:
+        kept.S_T = csr_transposed(S)
+    return _triple_product(S, A, kept.S_T)
 _CHANGES: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
@@ -298,7 +313,7 @@ def obstacle_problem(sup: Superposition, solver: str | Factorize = DEFAULT_SOLVE
     # on P2, S^T A S has its entries in A's pattern (a Bernstein coefficient reads only the dofs of the elements
     # around its edge, so it couples only dofs that share an element), less those that cancel: A's pattern, the
     # mesh's, orders the sets (every film state of the mesh the same order)
-    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, sp.csr_matrix(nodal)), nodal)
+    A, pattern = (nodal, None) if S is None else (_galerkin(sup.operators.basis, S, csr_of(nodal)), nodal)
     # the full film's fill-reducing order, restricted to each free set, orders the sets' factorizations
     order = getattr(sup.operators.assembly(sup.assembly), "condensed_order", None)
     problem = ObstacleProblem(A, factorize, tol=tol, max_iterations=max_iterations,

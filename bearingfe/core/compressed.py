@@ -23,7 +23,8 @@ try:   # scipy's compiled kernels (private: checked by kernels_usable before any
 except ImportError:   # pragma: no cover - depends on the installed scipy
     _sparsetools = None
 
-__all__ = ["compressed", "matvec", "sorted_entries", "csr_sum", "csr_transposed", "csc_of", "kernels_usable"]
+__all__ = ["compressed", "csr_of", "matvec", "sorted_entries", "csr_sum", "csr_product", "csr_transposed", "csc_of",
+           "kernels_usable"]
 
 _CLASSES = {"csr": sp.csr_matrix, "csc": sp.csc_matrix}
 _INT32_MAX = 2**31 - 1
@@ -82,18 +83,33 @@ def compressed(data: np.ndarray, indices: np.ndarray, indptr: np.ndarray, shape:
     return A
 
 
+def csr_of(A) -> sp.csr_matrix:
+    """``sp.csr_matrix(A)``, but a ``csr_matrix`` itself as it is: scipy's constructor would check its arrays and
+    wrap the same arrays in a new object (about 8 us, a few per film state)."""
+    return A if type(A) is sp.csr_matrix else sp.csr_matrix(A)
+
+
 def matvec(A: sp.spmatrix, x: np.ndarray) -> np.ndarray:
     """``A @ x``: for a CSR or CSC matrix of float64 values and a float64 vector, scipy's kernel of that product
     (``csr_matvec`` or ``csc_matvec`` into zeros: the same sums in the same order) without scipy's dispatch
-    (about 2.5 us a product); anything else through ``A @ x``."""
+    (about 2.5 us a product); for a float64 ``x`` of ``k > 1`` columns the kernel scipy takes for it
+    (``csr_matvecs`` or ``csc_matvecs``, on ``x`` in C order); anything else (one column among them) through
+    ``A @ x``."""
     fmt = getattr(A, "format", None)
-    if (fmt in _CLASSES and type(x) is np.ndarray and x.ndim == 1 and x.dtype == np.float64
-            and A.data.dtype == np.float64 and A.indices.dtype == A.indptr.dtype and x.size == A.shape[1]
-            and kernels_usable()):
+    if (fmt in _CLASSES and type(x) is np.ndarray and x.dtype == np.float64 and A.data.dtype == np.float64
+            and A.indices.dtype == A.indptr.dtype and x.shape[0] == A.shape[1] and kernels_usable()):
         M, N = A.shape
-        y = np.zeros(M)
-        (_sparsetools.csr_matvec if fmt == "csr" else _sparsetools.csc_matvec)(M, N, A.indptr, A.indices, A.data, x, y)
-        return y
+        if x.ndim == 1:
+            y = np.zeros(M)
+            (_sparsetools.csr_matvec if fmt == "csr" else _sparsetools.csc_matvec)(M, N, A.indptr, A.indices,
+                                                                                 A.data, x, y)
+            return y
+        if x.ndim == 2 and x.shape[1] > 1:
+            k = x.shape[1]
+            y = np.zeros((M, k))
+            (_sparsetools.csr_matvecs if fmt == "csr" else _sparsetools.csc_matvecs)(M, N, k, A.indptr, A.indices,
+                                                                                   A.data, x.ravel(), y.ravel())
+            return y
     return A @ x
 
 
@@ -138,6 +154,27 @@ def csr_sum(A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matrix:
     _sparsetools.csr_plus_csr(n, m, A.indptr, A.indices, A.data, B.indptr, B.indices, B.data, indptr, indices, data)
     nnz = int(indptr[-1])
     return compressed(data[:nnz], indices[:nnz], indptr, (n, m), canonical=True)
+
+
+def csr_product(A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matrix:
+    """``A @ B`` of two CSR matrices: for ``int32`` indices scipy's kernels of that product (``csr_matmat_maxnnz``
+    to size it, ``csr_matmat``: each row's sums in the order of ``A``'s entries, sums of zero dropped, indices in
+    the kernel's order, not sorted) on their arrays, the arrays scipy's ``A @ B`` gives, without its checks and
+    conversions (about 40 us of scipy's objects a product); else scipy's product. ``int32`` results only: a
+    product with ``2**31 - 1`` entries or more takes scipy's product."""
+    if not (A.format == B.format == "csr" and A.indices.dtype == A.indptr.dtype == np.int32
+            and B.indices.dtype == B.indptr.dtype == np.int32 and A.shape[1] == B.shape[0] and kernels_usable()):
+        return (A @ B).tocsr()
+    n, m = A.shape[0], B.shape[1]
+    nnz = _sparsetools.csr_matmat_maxnnz(n, m, A.indptr, A.indices, B.indptr, B.indices)
+    if not 0 < nnz < _INT32_MAX:
+        return (A @ B).tocsr()
+    indptr = np.empty(n + 1, np.int32)
+    indices = np.empty(nnz, np.int32)
+    data = np.empty(nnz, np.result_type(A.data, B.data))
+    _sparsetools.csr_matmat(n, m, A.indptr, A.indices, A.data, B.indptr, B.indices, B.data, indptr, indices, data)
+    kept = int(indptr[-1])
+    return compressed(data[:kept], indices[:kept], indptr, (n, m))
 
 
 def csr_transposed(A: sp.csr_matrix) -> sp.csr_matrix:
@@ -204,7 +241,8 @@ def _kernels_agree() -> bool:
         np.array_equal(held @ x, A @ x),
         _raw_sorted(rows, cols, dense[rows, cols], n, S),
         _raw_matvec(A, x), _raw_matvec(A.tocsc(), x),
-        _raw_sum(A, B), _raw_transposed(A),
+        _raw_matvec(A, np.column_stack([x, x[::-1]])), _raw_matvec(A.tocsc(), np.column_stack([x, x[::-1]])),
+        _raw_sum(A, B), _raw_transposed(A), _raw_product(A, B),
     )
     return all(bool(c) for c in checks)
 
@@ -218,9 +256,15 @@ def _raw_sorted(rows, cols, values, n, S) -> bool:
 
 
 def _raw_matvec(A, x) -> bool:
-    y = np.zeros(A.shape[0])
-    kernel = _sparsetools.csr_matvec if A.format == "csr" else _sparsetools.csc_matvec
-    kernel(A.shape[0], A.shape[1], A.indptr.astype(np.int32), A.indices.astype(np.int32), A.data, x, y)
+    M, N = A.shape
+    y = np.zeros((M,) + x.shape[1:])
+    indptr, indices = A.indptr.astype(np.int32), A.indices.astype(np.int32)
+    if x.ndim == 1:
+        kernel = _sparsetools.csr_matvec if A.format == "csr" else _sparsetools.csc_matvec
+        kernel(M, N, indptr, indices, A.data, x, y)
+    else:
+        kernel = _sparsetools.csr_matvecs if A.format == "csr" else _sparsetools.csc_matvecs
+        kernel(M, N, x.shape[1], indptr, indices, A.data, x.ravel(), y.ravel())
     return np.array_equal(y, A @ x)
 
 
@@ -241,3 +285,16 @@ def _raw_transposed(A) -> bool:
     _sparsetools.csr_tocsc(n, m, A.indptr.astype(np.int32), A.indices.astype(np.int32), A.data, indptr, indices, data)
     R = A.T.tocsr()
     return np.array_equal(indptr, R.indptr) and np.array_equal(indices, R.indices) and np.array_equal(data, R.data)
+
+
+def _raw_product(A, B) -> bool:
+    n, m = A.shape[0], B.shape[1]
+    a = (A.indptr.astype(np.int32), A.indices.astype(np.int32))
+    b = (B.indptr.astype(np.int32), B.indices.astype(np.int32))
+    nnz = _sparsetools.csr_matmat_maxnnz(n, m, *a, *b)
+    indptr, indices, data = np.empty(n + 1, np.int32), np.empty(nnz, np.int32), np.empty(nnz)
+    _sparsetools.csr_matmat(n, m, *a, A.data, *b, B.data, indptr, indices, data)
+    R = (A @ B).tocsr()
+    k = int(indptr[-1])
+    return (np.array_equal(indptr, R.indptr) and np.array_equal(indices[:k], R.indices)
+            and np.array_equal(data[:k], R.data))

@@ -51,6 +51,7 @@ import scipy.sparse.linalg as spla
 from .flows import named_flows, outflow, ruptured_elements
 from .forms import FilmAt, along, couette_source, film_at, film_flux, shear, unknown_scale
 from ..core.banded import band_cholesky, band_plan
+from ..core.compressed import compressed
 from ..core.linalg import Factorize, Solve, factorize_splu_sym
 from ..core.ordering import NESTED_DISSECTION_FROM, nested_dissection
 from ..geometry.runner import is_along_phi, velocity_at
@@ -697,12 +698,12 @@ class CompiledOperator:
         """``A[I, I]`` from the values on the pattern."""
         (sel, idx, ptr), _ = self._blocks()
         n = self.interior.size
-        return sp.csr_matrix((data[sel], idx, ptr), shape=(n, n))
+        return compressed(data[sel], idx, ptr, (n, n))
 
     def coupling(self, data: np.ndarray) -> sp.csr_matrix:
         """``A[I, inlet]`` from the values on the pattern."""
         _, (sel, idx, ptr) = self._blocks()
-        return sp.csr_matrix((data[sel], idx, ptr), shape=(self.interior.size, self.inlet.size))
+        return compressed(data[sel], idx, ptr, (self.interior.size, self.inlet.size))
 
     def coupling_times(self, data: np.ndarray, g: np.ndarray) -> np.ndarray:
         """``A[I, inlet] @ g`` from the values on the pattern (no matrix built)."""

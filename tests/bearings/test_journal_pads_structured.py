@@ -467,6 +467,38 @@ def test_pads_solved_as_one_give_each_pads_own_solution():
     assert joined.results[0].iterations <= max(a.results[0].iterations for a in alone) + 1
 
 
+def test_joined_matrix_and_pattern_are_the_block_diagonals_of_the_films(monkeypatch):
+    # the joined problem's matrix is scipy's block diagonal of the pads' matrices (the same arrays); its pattern,
+    # which orders the factorizations, that of the pads' patterns, kept per set of meshes: a second film state on
+    # the same meshes finds the same object, other meshes make their own; a bearing of one film takes the film's
+    # matrix and pattern themselves; above BLOCKS_UP_TO unknowns the pattern is joined for each state, not kept
+    import scipy.sparse as sp
+    from bearingfe.cavitation import obstacle
+    meshes = structured_meshes(TWO_GROOVE, 0.25, eps=0.6, phi0=D(130))
+    states = [position_state(TWO_GROOVE, meshes, x, y, "reynolds", element="P2") for x, y in ((0.40, -0.42),
+                                                                                            (0.43, -0.44))]
+    for state in states:
+        problem, films = state.joined.problem, state.joined.films
+        for got, blocks in ((problem.A, [fp.problem.A for fp in films]),
+                            (problem.pattern, [fp.problem.pattern for fp in films])):
+            want = sp.block_diag(blocks, format="csr")
+            want.sort_indices()
+            assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+        want = sp.block_diag([fp.problem.A for fp in films], format="csr")
+        assert np.array_equal(problem.A.data, want.data)
+    assert states[0].joined.problem.pattern is states[1].joined.problem.pattern
+    other = structured_meshes(TWO_GROOVE, 0.3, eps=0.6, phi0=D(130))
+    moved = position_state(TWO_GROOVE, other, 0.40, -0.42, "reynolds", element="P2")
+    assert moved.joined.problem.pattern is not states[0].joined.problem.pattern
+    monkeypatch.setattr(obstacle, "BLOCKS_UP_TO", 100)  # above it every state joins its own pattern, not kept
+    above = [position_state(TWO_GROOVE, meshes, 0.40, -0.42, "reynolds", element="P2") for _ in range(2)]
+    assert above[0].joined.problem.pattern is not above[1].joined.problem.pattern
+    assert np.array_equal(above[0].joined.problem.pattern.indices, states[0].joined.problem.pattern.indices)
+    alone = position_state(TWO_GROOVE, meshes[:1], 0.40, -0.42, "reynolds", element="P2")
+    film = alone.joined.films[0].problem
+    assert alone.joined.problem.A is film.A and alone.joined.problem.pattern is film.pattern
+
+
 def test_pads_cold_start_solved_as_one_as_each_pad_alone():
     # without a warm start the pads (below NESTED_MIN unknowns) are solved as one from each pad's cold start
     # (cold_mask: solve_cavitating's start there), with lazy results (no flows built until read): each pad's

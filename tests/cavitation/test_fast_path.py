@@ -243,8 +243,8 @@ def test_galerkin_plan_is_made_only_for_a_mesh_solved_many_times():
 
 
 def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
-    # before the plan, _galerkin multiplies by the CSC form of S kept per basis: the same products scipy makes
-    # from the CSR S (which it converts to CSC itself), so the same pattern and the same digits, on the first
+    # before the plan, _galerkin multiplies by the CSR form of S^T kept per basis (the arrays of the CSC S scipy
+    # converts to itself), by scipy's kernels: the same products, so the same pattern and the same digits, on the first
     # and on a later film state of a mesh (the kept form reused); on this gmsh mesh no entry cancels, so the
     # whole pattern the result is placed on is scipy's
     mesh = mesh_surface(Surface(arc=(0.0, 2 * math.pi), half_width=0.5), 0.3)
@@ -256,11 +256,11 @@ def test_galerkin_with_the_kept_csc_change_is_scipys_product_digit_for_digit():
         expected = (S.T @ sup.system.matrix @ S).tocsr()
         expected.sort_indices()
         got = swift_stieber._galerkin(basis, S, sp.csr_matrix(sup.system.matrix))
-        assert swift_stieber._GALERKIN[basis].product is None and swift_stieber._GALERKIN[basis].S_csc is not None
+        assert swift_stieber._GALERKIN[basis].product is None and swift_stieber._GALERKIN[basis].S_T is not None
         np.testing.assert_array_equal(got.indptr, expected.indptr)
         np.testing.assert_array_equal(got.indices, expected.indices)
         np.testing.assert_array_equal(got.data, expected.data)
-    np.testing.assert_array_equal(swift_stieber._GALERKIN[basis].S_csc.toarray(), S.toarray())
+    np.testing.assert_array_equal(swift_stieber._GALERKIN[basis].S_T.toarray(), S.T.toarray())
 
 
 def test_film_states_of_one_mesh_share_one_p2_pattern_and_order():

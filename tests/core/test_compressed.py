@@ -43,8 +43,9 @@ def test_compressed_refuses_an_unknown_format():
 @pytest.mark.parametrize("fmt", ["csr", "csc"])
 def test_matvec_is_scipys_product(fmt):
     """matvec() calls scipy's kernel of A @ x directly: the same vector bit for bit on random matrices (int32 and
-    int64 indices, a strided vector); other inputs (a coo matrix, a 2-D right side, integer values) go through
-    A @ x and give its answer."""
+    int64 indices, a strided vector), and scipy's kernel of several columns on 2-D right sides (C and Fortran
+    order, a column slice); other inputs (a coo matrix, one column, integer values) go through A @ x and give its
+    answer."""
     from bearingfe.core.compressed import matvec
 
     rng = np.random.default_rng(2)
@@ -56,11 +57,25 @@ def test_matvec_is_scipys_product(fmt):
         wide = A.copy()
         wide.indices, wide.indptr = wide.indices.astype(np.int64), wide.indptr.astype(np.int64)
         assert np.array_equal(matvec(wide, x), A @ x)
-    X = rng.normal(size=(m, 3))
-    assert np.array_equal(matvec(A, X), A @ X)
+        X = rng.normal(size=(m, 5))
+        for right in (X, np.asfortranarray(X), X[:, 1:4], X[:, :1]):
+            got = matvec(A, right)
+            assert got.shape == (n, right.shape[1]) and np.array_equal(got, A @ right)
     assert np.array_equal(matvec(A.tocoo(), x), A @ x)
     ints = np.arange(m)
     assert np.array_equal(matvec(A, ints), A @ ints)
+
+
+def test_csr_of_keeps_a_csr_matrix_and_converts_the_rest():
+    """csr_of() returns a csr_matrix itself (the arrays scipy's constructor would wrap again) and converts any
+    other input as sp.csr_matrix does (CSC, COO, dense: the same arrays)."""
+    A = sp.random(9, 7, density=0.3, random_state=3, format="csr")
+    assert cm.csr_of(A) is A
+    for other in (A.tocsc(), A.tocoo(), A.toarray()):
+        got, want = cm.csr_of(other), sp.csr_matrix(other)
+        assert type(got) is sp.csr_matrix
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name))
 
 
 def test_scipys_kernels_are_usable_here():
@@ -72,7 +87,8 @@ def test_scipys_kernels_are_usable_here():
 
 def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     """Each function of the module, on the kernels and with them declared unusable, gives the arrays of scipy's
-    public operation (reference: scipy's constructor, conversion, sum, transpose and product), bit for bit."""
+    public operation (reference: scipy's constructor, conversion, sum, transpose, sparse and vector products), bit
+    for bit."""
     rng = np.random.default_rng(19)
     n = 23
     A = sp.random(n, n, density=0.2, random_state=4, format="csr")
@@ -83,10 +99,10 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
 
     def results():
         return {"compressed": cm.compressed(A.data, A.indices, A.indptr, A.shape, canonical=True),
-                "sum": cm.csr_sum(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
+                "sum": cm.csr_sum(A, B), "product": cm.csr_product(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
                 "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x)}
 
-    want = {"compressed": A, "sum": (A + B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
+    want = {"compressed": A, "sum": (A + B).tocsr(), "product": (A @ B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
             "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x}
     want["sorted"].sort_indices()
     fast = results()
@@ -94,7 +110,7 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     public = results()
     for got in (fast, public):
         assert np.array_equal(got["matvec"], want["matvec"])
-        for key in ("compressed", "sum", "transposed", "csc", "sorted"):
+        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted"):
             assert got[key].format == want[key].format and got[key].shape == want[key].shape
             for name in ("indptr", "indices", "data"):
                 assert np.array_equal(getattr(got[key], name), getattr(want[key], name)), (key, name)
