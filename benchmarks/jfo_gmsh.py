@@ -33,8 +33,11 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import pickle
+import statistics
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,6 +49,7 @@ from benchmarks.common import DOCS, machine, md_table  # noqa: E402
 
 import bearingfe as bf  # noqa: E402
 from bearingfe.bearings.journal import Groove, JournalBearing  # noqa: E402
+from bearingfe.core.linalg import dense_threads, factorize_splu  # noqa: E402
 from bearingfe.film.finite_volume import solve_jfo  # noqa: E402
 from bearingfe.geometry.meshing import grid_mesh  # noqa: E402
 
@@ -128,24 +132,82 @@ def make_mesh(case: Case, kind: str, size: float):
     return grid_mesh(case.surface, size)
 
 
+#: Each timed quantity of a row (the JFO solve, the floor, the linear solve) is run again until its runs took
+#: this many CPU seconds together (read at call time): the small rows, whose milliseconds swing with the load
+#: and with first-call effects, repeat many times, a row whose one run takes longer runs only its minimum ...
+ROW_CPU_SECONDS = 0.2
+#: ... and at most this many times.
+MAX_REPEATS = 50
+
+
+@dataclass(frozen=True)
+class Timing:
+    """Repeated runs of one timed quantity.
+
+    Attributes
+    ----------
+    best, median : float
+        CPU seconds (``time.process_time``) of the fastest and the median run.
+    wall : float
+        Wall-clock seconds (``time.perf_counter``) of the fastest run by that clock.
+    repeats : int
+        Runs timed.
+    """
+
+    best: float
+    median: float
+    wall: float
+    repeats: int
+
+
+def cpu_timing(run: Callable[[object], object], prepare: Callable[[], object] | None = None,
+               min_repeats: int = 1) -> tuple[Timing, object]:
+    """Time ``run(prepare())`` (``prepare`` untimed, e.g. a fresh mesh), at least ``min_repeats`` times and
+    again while the runs took less than :data:`ROW_CPU_SECONDS` of CPU together, at most :data:`MAX_REPEATS`
+    times. Returns the :class:`Timing` and the last run's result."""
+    if not (isinstance(min_repeats, int) and min_repeats >= 1):
+        raise ValueError(f"min_repeats must be an integer >= 1, got {min_repeats!r}")
+    cpu, wall = [], []
+    while True:
+        out = arg = None   # the last run's result and input freed here, outside the timing
+        arg = prepare() if prepare is not None else None
+        t0, c0 = time.perf_counter(), time.process_time()
+        out = run(arg)
+        c1, t1 = time.process_time(), time.perf_counter()
+        cpu.append(c1 - c0)
+        wall.append(t1 - t0)
+        if len(cpu) >= min_repeats and (sum(cpu) >= ROW_CPU_SECONDS or len(cpu) >= MAX_REPEATS):
+            return Timing(min(cpu), statistics.median(cpu), min(wall), len(cpu)), out
+
+
+def fresh_copies(mesh) -> Callable[[], object]:
+    """A maker of copies of ``mesh`` as it is now, without its per-mesh caches (pickled: ``SupportMesh`` drops
+    them): each copy takes a cold solve, as a fresh mesh, without meshing again. Take it from a mesh no solve
+    has touched (its scikit-fem mesh's own lazily built arrays travel with it)."""
+    blob = pickle.dumps(mesh)
+    return lambda: pickle.loads(blob)
+
+
 def solve(case: Case, kind: str, size: float):
-    """Mesh and solve as :data:`KINDS` says; returns (nodes, mesh seconds, solve seconds, quantities, result)."""
+    """Mesh and solve as :data:`KINDS` says; returns (nodes, mesh seconds, solve :class:`Timing`, quantities,
+    result). The mesh is timed once (wall clock); the solve (:func:`cpu_timing`) on fresh copies of it
+    (:func:`fresh_copies`), each a cold solve."""
     couette = KINDS[kind][1]
     t0 = time.perf_counter()
     mesh = make_mesh(case, kind, size)
     t1 = time.perf_counter()
     options = {k: v for k, v in case.options.items() if k != "cavitation"}   # cavitation="jfo"
-    res = solve_jfo(mesh, case.film, couette=couette, **options)
-    t2 = time.perf_counter()
-    solve.mesh = mesh   # the last mesh, for the floor
-    return mesh.n_nodes, t1 - t0, t2 - t1, quantities(res), res
+    copies = fresh_copies(mesh)
+    timing, res = cpu_timing(lambda m: solve_jfo(m, case.film, couette=couette, **options), copies)
+    solve.mesh, solve.copies = mesh, copies   # the mesh as made, for the floor; its copies, for the linear solve
+    return mesh.n_nodes, t1 - t0, timing, quantities(res), res
 
 
-def floor_seconds(mesh, film, repeats: int = 2) -> float:
-    """The linear floor: best of ``repeats`` sparse LU factorizations plus one solve of the full-film matrix
-    of the same unknowns: one factorization's worth, the assembly and the set-up of the mesh left out
-    (:func:`linear_seconds` times the whole linear solve)."""
-    from bearingfe.core.linalg import factorize_splu
+def floor_timing(mesh, film, min_repeats: int = 2) -> Timing:
+    """The linear floor: sparse LU factorizations (SuperLU, COLAMD) plus one solve of the full-film matrix of
+    the same unknowns, one factorization's worth, the assembly and the set-up of the mesh left out
+    (:func:`linear_timing` times the whole linear solve); CPU time, with one BLAS thread as :func:`solve_jfo`
+    runs, repeated as :func:`cpu_timing` says."""
     from bearingfe.film import finite_volume as fv
 
     ops = fv.operators(mesh, "P1")
@@ -153,30 +215,25 @@ def floor_seconds(mesh, film, repeats: int = 2) -> float:
     system = fv._assemble(ops, mesh, film, 1.0, (0.0, 0.0), None, None, "median")
     K, _, b = fv._reduced(system, unk, np.zeros(ops.n_dofs), 0.0)
     K = K.tocsc()
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        factorize_splu(K)(b)
-        best = min(best, time.perf_counter() - t0)
-    return best
+    with dense_threads(1):
+        return cpu_timing(lambda _: factorize_splu(K)(b), min_repeats=min_repeats)[0]
 
 
-def linear_seconds(make, film, options: dict, repeats: int = 1) -> float:
-    """The linear solve of the same problem on a fresh mesh from ``make()`` (meshing apart): the same
+def floor_seconds(mesh, film, repeats: int = 2) -> float:
+    """The best CPU seconds of :func:`floor_timing` (at least ``repeats`` runs)."""
+    return floor_timing(mesh, film, repeats).best
+
+
+def linear_timing(make: Callable[[], object], film, options: dict) -> Timing:
+    """The linear solve of the same problem on a fresh mesh from ``make()`` (untimed): the same
     :func:`solve_jfo` call with ``cavitation="none"`` (assembly with the recess geometry, one factorization,
-    postprocessing), the best of ``repeats`` cold runs. Beside :func:`floor_seconds` it shows how much of a cold
-    solve on a fresh mesh is set-up that the bare factorization of an assembled matrix leaves out."""
+    postprocessing), cold runs repeated as :func:`cpu_timing` says. Beside :func:`floor_timing` it shows how much
+    of a cold solve on a fresh mesh is set-up that the bare factorization of an assembled matrix leaves out."""
     options = {k: v for k, v in options.items() if k != "cavitation"}
-    best = math.inf
-    for _ in range(repeats):
-        mesh = make()
-        t0 = time.perf_counter()
-        solve_jfo(mesh, film, cavitation="none", **options)
-        best = min(best, time.perf_counter() - t0)
-    return best
+    return cpu_timing(lambda mesh: solve_jfo(mesh, film, cavitation="none", **options), make)[0]
 
 
-#: Mesh kinds whose rows also time the linear solve on a fresh mesh (:func:`linear_seconds`).
+#: Mesh kinds whose rows also time the linear solve on a fresh mesh (:func:`linear_timing`).
 LINEAR_KINDS = ("grid", "streamline")
 
 
@@ -208,13 +265,16 @@ def run_case(case: Case, quick: bool) -> dict:
                         ("gmsh", gmsh_sizes)):
         for s in sizes:
             n, tm, ts, q, res = solve(case, kind, s)
-            floor = floor_seconds(solve.mesh, case.film)
-            linear = (linear_seconds(lambda: make_mesh(case, kind, s), case.film,
-                                     dict(case.options, couette=KINDS[kind][1]))
-                      if kind in LINEAR_KINDS else math.nan)
-            rows[kind].append(dict(size=s, nodes=n, mesh_s=tm, solve_s=ts, q=q, noted=len(res.notes) > 1,
-                                   floor=ts / floor, linear=linear / floor, iterations=res.iterations))
-            print(f"{case.name} {kind} {s}: {n} nodes, {tm + ts:.2f} s, "
+            floor = floor_timing(solve.mesh, case.film)
+            linear = (linear_timing(solve.copies, case.film, dict(case.options, couette=KINDS[kind][1]))
+                      if kind in LINEAR_KINDS else None)
+            rows[kind].append(dict(size=s, nodes=n, mesh_s=tm, solve_s=ts.best, q=q, noted=len(res.notes) > 1,
+                                   floor=ts.best / floor.best, floor_median=ts.median / floor.median,
+                                   repeats=(ts.repeats, floor.repeats),
+                                   linear=linear.best / floor.best if linear else math.nan,
+                                   iterations=res.iterations))
+            print(f"{case.name} {kind} {s}: {n} nodes, {tm + ts.best:.2f} s, solve / floor {ts.best / floor.best:.2f} "
+                  f"(runs {ts.repeats}, {floor.repeats}), "
                   + ", ".join(f"{k} {q[k]:.8g}" for k in case.quantities), flush=True)
     ref = {k: richardson([r["q"][k] for r in rows["grid"]]) for k in case.quantities}
     for kind in rows:
@@ -230,11 +290,14 @@ def first_within(rows, tol: float = 0.01):
 
 
 def _table(case: Case, rows) -> str:
-    head = ["size", "nodes", "mesh [s]", "solve [s]"] + [f"{k}" for k in case.quantities] + \
-           [f"{k} error" for k in case.quantities] + ["note", "active-set iterations", "solve / floor", "linear / floor"]
+    head = (["size", "nodes", "mesh [s]", "solve [s]"] + [f"{k}" for k in case.quantities]
+            + [f"{k} error" for k in case.quantities]
+            + ["note", "active-set iterations", "solve / floor", "median solve / median floor", "runs (solve, floor)",
+               "linear / floor"])
     body = [[r["size"], r["nodes"], f"{r['mesh_s']:.2f}", f"{r['solve_s']:.2f}"]
             + [f"{r['q'][k]:.7g}" for k in case.quantities] + [f"{r['err'][k]:.2e}" for k in case.quantities]
             + ["yes" if r["noted"] else "-", r["iterations"], f"{r['floor']:.1f}",
+               f"{r['floor_median']:.1f}", "{}, {}".format(*r["repeats"]),
                f"{r['linear']:.1f}" if math.isfinite(r.get("linear", math.nan)) else "-"] for r in rows]
     return md_table(head, body)
 
@@ -302,12 +365,20 @@ def main(argv=None) -> None:
     lines = ["# JFO cavitation on gmsh meshes and on phi-aligned grids: convergence in load and flows", "",
              f"Generated by `benchmarks/jfo_gmsh.py`{' --quick' if args.quick else ''} ({m['cpu']}, {m['cores']} "
              f"cores, Python {m['python']}, {m['date']}; total {time.perf_counter() - t0:.0f} s). Model and "
-             "discretizations: [jfo.md](jfo.md). Errors are relative to the reference of each case; times are "
-             "wall-clock, cold solves (meshing apart); `solve / floor` divides the solve by the linear floor of "
-             "the same mesh (best of two sparse LU factorizations plus one solve of the full-film matrix of the "
-             "same unknowns); `linear / floor` divides the linear solve of the same problem on a fresh mesh of the same kind "
-             "(the same call with `cavitation=\"none\"`: recess geometry, assembly, one factorization, postprocessing) by "
-             "that floor: what the set-up of a fresh mesh adds to one factorization before any cavitation. The `note` column says whether the result carries a note on JFO on an unstructured "
+             "discretizations: [jfo.md](jfo.md). Errors are relative to the reference of each case. `mesh [s]`: "
+             "wall-clock, one run. `solve [s]`: the CPU time (`time.process_time`) of the fastest of several cold "
+             "solves (the `solve_jfo` call alone, on a fresh copy of the mesh as made, without the per-mesh caches "
+             "of a previous solve; copying is untimed), repeated until the runs took "
+             f"{ROW_CPU_SECONDS:g} s of CPU together (at most {MAX_REPEATS} runs; `runs`). `floor`: the linear "
+             "floor of the same mesh, one sparse LU factorization (SuperLU, COLAMD) plus one solve of the "
+             "full-film matrix of the same unknowns (assembled before, untimed), timed the same way (at least two "
+             "runs). Both run in one process on one core with one BLAS thread, as `solve_jfo` runs. `solve / floor` "
+             "divides the fastest solve by the fastest floor, `median solve / median floor` the medians (the "
+             "spread of the timing). `linear / floor` divides the fastest linear solve of the same problem on "
+             "fresh copies of the same mesh (the same call with `cavitation=\"none\"`: recess geometry, assembly, "
+             "one factorization, postprocessing; timed the same way) by the fastest floor: what the set-up of a "
+             "fresh mesh adds to one factorization before any cavitation. The `note` column says whether the "
+             "result carries a note on JFO on an unstructured "
              f"mesh. Load average at the start: {load0:.1f} on {m['cores']} cores.", ""]
     lines += goals(results)
     for r in results:

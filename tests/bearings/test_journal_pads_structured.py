@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from bearingfe.bearings.journal import (Groove, JournalBearing, dynamic_coefficients, equilibrium, force_derivatives,
-                                        position_state, structured_meshes)
+                                        grading_position, position_state, structured_meshes)
 
 D = math.radians
 TWO_GROOVE = JournalBearing(0.5, pads=((D(10), D(170)), (D(190), D(350))))
@@ -108,6 +108,26 @@ def test_rupture_refined_pads_take_as_few_newton_steps_as_the_full_bearing(refin
     # rupture_size 0.05). Before them: 5 and 8; before the corrected guess, the supply groove's 7
     name, eq, _, _, _ = refined
     assert eq.newton_iterations <= (7 if name == "supply_groove" else 4), name
+
+
+def test_refined_meshes_do_not_depend_on_round_off_of_the_journal_position():
+    # the supply groove at size 0.2, rupture_size 0.05 under loads 1e-14 apart: the refinement splits the longest
+    # edge of each triangle, and the isosceles halves of split right triangles have two equally long ones, which
+    # round-off in the mesh's coordinates told apart; with the grading position unrounded these loads gave meshes
+    # of 2,021, 2,009, 2,006 and 2,024 nodes (eps 1.3e-6 apart). Rounded (grading_position), the meshes are the
+    # same to the last bit and eps the same to round-off (1e-12 relative)
+    runs = [equilibrium(SUPPLY, load, element="P2", structured=True, size=0.2, rupture_size=0.05)
+            for load in ((0.0, -1.0), (0.0, -1.0 - 1e-14), (0.0, -1.0 + 1e-14), (1e-14, -1.0))]
+    first = runs[0].meshes[0].mesh
+    for eq in runs[1:]:
+        m = eq.meshes[0].mesh
+        assert np.array_equal(m.p, first.p) and np.array_equal(m.t, first.t)
+        assert eq.eps == pytest.approx(runs[0].eps, rel=1e-12)
+
+
+def test_grading_position_is_rounded_to_nine_digits():
+    assert grading_position(0.7610872250296571, -1.2345678901234) == (0.761087225, -1.23456789)
+    assert grading_position(0.761087225029657, 2.0) == grading_position(0.7610872250296571, 2.0 + 4e-16)
 
 
 def test_short_bearing_guess_in_closed_form():
@@ -349,9 +369,11 @@ def test_refinement_levels_start_from_the_previous_level_not_turned(monkeypatch)
     # element lies in (split_parents; it holds the dof: barycentric coordinates >= -1e-12; a dof on an old edge
     # may have three equally near dofs in one of its elements and two in the other), the same masks; a pad not
     # refined at a level keeps its set. two_groove at
-    # size 0.3, rupture_size 0.05 (P2) then takes 13 active-set iterations in all (13 with the nearest old dof's
-    # state, 14 with the turned start: the previous paths) and the same meshes, Newton steps and answer (eps
-    # 0.605198, K[1][1] 3.637880: within 1e-9 of the previous paths', measured bit-identical, 2e-16 and 3e-15)
+    # size 0.3, rupture_size 0.05 (P2) then takes 13 active-set iterations in all (14 with the nearest old dof's
+    # state on the meshes graded for the rounded position, grading_position, where a new dof halfway between two
+    # old ones took the state round-off picked as the nearest; 13 before that rounding; 14 with the turned start)
+    # and the same meshes, Newton steps and answer (eps 0.605198, K[1][1] 3.637880: within 1e-9 of the previous
+    # paths')
     import bearingfe.bearings.journal as journal
     from bearingfe.geometry.locate import barycentric, probes
     from bearingfe.geometry.meshing import split_parents

@@ -29,3 +29,49 @@ def test_goal_verdicts_follow_the_tables_of_the_page():
         assert float(seconds) == pytest.approx(float(hit[2]) + float(hit[3]), abs=0.011)
         met = int(nodes) <= GOAL_NODES and (case != "grooved_journal" or float(seconds) < GOAL_JOURNAL_SECONDS)
         assert verdict == ("met" if met else "NOT met"), (case, kind)
+
+
+def test_cpu_timing_repeats_within_its_budget_and_leaves_the_preparation_untimed(monkeypatch):
+    """The pages' timing: ``prepare`` runs before each timed run and is not timed; the runs repeat until
+    their CPU reaches ``ROW_CPU_SECONDS`` or ``MAX_REPEATS`` runs (read at call time), at least ``min_repeats``."""
+    import time
+
+    from benchmarks import jfo_gmsh
+
+    def busy(seconds):
+        t = time.process_time()
+        while time.process_time() - t < seconds:
+            pass
+
+    monkeypatch.setattr(jfo_gmsh, "ROW_CPU_SECONDS", 0.05)
+    monkeypatch.setattr(jfo_gmsh, "MAX_REPEATS", 7)
+    timing, out = jfo_gmsh.cpu_timing(lambda x: x + 1, lambda: busy(0.02) or 41)
+    assert out == 42 and timing.repeats == 7   # the preparation's 0.14 s CPU counts nowhere
+    assert timing.best <= timing.median < 0.01
+    timing, _ = jfo_gmsh.cpu_timing(lambda _: busy(0.02))
+    assert timing.repeats == 3                  # 0.04 s < 0.05 s <= 0.06 s
+    assert 0.02 <= timing.best <= timing.median
+    assert jfo_gmsh.cpu_timing(lambda _: busy(0.06), min_repeats=2)[0].repeats == 2
+    with pytest.raises(ValueError, match="min_repeats"):
+        jfo_gmsh.cpu_timing(lambda _: None, min_repeats=0)
+
+
+def test_fresh_copies_solve_as_the_mesh_made_does():
+    """A copy from ``fresh_copies`` carries no per-mesh cache and its cold JFO solve equals, bit for bit, the
+    solve on the mesh as made (the pocket pad, streamline flux, size 0.05)."""
+    import numpy as np
+
+    from benchmarks.jfo_gmsh import KINDS, fresh_copies, make_mesh
+    from bearingfe.film.finite_volume import solve_jfo
+
+    case = CASES["pocket_pad"]()
+    options = {k: v for k, v in case.options.items() if k != "cavitation"}
+    mesh = make_mesh(case, "streamline", 0.05)
+    copies = fresh_copies(mesh)
+    made = solve_jfo(mesh, case.film, couette=KINDS["streamline"][1], **options)
+    assert mesh._cache
+    copy = copies()
+    assert not copy._cache and copy is not mesh
+    again = solve_jfo(copy, case.film, couette=KINDS["streamline"][1], **options)
+    assert np.array_equal(made.pressure, again.pressure) and np.array_equal(made.theta, again.theta)
+    assert again.iterations == made.iterations

@@ -1223,3 +1223,39 @@ def test_sorted_entries_are_scipys_conversion():
     P.sort_indices()
     assert np.array_equal(pattern.indptr, P.indptr) and np.array_equal(pattern.indices, P.indices)
     assert np.array_equal(pattern.take, P.data.astype(np.int64))
+
+
+def test_set_band_takes_the_full_film_order_of_the_same_pattern(monkeypatch):
+    """On a fresh gmsh mesh the active-set matrices' union pattern is the full-film matrix's own: the set band
+    takes the reverse Cuthill-McKee order the full-film guess's band plan found (the same array), which is
+    scipy's order of the union pattern; a solve that searches the order again gives the same answer bit for
+    bit (pocket pad of docs/jfo_gmsh.md, streamline flux, size 0.05: 529 nodes)."""
+    import pickle
+
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from benchmarks.jfo_gmsh import KINDS, make_mesh, pocket_pad
+
+    case = pocket_pad()
+    options = {k: v for k, v in case.options.items() if k != "cavitation"}
+    blob = pickle.dumps(make_mesh(case, "streamline", 0.05))
+    mesh = pickle.loads(blob)
+    got = solve_jfo(mesh, case.film, couette=KINDS["streamline"][1], **options)
+    ops = fv.operators(mesh, "P1")
+    unk = fv._unknowns(mesh, ops)
+    plan = unk._order["band"][2]
+    perm, _ = unk._order["set_band"][2]
+    assert perm is plan.perm
+    system = fv._assemble(ops, mesh, case.film, 1.0, (0.0, 0.0), None, None, "streamline")
+    K, G, _ = fv._reduced(system, unk, fv._pocket_values(mesh, ops, 0.0), -0.02)
+    pattern = fv._union_pattern(K.tocsc(), G.tocsc())
+    assert np.array_equal(perm, reverse_cuthill_mckee(pattern, symmetric_mode=True))
+    assert fv._full_film_order(unk, pattern) is plan.perm
+    other = pattern.copy()
+    other.indices = other.indices.copy()
+    other.indices[[0, 1]] = other.indices[[1, 0]]
+    assert fv._full_film_order(unk, other) is None
+    monkeypatch.setattr(fv, "_full_film_order", lambda unk, pattern: None)
+    again = solve_jfo(pickle.loads(blob), case.film, couette=KINDS["streamline"][1], **options)
+    assert np.array_equal(got.pressure, again.pressure) and np.array_equal(got.theta, again.theta)
+    assert got.iterations == again.iterations
