@@ -1798,11 +1798,13 @@ def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0,
 #: in an old element with both ruptured and full-film dofs starts ruptured where the nearest of that element's dofs
 #: (all of the equally nearest) were ruptured and the old pressure there is at most this fraction of the film's
 #: largest. Over the 36 runs of part ``journal_pads`` (its six settings; its four cases and the two full bearings)
-#: the active-set iterations were 619, 610, 599, 592, 578, 575, 578, 579, 576, 588, 589 at 0, 1e-5, 1e-4, 3e-4,
-#: 1e-3, 2e-3, 3e-3, 5e-3, 1e-2, 3e-2, 0.1 (589 without the pressure's test; 617 with the nearest old dof's state
+#: the active-set iterations were 617, 608, 599, 591, 578, 575, 578, 579, 576, 588, 589 at 0, 1e-5, 1e-4, 3e-4,
+#: 1e-3, 2e-3, 3e-3, 5e-3, 1e-2, 3e-2, 0.1 (589 without the pressure's test; 625 with the nearest old dof's state
 #: alone, the previous start), with the same converged sets, answers and meshes: 3e-3, the middle of the plateau.
-#: Taking the first of equally nearest dofs (a vertex before an edge's middle; new dofs a quarter along an old
-#: edge are as near to its end as to its middle) left 586-588 over 1e-3 to 5e-3, any of them ruptured 591-595.
+#: The variants below were measured before the meshes were graded for the rounded journal position
+#: (:func:`grading_position`; then 617 for the previous start, within 1 of the above from 1e-4 up). Taking the
+#: first of equally nearest dofs (a vertex before an edge's middle; new dofs a quarter along an old edge are as
+#: near to its end as to its middle) left 586-588 over 1e-3 to 5e-3, any of them ruptured 591-595.
 #: Starting from the old pressure's sign alone (ruptured where it is at most the fraction, whatever the dofs
 #: around) left 615, 611, 598, 611, 733 at 0, 1e-6, 1e-4, 1e-3, 1e-2; with the old field's Bernstein coefficient
 #: at the new dof in place of its value (and the nearest old dof's state), 614, 591, 585, 589 at 0, 1e-4, 1e-3,
