@@ -12,6 +12,7 @@ One home for the mesh queries the solvers share:
   the value and the two gradient components of a field at given points (also on
   curved ``MeshTri2`` meshes, for which scikit-fem has no element finder);
 - :func:`probes`: the value map alone (``basis.probes`` that works on curved meshes);
+- :func:`values_in_cells`: a P1 or P2 field's values at points whose straight cells are known (no search);
 - :func:`cell_diameters`: the longest edge of each triangle.
 """
 
@@ -20,7 +21,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["containing_cells", "lattice_cells", "nearest_cells", "barycentric", "probe_matrices", "probes", "cell_diameters"]
+__all__ = ["containing_cells", "lattice_cells", "nearest_cells", "barycentric", "probe_matrices", "probes",
+           "values_in_cells", "cell_diameters"]
 
 #: Barycentric slack of the inside test: a point on an edge belongs to both cells.
 INSIDE_TOLERANCE = 1e-10
@@ -125,6 +127,49 @@ def probes(basis, x: np.ndarray) -> sp.csr_matrix:
     if not isinstance(basis.mesh, skfem.MeshTri2):
         return basis.probes(x)
     return probe_matrices(basis, x)[0]
+
+
+def values_in_cells(basis, u: np.ndarray, points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Values of a field at points whose cells are known: the Lagrange shape functions of a P1 or P2 basis on
+    straight triangles at the points' barycentric coordinates (:func:`barycentric`) in their cells, without the
+    element search and the reference mapping of :func:`probes` (e.g. at the dofs of a mesh split from
+    ``basis``'s, each in its parent triangle: :func:`~bearingfe.geometry.meshing.split_parents`).
+
+    Parameters
+    ----------
+    basis : skfem.CellBasis
+        ``ElementTriP1`` or ``ElementTriP2`` on a straight-sided ``MeshTri1``.
+    u : numpy.ndarray
+        The field's dof values, shape ``(basis.N,)`` [any unit].
+    points : numpy.ndarray
+        Shape ``(2, n)``, in the mesh's coordinates.
+    cells : numpy.ndarray of int
+        Shape ``(n,)``: a triangle holding each point (a point outside its cell gets the polynomial's
+        extension).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(n,)``, in the unit of ``u``.
+    """
+    import skfem
+
+    if type(basis.mesh) is not skfem.MeshTri1 or type(basis.elem) not in (skfem.ElementTriP1, skfem.ElementTriP2):
+        raise ValueError("basis must be ElementTriP1 or ElementTriP2 on a straight MeshTri1, got "
+                         f"{type(basis.elem).__name__} on {type(basis.mesh).__name__}")
+    u, points, cells = np.asarray(u), np.asarray(points, float), np.asarray(cells)
+    if u.shape != (basis.N,):
+        raise ValueError(f"u must have shape ({basis.N},), got {u.shape}")
+    if points.ndim != 2 or points.shape[0] != 2 or cells.shape != (points.shape[1],):
+        raise ValueError(f"points must have shape (2, n) and cells (n,), got {points.shape} and {cells.shape}")
+    m = basis.mesh
+    l1, l2 = barycentric(m.p, m.t, cells, points)
+    l0 = 1.0 - l1 - l2
+    v = u[basis.element_dofs[:, cells]]  # rows: the vertices, then (P2) the facets (0, 1), (1, 2), (0, 2)
+    if v.shape[0] == 3:
+        return v[0] * l0 + v[1] * l1 + v[2] * l2
+    return (v[0] * l0 * (2 * l0 - 1) + v[1] * l1 * (2 * l1 - 1) + v[2] * l2 * (2 * l2 - 1)
+            + 4 * (v[3] * l0 * l1 + v[4] * l1 * l2 + v[5] * l0 * l2))
 
 
 def cell_diameters(mesh) -> np.ndarray:

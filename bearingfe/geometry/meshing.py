@@ -18,6 +18,7 @@ import functools
 import math
 import pickle
 import threading
+import weakref
 from dataclasses import InitVar, dataclass, field
 from pathlib import Path
 from typing import Callable, Hashable, Iterator, TypeVar
@@ -36,7 +37,7 @@ T = TypeVar("T")
 __all__ = ["SupportMesh", "mesh_surface", "load_mesh", "refine_uniformly", "refine_marked", "refine_once",
            "mesh_from_data", "check_triangles", "check_support_mesh",
            "strip_mesh", "grid_mesh", "name_surface_boundaries", "with_named_boundaries", "periodic_pairs",
-           "give_facets", "give_facet_triangles", "tensor_lines"]
+           "give_facets", "give_facet_triangles", "tensor_lines", "split_parents"]
 
 _GMSH_LOCK = threading.Lock()
 
@@ -451,7 +452,8 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
     (scikit-fem's arrays) built from the split itself: each unsplit facet stays, each split one gives two
     halves, each split triangle its inner edges; one sort of their codes orders them as scikit-fem would.
     A rupture front's refinement levels split a few hundred triangles several times per level, and the
-    next split and the naming of the boundaries use those facets.
+    next split and the naming of the boundaries use those facets. The refined mesh records the triangle of
+    ``m`` (and of the meshes ``m`` was split from) holding each of its triangles: :func:`split_parents`.
 
     Parameters
     ----------
@@ -497,6 +499,10 @@ def refine_marked(m: skfem.MeshTri1, marked: np.ndarray) -> skfem.MeshTri1:
         triangles = _sorted_columns(triangles)
     refined = dataclasses.replace(m, doflocs=doflocs, t=triangles, sort_t=False, _boundaries=None, _subdomains=None)
     refined.sort_t = m.sort_t
+    # the triangle of m each new one lies in: the columns above, in their order (a kind's part[table.T] holds
+    # its first piece of every triangle of the kind, then its second...)
+    _keep_parents(refined, m, np.concatenate([np.flatnonzero(rest)] + [np.tile(np.flatnonzero(kind), len(table))
+                                                                       for kind, table in zip(kinds, _SPLITS)]))
     pairs = np.hstack([m._facets[:, ~split], np.vstack([ends[0], new[split]]), np.vstack([ends[1], new[split]])]
                       + [_in_order(part[i], part[j]) for part, edges in zip(parts, _INNER_EDGES) for i, j in edges])
     _set_facets(refined, np.sort(pairs[0].astype(np.int64) * doflocs.shape[1] + pairs[1]))
@@ -510,6 +516,44 @@ _SPLITS = (np.array([(0, 3, 5), (1, 3, 4), (2, 4, 5), (4, 5, 3)]), np.array([(1,
            np.array([(0, 3, 5), (5, 3, 1), (2, 5, 1)]), np.array([(1, 5, 0), (2, 5, 1)]))
 #: ... and the new edges inside it (the pairs of rows), per kind.
 _INNER_EDGES = (((3, 4), (4, 5), (3, 5)), ((1, 5), (4, 5)), ((3, 5), (1, 5)), ((1, 5),))
+
+
+#: Attribute of a mesh made by :func:`refine_marked` (and of its named copies, :func:`with_named_boundaries`):
+#: ``((weakref to an earlier mesh, index of its triangle holding each of this mesh's triangles), ...)``, for the
+#: mesh it was split from and, composed, for that mesh's own such meshes still alive (:func:`split_parents`).
+_PARENTS = "_split_parents"
+
+
+def _keep_parents(refined: skfem.MeshTri1, m: skfem.MeshTri1, parents: np.ndarray) -> None:
+    """Record on ``refined``, split from ``m``, the triangle of ``m`` holding each of its triangles
+    (``parents``), and through ``m``'s own record those of the earlier meshes ``m`` was split from that are still
+    alive (the mesh a level of splits started from, e.g. the one a solution lives on)."""
+    earlier = tuple((ref, p[parents]) for ref, p in vars(m).get(_PARENTS, ()) if ref() is not None)
+    setattr(refined, _PARENTS, ((weakref.ref(m), parents),) + earlier)
+
+
+def split_parents(coarse: skfem.Mesh, fine: skfem.Mesh) -> np.ndarray | None:
+    """The triangle of ``coarse`` holding each triangle of ``fine``, if ``fine`` was made from ``coarse`` by
+    :func:`refine_marked` (one or several splits; a copy named by :func:`with_named_boundaries` keeps the
+    record of the mesh it copies), else None. Every triangle of ``fine`` lies inside its parent (the splits are
+    nested), so a field of ``coarse`` is evaluated exactly at a point of ``fine`` from the parent's vertices
+    alone (:func:`~bearingfe.geometry.locate.values_in_cells`).
+
+    Parameters
+    ----------
+    coarse, fine : skfem.Mesh
+
+    Returns
+    -------
+    numpy.ndarray of int or None
+        Shape ``(fine.nelements,)``: indices into ``coarse.t``'s columns; ``arange`` if ``fine`` is ``coarse``.
+    """
+    if fine is coarse:
+        return np.arange(coarse.t.shape[1])
+    for ref, parents in vars(fine).get(_PARENTS, ()):
+        if ref() is coarse:
+            return parents
+    return None
 
 
 def _longest_edge_first(p: np.ndarray, t: np.ndarray, t2f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -794,7 +838,8 @@ def _used(indices: np.ndarray, n: int) -> np.ndarray:
 
 def with_named_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:
     """``m.with_boundaries(boundaries)`` keeping the facets (and their maps) ``m`` has built already: the copy
-    has the same triangles, and scikit-fem would sort them into facets again on its first use of them.
+    has the same triangles, and scikit-fem would sort them into facets again on its first use of them; and
+    the record of the meshes ``m`` was split from (:func:`split_parents`).
 
     Parameters
     ----------
@@ -809,7 +854,7 @@ def with_named_boundaries(m: skfem.Mesh, boundaries: dict) -> skfem.Mesh:
     """
     new = m.with_boundaries(boundaries)
     if np.array_equal(new.t, m.t):
-        for name in ("_facets", "_t2f", "_f2t"):
+        for name in ("_facets", "_t2f", "_f2t", _PARENTS):
             if name in m.__dict__:
                 setattr(new, name, m.__dict__[name])
     return new

@@ -441,6 +441,50 @@ def test_refine_marked_builds_scikit_fems_facets_of_the_refined_mesh():
     assert np.array_equal(ours.subdomains["left"], theirs.subdomains["left"])
 
 
+def test_refine_marked_records_each_triangles_parent():
+    """refine_marked records the triangle of the mesh it split (and of the meshes that one was split from, while
+    alive) holding each new triangle (split_parents), through several splits and a named copy: every new
+    triangle's centroid lies inside its parent (barycentric coordinates >= -1e-12), the new triangles of a parent
+    cover its area (to 1e-12 relative), a P2 field of a quadratic function evaluated at the new dofs from the
+    parents (locate.values_in_cells) equals the function there to 1e-12 (P2 reproduces it); a mesh not split from
+    the other has no record (None)."""
+    from bearingfe.geometry.locate import barycentric, values_in_cells
+    from bearingfe.geometry.meshing import refine_marked, split_parents, with_named_boundaries
+
+    surface = Surface(arc=(0.0, 1.0), half_width=0.5, inlets=[bf.Rectangle((0.3, 0.1), (0.2, 0.3))])
+    start = bf.grid_mesh(surface, 0.1).mesh
+    rng = np.random.default_rng(7)
+    meshes = [start]
+    for level in range(4):
+        m = refine_marked(meshes[-1], rng.choice(meshes[-1].nelements, 25, replace=False))
+        meshes.append(with_named_boundaries(m, {"some": np.array([0])}) if level == 1 else m)
+
+    def area(m):
+        p = m.p[:, m.t]
+        return 0.5 * np.abs((p[0, 1] - p[0, 0]) * (p[1, 2] - p[1, 0]) - (p[1, 1] - p[1, 0]) * (p[0, 2] - p[0, 0]))
+
+    def quadratic(x):
+        return 1.0 + 2.0 * x[0] - x[1] + 3.0 * x[0] ** 2 - 2.0 * x[0] * x[1] + 0.5 * x[1] ** 2
+    fine = meshes[-1]
+    fine_basis = skfem.Basis(fine, skfem.ElementTriP2())
+    for coarse in meshes[:-1]:
+        parents = split_parents(coarse, fine)
+        assert parents.shape == (fine.nelements,)
+        l1, l2 = barycentric(coarse.p, coarse.t, parents, fine.p[:, fine.t].mean(axis=1))
+        assert min(l1.min(), l2.min(), (1 - l1 - l2).min()) >= -1e-12
+        covered = np.bincount(parents, area(fine), minlength=coarse.nelements)
+        assert np.abs(covered - area(coarse)).max() <= 1e-12 * area(coarse).max()
+        basis = skfem.Basis(coarse, skfem.ElementTriP2())
+        owner = np.empty(fine_basis.N, dtype=np.int64)
+        owner[fine_basis.element_dofs] = np.arange(fine.nelements)
+        x = np.asarray(fine_basis.doflocs)
+        values = values_in_cells(basis, quadratic(np.asarray(basis.doflocs)), x, parents[owner])
+        assert np.abs(values - quadratic(x)).max() <= 1e-12
+    assert np.array_equal(split_parents(fine, fine), np.arange(fine.nelements))
+    assert split_parents(fine, start) is None
+    assert split_parents(skfem.MeshTri1(start.p, start.t), fine) is None  # an equal mesh, not the one split
+
+
 def test_sorting_networks_are_numpys_column_sorts():
     """The facets' node pairs and a refined mesh's triangles are put in order by elementwise minima and maxima
     instead of ``np.sort(..., axis=0)`` (a call per column): the same arrays and dtypes, ties included."""
