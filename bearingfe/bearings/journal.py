@@ -1420,6 +1420,7 @@ class _Mesher:
         return abs(math.sqrt(1 - eps) / math.sqrt(1 - eps_mesh) - 1) > 0.1
 
     def __call__(self, eps: float) -> tuple[SupportMesh, ...]:
+        eps = grading_position(eps, 0.0)[0]  # an answer that differs by round-off grades the same mesh
         ms = default_min_size(self.size, eps) if self.min_size is None else self.min_size
         if self.structured:
             return (structured_journal_mesh(self.bearing, self.size, min_size=ms, eps=eps),)

@@ -175,3 +175,16 @@ def test_the_full_bearing_mesh_is_for_the_full_bearing_only():
     with pytest.raises(ValueError, match="eccentricity ratio"):
         structured_journal_mesh(BEARING, 0.2, eps=1.2)
     assert journal_mesh(BEARING, 0.3)[0].source == "gmsh"  # the default path is unchanged
+
+
+def test_full_bearing_refined_mesh_does_not_depend_on_round_off_of_the_load():
+    # L/D 1/2 under load 5 (eps 0.84), size 0.2, rupture_size 0.05, loads 1e-14 of it apart: graded for the unrounded
+    # eccentricity the refined meshes had 1,689 or 1,691 nodes (refine_marked splits the longest edge, and the two
+    # equal edges of a split right triangle's halves are told apart by round-off in the grading) and eps 8e-9
+    # apart; graded for grading_position's (as the pads' meshes are), one mesh to the last bit and eps to round-off
+    runs = [equilibrium(BEARING, load, element="P2", structured=True, size=0.2, rupture_size=0.05)
+            for load in ((0.0, -5.0), (0.0, -5.0 - 5e-14), (0.0, -5.0 + 1.5e-13))]
+    first = runs[0].meshes[0].mesh
+    for eq in runs[1:]:
+        assert np.array_equal(eq.meshes[0].mesh.p, first.p) and np.array_equal(eq.meshes[0].mesh.t, first.t)
+        assert eq.eps == pytest.approx(runs[0].eps, rel=1e-12)
