@@ -219,11 +219,6 @@ def floor_timing(mesh, film, min_repeats: int = 2) -> Timing:
         return cpu_timing(lambda _: factorize_splu(K)(b), min_repeats=min_repeats)[0]
 
 
-def floor_seconds(mesh, film, repeats: int = 2) -> float:
-    """The best CPU seconds of :func:`floor_timing` (at least ``repeats`` runs)."""
-    return floor_timing(mesh, film, repeats).best
-
-
 def linear_timing(make: Callable[[], object], film, options: dict) -> Timing:
     """The linear solve of the same problem on a fresh mesh from ``make()`` (untimed): the same
     :func:`solve_jfo` call with ``cavitation="none"`` (assembly with the recess geometry, one factorization,
