@@ -122,17 +122,18 @@ def run(quick: bool = False, log=print, cases=None) -> dict:
 PLAIN = ("two_groove", "two_groove_ld1", "partial_arc")
 
 
-def cheapest(rows: list[dict], structured: bool, worst: dict[str, float] | None = None) -> dict | None:
-    """The cheapest run of a kind within :data:`TARGET` (by its own error, or by ``worst[label]``)."""
-    ok = [r for r in rows if r["structured"] == structured and (worst[r["label"]] if worst else r["error"]) <= TARGET]
-    return min(ok, key=lambda r: r["seconds"]) if ok else None
+def cheapest(rows: list[dict], structured: bool, worst: dict[str, float] | None = None,
+             full: bool = False) -> dict | None:
+    """The cheapest run of a kind within :data:`TARGET` (by its own error, or by ``worst[label]``); ``full``: the
+    run whose full-bearing twin is the cheapest within it of the full bearing's own reference (same L/D and load),
+    by that twin's error and time (None also for measurements stored before that error was kept)."""
+    error, seconds = ("full_error", "full_seconds") if full else ("error", "seconds")
 
-
-def full_cheapest(rows: list[dict]) -> dict | None:
-    """The structured run whose full-bearing twin is the cheapest within :data:`TARGET` of the full bearing's own
-    reference (same L/D and load), or None (also for measurements stored before that error was kept)."""
-    ok = [r for r in rows if r["structured"] and r.get("full_error") is not None and r["full_error"] <= TARGET]
-    return min(ok, key=lambda r: r["full_seconds"]) if ok else None
+    def within(r) -> bool:
+        e = worst[r["label"]] if worst else r.get(error)
+        return e is not None and e <= TARGET
+    ok = [r for r in rows if r["structured"] == structured and within(r)]
+    return min(ok, key=lambda r: r[seconds]) if ok else None
 
 
 def report(res: dict) -> tuple[str, dict]:
@@ -184,7 +185,7 @@ def report(res: dict) -> tuple[str, dict]:
             lines.append(f"- {name}: NOT within {TARGET:.0e} with the structured settings measured (best "
                          f"{best['error']:.1e}, {best['label']}, {best['seconds']:.3g} s){gm}.")
             continue
-        f = full_cheapest(c["rows"])
+        f = cheapest(c["rows"], True, full=True)
         same = (f"; the full bearing's own cheapest run within {TARGET:.0e} (of its reference under this load) is "
                 + ("the same setting" if f["label"] == s["label"] else
                    f"{f['label']}, {f['full_seconds']:.3g} s: {s['seconds'] / f['full_seconds']:.2f}x at equal "
