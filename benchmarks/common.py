@@ -58,6 +58,50 @@ def machine() -> dict[str, str]:
     }
 
 
+#: Grid of the yardstick's Laplacian: YARDSTICK_GRID**2 = 90 000 unknowns.
+YARDSTICK_GRID = 300
+
+
+def yardstick_matrix():
+    """The 5-point Laplacian on a ``YARDSTICK_GRID`` x ``YARDSTICK_GRID`` grid (CSC, 90 000 unknowns)."""
+    import scipy.sparse as sp
+
+    n = YARDSTICK_GRID
+    t = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(n, n))
+    eye = sp.identity(n)
+    return (sp.kron(t, eye) + sp.kron(eye, t)).tocsc()
+
+
+def host_speed(runs: int = 3) -> float:
+    """The host's speed: CPU seconds (``time.process_time``) of one SuperLU factorization (``splu``, COLAMD) of
+    :func:`yardstick_matrix` on one BLAS thread, the fastest of ``runs``.
+
+    Stamped on every generated page, before and after its runs: the same code on the same kind of machine reads
+    differently when the host behind it is slower, although the container is idle, and an absolute criterion
+    (seconds) follows the host, not the code. Two pages' absolute times compare when their host speeds do."""
+    from scipy.sparse.linalg import splu
+
+    from bearingfe.core.linalg import dense_threads
+
+    if runs < 1:
+        raise ValueError(f"runs must be at least 1, got {runs}")
+    a = yardstick_matrix()
+    best = math.inf
+    with dense_threads(1):
+        for _ in range(runs):
+            t = time.process_time()
+            splu(a)
+            best = min(best, time.process_time() - t)
+    return best
+
+
+def host_speed_text(before: float, after: float) -> str:
+    """The page's words for :func:`host_speed` measured before and after its runs [s]."""
+    return (f"host speed {before:.3f} s before and {after:.3f} s after the runs (CPU time of one SuperLU "
+            f"factorization of the {YARDSTICK_GRID} x {YARDSTICK_GRID} Laplacian on one thread: higher is a slower "
+            "host; absolute times compare between pages of similar host speed)")
+
+
 def optional_versions() -> dict[str, str]:
     out = {}
     for mod, name in (("pyamg", "pyamg"), ("pypardiso", "pypardiso"), ("cholespy", "cholespy"),

@@ -38,7 +38,7 @@ from benchmarks import (cavitation_cost, elastic_fft, hard_cases, journal_case, 
                         orderings,
                         pump_revolution, scaling, solver_kinds, targets, thermal_levels, thrust_speed,
                         tilting_pad_speed, work_precision)
-from benchmarks.common import DOCS, machine, md_table, optional_versions  # noqa: E402
+from benchmarks.common import DOCS, host_speed, host_speed_text, machine, md_table, optional_versions  # noqa: E402
 
 PARTS_DIR = DOCS / "benchmarks_parts"
 
@@ -262,17 +262,21 @@ class OtherLoad:
 
 
 def _store(name: str, text: str, facts: dict, seconds: float, quick: bool, other: float,
-           kind: str | None = None) -> None:
+           kind: str | None = None, speed: tuple[float, float] | None = None) -> None:
     """Write part ``name``'s section with its stamp; ``kind`` replaces "full run of" (e.g. a part published from
-    rows measured separately: its date is then the publication's, ``seconds`` the rows' measuring time)."""
+    rows measured separately: its date is then the publication's, ``seconds`` the rows' measuring time);
+    ``speed``: :func:`~benchmarks.common.host_speed` before and after the part's runs [s]."""
     PARTS_DIR.mkdir(parents=True, exist_ok=True)
     info = machine()
     kind = kind or ('QUICK run (small sizes) of' if quick else 'full run of')
     stamp = (f"*Part `{name}`: {kind} "
              f"{info['date']} on {info['cpu']} ({info['cores']} cores), {seconds:.0f} s; other processes "
              f"used {other:.2f} cores meanwhile ("
-             f"{'idle machine' if other < 0.25 else 'SHARED machine: absolute times are inflated'}).*\n\n")
+             f"{'idle machine' if other < 0.25 else 'SHARED machine: absolute times are inflated'})"
+             f"{'' if speed is None else '; ' + host_speed_text(*speed)}.*\n\n")
     (PARTS_DIR / f"{name}.md").write_text(stamp + text)
+    if speed is not None:
+        facts = dict(facts, host_speed_before=speed[0], host_speed_after=speed[1])
     (PARTS_DIR / f"{name}.json").write_text(json.dumps(dict(facts, seconds=seconds, quick=quick), indent=1,
                                                        default=str) + "\n")
 
@@ -353,9 +357,11 @@ def main(argv=None) -> int:
         ap.error(f"unknown part {unknown[0]!r}; parts: {', '.join(PARTS)}")
     start = time.perf_counter()
     for name in todo:
+        before = host_speed()
         t, other = time.perf_counter(), OtherLoad()
         text, facts = RUNNERS[name](args.quick)
-        _store(name, text, facts, time.perf_counter() - t, args.quick, other.cores())
+        seconds, cores = time.perf_counter() - t, other.cores()
+        _store(name, text, facts, seconds, args.quick, cores, speed=(before, host_speed()))
         _log(f"part {name}: {time.perf_counter() - t:.1f} s")
     parts = {name: _load(name) for name in PARTS}
     for name, (page_name, heading) in OWN_PAGES.items():

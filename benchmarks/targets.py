@@ -38,7 +38,7 @@ import numpy as np
 
 from bearingfe.bearings.journal import JournalBearing, _mesh, dynamic_coefficients, equilibrium, performance
 
-from .common import ROOT, md_table
+from .common import ROOT, YARDSTICK_GRID, md_table, yardstick_matrix
 
 LENGTH_RATIO = 0.5
 EPS = 0.6
@@ -217,18 +217,6 @@ def journal_report(res: dict) -> tuple[str, dict]:
 
 #: The main scene's goal: its wall-clock time in a fresh process, in yardsticks (:func:`yardstick`).
 SCENE_GOAL = 5.0
-#: Grid of the yardstick's Laplacian: YARDSTICK_GRID**2 = 90 000 unknowns.
-YARDSTICK_GRID = 300
-
-
-def yardstick_matrix():
-    """The 5-point Laplacian on a ``YARDSTICK_GRID`` x ``YARDSTICK_GRID`` grid (CSC, 90 000 unknowns)."""
-    import scipy.sparse as sp
-
-    n = YARDSTICK_GRID
-    t = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(n, n))
-    eye = sp.identity(n)
-    return (sp.kron(t, eye) + sp.kron(eye, t)).tocsc()
 
 
 def yardstick(matrix=None) -> float:
