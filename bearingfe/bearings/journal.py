@@ -1308,6 +1308,13 @@ def _regrade(xy_mesh, xy, fraction: float = 1.0) -> bool:
 #: them, whose first solve it needed anyway. On the supply groove of part ``journal_pads`` (the first guess's
 #: meshes graded at eps 0.556, the answer 0.761) the last step on them moves sqrt(1 - eps) by 1.3 %
 #: (0.7675 -> 0.7612): one coarse solve fewer, the same remeshed meshes and answers (the step before moved it 8 %).
+#: Its coarse meshes then take 4 solves (at eps 0.556, 0.725 and 0.768 on the first meshes, 0.761 on the remeshed
+#: ones; 11 active-set iterations) against the full bearing's 2 (3), about 22 of its 209 ms CPU at size 0.2,
+#: rupture_size 0.05 with two mesh builds (9 ms); its refined levels' solves (31, 73 ms) and the last Newton step's
+#: (24 ms) cost what their meshes' size (2,020 nodes against 749) and one more active-set iteration a level ask
+#: (:data:`LEVEL_START_TOL`). A second calibrated guess on the first meshes (eps 0.759, 1.4 degrees off) remeshed at
+#: once left the first solve on the new meshes above :data:`COARSE_TOL`: the same 4 coarse solves, 2 more
+#: active-set iterations and the error against the part's reference 7.5e-4 instead of 5.8e-4.
 REGRADE_SETTLED = 1.0 / 3.0
 
 
@@ -1854,7 +1861,17 @@ def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0,
 #: Starting from the old pressure's sign alone (ruptured where it is at most the fraction, whatever the dofs
 #: around) left 615, 611, 598, 611, 733 at 0, 1e-6, 1e-4, 1e-3, 1e-2; with the old field's Bernstein coefficient
 #: at the new dof in place of its value (and the nearest old dof's state), 614, 591, 585, 589 at 0, 1e-4, 1e-3,
-#: 1e-2.
+#: 1e-2. On the supply groove the front moves downstream as it is refined (close behind its steep peak: by about an
+#: old dof spacing from level to level), so its levels start with a band of dofs ruptured that the active-set
+#: iteration frees a layer or two at a time (size 0.2, rupture_size 0.05: 4 and 5 iterations, 235, 176, 52 and 4 dofs
+#: freed at the second level; the full bearing 3 and 4). Measured against 578 and not taken: the old elements next
+#: to a front element started free throughout, one or two layers, 615 and 640 (the free solve goes negative over
+#: the freed band, which is ruptured again at once and freed as before); the pads' Dirichlet dofs (p = 0 at their
+#: edges) counted as ruptured-compatible, 574, the supply groove unchanged; the new dofs of front elements started
+#: free where sqrt(p), extended from the nearest full-film old element's field, is still positive (the front's
+#: p ~ d^2: it puts the second level's start within a dof of its front along the mid-plane), 571, and with that
+#: extension read 1.2 times as far from the element's centroid, 559, but two_groove_ld1 up by 1 to 4 and the
+#: supply groove's CPU time at size 0.2, rupture_size 0.05 down by 0.5 % only (median of 15 interleaved ratios).
 LEVEL_START_TOL = 3e-3
 
 
