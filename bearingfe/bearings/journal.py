@@ -525,7 +525,8 @@ class _State:
     rotation: float            # mesh frame -> bearing frame angle
     joined: "_Joined | None" = None  # the films' joined obstacle problem, when they were solved as one
     #: per film, the derivatives of its interior unknowns in the journal's (x, y, xdot, ydot) on its rupture set
-    #: (columns), once :func:`_linearized` made them: the next Newton position's rupture set is predicted from them
+    #: (columns; (x, y) alone after a Newton step's linearization), once :func:`_linearized` made them: the next
+    #: Newton position's rupture set is predicted from them
     perturbations: list = field(default_factory=list)
 
 
@@ -750,7 +751,7 @@ def _stiffness(bearing: JournalBearing, meshes, state: _State, xy, cavitation: s
     """``dF/d(x, y)`` in the mesh frame: linearized on the rupture sets, or (finite-volume solves,
     which keep no Galerkin system) by forward differences warm-started from ``state``."""
     if all(sup is not None for sup in state.sups):
-        return _linearized(state)[0]
+        return _linearized(state, velocity=False)[0]
     K = np.zeros((2, 2))
     base = state.force
     for j in range(2):
@@ -791,9 +792,13 @@ def _position_sources(co) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return kept
 
 
-def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
+def _linearized(state: _State, velocity: bool = True) -> tuple[np.ndarray, np.ndarray | None]:
     """``dF/d(x, y)`` and ``dF/d(xdot, ydot)`` of the force on the bore by
-    differentiating the discrete equation on the fixed rupture sets.
+    differentiating the discrete equation on the fixed rupture sets; ``velocity=False``: ``dF/d(x, y)`` alone
+    (and None), the stiffness of a Newton step, whose two squeeze perturbations are then neither solved nor
+    integrated (:attr:`_State.perturbations` get the two position columns, all that :func:`_predicted_rupture`
+    reads). Each column is solved and integrated on its own, so the position derivatives are the same numbers
+    either way.
 
     By the per-element maps of the mesh (:mod:`bearingfe.film.compiled`): the derivative
     matrices applied to ``p``, the source integrals and the loads are mat-vecs at the
@@ -816,7 +821,7 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         weights = (3.0 * dx * h**2) * slopes  # (2, n_q): dx 3 h^2 dh/d(x, y)
         dA_p = m.integrate_gradient((weights * grad_p[0]).T, 0) + m.integrate_gradient((weights * grad_p[1]).T, 1)
         fp = obstacle_problem(sup)
-        rhs = np.column_stack([wedge - dA_p, squeeze])[fp.interior]
+        rhs = (np.column_stack([wedge - dA_p, squeeze]) if velocity else wedge - dA_p)[fp.interior]
         active = res.cavitated[fp.interior] if res.cavitated is not None else np.zeros(fp.interior.size, bool)
         systems.append((co, fp, rhs, active))
     if state.joined is not None:  # the films' perturbations on one factorization of the joined free set
@@ -825,11 +830,11 @@ def _linearized(state: _State) -> tuple[np.ndarray, np.ndarray]:
         solved = [fp.solve_fixed(rhs, active) for _, fp, rhs, active in systems]
     state.perturbations[:] = solved
     for (co, fp, _, _), U in zip(systems, solved):
-        u = np.zeros((co.n_dofs, 4))
+        u = np.zeros((co.n_dofs, U.shape[1]))
         u[fp.interior] = U
-        # int p' (cos phi, sin phi) of the four perturbations (einsum's loops: no threaded BLAS wait)
-        dF += np.einsum("kq,qs->ks", co.loads[:2], co.maps.values(u))
-    return dF[:, :2], dF[:, 2:]
+        # int p' (cos phi, sin phi) of the four (or two) perturbations (einsum's loops: no threaded BLAS wait)
+        dF[:, :U.shape[1]] += np.einsum("kq,qs->ks", co.loads[:2], co.maps.values(u))
+    return dF[:, :2], (dF[:, 2:] if velocity else None)
 
 
 # -- results ------------------------------------------------------------------
@@ -1303,6 +1308,13 @@ def _regrade(xy_mesh, xy, fraction: float = 1.0) -> bool:
 #: them, whose first solve it needed anyway. On the supply groove of part ``journal_pads`` (the first guess's
 #: meshes graded at eps 0.556, the answer 0.761) the last step on them moves sqrt(1 - eps) by 1.3 %
 #: (0.7675 -> 0.7612): one coarse solve fewer, the same remeshed meshes and answers (the step before moved it 8 %).
+#: Its coarse meshes then take 4 solves (at eps 0.556, 0.725 and 0.768 on the first meshes, 0.761 on the remeshed
+#: ones; 11 active-set iterations) against the full bearing's 2 (3), about 22 of its 209 ms CPU at size 0.2,
+#: rupture_size 0.05 with two mesh builds (9 ms); its refined levels' solves (31, 73 ms) and the last Newton step's
+#: (24 ms) cost what their meshes' size (2,020 nodes against 749) and one more active-set iteration a level ask
+#: (:data:`LEVEL_START_TOL`). A second calibrated guess on the first meshes (eps 0.759, 1.4 degrees off) remeshed at
+#: once left the first solve on the new meshes above :data:`COARSE_TOL`: the same 4 coarse solves, 2 more
+#: active-set iterations and the error against the part's reference 7.5e-4 instead of 5.8e-4.
 REGRADE_SETTLED = 1.0 / 3.0
 
 
@@ -1329,7 +1341,7 @@ def _equilibrium_structured(bearing, load, size, min_size, opts: _Solves, tol, m
         if rounds == 0 and min_size is None and opts.cavitation != "jfo":
             first = opts.solve(bearing, meshes, *xy)
             if all(sup is not None for sup in first.sups):
-                stiffness = _linearized(first)[0]
+                stiffness = _linearized(first, velocity=False)[0]
                 guess = _calibrated_guess(xy, first.force, stiffness, load, bearing.half_width)
                 if guess is not None and _regrade(xy, guess):
                     xy, first, stiffness, k_total = guess, None, None, 1
@@ -1345,7 +1357,7 @@ def _equilibrium_structured(bearing, load, size, min_size, opts: _Solves, tol, m
             R = state.force - load
             if np.hypot(*R) <= tol * np.hypot(*load):
                 return None
-            return tuple(_polar_step(np.asarray(at), state.force, _linearized(state)[0], load))
+            return tuple(_polar_step(np.asarray(at), state.force, _linearized(state, velocity=False)[0], load))
         meshes, state, at, k = _refine_rupture(bearing, meshes, state, tuple(xy), rupture_size, opts, step)
         xy = np.asarray(at)
         k_total += k
@@ -1849,7 +1861,17 @@ def _nearest_rupture(res: ReynoldsResult, points: np.ndarray, turn: float = 0.0,
 #: Starting from the old pressure's sign alone (ruptured where it is at most the fraction, whatever the dofs
 #: around) left 615, 611, 598, 611, 733 at 0, 1e-6, 1e-4, 1e-3, 1e-2; with the old field's Bernstein coefficient
 #: at the new dof in place of its value (and the nearest old dof's state), 614, 591, 585, 589 at 0, 1e-4, 1e-3,
-#: 1e-2.
+#: 1e-2. On the supply groove the front moves downstream as it is refined (close behind its steep peak: by about an
+#: old dof spacing from level to level), so its levels start with a band of dofs ruptured that the active-set
+#: iteration frees a layer or two at a time (size 0.2, rupture_size 0.05: 4 and 5 iterations, 235, 176, 52 and 4 dofs
+#: freed at the second level; the full bearing 3 and 4). Measured against 578 and not taken: the old elements next
+#: to a front element started free throughout, one or two layers, 615 and 640 (the free solve goes negative over
+#: the freed band, which is ruptured again at once and freed as before); the pads' Dirichlet dofs (p = 0 at their
+#: edges) counted as ruptured-compatible, 574, the supply groove unchanged; the new dofs of front elements started
+#: free where sqrt(p), extended from the nearest full-film old element's field, is still positive (the front's
+#: p ~ d^2: it puts the second level's start within a dof of its front along the mid-plane), 571, and with that
+#: extension read 1.2 times as far from the element's centroid, 559, but two_groove_ld1 up by 1 to 4 and the
+#: supply groove's CPU time at size 0.2, rupture_size 0.05 down by 0.5 % only (median of 15 interleaved ratios).
 LEVEL_START_TOL = 3e-3
 
 
@@ -1904,7 +1926,7 @@ def _equilibrium_full(bearing, w, theta_load, eps, mesher: _Mesher, opts: _Solve
         def step(state, at):
             if abs(float(np.hypot(*state.force)) - w) <= tol * w:
                 return None
-            return (-_eps_step(-at[0], state.force, _linearized(state)[0], w), 0.0)
+            return (-_eps_step(-at[0], state.force, _linearized(state, velocity=False)[0], w), 0.0)
         meshes, state, at, k = _refine_rupture(bearing, meshes, state, (-eps, 0.0), rupture_size, opts, step)
         eps = -at[0]
         k_total += k

@@ -323,6 +323,27 @@ def test_position_sources_kept_per_mesh_are_the_previous_path_numbers():
                    for a, b in zip(state.sups, again.sups))
 
 
+def test_newton_stiffness_alone_is_the_full_linearization_of_the_position():
+    # a Newton step's stiffness (_linearized(state, velocity=False)) solves and integrates the two position
+    # perturbations alone: dF/d(x, y) and the perturbations kept for the next start equal bit for bit the first two
+    # columns of the full linearization (the previous path's numbers, which the coefficients still take), on the
+    # supply groove's pad (P2, size 0.3: solved as one joined problem) and two_groove's pads (P1, size 0.03: each
+    # on its own, above the cold start's nested solve)
+    from bearingfe.bearings.journal import _linearized
+    for bearing, xy, element, size, joined in ((SUPPLY, (0.42, -0.63), "P2", 0.3, True),
+                                               (TWO_GROOVE, (0.40, -0.42), "P1", 0.03, False)):
+        meshes = structured_meshes(bearing, size, eps=0.7, phi0=math.atan2(-xy[1], -xy[0]))
+        state = position_state(bearing, meshes, *xy, "reynolds", element=element)
+        assert (state.joined is not None) == joined
+        K, C = _linearized(state)
+        full = [u.copy() for u in state.perturbations]
+        K_alone, none = _linearized(state, velocity=False)
+        assert none is None and np.array_equal(K_alone, K) and np.abs(C).max() > 0
+        assert len(state.perturbations) == len(meshes)
+        for u, v in zip(state.perturbations, full):
+            assert u.shape == (v.shape[0], 2) and v.shape[1] == 4 and np.array_equal(u, v[:, :2])
+
+
 def test_rupture_set_predicted_by_the_linearization_starts_nearer(monkeypatch):
     # a Newton step on the pads of two_groove (size 0.25, P2) from (0.40, -0.42) to (0.405, -0.43): the previous
     # rupture set turned with the line of centres is one dof short on the loaded pad; with the dofs the
