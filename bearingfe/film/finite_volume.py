@@ -722,53 +722,80 @@ def _stiffness_of(cells: _Cells, w: np.ndarray, pattern: _P1Pattern | None = Non
     triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
     entries a triangle instead of 9; the entries that sum to exactly zero, across the diagonals of a square
     grid, are left out. On the mesh's P1 ``pattern`` (:func:`_stiffness_pattern`) without a sort
-    (:func:`_stiffness_on`); without one by scipy's sparse sums (the COO conversion of ``U``, ``U + U^T``, the
-    rows' sums), which the pattern's give bit for bit (CPU, mean of 300 calls, load ~4: 0.17-0.18 against
-    0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against 0.88-0.93 ms on a 70 x 70 grid; a
-    mesh's second call, the pattern built from scikit-fem's edges, 0.75 and 2.5 ms)."""
+    (:func:`_stiffness_on`); without one (a mesh's first stiffness) by one conversion of the edges' terms both
+    ways and a zero on each diagonal (:func:`_stiffness_converted`). Both give bit for bit scipy's sparse sums
+    (the COO conversion of ``U``, ``U + U^T``, the rows' sums), the pattern's without their sorts (CPU, mean of
+    300 calls, load ~4: 0.17-0.18 against 0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against
+    0.88-0.93 ms on a 70 x 70 grid; a mesh's second call, the pattern built from scikit-fem's edges, 0.75 and
+    2.5 ms)."""
     vals = _edge_terms(cells, w)
     if pattern is not None:
         return _stiffness_on(pattern, vals)
-    t, n = cells.t, cells.n
+    return _stiffness_converted(cells.t, vals, cells.n)
+
+
+def _stiffness_converted(t: np.ndarray, vals: np.ndarray, n: int) -> sp.csr_matrix:
+    """:func:`_stiffness_of` from the edge terms ``vals`` without a pattern: the terms at ``(i, j)`` and ``(j, i)``
+    of each triangle's node pairs ``(0, 1), (1, 2), (2, 0)`` and a zero at each diagonal converted into CSR at
+    once (:func:`~bearingfe.core.compressed.sorted_entries`: an edge's terms summed, at most two on a mesh whose
+    edges have at most two triangles: in either order the same sum, as ``U + U^T`` gives), the rows' sums then
+    as on a pattern (:func:`_rows_summed`). Triangles with a node twice (no mesh of the package has them) take
+    scipy's sparse sums."""
     a, b = [0, 1, 2], [1, 2, 0]
-    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(n, n))
-    A = U + U.T
-    return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+    i, j = t[a].ravel(), t[b].ravel()
+    if not np.all(i != j):
+        U = sp.csr_matrix((vals, (i, j)), shape=(n, n))
+        A = U + U.T
+        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+    nodes = np.arange(n)
+    P = sorted_entries(np.concatenate([i, j, nodes]), np.concatenate([j, i, nodes]),
+                       np.concatenate([vals, vals, np.zeros(n)]), n)
+    on_diagonal = P.indices == np.repeat(nodes, np.diff(P.indptr))
+    return _rows_summed(P.data, P.indices, P.indptr, np.flatnonzero(on_diagonal), ~on_diagonal)
 
 
 def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix:
     """:func:`_stiffness_of` from the edge terms ``vals`` on the mesh's P1 ``pattern``: each edge's (at most two)
-    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), the entries that are zero
-    left out (as scipy's sums drop them), each row's remaining off-diagonal entries summed by numpy's
-    ``add.reduceat`` over the rows that have any (as scipy's ``sum(axis=1)``) and negated onto the diagonal, a
-    zero diagonal left out. The same arrays bit for bit as the sparse sums, without their sorts."""
+    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), then the rows' sums
+    (:func:`_rows_summed`). The same arrays bit for bit as the sparse sums, without their sorts."""
     n_edges, n = pattern.n_edges, pattern.diagonal.size
     per_edge = np.bincount(pattern.edge.ravel(), weights=vals, minlength=n_edges)
     slots = np.zeros(2 * n_edges + n)
     slots[:n_edges] = per_edge
     slots[n_edges:2 * n_edges] = per_edge
-    data = slots[pattern.take]
-    off = data[pattern.off]
-    off_ptr = pattern.indptr - np.arange(n + 1)   # each row's off-diagonal entries among them (one diagonal a row)
-    if not np.all(off):   # (grids' diagonals): the rows' sums run over the nonzero entries only, as scipy's
-        nonzero = off != 0
-        off = off[nonzero]
+    return _rows_summed(slots[pattern.take], pattern.indices, pattern.indptr, pattern.diagonal, pattern.off)
+
+
+def _rows_summed(data: np.ndarray, indices: np.ndarray, indptr: np.ndarray, diagonal: np.ndarray,
+                 off: np.ndarray) -> sp.csr_matrix:
+    """The stiffness from its off-diagonal entries: ``data`` (written in place) on the canonical CSR arrays
+    ``indices`` and ``indptr`` of ``n`` rows with one diagonal entry each (at ``diagonal``; ``off`` the mask of
+    the others). The entries that are zero left out (as scipy's sums drop them), each row's remaining off-diagonal
+    entries summed by numpy's ``add.reduceat`` over the rows that have any (as scipy's ``sum(axis=1)``) and
+    negated onto the diagonal, a zero diagonal left out: ``A - diag(A 1)`` as scipy's sparse sums give it."""
+    n = diagonal.size
+    off_values = data[off]
+    off_ptr = indptr - np.arange(n + 1)   # each row's off-diagonal entries among them (one diagonal a row)
+    if not np.all(off_values):   # (grids' diagonals): the rows' sums run over the nonzero entries only, as scipy's
+        nonzero = off_values != 0
+        off_values = off_values[nonzero]
         counts = np.zeros(nonzero.size + 1, np.int64)
         np.cumsum(nonzero, out=counts[1:])
         off_ptr = counts[off_ptr]
     sums = np.zeros(n)
     rows = np.flatnonzero(off_ptr[1:] > off_ptr[:-1])
     if rows.size:
-        sums[rows] = np.add.reduceat(off, off_ptr[rows])
-    data[pattern.diagonal] = -sums
-    indices, indptr = pattern.indices, pattern.indptr
+        sums[rows] = np.add.reduceat(off_values, off_ptr[rows])
+    data[diagonal] = -sums
     if not np.all(data):
         keep = data != 0
         data, indices = data[keep], indices[keep]
         counts = np.zeros(keep.size + 1, np.int64)
         np.cumsum(keep, out=counts[1:])
-        indptr = counts[indptr].astype(pattern.indptr.dtype)
-    return compressed(data, indices.copy(), indptr.copy(), (n, n), canonical=True)
+        indptr = counts[indptr].astype(indptr.dtype)
+    else:
+        indices, indptr = indices.copy(), indptr.copy()
+    return compressed(data, indices, indptr, (n, n), canonical=True)
 
 
 def _edge_terms(cells: _Cells, w: np.ndarray) -> np.ndarray:

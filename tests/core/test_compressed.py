@@ -114,3 +114,29 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
             assert got[key].format == want[key].format and got[key].shape == want[key].shape
             for name in ("indptr", "indices", "data"):
                 assert np.array_equal(getattr(got[key], name), getattr(want[key], name)), (key, name)
+
+
+def test_sorted_entries_sums_repeated_places_as_scipys_conversion(monkeypatch):
+    """Places given two and three times, in shuffled order (as the P1 stiffness of a fresh mesh gives each edge's
+    terms both ways): sorted_entries sums them as scipy's conversion does (``coo_tocsr``, ``csr_sort_indices``,
+    ``csr_sum_duplicates``), the same arrays bit for bit (reference: ``sp.csr_matrix((values, (rows, cols)))``),
+    on the kernels and on the public path; entries that sum to zero are kept, as scipy keeps them; already sorted
+    places (no sort needed) too."""
+    rng = np.random.default_rng(23)
+    n = 31
+    places = rng.permutation(n * n)[:200]
+    places = np.concatenate([places, places[:60], places[:20]])[rng.permutation(280)]
+    rows, cols = places // n, places % n
+    values = rng.normal(size=places.size)
+    values[places == places[0]] = [1.5, -1.5, 0.0][: int(np.sum(places == places[0]))]
+    for order in (np.arange(places.size), np.argsort(places, kind="stable")):
+        want = sp.csr_matrix((values[order], (rows[order], cols[order])), shape=(n, n))
+        got = cm.sorted_entries(rows[order], cols[order], values[order], n)
+        with monkeypatch.context() as m:
+            m.setattr(cm, "kernels_usable", lambda: False)
+            public = cm.sorted_entries(rows[order], cols[order], values[order], n)
+        for M in (got, public):
+            assert M.has_canonical_format and M.nnz == 200
+            for name in ("indptr", "indices", "data"):
+                assert np.array_equal(getattr(M, name), getattr(want, name)), name
+                assert getattr(M, name).dtype == getattr(want, name).dtype
