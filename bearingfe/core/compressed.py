@@ -24,7 +24,7 @@ except ImportError:   # pragma: no cover - depends on the installed scipy
     _sparsetools = None
 
 __all__ = ["compressed", "csr_of", "matvec", "sorted_entries", "csr_sum", "csr_product", "csr_transposed", "csc_of",
-           "kernels_usable"]
+           "csr_without_zeros", "kernels_usable"]
 
 _CLASSES = {"csr": sp.csr_matrix, "csc": sp.csc_matrix}
 _INT32_MAX = 2**31 - 1
@@ -207,6 +207,22 @@ def csc_of(A: sp.csr_matrix) -> sp.csc_matrix:
     return compressed(T.data, T.indices, T.indptr, A.shape, fmt="csc", canonical=True)
 
 
+def csr_without_zeros(A: sp.csr_matrix) -> sp.csr_matrix:
+    """A copy of ``A`` without its explicit zeros (``B = A.copy(); B.eliminate_zeros()``): for a canonical CSR matrix
+    with ``int32`` indices scipy's kernel of that (``csr_eliminate_zeros``) on copies of its arrays, canonical,
+    without scipy's copy and checks (the same arrays); else scipy's."""
+    if not (_int32_canonical(A) and kernels_usable()):
+        B = A.copy()
+        B.eliminate_zeros()
+        return B
+    data, indices, indptr = A.data.copy(), A.indices.copy(), A.indptr.copy()
+    _sparsetools.csr_eliminate_zeros(A.shape[0], A.shape[1], indptr, indices, data)
+    nnz = int(indptr[-1])
+    if nnz < data.size:
+        data, indices = data[:nnz].copy(), indices[:nnz].copy()
+    return compressed(data, indices, indptr, A.shape, canonical=True)
+
+
 @functools.cache
 def kernels_usable() -> bool:
     """Whether scipy's kernels and sparse objects behave here as the functions of this module assume: checked
@@ -251,7 +267,7 @@ def _kernels_agree() -> bool:
         _raw_sorted(*repeated, n, sp.csr_matrix((repeated[2], repeated[:2]), shape=(n, n))),
         _raw_matvec(A, x), _raw_matvec(A.tocsc(), x),
         _raw_matvec(A, np.column_stack([x, x[::-1]])), _raw_matvec(A.tocsc(), np.column_stack([x, x[::-1]])),
-        _raw_sum(A, B), _raw_transposed(A), _raw_product(A, B),
+        _raw_sum(A, B), _raw_transposed(A), _raw_product(A, B), _raw_without_zeros(B),
     )
     return all(bool(c) for c in checks)
 
@@ -266,6 +282,16 @@ def _raw_sorted(rows, cols, values, n, S) -> bool:
     k = int(indptr[-1])
     return (bool(_sparsetools.csr_has_canonical_format(n, indptr, indices[:k])) and np.array_equal(indptr, S.indptr)
             and np.array_equal(indices[:k], S.indices) and np.array_equal(data[:k], S.data))
+
+
+def _raw_without_zeros(A) -> bool:
+    Z = A.copy()
+    Z.data[::2] = 0.0
+    indptr, indices, data = Z.indptr.astype(np.int32), Z.indices.astype(np.int32), Z.data.copy()
+    _sparsetools.csr_eliminate_zeros(Z.shape[0], Z.shape[1], indptr, indices, data)
+    Z.eliminate_zeros()
+    k = int(indptr[-1])
+    return np.array_equal(indptr, Z.indptr) and np.array_equal(indices[:k], Z.indices) and np.array_equal(data[:k], Z.data)
 
 
 def _raw_matvec(A, x) -> bool:

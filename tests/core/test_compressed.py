@@ -96,21 +96,25 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     x = rng.normal(size=n)
     rows, cols = np.nonzero(A.toarray())
     values = A.toarray()[rows, cols]
+    Z = A.copy()   # explicit zeros: every third stored entry, the first and the last
+    Z.data[::3], Z.data[-1] = 0.0, 0.0
 
     def results():
         return {"compressed": cm.compressed(A.data, A.indices, A.indptr, A.shape, canonical=True),
                 "sum": cm.csr_sum(A, B), "product": cm.csr_product(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
-                "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x)}
+                "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x),
+                "without_zeros": cm.csr_without_zeros(Z)}
 
     want = {"compressed": A, "sum": (A + B).tocsr(), "product": (A @ B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
-            "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x}
+            "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x, "without_zeros": Z.copy()}
+    want["without_zeros"].eliminate_zeros()
     want["sorted"].sort_indices()
     fast = results()
     monkeypatch.setattr(cm, "kernels_usable", lambda: False)
     public = results()
     for got in (fast, public):
         assert np.array_equal(got["matvec"], want["matvec"])
-        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted"):
+        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted", "without_zeros"):
             assert got[key].format == want[key].format and got[key].shape == want[key].shape
             for name in ("indptr", "indices", "data"):
                 assert np.array_equal(getattr(got[key], name), getattr(want[key], name)), (key, name)
