@@ -348,11 +348,35 @@ def _facet_points(basis: skfem.CellBasis, facets: np.ndarray, intorder: int):
     X, W = quadrature_rule(m.brefdom, intorder)
     find = np.asarray(facets)
     cells = boundary_facet_triangles(m, find)   # the triangle of each facet, which orients the normals
-    x = mapping.G(X, find=find)
+    own = _facet_map(mapping, find)
+    if own is None:
+        x, det = mapping.G(X, find=find), mapping.detDG(X, find=find)
+    else:   # scikit-fem's G and detDG on these facets' map
+        B, c, det_b = own
+        x, det = (np.einsum("ijk,jl", B, X).T + c.T).T, np.tile(det_b, (X.shape[-1], 1)).T
     Y = mapping.invF(x, tind=cells)
     normals = mapping.normals(Y, cells, find, m.t2f)
-    dx = np.abs(mapping.detDG(X, find=find)) * np.broadcast_to(W, (find.size, W.shape[-1]))
+    dx = np.abs(det) * np.broadcast_to(W, (find.size, W.shape[-1]))
     return cells, Y, np.asarray(x), np.asarray(normals), dx
+
+
+def _facet_map(mapping, find: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """scikit-fem's affine boundary map of a triangle mesh, ``(B, c, detB)`` of shapes ``(2, 1, n)``, ``(2, n)``
+    and ``(n,)``, on the facets ``find`` only: its own formulas (``c = p[:, a]``, ``B = p[:, b] - p[:, a]``,
+    ``detB = sqrt(B_00^2 + B_10^2)``, elementwise: the same numbers as its slices), where it has not built the map
+    of every facet yet (which a pocket contour's few facets would pay for: 0.09 ms of the 0.2 ms of the pocket
+    moments at the pocket pad grid's 432 nodes, CPU, mean of 500 fresh meshes). None for another map or where
+    scikit-fem's is at hand."""
+    if type(mapping) is not MappingAffine or mapping.dim != 2 or hasattr(mapping, "_B"):
+        return None
+    m = mapping.mesh
+    a, b = m.facets[0, find], m.facets[1, find]
+    B = np.empty((2, 1, find.size))
+    c = np.empty((2, find.size))
+    for i in range(2):
+        c[i] = m.p[i, a]
+        B[i, 0] = m.p[i, b] - m.p[i, a]
+    return B, c, np.sqrt(B[0, 0] ** 2 + B[1, 0] ** 2)
 
 
 def boundary_facet_triangles(m: skfem.Mesh, facets: np.ndarray) -> np.ndarray:
