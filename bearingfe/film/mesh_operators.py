@@ -295,7 +295,8 @@ def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
     a vertex dof, all the group's facets are kept."""
     shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()] or [np.zeros(0, np.int64)]))
     vertex_dofs = np.asarray(basis.nodal_dofs)
-    if vertex_dofs.shape[0] != 1 or not np.isin(shared, vertex_dofs[0]).all():
+    every_dof = vertex_dofs.shape[1] == basis.N   # (P1: the vertex dofs, distinct, are all the dofs; no search)
+    if vertex_dofs.shape[0] != 1 or not (every_dof or np.isin(shared, vertex_dofs[0]).all()):
         return {n: bnd[n] for n in groups}
     at_shared = np.zeros(m.nvertices, dtype=bool)
     owner = np.full(basis.N, -1, dtype=np.int64)
