@@ -722,8 +722,8 @@ def _stiffness_of(cells: _Cells, w: np.ndarray, pattern: _P1Pattern | None = Non
     triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
     entries a triangle instead of 9; the entries that sum to exactly zero, across the diagonals of a square
     grid, are left out. On the mesh's P1 ``pattern`` (:func:`_stiffness_pattern`) without a sort
-    (:func:`_stiffness_on`); without one (a mesh's first stiffness) by one conversion of the edges' terms both
-    ways and a zero on each diagonal (:func:`_stiffness_converted`). Both give bit for bit scipy's sparse sums
+    (:func:`_stiffness_on`); without one (a mesh's first stiffness) by scipy's kernels of those sums on the arrays
+    (:func:`_stiffness_converted`). Both give bit for bit scipy's sparse sums
     (the COO conversion of ``U``, ``U + U^T``, the rows' sums), the pattern's without their sorts (CPU, mean of
     300 calls, load ~4: 0.17-0.18 against 0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against
     0.88-0.93 ms on a 70 x 70 grid; a mesh's second call, the pattern built from scikit-fem's edges, 0.75 and
@@ -735,23 +735,24 @@ def _stiffness_of(cells: _Cells, w: np.ndarray, pattern: _P1Pattern | None = Non
 
 
 def _stiffness_converted(t: np.ndarray, vals: np.ndarray, n: int) -> sp.csr_matrix:
-    """:func:`_stiffness_of` from the edge terms ``vals`` without a pattern: the terms at ``(i, j)`` and ``(j, i)``
-    of each triangle's node pairs ``(0, 1), (1, 2), (2, 0)`` and a zero at each diagonal converted into CSR at
-    once (:func:`~bearingfe.core.compressed.sorted_entries`: an edge's terms summed, at most two on a mesh whose
-    edges have at most two triangles: in either order the same sum, as ``U + U^T`` gives), the rows' sums then
-    as on a pattern (:func:`_rows_summed`). Triangles with a node twice (no mesh of the package has them) take
-    scipy's sparse sums."""
+    """:func:`_stiffness_of` from the edge terms ``vals`` without a pattern: scipy's sparse sums by its own kernels on
+    the arrays, without its sparse objects between them (:mod:`bearingfe.core.compressed`): ``U`` the conversion of
+    the terms at each triangle's node pairs ``(0, 1), (1, 2), (2, 0)`` (:func:`~bearingfe.core.compressed.sorted_entries`),
+    ``A = U + U^T`` (:func:`~bearingfe.core.compressed.csr_sum`, sums of zero dropped), the rows' sums by numpy's
+    ``add.reduceat`` over the rows with entries (as scipy's ``sum(axis=1)``) and ``A`` plus the negated nonzero sums
+    on the diagonal (``a + (-d)``, the number ``a - d`` of scipy's ``A - diag(d)``): the same arrays."""
     a, b = [0, 1, 2], [1, 2, 0]
-    i, j = t[a].ravel(), t[b].ravel()
-    if not np.all(i != j):
-        U = sp.csr_matrix((vals, (i, j)), shape=(n, n))
-        A = U + U.T
-        return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
-    nodes = np.arange(n)
-    P = sorted_entries(np.concatenate([i, j, nodes]), np.concatenate([j, i, nodes]),
-                       np.concatenate([vals, vals, np.zeros(n)]), n)
-    on_diagonal = P.indices == np.repeat(nodes, np.diff(P.indptr))
-    return _rows_summed(P.data, P.indices, P.indptr, np.flatnonzero(on_diagonal), ~on_diagonal)
+    U = sorted_entries(t[a].ravel(), t[b].ravel(), vals, n)
+    A = csr_sum(U, csr_transposed(U))
+    sums = np.zeros(n)
+    rows = np.flatnonzero(A.indptr[1:] > A.indptr[:-1])
+    if rows.size:
+        sums[rows] = np.add.reduceat(A.data, A.indptr[rows])
+    on = np.flatnonzero(sums)   # (scipy's diagonal matrix keeps the nonzero values only)
+    indptr = np.zeros(n + 1, A.indptr.dtype)
+    indptr[on + 1] = 1
+    np.cumsum(indptr, out=indptr)
+    return csr_sum(A, compressed(-sums[on], on.astype(A.indptr.dtype), indptr, (n, n), canonical=True))
 
 
 def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix:
