@@ -242,10 +242,10 @@ def _build_operators(mesh: SupportMesh, element: str) -> Operators:
         raise ValueError("mesh has no boundary named 'outer'")
     outer = facet_dofs(basis, bnd["outer"])
     inlet = facet_dofs(basis, bnd["inlet"]) if "inlet" in bnd else np.zeros(0, dtype=np.int64)
-    fixed = np.union1d(outer, inlet)
     free = np.ones(basis.N, bool)
-    free[fixed] = False
-    interior = np.flatnonzero(free)   # np.setdiff1d's answer without its sort
+    free[outer] = False
+    free[inlet] = False
+    interior = np.flatnonzero(free)   # np.setdiff1d(arange, np.union1d(outer, inlet))'s answer without their sorts
     names = edge_groups(bnd)
     groups = _flow_groups(basis, bnd, names)
     facet_groups = _corner_facets(m, basis, bnd, groups) if len(names) > 1 else {}
@@ -293,7 +293,7 @@ def _corner_facets(m: skfem.Mesh, basis, bnd, groups) -> dict[str, np.ndarray]:
     A vertex dof's basis function vanishes on the facets away from its vertex, so a group's
     facets that do not touch a shared vertex add nothing to those fluxes. If a shared dof is not
     a vertex dof, all the group's facets are kept."""
-    shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()] or [np.zeros(0, np.int64)]))
+    shared = np.concatenate([d[w < 1] for d, w in groups.values()] or [np.zeros(0, np.int64)])   # (repeats: marks)
     vertex_dofs = np.asarray(basis.nodal_dofs)
     every_dof = vertex_dofs.shape[1] == basis.N   # (P1: the vertex dofs, distinct, are all the dofs; no search)
     if vertex_dofs.shape[0] != 1 or not (every_dof or np.isin(shared, vertex_dofs[0]).all()):

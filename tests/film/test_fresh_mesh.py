@@ -332,3 +332,23 @@ def test_boundary_facet_triangles_from_t2f_are_the_node_pair_searchs(surface, or
     for facets in (np.concatenate([every[:3], interior]), np.concatenate([inlet, inlet[:2]])):
         assert np.array_equal(film_operators.boundary_facet_triangles(copy.deepcopy(m), facets),
                               mesh.mesh.f2t[0, facets])
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_interior_dofs_and_corner_facets_are_their_definitions(surface, element):
+    # the interior dofs by a mask of the outline's and the pockets' dofs, and each outflow group's facets at the
+    # dofs it shares with another; the references are the set operations they replace (np.setdiff1d of
+    # np.union1d; the shared dofs by np.unique, each a vertex dof by np.isin): the same arrays
+    ops = operators(_mesh(surface), element)
+    basis, m = ops.basis, ops.mesh.mesh
+    assert np.array_equal(ops.interior, np.setdiff1d(np.arange(basis.N), np.union1d(ops.outer, ops.inlet)))
+    groups = {k: v for k, v in ops.flow_groups.items() if k != "inlet"}
+    shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()]))
+    vertex = np.asarray(basis.nodal_dofs)[0]
+    assert shared.size and np.isin(shared, vertex).all()
+    owner = np.full(basis.N, -1)
+    owner[vertex] = np.arange(vertex.size)
+    for name in groups:
+        f = np.asarray(ops.mesh.boundaries[name])
+        near = f[np.isin(m.facets[:, f], owner[shared]).any(axis=0)]
+        assert np.array_equal(ops.facet_groups.get(name, np.zeros(0, f.dtype)), near), name
