@@ -24,7 +24,7 @@ except ImportError:   # pragma: no cover - depends on the installed scipy
     _sparsetools = None
 
 __all__ = ["compressed", "csr_of", "matvec", "sorted_entries", "csr_sum", "csr_product", "csr_transposed", "csc_of",
-           "kernels_usable"]
+           "csr_without_zeros", "kernels_usable"]
 
 _CLASSES = {"csr": sp.csr_matrix, "csc": sp.csc_matrix}
 _INT32_MAX = 2**31 - 1
@@ -114,12 +114,13 @@ def matvec(A: sp.spmatrix, x: np.ndarray) -> np.ndarray:
 
 
 def sorted_entries(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, n: int) -> sp.csr_matrix:
-    """``sp.csr_matrix((values, (rows, cols)), shape=(n, n))`` with sorted indices, for at most one entry per place.
+    """``sp.csr_matrix((values, (rows, cols)), shape=(n, n))`` with sorted indices: entries sharing a place summed.
 
-    scipy's kernels of that conversion (``coo_tocsr``, then ``csr_sort_indices``) on ``int32`` copies of the
-    places, without the sparse objects' checks between them (0.05 against 0.11 ms for the P1 pattern of 529
-    nodes); the same arrays. Entries sharing a place (which scipy's conversion sums), or more than ``2**31 - 1``
-    rows or entries, take scipy's conversion.
+    scipy's kernels of that conversion (``coo_tocsr``; ``csr_sort_indices`` where the indices are not sorted
+    already; ``csr_sum_duplicates`` where a place is given twice or more) on ``int32`` copies of the places,
+    without the sparse objects' checks between them (0.05 against 0.11 ms for the P1 pattern of 529 nodes); the
+    same arrays, the repeated entries' sums included (the same kernels on the same arrays: the same order).
+    More than ``2**31 - 1`` rows or entries take scipy's conversion.
     """
     size = rows.size
     if n < _INT32_MAX and size < _INT32_MAX and kernels_usable():
@@ -127,9 +128,13 @@ def sorted_entries(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, n: in
         indices = np.empty(size, np.int32)
         data = np.empty(size, values.dtype)
         _sparsetools.coo_tocsr(n, n, size, rows.astype(np.int32), cols.astype(np.int32), values, indptr, indices, data)
-        _sparsetools.csr_sort_indices(n, indptr, indices, data)
-        if _sparsetools.csr_has_canonical_format(n, indptr, indices):   # no place twice
-            return compressed(data, indices, indptr, (n, n), canonical=True)
+        if not _sparsetools.csr_has_sorted_indices(n, indptr, indices):   # (scipy's sort_indices tests it first)
+            _sparsetools.csr_sort_indices(n, indptr, indices, data)
+        if not _sparsetools.csr_has_canonical_format(n, indptr, indices):   # a place twice: scipy's sum_duplicates
+            _sparsetools.csr_sum_duplicates(n, n, indptr, indices, data)
+            nnz = int(indptr[-1])
+            indices, data = indices[:nnz].copy(), data[:nnz].copy()
+        return compressed(data, indices, indptr, (n, n), canonical=True)
     P = sp.csr_matrix((values, (rows, cols)), shape=(n, n))
     P.sort_indices()
     return P
@@ -202,6 +207,22 @@ def csc_of(A: sp.csr_matrix) -> sp.csc_matrix:
     return compressed(T.data, T.indices, T.indptr, A.shape, fmt="csc", canonical=True)
 
 
+def csr_without_zeros(A: sp.csr_matrix) -> sp.csr_matrix:
+    """A copy of ``A`` without its explicit zeros (``B = A.copy(); B.eliminate_zeros()``): for a canonical CSR matrix
+    with ``int32`` indices scipy's kernel of that (``csr_eliminate_zeros``) on copies of its arrays, canonical,
+    without scipy's copy and checks (the same arrays); else scipy's."""
+    if not (_int32_canonical(A) and kernels_usable()):
+        B = A.copy()
+        B.eliminate_zeros()
+        return B
+    data, indices, indptr = A.data.copy(), A.indices.copy(), A.indptr.copy()
+    _sparsetools.csr_eliminate_zeros(A.shape[0], A.shape[1], indptr, indices, data)
+    nnz = int(indptr[-1])
+    if nnz < data.size:
+        data, indices = data[:nnz].copy(), indices[:nnz].copy()
+    return compressed(data, indices, indptr, A.shape, canonical=True)
+
+
 @functools.cache
 def kernels_usable() -> bool:
     """Whether scipy's kernels and sparse objects behave here as the functions of this module assume: checked
@@ -236,13 +257,17 @@ def _kernels_agree() -> bool:
     reference.sort_indices()
     S = sp.csr_matrix((dense[rows, cols], (rows, cols)), shape=(n, n))
     S.sort_indices()
+    twice = rng.permutation(rows.size)[:6]   # places given two and three times, in shuffled order
+    order = rng.permutation(rows.size + 9)
+    repeated = tuple(np.concatenate([v, v[twice], v[twice[:3]]])[order] for v in (rows, cols, dense[rows, cols] + 0.1))
     checks = (
         same(held, reference) and repr(held) == repr(reference) and held.nnz == reference.nnz,
         np.array_equal(held @ x, A @ x),
         _raw_sorted(rows, cols, dense[rows, cols], n, S),
+        _raw_sorted(*repeated, n, sp.csr_matrix((repeated[2], repeated[:2]), shape=(n, n))),
         _raw_matvec(A, x), _raw_matvec(A.tocsc(), x),
         _raw_matvec(A, np.column_stack([x, x[::-1]])), _raw_matvec(A.tocsc(), np.column_stack([x, x[::-1]])),
-        _raw_sum(A, B), _raw_transposed(A), _raw_product(A, B),
+        _raw_sum(A, B), _raw_transposed(A), _raw_product(A, B), _raw_without_zeros(B),
     )
     return all(bool(c) for c in checks)
 
@@ -250,9 +275,23 @@ def _kernels_agree() -> bool:
 def _raw_sorted(rows, cols, values, n, S) -> bool:
     indptr, indices, data = np.empty(n + 1, np.int32), np.empty(rows.size, np.int32), np.empty(rows.size)
     _sparsetools.coo_tocsr(n, n, rows.size, rows.astype(np.int32), cols.astype(np.int32), values, indptr, indices, data)
-    _sparsetools.csr_sort_indices(n, indptr, indices, data)
-    return (bool(_sparsetools.csr_has_canonical_format(n, indptr, indices)) and np.array_equal(indptr, S.indptr)
-            and np.array_equal(indices, S.indices) and np.array_equal(data, S.data))
+    if not _sparsetools.csr_has_sorted_indices(n, indptr, indices):
+        _sparsetools.csr_sort_indices(n, indptr, indices, data)
+    if not _sparsetools.csr_has_canonical_format(n, indptr, indices):
+        _sparsetools.csr_sum_duplicates(n, n, indptr, indices, data)
+    k = int(indptr[-1])
+    return (bool(_sparsetools.csr_has_canonical_format(n, indptr, indices[:k])) and np.array_equal(indptr, S.indptr)
+            and np.array_equal(indices[:k], S.indices) and np.array_equal(data[:k], S.data))
+
+
+def _raw_without_zeros(A) -> bool:
+    Z = A.copy()
+    Z.data[::2] = 0.0
+    indptr, indices, data = Z.indptr.astype(np.int32), Z.indices.astype(np.int32), Z.data.copy()
+    _sparsetools.csr_eliminate_zeros(Z.shape[0], Z.shape[1], indptr, indices, data)
+    Z.eliminate_zeros()
+    k = int(indptr[-1])
+    return np.array_equal(indptr, Z.indptr) and np.array_equal(indices[:k], Z.indices) and np.array_equal(data[:k], Z.data)
 
 
 def _raw_matvec(A, x) -> bool:

@@ -101,7 +101,7 @@ from .flows import edge_groups
 from ..core.banded import band_cholesky, band_limits, band_pays, band_plan, band_worth_trying, half_bandwidth
 from ..core.blocks import blocks
 from ..core.checks import check_operating_point, note_resolution
-from ..core.compressed import compressed, csc_of, csr_sum, csr_transposed, matvec, sorted_entries
+from ..core.compressed import compressed, csc_of, csr_sum, csr_transposed, csr_without_zeros, matvec, sorted_entries
 from ..core.linalg import Factorize, dense_threads, factorize_splu, get_linear_solver
 from ..core.pages import small_pages
 from ..core.parameters import Discretization, OperatingPoint, takes
@@ -634,9 +634,13 @@ def _pattern_of(t: np.ndarray, n: int, facets: np.ndarray, edge: np.ndarray) -> 
             or np.bincount(edge.ravel(), minlength=n_edges).max(initial=0) > 2):
         return None
     nodes = np.arange(n)
-    rows = np.concatenate([facets[0], facets[1], nodes])
-    cols = np.concatenate([facets[1], facets[0], nodes])
-    P = sorted_entries(rows, cols, np.arange(rows.size, dtype=float), n)
+    # each row's entries below, on and above the diagonal in this order: with scikit-fem's facets (sorted by their
+    # lower, then higher node) the conversion's rows come out sorted, without the sort (0.06 against 0.10 ms at
+    # 1,936 nodes, CPU, mean of 2,000); the slots as numbered above, the same arrays
+    rows = np.concatenate([facets[1], nodes, facets[0]])
+    cols = np.concatenate([facets[0], nodes, facets[1]])
+    slots = np.concatenate([n_edges + np.arange(n_edges), 2 * n_edges + nodes, np.arange(n_edges)])
+    P = sorted_entries(rows, cols, slots.astype(float), n)
     take = P.data.astype(np.int64)
     if take.size != rows.size:   # (repeated facets)
         return None
@@ -722,53 +726,81 @@ def _stiffness_of(cells: _Cells, w: np.ndarray, pattern: _P1Pattern | None = Non
     triangle (``A + A^T``), the diagonal from the rows' sums (a triangle's barycentric gradients sum to zero): 3
     entries a triangle instead of 9; the entries that sum to exactly zero, across the diagonals of a square
     grid, are left out. On the mesh's P1 ``pattern`` (:func:`_stiffness_pattern`) without a sort
-    (:func:`_stiffness_on`); without one by scipy's sparse sums (the COO conversion of ``U``, ``U + U^T``, the
-    rows' sums), which the pattern's give bit for bit (CPU, mean of 300 calls, load ~4: 0.17-0.18 against
-    0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against 0.88-0.93 ms on a 70 x 70 grid; a
-    mesh's second call, the pattern built from scikit-fem's edges, 0.75 and 2.5 ms)."""
+    (:func:`_stiffness_on`); without one (a mesh's first stiffness) by scipy's kernels of those sums on the arrays
+    (:func:`_stiffness_converted`). Both give bit for bit scipy's sparse sums
+    (the COO conversion of ``U``, ``U + U^T``, the rows' sums), the pattern's without their sorts (CPU, mean of
+    300 calls, load ~4: 0.17-0.18 against 0.38-0.45 ms at the pocket pad's 1,936 nodes, 0.81-0.86 against
+    0.88-0.93 ms on a 70 x 70 grid; a mesh's second call, the pattern built from scikit-fem's edges, 0.75 and
+    2.5 ms)."""
     vals = _edge_terms(cells, w)
     if pattern is not None:
         return _stiffness_on(pattern, vals)
-    t, n = cells.t, cells.n
+    return _stiffness_converted(cells.t, vals, cells.n)
+
+
+def _stiffness_converted(t: np.ndarray, vals: np.ndarray, n: int) -> sp.csr_matrix:
+    """:func:`_stiffness_of` from the edge terms ``vals`` without a pattern: scipy's sparse sums by its own kernels on
+    the arrays, without its sparse objects between them (:mod:`bearingfe.core.compressed`): ``U`` the conversion of
+    the terms at each triangle's node pairs ``(0, 1), (1, 2), (2, 0)`` (:func:`~bearingfe.core.compressed.sorted_entries`),
+    ``A = U + U^T`` (:func:`~bearingfe.core.compressed.csr_sum`, sums of zero dropped), the rows' sums by numpy's
+    ``add.reduceat`` over the rows with entries (as scipy's ``sum(axis=1)``) and ``A`` plus the negated nonzero sums
+    on the diagonal (``a + (-d)``, the number ``a - d`` of scipy's ``A - diag(d)``): the same arrays."""
     a, b = [0, 1, 2], [1, 2, 0]
-    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(n, n))
-    A = U + U.T
-    return (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+    U = sorted_entries(t[a].ravel(), t[b].ravel(), vals, n)
+    A = csr_sum(U, csr_transposed(U))
+    sums = np.zeros(n)
+    rows = np.flatnonzero(A.indptr[1:] > A.indptr[:-1])
+    if rows.size:
+        sums[rows] = np.add.reduceat(A.data, A.indptr[rows])
+    on = np.flatnonzero(sums)   # (scipy's diagonal matrix keeps the nonzero values only)
+    indptr = np.zeros(n + 1, A.indptr.dtype)
+    indptr[on + 1] = 1
+    np.cumsum(indptr, out=indptr)
+    return csr_sum(A, compressed(-sums[on], on.astype(A.indptr.dtype), indptr, (n, n), canonical=True))
 
 
 def _stiffness_on(pattern: _P1Pattern, vals: np.ndarray) -> sp.csr_matrix:
     """:func:`_stiffness_of` from the edge terms ``vals`` on the mesh's P1 ``pattern``: each edge's (at most two)
-    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), the entries that are zero
-    left out (as scipy's sums drop them), each row's remaining off-diagonal entries summed by numpy's
-    ``add.reduceat`` over the rows that have any (as scipy's ``sum(axis=1)``) and negated onto the diagonal, a
-    zero diagonal left out. The same arrays bit for bit as the sparse sums, without their sorts."""
+    terms summed (``np.bincount``; two terms in any order: the entry of ``U + U^T``), then the rows' sums
+    (:func:`_rows_summed`). The same arrays bit for bit as the sparse sums, without their sorts."""
     n_edges, n = pattern.n_edges, pattern.diagonal.size
     per_edge = np.bincount(pattern.edge.ravel(), weights=vals, minlength=n_edges)
     slots = np.zeros(2 * n_edges + n)
     slots[:n_edges] = per_edge
     slots[n_edges:2 * n_edges] = per_edge
-    data = slots[pattern.take]
-    off = data[pattern.off]
-    off_ptr = pattern.indptr - np.arange(n + 1)   # each row's off-diagonal entries among them (one diagonal a row)
-    if not np.all(off):   # (grids' diagonals): the rows' sums run over the nonzero entries only, as scipy's
-        nonzero = off != 0
-        off = off[nonzero]
+    return _rows_summed(slots[pattern.take], pattern.indices, pattern.indptr, pattern.diagonal, pattern.off)
+
+
+def _rows_summed(data: np.ndarray, indices: np.ndarray, indptr: np.ndarray, diagonal: np.ndarray,
+                 off: np.ndarray) -> sp.csr_matrix:
+    """The stiffness from its off-diagonal entries: ``data`` (written in place) on the canonical CSR arrays
+    ``indices`` and ``indptr`` of ``n`` rows with one diagonal entry each (at ``diagonal``; ``off`` the mask of
+    the others). The entries that are zero left out (as scipy's sums drop them), each row's remaining off-diagonal
+    entries summed by numpy's ``add.reduceat`` over the rows that have any (as scipy's ``sum(axis=1)``) and
+    negated onto the diagonal, a zero diagonal left out: ``A - diag(A 1)`` as scipy's sparse sums give it."""
+    n = diagonal.size
+    off_values = data[off]
+    off_ptr = indptr - np.arange(n + 1)   # each row's off-diagonal entries among them (one diagonal a row)
+    if not np.all(off_values):   # (grids' diagonals): the rows' sums run over the nonzero entries only, as scipy's
+        nonzero = off_values != 0
+        off_values = off_values[nonzero]
         counts = np.zeros(nonzero.size + 1, np.int64)
         np.cumsum(nonzero, out=counts[1:])
         off_ptr = counts[off_ptr]
     sums = np.zeros(n)
     rows = np.flatnonzero(off_ptr[1:] > off_ptr[:-1])
     if rows.size:
-        sums[rows] = np.add.reduceat(off, off_ptr[rows])
-    data[pattern.diagonal] = -sums
-    indices, indptr = pattern.indices, pattern.indptr
+        sums[rows] = np.add.reduceat(off_values, off_ptr[rows])
+    data[diagonal] = -sums
     if not np.all(data):
         keep = data != 0
         data, indices = data[keep], indices[keep]
         counts = np.zeros(keep.size + 1, np.int64)
         np.cumsum(keep, out=counts[1:])
-        indptr = counts[indptr].astype(pattern.indptr.dtype)
-    return compressed(data, indices.copy(), indptr.copy(), (n, n), canonical=True)
+        indptr = counts[indptr].astype(indptr.dtype)
+    else:
+        indices, indptr = indices.copy(), indptr.copy()
+    return compressed(data, indices, indptr, (n, n), canonical=True)
 
 
 def _edge_terms(cells: _Cells, w: np.ndarray) -> np.ndarray:
@@ -1573,8 +1605,7 @@ def _assemble(ops: Operators, mesh: SupportMesh, film: Film, wedge: float, squee
         rec = _Streamline(d=d, flux=f, nodes=nodes, weights=w, up=up, scale=scale, up_scale=up_scale, pattern=pattern)
         C, C_cavity = rec.matrices(n, np.zeros(f.size, bool))
     else:
-        C = sp.coo_matrix((np.concatenate([f, -f]), (np.concatenate([fi, fj]), np.concatenate([up, up]))),
-                          shape=(n, n)).tocsr()
+        C = sorted_entries(np.concatenate([fi, fj]), np.concatenate([up, up]), np.concatenate([f, -f]), n)
     area = _load(cells, None)
     no_squeeze = squeeze[0] == 0.0 and squeeze[1] == 0.0   # as _rate: dh/dt = 0, its load 0
     storage = np.zeros(n) if no_squeeze else _load(cells, hdot_q)
@@ -1732,9 +1763,7 @@ def _with_storage(C: sp.csr_matrix, storage: np.ndarray) -> sp.csr_matrix:
     same arrays bit for bit, without the diagonal matrix and the sparse sum (0.04 against 0.16 ms CPU at 529
     nodes, mean of 2,000 calls)."""
     if C.format == "csr" and C.has_canonical_format and not np.any(storage):
-        G = C.copy()
-        G.eliminate_zeros()
-        return G
+        return csr_without_zeros(C)
     return (C + sp.diags(storage)).tocsr()
 
 

@@ -96,21 +96,51 @@ def test_every_function_gives_scipys_arrays_on_either_path(monkeypatch):
     x = rng.normal(size=n)
     rows, cols = np.nonzero(A.toarray())
     values = A.toarray()[rows, cols]
+    Z = A.copy()   # explicit zeros: every third stored entry, the first and the last
+    Z.data[::3], Z.data[-1] = 0.0, 0.0
 
     def results():
         return {"compressed": cm.compressed(A.data, A.indices, A.indptr, A.shape, canonical=True),
                 "sum": cm.csr_sum(A, B), "product": cm.csr_product(A, B), "transposed": cm.csr_transposed(A), "csc": cm.csc_of(A),
-                "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x)}
+                "sorted": cm.sorted_entries(rows, cols, values, n), "matvec": cm.matvec(A, x),
+                "without_zeros": cm.csr_without_zeros(Z)}
 
     want = {"compressed": A, "sum": (A + B).tocsr(), "product": (A @ B).tocsr(), "transposed": A.T.tocsr(), "csc": A.tocsc(),
-            "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x}
+            "sorted": sp.csr_matrix((values, (rows, cols)), shape=(n, n)), "matvec": A @ x, "without_zeros": Z.copy()}
+    want["without_zeros"].eliminate_zeros()
     want["sorted"].sort_indices()
     fast = results()
     monkeypatch.setattr(cm, "kernels_usable", lambda: False)
     public = results()
     for got in (fast, public):
         assert np.array_equal(got["matvec"], want["matvec"])
-        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted"):
+        for key in ("compressed", "sum", "product", "transposed", "csc", "sorted", "without_zeros"):
             assert got[key].format == want[key].format and got[key].shape == want[key].shape
             for name in ("indptr", "indices", "data"):
                 assert np.array_equal(getattr(got[key], name), getattr(want[key], name)), (key, name)
+
+
+def test_sorted_entries_sums_repeated_places_as_scipys_conversion(monkeypatch):
+    """Places given two and three times, in shuffled order (as the P1 stiffness of a fresh mesh gives each edge's
+    terms both ways): sorted_entries sums them as scipy's conversion does (``coo_tocsr``, ``csr_sort_indices``,
+    ``csr_sum_duplicates``), the same arrays bit for bit (reference: ``sp.csr_matrix((values, (rows, cols)))``),
+    on the kernels and on the public path; entries that sum to zero are kept, as scipy keeps them; already sorted
+    places (no sort needed) too."""
+    rng = np.random.default_rng(23)
+    n = 31
+    places = rng.permutation(n * n)[:200]
+    places = np.concatenate([places, places[:60], places[:20]])[rng.permutation(280)]
+    rows, cols = places // n, places % n
+    values = rng.normal(size=places.size)
+    values[places == places[0]] = [1.5, -1.5, 0.0][: int(np.sum(places == places[0]))]
+    for order in (np.arange(places.size), np.argsort(places, kind="stable")):
+        want = sp.csr_matrix((values[order], (rows[order], cols[order])), shape=(n, n))
+        got = cm.sorted_entries(rows[order], cols[order], values[order], n)
+        with monkeypatch.context() as m:
+            m.setattr(cm, "kernels_usable", lambda: False)
+            public = cm.sorted_entries(rows[order], cols[order], values[order], n)
+        for M in (got, public):
+            assert M.has_canonical_format and M.nnz == 200
+            for name in ("indptr", "indices", "data"):
+                assert np.array_equal(getattr(M, name), getattr(want, name)), name
+                assert getattr(M, name).dtype == getattr(want, name).dtype

@@ -862,6 +862,32 @@ def test_stiffness_on_the_pattern_found_at_the_second_call_equals_scipys_sums():
                 assert want.nnz < pattern.indices.size   # the zero entries left out
 
 
+def test_first_stiffness_is_scipys_sums_on_any_triangles(monkeypatch):
+    """A mesh's first stiffness (no pattern: :func:`_stiffness_converted`, scipy's kernels on the arrays) equals
+    scipy's sparse sums bit for bit (reference: ``U`` by the COO conversion, ``U + U^T``, ``A - diag(A 1)``) also
+    where the arrays are not a mesh's: an edge in four triangles (a triangle repeated), a triangle with a node twice,
+    terms that cancel and zero terms; on the kernels and with them declared unusable (scipy's own operations)."""
+    import scipy.sparse as sp
+    from bearingfe.core import compressed as cm
+
+    rng = np.random.default_rng(29)
+    n = 12
+    t = np.sort(rng.choice(n, size=(40, 3), replace=True), axis=1).T   # some triangles with a node twice
+    t = np.concatenate([t, t[:, :3]], axis=1)                          # repeated triangles: edges in 3-4 of them
+    vals = rng.normal(size=3 * t.shape[1])
+    vals[::5] = 0.0
+    vals[1::7] = -vals[2::7][: vals[1::7].size]
+    a, b = [0, 1, 2], [1, 2, 0]
+    U = sp.csr_matrix((vals, (t[a].ravel(), t[b].ravel())), shape=(n, n))
+    A = U + U.T
+    want = (A - sp.diags(np.asarray(A.sum(axis=1)).ravel())).tocsr()
+    for usable in (True, False):
+        monkeypatch.setattr(cm, "kernels_usable", lambda: usable)
+        got = fv._stiffness_converted(t, vals, n)
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name)), (usable, name)
+
+
 def test_band_set_with_the_callers_pattern_proposes_the_same_set():
     """:func:`_band_set` given the caller's ``|K| + |Gc|`` (as :func:`_two_grid_set` passes the one it found its
     fronts on) proposes the same set as when it builds that pattern itself (the same pattern: the same band, the

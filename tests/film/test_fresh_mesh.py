@@ -202,11 +202,16 @@ def test_pattern_blocks_are_scipys_fancy_indexing():
 @pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
 def test_facet_geometry_is_the_facet_basis_geometry(surface, element):
     # the pocket contour's points, normals and weights without the basis functions; the reference is the
-    # facet basis they were taken from before: the same numbers, bit for bit (straight and curved maps)
+    # facet basis they were taken from before: the same numbers, bit for bit (straight and curved maps); first
+    # on a straight map without scikit-fem's map of every facet (the facets' own, _facet_map), then with it
     ops = operators(_mesh(surface), element)
     facets = ops.mesh.boundaries["inlet"]
-    fb = film_operators.facet_basis(ops.basis, facets, 8)
+    straight = type(ops.basis.mapping).__name__ == "MappingAffine"
+    assert not hasattr(ops.basis.mapping, "_B") or not straight
     x, n, dx = film_operators.facet_geometry(ops.basis, facets, 8)
+    assert not hasattr(ops.basis.mapping, "_B") or not straight
+    fb = film_operators.facet_basis(ops.basis, facets, 8)
+    assert all(np.array_equal(u, v) for u, v in zip((x, n, dx), film_operators.facet_geometry(ops.basis, facets, 8)))
     np.testing.assert_array_equal(x, np.asarray(fb.global_coordinates()))
     np.testing.assert_array_equal(n, np.asarray(fb.normals))
     np.testing.assert_array_equal(dx, np.asarray(fb.dx))
@@ -246,8 +251,8 @@ def test_facet_tables_are_the_facet_basis_numbers(surface, element):
     # facet basis; the reference is scikit-fem's facet basis: the same numbers, bit for bit (straight and curved)
     ops = operators(_mesh(surface), element)
     facets = np.concatenate([ops.mesh.boundaries["inlet"], ops.mesh.boundaries["side"]])
+    mine = film_operators.facet_tables(ops.basis, facets, 6)   # (before the facet basis builds every facet's map)
     fb = film_operators.facet_basis(ops.basis, facets, 6)
-    mine = film_operators.facet_tables(ops.basis, facets, 6)
     np.testing.assert_array_equal(mine.dofs, fb.element_dofs)
     for j, phi in enumerate(fb.basis):
         np.testing.assert_array_equal(mine.tables[0, j], np.asarray(phi[0]))
@@ -327,3 +332,23 @@ def test_boundary_facet_triangles_from_t2f_are_the_node_pair_searchs(surface, or
     for facets in (np.concatenate([every[:3], interior]), np.concatenate([inlet, inlet[:2]])):
         assert np.array_equal(film_operators.boundary_facet_triangles(copy.deepcopy(m), facets),
                               mesh.mesh.f2t[0, facets])
+
+
+@pytest.mark.parametrize("surface, element", [(RECTANGLE, "P1"), (RECTANGLE, "P2"), (CIRCLE, "P2")])
+def test_interior_dofs_and_corner_facets_are_their_definitions(surface, element):
+    # the interior dofs by a mask of the outline's and the pockets' dofs, and each outflow group's facets at the
+    # dofs it shares with another; the references are the set operations they replace (np.setdiff1d of
+    # np.union1d; the shared dofs by np.unique, each a vertex dof by np.isin): the same arrays
+    ops = operators(_mesh(surface), element)
+    basis, m = ops.basis, ops.mesh.mesh
+    assert np.array_equal(ops.interior, np.setdiff1d(np.arange(basis.N), np.union1d(ops.outer, ops.inlet)))
+    groups = {k: v for k, v in ops.flow_groups.items() if k != "inlet"}
+    shared = np.unique(np.concatenate([d[w < 1] for d, w in groups.values()]))
+    vertex = np.asarray(basis.nodal_dofs)[0]
+    assert shared.size and np.isin(shared, vertex).all()
+    owner = np.full(basis.N, -1)
+    owner[vertex] = np.arange(vertex.size)
+    for name in groups:
+        f = np.asarray(ops.mesh.boundaries[name])
+        near = f[np.isin(m.facets[:, f], owner[shared]).any(axis=0)]
+        assert np.array_equal(ops.facet_groups.get(name, np.zeros(0, f.dtype)), near), name

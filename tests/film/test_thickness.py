@@ -232,3 +232,26 @@ def test_profile_film_interpolates_by_its_definition(points, compared, block, mo
     assert np.array_equal(got, [_profile_by_definition(v, s, h) for v in x])
     grid = x[:-(x.size % 6) or None].reshape(6, -1).T   # (n, 6), not contiguous
     assert np.array_equal(film.thickness(grid, np.zeros(grid.shape)), got[:grid.size].reshape(6, -1).T)
+
+
+def test_profile_pieces_are_found_once_per_knots(monkeypatch):
+    """The pieces of a profile's knots (:func:`_pieces`) are kept per knots (their bytes): the second evaluation
+    takes the same read-only arrays, equal to those found afresh; other knots (one abscissa moved by one ulp) get
+    their own; past ``PIECES_KEPT`` knots the table starts again. The films' values are the definition's either way
+    (reference: :func:`_profile_by_definition`)."""
+    from bearingfe.film import thickness
+
+    monkeypatch.setattr(thickness, "_PIECES", {})
+    monkeypatch.setattr(thickness, "PIECES_KEPT", 2)
+    points = ((0.0, 1.866), (0.7, 1.866), (0.7, 1.0), (1.0, 1.0))
+    moved = ((0.0, 1.866), (0.7, 1.866), (float(np.nextafter(0.7, 1.0)), 1.0), (1.0, 1.0))
+    x = np.linspace(-0.2, 1.2, 57)
+    for pts in (points, moved, points, ((0.0, 2.0), (0.5, 1.0), (1.0, 2.0)), points):
+        s, h = (np.array([p[k] for p in pts]) for k in (0, 1))
+        got = bf.ProfileFilm(pts).thickness(x, np.zeros_like(x))
+        assert np.array_equal(got, [_profile_by_definition(v, list(s), list(h)) for v in x])
+        kept = thickness._pieces_kept(s, h)
+        assert kept is thickness._pieces_kept(s.copy(), h.copy()) and len(thickness._PIECES) <= 2
+        assert all(not a.flags.writeable and np.array_equal(a, b) for a, b in zip(kept, thickness._pieces(s, h)))
+    knots = [tuple(np.array([p[k] for p in pts]) for k in (0, 1)) for pts in (points, moved)]
+    assert [int(thickness._pieces_kept(*k)[0][1]) for k in knots] == [2, 1]   # the step's piece moved on, or its own
