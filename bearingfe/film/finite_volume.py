@@ -2259,7 +2259,8 @@ BAND_PASSES = 3
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
               y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
               passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
-              iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None) -> np.ndarray:
+              iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None,
+              banded_only: bool = False) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
@@ -2270,13 +2271,25 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
     correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
     and its active-set iterations in a pass at most; ``pattern``: ``|K| + |Gc|`` (CSR) where the caller has it
-    (built here otherwise)."""
+    (built here otherwise); ``banded_only``: return ``new`` as it is where the band's matrices do not factor
+    by banded LU (:func:`_band_factorize` takes SuperLU: a band too wide to pay for itself)."""
     if pattern is None:
         pattern = (abs(K) + abs(Gc)).tocsr()
     band = (new != cav) if seed is None else seed.copy()
     for _ in range(rings):
         band = band | (pattern @ band.astype(float) > 0)
     B, out = np.flatnonzero(band), np.flatnonzero(~band)
+    # |KBB| + |GcBB| as the band's rows and columns of |K| + |Gc| (sorted: the same arrays), so that a band
+    # refused (banded_only) is found before the matrices' slices
+    band_pattern = pattern[B][:, B]
+    band_pattern.sort_indices()
+    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
+    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
+    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
+    # narrow (_band_factorize); Woodbury for a few switches, as globally
+    band_factorize = _band_factorize(band_pattern, order)
+    if banded_only and not isinstance(band_factorize, _BandedLU):
+        return new
     co = cav[out]
     KB, GcB, GB = K[B], Gc[B], G[B]
     KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
@@ -2285,12 +2298,7 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     c = new[B].copy()
     y = y.copy()
     passes = passes if solve is not None else 1
-    band_pattern = (abs(KBB) + abs(GcBB)).tocsr()
-    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
-    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
-    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
-    # narrow (_band_factorize); Woodbury for a few switches, as globally
-    band_solver = _SetSolver(KBB, GcBB, _band_factorize(band_pattern, order))
+    band_solver = _SetSolver(KBB, GcBB, band_factorize)
     last = None
     for npass in range(passes):
         yo = y[out]
@@ -2340,6 +2348,16 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 #: (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
 #: switching instead of :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
 TWO_GRID_FROM = 8000
+#: Unknowns from which, below :data:`TWO_GRID_FROM`, a nested start takes :func:`_two_grid_set` where its band's
+#: matrices factor by banded LU (:func:`_band_factorize`: the band around short fronts is thin), and else starts
+#: from the carried set as it is (the band of many fronts, factored by SuperLU, cost more than it saved). CPU time
+#: of cold solves on fresh meshes, min of 11 interleaved, load 1-1.7 on 2 cores: docs/jfo_gmsh.md's pocket pad on
+#: its 6,336-node grid 49.5-54.2 against 56.9-58.1 ms (1 fine factorization against 2; band 956 of 5,952
+#: unknowns), the 5 x 5 dimples of docs/jfo_dimples.md at 80 x 80 cells 69.9-72.4 against 77.8-78.4 ms (1 against
+#: 3); refused (a band of 3,136 of 4,761 unknowns at 70 x 70 cells, SuperLU): 63.6-67.7 against 63.0-63.1 ms, the
+#: test and the interpolated start it needs about 1.6 ms; the grooved journal's 5,062-node grid takes a band of 402
+#: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21).
+TWO_GRID_BANDED_FROM = 4000
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
 TWO_GRID_PASSES = 4
 #: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
@@ -2381,7 +2399,14 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
     rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
     return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS, pattern=pattern)
+                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS, pattern=pattern,
+                     banded_only=cav.size < TWO_GRID_FROM)
+
+
+def _takes_two_grid(unknowns: int) -> bool:
+    """Whether a nested start of ``unknowns`` unknowns tries :func:`_two_grid_set`: from :data:`TWO_GRID_FROM`
+    unknowns on, and from :data:`TWO_GRID_BANDED_FROM` where its band factors by banded LU (read at each call)."""
+    return unknowns >= min(TWO_GRID_FROM, TWO_GRID_BANDED_FROM)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -2394,15 +2419,16 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
     start's ``(y, correct)``, the coarse solution on the unknowns (``P`` or ``theta`` by ``cavity``) and its
-    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns the set is first iterated on a band
-    around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
+    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is
+    first iterated on a band around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before
+    any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
     solver = _SetSolver(KII, GcII, factorize, unk)
-    if guess is not None and not (fixed or rough) and cav.size >= TWO_GRID_FROM:
+    if guess is not None and not (fixed or rough) and _takes_two_grid(cav.size):
         cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
@@ -3011,7 +3037,7 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
     stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
-    coarse level) and from :data:`TWO_GRID_FROM` unknowns, also returns the start of :func:`_two_grid_set`: the
+    coarse level) and from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: the
     coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
@@ -3044,7 +3070,7 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
     cavity = value < 0.0
     start = None
-    if guess and couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
+    if guess and couette == "grid" and _takes_two_grid(unk.rep.size) and csol.solve is not None:
         # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
         index = np.full(values.shape, -1)
         index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
