@@ -2358,6 +2358,16 @@ TWO_GRID_FROM = 8000
 #: test and the interpolated start it needs about 1.6 ms; the grooved journal's 5,062-node grid takes a band of 402
 #: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21).
 TWO_GRID_BANDED_FROM = 4000
+#: Whether a nested start of the streamline flux (its coarse level a ``grid_mesh``, :func:`_grid_under`) also takes
+#: :func:`_two_grid_set` (as the grid flux does; the coarse level's correction interpolated bilinearly to the
+#: unstructured mesh's unknowns) on surfaces without recesses. CPU time of one cold solve each, load ~5 on 2
+#: cores, docs/jfo_gmsh.md's meshes: pocket pad 28,947 nodes 438 against 552 ms, contour-refined 8,962 nodes 109
+#: against 117 ms (1 fine factorization against 2), grooved journal 22,698 nodes 332 against 387 ms and
+#: contour-refined 26,414 nodes 374 against 438 ms (1 against 2); the answers within 2e-13 in theta. Not on
+#: surfaces with recesses: on the dimple's meshes (the streamline flux refers a cavitated contour node's theta to
+#: its deepest film) the band's start ended on another complementarity solution (1 and 5 nodes' sets differ at
+#: 11,903 and 16,808 nodes, theta by up to 0.23), and at 6,029 nodes took 5 fine factorizations against 3.
+TWO_GRID_STREAMLINE = True
 #: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
 TWO_GRID_PASSES = 4
 #: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
@@ -2407,6 +2417,16 @@ def _takes_two_grid(unknowns: int) -> bool:
     """Whether a nested start of ``unknowns`` unknowns tries :func:`_two_grid_set`: from :data:`TWO_GRID_FROM`
     unknowns on, and from :data:`TWO_GRID_BANDED_FROM` where its band factors by banded LU (read at each call)."""
     return unknowns >= min(TWO_GRID_FROM, TWO_GRID_BANDED_FROM)
+
+
+def _two_grid_flux(mesh: SupportMesh, couette: str) -> bool:
+    """Whether a nested start with the Couette flux ``couette`` on ``mesh`` carries :func:`_two_grid_set`'s start:
+    the grid flux; the streamline flux where :data:`TWO_GRID_STREAMLINE` and ``mesh``'s surface has no recesses
+    (read at each call)."""
+    if couette == "grid":
+        return True
+    return (couette == "streamline" and TWO_GRID_STREAMLINE and mesh.surface is not None
+            and not mesh.surface.recesses)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -2525,7 +2545,7 @@ def _limited_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: 
 
 
 def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
-                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
+                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators, guess=None):
     """``couette="streamline"``: the active set on the streamline flux; where it ends with ``theta < 0`` or
     cycles (the flux is not positive: a cell's outflow takes theta of its neighbours), the segments out of
     those nodes take theta of their upwind node instead (first-order upwind, positive) and the problem is
@@ -2539,7 +2559,9 @@ def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_
     start = cavity
     for _ in range(STREAMLINE_PASSES):
         try:
-            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
+            first, guess = guess, None   # a nested start's guess starts the first pass only
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True,
+                             guess=first)
         except JFOError as error:
             switching = getattr(error, "switching", None)
             if switching is None or switching.size == 0:
@@ -3037,7 +3059,8 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
     stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
-    coarse level) and from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: the
+    coarse level) of the fluxes of :func:`_two_grid_flux` and from :data:`TWO_GRID_FROM` unknowns
+    (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: the
     coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
@@ -3070,7 +3093,7 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
     cavity = value < 0.0
     start = None
-    if guess and couette == "grid" and _takes_two_grid(unk.rep.size) and csol.solve is not None:
+    if guess and _two_grid_flux(mesh, couette) and _takes_two_grid(unk.rep.size) and csol.solve is not None:
         # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
         index = np.full(values.shape, -1)
         index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
@@ -3123,7 +3146,7 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
             nested = dict(nested, first_guess_factorizations=1.0)  # beside the active set's own count
         if couette == "streamline" and cavitation == "jfo":
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
-                                                      max_iterations, ops)
+                                                      max_iterations, ops, guess=guess)
         elif cavitation == "jfo":
             sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough,
                              guess=guess)
