@@ -2256,11 +2256,32 @@ BAND_ITERATIONS = 20
 BAND_PASSES = 3
 
 
+def _grown(seed: np.ndarray, pattern: sp.csr_matrix, rings: int) -> np.ndarray:
+    """The boolean ``seed`` grown by ``rings`` rings of neighbours in ``pattern`` (``|K| + |Gc|``, CSR)."""
+    band = seed.copy()
+    for _ in range(rings):
+        band = band | (pattern @ band.astype(float) > 0)
+    return band
+
+
+def _band_plan(pattern: sp.csr_matrix, band: np.ndarray) -> tuple[np.ndarray, np.ndarray, Factorize]:
+    """The boolean ``band``, its unknowns ``B`` and the factorization of its matrices (:func:`_band_factorize`
+    in the reverse Cuthill-McKee order of the band's rows and columns of ``pattern``, ``|K| + |Gc|``)."""
+    B = np.flatnonzero(band)
+    band_pattern = pattern[B][:, B]   # |KBB| + |GcBB| (sorted: the same arrays)
+    band_pattern.sort_indices()
+    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
+    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
+    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
+    # narrow (_band_factorize); Woodbury for a few switches, as globally
+    return band, B, _band_factorize(band_pattern, order)
+
+
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
               y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
               passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
               iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None,
-              banded_only: bool = False) -> np.ndarray:
+              plan: tuple | None = None) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
@@ -2271,25 +2292,14 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
     correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
     and its active-set iterations in a pass at most; ``pattern``: ``|K| + |Gc|`` (CSR) where the caller has it
-    (built here otherwise); ``banded_only``: return ``new`` as it is where the band's matrices do not factor
-    by banded LU (:func:`_band_factorize` takes SuperLU: a band too wide to pay for itself)."""
-    if pattern is None:
-        pattern = (abs(K) + abs(Gc)).tocsr()
-    band = (new != cav) if seed is None else seed.copy()
-    for _ in range(rings):
-        band = band | (pattern @ band.astype(float) > 0)
-    B, out = np.flatnonzero(band), np.flatnonzero(~band)
-    # |KBB| + |GcBB| as the band's rows and columns of |K| + |Gc| (sorted: the same arrays), so that a band
-    # refused (banded_only) is found before the matrices' slices
-    band_pattern = pattern[B][:, B]
-    band_pattern.sort_indices()
-    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
-    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
-    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
-    # narrow (_band_factorize); Woodbury for a few switches, as globally
-    band_factorize = _band_factorize(band_pattern, order)
-    if banded_only and not isinstance(band_factorize, _BandedLU):
-        return new
+    (built here otherwise); ``plan``: the band and its factorization (:func:`_band_plan`) where the caller found
+    them (``seed`` and ``rings`` then unused)."""
+    if plan is None:
+        if pattern is None:
+            pattern = (abs(K) + abs(Gc)).tocsr()
+        plan = _band_plan(pattern, _grown((new != cav) if seed is None else seed, pattern, rings))
+    band, B, band_factorize = plan
+    out = np.flatnonzero(~band)
     co = cav[out]
     KB, GcB, GB = K[B], Gc[B], G[B]
     KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
@@ -2397,20 +2407,25 @@ def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
-                  y: np.ndarray, correct, tol: float, p_c: float) -> np.ndarray:
-    """The set a nested start carries (``cav``, with the coarse solution ``y`` interpolated), iterated without
-    a fine factorization: :func:`_band_set` on a band around its fronts (the unknowns with a neighbour of the
-    other kind), each pass followed by the coarse-grid correction ``correct`` of the residual (the far field's
-    response to the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes. The caller's
-    global solves on the returned set decide convergence: this only changes which set is factorized first."""
+                  start: Callable[[], tuple], tol: float, p_c: float) -> np.ndarray:
+    """The set a nested start carries (``cav``), iterated without a fine factorization: :func:`_band_set` on a
+    band around its fronts (the unknowns with a neighbour of the other kind) from the coarse solution interpolated
+    to the unknowns, each pass followed by the coarse-grid correction of the residual (the far field's response to
+    the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes; ``start()`` gives both, ``(y,
+    correct)``, called only once the band is taken. Below :data:`TWO_GRID_FROM` unknowns a band whose matrices do
+    not factor by banded LU is refused: ``cav`` as it is. The caller's global solves on the returned set decide
+    convergence: this only changes which set is factorized first."""
     pattern = (abs(K) + abs(Gc)).tocsr()
     f = cav.astype(float)
     front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
-    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
     rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
-    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS, pattern=pattern,
-                     banded_only=cav.size < TWO_GRID_FROM)
+    plan = _band_plan(pattern, _grown(front, pattern, rings))
+    if cav.size < TWO_GRID_FROM and not isinstance(plan[2], _BandedLU):
+        return cav
+    y, correct = start()
+    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=TWO_GRID_PASSES, converge=True,
+                     iterations=TWO_GRID_ITERATIONS, pattern=pattern, plan=plan)
 
 
 def _takes_two_grid(unknowns: int) -> bool:
@@ -2438,8 +2453,8 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     the solution of the last set once the next one differs from it in at most this many unknowns (a nested
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
-    start's ``(y, correct)``, the coarse solution on the unknowns (``P`` or ``theta`` by ``cavity``) and its
-    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is
+    start's :func:`_two_grid_start` (called for ``(y, correct)``, the coarse solution on the unknowns (``P`` or
+    ``theta`` by ``cavity``) and its coarse-grid correction of a residual, once a band is taken): from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is
     first iterated on a band around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before
     any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
@@ -2449,7 +2464,7 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
     solver = _SetSolver(KII, GcII, factorize, unk)
     if guess is not None and not (fixed or rough) and _takes_two_grid(cav.size):
-        cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
+        cav = _two_grid_set(KII, GcII, GII, b, cav, guess, tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - matvec(GII, full.astype(float))
@@ -3060,8 +3075,9 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
     stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
     coarse level) of the fluxes of :func:`_two_grid_flux` and from :data:`TWO_GRID_FROM` unknowns
-    (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: the
-    coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
+    (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: :func:`_two_grid_start` on this
+    coarse level, which builds the coarse solution interpolated to the unknowns and its coarse-grid correction
+    when called (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}, None
@@ -3094,29 +3110,42 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     cavity = value < 0.0
     start = None
     if guess and _two_grid_flux(mesh, couette) and _takes_two_grid(unk.rep.size) and csol.solve is not None:
-        # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
-        index = np.full(values.shape, -1)
-        index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
-        rows = np.tile(np.arange(unk.rep.size), 4)
-        cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
-                               index[k[0] + 1, k[1] + 1]])
-        w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
-        keep = cols >= 0
-        I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unk.rep.size, cp.shape[1]))
-        fixed = _pocket_values(coarse, cops, inlet_pressure)
-        p_all = cunk.S @ (csol.p - p_c)
-        p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
-        theta_all = cunk.S @ csol.theta
-        theta_all[cunk.fixed] = 1.0
-        y = np.where(cavity, I @ theta_all, I @ p_all)
-        Iu = (I @ cunk.S).tocsr()
-        IuT = Iu.T.tocsr()
-
-        def correct(r: np.ndarray) -> np.ndarray:
-            return Iu @ np.asarray(csol.solve(IuT @ r), float)
-
-        start = (y, correct)
+        start = functools.partial(_two_grid_start, coarse, cops, cunk, csol, inlet_pressure, p_c, cavity, lines,
+                                  values.shape, k, t)
     return cavity, info, start
+
+
+def _two_grid_start(coarse: SupportMesh, cops: Operators, cunk: FVUnknowns, csol: _Solution, inlet_pressure,
+                    p_c: float, cavity: np.ndarray, lines: list, shape: tuple, k: list, t: list) -> tuple:
+    """:func:`_two_grid_set`'s start from a nested start's coarse level (:func:`_nested_cavity`: its mesh,
+    operators, unknowns and solution; its grid ``lines``, ``shape`` of the nodes' values on them, the unknowns'
+    cells ``k`` and coordinates ``t`` in them): the coarse solution interpolated bilinearly to the unknowns (``P``
+    in the full film, ``theta`` in ``cavity``) and the coarse-grid correction of a residual, ``(y, correct)``;
+    built only once the band is taken."""
+    unknowns = k[0].size
+    cp = cops.basis.doflocs
+    # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
+    index = np.full(shape, -1)
+    index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
+    rows = np.tile(np.arange(unknowns), 4)
+    cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
+                           index[k[0] + 1, k[1] + 1]])
+    w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
+    keep = cols >= 0
+    I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unknowns, cp.shape[1]))
+    fixed = _pocket_values(coarse, cops, inlet_pressure)
+    p_all = cunk.S @ (csol.p - p_c)
+    p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
+    theta_all = cunk.S @ csol.theta
+    theta_all[cunk.fixed] = 1.0
+    y = np.where(cavity, I @ theta_all, I @ p_all)
+    Iu = (I @ cunk.S).tocsr()
+    IuT = Iu.T.tocsr()
+
+    def correct(r: np.ndarray) -> np.ndarray:
+        return Iu @ np.asarray(csol.solve(IuT @ r), float)
+
+    return y, correct
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
