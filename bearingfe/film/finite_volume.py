@@ -2368,6 +2368,13 @@ TWO_GRID_FROM = 8000
 #: test and the interpolated start it needs about 1.6 ms; the grooved journal's 5,062-node grid takes a band of 402
 #: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21).
 TWO_GRID_BANDED_FROM = 4000
+#: :data:`TWO_GRID_PASSES` of a band taken below :data:`TWO_GRID_FROM` (:data:`TWO_GRID_BANDED_FROM`): one, the
+#: band iterated from the interpolated coarse solution without the coarse level's corrections. CPU time of cold
+#: solves on fresh meshes, min of 9 interleaved, load ~4.4 on 2 cores, against 4 passes: the 5 x 5 dimples at 80 x 80
+#: cells 69.4 against 73.3 ms, docs/jfo_gmsh.md's pocket pad grid 6,336 nodes 53.8 against 55.2 ms and streamline
+#: 7,375 nodes 92.4 against 96.6 ms, the grooved journal grid 5,062 nodes 45.6 against 46.1 ms and contour-refined
+#: 7,731 nodes 99.6 against 99.8 ms (medians 46.2 against 48.1, 104.2 against 105.9); the same fine factorizations.
+TWO_GRID_BANDED_PASSES = 1
 #: Whether a nested start of the streamline flux (its coarse level a ``grid_mesh``, :func:`_grid_under`) also takes
 #: :func:`_two_grid_set` (as the grid flux does; the coarse level's correction interpolated bilinearly to the
 #: unstructured mesh's unknowns) on surfaces without recesses. CPU time of one cold solve each, load ~5 on 2
@@ -2424,7 +2431,8 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
         return cav
     y, correct = start()
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
-    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=TWO_GRID_PASSES, converge=True,
+    passes = TWO_GRID_PASSES if cav.size >= TWO_GRID_FROM else TWO_GRID_BANDED_PASSES
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=passes, converge=True,
                      iterations=TWO_GRID_ITERATIONS, pattern=pattern, plan=plan)
 
 
@@ -3139,11 +3147,13 @@ def _two_grid_start(coarse: SupportMesh, cops: Operators, cunk: FVUnknowns, csol
     theta_all = cunk.S @ csol.theta
     theta_all[cunk.fixed] = 1.0
     y = np.where(cavity, I @ theta_all, I @ p_all)
-    Iu = (I @ cunk.S).tocsr()
-    IuT = Iu.T.tocsr()
+    kept: list[sp.csr_matrix] = []   # the interpolation from the coarse unknowns and its transpose, at first use
 
     def correct(r: np.ndarray) -> np.ndarray:
-        return Iu @ np.asarray(csol.solve(IuT @ r), float)
+        if not kept:
+            Iu = (I @ cunk.S).tocsr()
+            kept.extend((Iu, Iu.T.tocsr()))
+        return kept[0] @ np.asarray(csol.solve(kept[1] @ r), float)
 
     return y, correct
 
