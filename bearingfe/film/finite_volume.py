@@ -2385,8 +2385,17 @@ TWO_GRID_BANDED_PASSES = 1
 #: its deepest film) the band's start ended on another complementarity solution (1 and 5 nodes' sets differ at
 #: 11,903 and 16,808 nodes, theta by up to 0.23), and at 6,029 nodes took 5 fine factorizations against 3.
 TWO_GRID_STREAMLINE = True
-#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
+#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was),
+#: from :data:`TWO_GRID_WIDE_FROM` unknowns on.
 TWO_GRID_PASSES = 4
+#: :data:`TWO_GRID_PASSES` from :data:`TWO_GRID_FROM` up to :data:`TWO_GRID_WIDE_FROM` unknowns (the narrow band).
+#: CPU time of cold solves on fresh meshes, min of 3-7 interleaved against 4 passes, load ~4.7 on 2 cores: the
+#: 5 x 5 dimples at 100, 140 and 200 cells 110.6 against 121.8, 222.7 against 233.6, 483 against 495 ms;
+#: docs/jfo_gmsh.md's pocket pad contour-refined 8,962 nodes 118.1 against 121.5 ms (medians 122.9 against
+#: 131.7), streamline 28,947 nodes 426 against 461 ms, the grooved journal streamline 22,698 nodes 359 against
+#: 368 ms and grid 19,674 nodes 217 against 218 ms (medians 221 against 232); the same fine factorizations. One
+#: pass cost more there (28,947 nodes: 488 ms).
+TWO_GRID_NARROW_PASSES = 2
 #: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
 #: :data:`TWO_GRID_WIDE_FROM` unknowns on (below: :data:`TWO_GRID_NARROW_RINGS`).
 TWO_GRID_RINGS = 6
@@ -2418,7 +2427,7 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
     """The set a nested start carries (``cav``), iterated without a fine factorization: :func:`_band_set` on a
     band around its fronts (the unknowns with a neighbour of the other kind) from the coarse solution interpolated
     to the unknowns, each pass followed by the coarse-grid correction of the residual (the far field's response to
-    the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes; ``start()`` gives both, ``(y,
+    the band's change, which is smooth), up to :func:`_two_grid_passes` passes; ``start()`` gives both, ``(y,
     correct)``, called only once the band is taken. Below :data:`TWO_GRID_FROM` unknowns a band whose matrices do
     not factor by banded LU is refused: ``cav`` as it is. The caller's global solves on the returned set decide
     convergence: this only changes which set is factorized first."""
@@ -2431,9 +2440,17 @@ def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.n
         return cav
     y, correct = start()
     tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
-    passes = TWO_GRID_PASSES if cav.size >= TWO_GRID_FROM else TWO_GRID_BANDED_PASSES
-    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=passes, converge=True,
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=_two_grid_passes(cav.size), converge=True,
                      iterations=TWO_GRID_ITERATIONS, pattern=pattern, plan=plan)
+
+
+def _two_grid_passes(unknowns: int) -> int:
+    """The passes of :func:`_two_grid_set`'s band at most for ``unknowns`` unknowns: :data:`TWO_GRID_PASSES` from
+    :data:`TWO_GRID_WIDE_FROM` on, :data:`TWO_GRID_NARROW_PASSES` from :data:`TWO_GRID_FROM`, else
+    :data:`TWO_GRID_BANDED_PASSES` (read at each call)."""
+    if unknowns >= TWO_GRID_WIDE_FROM:
+        return TWO_GRID_PASSES
+    return TWO_GRID_NARROW_PASSES if unknowns >= TWO_GRID_FROM else TWO_GRID_BANDED_PASSES
 
 
 def _takes_two_grid(unknowns: int) -> bool:
@@ -2462,9 +2479,9 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
     start's :func:`_two_grid_start` (called for ``(y, correct)``, the coarse solution on the unknowns (``P`` or
-    ``theta`` by ``cavity``) and its coarse-grid correction of a residual, once a band is taken): from :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is
-    first iterated on a band around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before
-    any factorization."""
+    ``theta`` by ``cavity``) and its coarse-grid correction of a residual, once a band is taken): from
+    :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is first iterated on a band around the fronts
+    of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
