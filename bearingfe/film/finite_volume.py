@@ -2366,7 +2366,10 @@ TWO_GRID_FROM = 8000
 #: unknowns), the 5 x 5 dimples of docs/jfo_dimples.md at 80 x 80 cells 69.9-72.4 against 77.8-78.4 ms (1 against
 #: 3); refused (a band of 3,136 of 4,761 unknowns at 70 x 70 cells, SuperLU): 63.6-67.7 against 63.0-63.1 ms, the
 #: test and the interpolated start it needs about 1.6 ms; the grooved journal's 5,062-node grid takes a band of 402
-#: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21).
+#: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21). Measured and left at 4,000: 1,500 (the
+#: streamline flux's nested starts from NESTED_MIN_UNSTRUCTURED) cost more on the pocket pad (streamline 1,936
+#: nodes 27.6 against 25.9 ms, contour-refined 2,741 nodes 33.6 against 31.6 ms, min of 15, load ~5; the same
+#: fine factorizations) and no less on the grooved journal (2,548 nodes 34.5 against 34.9 ms, 1 against 2).
 TWO_GRID_BANDED_FROM = 4000
 #: :data:`TWO_GRID_PASSES` of a band taken below :data:`TWO_GRID_FROM` (:data:`TWO_GRID_BANDED_FROM`): one, the
 #: band iterated from the interpolated coarse solution without the coarse level's corrections. CPU time of cold
