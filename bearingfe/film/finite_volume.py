@@ -2285,10 +2285,32 @@ BAND_ITERATIONS = 20
 BAND_PASSES = 3
 
 
+def _grown(seed: np.ndarray, pattern: sp.csr_matrix, rings: int) -> np.ndarray:
+    """The boolean ``seed`` grown by ``rings`` rings of neighbours in ``pattern`` (``|K| + |Gc|``, CSR)."""
+    band = seed.copy()
+    for _ in range(rings):
+        band = band | (pattern @ band.astype(float) > 0)
+    return band
+
+
+def _band_plan(pattern: sp.csr_matrix, band: np.ndarray) -> tuple[np.ndarray, np.ndarray, Factorize]:
+    """The boolean ``band``, its unknowns ``B`` and the factorization of its matrices (:func:`_band_factorize`
+    in the reverse Cuthill-McKee order of the band's rows and columns of ``pattern``, ``|K| + |Gc|``)."""
+    B = np.flatnonzero(band)
+    band_pattern = pattern[B][:, B]   # |KBB| + |GcBB| (sorted: the same arrays)
+    band_pattern.sort_indices()
+    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
+    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
+    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
+    # narrow (_band_factorize); Woodbury for a few switches, as globally
+    return band, B, _band_factorize(band_pattern, order)
+
+
 def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
               y: np.ndarray, new: np.ndarray, tol: float, tol_p: float, solve=None, seed: np.ndarray | None = None,
               passes: int = BAND_PASSES, converge: bool = False, rings: int = BAND_RINGS,
-              iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None) -> np.ndarray:
+              iterations: int = BAND_ITERATIONS, pattern: sp.csr_matrix | None = None,
+              plan: tuple | None = None) -> np.ndarray:
     """The active set iterated on a band of :data:`BAND_RINGS` neighbour rings around the unknowns where
     ``new`` differs from ``cav``, the unknowns outside the band held at the global solution ``y`` on ``cav``
     (their set is the same in both). With ``solve`` (the last global factorization's solve), each of
@@ -2299,13 +2321,14 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     grows from instead of the switched ones; ``passes``: the passes at most; ``converge``: stop once a pass's
     correction leaves the band's set as the band iteration left it; ``rings``, ``iterations``: the band's width
     and its active-set iterations in a pass at most; ``pattern``: ``|K| + |Gc|`` (CSR) where the caller has it
-    (built here otherwise)."""
-    if pattern is None:
-        pattern = (abs(K) + abs(Gc)).tocsr()
-    band = (new != cav) if seed is None else seed.copy()
-    for _ in range(rings):
-        band = band | (pattern @ band.astype(float) > 0)
-    B, out = np.flatnonzero(band), np.flatnonzero(~band)
+    (built here otherwise); ``plan``: the band and its factorization (:func:`_band_plan`) where the caller found
+    them (``seed`` and ``rings`` then unused)."""
+    if plan is None:
+        if pattern is None:
+            pattern = (abs(K) + abs(Gc)).tocsr()
+        plan = _band_plan(pattern, _grown((new != cav) if seed is None else seed, pattern, rings))
+    band, B, band_factorize = plan
+    out = np.flatnonzero(~band)
     co = cav[out]
     KB, GcB, GB = K[B], Gc[B], G[B]
     KBB, GcBB, GBB = KB[:, B].tocsc(), GcB[:, B].tocsc(), GB[:, B]
@@ -2314,12 +2337,7 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
     c = new[B].copy()
     y = y.copy()
     passes = passes if solve is not None else 1
-    band_pattern = (abs(KBB) + abs(GcBB)).tocsr()
-    order = np.asarray(reverse_cuthill_mckee(band_pattern, symmetric_mode=True))
-    # in the band's reverse Cuthill-McKee order (0.056 against 0.086 s for COLAMD on the 6.2e4-unknown band of
-    # the 600 x 600 dimples: thin, the per-column overhead dominates), by banded LU where that order's band is
-    # narrow (_band_factorize); Woodbury for a few switches, as globally
-    band_solver = _SetSolver(KBB, GcBB, _band_factorize(band_pattern, order))
+    band_solver = _SetSolver(KBB, GcBB, band_factorize)
     last = None
     for npass in range(passes):
         yo = y[out]
@@ -2369,8 +2387,47 @@ def _band_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarr
 #: (65 against 54 ms). Left out: stopping the coarse level below it earlier (2 % of its nodes
 #: switching instead of :data:`NESTED_ROUGH`) saved a coarse factorization at 3.6e5 but took 6 fine ones at 4e4.
 TWO_GRID_FROM = 8000
-#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was).
+#: Unknowns from which, below :data:`TWO_GRID_FROM`, a nested start takes :func:`_two_grid_set` where its band's
+#: matrices factor by banded LU (:func:`_band_factorize`: the band around short fronts is thin), and else starts
+#: from the carried set as it is (the band of many fronts, factored by SuperLU, cost more than it saved). CPU time
+#: of cold solves on fresh meshes, min of 11 interleaved, load 1-1.7 on 2 cores: docs/jfo_gmsh.md's pocket pad on
+#: its 6,336-node grid 49.5-54.2 against 56.9-58.1 ms (1 fine factorization against 2; band 956 of 5,952
+#: unknowns), the 5 x 5 dimples of docs/jfo_dimples.md at 80 x 80 cells 69.9-72.4 against 77.8-78.4 ms (1 against
+#: 3); refused (a band of 3,136 of 4,761 unknowns at 70 x 70 cells, SuperLU): 63.6-67.7 against 63.0-63.1 ms, the
+#: test and the interpolated start it needs about 1.6 ms; the grooved journal's 5,062-node grid takes a band of 402
+#: and saves a Woodbury step only, 43.4 against 41.0 ms (min of 21). Measured and left at 4,000: 1,500 (the
+#: streamline flux's nested starts from NESTED_MIN_UNSTRUCTURED) cost more on the pocket pad (streamline 1,936
+#: nodes 27.6 against 25.9 ms, contour-refined 2,741 nodes 33.6 against 31.6 ms, min of 15, load ~5; the same
+#: fine factorizations) and no less on the grooved journal (2,548 nodes 34.5 against 34.9 ms, 1 against 2).
+TWO_GRID_BANDED_FROM = 4000
+#: :data:`TWO_GRID_PASSES` of a band taken below :data:`TWO_GRID_FROM` (:data:`TWO_GRID_BANDED_FROM`): one, the
+#: band iterated from the interpolated coarse solution without the coarse level's corrections. CPU time of cold
+#: solves on fresh meshes, min of 9 interleaved, load ~4.4 on 2 cores, against 4 passes: the 5 x 5 dimples at 80 x 80
+#: cells 69.4 against 73.3 ms, docs/jfo_gmsh.md's pocket pad grid 6,336 nodes 53.8 against 55.2 ms and streamline
+#: 7,375 nodes 92.4 against 96.6 ms, the grooved journal grid 5,062 nodes 45.6 against 46.1 ms and contour-refined
+#: 7,731 nodes 99.6 against 99.8 ms (medians 46.2 against 48.1, 104.2 against 105.9); the same fine factorizations.
+TWO_GRID_BANDED_PASSES = 1
+#: Whether a nested start of the streamline flux (its coarse level a ``grid_mesh``, :func:`_grid_under`) also takes
+#: :func:`_two_grid_set` (as the grid flux does; the coarse level's correction interpolated bilinearly to the
+#: unstructured mesh's unknowns) on surfaces without recesses. CPU time of one cold solve each, load ~5 on 2
+#: cores, docs/jfo_gmsh.md's meshes: pocket pad 28,947 nodes 438 against 552 ms, contour-refined 8,962 nodes 109
+#: against 117 ms (1 fine factorization against 2), grooved journal 22,698 nodes 332 against 387 ms and
+#: contour-refined 26,414 nodes 374 against 438 ms (1 against 2); the answers within 2e-13 in theta. Not on
+#: surfaces with recesses: on the dimple's meshes (the streamline flux refers a cavitated contour node's theta to
+#: its deepest film) the band's start ended on another complementarity solution (1 and 5 nodes' sets differ at
+#: 11,903 and 16,808 nodes, theta by up to 0.23), and at 6,029 nodes took 5 fine factorizations against 3.
+TWO_GRID_STREAMLINE = True
+#: Passes of :func:`_two_grid_set` at most (it stops once a coarse correction leaves the band's set as it was),
+#: from :data:`TWO_GRID_WIDE_FROM` unknowns on.
 TWO_GRID_PASSES = 4
+#: :data:`TWO_GRID_PASSES` from :data:`TWO_GRID_FROM` up to :data:`TWO_GRID_WIDE_FROM` unknowns (the narrow band).
+#: CPU time of cold solves on fresh meshes, min of 3-7 interleaved against 4 passes, load ~4.7 on 2 cores: the
+#: 5 x 5 dimples at 100, 140 and 200 cells 110.6 against 121.8, 222.7 against 233.6, 483 against 495 ms;
+#: docs/jfo_gmsh.md's pocket pad contour-refined 8,962 nodes 118.1 against 121.5 ms (medians 122.9 against
+#: 131.7), streamline 28,947 nodes 426 against 461 ms, the grooved journal streamline 22,698 nodes 359 against
+#: 368 ms and grid 19,674 nodes 217 against 218 ms (medians 221 against 232); the same fine factorizations. One
+#: pass cost more there (28,947 nodes: 488 ms).
+TWO_GRID_NARROW_PASSES = 2
 #: Neighbour rings of the band of :func:`_two_grid_set` around the carried cavity's fronts, from
 #: :data:`TWO_GRID_WIDE_FROM` unknowns on (below: :data:`TWO_GRID_NARROW_RINGS`).
 TWO_GRID_RINGS = 6
@@ -2398,19 +2455,50 @@ def _band_factorize(pattern: sp.csr_matrix, order: np.ndarray) -> Factorize:
 
 
 def _two_grid_set(K: sp.csr_matrix, Gc: sp.csr_matrix, G: sp.csr_matrix, b: np.ndarray, cav: np.ndarray,
-                  y: np.ndarray, correct, tol: float, p_c: float) -> np.ndarray:
-    """The set a nested start carries (``cav``, with the coarse solution ``y`` interpolated), iterated without
-    a fine factorization: :func:`_band_set` on a band around its fronts (the unknowns with a neighbour of the
-    other kind), each pass followed by the coarse-grid correction ``correct`` of the residual (the far field's
-    response to the band's change, which is smooth), up to :data:`TWO_GRID_PASSES` passes. The caller's
-    global solves on the returned set decide convergence: this only changes which set is factorized first."""
+                  start: Callable[[], tuple], tol: float, p_c: float) -> np.ndarray:
+    """The set a nested start carries (``cav``), iterated without a fine factorization: :func:`_band_set` on a
+    band around its fronts (the unknowns with a neighbour of the other kind) from the coarse solution interpolated
+    to the unknowns, each pass followed by the coarse-grid correction of the residual (the far field's response to
+    the band's change, which is smooth), up to :func:`_two_grid_passes` passes; ``start()`` gives both, ``(y,
+    correct)``, called only once the band is taken. Below :data:`TWO_GRID_FROM` unknowns a band whose matrices do
+    not factor by banded LU is refused: ``cav`` as it is. The caller's global solves on the returned set decide
+    convergence: this only changes which set is factorized first."""
     pattern = (abs(K) + abs(Gc)).tocsr()
     f = cav.astype(float)
     front = (pattern @ f > 0) & ~cav | (pattern @ (1.0 - f) > 0) & cav
-    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
     rings = TWO_GRID_RINGS if cav.size >= TWO_GRID_WIDE_FROM else TWO_GRID_NARROW_RINGS
-    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, seed=front, passes=TWO_GRID_PASSES,
-                     converge=True, rings=rings, iterations=TWO_GRID_ITERATIONS, pattern=pattern)
+    plan = _band_plan(pattern, _grown(front, pattern, rings))
+    if cav.size < TWO_GRID_FROM and not isinstance(plan[2], _BandedLU):
+        return cav
+    y, correct = start()
+    tol_p = tol * max(float(np.abs(np.where(cav, 0.0, y)).max(initial=0.0)), abs(p_c), 1e-300)
+    return _band_set(K, Gc, G, b, cav, y, cav, tol, tol_p, correct, passes=_two_grid_passes(cav.size), converge=True,
+                     iterations=TWO_GRID_ITERATIONS, pattern=pattern, plan=plan)
+
+
+def _two_grid_passes(unknowns: int) -> int:
+    """The passes of :func:`_two_grid_set`'s band at most for ``unknowns`` unknowns: :data:`TWO_GRID_PASSES` from
+    :data:`TWO_GRID_WIDE_FROM` on, :data:`TWO_GRID_NARROW_PASSES` from :data:`TWO_GRID_FROM`, else
+    :data:`TWO_GRID_BANDED_PASSES` (read at each call)."""
+    if unknowns >= TWO_GRID_WIDE_FROM:
+        return TWO_GRID_PASSES
+    return TWO_GRID_NARROW_PASSES if unknowns >= TWO_GRID_FROM else TWO_GRID_BANDED_PASSES
+
+
+def _takes_two_grid(unknowns: int) -> bool:
+    """Whether a nested start of ``unknowns`` unknowns tries :func:`_two_grid_set`: from :data:`TWO_GRID_FROM`
+    unknowns on, and from :data:`TWO_GRID_BANDED_FROM` where its band factors by banded LU (read at each call)."""
+    return unknowns >= min(TWO_GRID_FROM, TWO_GRID_BANDED_FROM)
+
+
+def _two_grid_flux(mesh: SupportMesh, couette: str) -> bool:
+    """Whether a nested start with the Couette flux ``couette`` on ``mesh`` carries :func:`_two_grid_set`'s start:
+    the grid flux; the streamline flux where :data:`TWO_GRID_STREAMLINE` and ``mesh``'s surface has no recesses
+    (read at each call)."""
+    if couette == "grid":
+        return True
+    return (couette == "streamline" and TWO_GRID_STREAMLINE and mesh.surface is not None
+            and not mesh.surface.recesses)
 
 
 def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
@@ -2422,17 +2510,18 @@ def active_set(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: floa
     the solution of the last set once the next one differs from it in at most this many unknowns (a nested
     start's coarse level, whose cavity the finer level moves by more anyway). A cycle raises
     :class:`JFOError` with the unknowns that switch in it as its ``switching`` attribute. ``guess``: a nested
-    start's ``(y, correct)``, the coarse solution on the unknowns (``P`` or ``theta`` by ``cavity``) and its
-    coarse-grid correction of a residual: from :data:`TWO_GRID_FROM` unknowns the set is first iterated on a band
-    around the fronts of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
+    start's :func:`_two_grid_start` (called for ``(y, correct)``, the coarse solution on the unknowns (``P`` or
+    ``theta`` by ``cavity``) and its coarse-grid correction of a residual, once a band is taken): from
+    :data:`TWO_GRID_FROM` unknowns (:func:`_takes_two_grid`) the set is first iterated on a band around the fronts
+    of ``cavity`` with those corrections (:func:`_two_grid_set`), before any factorization."""
     KII, GII, b = _reduced(system, unk, p_fixed, p_c)
     GcII = _reduced_cavity(system, unk, GII)
     cav = cavity.copy()
     seen: set[bytes] = set()
     scale = float(np.abs(b).max(initial=0.0)) or 1.0
     solver = _SetSolver(KII, GcII, factorize, unk)
-    if guess is not None and not (fixed or rough) and cav.size >= TWO_GRID_FROM:
-        cav = _two_grid_set(KII, GcII, GII, b, cav, guess[0], guess[1], tol, p_c)
+    if guess is not None and not (fixed or rough) and _takes_two_grid(cav.size):
+        cav = _two_grid_set(KII, GcII, GII, b, cav, guess, tol, p_c)
     for it in range(1, max_iterations + 1):
         full = ~cav
         rhs = -b - matvec(GII, full.astype(float))
@@ -2528,7 +2617,7 @@ def _limited_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: 
 
 
 def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_c: float, cavity: np.ndarray,
-                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators):
+                      factorize: Factorize, tol: float, max_iterations: int, ops: Operators, guess=None):
     """``couette="streamline"``: the active set on the streamline flux; where it ends with ``theta < 0`` or
     cycles (the flux is not positive: a cell's outflow takes theta of its neighbours), the segments out of
     those nodes take theta of their upwind node instead (first-order upwind, positive) and the problem is
@@ -2542,7 +2631,9 @@ def _streamline_solve(system: FVSystem, unk: FVUnknowns, p_fixed: np.ndarray, p_
     start = cavity
     for _ in range(STREAMLINE_PASSES):
         try:
-            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True)
+            first, guess = guess, None   # a nested start's guess starts the first pass only
+            sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, negative=True,
+                             guess=first)
         except JFOError as error:
             switching = getattr(error, "switching", None)
             if switching is None or switching.size == 0:
@@ -3040,8 +3131,10 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     bilinear interpolation of ``P / max P`` (full film, weighted by :data:`NESTED_P_WEIGHT`) and ``theta - 1``
     (cavity); None where there is no coarser grid (or it fails: the caller starts cold). The coarse level
     stops its iteration early (:data:`NESTED_ROUGH`). With ``guess`` (a fine level that is not itself a rough
-    coarse level) and from :data:`TWO_GRID_FROM` unknowns, also returns the start of :func:`_two_grid_set`: the
-    coarse solution interpolated to the unknowns and its coarse-grid correction (else None)."""
+    coarse level) of the fluxes of :func:`_two_grid_flux` and from :data:`TWO_GRID_FROM` unknowns
+    (:func:`_takes_two_grid`), also returns the start of :func:`_two_grid_set`: :func:`_two_grid_start` on this
+    coarse level, which builds the coarse solution interpolated to the unknowns and its coarse-grid correction
+    when called (else None)."""
     coarse = _coarser_grid(mesh) if couette == "grid" else _grid_under(mesh)
     if coarse is None:
         return None, {}, None
@@ -3073,30 +3166,45 @@ def _nested_cavity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressu
     info["coarse_iterations"] = info.get("coarse_iterations", 0.0) + float(csol.iterations)
     cavity = value < 0.0
     start = None
-    if guess and couette == "grid" and unk.rep.size >= TWO_GRID_FROM and csol.solve is not None:
-        # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
-        index = np.full(values.shape, -1)
-        index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
-        rows = np.tile(np.arange(unk.rep.size), 4)
-        cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
-                               index[k[0] + 1, k[1] + 1]])
-        w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
-        keep = cols >= 0
-        I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unk.rep.size, cp.shape[1]))
-        fixed = _pocket_values(coarse, cops, inlet_pressure)
-        p_all = cunk.S @ (csol.p - p_c)
-        p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
-        theta_all = cunk.S @ csol.theta
-        theta_all[cunk.fixed] = 1.0
-        y = np.where(cavity, I @ theta_all, I @ p_all)
-        Iu = (I @ cunk.S).tocsr()
-        IuT = Iu.T.tocsr()
-
-        def correct(r: np.ndarray) -> np.ndarray:
-            return Iu @ np.asarray(csol.solve(IuT @ r), float)
-
-        start = (y, correct)
+    if guess and _two_grid_flux(mesh, couette) and _takes_two_grid(unk.rep.size) and csol.solve is not None:
+        start = functools.partial(_two_grid_start, coarse, cops, cunk, csol, inlet_pressure, p_c, cavity, lines,
+                                  values.shape, k, t)
     return cavity, info, start
+
+
+def _two_grid_start(coarse: SupportMesh, cops: Operators, cunk: FVUnknowns, csol: _Solution, inlet_pressure,
+                    p_c: float, cavity: np.ndarray, lines: list, shape: tuple, k: list, t: list) -> tuple:
+    """:func:`_two_grid_set`'s start from a nested start's coarse level (:func:`_nested_cavity`: its mesh,
+    operators, unknowns and solution; its grid ``lines``, ``shape`` of the nodes' values on them, the unknowns'
+    cells ``k`` and coordinates ``t`` in them): the coarse solution interpolated bilinearly to the unknowns (``P``
+    in the full film, ``theta`` in ``cavity``) and the coarse-grid correction of a residual, ``(y, correct)``;
+    built only once the band is taken."""
+    unknowns = k[0].size
+    cp = cops.basis.doflocs
+    # the bilinear interpolation from the coarse dofs to the unknowns as a matrix (pocket holes: no column)
+    index = np.full(shape, -1)
+    index[np.searchsorted(lines[0], cp[0]), np.searchsorted(lines[1], cp[1])] = np.arange(cp.shape[1])
+    rows = np.tile(np.arange(unknowns), 4)
+    cols = np.concatenate([index[k[0], k[1]], index[k[0] + 1, k[1]], index[k[0], k[1] + 1],
+                           index[k[0] + 1, k[1] + 1]])
+    w = np.concatenate([(1 - t[0]) * (1 - t[1]), t[0] * (1 - t[1]), (1 - t[0]) * t[1], t[0] * t[1]])
+    keep = cols >= 0
+    I = sp.csr_matrix((w[keep], (rows[keep], cols[keep])), shape=(unknowns, cp.shape[1]))
+    fixed = _pocket_values(coarse, cops, inlet_pressure)
+    p_all = cunk.S @ (csol.p - p_c)
+    p_all[cunk.fixed] = fixed[cunk.fixed] - p_c
+    theta_all = cunk.S @ csol.theta
+    theta_all[cunk.fixed] = 1.0
+    y = np.where(cavity, I @ theta_all, I @ p_all)
+    kept: list[sp.csr_matrix] = []   # the interpolation from the coarse unknowns and its transpose, at first use
+
+    def correct(r: np.ndarray) -> np.ndarray:
+        if not kept:
+            Iu = (I @ cunk.S).tocsr()
+            kept.extend((Iu, Iu.T.tocsr()))
+        return kept[0] @ np.asarray(csol.solve(kept[1] @ r), float)
+
+    return y, correct
 
 def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pressure: float, p_c: float, dt,
                      previous, couette: str, cavitation: str, factorize: Factorize, tol: float,
@@ -3126,7 +3234,7 @@ def _complementarity(mesh: SupportMesh, film: Film, wedge: float, sq, inlet_pres
             nested = dict(nested, first_guess_factorizations=1.0)  # beside the active set's own count
         if couette == "streamline" and cavitation == "jfo":
             system, sol, upwinded = _streamline_solve(system, unk, p_fixed, p_c, cavity, factorize, tol,
-                                                      max_iterations, ops)
+                                                      max_iterations, ops, guess=guess)
         elif cavitation == "jfo":
             sol = active_set(system, unk, p_fixed, p_c, cavity, factorize, tol, max_iterations, rough=rough,
                              guess=guess)

@@ -228,6 +228,7 @@ def test_band_iteration_gives_the_plain_active_sets_solution_in_fewer_factorizat
 
     mesh, options = grid_mesh(_dimpled(), 1 / 130), dict(cavitation_pressure=-0.05)
     monkeypatch.setattr(jfo, "TWO_GRID_FROM", 10**9)   # the nested start's own band would leave no set change
+    monkeypatch.setattr(jfo, "TWO_GRID_BANDED_FROM", 10**9)
     monkeypatch.setattr(jfo, "BAND_FROM", 0)
     band = solve_jfo(mesh, UniformFilm(1.0), **options)
     monkeypatch.setattr(jfo, "BAND_FROM", 10**9)
@@ -254,6 +255,7 @@ def test_two_grid_band_start_gives_the_plain_solution_in_fewer_fine_factorizatio
     monkeypatch.setattr(jfo, "TWO_GRID_FROM", 0)
     fast = solve_jfo(mesh, film, **options)
     monkeypatch.setattr(jfo, "TWO_GRID_FROM", 10**9)
+    monkeypatch.setattr(jfo, "TWO_GRID_BANDED_FROM", 10**9)
     plain = solve_jfo(mesh, film, **options)
     assert len(calls) == 1 and fast.cost["nested_levels"] >= 1
     assert plain.cavitated.any()
@@ -277,11 +279,58 @@ def test_narrow_two_grid_band_gives_the_wide_bands_answer_in_no_more_fine_factor
     monkeypatch.setattr(jfo, "TWO_GRID_WIDE_FROM", 0)
     wide = solve_jfo(mesh, film, **options)
     monkeypatch.setattr(jfo, "TWO_GRID_FROM", 10**9)
+    monkeypatch.setattr(jfo, "TWO_GRID_BANDED_FROM", 10**9)
     plain = solve_jfo(mesh, film, **options)
     assert narrow.cost["factorizations"] <= wide.cost["factorizations"] < plain.cost["factorizations"]
     for other in (wide, plain):
         _assert_same_solution(narrow, other)
     assert abs(narrow.mass_balance) < 1e-12 and narrow.cost["active_set_residual"] < 1e-11
+
+
+@pytest.mark.parametrize("case", ["dimples", "grooved journal"])
+def test_two_grid_start_below_its_size_takes_a_thin_band(monkeypatch, case):
+    # below TWO_GRID_FROM unknowns (from TWO_GRID_BANDED_FROM) a nested start iterates its set on the band around
+    # its fronts where that band factors by banded LU: the global solves still decide convergence, so the answer is
+    # the plain start's complementarity solution to the solver tolerance (a last Woodbury step is accepted at a
+    # 1e-11 residual), in fewer fine factorizations (measured 1 against 3 on the 3 x 3 dimples at 70 x 70 cells,
+    # 1 against 2 on the grooved journal at 100 x 40)
+    import bearingfe.film.finite_volume as jfo
+
+    if case == "dimples":
+        mesh, film, options = grid_mesh(_dimpled(), 1 / 70), UniformFilm(1.0), dict(cavitation_pressure=-0.05)
+    else:
+        surface, film, options = _pocketed_journal()
+        mesh = grid_mesh(surface, 2 * np.pi / 100, size_z=1 / 40)
+    calls = []
+    band = jfo._band_set
+    monkeypatch.setattr(jfo, "_band_set", lambda *a, **k: calls.append(a[4].size) or band(*a, **k))
+    thin = solve_jfo(mesh, film, **options)
+    assert len(calls) == 1 and jfo.TWO_GRID_BANDED_FROM <= calls[0] < jfo.TWO_GRID_FROM   # the band's unknowns
+    monkeypatch.setattr(jfo, "TWO_GRID_BANDED_FROM", 10**9)
+    plain = solve_jfo(mesh, film, **options)
+    assert len(calls) == 1 and thin.cost["nested_levels"] >= 1 and plain.cavitated.any()
+    _assert_same_solution(thin, plain)
+    assert thin.cost["factorizations"] < plain.cost["factorizations"]
+    assert abs(thin.mass_balance) < 1e-12 and thin.cost["active_set_residual"] < 1e-11
+
+
+def test_two_grid_start_below_its_size_refuses_a_wide_band(monkeypatch):
+    # the 25 dimples of docs/jfo_dimples.md at 70 x 70 cells: their fronts' band (3,136 of 4,761 unknowns) is too
+    # wide for banded LU, so the carried set is factorized as it is: the plain start's solve, bit for bit
+    from benchmarks.jfo_dimples import P_C, surface
+
+    import bearingfe.film.finite_volume as jfo
+
+    mesh = grid_mesh(surface(), 1 / 70)
+    sets = []
+    two_grid = jfo._two_grid_set
+    monkeypatch.setattr(jfo, "_two_grid_set", lambda *a: sets.append((a[4], two_grid(*a))) or sets[-1][1])
+    refused = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=P_C)
+    monkeypatch.setattr(jfo, "TWO_GRID_BANDED_FROM", 10**9)
+    plain = solve_jfo(mesh, UniformFilm(1.0), cavitation_pressure=P_C)
+    assert len(sets) == 1 and np.array_equal(sets[0][0], sets[0][1])
+    assert refused.cost["factorizations"] == plain.cost["factorizations"]
+    assert np.array_equal(refused.pressure, plain.pressure) and np.array_equal(refused.theta, plain.theta)
 
 
 def test_sliding_backwards_mirrors_the_solution():
