@@ -862,6 +862,31 @@ def test_stiffness_on_the_pattern_found_at_the_second_call_equals_scipys_sums():
                 assert want.nnz < pattern.indices.size   # the zero entries left out
 
 
+def test_stiffness_on_a_grids_pattern_drops_its_zeros_as_scipys_sums(monkeypatch):
+    """On a grid's P1 pattern (its diagonals' entries sum to exactly zero, and some cell integrals are zero here, so
+    whole rows of off-diagonal entries and diagonals vanish) the stiffness drops the zeros by scipy's kernel
+    (:func:`~bearingfe.core.compressed.csr_without_zeros`) or, with the kernels declared unusable, by scipy's
+    ``eliminate_zeros``: bit for bit scipy's sparse sums (reference: ``U`` by the COO conversion, ``U + U^T``, the
+    rows' sums on the diagonal) either way."""
+    from bearingfe.core import compressed as cm
+
+    mesh = grid_mesh(_dimpled(), 1 / 10)
+    cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+    pattern = fv._p1_pattern(mesh)
+    rng = np.random.default_rng(5)
+    w = rng.uniform(0.5, 2.0, cells.t.shape[1])
+    w[: w.size // 4] = 0.0   # a corner of cells without terms: nodes whose rows are empty
+    want = _sparse_stiffness(cells, w)
+    assert want.nnz < pattern.indices.size and np.all(want.data)
+    kept = pattern.indices.copy(), pattern.indptr.copy()
+    for usable in (True, False):
+        monkeypatch.setattr(cm, "kernels_usable", lambda: usable)
+        got = fv._stiffness_on(pattern, fv._edge_terms(cells, w))
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name)), (usable, name)
+    assert np.array_equal(pattern.indices, kept[0]) and np.array_equal(pattern.indptr, kept[1])   # left as they were
+
+
 def test_first_stiffness_is_scipys_sums_on_any_triangles(monkeypatch):
     """A mesh's first stiffness (no pattern: :func:`_stiffness_converted`, scipy's kernels on the arrays) equals
     scipy's sparse sums bit for bit (reference: ``U`` by the COO conversion, ``U + U^T``, ``A - diag(A 1)``) also
