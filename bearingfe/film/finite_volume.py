@@ -1902,10 +1902,21 @@ def _grid_band_order(unk: FVUnknowns) -> np.ndarray | None:
     order = unk._order.get("grid_band")
     if order is None:
         phi, z = unk.coordinates
-        inner, outer = (z, phi) if np.unique(z).size <= np.unique(phi).size else (phi, z)
+        inner, outer = (z, phi) if _distinct_count(z) <= _distinct_count(phi) else (phi, z)
         order = np.lexsort((-inner, outer)).astype(np.int64)
         unk._order["grid_band"] = order
     return order
+
+
+def _distinct_count(values: np.ndarray) -> int:
+    """``np.unique(values).size`` of finite values (a grid's coordinates): the changes along them sorted, one sort
+    (none where they are sorted already, as a grid's node numbering leaves its ``phi``), without ``np.unique``'s
+    mask and copy of the distinct values."""
+    if values.size == 0:
+        return 0
+    if not np.all(values[1:] >= values[:-1]):
+        values = np.sort(values)
+    return 1 + int(np.count_nonzero(values[1:] != values[:-1]))
 
 
 def _full_film_order(unk: FVUnknowns, pattern: sp.csr_matrix) -> np.ndarray | None:

@@ -1026,6 +1026,22 @@ def test_grid_line_band_order_gives_the_reverse_cuthill_mckee_band_and_answers(m
     assert not seamed.on_grid and fv._grid_band_order(seamed) is None
 
 
+def test_distinct_count_is_the_size_of_numpys_unique():
+    """:func:`_distinct_count` (the grid line order's comparison of its coordinates' counts) equals
+    ``np.unique(values).size`` (the previous path) on sorted and unsorted values with repeats, signed zeros (one
+    value), one value and none, and on a grid's unknowns' coordinates in both directions."""
+    rng = np.random.default_rng(3)
+    values = rng.integers(-5, 6, 200) * 0.1
+    cases = [values, np.sort(values), np.array([0.0, -0.0, 0.0, 1.0, -0.0]), np.array([-0.0, 0.0]), np.array([2.5]),
+             np.zeros(0), rng.random(50)]
+    mesh = grid_mesh(_dimpled(), 1 / 17, size_z=1 / 9)
+    unk = fv._unknowns(mesh, fv.operators(mesh, "P1"))
+    cases += list(unk.coordinates)
+    for v in cases:
+        assert fv._distinct_count(v) == np.unique(v).size
+        assert fv._distinct_count(v[::-1]) == np.unique(v).size
+
+
 def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatch):
     """A banded LU of half-bandwidth from ``BAND_PAD_FROM`` up to ``BAND_BLOCK`` (32) is stored and factored as
     one of ``BAND_BLOCK`` (LAPACK's blocked path; zero extra diagonals, the same pivots): its solution equals the
