@@ -67,6 +67,54 @@ def test_line_circles_at_once_are_the_chords_added_circle_by_circle():
     assert np.array_equal(fv._line_circles(surface, x[:0], lo[:0], hi[:0]), np.zeros(0))
 
 
+def test_line_pairs_are_each_recesses_lines_concatenated():
+    """The (line, recess) pairs of the face lines built at once (:func:`_line_pairs`) are the previous path's:
+    per recess its places shifted to each line (``place + j n``, line by line), concatenated in the recesses'
+    order, the recess of each pair repeated alike; with recesses near no rectangle and none at all."""
+    rng = np.random.default_rng(13)
+    for n, lines in ((40, 3), (40, 5), (7, 1), (0, 3)):
+        places = [np.sort(rng.choice(n, size, replace=False)).astype(np.int64) if n else np.zeros(0, np.int64)
+                  for size in rng.integers(0, n + 1, 6)]
+        places[2] = np.zeros(0, np.int64)
+        rows = [(w[None, :] + n * np.arange(lines)[:, None]).ravel() for w in places]
+        idx, which = fv._line_pairs(places, lines, n)
+        assert idx.dtype == np.int64 and np.array_equal(idx, np.concatenate(rows))
+        assert np.array_equal(which, np.repeat(np.arange(len(rows)), [r.size for r in rows]))
+    idx, which = fv._line_pairs([], 3, 10)
+    assert idx.size == 0 and which.size == 0
+
+
+def test_tensor_overlaps_are_the_rectangles_own_test():
+    """The rectangles of a tensor grid near each recess found from the lines (:func:`_tensor_overlaps`, one and two
+    copies: a grid's two triangles per cell) are those of each rectangle's own overlap test (:func:`_overlaps`),
+    on uneven cells and on the nodes (zero-width rectangles)."""
+    mesh = grid_mesh(_dimpled(), 1 / 17, size_z=1 / 9)
+    xs, zs = fv.tensor_lines(mesh)
+    for (x_lo, x_hi), (z_lo, z_hi) in (((xs[:-1], xs[1:]), (zs[:-1], zs[1:])), ((xs, xs), (zs, zs))):
+        nx, nz = x_lo.size, z_lo.size
+        x0, x1 = np.repeat(x_lo, nz), np.repeat(x_hi, nz)
+        z0, z1 = np.tile(z_lo, nx), np.tile(z_hi, nx)
+        want = fv._overlaps(mesh.surface, x0, x1, z0, z1)
+        got = fv._tensor_overlaps(mesh.surface, (x_lo, x_hi), (z_lo, z_hi))
+        assert len(got) == 4 and all(r.size > 0 for r in got)
+        assert all(np.array_equal(a, b) for a, b in zip(got, want))
+        two = fv._tensor_overlaps(mesh.surface, (x_lo, x_hi), (z_lo, z_hi), copies=2)
+        assert all(np.array_equal(a, np.concatenate([b, b + nx * nz])) for a, b in zip(two, want))
+
+
+def test_subcentroids_are_the_sub_triangles_centroids():
+    """The barycentric coordinates of the cut cells' points (:func:`_subcentroids`): ``n^2`` rows summing to 1,
+    the centroids of the ``n(n+1)/2`` upright sub-triangles (corners ``(i, j), (i+1, j), (i, j+1)`` over ``n``)
+    then of the ``n(n-1)/2`` inverted ones, kept read-only per ``n``."""
+    for n in (1, 3, 8):
+        lam = fv._subcentroids(n)
+        assert lam.shape == (n * n, 3) and not lam.flags.writeable and fv._subcentroids(n) is lam
+        assert np.allclose(lam.sum(axis=1), 1.0, rtol=0, atol=1e-15)
+        up = [((3 * i + 1) / (3 * n), (3 * j + 1) / (3 * n)) for i in range(n) for j in range(n - i)]
+        down = [((3 * i + 2) / (3 * n), (3 * j + 2) / (3 * n)) for i in range(n - 1) for j in range(n - 1 - i)]
+        assert np.allclose(lam[:, 1:], np.array(up + down).reshape(-1, 2), rtol=0, atol=1e-15)
+
+
 def test_line_recess_on_part_of_a_chord():
     """Segments ending inside a dimple: depth times the part of the chord in ``[lo, hi]`` (closed form)."""
     surface = _dimpled()
@@ -862,6 +910,31 @@ def test_stiffness_on_the_pattern_found_at_the_second_call_equals_scipys_sums():
                 assert want.nnz < pattern.indices.size   # the zero entries left out
 
 
+def test_stiffness_on_a_grids_pattern_drops_its_zeros_as_scipys_sums(monkeypatch):
+    """On a grid's P1 pattern (its diagonals' entries sum to exactly zero, and some cell integrals are zero here, so
+    whole rows of off-diagonal entries and diagonals vanish) the stiffness drops the zeros by scipy's kernel
+    (:func:`~bearingfe.core.compressed.csr_without_zeros`) or, with the kernels declared unusable, by scipy's
+    ``eliminate_zeros``: bit for bit scipy's sparse sums (reference: ``U`` by the COO conversion, ``U + U^T``, the
+    rows' sums on the diagonal) either way."""
+    from bearingfe.core import compressed as cm
+
+    mesh = grid_mesh(_dimpled(), 1 / 10)
+    cells = fv._cells(mesh, fv.operators(mesh, "P1"))
+    pattern = fv._p1_pattern(mesh)
+    rng = np.random.default_rng(5)
+    w = rng.uniform(0.5, 2.0, cells.t.shape[1])
+    w[: w.size // 4] = 0.0   # a corner of cells without terms: nodes whose rows are empty
+    want = _sparse_stiffness(cells, w)
+    assert want.nnz < pattern.indices.size and np.all(want.data)
+    kept = pattern.indices.copy(), pattern.indptr.copy()
+    for usable in (True, False):
+        monkeypatch.setattr(cm, "kernels_usable", lambda: usable)
+        got = fv._stiffness_on(pattern, fv._edge_terms(cells, w))
+        for name in ("indptr", "indices", "data"):
+            assert np.array_equal(getattr(got, name), getattr(want, name)), (usable, name)
+    assert np.array_equal(pattern.indices, kept[0]) and np.array_equal(pattern.indptr, kept[1])   # left as they were
+
+
 def test_first_stiffness_is_scipys_sums_on_any_triangles(monkeypatch):
     """A mesh's first stiffness (no pattern: :func:`_stiffness_converted`, scipy's kernels on the arrays) equals
     scipy's sparse sums bit for bit (reference: ``U`` by the COO conversion, ``U + U^T``, ``A - diag(A 1)``) also
@@ -999,6 +1072,22 @@ def test_grid_line_band_order_gives_the_reverse_cuthill_mckee_band_and_answers(m
     periodic = grid_mesh(Surface(arc=(0.0, 2 * np.pi), half_width=0.5, periodic=True), 0.2)
     seamed = fv._unknowns(periodic, fv.operators(periodic, "P1"))
     assert not seamed.on_grid and fv._grid_band_order(seamed) is None
+
+
+def test_distinct_count_is_the_size_of_numpys_unique():
+    """:func:`_distinct_count` (the grid line order's comparison of its coordinates' counts) equals
+    ``np.unique(values).size`` (the previous path) on sorted and unsorted values with repeats, signed zeros (one
+    value), one value and none, and on a grid's unknowns' coordinates in both directions."""
+    rng = np.random.default_rng(3)
+    values = rng.integers(-5, 6, 200) * 0.1
+    cases = [values, np.sort(values), np.array([0.0, -0.0, 0.0, 1.0, -0.0]), np.array([-0.0, 0.0]), np.array([2.5]),
+             np.zeros(0), rng.random(50)]
+    mesh = grid_mesh(_dimpled(), 1 / 17, size_z=1 / 9)
+    unk = fv._unknowns(mesh, fv.operators(mesh, "P1"))
+    cases += list(unk.coordinates)
+    for v in cases:
+        assert fv._distinct_count(v) == np.unique(v).size
+        assert fv._distinct_count(v[::-1]) == np.unique(v).size
 
 
 def test_band_just_below_lapacks_block_size_is_factored_as_that_block(monkeypatch):
