@@ -50,6 +50,7 @@ from benchmarks.run_all import OtherLoad  # noqa: E402
 import bearingfe as bf  # noqa: E402
 from bearingfe.film.thickness import UniformFilm  # noqa: E402
 from bearingfe.film.finite_volume import solve_jfo  # noqa: E402
+from bearingfe.film import finite_volume as fv  # noqa: E402
 
 L, U, MU, H_MIN, DEPTH, P_AMB, P_CAV = 0.08, 5.0, 0.03, 15e-6, 12e-6, 1e5, 3e4
 PUBLISHED = ((90_000, 11.3), (360_000, 47.1))
@@ -419,8 +420,11 @@ def main(argv=None) -> None:
         "with its own mesh, assembly and active set, stopped once a step switches at most 0.5 % of its nodes; "
         "its cavity carried to the fine grid. `fine factorizations`: SuperLU of the fine active-set matrices in "
         "one nested-dissection order (`fine ND order`, the grid's own dissection, found once per mesh); "
-        "`Woodbury`: steps solved by a low-rank update of the last factorization; `band`: from 8,000 nodes the "
-        "carried cavity is first iterated on a band of neighbour rings (2; 6 from 5e4 nodes) around its fronts, "
+        "`Woodbury`: steps solved by a low-rank update of the last factorization; `band`: from "
+        f"{fv.TWO_GRID_FROM:,} nodes (from {fv.TWO_GRID_BANDED_FROM:,} where the band factors as a band, then in "
+        f"{fv.TWO_GRID_BANDED_PASSES} pass) the carried cavity is first iterated on a band of neighbour rings "
+        f"({fv.TWO_GRID_NARROW_RINGS}, at most {fv.TWO_GRID_NARROW_PASSES} passes; {fv.TWO_GRID_RINGS} rings and "
+        f"{fv.TWO_GRID_PASSES} passes from {fv.TWO_GRID_WIDE_FROM:,} nodes) around its fronts, "
         "each pass corrected by the coarse grid's last factorization, so the first fine factorization is already near the final set "
         "(and a later set change too large for Woodbury is iterated on a band around the switched nodes, with "
         "global correction solves between its passes); `rest`: matrices, solves, set updates. `yardstick`: one "
