@@ -114,7 +114,6 @@ def stages(n: int) -> dict:
     Sherman-Morrison-Woodbury steps, band iterations, the rest: matrices, solves, set updates) and the
     postprocessing; and the yardstick, one factorization + solve of the converged fine matrix in the same order
     (what each fine factorization costs at best). Timed by wrapping the solver's internals (benchmark only)."""
-    from bearingfe.film import finite_volume as fv
 
     shape, film = surface(), UniformFilm(1.0)
     t0 = time.perf_counter()
